@@ -1,0 +1,112 @@
+/* board — the one hardware interface the app sees. Two implementations
+ * link against it: board/sim (a PC) and board/pi (the box). Pick one at
+ * build time (CUB_BOARD=sim|pi).
+ *
+ *   buttons  START and STOP, debounced, delivered as loop events
+ *   depth    640x480 raw 11-bit Kinect frames from libfreenect (live, or
+ *            replayed by fakenect from a dump: same calls either way)
+ *   display  an OpenGL ES 2 context: an SDL2 window (KMSDRM on the box),
+ *            or headless EGL (surfaceless Mesa) with pixel read-back
+ *   audio    a PCM sink the app fills from a callback; its sample position
+ *            is the music clock
+ *   clock    monotonic microseconds
+ *   storage  where config, logs and (opt-in) recordings live
+ *
+ * Nothing here opens a network port or stores camera data by itself.
+ */
+#ifndef CUB_BOARD_H
+#define CUB_BOARD_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "cub/err.h"
+#include "cub/loop.h"
+
+#define CUB_DEPTH_W 640
+#define CUB_DEPTH_H 480
+#define CUB_DEPTH_NO_READING 2047 /* raw value meaning "no depth here" */
+
+typedef enum cub_display_mode {
+    CUB_DISPLAY_AUTO = 0, /* a window if a display exists, else headless */
+    CUB_DISPLAY_WINDOW,   /* SDL2 window (sim) or SDL2 KMSDRM full screen (pi) */
+    CUB_DISPLAY_HEADLESS, /* EGL surfaceless, off-screen, read back as RGBA */
+    CUB_DISPLAY_NONE,     /* no GL at all (tools, some tests) */
+} cub_display_mode;
+
+typedef enum cub_depth_mode {
+    CUB_DEPTH_AUTO = 0, /* libfreenect; if no Kinect, the built-in empty scene */
+    CUB_DEPTH_FREENECT, /* libfreenect only (live device or fakenect replay) */
+    CUB_DEPTH_EMPTY,    /* built-in empty scene: every pixel "no reading" */
+    CUB_DEPTH_OFF,      /* no depth source at all */
+} cub_depth_mode;
+
+typedef struct cub_board_desc {
+    cub_display_mode display;   /* default AUTO */
+    int width, height;          /* display size; default 1280x720 */
+    cub_depth_mode depth;       /* default AUTO */
+    const char *button_script;  /* sim: a timeline file of presses; NULL = keyboard */
+    const char *gpio_config;    /* pi: "key=value" file naming the GPIO lines */
+    const char *audio_driver;   /* SDL audio driver ("dummy", "disk"); NULL = default */
+    int audio_rate;             /* default 44100 */
+    const char *storage_dir;    /* default "." */
+} cub_board_desc;
+
+typedef struct cub_board cub_board; /* opaque */
+
+typedef struct cub_depth_frame {
+    const uint16_t *raw;  /* CUB_DEPTH_W * CUB_DEPTH_H raw 11-bit values, row-major */
+    uint32_t seq;         /* 0, 1, 2 ... in arrival order */
+    uint32_t timestamp;   /* libfreenect's timestamp (60 MHz ticks) */
+    int64_t t_us;         /* board clock when it arrived */
+    int16_t accel[3];     /* raw accelerometer (gravity), 0 when unknown */
+} cub_depth_frame;
+
+/* Open the board. Fills a clear message into err_msg (may be NULL) on
+ * failure. The board owns everything it opens; close releases it all. */
+cub_err cub_board_open(const cub_board_desc *desc, cub_board **out, char *err_msg,
+                       size_t err_size);
+void cub_board_close(cub_board *board);
+/* "sim" or "pi". */
+const char *cub_board_name(void);
+
+/* ---- clock ------------------------------------------------------------- */
+int64_t cub_board_now_us(cub_board *board);
+void cub_board_sleep_until_us(cub_board *board, int64_t t_us);
+
+/* ---- buttons ----------------------------------------------------------- */
+/* Push debounced button edges (and QUIT when the window closes) that are due
+ * by now_us into the loop. */
+void cub_board_poll_buttons(cub_board *board, cub_loop *loop, int64_t now_us);
+
+/* ---- depth ------------------------------------------------------------- */
+/* The newest frame since the last call: CUB_OK and *out filled (valid until
+ * the next call), CUB_ERR_EMPTY if none yet, CUB_ERR_END when a replay has
+ * run out, CUB_ERR_DEVICE if no source is open. */
+cub_err cub_board_depth_poll(cub_board *board, cub_depth_frame *out);
+/* What the depth source is: "freenect", "empty" or "off". */
+const char *cub_board_depth_source(cub_board *board);
+
+/* ---- display ----------------------------------------------------------- */
+/* A current GLES2 context exists after open unless display == NONE. */
+int cub_board_display_active(cub_board *board);
+int cub_board_display_headless(cub_board *board);
+void cub_board_display_size(cub_board *board, int *w, int *h);
+void cub_board_display_swap(cub_board *board);
+/* Read the current frame as RGBA8, top row first (w*h*4 bytes). */
+cub_err cub_board_display_read_rgba(cub_board *board, uint8_t *rgba, size_t size);
+
+/* ---- audio ------------------------------------------------------------- */
+/* Called from the audio thread to fill interleaved stereo int16 frames. */
+typedef void (*cub_audio_fill)(void *user, int16_t *stereo, int frames);
+cub_err cub_board_audio_start(cub_board *board, cub_audio_fill fill, void *user);
+void cub_board_audio_stop(cub_board *board);
+/* Frames played so far: the music clock. */
+uint64_t cub_board_audio_frames(cub_board *board);
+int cub_board_audio_rate(cub_board *board);
+
+/* ---- storage ----------------------------------------------------------- */
+/* Join the storage directory and a relative name into buf. */
+cub_err cub_board_storage_path(cub_board *board, const char *name, char *buf, size_t size);
+
+#endif

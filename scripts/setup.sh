@@ -1,0 +1,44 @@
+#!/usr/bin/env bash
+# Install every Debian package that building, testing and running cubdance
+# needs, on a fresh Debian 12 (bookworm) machine. Safe to run again: apt
+# skips what is already there. Needs root or sudo.
+#
+#   scripts/setup.sh          host packages + the aarch64 cross toolchain
+#   scripts/setup.sh --host   host packages only (no cross build)
+set -euo pipefail
+
+want_cross=1
+[ "${1:-}" = "--host" ] && want_cross=0
+
+SUDO=""
+if [ "$(id -u)" != 0 ]; then SUDO="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+
+# Libraries the box links, by their Debian -dev names. Installed for the host
+# and, for the `pi` preset, again for arm64 through multiarch.
+LIBS="libfreenect-dev libsdl2-dev libegl-dev libgles-dev libgpiod-dev
+      libtinyxml2-dev libfluidsynth-dev libcmocka-dev libpng-dev zlib1g-dev
+      libegl-mesa0 libgl1-mesa-dri"
+
+# Tools: compiler and build, libFuzzer (clang), fakenect's replay library
+# (libfreenect-bin), the song SoundFont, pictures for golden-image checks.
+TOOLS="build-essential cmake ninja-build pkg-config git clang libclang-rt-14-dev
+       libfreenect-bin timgm6mb-soundfont ca-certificates"
+
+CROSS="crossbuild-essential-arm64 qemu-user-static"
+
+apt_install() { $SUDO apt-get install -y --no-install-recommends "$@"; }
+
+if [ "$want_cross" = 1 ] && ! dpkg --print-foreign-architectures | grep -qx arm64; then
+    $SUDO dpkg --add-architecture arm64
+fi
+$SUDO apt-get update -q
+# shellcheck disable=SC2086
+apt_install $TOOLS $LIBS
+if [ "$want_cross" = 1 ]; then
+    arm_libs=""
+    for p in $LIBS; do arm_libs="$arm_libs $p:arm64"; done
+    # shellcheck disable=SC2086
+    apt_install $CROSS $arm_libs
+fi
+echo "setup: done"
