@@ -29,6 +29,23 @@ CROSS="crossbuild-essential-arm64 qemu-user-static"
 
 apt_install() { $SUDO apt-get install -y --no-install-recommends "$@"; }
 
+# Everything this run wants, so a machine that has it all skips apt entirely.
+wanted="$TOOLS $LIBS"
+if [ "$want_cross" = 1 ]; then
+    wanted="$wanted $CROSS"
+    for p in $LIBS; do wanted="$wanted $p:arm64"; done
+fi
+missing=""
+for p in $wanted; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" ||
+        missing="$missing $p"
+done
+if [ -z "$missing" ]; then
+    echo "setup: every package is already installed"
+    exit 0
+fi
+echo "setup: installing:$missing"
+
 if [ "$want_cross" = 1 ] && ! dpkg --print-foreign-architectures | grep -qx arm64; then
     $SUDO dpkg --add-architecture arm64
 fi

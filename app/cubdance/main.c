@@ -1,0 +1,139 @@
+/* cubdance — the box program. Parse the options, open the board, load the
+ * coach's clip, run the fixed-tick loop until STOP-and-quit or --seconds,
+ * and say where the frames and the event log went. */
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "cub/board.h"
+#include "cub/io.h"
+#include "cub/loop.h"
+#include "cub/render.h"
+#include "options.h"
+#include "replay.h"
+#include "session.h"
+
+static void log_to_file(void *user, const char *line, size_t len)
+{
+    FILE *f = user;
+    fwrite(line, 1, len, f);
+    fputc('\n', f);
+}
+
+static FILE *open_log(const char *path)
+{
+    if (!path || !strcmp(path, "-")) return stderr;
+    FILE *f = fopen(path, "w");
+    if (!f) {
+        fprintf(stderr, "cubdance: cannot write the event log %s: %s\n", path, strerror(errno));
+        return NULL;
+    }
+    setvbuf(f, NULL, _IOLBF, 0); /* a line reaches the file as it happens */
+    return f;
+}
+
+static int make_dir(const char *dir)
+{
+    if (mkdir(dir, 0755) == 0 || errno == EEXIST) return 0;
+    fprintf(stderr, "cubdance: cannot create the frames directory %s: %s\n", dir,
+            strerror(errno));
+    return -1;
+}
+
+static cub_board *open_board(const cub_app_options *o)
+{
+    cub_board_desc d = {.display = o->display, .width = o->width, .height = o->height,
+                        .depth = o->depth, .button_script = o->button_script,
+                        .gpio_config = o->gpio_config, .audio_driver = o->audio_driver};
+    if (o->frames_dir && d.display == CUB_DISPLAY_AUTO) d.display = CUB_DISPLAY_HEADLESS;
+    cub_board *b = NULL;
+    char msg[512] = "";
+    cub_err err = cub_board_open(&d, &b, msg, sizeof msg);
+    if (err) {
+        fprintf(stderr, "cubdance: cannot open the %s board: %s\n", cub_board_name(),
+                *msg ? msg : cub_err_str(err));
+        return NULL;
+    }
+    return b;
+}
+
+static int load_clip(const char *path, cub_io_motion *m)
+{
+    cub_diag diag;
+    if (cub_io_load_bvh(path, NULL, m, &diag) == CUB_OK) return 0;
+    char buf[768];
+    fprintf(stderr, "cubdance: cannot load the coach's clip: %s\n",
+            cub_diag_str(&diag, buf, sizeof buf));
+    return -1;
+}
+
+static int run(const cub_app_options *o, cub_board *board, FILE *log, const cub_io_motion *clip)
+{
+    static cub_event slots[64];
+    static cub_loop loop;
+    cub_loop_desc ld = {.queue_capacity = 64, .log_sink = log_to_file, .log_user = log};
+    if (cub_loop_init(&loop, &ld, slots, sizeof slots)) return -1;
+
+    cub_session s = {.opt = o, .board = board, .clip = clip, .loop = &loop};
+    int w = 0, h = 0;
+    cub_board_display_size(board, &w, &h);
+    s.depth_copy = calloc(CUB_DEPTH_W * CUB_DEPTH_H, sizeof(uint16_t));
+    s.rgba = malloc((size_t)(w > 0 ? w : 1) * (h > 0 ? h : 1) * 4);
+    if (!s.depth_copy || !s.rgba) return -1;
+    if (cub_board_display_active(board)) {
+        cub_render_desc rd = {.width = w, .height = h};
+        if (cub_render_create(&rd, &s.render)) {
+            fprintf(stderr, "cubdance: the renderer could not start (GLES2)\n");
+            return -1;
+        }
+    }
+    int64_t t0 = cub_board_now_us(board);
+    if (o->seconds > 0) s.stop_at_us = t0 + (int64_t)(o->seconds * 1e6);
+    cub_log_event(&loop.log, t0, "app", "start",
+                  "board=%s display=%s size=%dx%d depth=%s clip=%s joints=%d", cub_board_name(),
+                  !cub_board_display_active(board) ? "none"
+                  : cub_board_display_headless(board) ? "headless" : "window",
+                  w, h, cub_board_depth_source(board), o->clip_path, clip->skel.joint_count);
+    cub_loop_hooks hooks = cub_session_hooks(&s);
+    cub_err err = cub_loop_run(&loop, &hooks, 0);
+    cub_log_event(&loop.log, cub_board_now_us(board), "app", "end",
+                  "ticks=%llu depth_frames=%u frames_written=%u",
+                  (unsigned long long)loop.tick_count, s.depth_frames, s.frames_written);
+    if (s.render) cub_render_destroy(s.render);
+    free(s.depth_copy);
+    free(s.rgba);
+    if (o->frames_dir)
+        printf("cubdance: %u frames written to %s\n", s.frames_written, o->frames_dir);
+    return err ? -1 : (s.frame_error ? -1 : 0);
+}
+
+int main(int argc, char **argv)
+{
+    cub_app_options o;
+    switch (cub_app_parse_options(argc, argv, &o, stderr, stdout)) {
+    case CUB_APP_EXIT_OK: return 0;
+    case CUB_APP_EXIT_BAD: return 2;
+    case CUB_APP_RUN: break;
+    }
+    if (o.replay_dir && cub_replay_prepare(o.replay_dir, argv, stderr)) return 1;
+    if (o.frames_dir && make_dir(o.frames_dir)) return 1;
+
+    cub_io_motion clip;
+    if (load_clip(o.clip_path, &clip)) return 1;
+    FILE *log = open_log(o.log_path);
+    if (!log) return 1;
+    cub_board *board = open_board(&o);
+    int rc = 1;
+    if (board) {
+        rc = run(&o, board, log, &clip) ? 1 : 0;
+        cub_board_close(board);
+    }
+    if (log != stderr) {
+        fclose(log);
+        printf("cubdance: event log written to %s\n", o.log_path);
+    }
+    cub_io_motion_free(&clip);
+    return rc;
+}

@@ -1,0 +1,167 @@
+/* The command line: every option documented in usage(), parsed by hand so
+ * that each error can say which option and why. */
+#include "options.h"
+
+#include <errno.h>
+#include <stdlib.h>
+#include <string.h>
+
+#ifndef CUB_ASSETS_DIR
+#define CUB_ASSETS_DIR "assets"
+#endif
+#ifndef CUB_VERSION
+#define CUB_VERSION "0"
+#endif
+
+static void usage(FILE *f, const char *prog)
+{
+    fprintf(f,
+"usage: %s [options]\n"
+"\n"
+"cubdance, the dancing-bear coach. Waits for START, plays the coach's clip,\n"
+"shows the Kinect depth image small in a corner; STOP returns to waiting.\n"
+"\n"
+"Display\n"
+"  --window               an SDL2 window (KMSDRM full screen on the box)\n"
+"  --headless             no window: render off-screen with EGL (surfaceless)\n"
+"                         (default: a window if a display exists, else headless)\n"
+"  --size WxH             display size in pixels (default 1280x720)\n"
+"  --frames DIR           write rendered frames as PNG files into DIR\n"
+"  --frame-every N        write every Nth tick's frame (default 30 = 1 per second)\n"
+"\n"
+"Depth camera\n"
+"  --replay DIR           replay a fakenect dump (INDEX.txt + d-*.pgm) through\n"
+"                         libfreenect, exactly as a live Kinect is read\n"
+"  --depth MODE           auto (Kinect if present, else an empty scene),\n"
+"                         freenect, empty or off (default auto)\n"
+"\n"
+"Buttons, sound, content\n"
+"  --buttons FILE         press buttons from a timeline file instead of the\n"
+"                         keyboard / GPIO: lines `<seconds> <start|stop> [press|down|up]`\n"
+"  --gpio-config FILE     the box: which GPIO lines are START and STOP\n"
+"  --audio-driver NAME    SDL audio driver (e.g. dummy, disk, alsa)\n"
+"  --clip FILE            the coach's clip, a BVH file\n"
+"                         (default " CUB_ASSETS_DIR "/clips/hello.bvh)\n"
+"\n"
+"Run\n"
+"  --log FILE             write the event log to FILE (default: stderr)\n"
+"  --seconds S            stop after S seconds (default: run until quit)\n"
+"  --help                 this text\n"
+"  --version              the version\n"
+"\n"
+"Keys in a window: Space or Enter = START, Escape or Backspace = STOP.\n"
+"The event log has one line per event: `t=<seconds> <source> <event> key=value ...`.\n",
+            prog);
+}
+
+static int parse_int(const char *s, int lo, int hi, int *out)
+{
+    char *end;
+    errno = 0;
+    long v = strtol(s, &end, 10);
+    if (errno || end == s || *end || v < lo || v > hi) return -1;
+    *out = (int)v;
+    return 0;
+}
+
+static int parse_size(const char *s, int *w, int *h)
+{
+    char buf[32];
+    const char *x = strchr(s, 'x');
+    if (!x || (size_t)(x - s) >= sizeof buf) return -1;
+    memcpy(buf, s, (size_t)(x - s));
+    buf[x - s] = '\0';
+    return parse_int(buf, 16, 8192, w) || parse_int(x + 1, 16, 8192, h) ? -1 : 0;
+}
+
+static int parse_depth(const char *s, cub_depth_mode *out)
+{
+    static const struct { const char *name; cub_depth_mode mode; } modes[] = {
+        {"auto", CUB_DEPTH_AUTO}, {"freenect", CUB_DEPTH_FREENECT},
+        {"empty", CUB_DEPTH_EMPTY}, {"off", CUB_DEPTH_OFF}};
+    for (size_t i = 0; i < sizeof modes / sizeof *modes; i++)
+        if (strcmp(s, modes[i].name) == 0) return *out = modes[i].mode, 0;
+    return -1;
+}
+
+/* Options that take a value: which field it fills and how it is checked. */
+static int apply_valued(cub_app_options *o, const char *opt, const char *val, FILE *err)
+{
+    char *end;
+    if (!strcmp(opt, "--size")) {
+        if (parse_size(val, &o->width, &o->height) == 0) return 0;
+        fprintf(err, "cubdance: --size wants WxH, e.g. 1280x720, got '%s'\n", val);
+    } else if (!strcmp(opt, "--frame-every")) {
+        if (parse_int(val, 1, 1000000, &o->frame_every) == 0) return 0;
+        fprintf(err, "cubdance: --frame-every wants a whole number >= 1, got '%s'\n", val);
+    } else if (!strcmp(opt, "--seconds")) {
+        o->seconds = strtod(val, &end);
+        if (end != val && !*end && o->seconds > 0 && o->seconds < 1e7) return 0;
+        fprintf(err, "cubdance: --seconds wants a positive number, got '%s'\n", val);
+    } else if (!strcmp(opt, "--depth")) {
+        if (parse_depth(val, &o->depth) == 0) return 0;
+        fprintf(err, "cubdance: --depth wants auto, freenect, empty or off, got '%s'\n", val);
+    } else {
+        const char **slot = !strcmp(opt, "--frames")         ? &o->frames_dir
+                            : !strcmp(opt, "--replay")       ? &o->replay_dir
+                            : !strcmp(opt, "--buttons")      ? &o->button_script
+                            : !strcmp(opt, "--gpio-config")  ? &o->gpio_config
+                            : !strcmp(opt, "--audio-driver") ? &o->audio_driver
+                            : !strcmp(opt, "--clip")         ? &o->clip_path
+                            : !strcmp(opt, "--log")          ? &o->log_path
+                                                             : NULL;
+        if (slot) return *slot = val, 0;
+        fprintf(err, "cubdance: unknown option '%s' (see --help)\n", opt);
+    }
+    return -1;
+}
+
+static int takes_value(const char *opt)
+{
+    static const char *const valued[] = {"--size", "--frame-every", "--seconds", "--depth",
+                                         "--frames", "--replay", "--buttons", "--gpio-config",
+                                         "--audio-driver", "--clip", "--log"};
+    for (size_t i = 0; i < sizeof valued / sizeof *valued; i++)
+        if (!strcmp(opt, valued[i])) return 1;
+    return 0;
+}
+
+cub_app_parse cub_app_parse_options(int argc, char **argv, cub_app_options *o, FILE *err,
+                                    FILE *help_out)
+{
+    memset(o, 0, sizeof *o);
+    o->frame_every = 30;
+    o->clip_path = CUB_ASSETS_DIR "/clips/hello.bvh";
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+            usage(help_out, argv[0]);
+            return CUB_APP_EXIT_OK;
+        } else if (!strcmp(a, "--version")) {
+            fprintf(help_out, "cubdance %s\n", CUB_VERSION);
+            return CUB_APP_EXIT_OK;
+        } else if (!strcmp(a, "--window")) {
+            o->display = CUB_DISPLAY_WINDOW;
+        } else if (!strcmp(a, "--headless")) {
+            o->display = CUB_DISPLAY_HEADLESS;
+        } else if (takes_value(a)) {
+            if (i + 1 >= argc) {
+                fprintf(err, "cubdance: %s needs a value (see --help)\n", a);
+                return CUB_APP_EXIT_BAD;
+            }
+            if (apply_valued(o, a, argv[++i], err)) return CUB_APP_EXIT_BAD;
+        } else {
+            fprintf(err, "cubdance: unknown option '%s' (see --help)\n", a);
+            return CUB_APP_EXIT_BAD;
+        }
+    }
+    if (o->replay_dir) {
+        if (o->depth == CUB_DEPTH_EMPTY || o->depth == CUB_DEPTH_OFF) {
+            fprintf(err, "cubdance: --replay needs the freenect depth source, not --depth %s\n",
+                    o->depth == CUB_DEPTH_EMPTY ? "empty" : "off");
+            return CUB_APP_EXIT_BAD;
+        }
+        o->depth = CUB_DEPTH_FREENECT;
+    }
+    return CUB_APP_RUN;
+}

@@ -1,0 +1,33 @@
+/* options — the command line of the box program (see --help). */
+#ifndef CUB_APP_OPTIONS_H
+#define CUB_APP_OPTIONS_H
+
+#include <stdio.h>
+
+#include "cub/board.h"
+
+typedef struct cub_app_options {
+    cub_display_mode display;
+    int width, height;          /* 0 = the board's default */
+    cub_depth_mode depth;
+    const char *replay_dir;     /* a fakenect dump to replay, or NULL */
+    const char *button_script;  /* a button timeline, or NULL */
+    const char *gpio_config;    /* pi: GPIO line names */
+    const char *audio_driver;
+    const char *clip_path;      /* the coach's clip (BVH) */
+    const char *log_path;       /* NULL or "-" = stderr */
+    const char *frames_dir;     /* headless PNG frames go here, or NULL */
+    int frame_every;            /* write every Nth tick (default 30 = 1 per second) */
+    double seconds;             /* stop after this long; 0 = run until quit */
+} cub_app_options;
+
+typedef enum cub_app_parse {
+    CUB_APP_RUN = 0,  /* options are good: run */
+    CUB_APP_EXIT_OK,  /* --help or --version was printed */
+    CUB_APP_EXIT_BAD, /* a bad option; the message went to err */
+} cub_app_parse;
+
+cub_app_parse cub_app_parse_options(int argc, char **argv, cub_app_options *out, FILE *err,
+                                    FILE *help_out);
+
+#endif

@@ -1,0 +1,164 @@
+/* The loop's hooks for the box program. poll() brings board events in and
+ * logs each depth frame; handle() runs the waiting/playing states; tick()
+ * samples the clip, renders, writes headless frames and enforces --seconds. */
+#include "session.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "cub/png.h"
+#include "cub/track.h"
+
+#define DEPTH_PIXELS (CUB_DEPTH_W * CUB_DEPTH_H)
+
+static int64_t hook_now(void *u)
+{
+    cub_session *s = u;
+    return cub_board_now_us(s->board);
+}
+
+static void hook_wait(void *u, int64_t t_us)
+{
+    cub_session *s = u;
+    cub_board_sleep_until_us(s->board, t_us);
+}
+
+/* One log line per depth frame: its sequence number and Kinect timestamp,
+ * how many pixels have a reading, and two probes (the nearest reading and
+ * the centre pixel) in raw units and in mm, so a replay can be checked
+ * against the recording and against the raw->mm formula. */
+static void log_depth_frame(cub_session *s, const cub_depth_frame *f)
+{
+    uint32_t valid = 0;
+    uint16_t near_raw = CUB_DEPTH_NO_READING;
+    for (int i = 0; i < DEPTH_PIXELS; i++) {
+        uint16_t r = f->raw[i];
+        if (r >= CUB_DEPTH_NO_READING) continue;
+        valid++;
+        if (r < near_raw) near_raw = r;
+    }
+    uint16_t center_raw = f->raw[(CUB_DEPTH_H / 2) * CUB_DEPTH_W + CUB_DEPTH_W / 2];
+    cub_log_event(&s->loop->log, f->t_us, "depth", "frame",
+                  "seq=%u ts=%u valid=%u near_raw=%u near_mm=%q center_raw=%u center_mm=%q",
+                  f->seq, f->timestamp, valid, near_raw, cub_track_raw_to_mm(near_raw),
+                  center_raw, cub_track_raw_to_mm(center_raw));
+}
+
+static void poll_depth(cub_session *s, cub_loop *loop, int64_t now_us)
+{
+    cub_depth_frame f;
+    cub_err err = cub_board_depth_poll(s->board, &f);
+    if (err == CUB_OK) {
+        memcpy(s->depth_copy, f.raw, DEPTH_PIXELS * sizeof(uint16_t));
+        s->depth_frames++;
+        log_depth_frame(s, &f);
+        cub_event ev = {.t_us = f.t_us, .type = CUB_EV_DEPTH_FRAME, .a = (int32_t)f.seq,
+                        .b = (int32_t)f.timestamp};
+        cub_loop_post(loop, &ev);
+    } else if (err == CUB_ERR_END && !s->depth_ended) {
+        s->depth_ended = 1;
+        cub_log_event(&loop->log, now_us, "depth", "end", "frames=%u", s->depth_frames);
+    }
+}
+
+static void hook_poll(void *u, cub_loop *loop, int64_t now_us)
+{
+    cub_session *s = u;
+    cub_board_poll_buttons(s->board, loop, now_us);
+    poll_depth(s, loop, now_us);
+}
+
+static const char *state_name(cub_app_state st)
+{
+    return st == CUB_APP_PLAYING ? "playing" : "waiting";
+}
+
+static void set_state(cub_session *s, cub_app_state to, int64_t t_us)
+{
+    if (s->state == to) return;
+    cub_log_event(&s->loop->log, t_us, "app", "state", "from=%s to=%s", state_name(s->state),
+                  state_name(to));
+    s->state = to;
+    if (to == CUB_APP_PLAYING) {
+        s->play_start_us = t_us;
+        cub_log_event(&s->loop->log, t_us, "app", "play", "clip=%s frames=%d",
+                      s->opt->clip_path, s->clip->clip.frame_count);
+    }
+}
+
+static void hook_handle(void *u, cub_loop *loop, const cub_event *ev)
+{
+    cub_session *s = u;
+    switch (ev->type) {
+    case CUB_EV_BUTTON_DOWN:
+    case CUB_EV_BUTTON_UP:
+        cub_log_event(&loop->log, ev->t_us, "button",
+                      ev->type == CUB_EV_BUTTON_DOWN ? "down" : "up", "name=%s",
+                      cub_loop_button_name((cub_button)ev->a));
+        if (ev->type == CUB_EV_BUTTON_DOWN)
+            set_state(s, ev->a == CUB_BUTTON_START ? CUB_APP_PLAYING : CUB_APP_WAITING, ev->t_us);
+        break;
+    case CUB_EV_QUIT: cub_log_event(&loop->log, ev->t_us, "app", "quit", "reason=user"); break;
+    default: break;
+    }
+}
+
+/* The coach's pose this tick: the clip, looping, while playing; its first
+ * frame, standing still, while waiting. */
+static void coach_world(cub_session *s, int64_t t_us, float *xyz)
+{
+    static cub_pose pose;
+    static cub_vec3 world[CUB_MOTION_MAX_JOINTS];
+    const cub_clip *clip = &s->clip->clip;
+    int64_t t = s->state == CUB_APP_PLAYING ? t_us - s->play_start_us : 0;
+    cub_motion_sample(clip, t, CUB_MOTION_LOOP, &pose);
+    cub_motion_forward(clip->skel, &pose, world, NULL);
+    cub_motion_world_to_float(world, clip->skel->joint_count, xyz);
+}
+
+static void write_frame(cub_session *s, uint64_t tick)
+{
+    int w, h;
+    cub_board_display_size(s->board, &w, &h);
+    char path[1024];
+    snprintf(path, sizeof path, "%s/frame_%06llu.png", s->opt->frames_dir,
+             (unsigned long long)tick);
+    cub_err err = cub_board_display_read_rgba(s->board, s->rgba, (size_t)w * h * 4);
+    if (!err) err = cub_png_write(path, s->rgba, w, h);
+    if (err) {
+        if (!s->frame_error)
+            fprintf(stderr, "cubdance: cannot write frame %s: %s\n", path, cub_err_str(err));
+        s->frame_error = 1;
+        return;
+    }
+    s->frames_written++;
+}
+
+static void hook_tick(void *u, cub_loop *loop, int64_t t_us)
+{
+    cub_session *s = u;
+    if (s->stop_at_us && t_us >= s->stop_at_us) {
+        cub_log_event(&loop->log, t_us, "app", "stop", "reason=seconds");
+        cub_loop_stop(loop);
+        return;
+    }
+    if (!s->render) return;
+    static float xyz[CUB_MOTION_MAX_JOINTS * 3];
+    coach_world(s, t_us, xyz);
+    cub_render_scene scene = {.skel = s->clip->clip.skel, .world_xyz_mm = xyz,
+                              .depth_raw = s->depth_frames ? s->depth_copy : NULL};
+    cub_render_frame(s->render, &scene);
+    if (s->opt->frames_dir && loop->tick_count % (uint64_t)s->opt->frame_every == 0)
+        write_frame(s, loop->tick_count);
+    cub_board_display_swap(s->board);
+}
+
+cub_loop_hooks cub_session_hooks(cub_session *s)
+{
+    cub_loop_hooks h = {.user = s, .now_us = hook_now, .poll = hook_poll,
+                        .handle = hook_handle, .tick = hook_tick, .wait_until = hook_wait};
+    return h;
+}

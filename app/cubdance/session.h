@@ -1,0 +1,37 @@
+/* session — one run of the box program: the loop's hooks, the waiting /
+ * playing states (the coach FSM of a later issue will replace them), the
+ * depth inset, and headless frames. */
+#ifndef CUB_APP_SESSION_H
+#define CUB_APP_SESSION_H
+
+#include <stdint.h>
+
+#include "cub/board.h"
+#include "cub/io.h"
+#include "cub/loop.h"
+#include "cub/render.h"
+#include "options.h"
+
+typedef enum cub_app_state { CUB_APP_WAITING = 0, CUB_APP_PLAYING } cub_app_state;
+
+typedef struct cub_session {
+    const cub_app_options *opt;
+    cub_board *board;
+    cub_render *render;      /* NULL when there is no display */
+    const cub_io_motion *clip;
+    cub_loop *loop;
+    cub_app_state state;
+    int64_t play_start_us;
+    int64_t stop_at_us;      /* 0 = no limit */
+    uint16_t *depth_copy;    /* the last depth frame, for the inset */
+    uint32_t depth_frames;
+    int depth_ended;
+    uint8_t *rgba;           /* read-back buffer for headless frames */
+    uint32_t frames_written;
+    int frame_error;         /* a frame could not be written: reported once */
+} cub_session;
+
+/* The hooks that plug a session into cub_loop_run. */
+cub_loop_hooks cub_session_hooks(cub_session *s);
+
+#endif
