@@ -1,0 +1,107 @@
+/* cubdance's options: bad input first, then what good input sets. */
+#define _POSIX_C_SOURCE 200809L
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "options.h"
+
+static char err_text[4096], help_text[8192];
+
+/* Parse argv (NULL-terminated), capturing what goes to err and help. */
+static cub_app_parse parse(cub_app_options *o, const char **args)
+{
+    char *argv[32];
+    int argc = 0;
+    argv[argc++] = "cubdance";
+    while (*args && argc < 31) argv[argc++] = (char *)*args++;
+    argv[argc] = NULL;
+    FILE *err = fmemopen(err_text, sizeof err_text, "w");
+    FILE *help = fmemopen(help_text, sizeof help_text, "w");
+    cub_app_parse r = cub_app_parse_options(argc, argv, o, err, help);
+    fclose(err);
+    fclose(help);
+    return r;
+}
+
+static void expect_refused(const char **args, const char *needle)
+{
+    cub_app_options o;
+    memset(err_text, 0, sizeof err_text);
+    assert_int_equal(parse(&o, args), CUB_APP_EXIT_BAD);
+    if (!strstr(err_text, needle)) fail_msg("error '%s' does not mention '%s'", err_text, needle);
+}
+
+static void test_bad_options_are_refused_with_the_option_named(void **s)
+{
+    expect_refused((const char *[]){"--bogus", NULL}, "--bogus");
+    expect_refused((const char *[]){"--size", "big", NULL}, "--size");
+    expect_refused((const char *[]){"--size", "1280x", NULL}, "--size");
+    expect_refused((const char *[]){"--size", "99999x720", NULL}, "--size");
+    expect_refused((const char *[]){"--frame-every", "0", NULL}, "--frame-every");
+    expect_refused((const char *[]){"--frame-every", "3x", NULL}, "--frame-every");
+    expect_refused((const char *[]){"--seconds", "-1", NULL}, "--seconds");
+    expect_refused((const char *[]){"--seconds", "soon", NULL}, "--seconds");
+    expect_refused((const char *[]){"--depth", "lidar", NULL}, "--depth");
+    expect_refused((const char *[]){"--log", NULL}, "--log needs a value");
+    expect_refused((const char *[]){"--replay", "/x", "--depth", "empty", NULL}, "--replay");
+}
+
+static void test_help_documents_every_option(void **s)
+{
+    cub_app_options o;
+    assert_int_equal(parse(&o, (const char *[]){"--help", NULL}), CUB_APP_EXIT_OK);
+    const char *opts[] = {"--window", "--headless", "--size", "--frames", "--frame-every",
+                          "--replay", "--depth", "--buttons", "--gpio-config", "--audio-driver",
+                          "--clip", "--log", "--seconds", "--help", "--version"};
+    for (size_t i = 0; i < sizeof opts / sizeof *opts; i++)
+        if (!strstr(help_text, opts[i])) fail_msg("--help does not mention %s", opts[i]);
+}
+
+static void test_good_options_set_their_fields(void **s)
+{
+    cub_app_options o;
+    const char *args[] = {"--headless", "--size", "320x240", "--frames", "f", "--frame-every",
+                          "5", "--replay", "dump", "--buttons", "b.txt", "--log", "e.log",
+                          "--seconds", "2.5", NULL};
+    assert_int_equal(parse(&o, args), CUB_APP_RUN);
+    assert_int_equal(o.display, CUB_DISPLAY_HEADLESS);
+    assert_int_equal(o.width, 320);
+    assert_int_equal(o.height, 240);
+    assert_string_equal(o.frames_dir, "f");
+    assert_int_equal(o.frame_every, 5);
+    assert_string_equal(o.replay_dir, "dump");
+    assert_int_equal(o.depth, CUB_DEPTH_FREENECT); /* a replay reads through libfreenect */
+    assert_string_equal(o.button_script, "b.txt");
+    assert_string_equal(o.log_path, "e.log");
+    assert_true(o.seconds > 2.49 && o.seconds < 2.51);
+}
+
+static void test_defaults(void **s)
+{
+    cub_app_options o;
+    assert_int_equal(parse(&o, (const char *[]){NULL}), CUB_APP_RUN);
+    assert_int_equal(o.display, CUB_DISPLAY_AUTO);
+    assert_int_equal(o.depth, CUB_DEPTH_AUTO);
+    assert_int_equal(o.frame_every, 30);
+    assert_string_equal(o.clip_path, "/assets/clips/hello.bvh");
+    assert_null(o.log_path);
+    assert_true(o.seconds == 0);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_bad_options_are_refused_with_the_option_named),
+        cmocka_unit_test(test_help_documents_every_option),
+        cmocka_unit_test(test_good_options_set_their_fields),
+        cmocka_unit_test(test_defaults),
+    };
+    return cmocka_run_group_tests_name("app_options", tests, NULL, NULL);
+}
