@@ -98,6 +98,7 @@ int32_t cub_fx_quat_dot(cub_quat a, cub_quat b);
 /* Rotate a Q16.16 vector by a unit quaternion. */
 cub_vec3 cub_fx_quat_rotate(cub_quat q, cub_vec3 v);
 /* Normalised linear interpolation along the shorter arc; t in [0, 1] Q16.16.
+ * t = 0 gives a and t = 1 gives b exactly (as given), and a == b gives a.
  * For neighbouring animation frames nlerp and slerp differ by far less than
  * a Q2.30 step's worth of joint position, and nlerp is cheap and exact. */
 cub_quat cub_fx_quat_nlerp(cub_quat a, cub_quat b, cub_q16 t);

@@ -69,7 +69,11 @@ typedef struct cub_pose {
 void cub_motion_pose_rest(const cub_skeleton *skel, cub_pose *out);
 
 /* Forward kinematics: world position of every joint (Q16.16 mm) and,
- * optionally, its world rotation (world_rot may be NULL). */
+ * optionally, its world rotation (world_rot may be NULL). The root is placed
+ * at root_mm and its own offset (and trans_mm[0]) is ignored: as in common
+ * BVH practice, the root's position channels replace its OFFSET. Every
+ * other joint sits at its parent + parent's world rotation applied to its
+ * offset (or trans_mm when has_trans). */
 cub_err cub_motion_forward(const cub_skeleton *skel, const cub_pose *pose,
                            cub_vec3 *world_mm, cub_quat *world_rot);
 
@@ -96,12 +100,14 @@ cub_err cub_motion_clip_init(cub_clip *clip, const cub_skeleton *skel, int frame
 /* Copy one frame into a pose / a pose into one frame. */
 cub_err cub_motion_clip_get_frame(const cub_clip *clip, int frame, cub_pose *out);
 cub_err cub_motion_clip_set_frame(cub_clip *clip, int frame, const cub_pose *pose);
-/* Length from the first to the last frame, in microseconds. */
+/* Length from the first to the last frame, in microseconds, rounded up (so
+ * sampling at it with CLAMP gives the last frame exactly). */
 int64_t cub_motion_clip_duration_us(const cub_clip *clip);
 
 typedef enum cub_motion_wrap {
     CUB_MOTION_CLAMP = 0, /* hold the first/last frame outside the clip */
-    CUB_MOTION_LOOP,      /* wrap around (the last frame joins the first) */
+    CUB_MOTION_LOOP,      /* wrap around (the last frame joins the first: a loop
+                             of n frames lasts n frame periods) */
 } cub_motion_wrap;
 
 /* The pose at time t_us, interpolated between the two nearest frames
