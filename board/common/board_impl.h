@@ -1,0 +1,49 @@
+/* board_impl — the board object both boards share (private to board/).
+ *
+ * board_common.c implements every cub_board_* function that is the same on
+ * both boards (clock, depth, display, audio, storage, button dispatch).
+ * Each board (board/sim, board/pi) implements cub_board_open/close/name:
+ * it calls cub_board_common_open, opens its display and buttons, and last
+ * cub_board_common_start, which starts the clock and opens the depth source. */
+#ifndef CUB_BOARD_IMPL_H
+#define CUB_BOARD_IMPL_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "audio_sdl.h"
+#include "buttons_script.h"
+#include "cub/board.h"
+#include "depth.h"
+#include "display.h"
+
+#define CUB_BOARD_PATH_MAX 4096
+
+struct cub_board {
+    cub_board_desc desc;         /* with defaults filled in */
+    char storage_dir[CUB_BOARD_PATH_MAX];
+    char audio_driver[64];       /* "" = SDL's choice */
+    int64_t origin_mono_us;      /* board time 0 */
+    cub_depth *depth;            /* NULL when depth is off */
+    cub_display *display;        /* NULL when display is NONE */
+    cub_audio_sdl *audio;        /* NULL until audio starts */
+    uint64_t audio_frames_done;  /* the music clock where audio last stopped */
+    cub_button_script *script;   /* NULL: the board's own buttons */
+    /* The board's own buttons (pi: GPIO), used when there is no script. */
+    void *buttons;
+    void (*poll_buttons)(void *buttons, cub_loop *loop, int64_t now_us);
+    void (*close_buttons)(void *buttons);
+};
+
+/* desc with zero fields replaced by their defaults (desc NULL: all defaults). */
+cub_board_desc cub_board_desc_defaults(const cub_board_desc *desc);
+/* Allocate the board and open what both boards share: the clock origin,
+ * storage, the depth source and the button script. */
+cub_err cub_board_common_open(const cub_board_desc *desc, cub_board **out, char *err,
+                              size_t err_size);
+/* Start the board's clock (t = 0 from now) and open the depth source. */
+cub_err cub_board_common_start(cub_board *board, char *err, size_t err_size);
+/* Release everything the board holds (safe on a half-open board). */
+void cub_board_common_close(cub_board *board);
+
+#endif

@@ -1,0 +1,240 @@
+/* depth_freenect — depth frames from libfreenect: a live Kinect, or a dump
+ * replayed by fakenect (LD_LIBRARY_PATH=/usr/lib/<multiarch>/fakenect,
+ * FAKENECT_PATH=<dump>). The same calls run in both cases, so a replay
+ * exercises exactly the code the box runs.
+ *
+ * libfreenect delivers frames from inside freenect_process_events, on the
+ * caller's thread: the callback copies into the back half of a double
+ * buffer and the poll hands out the newest one. No locks needed.
+ *
+ * fakenect (Debian 0.5.3) differs from a live device in ways that matter:
+ * it serves only FREENECT_DEPTH_11BIT, its process_events sleeps until the
+ * next recorded frame time (it ignores the timeout), returns < 0 at the end
+ * of the dump, and calls exit() on a missing FAKENECT_PATH or a missing
+ * file named in INDEX.txt. We check the dump first so bad input gives an
+ * error instead of a dead program. */
+#define _GNU_SOURCE /* RTLD_DEFAULT */
+
+#include "clock.h"
+#include "depth.h"
+
+#include <dlfcn.h>
+#include <libfreenect.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/time.h>
+
+#define FRAME_PIXELS (CUB_DEPTH_W * CUB_DEPTH_H)
+#define FRAME_BYTES (FRAME_PIXELS * sizeof(uint16_t))
+
+struct cub_depth_freenect {
+    freenect_context *ctx;
+    freenect_device *dev;
+    int64_t origin_mono_us;
+    uint16_t bufs[2][FRAME_PIXELS];
+    int held;            /* buffer the caller may be reading (-1: none yet) */
+    int back;            /* buffer the newest frame was copied into */
+    int fresh;           /* back holds a frame not handed out yet */
+    uint32_t arrived;    /* frames delivered by libfreenect so far */
+    uint32_t back_seq, back_timestamp;
+    int64_t back_t_us;
+    int ended;
+    int tilt_ok;
+};
+
+static void on_depth(freenect_device *dev, void *depth, uint32_t timestamp)
+{
+    cub_depth_freenect *s = freenect_get_user(dev);
+    s->back = s->held == 0 ? 1 : 0;
+    memcpy(s->bufs[s->back], depth, FRAME_BYTES);
+    s->back_seq = s->arrived++;
+    s->back_timestamp = timestamp;
+    s->back_t_us = cub_clock_mono_us() - s->origin_mono_us;
+    s->fresh = 1;
+}
+
+/* fakenect exports helpers the real library does not have. */
+static int fakenect_loaded(void)
+{
+    return dlsym(RTLD_DEFAULT, "sleep_highres") != NULL;
+}
+
+/* One file named by INDEX.txt: it must open, and a frame file must hold a
+ * one-line header and a whole frame (fakenect exits or over-reads if not). */
+static int check_dump_file(const char *dir, const char *name, int line, char *err,
+                           size_t err_size)
+{
+    char path[4096];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        snprintf(err, err_size, "fakenect dump %s: INDEX.txt:%d: cannot open %s", dir, line, name);
+        return 0;
+    }
+    char head[64];
+    size_t got = fread(head, 1, sizeof head, f);
+    fseek(f, 0, SEEK_END);
+    long size = ftell(f);
+    fclose(f);
+    size_t need = name[0] == 'd' ? FRAME_BYTES : name[0] == 'r' ? (size_t)FRAME_PIXELS * 3 : 0;
+    if (need == 0) {
+        return 1;
+    }
+    const char *nl = memchr(head, '\n', got);
+    if (!nl || size < 0 || (size_t)size < (size_t)(nl - head + 1) + need) {
+        snprintf(err, err_size,
+                 "fakenect dump %s: INDEX.txt:%d: %s is not a 640x480 frame "
+                 "(header line + %zu bytes)",
+                 dir, line, name, need);
+        return 0;
+    }
+    return 1;
+}
+
+static cub_err check_dump(char *err, size_t err_size)
+{
+    const char *dir = getenv("FAKENECT_PATH");
+    if (!dir || !dir[0]) {
+        snprintf(err, err_size, "depth: fakenect is loaded but FAKENECT_PATH is not set "
+                                "(set it to a dump directory)");
+        return CUB_ERR_DEVICE;
+    }
+    char path[4096];
+    snprintf(path, sizeof path, "%s/INDEX.txt", dir);
+    FILE *index = fopen(path, "r");
+    if (!index) {
+        snprintf(err, err_size, "fakenect dump %s: cannot open INDEX.txt", dir);
+        return CUB_ERR_IO;
+    }
+    char line[1024];
+    int n = 0, ok = 1;
+    while (ok && fgets(line, sizeof line, index)) {
+        n++;
+        line[strcspn(line, "\n")] = '\0';
+        if (!line[0]) {
+            break; /* fakenect stops at the first empty line */
+        }
+        ok = check_dump_file(dir, line, n, err, err_size);
+    }
+    fclose(index);
+    return ok ? CUB_OK : CUB_ERR_FORMAT;
+}
+
+static cub_err start(cub_depth_freenect *s, char *err, size_t err_size)
+{
+    if (freenect_init(&s->ctx, NULL) < 0) {
+        s->ctx = NULL;
+        snprintf(err, err_size, "depth: libfreenect could not start (USB)");
+        return CUB_ERR_DEVICE;
+    }
+    freenect_set_log_level(s->ctx, FREENECT_LOG_ERROR);
+    /* Only the camera: the audio subdevice wants firmware uploaded, and we
+     * never move the motor. */
+    freenect_select_subdevices(s->ctx, FREENECT_DEVICE_CAMERA);
+    if (freenect_num_devices(s->ctx) <= 0) {
+        snprintf(err, err_size, "depth: no Kinect found");
+        return CUB_ERR_DEVICE;
+    }
+    if (freenect_open_device(s->ctx, &s->dev, 0) < 0) {
+        s->dev = NULL;
+        snprintf(err, err_size, "depth: the Kinect is there but would not open (permissions? "
+                                "see board/pi/55-cubdance.rules)");
+        return CUB_ERR_DEVICE;
+    }
+    freenect_set_user(s->dev, s);
+    freenect_frame_mode mode = freenect_find_depth_mode(FREENECT_RESOLUTION_MEDIUM,
+                                                        FREENECT_DEPTH_11BIT);
+    if (!mode.is_valid || freenect_set_depth_mode(s->dev, mode) < 0) {
+        snprintf(err, err_size, "depth: the Kinect refused 640x480 11-bit depth");
+        return CUB_ERR_DEVICE;
+    }
+    freenect_set_depth_callback(s->dev, on_depth);
+    if (freenect_start_depth(s->dev) < 0) {
+        snprintf(err, err_size, "depth: the Kinect would not start streaming depth");
+        return CUB_ERR_DEVICE;
+    }
+    return CUB_OK;
+}
+
+cub_err cub_depth_freenect_open(int64_t origin_mono_us, cub_depth_freenect **out, char *err,
+                                size_t err_size)
+{
+    *out = NULL;
+    if (fakenect_loaded()) {
+        cub_err e = check_dump(err, err_size);
+        if (e) {
+            return e;
+        }
+    }
+    cub_depth_freenect *s = calloc(1, sizeof *s);
+    if (!s) {
+        snprintf(err, err_size, "depth: out of memory");
+        return CUB_ERR_NOMEM;
+    }
+    s->origin_mono_us = origin_mono_us;
+    s->held = -1;
+    s->tilt_ok = 1;
+    cub_err e = start(s, err, err_size);
+    if (e) {
+        cub_depth_freenect_close(s);
+        return e;
+    }
+    *out = s;
+    return CUB_OK;
+}
+
+/* The accelerometer, if this libfreenect can read it; zeros otherwise. */
+static void read_accel(cub_depth_freenect *s, int16_t accel[3])
+{
+    accel[0] = accel[1] = accel[2] = 0;
+    if (!s->tilt_ok || freenect_update_tilt_state(s->dev) < 0) {
+        s->tilt_ok = 0;
+        return;
+    }
+    freenect_raw_tilt_state *st = freenect_get_tilt_state(s->dev);
+    if (st) {
+        accel[0] = st->accelerometer_x;
+        accel[1] = st->accelerometer_y;
+        accel[2] = st->accelerometer_z;
+    }
+}
+
+cub_err cub_depth_freenect_poll(cub_depth_freenect *s, cub_depth_frame *out)
+{
+    if (!s->ended) {
+        struct timeval no_wait = {0, 0};
+        if (freenect_process_events_timeout(s->ctx, &no_wait) < 0) {
+            if (s->arrived == 0 && !s->fresh) {
+                return CUB_ERR_DEVICE;
+            }
+            s->ended = 1; /* a frame still fresh is handed out first */
+        }
+    }
+    if (!s->fresh) {
+        return s->ended ? CUB_ERR_END : CUB_ERR_EMPTY;
+    }
+    s->held = s->back;
+    s->fresh = 0;
+    out->raw = s->bufs[s->held];
+    out->seq = s->back_seq;
+    out->timestamp = s->back_timestamp;
+    out->t_us = s->back_t_us;
+    read_accel(s, out->accel);
+    return CUB_OK;
+}
+
+void cub_depth_freenect_close(cub_depth_freenect *s)
+{
+    if (!s) {
+        return;
+    }
+    if (s->dev) {
+        freenect_stop_depth(s->dev);
+        freenect_close_device(s->dev);
+    }
+    if (s->ctx) {
+        freenect_shutdown(s->ctx);
+    }
+    free(s);
+}
