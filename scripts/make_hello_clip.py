@@ -3,13 +3,14 @@
 
 A hand-keyed wave authored by the project (no third-party motion capture):
 a 24-joint humanoid in centimetres, facing +z with y up, 8 keys at four per
-second plus a closing key equal to the first, so the clip loops seamlessly.
-The firmware's sampler interpolates between the keys.
+second. The firmware's sampler interpolates between the keys, and when it
+loops a clip it blends the last key back into the first, so the keys are
+one period of the motion with no closing repeat.
 Run from the repository root: python3 scripts/make_hello_clip.py
 """
 import math
 
-KEYS = 9
+KEYS = 8
 FRAME_TIME = 0.25
 
 
@@ -70,7 +71,7 @@ def hierarchy(joints):
 def key(k, moving):
     """Degrees (Z, X, Y) per joint at key k. Rotations about z swing a limb in
     the picture plane: the right arm (along -x) goes up and out at -60."""
-    ph = 2 * math.pi * k / (KEYS - 1)
+    ph = 2 * math.pi * k / KEYS
     rot = {name: [0.0, 0.0, 0.0] for name in moving}
     rot["RightArm"][0] = -60 + 8 * math.sin(ph)     # raised up and out
     rot["RightForeArm"][0] = 25 * math.sin(2 * ph)  # the wave

@@ -29,22 +29,29 @@ static void hook_wait(void *u, int64_t t_us)
 /* One log line per depth frame: its sequence number and Kinect timestamp,
  * how many pixels have a reading, and two probes (the nearest reading and
  * the centre pixel) in raw units and in mm, so a replay can be checked
- * against the recording and against the raw->mm formula. */
-static void log_depth_frame(cub_session *s, const cub_depth_frame *f)
+ * against the recording and against the raw->mm formula. The probe is taken
+ * when the frame arrives; the line is written when its event is handled, so
+ * the log stays in the order events were handled. */
+static cub_depth_probe probe_depth_frame(const cub_depth_frame *f)
 {
-    uint32_t valid = 0;
-    uint16_t near_raw = CUB_DEPTH_NO_READING;
+    cub_depth_probe p = {.seq = f->seq, .timestamp = f->timestamp, .t_us = f->t_us,
+                         .near_raw = CUB_DEPTH_NO_READING};
     for (int i = 0; i < DEPTH_PIXELS; i++) {
         uint16_t r = f->raw[i];
         if (r >= CUB_DEPTH_NO_READING) continue;
-        valid++;
-        if (r < near_raw) near_raw = r;
+        p.valid++;
+        if (r < p.near_raw) p.near_raw = r;
     }
-    uint16_t center_raw = f->raw[(CUB_DEPTH_H / 2) * CUB_DEPTH_W + CUB_DEPTH_W / 2];
-    cub_log_event(&s->loop->log, f->t_us, "depth", "frame",
+    p.center_raw = f->raw[(CUB_DEPTH_H / 2) * CUB_DEPTH_W + CUB_DEPTH_W / 2];
+    return p;
+}
+
+static void log_depth_frame(cub_session *s, const cub_depth_probe *p)
+{
+    cub_log_event(&s->loop->log, p->t_us, "depth", "frame",
                   "seq=%u ts=%u valid=%u near_raw=%u near_mm=%q center_raw=%u center_mm=%q",
-                  f->seq, f->timestamp, valid, near_raw, cub_track_raw_to_mm(near_raw),
-                  center_raw, cub_track_raw_to_mm(center_raw));
+                  p->seq, p->timestamp, p->valid, p->near_raw, cub_track_raw_to_mm(p->near_raw),
+                  p->center_raw, cub_track_raw_to_mm(p->center_raw));
 }
 
 static void poll_depth(cub_session *s, cub_loop *loop, int64_t now_us)
@@ -54,7 +61,7 @@ static void poll_depth(cub_session *s, cub_loop *loop, int64_t now_us)
     if (err == CUB_OK) {
         memcpy(s->depth_copy, f.raw, DEPTH_PIXELS * sizeof(uint16_t));
         s->depth_frames++;
-        log_depth_frame(s, &f);
+        s->depth_probe = probe_depth_frame(&f);
         cub_event ev = {.t_us = f.t_us, .type = CUB_EV_DEPTH_FRAME, .a = (int32_t)f.seq,
                         .b = (int32_t)f.timestamp};
         cub_loop_post(loop, &ev);
@@ -100,6 +107,9 @@ static void hook_handle(void *u, cub_loop *loop, const cub_event *ev)
                       cub_loop_button_name((cub_button)ev->a));
         if (ev->type == CUB_EV_BUTTON_DOWN)
             set_state(s, ev->a == CUB_BUTTON_START ? CUB_APP_PLAYING : CUB_APP_WAITING, ev->t_us);
+        break;
+    case CUB_EV_DEPTH_FRAME:
+        if ((uint32_t)ev->a == s->depth_probe.seq) log_depth_frame(s, &s->depth_probe);
         break;
     case CUB_EV_QUIT: cub_log_event(&loop->log, ev->t_us, "app", "quit", "reason=user"); break;
     default: break;

@@ -14,6 +14,13 @@
 
 typedef enum cub_app_state { CUB_APP_WAITING = 0, CUB_APP_PLAYING } cub_app_state;
 
+/* What the log says about one depth frame (see log_depth_frame). */
+typedef struct cub_depth_probe {
+    uint32_t seq, timestamp, valid;
+    int64_t t_us;
+    uint16_t near_raw, center_raw;
+} cub_depth_probe;
+
 typedef struct cub_session {
     const cub_app_options *opt;
     cub_board *board;
@@ -25,6 +32,7 @@ typedef struct cub_session {
     int64_t stop_at_us;      /* 0 = no limit */
     uint16_t *depth_copy;    /* the last depth frame, for the inset */
     uint32_t depth_frames;
+    cub_depth_probe depth_probe; /* of the frame whose event is queued */
     int depth_ended;
     uint8_t *rgba;           /* read-back buffer for headless frames */
     uint32_t frames_written;

@@ -26,7 +26,7 @@
 static const char *out_dir, *dump_dir;
 
 typedef struct recorded {
-    char file[256];
+    char file[512];
     unsigned timestamp;
     unsigned valid, near_raw, center_raw;
 } recorded;

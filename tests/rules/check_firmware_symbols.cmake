@@ -7,7 +7,7 @@ execute_process(COMMAND ${NM} --undefined-only --format=posix ${LIB}
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "nm failed on ${LIB}")
 endif()
-set(allowed memcpy memset memmove memcmp strlen strcmp strncmp strchr strnlen
+set(allowed memcpy memset memmove memcmp memchr strlen strcmp strncmp strchr strrchr strnlen
     __stack_chk_fail __stack_chk_guard _GLOBAL_OFFSET_TABLE_)
 string(REPLACE "\n" ";" lines "${out}")
 set(defined "")

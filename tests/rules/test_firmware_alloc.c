@@ -15,8 +15,10 @@
 #include "cub/loop.h"
 #include "cub/motion.h"
 
-static int counting;
-static int alloc_calls;
+/* volatile: the compiler cannot know that malloc is our wrapper, and would
+ * otherwise drop the stores around the calls. */
+static volatile int counting;
+static volatile int alloc_calls;
 
 void *__real_malloc(size_t n);
 void *__real_calloc(size_t n, size_t m);
@@ -51,7 +53,7 @@ static void test_counter_sees_an_allocation(void **s)
 {
     counting = 1;
     alloc_calls = 0;
-    void *p = malloc(16);
+    void *volatile p = malloc(16); /* volatile: the optimiser may not drop the pair */
     free(p);
     counting = 0;
     assert_int_equal(alloc_calls, 2); /* proves the wrap is live */
