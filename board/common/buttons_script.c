@@ -113,7 +113,7 @@ static int split(char *s, char **tok, int max)
 /* One non-blank line, comment already cut. */
 static cub_err parse_entry(cub_button_script *s, parser *p, char *text, int64_t *prev_t_us)
 {
-    char *tok[3];
+    char *tok[3] = {NULL, NULL, NULL};
     int n = split(text, tok, 3);
     if (n < 2) {
         return fail(p, "expected \"<seconds> <start|stop> [down|up|press]\"");

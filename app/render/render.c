@@ -1,0 +1,157 @@
+/* render — set-up and the frame: background, then the figure, then the
+ * depth inset, into whatever framebuffer is current. Output depends only on
+ * the scene (no clocks, no animation), so frames can be golden-tested. */
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "render_internal.h"
+
+#define BATCH_CAP 16384 /* vertices; a 128-joint figure needs about 7000 */
+
+static const char FLAT_VS[] =
+    "attribute vec3 a_pos;\n"
+    "attribute vec4 a_col;\n"
+    "varying mediump vec4 v_col;\n"
+    "void main() { v_col = a_col; gl_Position = vec4(a_pos, 1.0); }\n";
+static const char FLAT_FS[] =
+    "precision mediump float;\n"
+    "varying vec4 v_col;\n"
+    "void main() { gl_FragColor = v_col; }\n";
+static const char TEX_VS[] =
+    "attribute vec2 a_pos;\n"
+    "attribute vec2 a_uv;\n"
+    "varying mediump vec2 v_uv;\n"
+    "void main() { v_uv = a_uv; gl_Position = vec4(a_pos, 0.0, 1.0); }\n";
+static const char TEX_FS[] =
+    "precision mediump float;\n"
+    "uniform sampler2D u_tex;\n"
+    "varying vec2 v_uv;\n"
+    "void main() { gl_FragColor = vec4(vec3(texture2D(u_tex, v_uv).r), 1.0); }\n";
+
+/* The default sky: deeper blue at the top, pale at the horizon, and grass
+ * below the floor line. */
+static const float SKY_TOP[3] = {0.38f, 0.62f, 0.92f};
+static const float SKY_HORIZON[3] = {0.82f, 0.91f, 0.99f};
+static const float GRASS_TOP[3] = {0.47f, 0.70f, 0.36f};
+static const float GRASS_BOTTOM[3] = {0.34f, 0.56f, 0.26f};
+#define FLOOR_ROW_SHARE 0.07f /* matches the figure camera's floor line */
+
+static cub_err make_gl_objects(cub_render *r)
+{
+    r->flat_prog = cub_render_gl_program(FLAT_VS, FLAT_FS, "flat");
+    r->tex_prog = cub_render_gl_program(TEX_VS, TEX_FS, "depth inset");
+    if (!r->flat_prog || !r->tex_prog)
+        return CUB_ERR_DEVICE;
+    r->flat_pos = glGetAttribLocation(r->flat_prog, "a_pos");
+    r->flat_col = glGetAttribLocation(r->flat_prog, "a_col");
+    r->tex_pos = glGetAttribLocation(r->tex_prog, "a_pos");
+    r->tex_uv = glGetAttribLocation(r->tex_prog, "a_uv");
+    r->tex_sampler = glGetUniformLocation(r->tex_prog, "u_tex");
+    glGenBuffers(1, &r->vbo);
+    glGenTextures(1, &r->depth_tex);
+    glBindTexture(GL_TEXTURE_2D, r->depth_tex);
+    /* NPOT textures in ES2 need clamp-to-edge and no mipmaps. */
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_LUMINANCE, CUB_RENDER_DEPTH_W, CUB_RENDER_DEPTH_H, 0,
+                 GL_LUMINANCE, GL_UNSIGNED_BYTE, NULL);
+    GLenum e = glGetError();
+    if (e != GL_NO_ERROR) {
+        fprintf(stderr, "render: setting up GL objects failed: GL error 0x%04x\n", e);
+        return CUB_ERR_DEVICE;
+    }
+    return CUB_OK;
+}
+
+cub_err cub_render_create(const cub_render_desc *desc, cub_render **out)
+{
+    if (!desc || !out || desc->width <= 0 || desc->height <= 0 || desc->figure_height_mm < 0.0f)
+        return CUB_ERR_ARG;
+    *out = NULL;
+    cub_render *r = calloc(1, sizeof *r);
+    if (!r)
+        return CUB_ERR_NOMEM;
+    r->w = desc->width;
+    r->h = desc->height;
+    r->figure_height_mm = desc->figure_height_mm > 0.0f ? desc->figure_height_mm : 1800.0f;
+    r->batch.cap = BATCH_CAP;
+    r->batch.v = malloc(BATCH_CAP * sizeof r->batch.v[0]);
+    r->depth_lum = malloc(CUB_RENDER_DEPTH_W * CUB_RENDER_DEPTH_H);
+    if (!r->batch.v || !r->depth_lum) {
+        cub_render_destroy(r);
+        return CUB_ERR_NOMEM;
+    }
+    cub_render_inset_init_lut(r->depth_lut);
+    cub_err e = make_gl_objects(r);
+    if (e) {
+        cub_render_destroy(r);
+        return e;
+    }
+    *out = r;
+    return CUB_OK;
+}
+
+void cub_render_destroy(cub_render *r)
+{
+    if (!r)
+        return;
+    /* Deleting name 0 is a no-op, so a half-made renderer is fine here. */
+    glDeleteProgram(r->flat_prog);
+    glDeleteProgram(r->tex_prog);
+    glDeleteBuffers(1, &r->vbo);
+    glDeleteTextures(1, &r->depth_tex);
+    free(r->batch.v);
+    free(r->depth_lum);
+    free(r);
+}
+
+static void background(cub_render *r, const float rgb[3])
+{
+    float w = (float)r->w, h = (float)r->h;
+    if (rgb[0] != 0.0f || rgb[1] != 0.0f || rgb[2] != 0.0f) {
+        cub_render_batch_rect_px(r, 0, 0, w, h, rgb, rgb);
+    } else {
+        float floor_y = FLOOR_ROW_SHARE * h;
+        cub_render_batch_rect_px(r, 0, floor_y, w, h, SKY_TOP, SKY_HORIZON);
+        cub_render_batch_rect_px(r, 0, 0, w, floor_y, GRASS_TOP, GRASS_BOTTOM);
+    }
+    cub_render_batch_draw(r);
+}
+
+cub_err cub_render_frame(cub_render *r, const cub_render_scene *scene)
+{
+    if (!r || !scene)
+        return CUB_ERR_ARG;
+    cub_err e = cub_render_figure_check(scene);
+    if (e)
+        return e; /* before drawing anything: no half frame */
+    glViewport(0, 0, r->w, r->h);
+    glDisable(GL_BLEND);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_SCISSOR_TEST);
+    glDepthMask(GL_TRUE);
+    glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
+    glClearDepthf(1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+
+    glDisable(GL_DEPTH_TEST);
+    background(r, scene->background_rgb);
+
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LEQUAL);
+    cub_render_figure(r, scene);
+    cub_render_batch_draw(r);
+    glDisable(GL_DEPTH_TEST);
+
+    if (scene->depth_raw)
+        cub_render_inset_draw(r, scene->depth_raw);
+
+    GLenum gl_err = glGetError();
+    if (gl_err != GL_NO_ERROR) {
+        fprintf(stderr, "render: frame failed: GL error 0x%04x\n", gl_err);
+        return CUB_ERR_DEVICE;
+    }
+    return CUB_OK;
+}
