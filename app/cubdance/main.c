@@ -46,7 +46,8 @@ static cub_board *open_board(const cub_app_options *o)
 {
     cub_board_desc d = {.display = o->display, .width = o->width, .height = o->height,
                         .depth = o->depth, .button_script = o->button_script,
-                        .gpio_config = o->gpio_config, .audio_driver = o->audio_driver};
+                        .gpio_config = o->gpio_config, .audio_driver = o->audio_driver,
+                        .virtual_clock = o->virtual_clock};
     if (o->frames_dir && d.display == CUB_DISPLAY_AUTO) d.display = CUB_DISPLAY_HEADLESS;
     cub_board *b = NULL;
     char msg[512] = "";
@@ -69,6 +70,13 @@ static int load_clip(const char *path, cub_io_motion *m)
     return -1;
 }
 
+/* The last part of a path: the log names files, not where a checkout lives. */
+static const char *file_name(const char *path)
+{
+    const char *slash = strrchr(path, '/');
+    return slash ? slash + 1 : path;
+}
+
 static int run(const cub_app_options *o, cub_board *board, FILE *log, const cub_io_motion *clip)
 {
     static cub_event slots[64];
@@ -76,7 +84,8 @@ static int run(const cub_app_options *o, cub_board *board, FILE *log, const cub_
     cub_loop_desc ld = {.queue_capacity = 64, .log_sink = log_to_file, .log_user = log};
     if (cub_loop_init(&loop, &ld, slots, sizeof slots)) return -1;
 
-    cub_session s = {.opt = o, .board = board, .clip = clip, .loop = &loop};
+    cub_session s = {.opt = o, .board = board, .clip = clip, .clip_name = file_name(o->clip_path),
+                     .loop = &loop};
     int w = 0, h = 0;
     cub_board_display_size(board, &w, &h);
     s.depth_copy = calloc(CUB_DEPTH_W * CUB_DEPTH_H, sizeof(uint16_t));
@@ -92,10 +101,12 @@ static int run(const cub_app_options *o, cub_board *board, FILE *log, const cub_
     int64_t t0 = cub_board_now_us(board);
     if (o->seconds > 0) s.stop_at_us = t0 + (int64_t)(o->seconds * 1e6);
     cub_log_event(&loop.log, t0, "app", "start",
-                  "board=%s display=%s size=%dx%d depth=%s clip=%s joints=%d", cub_board_name(),
+                  "board=%s display=%s size=%dx%d depth=%s clock=%s clip=%s joints=%d",
+                  cub_board_name(),
                   !cub_board_display_active(board) ? "none"
                   : cub_board_display_headless(board) ? "headless" : "window",
-                  w, h, cub_board_depth_source(board), o->clip_path, clip->skel.joint_count);
+                  w, h, cub_board_depth_source(board), o->virtual_clock ? "virtual" : "real",
+                  s.clip_name, clip->skel.joint_count);
     cub_loop_hooks hooks = cub_session_hooks(&s);
     cub_err err = cub_loop_run(&loop, &hooks, 0);
     cub_log_event(&loop.log, cub_board_now_us(board), "app", "end",

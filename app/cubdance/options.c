@@ -46,6 +46,9 @@ static void usage(FILE *f, const char *prog)
 "Run\n"
 "  --log FILE             write the event log to FILE (default: stderr)\n"
 "  --seconds S            stop after S seconds (default: run until quit)\n"
+"  --clock MODE           real (default) or virtual: time moves by whole ticks\n"
+"                         as fast as the machine goes, so a replay gives the\n"
+"                         same event log on every machine\n"
 "  --help                 this text\n"
 "  --version              the version\n"
 "\n"
@@ -98,6 +101,12 @@ static int apply_valued(cub_app_options *o, const char *opt, const char *val, FI
         o->seconds = strtod(val, &end);
         if (end != val && !*end && o->seconds > 0 && o->seconds < 1e7) return 0;
         fprintf(err, "cubdance: --seconds wants a positive number, got '%s'\n", val);
+    } else if (!strcmp(opt, "--clock")) {
+        if (!strcmp(val, "real") || !strcmp(val, "virtual")) {
+            o->virtual_clock = !strcmp(val, "virtual");
+            return 0;
+        }
+        fprintf(err, "cubdance: --clock wants real or virtual, got '%s'\n", val);
     } else if (!strcmp(opt, "--depth")) {
         if (parse_depth(val, &o->depth) == 0) return 0;
         fprintf(err, "cubdance: --depth wants auto, freenect, empty or off, got '%s'\n", val);
@@ -118,9 +127,9 @@ static int apply_valued(cub_app_options *o, const char *opt, const char *val, FI
 
 static int takes_value(const char *opt)
 {
-    static const char *const valued[] = {"--size", "--frame-every", "--seconds", "--depth",
-                                         "--frames", "--replay", "--buttons", "--gpio-config",
-                                         "--audio-driver", "--clip", "--log"};
+    static const char *const valued[] = {"--size", "--frame-every", "--seconds", "--clock",
+                                         "--depth", "--frames", "--replay", "--buttons",
+                                         "--gpio-config", "--audio-driver", "--clip", "--log"};
     for (size_t i = 0; i < sizeof valued / sizeof *valued; i++)
         if (!strcmp(opt, valued[i])) return 1;
     return 0;

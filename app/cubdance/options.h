@@ -19,6 +19,7 @@ typedef struct cub_app_options {
     const char *frames_dir;     /* headless PNG frames go here, or NULL */
     int frame_every;            /* write every Nth tick (default 30 = 1 per second) */
     double seconds;             /* stop after this long; 0 = run until quit */
+    int virtual_clock;          /* --clock virtual */
 } cub_app_options;
 
 typedef enum cub_app_parse {

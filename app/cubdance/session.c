@@ -91,8 +91,8 @@ static void set_state(cub_session *s, cub_app_state to, int64_t t_us)
     s->state = to;
     if (to == CUB_APP_PLAYING) {
         s->play_start_us = t_us;
-        cub_log_event(&s->loop->log, t_us, "app", "play", "clip=%s frames=%d",
-                      s->opt->clip_path, s->clip->clip.frame_count);
+        cub_log_event(&s->loop->log, t_us, "app", "play", "clip=%s frames=%d", s->clip_name,
+                      s->clip->clip.frame_count);
     }
 }
 

@@ -26,6 +26,7 @@ typedef struct cub_session {
     cub_board *board;
     cub_render *render;      /* NULL when there is no display */
     const cub_io_motion *clip;
+    const char *clip_name;   /* its file name, for the log */
     cub_loop *loop;
     cub_app_state state;
     int64_t play_start_us;

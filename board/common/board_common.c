@@ -71,8 +71,8 @@ cub_err cub_board_common_open(const cub_board_desc *desc, cub_board **out, char 
  * scripted press at 0.1 s happens 0.1 s into the run. */
 cub_err cub_board_common_start(cub_board *b, char *err, size_t err_size)
 {
-    b->origin_mono_us = cub_clock_mono_us();
-    return cub_depth_open(b->desc.depth, b->origin_mono_us, &b->depth, err, err_size);
+    cub_board_clock_start(&b->clock, b->desc.virtual_clock);
+    return cub_depth_open(b->desc.depth, &b->clock, &b->depth, err, err_size);
 }
 
 void cub_board_common_close(cub_board *b)
@@ -96,12 +96,12 @@ void cub_board_common_close(cub_board *b)
 
 int64_t cub_board_now_us(cub_board *b)
 {
-    return cub_clock_mono_us() - b->origin_mono_us;
+    return cub_board_clock_now_us(&b->clock);
 }
 
 void cub_board_sleep_until_us(cub_board *b, int64_t t_us)
 {
-    cub_clock_sleep_until_mono_us(b->origin_mono_us + t_us);
+    cub_board_clock_sleep_until_us(&b->clock, t_us);
 }
 
 /* ---- buttons ----------------------------------------------------------- */

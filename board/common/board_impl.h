@@ -23,7 +23,7 @@ struct cub_board {
     cub_board_desc desc;         /* with defaults filled in */
     char storage_dir[CUB_BOARD_PATH_MAX];
     char audio_driver[64];       /* "" = SDL's choice */
-    int64_t origin_mono_us;      /* board time 0 */
+    cub_board_clock clock;       /* board time */
     cub_depth *depth;            /* NULL when depth is off */
     cub_display *display;        /* NULL when display is NONE */
     cub_audio_sdl *audio;        /* NULL until audio starts */

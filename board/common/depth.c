@@ -27,10 +27,10 @@ static cub_err wrap(depth_kind kind, cub_depth_freenect *fn, cub_depth_empty *em
     return CUB_OK;
 }
 
-static cub_err open_empty(int64_t origin_mono_us, cub_depth **out, char *err, size_t err_size)
+static cub_err open_empty(const cub_board_clock *clock, cub_depth **out, char *err, size_t err_size)
 {
     cub_depth_empty *em = NULL;
-    cub_err e = cub_depth_empty_open(origin_mono_us, &em);
+    cub_err e = cub_depth_empty_open(clock, &em);
     if (e) {
         snprintf(err, err_size, "depth: cannot set up the empty scene: %s", cub_err_str(e));
         return e;
@@ -38,7 +38,7 @@ static cub_err open_empty(int64_t origin_mono_us, cub_depth **out, char *err, si
     return wrap(DEPTH_EMPTY, NULL, em, out);
 }
 
-cub_err cub_depth_open(cub_depth_mode mode, int64_t origin_mono_us, cub_depth **out, char *err,
+cub_err cub_depth_open(cub_depth_mode mode, const cub_board_clock *clock, cub_depth **out, char *err,
                        size_t err_size)
 {
     if (!out || !err || err_size == 0) {
@@ -50,11 +50,11 @@ cub_err cub_depth_open(cub_depth_mode mode, int64_t origin_mono_us, cub_depth **
     case CUB_DEPTH_OFF:
         return CUB_OK;
     case CUB_DEPTH_EMPTY:
-        return open_empty(origin_mono_us, out, err, err_size);
+        return open_empty(clock, out, err, err_size);
     case CUB_DEPTH_AUTO:
     case CUB_DEPTH_FREENECT: {
         cub_depth_freenect *fn = NULL;
-        cub_err e = cub_depth_freenect_open(origin_mono_us, &fn, err, err_size);
+        cub_err e = cub_depth_freenect_open(clock, &fn, err, err_size);
         if (e == CUB_OK) {
             return wrap(DEPTH_FREENECT, fn, NULL, out);
         }
@@ -63,7 +63,7 @@ cub_err cub_depth_open(cub_depth_mode mode, int64_t origin_mono_us, cub_depth **
         }
         /* AUTO without a Kinect: the empty scene keeps the program running. */
         err[0] = '\0';
-        return open_empty(origin_mono_us, out, err, err_size);
+        return open_empty(clock, out, err, err_size);
     }
     }
     snprintf(err, err_size, "depth: unknown depth mode %d", (int)mode);

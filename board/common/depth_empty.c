@@ -8,7 +8,7 @@
 
 struct cub_depth_empty {
     uint16_t raw[CUB_DEPTH_W * CUB_DEPTH_H];
-    int64_t origin_mono_us;
+    const cub_board_clock *clock;
     int64_t next_k; /* index of the next frame not yet handed out */
     uint32_t seq;
 };
@@ -18,7 +18,7 @@ static int64_t due_us(int64_t k)
     return k * CUB_DEPTH_EMPTY_PERIOD_NUM_US / CUB_DEPTH_EMPTY_PERIOD_DEN;
 }
 
-cub_err cub_depth_empty_open(int64_t origin_mono_us, cub_depth_empty **out)
+cub_err cub_depth_empty_open(const cub_board_clock *clock, cub_depth_empty **out)
 {
     cub_depth_empty *s = malloc(sizeof *s);
     if (!s) {
@@ -27,7 +27,7 @@ cub_err cub_depth_empty_open(int64_t origin_mono_us, cub_depth_empty **out)
     for (size_t i = 0; i < CUB_DEPTH_W * CUB_DEPTH_H; i++) {
         s->raw[i] = CUB_DEPTH_NO_READING;
     }
-    s->origin_mono_us = origin_mono_us;
+    s->clock = clock;
     s->next_k = 0;
     s->seq = 0;
     *out = s;
@@ -36,7 +36,7 @@ cub_err cub_depth_empty_open(int64_t origin_mono_us, cub_depth_empty **out)
 
 cub_err cub_depth_empty_poll(cub_depth_empty *s, cub_depth_frame *out)
 {
-    int64_t now_us = cub_clock_mono_us() - s->origin_mono_us;
+    int64_t now_us = cub_board_clock_now_us(s->clock);
     if (now_us < due_us(s->next_k)) {
         return CUB_ERR_EMPTY;
     }

@@ -31,7 +31,7 @@
 struct cub_depth_freenect {
     freenect_context *ctx;
     freenect_device *dev;
-    int64_t origin_mono_us;
+    const cub_board_clock *clock;
     uint16_t bufs[2][FRAME_PIXELS];
     int held;            /* buffer the caller may be reading (-1: none yet) */
     int back;            /* buffer the newest frame was copied into */
@@ -50,7 +50,7 @@ static void on_depth(freenect_device *dev, void *depth, uint32_t timestamp)
     memcpy(s->bufs[s->back], depth, FRAME_BYTES);
     s->back_seq = s->arrived++;
     s->back_timestamp = timestamp;
-    s->back_t_us = cub_clock_mono_us() - s->origin_mono_us;
+    s->back_t_us = cub_board_clock_now_us(s->clock);
     s->fresh = 1;
 }
 
@@ -157,8 +157,8 @@ static cub_err start(cub_depth_freenect *s, char *err, size_t err_size)
     return CUB_OK;
 }
 
-cub_err cub_depth_freenect_open(int64_t origin_mono_us, cub_depth_freenect **out, char *err,
-                                size_t err_size)
+cub_err cub_depth_freenect_open(const cub_board_clock *clock, cub_depth_freenect **out,
+                                char *err, size_t err_size)
 {
     *out = NULL;
     if (fakenect_loaded()) {
@@ -172,7 +172,7 @@ cub_err cub_depth_freenect_open(int64_t origin_mono_us, cub_depth_freenect **out
         snprintf(err, err_size, "depth: out of memory");
         return CUB_ERR_NOMEM;
     }
-    s->origin_mono_us = origin_mono_us;
+    s->clock = clock;
     s->held = -1;
     s->tilt_ok = 1;
     cub_err e = start(s, err, err_size);

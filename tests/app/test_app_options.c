@@ -49,6 +49,7 @@ static void test_bad_options_are_refused_with_the_option_named(void **s)
     expect_refused((const char *[]){"--seconds", "-1", NULL}, "--seconds");
     expect_refused((const char *[]){"--seconds", "soon", NULL}, "--seconds");
     expect_refused((const char *[]){"--depth", "lidar", NULL}, "--depth");
+    expect_refused((const char *[]){"--clock", "fast", NULL}, "--clock");
     expect_refused((const char *[]){"--log", NULL}, "--log needs a value");
     expect_refused((const char *[]){"--replay", "/x", "--depth", "empty", NULL}, "--replay");
 }
@@ -59,7 +60,7 @@ static void test_help_documents_every_option(void **s)
     assert_int_equal(parse(&o, (const char *[]){"--help", NULL}), CUB_APP_EXIT_OK);
     const char *opts[] = {"--window", "--headless", "--size", "--frames", "--frame-every",
                           "--replay", "--depth", "--buttons", "--gpio-config", "--audio-driver",
-                          "--clip", "--log", "--seconds", "--help", "--version"};
+                          "--clip", "--log", "--seconds", "--clock", "--help", "--version"};
     for (size_t i = 0; i < sizeof opts / sizeof *opts; i++)
         if (!strstr(help_text, opts[i])) fail_msg("--help does not mention %s", opts[i]);
 }
@@ -69,7 +70,7 @@ static void test_good_options_set_their_fields(void **s)
     cub_app_options o;
     const char *args[] = {"--headless", "--size", "320x240", "--frames", "f", "--frame-every",
                           "5", "--replay", "dump", "--buttons", "b.txt", "--log", "e.log",
-                          "--seconds", "2.5", NULL};
+                          "--seconds", "2.5", "--clock", "virtual", NULL};
     assert_int_equal(parse(&o, args), CUB_APP_RUN);
     assert_int_equal(o.display, CUB_DISPLAY_HEADLESS);
     assert_int_equal(o.width, 320);
@@ -81,6 +82,7 @@ static void test_good_options_set_their_fields(void **s)
     assert_string_equal(o.button_script, "b.txt");
     assert_string_equal(o.log_path, "e.log");
     assert_true(o.seconds > 2.49 && o.seconds < 2.51);
+    assert_int_equal(o.virtual_clock, 1);
 }
 
 static void test_defaults(void **s)
@@ -93,6 +95,7 @@ static void test_defaults(void **s)
     assert_string_equal(o.clip_path, "/assets/clips/hello.bvh");
     assert_null(o.log_path);
     assert_true(o.seconds == 0);
+    assert_int_equal(o.virtual_clock, 0);
 }
 
 int main(void)

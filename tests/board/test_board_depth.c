@@ -15,16 +15,18 @@
 #include "clock.h"
 #include "depth.h"
 
+static cub_board_clock real_clock; /* started at 0: a real clock */
+
 static void test_off_has_no_source(void **state)
 {
     cub_depth *d = (cub_depth *)1;
     char err[128];
-    assert_int_equal(cub_depth_open(CUB_DEPTH_OFF, 0, &d, err, sizeof err), CUB_OK);
+    assert_int_equal(cub_depth_open(CUB_DEPTH_OFF, &real_clock, &d, err, sizeof err), CUB_OK);
     assert_null(d);
     assert_string_equal(cub_depth_name(d), "off");
     cub_depth_frame f;
     assert_int_equal(cub_depth_poll(d, &f), CUB_ERR_DEVICE);
-    assert_int_equal(cub_depth_open((cub_depth_mode)42, 0, &d, err, sizeof err), CUB_ERR_ARG);
+    assert_int_equal(cub_depth_open((cub_depth_mode)42, &real_clock, &d, err, sizeof err), CUB_ERR_ARG);
     assert_non_null(strstr(err, "unknown depth mode 42"));
 }
 
@@ -38,10 +40,12 @@ static int on_grid(int64_t t_us)
 
 static void test_empty_scene_frames_at_30hz_all_no_reading(void **state)
 {
-    int64_t origin = cub_clock_mono_us();
+    cub_board_clock clock;
+    cub_board_clock_start(&clock, 0);
+    int64_t origin = clock.origin_mono_us;
     cub_depth *d;
     char err[128];
-    assert_int_equal(cub_depth_open(CUB_DEPTH_EMPTY, origin, &d, err, sizeof err), CUB_OK);
+    assert_int_equal(cub_depth_open(CUB_DEPTH_EMPTY, &clock, &d, err, sizeof err), CUB_OK);
     assert_string_equal(cub_depth_name(d), "empty");
     enum { FRAMES = 12 };
     int64_t t_prev = -1;
@@ -77,10 +81,12 @@ static void test_empty_scene_frames_at_30hz_all_no_reading(void **state)
 /* Polled late, the empty scene hands out only the newest due frame. */
 static void test_empty_scene_late_poll_gives_newest(void **state)
 {
-    int64_t origin = cub_clock_mono_us() - 1000000; /* the board opened 1 s ago */
+    cub_board_clock clock;
+    cub_board_clock_start(&clock, 0);
+    clock.origin_mono_us -= 1000000; /* the board opened 1 s ago */
     cub_depth *d;
     char err[128];
-    assert_int_equal(cub_depth_open(CUB_DEPTH_EMPTY, origin, &d, err, sizeof err), CUB_OK);
+    assert_int_equal(cub_depth_open(CUB_DEPTH_EMPTY, &clock, &d, err, sizeof err), CUB_OK);
     cub_depth_frame f;
     assert_int_equal(cub_depth_poll(d, &f), CUB_OK);
     assert_int_equal(f.seq, 0);

@@ -28,6 +28,8 @@ typedef struct dump {
     uint32_t timestamp[MAX_FRAMES]; /* from the file name: d-<time>-<timestamp>.pgm */
 } dump;
 
+static cub_board_clock real_clock; /* started at 0: a real clock */
+
 static const char *dump_dir(void)
 {
     const char *dir = getenv("FAKENECT_PATH");
@@ -90,10 +92,12 @@ static void test_replay_gives_every_frame_then_end(void **state)
     read_index(dir, &d);
     assert_true(d.count > 0);
 
-    int64_t origin = cub_clock_mono_us();
+    cub_board_clock clock;
+    cub_board_clock_start(&clock, 0);
+    int64_t origin = clock.origin_mono_us;
     cub_depth *src;
     char err[512];
-    cub_err e = cub_depth_open(CUB_DEPTH_FREENECT, origin, &src, err, sizeof err);
+    cub_err e = cub_depth_open(CUB_DEPTH_FREENECT, &clock, &src, err, sizeof err);
     if (e) {
         fail_msg("depth open: %s: %s (is LD_LIBRARY_PATH the fakenect dir?)", cub_err_str(e), err);
     }
@@ -158,7 +162,7 @@ static void test_broken_dump_is_refused_with_line(void **state)
     setenv("FAKENECT_PATH", dir, 1);
     cub_depth *src = NULL;
     char err[512];
-    cub_err e = cub_depth_open(CUB_DEPTH_FREENECT, 0, &src, err, sizeof err);
+    cub_err e = cub_depth_open(CUB_DEPTH_FREENECT, &real_clock, &src, err, sizeof err);
     if (saved) {
         setenv("FAKENECT_PATH", saved, 1);
         free(saved);
@@ -193,7 +197,7 @@ static void test_short_frame_is_refused(void **state)
     setenv("FAKENECT_PATH", dir, 1);
     cub_depth *src = NULL;
     char err[512];
-    cub_err e = cub_depth_open(CUB_DEPTH_FREENECT, 0, &src, err, sizeof err);
+    cub_err e = cub_depth_open(CUB_DEPTH_FREENECT, &real_clock, &src, err, sizeof err);
     if (saved) {
         setenv("FAKENECT_PATH", saved, 1);
         free(saved);

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Run the real cubdance binary on a recorded fakenect dump, headless, with a
-# button timeline, for a replay (hardware-in-loop) test.
+# button timeline, for a replay (hardware-in-loop) test. The clock is
+# virtual, so the event log is the same on every machine and every run.
 #   run_cubdance.sh EMULATOR|"" CUBDANCE DUMP_DIR BUTTONS OUT_DIR SECONDS
 # Exits 77 (ctest: skipped) when the dump is not there.
 set -euo pipefail
@@ -18,6 +19,6 @@ export LD_LIBRARY_PATH="${CUB_FAKENECT_DIR}${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
 export EGL_PLATFORM=surfaceless SDL_AUDIODRIVER=dummy
 # shellcheck disable=SC2086
 $emu "$exe" --headless --size 320x240 --replay "$dump" --buttons "$buttons" \
-    --frames "$out/frames" --frame-every 5 --log "$out/events.log" --seconds "$seconds"
+    --frames "$out/frames" --frame-every 5 --log "$out/events.log" --seconds "$seconds" --clock virtual
 echo "--- event log ($out/events.log):"
 cat "$out/events.log"

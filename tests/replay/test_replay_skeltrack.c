@@ -2,7 +2,10 @@
  * (run_cubdance.sh, the fixture of this test). From its event log: all 8
  * frames arrived, in order, with the recorded timestamps; each frame's
  * logged probes equal the recorded pixels; and raw->mm matches the data
- * README's formula mm = 123.6 * tan(raw / 2842.5 + 1.1863) within 1 mm. */
+ * README's formula mm = 123.6 * tan(raw / 2842.5 + 1.1863) within 1 mm.
+ * With the virtual clock the whole log is exact: it must equal the one in
+ * expected/, on x86-64 and on aarch64 alike (determinism across CPUs). To
+ * accept a deliberate change, copy the new log over it and say why. */
 #define _POSIX_C_SOURCE 200809L
 #include <dirent.h>
 #include <math.h>
@@ -23,7 +26,7 @@
 #define H 480
 #define FRAMES 8
 
-static const char *out_dir, *dump_dir;
+static const char *out_dir, *dump_dir, *expected_log;
 
 typedef struct recorded {
     char file[512];
@@ -225,20 +228,45 @@ static void test_headless_frames_were_written(void **s)
     assert_true(pngs >= 3);
 }
 
+static void test_event_log_is_the_same_on_every_machine(void **s)
+{
+    need_data();
+    logread want;
+    assert_int_equal(logread_load(expected_log, &want), 0);
+    int n = want.count < events.count ? want.count : events.count;
+    for (int i = 0; i < n; i++) {
+        const logread_line *a = &want.lines[i], *b = &events.lines[i];
+        if (a->t_s != b->t_s || strcmp(a->source, b->source) || strcmp(a->event, b->event) ||
+            strcmp(a->rest, b->rest)) {
+            printf("replay: line %d differs\n  expected: t=%.3f %s %s %s\n  got:      "
+                   "t=%.3f %s %s %s\n",
+                   i + 1, a->t_s, a->source, a->event, a->rest, b->t_s, b->source, b->event,
+                   b->rest);
+            logread_free(&want);
+            fail();
+        }
+    }
+    assert_int_equal(events.count, want.count);
+    printf("replay: event log identical to %s (%d lines)\n", expected_log, want.count);
+    logread_free(&want);
+}
+
 int main(int argc, char **argv)
 {
-    if (argc < 3) {
-        fprintf(stderr, "usage: %s OUT_DIR DUMP_DIR\n", argv[0]);
+    if (argc < 4) {
+        fprintf(stderr, "usage: %s OUT_DIR DUMP_DIR EXPECTED_LOG\n", argv[0]);
         return 2;
     }
     out_dir = argv[1];
     dump_dir = argv[2];
+    expected_log = argv[3];
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_all_eight_frames_arrive_in_order_with_timestamps),
         cmocka_unit_test(test_logged_probes_match_the_recorded_pixels),
         cmocka_unit_test(test_raw_to_mm_matches_the_formula_within_1mm),
         cmocka_unit_test(test_start_plays_and_stop_returns_to_waiting),
         cmocka_unit_test(test_headless_frames_were_written),
+        cmocka_unit_test(test_event_log_is_the_same_on_every_machine),
     };
     return cmocka_run_group_tests_name("replay_skeltrack", tests, setup, teardown);
 }

@@ -50,6 +50,10 @@ typedef struct cub_board_desc {
     const char *audio_driver;   /* SDL audio driver ("dummy", "disk"); NULL = default */
     int audio_rate;             /* default 44100 */
     const char *storage_dir;    /* default "." */
+    int virtual_clock;          /* 1: time moves only when the loop sleeps, by
+                                   whole ticks, as fast as the machine goes:
+                                   for replays, so that a recording gives the
+                                   same event log on every machine */
 } cub_board_desc;
 
 typedef struct cub_board cub_board; /* opaque */
