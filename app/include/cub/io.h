@@ -47,6 +47,12 @@ typedef struct cub_io_desc {
     double unit_mm; /* mm per file unit; 0 = guess (see cub_io_guess_unit_mm) */
 } cub_io_desc;
 
+/* Millimetres per file unit for a rest skeleton whose largest extent is
+ * rest_size_units: a table of known conventions (metres, CMU's inch/0.45,
+ * centimetres, millimetres) by size, else the unit that makes a 1.7 m
+ * human. What importers use when desc->unit_mm is 0. */
+double cub_io_guess_unit_mm(double rest_size_units);
+
 /* BVH from a file or from memory (name is used in diagnostics). */
 cub_err cub_io_load_bvh(const char *path, const cub_io_desc *desc, cub_io_motion *out,
                         cub_diag *diag);
