@@ -59,8 +59,9 @@ static int read_index(recorded *rec, int max)
 /* Header "P5 640 480 65535" then little-endian uint16 raw disparity. */
 static int read_pgm_stats(recorded *r)
 {
-    char path[1024];
-    snprintf(path, sizeof path, "%s/%s", dump_dir, r->file);
+    char path[2048];
+    int n = snprintf(path, sizeof path, "%s/%s", dump_dir, r->file);
+    if (n < 0 || (size_t)n >= sizeof path) return -1;
     FILE *f = fopen(path, "rb");
     if (!f) return -1;
     int w, h, maxv;
