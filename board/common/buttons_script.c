@@ -1,5 +1,6 @@
 /* buttons_script — parse a button timeline and hand out its due edges. */
 #include "buttons_script.h"
+#include "text_file.h"
 
 #include <stdarg.h>
 #include <stdio.h>
@@ -261,27 +262,11 @@ cub_err cub_button_script_load(const char *path, cub_button_script **out, char *
     if (!path || !out || !err || err_size == 0) {
         return CUB_ERR_ARG;
     }
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        snprintf(err, err_size, "%s: cannot open the button script", path);
-        return CUB_ERR_IO;
-    }
-    char *text = malloc(CUB_BUTTON_SCRIPT_MAX_BYTES + 1);
-    size_t len = text ? fread(text, 1, CUB_BUTTON_SCRIPT_MAX_BYTES + 1, f) : 0;
-    int read_err = ferror(f);
-    fclose(f);
-    cub_err e;
-    if (!text) {
-        e = CUB_ERR_NOMEM;
-        snprintf(err, err_size, "%s: out of memory", path);
-    } else if (read_err) {
-        e = CUB_ERR_IO;
-        snprintf(err, err_size, "%s: read error", path);
-    } else if (len > CUB_BUTTON_SCRIPT_MAX_BYTES) {
-        e = CUB_ERR_FORMAT;
-        snprintf(err, err_size, "%s: larger than %d bytes (not a button script?)", path,
-                 CUB_BUTTON_SCRIPT_MAX_BYTES);
-    } else {
+    char *text;
+    size_t len;
+    cub_err e = cub_board_read_text(path, "button script", CUB_BUTTON_SCRIPT_MAX_BYTES, &text,
+                                    &len, err, err_size);
+    if (!e) {
         e = cub_button_script_parse(text, len, path, out, err, err_size);
     }
     free(text);

@@ -1,6 +1,7 @@
 /* display — the backend-independent half of display.h: dispatch to the
  * backend that opened the display, and the GLES2 read-back both share. */
 #include <GLES2/gl2.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -65,4 +66,14 @@ cub_err cub_display_gl_read_rgba(int w, int h, uint8_t *rgba, size_t size)
         }
     }
     return CUB_OK;
+}
+
+void cub_display_fail(char *err, size_t err_size, const char *fmt, ...)
+{
+    if (!err || err_size == 0)
+        return;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(err, err_size, fmt, ap);
+    va_end(ap);
 }

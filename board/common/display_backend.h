@@ -25,4 +25,8 @@ struct cub_display {
  * row comes first. Shared by both backends. */
 cub_err cub_display_gl_read_rgba(int w, int h, uint8_t *rgba, size_t size);
 
+/* printf a failure message into err (nothing if err is NULL or empty). */
+void cub_display_fail(char *err, size_t err_size, const char *fmt, ...)
+    __attribute__((format(printf, 3, 4)));
+
 #endif

@@ -18,7 +18,6 @@
 #include <EGL/eglext.h>
 #include <GLES2/gl2.h>
 #include <GLES2/gl2ext.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -30,16 +29,6 @@ typedef struct egl_state {
     EGLContext ctx;
     GLuint fbo, color_rb, depth_rb;
 } egl_state;
-
-static void fail(char *err, size_t err_size, const char *fmt, ...)
-{
-    if (!err || err_size == 0)
-        return;
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(err, err_size, fmt, ap);
-    va_end(ap);
-}
 
 /* Whole-word search in a space-separated extension list. */
 static int has_ext(const char *list, const char *name)
@@ -87,24 +76,24 @@ static cub_err make_context(egl_state *s, char *err, size_t err_size)
     char how[128];
     s->dpy = get_surfaceless_display(how, sizeof how);
     if (s->dpy == EGL_NO_DISPLAY) {
-        fail(err, err_size, "headless display: %s returned EGL_NO_DISPLAY (eglGetError 0x%04x)",
+        cub_display_fail(err, err_size, "headless display: %s returned EGL_NO_DISPLAY (eglGetError 0x%04x)",
              how, eglGetError());
         return CUB_ERR_DEVICE;
     }
     EGLint major = 0, minor = 0;
     if (!eglInitialize(s->dpy, &major, &minor)) {
-        fail(err, err_size, "headless display: eglInitialize failed (eglGetError 0x%04x) on %s",
+        cub_display_fail(err, err_size, "headless display: eglInitialize failed (eglGetError 0x%04x) on %s",
              eglGetError(), how);
         s->dpy = EGL_NO_DISPLAY;
         return CUB_ERR_DEVICE;
     }
     if (!has_ext(eglQueryString(s->dpy, EGL_EXTENSIONS), "EGL_KHR_surfaceless_context")) {
-        fail(err, err_size, "headless display: EGL %d.%d lacks EGL_KHR_surfaceless_context",
+        cub_display_fail(err, err_size, "headless display: EGL %d.%d lacks EGL_KHR_surfaceless_context",
              major, minor);
         return CUB_ERR_UNSUPPORTED;
     }
     if (!eglBindAPI(EGL_OPENGL_ES_API)) {
-        fail(err, err_size, "headless display: eglBindAPI(EGL_OPENGL_ES_API) failed (0x%04x)",
+        cub_display_fail(err, err_size, "headless display: eglBindAPI(EGL_OPENGL_ES_API) failed (0x%04x)",
              eglGetError());
         return CUB_ERR_UNSUPPORTED;
     }
@@ -114,19 +103,19 @@ static cub_err make_context(egl_state *s, char *err, size_t err_size)
     EGLConfig cfg;
     EGLint n = 0;
     if (!eglChooseConfig(s->dpy, cfg_attr, &cfg, 1, &n) || n < 1) {
-        fail(err, err_size, "headless display: eglChooseConfig found no GLES2 config (0x%04x)",
+        cub_display_fail(err, err_size, "headless display: eglChooseConfig found no GLES2 config (0x%04x)",
              eglGetError());
         return CUB_ERR_UNSUPPORTED;
     }
     const EGLint ctx_attr[] = {EGL_CONTEXT_CLIENT_VERSION, 2, EGL_NONE};
     s->ctx = eglCreateContext(s->dpy, cfg, EGL_NO_CONTEXT, ctx_attr);
     if (s->ctx == EGL_NO_CONTEXT) {
-        fail(err, err_size, "headless display: eglCreateContext(ES 2) failed (0x%04x)",
+        cub_display_fail(err, err_size, "headless display: eglCreateContext(ES 2) failed (0x%04x)",
              eglGetError());
         return CUB_ERR_DEVICE;
     }
     if (!eglMakeCurrent(s->dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, s->ctx)) {
-        fail(err, err_size, "headless display: eglMakeCurrent(no surface) failed (0x%04x)",
+        cub_display_fail(err, err_size, "headless display: eglMakeCurrent(no surface) failed (0x%04x)",
              eglGetError());
         return CUB_ERR_DEVICE;
     }
@@ -151,7 +140,7 @@ static cub_err make_fbo(egl_state *s, int w, int h, char *err, size_t err_size)
     GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
     GLenum gl_err = glGetError();
     if (status != GL_FRAMEBUFFER_COMPLETE || gl_err != GL_NO_ERROR) {
-        fail(err, err_size,
+        cub_display_fail(err, err_size,
              "headless display: framebuffer %dx%d (%s + DEPTH16) incomplete: status 0x%04x, "
              "GL error 0x%04x",
              w, h, color_fmt == GL_RGBA4 ? "RGBA4" : "RGBA8", status, gl_err);
@@ -194,7 +183,7 @@ static const cub_display_ops egl_ops = {egl_close, egl_swap};
 cub_err cub_display_open_headless(int w, int h, cub_display **out, char *err, size_t err_size)
 {
     if (!out || w <= 0 || h <= 0 || w > 16384 || h > 16384) {
-        fail(err, err_size, "headless display: bad arguments (%dx%d)", w, h);
+        cub_display_fail(err, err_size, "headless display: bad arguments (%dx%d)", w, h);
         return CUB_ERR_ARG;
     }
     *out = NULL;
@@ -203,7 +192,7 @@ cub_err cub_display_open_headless(int w, int h, cub_display **out, char *err, si
     if (!d || !s) {
         free(d);
         free(s);
-        fail(err, err_size, "headless display: out of memory");
+        cub_display_fail(err, err_size, "headless display: out of memory");
         return CUB_ERR_NOMEM;
     }
     s->dpy = EGL_NO_DISPLAY;

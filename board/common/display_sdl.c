@@ -9,7 +9,6 @@
  * undefined (EGL_BUFFER_DESTROYED is the usual swap behaviour).
  */
 #include <SDL2/SDL.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -20,16 +19,6 @@ typedef struct sdl_state {
     SDL_Window *win;
     SDL_GLContext ctx;
 } sdl_state;
-
-static void fail(char *err, size_t err_size, const char *fmt, ...)
-{
-    if (!err || err_size == 0)
-        return;
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(err, err_size, fmt, ap);
-    va_end(ap);
-}
 
 static int is_headless_driver(const char *name)
 {
@@ -84,7 +73,7 @@ static cub_err init_video(const char *video_driver, char *err, size_t err_size)
     SDL_SetHint(SDL_HINT_OPENGL_ES_DRIVER, "1");
     SDL_SetHint(SDL_HINT_VIDEO_X11_FORCE_EGL, "1");
     if (SDL_InitSubSystem(SDL_INIT_VIDEO) != 0) {
-        fail(err, err_size, "window display: SDL video init (driver %s) failed: %s",
+        cub_display_fail(err, err_size, "window display: SDL video init (driver %s) failed: %s",
              video_driver ? video_driver : "SDL's choice", SDL_GetError());
         return CUB_ERR_DEVICE;
     }
@@ -108,18 +97,18 @@ static cub_err make_window(cub_display *d, sdl_state *s, char *err, size_t err_s
     s->win = SDL_CreateWindow("cubdance", SDL_WINDOWPOS_CENTERED, SDL_WINDOWPOS_CENTERED, d->w,
                               d->h, flags);
     if (!s->win) {
-        fail(err, err_size, "window display: SDL_CreateWindow %dx%d on %s failed: %s", d->w,
+        cub_display_fail(err, err_size, "window display: SDL_CreateWindow %dx%d on %s failed: %s", d->w,
              d->h, driver ? driver : "?", SDL_GetError());
         return CUB_ERR_DEVICE;
     }
     s->ctx = SDL_GL_CreateContext(s->win);
     if (!s->ctx) {
-        fail(err, err_size, "window display: SDL_GL_CreateContext(ES 2.0) on %s failed: %s",
+        cub_display_fail(err, err_size, "window display: SDL_GL_CreateContext(ES 2.0) on %s failed: %s",
              driver ? driver : "?", SDL_GetError());
         return CUB_ERR_UNSUPPORTED;
     }
     if (SDL_GL_MakeCurrent(s->win, s->ctx) != 0) {
-        fail(err, err_size, "window display: SDL_GL_MakeCurrent failed: %s", SDL_GetError());
+        cub_display_fail(err, err_size, "window display: SDL_GL_MakeCurrent failed: %s", SDL_GetError());
         return CUB_ERR_DEVICE;
     }
     /* Vsync paces the loop on the box; some drivers refuse it, which only
@@ -135,7 +124,7 @@ cub_err cub_display_open_window(int w, int h, const char *video_driver, cub_disp
                                 char *err, size_t err_size)
 {
     if (!out || w <= 0 || h <= 0 || w > 16384 || h > 16384) {
-        fail(err, err_size, "window display: bad arguments (%dx%d)", w, h);
+        cub_display_fail(err, err_size, "window display: bad arguments (%dx%d)", w, h);
         return CUB_ERR_ARG;
     }
     *out = NULL;
@@ -148,7 +137,7 @@ cub_err cub_display_open_window(int w, int h, const char *video_driver, cub_disp
         free(d);
         free(s);
         SDL_QuitSubSystem(SDL_INIT_VIDEO);
-        fail(err, err_size, "window display: out of memory");
+        cub_display_fail(err, err_size, "window display: out of memory");
         return CUB_ERR_NOMEM;
     }
     *d = (cub_display){.ops = &sdl_ops, .w = w, .h = h, .headless = 0, .impl = s};

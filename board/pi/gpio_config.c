@@ -1,5 +1,6 @@
 /* gpio_config — the pi's button config file: key=value lines. */
 #include "gpio.h"
+#include "text_file.h"
 
 #include <stdarg.h>
 #include <stdio.h>
@@ -180,22 +181,10 @@ cub_err cub_gpio_config_load(const char *path, cub_gpio_config *cfg, char *err, 
     if (!path || !cfg || !err || err_size == 0) {
         return CUB_ERR_ARG;
     }
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        snprintf(err, err_size, "%s: cannot open the GPIO config", path);
-        return CUB_ERR_IO;
-    }
-    char *text = malloc(MAX_BYTES + 1);
-    size_t len = text ? fread(text, 1, MAX_BYTES + 1, f) : 0;
-    fclose(f);
-    cub_err e;
-    if (!text) {
-        snprintf(err, err_size, "%s: out of memory", path);
-        e = CUB_ERR_NOMEM;
-    } else if (len > MAX_BYTES) {
-        snprintf(err, err_size, "%s: larger than %d bytes (not a GPIO config?)", path, MAX_BYTES);
-        e = CUB_ERR_FORMAT;
-    } else {
+    char *text;
+    size_t len;
+    cub_err e = cub_board_read_text(path, "GPIO config", MAX_BYTES, &text, &len, err, err_size);
+    if (!e) {
         e = cub_gpio_config_parse(text, len, path, cfg, err, err_size);
     }
     free(text);

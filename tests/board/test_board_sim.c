@@ -295,7 +295,10 @@ static void test_audio_disk_driver_writes_storage_file(void **state)
     fclose(f);
     printf("audio disk: %llu frames, %ld bytes in %s\n", (unsigned long long)frames, size, path);
     assert_true(frames >= 2048);
-    assert_true(size >= 2048 * 4 && (uint64_t)size <= frames * 4);
+    /* Every frame the callback filled is in the file (closing the device
+     * joins SDL's thread, which writes each buffer it filled); the file may
+     * hold more, because SDL writes silence while the device is paused. */
+    assert_true((uint64_t)size >= frames * 4);
     assert_int_equal(first[0], -3000); /* the tone's first sample, not silence */
     unlink(path);
     rmdir(dir);
