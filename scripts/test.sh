@@ -22,12 +22,21 @@ start=$(date +%s)
 if [ "$host_only" = 1 ]; then scripts/setup.sh --host; else scripts/setup.sh; fi
 
 stage() { echo; echo "=== $1 ($(( $(date +%s) - start )) s)"; }
+# The figures the tests print (error bounds, round trips, replays): ctest
+# keeps test output in its log; show the one-line `name: figure` results.
+figures() {
+    echo "--- figures printed by the tests ($1):"
+    grep -hE '^(fx|motion|track|io|replay|firmware [a-z]+|fakenect|depth empty|audio [a-z]+|bench_bvh): ' \
+        "build/$1/Testing/Temporary/LastTest.log" |
+        grep -vE '^io: ((round trip )?(cmu|animdraw|bandai|dog)/|bad )' | sed 's/^/  /' || true
+}
 
 stage "host: configure and build"
 cmake --preset host
 cmake --build --preset host -j "$jobs"
 stage "host: ctest"
 ctest --preset host -j "$jobs"
+figures host
 
 if [ "$host_only" = 0 ]; then
     stage "pi (aarch64, under qemu): configure and build"
@@ -35,6 +44,7 @@ if [ "$host_only" = 0 ]; then
     cmake --build --preset pi -j "$jobs"
     stage "pi: ctest under qemu-aarch64-static"
     CUB_QUICK=1 ctest --preset pi -j "$jobs"
+    figures pi
 fi
 
 if [ "$fuzz" = 1 ]; then
