@@ -1,0 +1,12 @@
+/* The cubtool commands, one file each (cmd_<name>.c). Each gets argv with
+ * argv[0] = the command's name, returns the process exit code (0 ok, 1 the
+ * work failed, 2 bad usage), prints progress to stderr and results to
+ * stdout, and documents itself under --help. */
+#ifndef CUB_CUBTOOL_COMMANDS_H
+#define CUB_CUBTOOL_COMMANDS_H
+
+int cub_cmd_retarget(int argc, char **argv); /* a human clip -> the bear */
+int cub_cmd_build(int argc, char **argv);    /* rebuild the clip library from its recipe */
+int cub_cmd_tag(int argc, char **argv);      /* tag bridge frames across a library */
+
+#endif

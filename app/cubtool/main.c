@@ -1,0 +1,44 @@
+/* cubtool — the host tool for content makers: turns motion capture and
+ * keyframes into the bear's clip library, and tags its bridge frames.
+ *   cubtool <command> [options]      cubtool <command> --help */
+#include <stdio.h>
+#include <string.h>
+
+#include "commands.h"
+
+typedef struct command {
+    const char *name;
+    int (*run)(int argc, char **argv);
+    const char *summary;
+} command;
+
+static const command commands[] = {
+    {"retarget", cub_cmd_retarget, "map a human clip (BVH, ASF/AMC) onto the bear"},
+    {"build", cub_cmd_build, "rebuild the clip library from its recipe and ../shared/data"},
+    {"tag", cub_cmd_tag, "tag bridge frames across a clip library; summary + contact sheets"},
+};
+
+static void usage(FILE *f)
+{
+    fprintf(f, "usage: cubtool <command> [options]\n\ncommands:\n");
+    for (size_t i = 0; i < sizeof commands / sizeof *commands; i++)
+        fprintf(f, "  %-10s %s\n", commands[i].name, commands[i].summary);
+    fprintf(f, "\n`cubtool <command> --help` documents each command.\n");
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 2) {
+        usage(stderr);
+        return 2;
+    }
+    if (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h") || !strcmp(argv[1], "help")) {
+        usage(stdout);
+        return 0;
+    }
+    for (size_t i = 0; i < sizeof commands / sizeof *commands; i++)
+        if (!strcmp(argv[1], commands[i].name)) return commands[i].run(argc - 1, argv + 1);
+    fprintf(stderr, "cubtool: unknown command '%s'\n\n", argv[1]);
+    usage(stderr);
+    return 2;
+}
