@@ -57,6 +57,14 @@ static cub_board *open_board(const cub_app_options *o)
                 *msg ? msg : cub_err_str(err));
         return NULL;
     }
+    /* A replay must never quietly read a live camera instead. */
+    if (o->replay_dir && strcmp(cub_board_depth_source(b), "fakenect") != 0) {
+        fprintf(stderr, "cubdance: --replay %s: fakenect's replay library did not load "
+                        "(looked in %s); refusing to read a live camera instead\n",
+                o->replay_dir, CUB_FAKENECT_DIR);
+        cub_board_close(b);
+        return NULL;
+    }
     return b;
 }
 
@@ -82,20 +90,26 @@ static int run(const cub_app_options *o, cub_board *board, FILE *log, const cub_
     static cub_event slots[64];
     static cub_loop loop;
     cub_loop_desc ld = {.queue_capacity = 64, .log_sink = log_to_file, .log_user = log};
-    if (cub_loop_init(&loop, &ld, slots, sizeof slots)) return -1;
-
-    cub_session s = {.opt = o, .board = board, .clip = clip, .clip_name = file_name(o->clip_path),
-                     .loop = &loop};
-    int w = 0, h = 0;
+    if (cub_loop_init(&loop, &ld, slots, sizeof slots)) {
+        fprintf(stderr, "cubdance: the event loop would not start\n");
+        return -1;
+    }
+    static cub_session s; /* large (it holds this tick's pose): not on the stack */
+    s = (cub_session){.opt = o, .board = board, .clip = clip,
+                      .clip_name = file_name(o->clip_path), .loop = &loop};
+    int w = 0, h = 0, rc = -1;
     cub_board_display_size(board, &w, &h);
     s.depth_copy = calloc(CUB_DEPTH_W * CUB_DEPTH_H, sizeof(uint16_t));
     s.rgba = malloc((size_t)(w > 0 ? w : 1) * (h > 0 ? h : 1) * 4);
-    if (!s.depth_copy || !s.rgba) return -1;
+    if (!s.depth_copy || !s.rgba) {
+        fprintf(stderr, "cubdance: out of memory\n");
+        goto done;
+    }
     if (cub_board_display_active(board)) {
         cub_render_desc rd = {.width = w, .height = h};
         if (cub_render_create(&rd, &s.render)) {
             fprintf(stderr, "cubdance: the renderer could not start (GLES2)\n");
-            return -1;
+            goto done;
         }
     }
     int64_t t0 = cub_board_now_us(board);
@@ -112,12 +126,14 @@ static int run(const cub_app_options *o, cub_board *board, FILE *log, const cub_
     cub_log_event(&loop.log, cub_board_now_us(board), "app", "end",
                   "ticks=%llu depth_frames=%u frames_written=%u",
                   (unsigned long long)loop.tick_count, s.depth_frames, s.frames_written);
+    if (o->frames_dir)
+        printf("cubdance: %u frames written to %s\n", s.frames_written, o->frames_dir);
+    rc = err || s.frame_error ? -1 : 0;
+done:
     if (s.render) cub_render_destroy(s.render);
     free(s.depth_copy);
     free(s.rgba);
-    if (o->frames_dir)
-        printf("cubdance: %u frames written to %s\n", s.frames_written, o->frames_dir);
-    return err ? -1 : (s.frame_error ? -1 : 0);
+    return rc;
 }
 
 int main(int argc, char **argv)

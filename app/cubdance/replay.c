@@ -30,8 +30,11 @@ int cub_replay_prepare(const char *dir, char **argv, FILE *err)
         fprintf(err, "cubdance: --replay %s: not a fakenect dump (no INDEX.txt)\n", dir);
         return -1;
     }
+    /* Already set up (by the `fakenect` wrapper, a test, or our re-exec)?
+     * Both halves must be there: the dump, and fakenect's library first. */
     const char *current = getenv("FAKENECT_PATH");
-    if (current && same_dir(current, dir)) return 0;
+    const char *libs = getenv("LD_LIBRARY_PATH");
+    if (current && same_dir(current, dir) && libs && strstr(libs, CUB_FAKENECT_DIR)) return 0;
 
     setenv("FAKENECT_PATH", dir, 1);
     const char *old = getenv("LD_LIBRARY_PATH");

@@ -62,12 +62,17 @@ static void poll_depth(cub_session *s, cub_loop *loop, int64_t now_us)
         memcpy(s->depth_copy, f.raw, DEPTH_PIXELS * sizeof(uint16_t));
         s->depth_frames++;
         s->depth_probe = probe_depth_frame(&f);
-        cub_event ev = {.t_us = f.t_us, .type = CUB_EV_DEPTH_FRAME, .a = (int32_t)f.seq,
-                        .b = (int32_t)f.timestamp};
+        cub_event ev = {.t_us = f.t_us, .type = CUB_EV_DEPTH_FRAME, .a = (int32_t)f.seq};
         cub_loop_post(loop, &ev);
-    } else if (err == CUB_ERR_END && !s->depth_ended) {
-        s->depth_ended = 1;
-        cub_log_event(&loop->log, now_us, "depth", "end", "frames=%u", s->depth_frames);
+        s->depth_state = CUB_OK;
+    } else if (err != CUB_ERR_EMPTY && err != s->depth_state) {
+        /* The end of a replay, or a live camera failing: once per change. */
+        s->depth_state = err;
+        if (err == CUB_ERR_END)
+            cub_log_event(&loop->log, now_us, "depth", "end", "frames=%u", s->depth_frames);
+        else
+            cub_log_event(&loop->log, now_us, "depth", "error", "frames=%u error=\"%s\"",
+                          s->depth_frames, cub_err_str(err));
     }
 }
 
@@ -116,17 +121,16 @@ static void hook_handle(void *u, cub_loop *loop, const cub_event *ev)
     }
 }
 
-/* The coach's pose this tick: the clip, looping, while playing; its first
- * frame, standing still, while waiting. */
-static void coach_world(cub_session *s, int64_t t_us, float *xyz)
+/* The coach's pose this tick into s->world_xyz: the clip, looping, while
+ * playing; its first frame, standing still, while waiting. */
+static cub_err coach_world(cub_session *s, int64_t t_us)
 {
-    static cub_pose pose;
-    static cub_vec3 world[CUB_MOTION_MAX_JOINTS];
     const cub_clip *clip = &s->clip->clip;
     int64_t t = s->state == CUB_APP_PLAYING ? t_us - s->play_start_us : 0;
-    cub_motion_sample(clip, t, CUB_MOTION_LOOP, &pose);
-    cub_motion_forward(clip->skel, &pose, world, NULL);
-    cub_motion_world_to_float(world, clip->skel->joint_count, xyz);
+    cub_err err = cub_motion_sample(clip, t, CUB_MOTION_LOOP, &s->pose);
+    if (!err) err = cub_motion_forward(clip->skel, &s->pose, s->world_mm, NULL);
+    if (!err) cub_motion_world_to_float(s->world_mm, clip->skel->joint_count, s->world_xyz);
+    return err;
 }
 
 static void write_frame(cub_session *s, uint64_t tick)
@@ -156,9 +160,14 @@ static void hook_tick(void *u, cub_loop *loop, int64_t t_us)
         return;
     }
     if (!s->render) return;
-    static float xyz[CUB_MOTION_MAX_JOINTS * 3];
-    coach_world(s, t_us, xyz);
-    cub_render_scene scene = {.skel = s->clip->clip.skel, .world_xyz_mm = xyz,
+    cub_err err = coach_world(s, t_us);
+    if (err && !s->pose_error) {
+        cub_log_event(&loop->log, t_us, "app", "error", "what=pose error=\"%s\"",
+                      cub_err_str(err));
+        s->pose_error = 1;
+    }
+    cub_render_scene scene = {.skel = err ? NULL : s->clip->clip.skel,
+                              .world_xyz_mm = s->world_xyz,
                               .depth_raw = s->depth_frames ? s->depth_copy : NULL};
     cub_render_frame(s->render, &scene);
     if (s->opt->frames_dir && loop->tick_count % (uint64_t)s->opt->frame_every == 0)

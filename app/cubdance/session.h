@@ -34,8 +34,14 @@ typedef struct cub_session {
     uint16_t *depth_copy;    /* the last depth frame, for the inset */
     uint32_t depth_frames;
     cub_depth_probe depth_probe; /* of the frame whose event is queued */
-    int depth_ended;
+    cub_err depth_state;     /* the last poll's answer other than OK/EMPTY, logged once */
     uint8_t *rgba;           /* read-back buffer for headless frames */
+    /* This tick's coach pose, kept here rather than on the stack (the
+     * pose is 3.6 KB) or in hidden statics. */
+    cub_pose pose;
+    cub_vec3 world_mm[CUB_MOTION_MAX_JOINTS];
+    float world_xyz[CUB_MOTION_MAX_JOINTS * 3];
+    int pose_error;          /* the clip could not be sampled: reported once */
     uint32_t frames_written;
     int frame_error;         /* a frame could not be written: reported once */
 } cub_session;

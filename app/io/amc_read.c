@@ -11,6 +11,7 @@
  * the first listed axis first: M = Rz * Ry * Rx.
  * Frames: AMC stores no rate; CMU captured at 120 fps. */
 #include <math.h>
+#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -54,6 +55,9 @@ static cub_err add_joint(amc_state *a, const char *name, int parent, const doubl
     if (a->m->skel.joint_count >= CUB_MOTION_MAX_JOINTS)
         return io_fail_at(diag, CUB_ERR_FORMAT, a->lx.name, line, "more than %d joints",
                           CUB_MOTION_MAX_JOINTS);
+    if (cub_motion_skeleton_find(&a->m->skel, name) >= 0)
+        return io_fail_at(diag, CUB_ERR_FORMAT, a->lx.name, line, "bone '%s' is defined twice",
+                          name);
     cub_err err = cub_motion_skeleton_add(&a->m->skel, name, parent, v, idx);
     if (err)
         return io_fail_at(diag, CUB_ERR_FORMAT, a->lx.name, line, "bone '%s' refused: %s", name,
@@ -227,7 +231,7 @@ static cub_err parse_amc(amc_state *a)
         } else if (all_digits(&t)) {
             if ((err = io_tok_long(lx, &t, "the frame number", &num)))
                 break;
-            if (f >= 0 && num != prev + 1)
+            if (f >= 0 && (prev == LONG_MAX || num != prev + 1))
                 err = io_fail(lx, t.line, "frame number %ld follows %ld", num, prev);
             if (f >= 0 && !err)
                 err = finish_frame(a, f, line);

@@ -211,6 +211,8 @@ static cub_err build_skeleton(bvh_state *st, cub_io_motion *m)
         if (err)
             return err;
         int idx = -1;
+        if (cub_motion_skeleton_find(&m->skel, jt->name) >= 0)
+            return io_fail(lx, jt->line, "joint name '%s' is used twice", jt->name);
         err = cub_motion_skeleton_add(&m->skel, jt->name, jt->parent, off, &idx);
         if (err || idx != i)
             return io_fail(lx, jt->line, "joint '%s' refused by the skeleton: %s", jt->name,

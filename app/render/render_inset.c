@@ -1,9 +1,10 @@
 /* render_inset — the Kinect depth image as a small picture in the
  * lower-right corner, so a parent can see what the box sees.
  *
- * Raw 11-bit disparity to distance: mm = 123.6 * tan(raw / 2842.5 + 1.1863)
- * (the usual Kinect v1 fit). Shade: near bright, far dark; "no reading"
- * (2047, a value above 2047, or one past the fit's range) is black, and every real
+ * Raw 11-bit disparity to distance through the firmware's table
+ * (cub_track_raw_to_mm, the data README's formula), so the inset and the
+ * tracker agree on every value. Shade: near bright, far dark; "no reading"
+ * (2047, or a value the table has no depth for) is black, and every real
  * reading is at least FAR_SHADE so it never looks like a hole.
  *
  * Layout: width = w/5, height = 3/4 of that (the 640x480 aspect), a margin
@@ -11,18 +12,18 @@
  * of max(1, w/320) pixels around it. */
 #include <math.h>
 
+#include "cub/track.h"
 #include "render_internal.h"
 
 #define NEAR_MM 500.0f
 #define FAR_MM 4000.0f
 #define FAR_SHADE 48.0f
-#define MAX_MM 8000.0 /* past this the fit is meaningless */
 
 void cub_render_inset_init_lut(uint8_t lut[2048])
 {
     for (int raw = 0; raw < 2048; raw++) {
-        double mm = 123.6 * tan(raw / 2842.5 + 1.1863);
-        if (raw == CUB_RENDER_DEPTH_NO_READING || !(mm > 0.0) || mm > MAX_MM) {
+        double mm = cub_track_raw_to_mm((uint16_t)raw) / 65536.0;
+        if (mm <= 0.0) {
             lut[raw] = 0;
             continue;
         }

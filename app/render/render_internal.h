@@ -11,7 +11,6 @@
 
 #define CUB_RENDER_DEPTH_W 640
 #define CUB_RENDER_DEPTH_H 480
-#define CUB_RENDER_DEPTH_NO_READING 2047 /* the Kinect's "nothing seen" value */
 
 /* One vertex of a flat-coloured triangle: position in normalised device
  * coordinates, colour RGBA. */

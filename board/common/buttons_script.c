@@ -228,7 +228,7 @@ static cub_err parse_all(cub_button_script *s, parser *p, const char *text, size
                 return e;
             }
         }
-        c = stop + 1;
+        c = nl ? nl + 1 : end; /* never point past the end */
     }
     sort_edges(s);
     return check_alternation(s, p);
@@ -312,7 +312,10 @@ int cub_button_script_next(cub_button_script *s, int64_t now_us, cub_event *ev)
 void cub_button_script_poll(cub_button_script *s, cub_loop *loop, int64_t now_us)
 {
     cub_event ev;
-    while (peek(s, now_us, &ev) && cub_loop_post(loop, &ev) == CUB_OK) {
+    /* A full queue delays the rest of the script to the next poll: check
+     * for room first, so a delayed press is not logged as a dropped one. */
+    while (cub_queue_count(&loop->queue) < loop->queue.capacity && peek(s, now_us, &ev) &&
+           cub_loop_post(loop, &ev) == CUB_OK) {
         s->next++;
     }
 }

@@ -87,7 +87,10 @@ const char *cub_depth_name(const cub_depth *d)
     if (!d) {
         return "off";
     }
-    return d->kind == DEPTH_FREENECT ? "freenect" : "empty";
+    if (d->kind == DEPTH_FREENECT) {
+        return cub_depth_freenect_is_replay(d->freenect) ? "fakenect" : "freenect";
+    }
+    return "empty";
 }
 
 void cub_depth_close(cub_depth *d)

@@ -27,7 +27,8 @@ cub_err cub_depth_open(cub_depth_mode mode, const cub_board_clock *clock, cub_de
                        char *err, size_t err_size);
 /* As cub_board_depth_poll; d NULL gives CUB_ERR_DEVICE. */
 cub_err cub_depth_poll(cub_depth *d, cub_depth_frame *out);
-/* "freenect", "empty" or (d NULL) "off". */
+/* "freenect" (a live Kinect), "fakenect" (a replayed dump), "empty" or
+ * (d NULL) "off". */
 const char *cub_depth_name(const cub_depth *d);
 void cub_depth_close(cub_depth *d);
 
@@ -36,6 +37,8 @@ typedef struct cub_depth_freenect cub_depth_freenect;
 cub_err cub_depth_freenect_open(const cub_board_clock *clock, cub_depth_freenect **out,
                                 char *err, size_t err_size);
 cub_err cub_depth_freenect_poll(cub_depth_freenect *s, cub_depth_frame *out);
+/* 1 when fakenect (not a live Kinect) serves the frames. */
+int cub_depth_freenect_is_replay(const cub_depth_freenect *s);
 void cub_depth_freenect_close(cub_depth_freenect *s);
 
 typedef struct cub_depth_empty cub_depth_empty;

@@ -41,6 +41,7 @@ struct cub_depth_freenect {
     int64_t back_t_us;
     int ended;
     int tilt_ok;
+    int replay;          /* fakenect is serving a recorded dump */
 };
 
 static void on_depth(freenect_device *dev, void *depth, uint32_t timestamp)
@@ -129,14 +130,21 @@ static cub_err start(cub_depth_freenect *s, char *err, size_t err_size)
         return CUB_ERR_DEVICE;
     }
     freenect_set_log_level(s->ctx, FREENECT_LOG_ERROR);
-    /* Only the camera: the audio subdevice wants firmware uploaded, and we
-     * never move the motor. */
-    freenect_select_subdevices(s->ctx, FREENECT_DEVICE_CAMERA);
+    /* The camera, and the motor subdevice because it carries the
+     * accelerometer (gravity, for the floor); we never move the motor. Not
+     * the audio subdevice: it wants firmware uploaded. */
+    freenect_select_subdevices(s->ctx, FREENECT_DEVICE_CAMERA | FREENECT_DEVICE_MOTOR);
     if (freenect_num_devices(s->ctx) <= 0) {
         snprintf(err, err_size, "depth: no Kinect found");
         return CUB_ERR_DEVICE;
     }
     if (freenect_open_device(s->ctx, &s->dev, 0) < 0) {
+        /* Some Kinect models expose no motor: read depth without gravity. */
+        s->dev = NULL;
+        s->tilt_ok = 0;
+        freenect_select_subdevices(s->ctx, FREENECT_DEVICE_CAMERA);
+    }
+    if (!s->dev && freenect_open_device(s->ctx, &s->dev, 0) < 0) {
         s->dev = NULL;
         snprintf(err, err_size, "depth: the Kinect is there but would not open (permissions? "
                                 "see board/pi/55-cubdance.rules)");
@@ -175,6 +183,7 @@ cub_err cub_depth_freenect_open(const cub_board_clock *clock, cub_depth_freenect
     s->clock = clock;
     s->held = -1;
     s->tilt_ok = 1;
+    s->replay = fakenect_loaded();
     cub_err e = start(s, err, err_size);
     if (e) {
         cub_depth_freenect_close(s);
@@ -205,7 +214,9 @@ cub_err cub_depth_freenect_poll(cub_depth_freenect *s, cub_depth_frame *out)
     if (!s->ended) {
         struct timeval no_wait = {0, 0};
         if (freenect_process_events_timeout(s->ctx, &no_wait) < 0) {
-            if (s->arrived == 0 && !s->fresh) {
+            /* Only a replay ends: on a live Kinect an error (a USB hiccup,
+             * an unplug) is reported and the next poll tries again. */
+            if (!s->replay || (s->arrived == 0 && !s->fresh)) {
                 return CUB_ERR_DEVICE;
             }
             s->ended = 1; /* a frame still fresh is handed out first */
@@ -222,6 +233,11 @@ cub_err cub_depth_freenect_poll(cub_depth_freenect *s, cub_depth_frame *out)
     out->t_us = s->back_t_us;
     read_accel(s, out->accel);
     return CUB_OK;
+}
+
+int cub_depth_freenect_is_replay(const cub_depth_freenect *s)
+{
+    return s->replay;
 }
 
 void cub_depth_freenect_close(cub_depth_freenect *s)

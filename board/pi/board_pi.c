@@ -86,14 +86,15 @@ cub_err cub_board_open(const cub_board_desc *desc, cub_board **out, char *err_ms
     *out = NULL;
     cub_board *b = NULL;
     cub_err e = cub_board_common_open(desc, &b, err_msg, err_size);
-    if (!e && !b->script) {
-        e = open_gpio(b, desc ? desc->gpio_config : NULL, err_msg, err_size);
-    }
     if (!e) {
         e = open_display(b, err_msg, err_size);
     }
     if (!e) {
         e = cub_board_common_start(b, err_msg, err_size);
+    }
+    /* GPIO last: its debouncer starts from the board's clock. */
+    if (!e && !b->script) {
+        e = open_gpio(b, desc ? desc->gpio_config : NULL, err_msg, err_size);
     }
     if (e) {
         cub_board_common_close(b);

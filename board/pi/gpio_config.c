@@ -154,16 +154,19 @@ cub_err cub_gpio_config_parse(const char *text, size_t len, const char *file, cu
     for (const char *c = text; c < end; p.line++) {
         const char *nl = memchr(c, '\n', (size_t)(end - c));
         size_t n = (size_t)((nl ? nl : end) - c);
-        char buf[MAX_LINE];
-        if (n >= MAX_LINE) {
-            return fail(&p, "line longer than %d characters", MAX_LINE - 1);
-        }
         if (memchr(c, '\0', n)) {
             return fail(&p, "contains a NUL byte (not a text file?)");
         }
-        memcpy(buf, c, n);
-        buf[n] = '\0';
-        buf[strcspn(buf, "#\r")] = '\0';
+        /* A comment may be as long as it likes: measure only what precedes it. */
+        const char *hash = memchr(c, '#', n);
+        size_t used = hash ? (size_t)(hash - c) : n;
+        char buf[MAX_LINE];
+        if (used >= MAX_LINE) {
+            return fail(&p, "line longer than %d characters", MAX_LINE - 1);
+        }
+        memcpy(buf, c, used);
+        buf[used] = '\0';
+        buf[strcspn(buf, "\r")] = '\0';
         char *line = trim(buf);
         if (*line) {
             cub_err e = parse_line(&p, line);
@@ -171,7 +174,7 @@ cub_err cub_gpio_config_parse(const char *text, size_t len, const char *file, cu
                 return e;
             }
         }
-        c += n + 1;
+        c = nl ? nl + 1 : end; /* never point past the end */
     }
     return check(&p);
 }

@@ -130,14 +130,16 @@ size_t cub_log_format(char *buf, size_t size, const char *fmt, ...)
 static void put_time(out_buf *o, int64_t t_us)
 {
     put_str(o, "t=");
+    /* Magnitude in unsigned arithmetic: -INT64_MIN does not fit an int64. */
+    unsigned long long mag = (unsigned long long)t_us;
     if (t_us < 0) {
         put_char(o, '-');
-        t_us = -t_us;
+        mag = 0ull - mag;
     }
-    int64_t ms = t_us / 1000;
-    put_unsigned(o, (unsigned long long)(ms / 1000), 10, 1);
+    unsigned long long ms = mag / 1000;
+    put_unsigned(o, ms / 1000, 10, 1);
     put_char(o, '.');
-    put_unsigned(o, (unsigned long long)(ms % 1000), 10, 3);
+    put_unsigned(o, ms % 1000, 10, 3);
 }
 
 void cub_log_event(cub_log *log, int64_t t_us, const char *source, const char *event,

@@ -12,6 +12,9 @@
 #define DEFAULT_TICK_US 33333u
 #define DEFAULT_QUEUE_CAPACITY 64u
 #define MAX_CATCH_UP_TICKS 3
+/* Timers and delays beyond ~292 years are a caller's mistake, and keeping
+ * them below this keeps every sum of times far from int64 overflow. */
+#define MAX_TIMER_US ((int64_t)1 << 62)
 
 static cub_loop_desc with_defaults(const cub_loop_desc *desc)
 {
@@ -67,7 +70,9 @@ static cub_timer *find_timer(cub_loop *loop, int32_t id)
 cub_err cub_loop_timer_start(cub_loop *loop, int32_t id, int64_t now_us, int64_t delay_us,
                              int64_t period_us)
 {
-    if (!loop || id == 0 || delay_us < 0 || period_us < 0) return CUB_ERR_ARG;
+    if (!loop || id == 0 || delay_us < 0 || period_us < 0 || delay_us > MAX_TIMER_US ||
+        period_us > MAX_TIMER_US || now_us > MAX_TIMER_US || now_us < -MAX_TIMER_US)
+        return CUB_ERR_ARG;
     cub_timer *t = find_timer(loop, id);
     if (!t) t = find_timer(loop, 0);
     if (!t) return CUB_ERR_FULL;
@@ -96,13 +101,22 @@ static cub_timer *next_due(cub_loop *loop, int64_t t_us)
     return best;
 }
 
+/* Each due timer fires once per tick. A periodic timer that fell behind
+ * (a stall, or a period shorter than the tick) fires once, with b = the
+ * number of periods it missed, and moves past this tick in one step:
+ * firing once per missed period could flood the queue without bound. */
 static void fire_timers(cub_loop *loop, int64_t t_us)
 {
     cub_timer *t;
     while ((t = next_due(loop, t_us)) != NULL) {
         cub_event ev = {.t_us = t->due_us, .type = CUB_EV_TIMER, .a = t->id};
-        if (t->period_us > 0) t->due_us += t->period_us;
-        else t->id = 0;
+        if (t->period_us > 0) {
+            int64_t periods = (t_us - t->due_us) / t->period_us + 1;
+            ev.b = periods - 1 > INT32_MAX ? INT32_MAX : (int32_t)(periods - 1);
+            t->due_us += periods * t->period_us;
+        } else {
+            t->id = 0;
+        }
         cub_loop_post(loop, &ev);
     }
 }

@@ -29,6 +29,8 @@ cub_err cub_motion_skeleton_add(cub_skeleton *skel, const char *name, int parent
      * earlier joint, which keeps parents before children. */
     if (n == 0 ? parent != -1 : (parent < 0 || parent >= n)) return CUB_ERR_ARG;
     if (n > 0 && skel->joints[parent].is_end_site) return CUB_ERR_ARG;
+    /* Names are how joints are found (mapping tables, features): unique. */
+    if (cub_motion_skeleton_find(skel, name) >= 0) return CUB_ERR_ARG;
     cub_joint *j = &skel->joints[n];
     memset(j, 0, sizeof *j);
     memcpy(j->name, name, len + 1);

@@ -101,7 +101,7 @@ static void test_replay_gives_every_frame_then_end(void **state)
     if (e) {
         fail_msg("depth open: %s: %s (is LD_LIBRARY_PATH the fakenect dir?)", cub_err_str(e), err);
     }
-    assert_string_equal(cub_depth_name(src), "freenect");
+    assert_string_equal(cub_depth_name(src), "fakenect");
 
     uint16_t *want = malloc(FRAME_PIXELS * sizeof *want);
     int got = 0, polls = 0;

@@ -3,7 +3,7 @@
  *
  * Tolerance: a pixel differs when any channel is off by more than
  * CHANNEL_TOL (8 counts of 255); the frame passes when at most MAX_SHARE
- * (0.5%) of its pixels differ. That absorbs rasteriser rounding between
+ * (0.02%, 15 pixels) of its pixels differ. That absorbs rasteriser rounding between
  * x86-64 and aarch64 llvmpipe and between Mesa versions, while a moved
  * limb, a lost inset or a wrong colour fails.
  *
@@ -33,7 +33,7 @@
 #define W 320
 #define H 240
 #define CHANNEL_TOL 8
-#define MAX_SHARE 0.005
+#define MAX_SHARE 0.0002 /* 15 pixels at 320x240: a moved hand is ~150 */
 #define DEPTH_W 640
 #define DEPTH_H 480
 
@@ -311,7 +311,6 @@ static void test_window_available_probe_is_clean(void **state)
     const char *x11 = getenv("DISPLAY"), *wayland = getenv("WAYLAND_DISPLAY");
     printf("golden: cub_display_window_available()=%d (DISPLAY=%s WAYLAND_DISPLAY=%s)\n", here,
            x11 ? x11 : "", wayland ? wayland : "");
-    assert_true(here == 0 || here == 1);
     assert_int_equal(SDL_WasInit(SDL_INIT_VIDEO), 0);
     setenv("SDL_VIDEODRIVER", "offscreen", 1);
     assert_int_equal(cub_display_window_available(), 0);

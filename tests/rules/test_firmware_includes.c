@@ -15,8 +15,20 @@
 static const char *const allowed[] = {"stdint.h", "stddef.h", "stdbool.h",
                                       "string.h", "limits.h", "stdarg.h"};
 
-/* 1 if this #include line is allowed; fills why otherwise. */
-static int include_allowed(const char *line, char *why, size_t why_size)
+static int file_exists(const char *dir, const char *name, size_t n)
+{
+    char path[1024];
+    snprintf(path, sizeof path, "%s/%.*s", dir, (int)n, name);
+    struct stat st;
+    return stat(path, &st) == 0 && S_ISREG(st.st_mode);
+}
+
+/* 1 if this #include line, in a file in dir, is allowed; fills why
+ * otherwise. A quoted name must be one of the firmware's own headers,
+ * beside the file or under firmware/include (root): a quoted "stdio.h"
+ * would otherwise fall back to the system's. */
+static int include_allowed(const char *line, const char *dir, const char *root, char *why,
+                           size_t why_size)
 {
     const char *p = line;
     while (*p == ' ' || *p == '\t') p++;
@@ -33,15 +45,21 @@ static int include_allowed(const char *line, char *why, size_t why_size)
         return 0;
     }
     size_t n = (size_t)(end - name);
-    if (open == '"' && n > 4 && strncmp(name, "cub/", 4) == 0) return 1;
-    if (open == '"' && !memchr(name, '/', n)) return 1; /* a module's own private header */
+    if (open == '"') {
+        if ((n > 4 && !strncmp(name, "cub/", 4) && file_exists(root, name, n)) ||
+            (!memchr(name, '/', n) && file_exists(dir, name, n)))
+            return 1;
+        snprintf(why, why_size, "includes \"%.*s\", which is not a firmware header", (int)n,
+                 name);
+        return 0;
+    }
     for (size_t i = 0; i < sizeof allowed / sizeof *allowed; i++)
         if (strlen(allowed[i]) == n && strncmp(name, allowed[i], n) == 0) return 1;
     snprintf(why, why_size, "includes %.*s", (int)n, name);
     return 0;
 }
 
-static int scan_file(const char *path, int *files)
+static int scan_file(const char *path, const char *dir, const char *root, int *files)
 {
     FILE *f = fopen(path, "r");
     if (!f) return 1;
@@ -51,7 +69,7 @@ static int scan_file(const char *path, int *files)
     while (fgets(line, sizeof line, f)) {
         lineno++;
         line[strcspn(line, "\r\n")] = '\0';
-        if (!include_allowed(line, why, sizeof why)) {
+        if (!include_allowed(line, dir, root, why, sizeof why)) {
             printf("firmware rule broken: %s:%d: %s\n", path, lineno, why);
             bad++;
         }
@@ -60,7 +78,7 @@ static int scan_file(const char *path, int *files)
     return bad;
 }
 
-static int scan_dir(const char *dir, int *files)
+static int scan_dir(const char *dir, const char *root, int *files)
 {
     DIR *d = opendir(dir);
     if (!d) return 0;
@@ -73,39 +91,50 @@ static int scan_dir(const char *dir, int *files)
         struct stat st;
         if (stat(path, &st) != 0) continue;
         size_t len = strlen(e->d_name);
-        if (S_ISDIR(st.st_mode)) bad += scan_dir(path, files);
+        if (S_ISDIR(st.st_mode)) bad += scan_dir(path, root, files);
         else if (len > 2 && (strcmp(e->d_name + len - 2, ".c") == 0 ||
                              strcmp(e->d_name + len - 2, ".h") == 0))
-            bad += scan_file(path, files);
+            bad += scan_file(path, dir, root, files);
     }
     closedir(d);
     return bad;
 }
 
-static void test_checker_flags_os_and_io_headers(void **s)
-{
-    char why[600];
-    assert_false(include_allowed("#include <stdio.h>", why, sizeof why));
-    assert_false(include_allowed("  #  include <stdlib.h>", why, sizeof why));
-    assert_false(include_allowed("#include <math.h>", why, sizeof why));
-    assert_false(include_allowed("#include <sys/time.h>", why, sizeof why));
-    assert_false(include_allowed("#include \"../app/include/cub/io.h\"", why, sizeof why));
-    assert_true(include_allowed("#include <stdint.h>", why, sizeof why));
-    assert_true(include_allowed("#include \"cub/fx.h\"", why, sizeof why));
-    assert_true(include_allowed("#include \"fx_tables.h\"", why, sizeof why));
-}
-
-static void test_firmware_includes_only_freestanding_headers(void **s)
+static const char *source_dir(void)
 {
     const char *src = getenv("CUB_SOURCE_DIR");
     if (!src) {
         print_message("CUB_SOURCE_DIR not set: run through ctest\n");
         fail();
     }
-    char dir[1024];
-    snprintf(dir, sizeof dir, "%s/firmware", src);
+    return src;
+}
+
+static void test_checker_flags_os_and_io_headers(void **s)
+{
+    char why[600], dir[1024], root[1024];
+    snprintf(dir, sizeof dir, "%s/firmware/track", source_dir());
+    snprintf(root, sizeof root, "%s/firmware/include", source_dir());
+    assert_false(include_allowed("#include <stdio.h>", dir, root, why, sizeof why));
+    assert_false(include_allowed("  #  include <stdlib.h>", dir, root, why, sizeof why));
+    assert_false(include_allowed("#include <math.h>", dir, root, why, sizeof why));
+    assert_false(include_allowed("#include <sys/time.h>", dir, root, why, sizeof why));
+    assert_false(include_allowed("#include \"stdio.h\"", dir, root, why, sizeof why));
+    assert_false(include_allowed("#include \"cub/stdio.h\"", dir, root, why, sizeof why));
+    assert_false(include_allowed("#include \"../app/include/cub/io.h\"", dir, root, why,
+                                 sizeof why));
+    assert_true(include_allowed("#include <stdint.h>", dir, root, why, sizeof why));
+    assert_true(include_allowed("#include \"cub/fx.h\"", dir, root, why, sizeof why));
+    assert_true(include_allowed("#include \"depth_table.h\"", dir, root, why, sizeof why));
+}
+
+static void test_firmware_includes_only_freestanding_headers(void **s)
+{
+    char dir[1024], root[1024];
+    snprintf(dir, sizeof dir, "%s/firmware", source_dir());
+    snprintf(root, sizeof root, "%s/firmware/include", source_dir());
     int files = 0;
-    int bad = scan_dir(dir, &files);
+    int bad = scan_dir(dir, root, &files);
     printf("firmware includes: %d files scanned, %d forbidden includes\n", files, bad);
     assert_true(files > 5);
     assert_int_equal(bad, 0);

@@ -241,6 +241,33 @@ static void test_timer_one_shot_and_periodic(void **s)
     assert_int_equal(h.handled_count, 4);
 }
 
+static void test_late_periodic_timer_fires_once_with_missed_count(void **s)
+{
+    harness h;
+    make_loop(&h, 10000);
+    cub_loop_hooks k = hooks_for(&h);
+    /* A 1 us period can never keep up with a 10 ms tick: one event per tick,
+     * carrying how many periods it missed, never a flood. */
+    assert_int_equal(cub_loop_timer_start(&loop, 9, h.now_us, 0, 1), CUB_OK);
+    assert_int_equal(cub_loop_run(&loop, &k, 3), CUB_OK);
+    assert_int_equal(h.handled_count, 3);
+    assert_int_equal(h.handled[0].b, 0);
+    assert_int_equal(h.handled[1].b, 9999); /* 10000 periods fell due, one fired */
+    assert_int_equal(loop.queue.dropped, 0);
+    assert_int_equal(cub_loop_timer_start(&loop, 9, 0, INT64_MAX, 0), CUB_ERR_ARG);
+    assert_int_equal(cub_loop_timer_start(&loop, 9, INT64_MAX, 1, 0), CUB_ERR_ARG);
+}
+
+static void test_log_time_handles_extremes(void **s)
+{
+    harness h = {0};
+    cub_log log = {.sink = h_sink, .user = &h};
+    cub_log_event(&log, INT64_MIN, "a", "b", NULL);
+    cub_log_event(&log, -1500, "a", "b", NULL);
+    check_format("t=-9223372036854.775 a b", h.lines[0]);
+    check_format("t=-0.001 a b", h.lines[1]);
+}
+
 static void test_timer_table_full(void **s)
 {
     harness h;
@@ -305,6 +332,8 @@ int main(void)
         cmocka_unit_test(test_ticks_sit_on_a_fixed_grid),
         cmocka_unit_test(test_stall_skips_ticks_and_logs_overrun),
         cmocka_unit_test(test_timer_one_shot_and_periodic),
+        cmocka_unit_test(test_late_periodic_timer_fires_once_with_missed_count),
+        cmocka_unit_test(test_log_time_handles_extremes),
         cmocka_unit_test(test_timer_table_full),
         cmocka_unit_test(test_events_posted_while_handling_run_next_tick),
         cmocka_unit_test(test_quit_event_ends_the_loop),

@@ -116,8 +116,14 @@ static void test_skeleton_add_rejects_bad_input(void **state)
     assert_int_equal(cub_motion_skeleton_add(&skel, "under_end", 0, MM(0, 0, 0), &idx),
                      CUB_ERR_ARG);
     skel.joints[0].is_end_site = 0;
-    for (int i = 1; i < CUB_MOTION_MAX_JOINTS; i++)
-        assert_int_equal(cub_motion_skeleton_add(&skel, "j", i - 1, MM(0, 1, 0), NULL), CUB_OK);
+    assert_int_equal(cub_motion_skeleton_add(&skel, "0123456789abcdef0123456789abcde", 0,
+                                             MM(0, 0, 0), &idx),
+                     CUB_ERR_ARG); /* names are unique */
+    for (int i = 1; i < CUB_MOTION_MAX_JOINTS; i++) {
+        char name[8];
+        snprintf(name, sizeof name, "j%d", i);
+        assert_int_equal(cub_motion_skeleton_add(&skel, name, i - 1, MM(0, 1, 0), NULL), CUB_OK);
+    }
     assert_int_equal(cub_motion_skeleton_add(&skel, "one_too_many", 0, MM(0, 0, 0), &idx),
                      CUB_ERR_FULL);
     assert_int_equal(cub_motion_skeleton_validate(&skel), CUB_OK);

@@ -88,7 +88,8 @@ void cub_board_poll_buttons(cub_board *board, cub_loop *loop, int64_t now_us);
  * the next call), CUB_ERR_EMPTY if none yet, CUB_ERR_END when a replay has
  * run out, CUB_ERR_DEVICE if no source is open. */
 cub_err cub_board_depth_poll(cub_board *board, cub_depth_frame *out);
-/* What the depth source is: "freenect", "empty" or "off". */
+/* What the depth source is: "freenect" (a live Kinect), "fakenect" (a dump
+ * replayed through libfreenect's replay library), "empty" or "off". */
 const char *cub_board_depth_source(cub_board *board);
 
 /* ---- display ----------------------------------------------------------- */
@@ -105,7 +106,9 @@ cub_err cub_board_display_read_rgba(cub_board *board, uint8_t *rgba, size_t size
 typedef void (*cub_audio_fill)(void *user, int16_t *stereo, int frames);
 cub_err cub_board_audio_start(cub_board *board, cub_audio_fill fill, void *user);
 void cub_board_audio_stop(cub_board *board);
-/* Frames played so far: the music clock. */
+/* Frames handed to the audio device so far. This runs ahead of what the
+ * speaker plays by the device's buffer (about 1024 frames, 23 ms at
+ * 44.1 kHz) plus its output latency: subtract those for the music clock. */
 uint64_t cub_board_audio_frames(cub_board *board);
 int cub_board_audio_rate(cub_board *board);
 

@@ -21,8 +21,8 @@ typedef enum cub_event_type {
     CUB_EV_NONE = 0,
     CUB_EV_BUTTON_DOWN, /* a = cub_button */
     CUB_EV_BUTTON_UP,   /* a = cub_button */
-    CUB_EV_DEPTH_FRAME, /* a = frame sequence number, b = timestamp (Kinect 60 MHz ticks, low 32 bits) */
-    CUB_EV_TIMER,       /* a = timer id */
+    CUB_EV_DEPTH_FRAME, /* a = frame sequence number */
+    CUB_EV_TIMER,       /* a = timer id, b = periods missed (a late periodic timer) */
     CUB_EV_QUIT,        /* the board or the user asked the program to end */
     CUB_EV_USER,        /* first value free for app-defined events */
 } cub_event_type;
@@ -134,7 +134,9 @@ cub_err cub_loop_init(cub_loop *loop, const cub_loop_desc *desc, void *mem, size
 /* Queue an event from inside the loop (judge, coach) or a board poll. */
 cub_err cub_loop_post(cub_loop *loop, const cub_event *ev);
 /* Start a timer: fires CUB_EV_TIMER with a = id after delay_us, then every
- * period_us if non-zero. id must be non-zero; re-using an id restarts it. */
+ * period_us if non-zero (at most once per tick: see CUB_EV_TIMER's b). id
+ * must be non-zero; re-using an id restarts it. Times beyond 2^62 us are
+ * refused (CUB_ERR_ARG). */
 cub_err cub_loop_timer_start(cub_loop *loop, int32_t id, int64_t now_us, int64_t delay_us,
                              int64_t period_us);
 void cub_loop_timer_stop(cub_loop *loop, int32_t id);

@@ -46,7 +46,7 @@ typedef struct cub_skeleton {
 void cub_motion_skeleton_reset(cub_skeleton *skel);
 /* Append a joint; parent must be an existing index or -1 (only for the
  * first joint). Returns its index in *out_index. Fails with CUB_ERR_FULL,
- * CUB_ERR_ARG (bad parent, empty or too long name). */
+ * CUB_ERR_ARG (bad parent, empty, too long or already used name). */
 cub_err cub_motion_skeleton_add(cub_skeleton *skel, const char *name, int parent,
                                 cub_vec3 offset_mm, int *out_index);
 /* Index of the joint with this exact name, or -1. */
