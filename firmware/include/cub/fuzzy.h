@@ -82,12 +82,17 @@ cub_err cub_fuzzy_features(const cub_fuzzy_body *body, const cub_vec3 *world_mm,
                            int joint_count, cub_fuzzy_frame *out);
 
 /* The centre-of-gravity height above the floor that Posture reads (mm);
- * run it on a skeleton's standing rest pose to get stand_cog_mm. */
+ * run it on a skeleton's standing rest pose to get stand_cog_mm. 0 if the
+ * body lacks a joint or an index is out of range (stand_cog_mm is not
+ * needed here). */
 cub_q16 cub_fuzzy_cog_height_mm(const cub_fuzzy_body *body, const cub_vec3 *world_mm,
                                 int joint_count);
 
-/* d = sqrt( sum_k S_k * sum_sets (mu1 - mu2)^2 ), Q16.16; symmetric,
- * d(a, a) = 0, within [0, 1] when the weights sum to 1. */
+/* d = sqrt( sum_k S_k * sum_sets (mu1 - mu2)^2 / 2 ), Q16.16; symmetric,
+ * d(a, a) = 0, within [0, 1]. The /2: a feature's sum of squares is at
+ * most 2 (e.g. down vs up), so each feature contributes at most S_k. cfg's
+ * weights are normalised to sum 1 here (cfg NULL or all zero = defaults).
+ * NULL a or b gives 1. */
 cub_q16 cub_fuzzy_distance(const cub_fuzzy_frame *a, const cub_fuzzy_frame *b,
                            const cub_fuzzy_config *cfg);
 
