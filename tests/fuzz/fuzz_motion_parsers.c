@@ -1,18 +1,31 @@
-/* libFuzzer target for the motion parsers (app/io).
- * Input: byte 0 picks the parser, the rest is the text.
- *   even (e.g. 'B'): BVH; bit 1 set: a fixed unit instead of the guess.
- *   odd  (e.g. 'A'): ASF + AMC, split at the first "\n==AMC==\n".
- * Whatever the input, a parser returns (no crash, hang or overread); on
- * success the motion must be usable: forward kinematics on its frames. */
+/* libFuzzer target for the parsers of app/io.
+ * Input: byte 0 picks the parser, the rest is the text (or bytes).
+ *   'T': a bridge tag file (cub/tags.h), validated against a fixed library.
+ *   'X': a character (XML, cub_character_parse).
+ *   'P': a clip pack as is; 'Q': a clip pack whose last 4 bytes the harness
+ *        replaces by the right CRC, so mutations get past the CRC check.
+ *   'K': a keyframe text clip on a fixed six-joint skeleton.
+ *   any other even byte (e.g. 'B'): BVH; bit 1 set: a fixed unit instead of
+ *        the guess.
+ *   any other odd byte (e.g. 'A'): ASF + AMC, split at the first "\n==AMC==\n".
+ * Whatever the input, a parser returns (no crash, hang or overread) and
+ * every failure says why; on success the result must be usable: forward
+ * kinematics on its frames. Seeds: tests/fuzz/seeds (see make_corpus.cmake). */
 #include <stddef.h>
 #include <stdint.h>
+#include <stdlib.h>
 #include <string.h>
 
+#include "cub/character.h"
 #include "cub/io.h"
+#include "cub/keys.h"
+#include "cub/pack.h"
+#include "cub/tags.h"
 
 #define MARK "\n==AMC==\n"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
+static int fuzz_tags(const char *text, size_t len);
 
 static size_t find_mark(const char *s, size_t n)
 {
@@ -23,35 +36,128 @@ static size_t find_mark(const char *s, size_t n)
     return n;
 }
 
-static void use_motion(const cub_io_motion *m)
+/* Forward kinematics on the first and last frames must work. */
+static void use_clip(const cub_skeleton *skel, const cub_clip *clip)
 {
     static cub_pose pose;
     static cub_vec3 world[CUB_MOTION_MAX_JOINTS];
-    int n = m->clip.frame_count;
-    if (m->skel.joint_count < 1 || m->skel.joint_count > CUB_MOTION_MAX_JOINTS || n < 1)
+    int n = clip->frame_count;
+    if (skel->joint_count < 1 || skel->joint_count > CUB_MOTION_MAX_JOINTS || n < 1 ||
+        clip->skel != skel)
         __builtin_trap();
     int frames[2] = {0, n - 1};
     for (int i = 0; i < 2; i++) {
-        if (cub_motion_clip_get_frame(&m->clip, frames[i], &pose) ||
-            cub_motion_forward(&m->skel, &pose, world, NULL))
+        if (cub_motion_clip_get_frame(clip, frames[i], &pose) ||
+            cub_motion_forward(skel, &pose, world, NULL))
             __builtin_trap();
     }
+}
+
+static void use_motion(const cub_io_motion *m)
+{
+    use_clip(&m->skel, &m->clip);
+}
+
+static cub_err fuzz_character(const char *text, size_t len, cub_diag *d)
+{
+    static cub_character ch;
+    cub_err err = cub_character_parse(text, len, "fuzz.xml", &ch, d);
+    if (err == CUB_OK) {
+        if (cub_motion_skeleton_validate(&ch.skel) || ch.part_count < 1 ||
+            ch.part_count > CUB_CHARACTER_MAX_PARTS)
+            __builtin_trap();
+        for (int i = 0; i < ch.part_count; i++)
+            if (ch.parts[i].joint < 0 || ch.parts[i].joint >= ch.skel.joint_count)
+                __builtin_trap();
+    }
+    return err;
+}
+
+static uint32_t crc32_ieee(const uint8_t *p, size_t n)
+{
+    uint32_t c = 0xFFFFFFFFu;
+    for (size_t i = 0; i < n; i++) {
+        c ^= p[i];
+        for (int k = 0; k < 8; k++)
+            c = (c >> 1) ^ (0xEDB88320u & (0u - (c & 1)));
+    }
+    return ~c;
+}
+
+static cub_err fuzz_pack(const uint8_t *data, size_t len, int fix_crc, cub_diag *d)
+{
+    static cub_library lib;
+    /* A private copy of exactly len bytes, so ASan catches any overread. */
+    uint8_t *copy = malloc(len ? len : 1);
+    if (!copy)
+        return CUB_ERR_NOMEM;
+    memcpy(copy, data, len);
+    if (fix_crc && len >= 4) {
+        uint32_t c = crc32_ieee(copy, len - 4);
+        for (int i = 0; i < 4; i++)
+            copy[len - 4 + (size_t)i] = (uint8_t)(c >> (8 * i));
+    }
+    cub_err err = cub_pack_parse(copy, len, "fuzz.cubclips", &lib, d);
+    free(copy);
+    if (err == CUB_OK) {
+        for (int i = 0; i < lib.clip_count; i++) {
+            use_clip(&lib.skel, &lib.clips[i].clip);
+            if (cub_library_find(&lib, lib.clips[i].name) != i)
+                __builtin_trap();
+        }
+        cub_library_free(&lib);
+    }
+    return err;
+}
+
+static cub_err fuzz_keys(const char *text, size_t len, cub_diag *d)
+{
+    static cub_skeleton skel;
+    static cub_keys_clip k;
+    if (skel.joint_count == 0) {
+        static const struct { const char *name; int parent, y; } j[] = {
+            {"Hips", -1, 285}, {"Spine", 0, 115}, {"Head", 1, 140},
+            {"Head_end", 2, 270}, {"LeftArm", 1, 110}, {"RightArm", 1, 110}};
+        int index;
+        cub_motion_skeleton_reset(&skel);
+        for (int i = 0; i < 6; i++)
+            cub_motion_skeleton_add(&skel, j[i].name, j[i].parent,
+                                    (cub_vec3){0, CUB_Q16_INT(j[i].y), 0}, &index);
+        skel.joints[3].is_end_site = 1;
+    }
+    cub_err err = cub_keys_parse(text, len, "fuzz.keys", &skel, &k, d);
+    if (err == CUB_OK) {
+        use_clip(&skel, &k.clip);
+        cub_keys_free(&k);
+    }
+    return err;
 }
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     cub_io_motion m;
-    cub_diag d;
+    cub_diag d = {{0}, 0, {0}};
     char msg[600];
     if (size < 1)
         return 0;
+    if (data[0] == 'T')
+        return fuzz_tags((const char *)data + 1, size - 1);
     const char *text = (const char *)data + 1;
     size_t len = size - 1;
     cub_io_desc desc = {.unit_mm = (data[0] & 2) ? 1.0 : 0.0};
     cub_err err;
-    if ((data[0] & 1) == 0) {
+    int motion = 0; /* the BVH and ASF/AMC branches fill m */
+    if (data[0] == 'X') {
+        err = fuzz_character(text, len, &d);
+    } else if (data[0] == 'P' || data[0] == 'Q') {
+        err = fuzz_pack(data + 1, len, data[0] == 'Q', &d);
+    } else if (data[0] == 'K') {
+        err = fuzz_keys(text, len, &d);
+    } else if ((data[0] & 1) == 0) {
+        motion = 1;
         err = cub_io_parse_bvh(text, len, "fuzz.bvh", &desc, &m, &d);
     } else {
+        motion = 1;
         size_t k = find_mark(text, len), skip = k < len ? sizeof(MARK) - 1 : 0;
         err = cub_io_parse_asf_amc(text, k, text + k + skip, len - k - skip, "fuzz", &desc, &m,
                                    &d);
@@ -59,11 +165,38 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     cub_diag_str(&d, msg, sizeof(msg));
     if (strlen(msg) >= sizeof(msg))
         __builtin_trap();
-    if (err == CUB_OK) {
+    if (err == CUB_OK && motion) {
         use_motion(&m);
         cub_io_motion_free(&m);
-    } else if (d.msg[0] == '\0') {
+    } else if (err != CUB_OK && d.msg[0] == '\0') {
         __builtin_trap(); /* every failure says why */
+    }
+    return 0;
+}
+
+/* Tag files are read against a library: two clips, a (10 frames) and b (4);
+ * the reader only needs their names and frame counts. */
+static int fuzz_tags(const char *text, size_t len)
+{
+    static cub_library_clip clips[2] = {{.name = "a", .kind = "dance"},
+                                        {.name = "b", .kind = "coach"}};
+    clips[0].clip.frame_count = 10;
+    clips[1].clip.frame_count = 4;
+    cub_library lib = {.clip_count = 2, .clips = clips};
+    cub_tags tags;
+    cub_diag d = {{0}, 0, {0}};
+    char msg[600];
+    cub_err err = cub_tags_parse(text, len, "fuzz.tags.xml", &lib, &tags, &d);
+    cub_diag_str(&d, msg, sizeof(msg));
+    if (err == CUB_OK) {
+        char *again = NULL;
+        size_t n = 0;
+        if (cub_tags_print(&tags, &again, &n) != CUB_OK)
+            __builtin_trap(); /* what reads must write */
+        free(again);
+        cub_tags_free(&tags);
+    } else if (d.msg[0] == '\0') {
+        __builtin_trap();
     }
     return 0;
 }

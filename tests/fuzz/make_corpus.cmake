@@ -1,8 +1,12 @@
 # Build the fuzz corpus in the build tree: every input is a selector byte
-# ('B' BVH, 'A' ASF+AMC) then the text; ASF and AMC are joined by the
-# marker fuzz_motion_parsers.c splits on. Real files come from the shared
-# data when it is there (truncated by -max_len at run time).
+# ('B' BVH, 'A' ASF+AMC, ... see fuzz_motion_parsers.c) then the text; ASF
+# and AMC are joined by the marker fuzz_motion_parsers.c splits on. Seeds
+# named *.fuzz already start with their selector byte ('X' character, 'Q'
+# pack, 'K' keys) and are copied as they are. Real files come from the
+# shared data when it is there (truncated by -max_len at run time).
 file(MAKE_DIRECTORY ${OUT})
+file(GLOB ready_seeds ${SEEDS}/*.fuzz)
+file(COPY ${ready_seeds} DESTINATION ${OUT})
 set(MARK "\n==AMC==\n")
 file(GLOB bvh_seeds ${SEEDS}/*.bvh)
 foreach(f ${bvh_seeds})

@@ -1,5 +1,5 @@
 /* pack — the clip library the box ships, in a packed binary format of ours
- * (assets/clips/*.cubclips): one skeleton and named clips on it.
+ * (assets/clips/<name>.cubclips): one skeleton and named clips on it.
  *
  * Format (little-endian, versioned, byte-for-byte reproducible: the same
  * library always packs to the same bytes):
