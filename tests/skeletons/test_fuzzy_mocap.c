@@ -1,6 +1,7 @@
 /* test_fuzzy_mocap — the fixed-point fuzzy features against the double
  * reference (tests/support/fuzzy_ref.c) on every frame of every BVH under
- * $CUB_DATA_DIR/mocap/cmu: every membership and d within 1e-3.
+ * $CUB_DATA_DIR/mocap/cmu, and on every frame of the clip library the box
+ * ships (assets/clips/bear.cubclips): every membership and d within 1e-3.
  * (It lives here, not in tests/unit, because it links the BVH reader.)
  * Under CUB_QUICK (qemu) every 20th frame. */
 #define _POSIX_C_SOURCE 200809L
@@ -17,8 +18,10 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "cub/character.h"
 #include "cub/fuzzy.h"
 #include "cub/io.h"
+#include "cub/pack.h"
 #include "fuzzy_pose.h"
 #include "fuzzy_ref.h"
 
@@ -88,6 +91,32 @@ static void frame_world(const cub_io_motion *m, int f)
     assert_int_equal(cub_motion_forward(&m->skel, &pose, world, NULL), CUB_OK);
 }
 
+/* Fixed against float on the pose in `world`; d against a reference frame
+ * (*f0, *r0: taken from this pose when first is set), so pairs range from
+ * near to far apart. */
+static void compare_frame(const cub_fuzzy_body *body, int n, int first, cub_fuzzy_frame *f0,
+                          cub_fuzzy_ref_frame *r0, errors *e)
+{
+    cub_fuzzy_ref_body rb = fz_ref_body(body);
+    cub_fuzzy_frame f;
+    cub_fuzzy_ref_frame r;
+    fz_to_double(world, n, xyz);
+    assert_int_equal(cub_fuzzy_features(body, world, n, &f), CUB_OK);
+    assert_int_equal(cub_fuzzy_ref_features(&rb, xyz, n, &r), 0);
+    for (int k = 0; k < CUB_FUZZY_FEATURE_COUNT; k++)
+        e->input = fmax(e->input, fabs(f.input[k] / 65536.0 - r.input[k]));
+    e->mu = fmax(e->mu, fz_max_mu_err(&f, &r));
+    if (first) {
+        *f0 = f;
+        *r0 = r;
+    }
+    double d = cub_fuzzy_distance(&f, f0, NULL) / 65536.0;
+    e->d = fmax(e->d, fabs(d - cub_fuzzy_ref_distance(&r, r0, NULL)));
+    assert_true(d >= 0 && d <= 1);
+    e->frames++;
+    e->pairs++;
+}
+
 static void check_file(const char *path, int step, errors *e)
 {
     cub_io_motion m;
@@ -115,27 +144,11 @@ static void check_file(const char *path, int step, errors *e)
     frame_world(&m, 0);
     body.stand_cog_mm = cub_fuzzy_cog_height_mm(&body, world, n);
     if (body.stand_cog_mm < fz_q16(100)) body.stand_cog_mm = fz_q16(900);
-    cub_fuzzy_ref_body rb = fz_ref_body(&body);
-    cub_fuzzy_frame f0, f;
-    cub_fuzzy_ref_frame r0, r;
+    cub_fuzzy_frame f0;
+    cub_fuzzy_ref_frame r0;
     for (int i = 0; i < frames; i += step) {
         frame_world(&m, i);
-        fz_to_double(world, n, xyz);
-        assert_int_equal(cub_fuzzy_features(&body, world, n, &f), CUB_OK);
-        assert_int_equal(cub_fuzzy_ref_features(&rb, xyz, n, &r), 0);
-        for (int k = 0; k < CUB_FUZZY_FEATURE_COUNT; k++)
-            e->input = fmax(e->input, fabs(f.input[k] / 65536.0 - r.input[k]));
-        e->mu = fmax(e->mu, fz_max_mu_err(&f, &r));
-        if (i == 0) {
-            f0 = f;
-            r0 = r;
-        }
-        /* d against the first frame: pairs from near to far apart. */
-        double d = cub_fuzzy_distance(&f, &f0, NULL) / 65536.0;
-        e->d = fmax(e->d, fabs(d - cub_fuzzy_ref_distance(&r, &r0, NULL)));
-        assert_true(d >= 0 && d <= 1);
-        e->frames++;
-        e->pairs++;
+        compare_frame(&body, n, i == 0, &f0, &r0, e);
     }
     cub_io_motion_free(&m);
 }
@@ -185,10 +198,47 @@ static void test_fixed_matches_float_on_cmu_mocap(void **state)
     assert_true(e.d < 1e-3);
 }
 
+/* The library the box ships, on the bear's own body: d against the first
+ * frame of the whole library, so pairs also cross clips. */
+static void test_fixed_matches_float_on_the_shipped_library(void **state)
+{
+    (void)state;
+    const char *src = getenv("CUB_SOURCE_DIR");
+    assert_non_null(src);
+    char path[1024], msg[600];
+    cub_diag diag;
+    static cub_character bear;
+    snprintf(path, sizeof path, "%s/assets/bear/bear.xml", src);
+    if (cub_character_load(path, &bear, &diag)) fail_msg("%s", cub_diag_str(&diag, msg, sizeof msg));
+    cub_library lib;
+    snprintf(path, sizeof path, "%s/assets/clips/bear.cubclips", src);
+    if (cub_pack_read(path, &lib, &diag)) fail_msg("%s", cub_diag_str(&diag, msg, sizeof msg));
+    assert_int_equal(lib.skel.joint_count, bear.skel.joint_count);
+    errors e = {0};
+    cub_fuzzy_frame f0;
+    cub_fuzzy_ref_frame r0;
+    for (int c = 0; c < lib.clip_count; c++) {
+        const cub_clip *clip = &lib.clips[c].clip;
+        for (int i = 0; i < clip->frame_count; i++) {
+            assert_int_equal(cub_motion_clip_get_frame(clip, i, &pose), CUB_OK);
+            assert_int_equal(cub_motion_forward(&lib.skel, &pose, world, NULL), CUB_OK);
+            compare_frame(&bear.body, lib.skel.joint_count, c == 0 && i == 0, &f0, &r0, &e);
+        }
+    }
+    printf("fuzzy: fixed vs float max_mu_err=%.2e max_d_err=%.2e max_input_err=%.2e deg "
+           "over all %ld frames of the %d library clips\n",
+           e.mu, e.d, e.input, e.frames, lib.clip_count);
+    cub_library_free(&lib);
+    assert_true(e.frames > 0);
+    assert_true(e.mu < 1e-3);
+    assert_true(e.d < 1e-3);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_fixed_matches_float_on_cmu_mocap),
+        cmocka_unit_test(test_fixed_matches_float_on_the_shipped_library),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -1,0 +1,357 @@
+/* Feet: floor placement, foot contacts found in the source, and the
+ * analytic two-bone leg IK that pins the target's ankle during a contact.
+ * A human foot in contact is rarely flat in the data (heel strike, toe
+ * off, the marker set's own pitch), and the bear's foot is a stiff paw:
+ * so during a contact the bear's foot is put flat on the floor (its
+ * heading kept) with the ankle at its rest height, and the floor is where
+ * those flat contacts stand - not the lowest point a swinging toe reaches. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "rt_ctx.h"
+
+#define MIN_CONTACT_FRAMES 3 /* shorter "contacts" are a foot passing low */
+#define BLEND_FRAMES 4       /* IK eases in/out over this many frames */
+
+void rt_target_world(const rt_ctx *c, int f, rt_v3 *pos, rt_q *rot)
+{
+    rt_forward(c->tgt, c->root[f], c->local + (size_t)f * c->tj, NULL, pos, rot);
+}
+
+/* Lowest foot joint over the clip. */
+static double lowest_foot(const rt_ctx *c)
+{
+    rt_v3 pos[CUB_MOTION_MAX_JOINTS];
+    rt_q rot[CUB_MOTION_MAX_JOINTS];
+    double low = INFINITY;
+    for (int f = 0; f < c->frames; f++) {
+        rt_target_world(c, f, pos, rot);
+        for (int j = 0; j < c->tj; j++)
+            if (c->is_foot[j] && pos[j].y < low)
+                low = pos[j].y;
+    }
+    return low;
+}
+
+static void shift_root(rt_ctx *c, rt_v3 by)
+{
+    for (int f = 0; f < c->frames; f++)
+        c->root[f] = rt_v3_add(c->root[f], by);
+}
+
+/* Contacts of one foot from the source ankle (scaled): low and slow, runs
+ * of at least MIN_CONTACT_FRAMES. */
+static void find_contacts(rt_ctx *c, int side)
+{
+    int l = c->link_of[c->foot[side]];
+    unsigned char *ct = c->contact[side];
+    double low = INFINITY;
+    for (int f = 0; f < c->frames; f++)
+        low = fmin(low, c->lpos[(size_t)f * c->links + l].y * c->k);
+    for (int f = 0; f < c->frames; f++) {
+        int a = f > 0 ? f - 1 : f, b = f + 1 < c->frames ? f + 1 : f;
+        rt_v3 pa = c->lpos[(size_t)a * c->links + l], pb = c->lpos[(size_t)b * c->links + l];
+        double v = b > a ? rt_v3_len(rt_v3_sub(pb, pa)) * c->k / ((b - a) * c->dt_s) : 0;
+        double h = c->lpos[(size_t)f * c->links + l].y * c->k - low;
+        ct[f] = h < c->d.contact_height_mm && v < c->d.contact_speed_mm_s;
+    }
+    for (int f = 0; f < c->frames;) {
+        int e = f;
+        while (e < c->frames && ct[e] == ct[f])
+            e++;
+        if (ct[f] && e - f < MIN_CONTACT_FRAMES)
+            memset(ct + f, 0, (size_t)(e - f));
+        f = e;
+    }
+}
+
+/* Move the leg of `side` in frame f so its ankle reaches target; the knee
+ * stays in its current bend plane (forward when straight) and the foot
+ * turns to the world rotation foot_w. */
+static void leg_ik(rt_ctx *c, int f, int side, rt_v3 target, rt_q foot_w)
+{
+    rt_v3 pos[CUB_MOTION_MAX_JOINTS];
+    rt_q rot[CUB_MOTION_MAX_JOINTS];
+    rt_target_world(c, f, pos, rot);
+    int hj = c->up_leg[side], kj = c->leg[side], aj = c->foot[side];
+    rt_v3 H = pos[hj], K = pos[kj], A = pos[aj];
+    double l1 = rt_v3_len(rt_v3_sub(K, H)), l2 = rt_v3_len(rt_v3_sub(A, K));
+    rt_v3 ht = rt_v3_sub(target, H);
+    double d = rt_v3_len(ht);
+    rt_v3 u = rt_v3_norm(ht, rt_v3_make(0, -1, 0));
+    d = fmax(fabs(l1 - l2) + 1e-3, fmin(d, (l1 + l2) * 0.9999));
+    rt_v3 hk = rt_v3_sub(K, H);
+    /* The knee's bend direction: where it bends now, plus a little of the
+     * hips' forward so a nearly straight leg does not pick a plane from
+     * noise (and flip from frame to frame). */
+    rt_v3 fw = rt_q_rotate(rot[c->hips], rt_v3_make(0, 0, 1));
+    rt_v3 b = rt_v3_add(hk, rt_v3_scale(fw, 0.1 * l1));
+    b = rt_v3_sub(b, rt_v3_scale(u, rt_v3_dot(b, u)));
+    b = rt_v3_norm(b, rt_v3_make(0, 0, 1));
+    double ca = (l1 * l1 + d * d - l2 * l2) / (2 * l1 * d);
+    ca = fmax(-1, fmin(1, ca));
+    rt_v3 K2 = rt_v3_add(H, rt_v3_add(rt_v3_scale(u, l1 * ca), rt_v3_scale(b, l1 * sqrt(1 - ca * ca))));
+    rt_v3 A2 = rt_v3_add(H, rt_v3_scale(u, d));
+
+    rt_q wu = rt_q_mul(rt_q_arc(hk, rt_v3_sub(K2, H)), rot[hj]);
+    rt_q *local = c->local + (size_t)f * c->tj;
+    rt_q wl = rt_q_mul(wu, local[kj]);
+    rt_v3 shin = rt_q_rotate(wl, rt_v3_from_fx(c->tgt->joints[aj].offset_mm));
+    wl = rt_q_mul(rt_q_arc(shin, rt_v3_sub(A2, K2)), wl);
+    int hp = c->tgt->joints[hj].parent;
+    rt_q parent = hp >= 0 ? rot[hp] : rt_q_identity();
+    local[hj] = rt_q_norm(rt_q_mul(rt_q_conj(parent), wu));
+    local[kj] = rt_q_norm(rt_q_mul(rt_q_conj(wu), wl));
+    local[aj] = rt_q_norm(rt_q_mul(rt_q_conj(wl), foot_w));
+}
+
+/* The foot's world rotation in frame f. */
+static rt_q foot_rot_at(const rt_ctx *c, int f, int side)
+{
+    rt_v3 pos[CUB_MOTION_MAX_JOINTS];
+    rt_q rot[CUB_MOTION_MAX_JOINTS];
+    rt_target_world(c, f, pos, rot);
+    return rot[c->foot[side]];
+}
+
+/* The foot flat on the floor: only the heading of rot is kept (the rest
+ * foot is flat, toe along +z). A foot pointing straight down or up has no
+ * heading of its own; the hips give it. */
+static rt_q flat_foot(const rt_ctx *c, int f, rt_q rot)
+{
+    rt_v3 fw = rt_q_rotate(rot, rt_v3_make(0, 0, 1));
+    if (hypot(fw.x, fw.z) < 0.1) {
+        rt_v3 pos[CUB_MOTION_MAX_JOINTS];
+        rt_q wr[CUB_MOTION_MAX_JOINTS];
+        rt_target_world(c, f, pos, wr);
+        fw = rt_q_rotate(wr[c->hips], rt_v3_make(0, 0, 1));
+    }
+    return rt_q_axis_angle(rt_v3_make(0, 1, 0), atan2(fw.x, fw.z));
+}
+
+/* Height of the ankle above the floor when the foot stands flat. */
+static double rest_ankle_mm(const rt_ctx *c, int side)
+{
+    double low = INFINITY;
+    for (int j = 0; j < c->tj; j++)
+        if (c->is_foot[j])
+            low = fmin(low, c->tgt_rest_pos[j].y);
+    return c->tgt_rest_pos[c->foot[side]].y - low;
+}
+
+static rt_v3 ankle_at(const rt_ctx *c, int f, int side)
+{
+    rt_v3 pos[CUB_MOTION_MAX_JOINTS];
+    rt_q rot[CUB_MOTION_MAX_JOINTS];
+    rt_target_world(c, f, pos, rot);
+    return pos[c->foot[side]];
+}
+
+/* Where each contact run of `side` is pinned: the mean ground position of
+ * the ankle over the run, at the rest ankle height, the foot flat with its
+ * mean heading. Stored per contact frame in pin[] and flat[]. */
+static void find_pins(const rt_ctx *c, int side, rt_v3 *pin, rt_q *flat)
+{
+    const unsigned char *ct = c->contact[side];
+    for (int f = 0; f < c->frames;) {
+        if (!ct[f]) {
+            f++;
+            continue;
+        }
+        int e = f;
+        rt_v3 p = {0, 0, 0}, fw = {0, 0, 0};
+        for (; e < c->frames && ct[e]; e++) {
+            p = rt_v3_add(p, ankle_at(c, e, side));
+            rt_q fl = flat_foot(c, e, foot_rot_at(c, e, side));
+            fw = rt_v3_add(fw, rt_q_rotate(fl, rt_v3_make(0, 0, 1)));
+        }
+        p = rt_v3_scale(p, 1.0 / (e - f));
+        p.y = rest_ankle_mm(c, side);
+        for (int g = f; g < e; g++)
+            pin[g] = p, flat[g] = rt_q_axis_angle(rt_v3_make(0, 1, 0), atan2(fw.x, fw.z));
+        f = e;
+    }
+}
+
+/* A pinned foot the leg cannot reach would slide with the hips (the body
+ * sways over a planted foot): lower the root just enough, per frame, that
+ * every pinned ankle is within REACH of its leg's length. The drop is
+ * smoothed by a max filter then a box filter of the same width, so it is
+ * never less than what a frame needs. */
+#define REACH 0.995
+static void drop_for_reach(rt_ctx *c, rt_v3 *const pin[2], double *need, double *tmp)
+{
+    rt_v3 pos[CUB_MOTION_MAX_JOINTS];
+    rt_q rot[CUB_MOTION_MAX_JOINTS];
+    for (int f = 0; f < c->frames; f++) {
+        need[f] = 0;
+        rt_target_world(c, f, pos, rot);
+        for (int s = 0; s < 2; s++) {
+            if (!c->contact[s][f])
+                continue;
+            double l = REACH * (c->tgt_rest_pos[c->leg[s]].y - c->tgt_rest_pos[c->up_leg[s]].y +
+                                c->tgt_rest_pos[c->foot[s]].y - c->tgt_rest_pos[c->leg[s]].y);
+            l = fabs(l);
+            rt_v3 h = rt_v3_sub(pos[c->up_leg[s]], pin[s][f]);
+            double flat2 = h.x * h.x + h.z * h.z;
+            double v = l * l > flat2 ? sqrt(l * l - flat2) : 0;
+            need[f] = fmax(need[f], h.y - v);
+        }
+    }
+    for (int pass = 0; pass < 2; pass++) {
+        for (int f = 0; f < c->frames; f++) {
+            double m = pass ? 0 : need[f];
+            int n = 0;
+            for (int g = f - BLEND_FRAMES; g <= f + BLEND_FRAMES; g++)
+                if (g >= 0 && g < c->frames)
+                    m = pass ? m + need[g] : fmax(m, need[g]), n++;
+            tmp[f] = pass ? m / n : m;
+        }
+        memcpy(need, tmp, sizeof(double) * (size_t)c->frames);
+    }
+    for (int f = 0; f < c->frames; f++)
+        c->root[f].y -= need[f];
+}
+
+/* Pin each contact run, easing the IK in and out over BLEND_FRAMES outside
+ * the run (never into another contact). */
+static void pin_foot(rt_ctx *c, int side, const rt_v3 *pin, const rt_q *flat)
+{
+    const unsigned char *ct = c->contact[side];
+    for (int f = 0; f < c->frames;) {
+        if (!ct[f]) {
+            f++;
+            continue;
+        }
+        int e = f;
+        while (e < c->frames && ct[e])
+            e++;
+        for (int g = f - BLEND_FRAMES; g < e + BLEND_FRAMES; g++) {
+            if (g < 0 || g >= c->frames || (g < f || g >= e ? ct[g] : 0))
+                continue;
+            int dist = g < f ? f - g : g >= e ? g - e + 1 : 0;
+            int k = g < f ? f : g >= e ? e - 1 : g; /* the run's pin */
+            double w = 1.0 - (double)dist / (BLEND_FRAMES + 1);
+            rt_v3 free_a = ankle_at(c, g, side);
+            rt_q foot_w = rt_q_slerp(foot_rot_at(c, g, side), flat[k], w);
+            leg_ik(c, g, side, rt_v3_add(free_a, rt_v3_scale(rt_v3_sub(pin[k], free_a), w)),
+                   foot_w);
+        }
+        f = e;
+    }
+}
+
+static void measure(const rt_ctx *c, cub_retarget_report *rep)
+{
+    double slide_sum = 0, ankle_sum = 0;
+    int slide_n = 0, ankle_n = 0;
+    rep->min_foot_mm = lowest_foot(c);
+    for (int s = 0; s < 2; s++)
+        for (int f = 0; f < c->frames; f++) {
+            if (!c->contact[s][f])
+                continue;
+            rep->contact_frames[s]++;
+            rt_v3 a = ankle_at(c, f, s);
+            ankle_sum += a.y, ankle_n++;
+            if (f > 0 && c->contact[s][f - 1]) {
+                double d = rt_v3_len(rt_v3_sub(a, ankle_at(c, f - 1, s)));
+                slide_sum += d, slide_n++;
+                rep->slide_max_mm = fmax(rep->slide_max_mm, d);
+            }
+        }
+    rep->slide_mean_mm = slide_n ? slide_sum / slide_n : 0;
+    rep->contact_ankle_mm = ankle_n ? ankle_sum / ankle_n : 0;
+    for (int f = 1; f < c->frames; f++)
+        for (int j = 0; j < c->tj; j++) {
+            double a = rt_q_angle_between(c->local[(size_t)f * c->tj + j],
+                                          c->local[(size_t)(f - 1) * c->tj + j]);
+            rep->max_ang_deg = fmax(rep->max_ang_deg, a * 180.0 / RT_PI);
+        }
+}
+
+/* Lowest point of one foot (its joints) in frame f. */
+static double foot_low_at(const rt_ctx *c, int f, int side)
+{
+    rt_v3 pos[CUB_MOTION_MAX_JOINTS];
+    rt_q rot[CUB_MOTION_MAX_JOINTS];
+    rt_target_world(c, f, pos, rot);
+    double low = INFINITY;
+    for (int j = 0; j < c->tj; j++) {
+        int a = j; /* is j the foot or below it? */
+        while (a >= 0 && a != c->foot[side])
+            a = c->tgt->joints[a].parent;
+        if (a >= 0)
+            low = fmin(low, pos[j].y);
+    }
+    return low;
+}
+
+/* Out of contact a swinging foot may dip below the floor the contacts
+ * stand on (a pointed toe): lift its ankle just out of the floor, the foot
+ * keeping its rotation. The lift is continuous since the dip is. */
+static void lift_swing_feet(rt_ctx *c)
+{
+    for (int s = 0; s < 2; s++)
+        for (int f = 0; f < c->frames; f++) {
+            double low = foot_low_at(c, f, s);
+            if (c->contact[s][f] || low >= 0)
+                continue;
+            rt_v3 a = ankle_at(c, f, s);
+            a.y -= low;
+            leg_ik(c, f, s, a, foot_rot_at(c, f, s));
+        }
+}
+
+/* Shift the root so that the ankles in contact stand, on average, at the
+ * rest ankle height: pinning then moves the legs as little as it can. */
+static void floor_on_contacts(rt_ctx *c, double *dy)
+{
+    double sum = 0;
+    int n = 0;
+    for (int s = 0; s < 2; s++)
+        for (int f = 0; f < c->frames; f++)
+            if (c->contact[s][f])
+                sum += ankle_at(c, f, s).y - rest_ankle_mm(c, s), n++;
+    if (n) {
+        shift_root(c, rt_v3_make(0, -sum / n, 0));
+        *dy -= sum / n;
+    }
+}
+
+void rt_feet(rt_ctx *c, cub_retarget_report *rep)
+{
+    /* Centre the clip on its mean ground position, feet on the floor. */
+    rt_v3 mean = {0, 0, 0};
+    for (int f = 0; f < c->frames; f++)
+        mean = rt_v3_add(mean, c->root[f]);
+    mean = rt_v3_scale(mean, 1.0 / c->frames);
+    shift_root(c, rt_v3_make(-mean.x, 0, -mean.z));
+    double low = lowest_foot(c);
+    shift_root(c, rt_v3_make(0, -low, 0));
+    double dy = -low;
+    int contacts = 0;
+    if (!c->d.no_contacts)
+        for (int s = 0; s < 2; s++) {
+            find_contacts(c, s);
+            for (int f = 0; f < c->frames; f++)
+                contacts += c->contact[s][f];
+        }
+    rt_v3 *pin[2] = {calloc((size_t)c->frames, sizeof(rt_v3)),
+                     calloc((size_t)c->frames, sizeof(rt_v3))};
+    rt_q *flat[2] = {calloc((size_t)c->frames, sizeof(rt_q)),
+                     calloc((size_t)c->frames, sizeof(rt_q))};
+    double *need = calloc((size_t)c->frames * 2, sizeof(double));
+    if (contacts && pin[0] && pin[1] && flat[0] && flat[1] && need) {
+        floor_on_contacts(c, &dy);
+        for (int s = 0; s < 2; s++)
+            find_pins(c, s, pin[s], flat[s]);
+        drop_for_reach(c, pin, need, need + c->frames);
+        for (int s = 0; s < 2; s++)
+            pin_foot(c, s, pin[s], flat[s]);
+        lift_swing_feet(c);
+    }
+    free(pin[0]), free(pin[1]), free(flat[0]), free(flat[1]), free(need);
+    rep->offset_mm[0] = -mean.x, rep->offset_mm[1] = dy, rep->offset_mm[2] = -mean.z;
+    measure(c, rep);
+}

@@ -1,0 +1,188 @@
+/* Mapping tables (assets/retarget/<kind>.map): which source joints drive each
+ * target joint. See cub/retarget.h for the format and the model. */
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cub/retarget.h"
+#include "rt_internal.h"
+
+#define MAP_MAX_WORDS 8
+
+/* Split one line into words (blank separated, '#' ends the line). Returns
+ * the word count, or -1 when there are too many or one is too long. */
+static int split_words(const char *s, const char *end, char words[][CUB_MOTION_NAME_LEN + 16])
+{
+    int n = 0;
+    while (s < end) {
+        while (s < end && (*s == ' ' || *s == '\t' || *s == '\r'))
+            s++;
+        if (s >= end || *s == '#')
+            break;
+        const char *w = s;
+        while (s < end && *s != ' ' && *s != '\t' && *s != '\r' && *s != '#')
+            s++;
+        size_t len = (size_t)(s - w);
+        if (n >= MAP_MAX_WORDS || len >= CUB_MOTION_NAME_LEN + 16)
+            return -1;
+        memcpy(words[n], w, len);
+        words[n][len] = '\0';
+        n++;
+    }
+    return n;
+}
+
+static cub_err parse_source(const char *word, cub_retarget_source *src, const char *file,
+                            int line, cub_diag *diag)
+{
+    const char *colon = strchr(word, ':');
+    size_t len = colon ? (size_t)(colon - word) : strlen(word);
+    if (len == 0 || len >= CUB_MOTION_NAME_LEN)
+        return rt_fail(diag, CUB_ERR_FORMAT, file, line, "bad source joint name \"%s\"", word);
+    memcpy(src->name, word, len);
+    src->name[len] = '\0';
+    src->joint = -1;
+    src->weight = 1.0;
+    if (colon) {
+        char *e = NULL;
+        errno = 0;
+        src->weight = strtod(colon + 1, &e);
+        if (e == colon + 1 || *e || errno || !isfinite(src->weight) || src->weight <= 0)
+            return rt_fail(diag, CUB_ERR_FORMAT, file, line,
+                           "bad weight \"%s\" for \"%s\" (a number > 0)", colon + 1, src->name);
+    }
+    return CUB_OK;
+}
+
+static cub_err parse_line(cub_retarget_map *map, char words[][CUB_MOTION_NAME_LEN + 16], int n,
+                          const char *file, int line, cub_diag *diag)
+{
+    if (n < 2)
+        return rt_fail(diag, CUB_ERR_FORMAT, file, line,
+                       "expected `TargetJoint SourceJoint [aim|rot]`, got one word \"%s\"",
+                       words[0]);
+    if (map->link_count >= CUB_MOTION_MAX_JOINTS)
+        return rt_fail(diag, CUB_ERR_FORMAT, file, line, "more than %d links",
+                       CUB_MOTION_MAX_JOINTS);
+    if (strlen(words[0]) >= CUB_MOTION_NAME_LEN)
+        return rt_fail(diag, CUB_ERR_FORMAT, file, line, "target name \"%s\" too long", words[0]);
+    for (int i = 0; i < map->link_count; i++)
+        if (!strcmp(map->link[i].target_name, words[0]))
+            return rt_fail(diag, CUB_ERR_FORMAT, file, line,
+                           "target joint \"%s\" already linked on line %d", words[0],
+                           map->link[i].line);
+    cub_retarget_link *lk = &map->link[map->link_count];
+    memset(lk, 0, sizeof(*lk));
+    snprintf(lk->target_name, sizeof(lk->target_name), "%s", words[0]);
+    lk->target = -1;
+    lk->line = line;
+    if (!strcmp(words[n - 1], "aim") || !strcmp(words[n - 1], "rot")) {
+        lk->policy = words[n - 1][0] == 'a' ? CUB_RETARGET_AIM : CUB_RETARGET_ROT;
+        n--;
+    }
+    if (n < 2)
+        return rt_fail(diag, CUB_ERR_FORMAT, file, line, "\"%s\" has no source joint", words[0]);
+    if (n - 1 > CUB_RETARGET_MAX_SOURCES)
+        return rt_fail(diag, CUB_ERR_FORMAT, file, line, "more than %d sources for \"%s\"",
+                       CUB_RETARGET_MAX_SOURCES, words[0]);
+    double sum = 0;
+    for (int i = 1; i < n; i++) {
+        cub_err err = parse_source(words[i], &lk->source[i - 1], file, line, diag);
+        if (err)
+            return err;
+        sum += lk->source[i - 1].weight;
+    }
+    lk->source_count = n - 1;
+    for (int i = 0; i < lk->source_count; i++)
+        lk->source[i].weight /= sum;
+    map->link_count++;
+    return CUB_OK;
+}
+
+cub_err cub_retarget_map_parse(const char *text, size_t len, const char *name,
+                               cub_retarget_map *out, cub_diag *diag)
+{
+    const char *file = name ? name : "(map)";
+    if (!out || (!text && len))
+        return rt_fail(diag, CUB_ERR_ARG, file, 0, "no text or output");
+    memset(out, 0, sizeof(*out));
+    snprintf(out->file, sizeof(out->file), "%s", file);
+    const char *p = text, *end = text + len;
+    char words[MAP_MAX_WORDS][CUB_MOTION_NAME_LEN + 16];
+    for (int line = 1; p < end; line++) {
+        const char *eol = memchr(p, '\n', (size_t)(end - p));
+        if (!eol)
+            eol = end;
+        if (memchr(p, '\0', (size_t)(eol - p)))
+            return rt_fail(diag, CUB_ERR_FORMAT, file, line, "NUL byte in the table");
+        int n = split_words(p, eol, words);
+        if (n < 0)
+            return rt_fail(diag, CUB_ERR_FORMAT, file, line,
+                           "too many words or a name over %d characters",
+                           CUB_MOTION_NAME_LEN - 1);
+        if (n > 0) {
+            cub_err err = parse_line(out, words, n, file, line, diag);
+            if (err)
+                return err;
+        }
+        p = eol + 1;
+    }
+    if (out->link_count == 0)
+        return rt_fail(diag, CUB_ERR_FORMAT, file, 0, "no links in the table");
+    return CUB_OK;
+}
+
+cub_err cub_retarget_map_load(const char *path, cub_retarget_map *out, cub_diag *diag)
+{
+    char *text = NULL;
+    size_t len = 0;
+    cub_err err = cub_io_read_file(path, &text, &len, diag);
+    if (err)
+        return err;
+    err = cub_retarget_map_parse(text, len, path, out, diag);
+    free(text);
+    return err;
+}
+
+cub_err cub_retarget_map_bind(cub_retarget_map *map, const cub_skeleton *target,
+                              const cub_skeleton *source, cub_diag *diag)
+{
+    if (!map || !target || !source)
+        return rt_fail(diag, CUB_ERR_ARG, "(map)", 0, "no map or skeleton");
+    map->bound = 0;
+    for (int i = 0; i < map->link_count; i++) {
+        cub_retarget_link *lk = &map->link[i];
+        lk->target = cub_motion_skeleton_find(target, lk->target_name);
+        if (lk->target < 0)
+            return rt_fail(diag, CUB_ERR_FORMAT, map->file, lk->line, "no target joint \"%s\"",
+                           lk->target_name);
+        for (int s = 0; s < lk->source_count; s++) {
+            lk->source[s].joint = cub_motion_skeleton_find(source, lk->source[s].name);
+            if (lk->source[s].joint < 0)
+                return rt_fail(diag, CUB_ERR_FORMAT, map->file, lk->line,
+                               "no source joint \"%s\" in the source skeleton",
+                               lk->source[s].name);
+        }
+    }
+    for (int i = 0; i < map->link_count; i++) {
+        const cub_retarget_link *lk = &map->link[i];
+        int child = 0;
+        for (int k = 0; k < map->link_count && lk->policy == CUB_RETARGET_AIM; k++)
+            child |= target->joints[map->link[k].target].parent == lk->target;
+        if (lk->policy == CUB_RETARGET_AIM && !child)
+            return rt_fail(diag, CUB_ERR_FORMAT, map->file, lk->line,
+                           "\"%s\" is marked aim but no child of it is linked", lk->target_name);
+    }
+    map->bound = 1;
+    return CUB_OK;
+}
+
+int cub_retarget_map_find(const cub_retarget_map *map, int target)
+{
+    for (int i = 0; map && i < map->link_count; i++)
+        if (map->link[i].target == target)
+            return i;
+    return -1;
+}
