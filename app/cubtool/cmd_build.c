@@ -2,6 +2,7 @@
  * (assets/library/recipe.txt) and the shared data: load each source, cut,
  * retarget to the bear at 30 fps, pack (cub/pack.h). Deterministic: clips
  * in recipe order, no time stamps, so the same inputs give the same bytes. */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -122,6 +123,26 @@ static cub_err keys_clip(const char *path, const cub_character *bear, cub_io_mot
     return err;
 }
 
+/* The largest local rotation change of any joint between two frames, in
+ * degrees: the retarget measures this for mocap; keyframed clips get the
+ * same figure so a too-fast key shows up in the build summary. */
+static double max_joint_step_deg(const cub_clip *clip)
+{
+    const double one = (double)(1 << 30); /* Q2.30 */
+    int jn = clip->skel->joint_count;
+    double max_deg = 0;
+    for (int f = 1; f < clip->frame_count; f++)
+        for (int j = 0; j < jn; j++) {
+            cub_quat a = clip->rot[(size_t)f * (size_t)jn + (size_t)j];
+            cub_quat b = clip->rot[(size_t)(f - 1) * (size_t)jn + (size_t)j];
+            double dot = ((double)a.w * b.w + (double)a.x * b.x + (double)a.y * b.y +
+                          (double)a.z * b.z) / (one * one);
+            dot = fabs(dot) > 1 ? 1 : fabs(dot); /* q and -q are one rotation */
+            max_deg = fmax(max_deg, 2 * acos(dot) * 180.0 / 3.14159265358979323846);
+        }
+    return max_deg;
+}
+
 /* One recipe line to a bear clip in *out. */
 static cub_err build_clip(const build_args *a, const cub_recipe_clip *rc,
                           const cub_character *bear, cub_retarget_map *map, cub_io_motion *out,
@@ -132,7 +153,10 @@ static cub_err build_clip(const build_args *a, const cub_recipe_clip *rc,
     if (n > 5 && !strcmp(rc->source + n - 5, ".keys")) {
         memset(rep, 0, sizeof(*rep));
         resolve(a, rc->source, path, sizeof(path));
-        return keys_clip(path, bear, out, d);
+        cub_err err = keys_clip(path, bear, out, d);
+        if (!err)
+            rep->frames = out->clip.frame_count, rep->max_ang_deg = max_joint_step_deg(&out->clip);
+        return err;
     }
     resolve(a, rc->map, path, sizeof(path));
     cub_err err = cub_retarget_map_load(path, map, d);

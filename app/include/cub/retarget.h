@@ -33,11 +33,19 @@
  * source hip height (rest poses, hips above the lowest foot joint), so the
  * stride matches the short legs; the clip is centred on its mean ground
  * position; the lowest foot joint over the clip is put on y = 0.
- * Feet: contacts are detected in the (scaled) source - ankle low and slow -
- * and during each contact the target's ankle is pinned at one point by an
- * analytic two-bone IK (hip-knee-ankle; the knee stays in its plane, forward
- * when the leg is straight); the foot keeps its world rotation and nothing
- * else moves. Rotations are kept in one quaternion hemisphere frame to frame.
+ * Feet (app/retarget/feet.c): contacts are detected in the (scaled) source -
+ * ankle low and slow, runs of 3 frames or more. The floor is where the
+ * contacts stand: the root is shifted so the ankles in contact are, on
+ * average, at the bear's rest ankle height. Each contact run is pinned at
+ * one point (the run's mean ground position, at the rest ankle height) and
+ * the foot is turned flat on the floor, keeping only its mean heading (a
+ * human foot is rarely flat in the data; the bear's is a stiff paw). Where a
+ * pinned leg cannot reach its pin the root is lowered just enough, per
+ * frame (smoothed). The ankle is then put on its pin by an analytic two-bone
+ * IK (hip-knee-ankle; the knee stays in its plane, forward when the leg is
+ * straight), eased in and out over 4 frames around each run. Out of contact
+ * a swinging foot that dips below the floor is lifted just out of it.
+ * Rotations are kept in one quaternion hemisphere frame to frame.
  */
 #ifndef CUB_RETARGET_H
 #define CUB_RETARGET_H
