@@ -202,6 +202,12 @@ const char *cub_loop_event_name(int32_t type)
     case CUB_EV_DEPTH_FRAME: return "depth_frame";
     case CUB_EV_TIMER: return "timer";
     case CUB_EV_QUIT: return "quit";
+    case CUB_EV_VERDICT: return "verdict";
+    case CUB_EV_CLAP: return "clap";
+    case CUB_EV_PLAYER: return "player";
+    case CUB_EV_CLIP_DONE: return "clip_done";
+    case CUB_EV_MUSIC_TAG: return "music_tag";
+    case CUB_EV_SONG_END: return "song_end";
     default: return type >= CUB_EV_USER ? "user" : "unknown";
     }
 }

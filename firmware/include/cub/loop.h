@@ -24,6 +24,13 @@ typedef enum cub_event_type {
     CUB_EV_DEPTH_FRAME, /* a = frame sequence number */
     CUB_EV_TIMER,       /* a = timer id, b = periods missed (a late periodic timer) */
     CUB_EV_QUIT,        /* the board or the user asked the program to end */
+    /* The dance (issue 4 on): */
+    CUB_EV_VERDICT,     /* the judge: a = move index in the song, b = 1 right / 0 wrong */
+    CUB_EV_CLAP,        /* the child clapped (wakes the coach like START) */
+    CUB_EV_PLAYER,      /* a = 1 a player is in view, 0 nobody */
+    CUB_EV_CLIP_DONE,   /* the coach's clip played to its end: a = clip index */
+    CUB_EV_MUSIC_TAG,   /* playback reached a music time tag: a = move index, b = tag ms */
+    CUB_EV_SONG_END,    /* the song's music finished */
     CUB_EV_USER,        /* first value free for app-defined events */
 } cub_event_type;
 
