@@ -1,13 +1,16 @@
 #!/usr/bin/env bash
-# The demo: install what is missing, build, and run the box program on the
-# simulator board. It replays the real Kinect frames in
-# ../shared/data/depth/skeltrack through fakenect when they are there (a
-# built-in empty scene otherwise), presses START from a timeline, and runs
-# headless (PNG frames + the event log) unless a display exists.
-#   scripts/demo.sh [SECONDS]      default 8 seconds
+# The demo: install what is missing, build, and run the box's main job on
+# the simulator board: the bear leads a whole song (Twinkle Twinkle Little
+# Star). START is pressed from a timeline (scripts/demo.buttons) and a
+# scripted judge (scripts/demo.timeline) says right and wrong until the
+# tracker gives real verdicts. It replays the real Kinect frames in
+# ../shared/data/depth/skeltrack through fakenect for the depth inset when
+# they are there (a built-in empty scene otherwise), and runs headless (PNG
+# frames + the event log) unless a display exists.
+#   scripts/demo.sh [SECONDS]      default 115 (the song, the cheer, a doze)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-seconds=${1:-8}
+seconds=${1:-115}
 scripts/setup.sh --host
 cmake --preset release >/dev/null
 cmake --build --preset release -j "$(nproc)" --target cubdance
@@ -15,7 +18,8 @@ cmake --build --preset release -j "$(nproc)" --target cubdance
 out="$PWD/out/demo"
 rm -rf "$out"
 mkdir -p "$out"
-args=(--buttons scripts/demo.buttons --log "$out/events.log" --seconds "$seconds")
+args=(--song assets/songs/twinkle.song.xml --timeline scripts/demo.timeline
+      --buttons scripts/demo.buttons --log "$out/events.log" --seconds "$seconds")
 
 dump="${CUB_DATA_DIR:-$PWD/../shared/data}/depth/skeltrack"
 if [ -f "$dump/INDEX.txt" ]; then
@@ -31,7 +35,7 @@ if [ -n "${DISPLAY:-}${WAYLAND_DISPLAY:-}" ]; then
 else
     echo "demo: no display: running headless"
     export EGL_PLATFORM=surfaceless
-    args+=(--headless --size 960x540 --frames "$out/frames" --frame-every 15)
+    args+=(--headless --size 960x540 --frames "$out/frames" --frame-every 90)
 fi
 export SDL_AUDIODRIVER="${SDL_AUDIODRIVER:-dummy}"
 ./build/release/app/cubdance/cubdance "${args[@]}"

@@ -85,6 +85,24 @@ static const char *file_name(const char *path)
     return slash ? slash + 1 : path;
 }
 
+/* The judge's timeline and, with a song, the dance. */
+static int open_extras(const cub_app_options *o, cub_board *board, cub_loop *loop, int64_t t0,
+                       cub_session *s)
+{
+    char err[768];
+    if (o->timeline_path && cub_timeline_load(o->timeline_path, &s->timeline, err, sizeof err)) {
+        fprintf(stderr, "cubdance: %s\n", err);
+        return -1;
+    }
+    if (!o->song_path) return 0;
+    s->dance = calloc(1, sizeof *s->dance);
+    if (!s->dance || cub_dance_open(s->dance, o, board, &loop->log, t0, err, sizeof err)) {
+        fprintf(stderr, "cubdance: %s\n", s->dance ? err : "out of memory");
+        return -1;
+    }
+    return 0;
+}
+
 static int run(const cub_app_options *o, cub_board *board, FILE *log, const cub_io_motion *clip)
 {
     static cub_event slots[64];
@@ -114,13 +132,21 @@ static int run(const cub_app_options *o, cub_board *board, FILE *log, const cub_
     }
     int64_t t0 = cub_board_now_us(board);
     if (o->seconds > 0) s.stop_at_us = t0 + (int64_t)(o->seconds * 1e6);
-    cub_log_event(&loop.log, t0, "app", "start",
-                  "board=%s display=%s size=%dx%d depth=%s clock=%s clip=%s joints=%d",
-                  cub_board_name(),
-                  !cub_board_display_active(board) ? "none"
-                  : cub_board_display_headless(board) ? "headless" : "window",
-                  w, h, cub_board_depth_source(board), o->virtual_clock ? "virtual" : "real",
-                  s.clip_name, clip->skel.joint_count);
+    const char *display = !cub_board_display_active(board)   ? "none"
+                          : cub_board_display_headless(board) ? "headless"
+                                                              : "window";
+    const char *clock = o->virtual_clock ? "virtual" : "real";
+    if (o->song_path) /* the coach is the bear; its clips come with the song */
+        cub_log_event(&loop.log, t0, "app", "start",
+                      "board=%s display=%s size=%dx%d depth=%s clock=%s song=%s",
+                      cub_board_name(), display, w, h, cub_board_depth_source(board), clock,
+                      file_name(o->song_path));
+    else
+        cub_log_event(&loop.log, t0, "app", "start",
+                      "board=%s display=%s size=%dx%d depth=%s clock=%s clip=%s joints=%d",
+                      cub_board_name(), display, w, h, cub_board_depth_source(board), clock,
+                      s.clip_name, clip->skel.joint_count);
+    if (open_extras(o, board, &loop, t0, &s)) goto done;
     cub_loop_hooks hooks = cub_session_hooks(&s);
     cub_err err = cub_loop_run(&loop, &hooks, 0);
     cub_log_event(&loop.log, cub_board_now_us(board), "app", "end",
@@ -130,6 +156,9 @@ static int run(const cub_app_options *o, cub_board *board, FILE *log, const cub_
         printf("cubdance: %u frames written to %s\n", s.frames_written, o->frames_dir);
     rc = err || s.frame_error ? -1 : 0;
 done:
+    if (s.dance) cub_dance_close(s.dance);
+    free(s.dance);
+    cub_timeline_free(s.timeline);
     if (s.render) cub_render_destroy(s.render);
     free(s.depth_copy);
     free(s.rgba);

@@ -43,6 +43,17 @@ static void usage(FILE *f, const char *prog)
 "  --clip FILE            the coach's clip, a BVH file\n"
 "                         (default " CUB_ASSETS_DIR "/clips/hello.bvh)\n"
 "\n"
+"The dance\n"
+"  --song FILE            lead this song (assets/songs/*.song.xml): the coach\n"
+"                         teaches its moves, corrects, cheers at the end\n"
+"  --timeline FILE        scripted judge: lines `<seconds> wrong|right|nobody|player|clap`\n"
+"  --library FILE         clip library (default " CUB_ASSETS_DIR "/clips/bear.cubclips)\n"
+"  --tags FILE            its bridge tags (default " CUB_ASSETS_DIR "/clips/bear.tags.xml)\n"
+"  --character FILE       the coach (default " CUB_ASSETS_DIR "/bear/bear.xml)\n"
+"  --attract-after S      attract after S seconds without interaction\n"
+"  --doze-after S         doze after S seconds without interaction\n"
+"  --music-clock-scale K  make the music clock run K times as fast (tests: 0.95, 1.05)\n"
+"\n"
 "Run\n"
 "  --log FILE             write the event log to FILE (default: stderr)\n"
 "  --seconds S            stop after S seconds (default: run until quit)\n"
@@ -101,6 +112,17 @@ static int apply_valued(cub_app_options *o, const char *opt, const char *val, FI
         o->seconds = strtod(val, &end);
         if (end != val && !*end && o->seconds > 0 && o->seconds < 1e7) return 0;
         fprintf(err, "cubdance: --seconds wants a positive number, got '%s'\n", val);
+    } else if (!strcmp(opt, "--attract-after") || !strcmp(opt, "--doze-after")) {
+        double *slot = !strcmp(opt, "--attract-after") ? &o->attract_after_s : &o->doze_after_s;
+        *slot = strtod(val, &end);
+        if (end != val && !*end && *slot > 0 && *slot < 1e6) return 0;
+        fprintf(err, "cubdance: %s wants a positive number of seconds, got '%s'\n", opt, val);
+    } else if (!strcmp(opt, "--music-clock-scale")) {
+        o->music_clock_scale = strtod(val, &end);
+        if (end != val && !*end && o->music_clock_scale >= 0.5 && o->music_clock_scale <= 2)
+            return 0;
+        fprintf(err, "cubdance: --music-clock-scale wants a number in [0.5, 2], got '%s'\n",
+                val);
     } else if (!strcmp(opt, "--clock")) {
         if (!strcmp(val, "real") || !strcmp(val, "virtual")) {
             o->virtual_clock = !strcmp(val, "virtual");
@@ -118,6 +140,11 @@ static int apply_valued(cub_app_options *o, const char *opt, const char *val, FI
                             : !strcmp(opt, "--audio-driver") ? &o->audio_driver
                             : !strcmp(opt, "--clip")         ? &o->clip_path
                             : !strcmp(opt, "--log")          ? &o->log_path
+                            : !strcmp(opt, "--song")         ? &o->song_path
+                            : !strcmp(opt, "--timeline")     ? &o->timeline_path
+                            : !strcmp(opt, "--library")      ? &o->library_path
+                            : !strcmp(opt, "--tags")         ? &o->tags_path
+                            : !strcmp(opt, "--character")    ? &o->character_path
                                                              : NULL;
         if (slot) return *slot = val, 0;
         fprintf(err, "cubdance: unknown option '%s' (see --help)\n", opt);
@@ -129,7 +156,10 @@ static int takes_value(const char *opt)
 {
     static const char *const valued[] = {"--size", "--frame-every", "--seconds", "--clock",
                                          "--depth", "--frames", "--replay", "--buttons",
-                                         "--gpio-config", "--audio-driver", "--clip", "--log"};
+                                         "--gpio-config", "--audio-driver", "--clip", "--log",
+                                         "--song", "--timeline", "--library", "--tags",
+                                         "--character", "--attract-after", "--doze-after",
+                                         "--music-clock-scale"};
     for (size_t i = 0; i < sizeof valued / sizeof *valued; i++)
         if (!strcmp(opt, valued[i])) return 1;
     return 0;
@@ -141,6 +171,10 @@ cub_app_parse cub_app_parse_options(int argc, char **argv, cub_app_options *o, F
     memset(o, 0, sizeof *o);
     o->frame_every = 30;
     o->clip_path = CUB_ASSETS_DIR "/clips/hello.bvh";
+    o->library_path = CUB_ASSETS_DIR "/clips/bear.cubclips";
+    o->tags_path = CUB_ASSETS_DIR "/clips/bear.tags.xml";
+    o->character_path = CUB_ASSETS_DIR "/bear/bear.xml";
+    o->music_clock_scale = 1.0;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) {

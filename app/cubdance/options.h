@@ -20,6 +20,15 @@ typedef struct cub_app_options {
     int frame_every;            /* write every Nth tick (default 30 = 1 per second) */
     double seconds;             /* stop after this long; 0 = run until quit */
     int virtual_clock;          /* --clock virtual */
+    /* The dance (issue 4): with a song the coach leads it. */
+    const char *song_path;      /* a choreography (a .song.xml in assets/songs), or NULL */
+    const char *timeline_path;  /* scripted verdicts / presence / claps, or NULL */
+    const char *library_path;   /* the clip library (default assets/clips/bear.cubclips) */
+    const char *tags_path;      /* its bridge tags (default assets/clips/bear.tags.xml) */
+    const char *character_path; /* the coach (default assets/bear/bear.xml) */
+    double attract_after_s;     /* 0 = the coach's default */
+    double doze_after_s;        /* 0 = the coach's default */
+    double music_clock_scale;   /* 1 = true; 0.95 / 1.05 simulate a drifting audio clock */
 } cub_app_options;
 
 typedef enum cub_app_parse {

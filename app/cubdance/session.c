@@ -80,7 +80,10 @@ static void hook_poll(void *u, cub_loop *loop, int64_t now_us)
 {
     cub_session *s = u;
     cub_board_poll_buttons(s->board, loop, now_us);
-    poll_depth(s, loop, now_us);
+    cub_event ev;
+    while (cub_timeline_next(s->timeline, now_us, &ev)) cub_loop_post(loop, &ev);
+    if (s->dance) cub_dance_poll(s->dance, loop, now_us);
+    if (strcmp(cub_board_depth_source(s->board), "off") != 0) poll_depth(s, loop, now_us);
 }
 
 static const char *state_name(cub_app_state st)
@@ -110,21 +113,23 @@ static void hook_handle(void *u, cub_loop *loop, const cub_event *ev)
         cub_log_event(&loop->log, ev->t_us, "button",
                       ev->type == CUB_EV_BUTTON_DOWN ? "down" : "up", "name=%s",
                       cub_loop_button_name((cub_button)ev->a));
-        if (ev->type == CUB_EV_BUTTON_DOWN)
+        if (ev->type == CUB_EV_BUTTON_DOWN && !s->dance)
             set_state(s, ev->a == CUB_BUTTON_START ? CUB_APP_PLAYING : CUB_APP_WAITING, ev->t_us);
         break;
     case CUB_EV_DEPTH_FRAME:
         if ((uint32_t)ev->a == s->depth_probe.seq) log_depth_frame(s, &s->depth_probe);
-        break;
+        return;
     case CUB_EV_QUIT: cub_log_event(&loop->log, ev->t_us, "app", "quit", "reason=user"); break;
     default: break;
     }
+    if (s->dance) cub_dance_handle(s->dance, loop, ev);
 }
 
 /* The coach's pose this tick into s->world_xyz: the clip, looping, while
  * playing; its first frame, standing still, while waiting. */
 static cub_err coach_world(cub_session *s, int64_t t_us)
 {
+    if (s->dance) return cub_dance_pose(s->dance, s->world_xyz);
     const cub_clip *clip = &s->clip->clip;
     int64_t t = s->state == CUB_APP_PLAYING ? t_us - s->play_start_us : 0;
     cub_err err = cub_motion_sample(clip, t, CUB_MOTION_LOOP, &s->pose);
@@ -159,6 +164,7 @@ static void hook_tick(void *u, cub_loop *loop, int64_t t_us)
         cub_loop_stop(loop);
         return;
     }
+    if (s->dance) cub_dance_tick(s->dance, loop, t_us);
     if (!s->render) return;
     cub_err err = coach_world(s, t_us);
     if (err && !s->pose_error) {
@@ -166,7 +172,8 @@ static void hook_tick(void *u, cub_loop *loop, int64_t t_us)
                       cub_err_str(err));
         s->pose_error = 1;
     }
-    cub_render_scene scene = {.skel = err ? NULL : s->clip->clip.skel,
+    const cub_skeleton *skel = s->dance ? cub_dance_skeleton(s->dance) : s->clip->clip.skel;
+    cub_render_scene scene = {.skel = err ? NULL : skel,
                               .world_xyz_mm = s->world_xyz,
                               .depth_raw = s->depth_frames ? s->depth_copy : NULL};
     cub_render_frame(s->render, &scene);

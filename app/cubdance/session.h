@@ -10,7 +10,9 @@
 #include "cub/io.h"
 #include "cub/loop.h"
 #include "cub/render.h"
+#include "dance.h"
 #include "options.h"
+#include "timeline.h"
 
 typedef enum cub_app_state { CUB_APP_WAITING = 0, CUB_APP_PLAYING } cub_app_state;
 
@@ -25,7 +27,9 @@ typedef struct cub_session {
     const cub_app_options *opt;
     cub_board *board;
     cub_render *render;      /* NULL when there is no display */
-    const cub_io_motion *clip;
+    const cub_io_motion *clip; /* without a song: the clip played on START */
+    cub_dance *dance;          /* with a song: the coach leads it (else NULL) */
+    cub_timeline *timeline;    /* scripted judge events, or NULL */
     const char *clip_name;   /* its file name, for the log */
     cub_loop *loop;
     cub_app_state state;

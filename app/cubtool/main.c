@@ -16,6 +16,7 @@ static const command commands[] = {
     {"retarget", cub_cmd_retarget, "map a human clip (BVH, ASF/AMC) onto the bear"},
     {"build", cub_cmd_build, "rebuild the clip library from its recipe and ../shared/data"},
     {"tag", cub_cmd_tag, "tag bridge frames across a clip library; summary + contact sheets"},
+    {"bench-bridge", cub_cmd_bench_bridge, "measure clip switching: reaction latency, joint jumps"},
 };
 
 static void usage(FILE *f)

@@ -50,6 +50,9 @@ static void test_bad_options_are_refused_with_the_option_named(void **s)
     expect_refused((const char *[]){"--seconds", "soon", NULL}, "--seconds");
     expect_refused((const char *[]){"--depth", "lidar", NULL}, "--depth");
     expect_refused((const char *[]){"--clock", "fast", NULL}, "--clock");
+    expect_refused((const char *[]){"--attract-after", "0", NULL}, "--attract-after");
+    expect_refused((const char *[]){"--doze-after", "x", NULL}, "--doze-after");
+    expect_refused((const char *[]){"--music-clock-scale", "3", NULL}, "--music-clock-scale");
     expect_refused((const char *[]){"--log", NULL}, "--log needs a value");
     expect_refused((const char *[]){"--replay", "/x", "--depth", "empty", NULL}, "--replay");
 }
@@ -60,7 +63,9 @@ static void test_help_documents_every_option(void **s)
     assert_int_equal(parse(&o, (const char *[]){"--help", NULL}), CUB_APP_EXIT_OK);
     const char *opts[] = {"--window", "--headless", "--size", "--frames", "--frame-every",
                           "--replay", "--depth", "--buttons", "--gpio-config", "--audio-driver",
-                          "--clip", "--log", "--seconds", "--clock", "--help", "--version"};
+                          "--clip", "--log", "--seconds", "--clock", "--song", "--timeline",
+                          "--library", "--tags", "--character", "--attract-after",
+                          "--doze-after", "--music-clock-scale", "--help", "--version"};
     for (size_t i = 0; i < sizeof opts / sizeof *opts; i++)
         if (!strstr(help_text, opts[i])) fail_msg("--help does not mention %s", opts[i]);
 }
@@ -96,6 +101,9 @@ static void test_defaults(void **s)
     assert_null(o.log_path);
     assert_true(o.seconds == 0);
     assert_int_equal(o.virtual_clock, 0);
+    assert_null(o.song_path);
+    assert_string_equal(o.library_path, "/assets/clips/bear.cubclips");
+    assert_true(o.music_clock_scale == 1.0);
 }
 
 int main(void)

@@ -1,6 +1,8 @@
 /* libFuzzer target for the parsers of app/io.
  * Input: byte 0 picks the parser, the rest is the text (or bytes).
  *   'T': a bridge tag file (cub/tags.h), validated against a fixed library.
+ *   'S': a song's choreography (cub/song.h), against a fixed library.
+ *   'L': the scripted judge timeline (app/cubdance/timeline.h).
  *   'X': a character (XML, cub_character_parse).
  *   'P': a clip pack as is; 'Q': a clip pack whose last 4 bytes the harness
  *        replaces by the right CRC, so mutations get past the CRC check.
@@ -20,12 +22,37 @@
 #include "cub/io.h"
 #include "cub/keys.h"
 #include "cub/pack.h"
+#include "cub/song.h"
 #include "cub/tags.h"
+#include "timeline.h"
 
 #define MARK "\n==AMC==\n"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 static int fuzz_tags(const char *text, size_t len);
+static int fuzz_song(const char *text, size_t len);
+
+/* A timeline that parses hands out its events in time order, each once. */
+static int fuzz_timeline(const char *text, size_t len)
+{
+    cub_timeline *t = NULL;
+    char err[300];
+    if (cub_timeline_parse(text, len, "fuzz.timeline", &t, err, sizeof err) != CUB_OK) {
+        if (!err[0]) abort(); /* every failure says why */
+        return 0;
+    }
+    cub_event ev;
+    int64_t last = 0;
+    int n = 0;
+    while (cub_timeline_next(t, INT64_MAX, &ev)) {
+        if (ev.t_us < last) abort();
+        last = ev.t_us;
+        n++;
+    }
+    if (n != cub_timeline_count(t)) abort();
+    cub_timeline_free(t);
+    return 0;
+}
 
 static size_t find_mark(const char *s, size_t n)
 {
@@ -142,6 +169,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         return 0;
     if (data[0] == 'T')
         return fuzz_tags((const char *)data + 1, size - 1);
+    if (data[0] == 'L')
+        return fuzz_timeline((const char *)data + 1, size - 1);
+    if (data[0] == 'S')
+        return fuzz_song((const char *)data + 1, size - 1);
     const char *text = (const char *)data + 1;
     size_t len = size - 1;
     cub_io_desc desc = {.unit_mm = (data[0] & 2) ? 1.0 : 0.0};
@@ -195,6 +226,38 @@ static int fuzz_tags(const char *text, size_t len)
             __builtin_trap(); /* what reads must write */
         free(again);
         cub_tags_free(&tags);
+    } else if (d.msg[0] == '\0') {
+        __builtin_trap();
+    }
+    return 0;
+}
+
+/* Songs are read against a library of nine 2-s kid moves "a".."i" and a
+ * coach clip "w"; a song that reads must hold what the format promises. */
+static int fuzz_song(const char *text, size_t len)
+{
+    static cub_library_clip clips[10];
+    static cub_song song;
+    for (int i = 0; i < 10; i++) {
+        clips[i].name[0] = (char)(i < 9 ? 'a' + i : 'w');
+        memcpy(clips[i].kind, i < 9 ? "dance" : "coach", 6);
+        clips[i].clip.frame_count = 60;
+        clips[i].clip.frame_ns = 33333333;
+    }
+    cub_library lib = {.clip_count = 10, .clips = clips};
+    cub_diag d = {{0}, 0, {0}};
+    char msg[600];
+    cub_err err = cub_song_parse(text, len, "fuzz.song.xml", &lib, &song, &d);
+    cub_diag_str(&d, msg, sizeof(msg));
+    if (err == CUB_OK) {
+        if (song.distinct_moves < CUB_SONG_MIN_MOVES || song.distinct_moves > CUB_SONG_MAX_DISTINCT)
+            __builtin_trap();
+        for (int i = 0; i < song.move_count; i++)
+            if (song.moves[i].reps < CUB_SONG_MIN_REPS ||
+                song.moves[i].end_us <= song.moves[i].start_us ||
+                (i > 0 && song.moves[i].start_us < song.moves[i - 1].end_us) ||
+                song.moves[i].end_us > cub_song_length_us(&song))
+                __builtin_trap();
     } else if (d.msg[0] == '\0') {
         __builtin_trap();
     }

@@ -11,6 +11,8 @@
 
 #include <cmocka.h>
 
+#include "cub/coach.h"
+#include "cub/bridge.h"
 #include "cub/fx.h"
 #include "cub/loop.h"
 #include "cub/motion.h"
@@ -136,11 +138,118 @@ static void run_motion_after_init(void)
     assert_true(acc != 0);
 }
 
+/* ---- the coach --------------------------------------------------------- */
+
+static void run_coach_after_init(void)
+{
+    static const cub_coach_move moves[2] = {
+        {.clip = 8, .reps = 2, .tag_ms = 0, .span_ms = 4000},
+        {.clip = 9, .reps = 3, .tag_ms = 4000, .span_ms = 6000},
+    };
+    static const char *const names[10] = {"idle", "wake_up", "wave",  "doze", "head_shake",
+                                           "watch_me", "worried", "cheer", "clap", "sway"};
+    static cub_coach coach;
+    size_t logged = 0;
+    cub_log log = {.sink = sink, .user = &logged};
+    cub_coach_desc d = {.moves = moves, .move_count = 2, .clip_count = 10,
+                        .clip_names = names, .log = &log};
+    assert_int_equal(cub_coach_roles_by_name(names, 10, &d.roles), CUB_OK);
+    assert_int_equal(cub_coach_init(&coach, &d, 0), CUB_OK);
+
+    counting = 1;
+    const cub_event script[] = {
+        {100000, CUB_EV_CLAP, 0, 0},       {1500000, CUB_EV_CLIP_DONE, 1, 0},
+        {1600000, CUB_EV_MUSIC_TAG, 0, 0}, {2000000, CUB_EV_VERDICT, 0, 0},
+        {3000000, CUB_EV_CLIP_DONE, 4, 0}, {4000000, CUB_EV_CLIP_DONE, 8, 0},
+        {4500000, CUB_EV_PLAYER, 0, 0},    {5000000, CUB_EV_VERDICT, 0, 1},
+        {5100000, CUB_EV_PLAYER, 1, 0},    {6000000, CUB_EV_CLIP_DONE, 9, 0},
+        {9000000, CUB_EV_SONG_END, 0, 0},  {9900000, CUB_EV_CLIP_DONE, 7, 0},
+        {9950000, CUB_EV_BUTTON_DOWN, CUB_BUTTON_STOP, 0},
+    };
+    for (size_t i = 0; i < sizeof script / sizeof script[0]; i++) {
+        cub_coach_handle(&coach, &script[i], (int32_t)(script[i].t_us / 1000) - 1500);
+        cub_coach_tick(&coach, script[i].t_us + 33333, (int32_t)(script[i].t_us / 1000) - 1467);
+    }
+    cub_q16 speed = cub_coach_sync_speed(4000, 3900, 4000, CUB_Q16_ONE, 0);
+    counting = 0;
+    assert_true(speed < CUB_Q16_ONE);
+    assert_true(logged > 0);
+    assert_int_equal(coach.state, CUB_COACH_IDLE);
+}
+
+/* ---- bridge: plan, play and smooth switches ----------------------------- */
+
+static void run_bridge_after_init(void)
+{
+    static cub_skeleton skel;
+    static cub_pose pose;
+    static uint8_t clip_mem[2][1 << 15], table_mem[1 << 16], work[1 << 15];
+    static cub_bridge_table table;
+    static cub_bridge_player player;
+    cub_clip clips[2];
+
+    /* Two clips on a 16-joint stick figure: arms swing, at different rates. */
+    cub_motion_skeleton_reset(&skel);
+    int parent = -1;
+    for (int j = 0; j < 16; j++) {
+        char name[8] = {'b', (char)('a' + j), 0};
+        cub_vec3 off = {CUB_Q16_INT(j % 3), CUB_Q16_INT(60), 0};
+        assert_int_equal(cub_motion_skeleton_add(&skel, name, j < 2 ? parent : j / 2, off, &parent),
+                         CUB_OK);
+    }
+    cub_vec3 axis = {CUB_Q16_ONE, 0, 0};
+    for (int c = 0; c < 2; c++) {
+        assert_int_equal(cub_motion_clip_init(&clips[c], &skel, 30, 33333333, 0, clip_mem[c],
+                                              sizeof clip_mem[c]),
+                         CUB_OK);
+        for (int f = 0; f < 30; f++) {
+            cub_motion_pose_rest(&skel, &pose);
+            for (int j = 0; j < 16; j++)
+                pose.rot[j] = cub_fx_quat_from_axis_angle(axis, cub_fx_sin(CUB_Q16_INT(f) / (4 + c)) / 3);
+            cub_motion_clip_set_frame(&clips[c], f, &pose);
+        }
+    }
+    cub_bridge_table_desc d = {.skel = &skel, .clip_count = 2, .frame_total = 60,
+                               .bridge_total = 8, .link_total = 4,
+                               .body = {.hip_centre = 0, .spine = -1, .shoulder_centre = 1,
+                                        .head = -1, .shoulder = {2, 3}, .elbow = {4, 5},
+                                        .wrist = {6, 7}, .hip = {8, 9}, .knee = {10, 11},
+                                        .ankle = {12, 13}, .stand_cog_mm = CUB_Q16_INT(300)}};
+    assert_true(cub_bridge_table_mem_size(&d) <= sizeof table_mem);
+    assert_int_equal(cub_bridge_table_init(&table, &d, table_mem, sizeof table_mem), CUB_OK);
+    const int bridges[] = {2, 9, 17, 25};
+    for (int c = 0; c < 2; c++)
+        assert_int_equal(cub_bridge_table_add_clip(&table, &clips[c], bridges, 4, NULL), CUB_OK);
+    cub_bridge_link l = {.a = 9, .b = 2, .back = 0, .d = CUB_Q16_ONE / 10};
+    assert_int_equal(cub_bridge_table_set_links(&table, 0, 1, &l, 1), CUB_OK);
+    assert_int_equal(cub_bridge_table_finish(&table), CUB_OK);
+    cub_bridge_player_desc pd = {.table = &table};
+    assert_true(cub_bridge_player_mem_size(&pd) <= sizeof work);
+    assert_int_equal(cub_bridge_player_init(&player, &pd, work, sizeof work), CUB_OK);
+
+    counting = 1;
+    cub_bridge_player_start(&player, 0, 3, 0, 1);
+    int switches = 0;
+    for (int i = 0; i < 200; i++) {
+        cub_bridge_event ev[4];
+        int n = 0;
+        if (i % 25 == 0) cub_bridge_player_request(&player, (i / 25) & 1, CUB_Q16_ONE * 3 / 4, 1, NULL);
+        cub_bridge_player_advance(&player, 33333, ev, 4, &n);
+        for (int k = 0; k < n; k++)
+            switches += ev[k].type == CUB_BRIDGE_EV_SWITCH;
+        cub_bridge_player_pose(&player, &pose);
+    }
+    counting = 0;
+    assert_true(switches > 0);
+}
+
 static void test_firmware_allocates_nothing_after_init(void **s)
 {
     alloc_calls = 0;
     run_loop_after_init();
     run_motion_after_init();
+    run_bridge_after_init();
+    run_coach_after_init();
     print_message("firmware allocations after init: %d\n", alloc_calls);
     assert_int_equal(alloc_calls, 0);
 }

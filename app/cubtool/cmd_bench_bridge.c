@@ -1,0 +1,323 @@
+/* cubtool bench-bridge — how fast and how smoothly the coach switches clips
+ * (issue 4). Over every ordered clip pair of the shipped library and many
+ * switch moments (every --step'th frame of the current clip, which loops),
+ * it plays the switch through the firmware's player at 30 Hz and prints:
+ *   reaction latency: request -> the first switch, ours and the baseline
+ *                     that waits for the current clip's pass to end;
+ *   joint jump: the largest joint displacement (cm) between the frame
+ *                     before and the frame after the switch, with our
+ *                     smoothing, a crossfade and a naive cut, beside the
+ *                     clips' own 99th-percentile joint speed (cm/frame);
+ *   added speed: the most joint speed the smoothing adds to the clip's own
+ *                     motion while it runs (frames after the cut), so a
+ *                     jump cannot hide in the frames after the switch. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "commands.h"
+#include "cub/bridge.h"
+#include "cub/coachlib.h"
+
+#define TICK_US 33333
+#define MAX_TICKS 600
+
+typedef struct stats {
+    double *v;
+    size_t n, cap;
+} stats;
+
+static void push(stats *s, double x)
+{
+    if (s->n == s->cap) {
+        s->cap = s->cap ? 2 * s->cap : 1024;
+        double *nv = realloc(s->v, s->cap * sizeof *nv);
+        if (!nv) {
+            fprintf(stderr, "bench-bridge: out of memory\n");
+            exit(1);
+        }
+        s->v = nv;
+    }
+    s->v[s->n++] = x;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* Nearest-rank percentile (q in 0..1) of the values; sorts them. */
+static double pct(stats *s, double q)
+{
+    if (!s->n) return 0;
+    qsort(s->v, s->n, sizeof *s->v, cmp_double);
+    size_t i = (size_t)(q * (double)s->n + 0.999999);
+    return s->v[i ? (i > s->n ? s->n - 1 : i - 1) : 0];
+}
+
+/* Largest joint displacement between two world poses, cm. */
+static double max_move_cm(const cub_vec3 *a, const cub_vec3 *b, int n)
+{
+    double best = 0;
+    for (int j = 0; j < n; j++) {
+        double dx = (a[j].x - b[j].x) / 65536.0, dy = (a[j].y - b[j].y) / 65536.0,
+               dz = (a[j].z - b[j].z) / 65536.0;
+        double d = dx * dx + dy * dy + dz * dz;
+        if (d > best) best = d;
+    }
+    return sqrt(best) / 10.0;
+}
+
+/* Each clip's own joint speed, cm/frame: p99[c] and top[c] over its frames
+ * of the fastest joint's move (what a switch's jump is compared with: the
+ * jump is the fastest joint's move too); all_fast and all_joints collect
+ * the library's per-frame fastest-joint moves and every joint's move. */
+static void clip_speeds(const cub_coachlib *cl, double *p99, double *top, stats *all_fast,
+                        stats *all_joints)
+{
+    static cub_pose pose;
+    static cub_vec3 w0[CUB_MOTION_MAX_JOINTS], w1[CUB_MOTION_MAX_JOINTS];
+    const cub_skeleton *sk = &cl->lib.skel;
+    for (int c = 0; c < cl->lib.clip_count; c++) {
+        const cub_clip *clip = &cl->lib.clips[c].clip;
+        stats s = {0};
+        for (int f = 1; f < clip->frame_count; f++) {
+            cub_motion_clip_get_frame(clip, f - 1, &pose);
+            cub_motion_forward(sk, &pose, w0, NULL);
+            cub_motion_clip_get_frame(clip, f, &pose);
+            cub_motion_forward(sk, &pose, w1, NULL);
+            for (int j = 0; j < sk->joint_count; j++)
+                push(all_joints, max_move_cm(&w0[j], &w1[j], 1));
+            double fast = max_move_cm(w0, w1, sk->joint_count);
+            push(&s, fast);
+            push(all_fast, fast);
+        }
+        p99[c] = pct(&s, 0.99);
+        top[c] = s.n ? s.v[s.n - 1] : 0;
+        free(s.v);
+    }
+}
+
+typedef struct run {
+    int ok, tween, steps;
+    cub_bridge_step first;
+    double latency_ms;  /* request -> first switch */
+    double jump_cm;     /* across the first switch's frame */
+    double blend_cm;    /* most joint speed the smoothing adds, first switch to blend end */
+} run;
+
+/* Play one switch: clip a from frame m (looping), request b at once. */
+static run play(const cub_coachlib *cl, cub_bridge_player *p, int a, int m, int b, int blend)
+{
+    static cub_pose pose;
+    static cub_vec3 prev[CUB_MOTION_MAX_JOINTS], cur[CUB_MOTION_MAX_JOINTS];
+    static cub_vec3 raw_prev[CUB_MOTION_MAX_JOINTS], raw_cur[CUB_MOTION_MAX_JOINTS];
+    const cub_skeleton *sk = &cl->lib.skel;
+    run r = {0};
+    cub_bridge_plan plan;
+    cub_bridge_player_start(p, a, m, 0, 1);
+    if (cub_bridge_player_request(p, b, 0, 1, &plan)) return r;
+    r.ok = 1;
+    r.steps = plan.step_count;
+    r.tween = plan.step[0].via == CUB_BRIDGE_TWEEN;
+    r.first = plan.step[0];
+    cub_bridge_player_pose(p, &pose);
+    cub_motion_forward(sk, &pose, prev, NULL);
+    memcpy(raw_prev, prev, sizeof raw_prev);
+    int first_tick = -1, quiet_after = -1;
+    for (int t = 1; t < MAX_TICKS; t++) {
+        cub_bridge_event ev[8];
+        int n = 0;
+        cub_bridge_player_advance(p, TICK_US, ev, 8, &n);
+        cub_bridge_player_pose(p, &pose);
+        cub_motion_forward(sk, &pose, cur, NULL);
+        cub_bridge_player_raw_pose(p, &pose);
+        cub_motion_forward(sk, &pose, raw_cur, NULL);
+        double mv = max_move_cm(prev, cur, sk->joint_count);
+        /* What the smoothing adds to the clip's own motion: the largest
+         * joint's move beyond the same joint's move in the raw clip. */
+        double added = 0;
+        for (int j = 0; j < sk->joint_count; j++) {
+            double extra = max_move_cm(&prev[j], &cur[j], 1) -
+                           max_move_cm(&raw_prev[j], &raw_cur[j], 1);
+            if (extra > added) added = extra;
+        }
+        memcpy(prev, cur, sizeof(cub_vec3) * (size_t)sk->joint_count);
+        memcpy(raw_prev, raw_cur, sizeof(cub_vec3) * (size_t)sk->joint_count);
+        int cut = 0;
+        for (int i = 0; i < n; i++) {
+            cut |= ev[i].type == CUB_BRIDGE_EV_SWITCH || (ev[i].type == CUB_BRIDGE_EV_DONE);
+            if (ev[i].type == CUB_BRIDGE_EV_SWITCH && first_tick < 0) {
+                first_tick = t;
+                r.latency_ms = ((t - 1) * (double)TICK_US + (double)ev[i].t_us) / 1000.0;
+                r.jump_cm = mv;
+            }
+        }
+        if (first_tick >= 0 && !cut && added > r.blend_cm) r.blend_cm = added;
+        /* The window: the first switch until the plan is done and the
+         * blend over, at least `blend` frames after the last switch. */
+        if (first_tick >= 0 && cub_bridge_player_pending(p)) quiet_after = -1;
+        if (first_tick >= 0 && !cub_bridge_player_pending(p) && quiet_after < 0)
+            quiet_after = t + blend;
+        if (quiet_after >= 0 && t >= quiet_after && !p->blending) break;
+    }
+    return r;
+}
+
+typedef struct mode {
+    const char *name;
+    cub_bridge_smooth smooth;
+    stats jump, blend;
+    int over_p99;
+} mode;
+
+static int usage(FILE *f, int code)
+{
+    fprintf(f, "usage: cubtool bench-bridge [--assets DIR] [--step N] [--blend N] [--window N] "
+               "[--wait MM]\n"
+               "  Measure clip switching over every ordered clip pair of the library,\n"
+               "  switching at every N'th frame (default 5) of the playing clip.\n"
+               "  --blend N   shortest smoothing in frames (default %d)\n"
+               "  --window N  first look-ahead window in frames (default %d)\n"
+               "  --wait MM   what a frame of waiting costs against body distance, mm\n"
+               "              (default -1: the soonest frame within the threshold)\n",
+            CUB_BRIDGE_BLEND_FRAMES, CUB_BRIDGE_WINDOW_FRAMES);
+    return code;
+}
+
+int cub_cmd_bench_bridge(int argc, char **argv)
+{
+    const char *assets = CUB_ASSETS_DIR;
+    int step = 5, blend = 0, window = 0, wait_mm = -1;
+    for (int i = 1; i < argc; i++) {
+        if (!strcmp(argv[i], "--help")) return usage(stdout, 0);
+        if (i + 1 >= argc) return usage(stderr, 2);
+        if (!strcmp(argv[i], "--assets"))
+            assets = argv[++i];
+        else if (!strcmp(argv[i], "--step"))
+            step = atoi(argv[++i]);
+        else if (!strcmp(argv[i], "--blend"))
+            blend = atoi(argv[++i]);
+        else if (!strcmp(argv[i], "--window"))
+            window = atoi(argv[++i]);
+        else if (!strcmp(argv[i], "--wait"))
+            wait_mm = atoi(argv[++i]);
+        else
+            return usage(stderr, 2);
+    }
+    if (step < 1 || blend < 0 || window < 0 || wait_mm < -1 || wait_mm > 30000)
+        return usage(stderr, 2);
+    static cub_coachlib cl;
+    cub_diag d = {0};
+    char buf[600];
+    if (cub_coachlib_load_assets(assets, &cl, &d)) {
+        fprintf(stderr, "bench-bridge: %s\n", cub_diag_str(&d, buf, sizeof buf));
+        return 1;
+    }
+    int nc = cl.lib.clip_count;
+    double *p99 = calloc((size_t)nc, sizeof *p99), *top = calloc((size_t)nc, sizeof *top);
+    stats all = {0}, joints = {0}, ours = {0}, base = {0};
+    clip_speeds(&cl, p99, top, &all, &joints);
+    double lib_p99 = pct(&all, 0.99), lib_max = all.n ? all.v[all.n - 1] : 0;
+    double lib_joint_p99 = pct(&joints, 0.99), lib_median = pct(&all, 0.5);
+
+    mode modes[3] = {{.name = "ours(inertial)", .smooth = CUB_BRIDGE_SMOOTH_INERTIAL},
+                     {.name = "crossfade", .smooth = CUB_BRIDGE_SMOOTH_CROSSFADE},
+                     {.name = "naive-cut", .smooth = CUB_BRIDGE_SMOOTH_NONE}};
+    static cub_bridge_player players[3];
+    void *work[3];
+    for (int k = 0; k < 3; k++) {
+        cub_bridge_player_desc pd = {.table = &cl.table, .smooth = modes[k].smooth,
+                                     .blend_frames = blend, .window_frames = window,
+                                     .wait_cost_mm = wait_mm < 0 ? 0 : CUB_Q16_INT(wait_mm)};
+        size_t ws = cub_bridge_player_mem_size(&pd);
+        work[k] = malloc(ws);
+        if (!work[k] || cub_bridge_player_init(&players[k], &pd, work[k], ws)) {
+            fprintf(stderr, "bench-bridge: cannot set up the player\n");
+            return 1;
+        }
+    }
+    int blend_frames = players[0].desc.blend_frames;
+    long switches = 0, tweens = 0, unreachable = 0, steps = 0;
+    run worst = {0};
+    int worst_m = 0, worst_b = 0;
+    struct timespec t0, t1;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    for (int a = 0; a < nc; a++)
+        for (int b = 0; b < nc; b++) {
+            int n = cl.lib.clips[a].clip.frame_count;
+            for (int m = 0; m < n; m += step) {
+                double own = p99[a] > p99[b] ? p99[a] : p99[b];
+                for (int k = 0; k < 3; k++) {
+                    run r = play(&cl, &players[k], a, m, b, blend_frames);
+                    if (!r.ok) {
+                        unreachable += k == 0;
+                        continue;
+                    }
+                    if (k == 0 && r.blend_cm > worst.blend_cm) worst = r, worst_m = m, worst_b = b;
+                    push(&modes[k].jump, r.jump_cm);
+                    push(&modes[k].blend, r.blend_cm);
+                    modes[k].over_p99 += r.jump_cm > own;
+                    if (k) continue;
+                    switches++;
+                    tweens += r.tween;
+                    steps += r.steps;
+                    push(&ours, r.latency_ms);
+                    push(&base, (n - m) * TICK_US / 1000.0);
+                }
+            }
+        }
+    clock_gettime(CLOCK_MONOTONIC, &t1);
+    double secs = (double)(t1.tv_sec - t0.tv_sec) + (double)(t1.tv_nsec - t0.tv_nsec) * 1e-9;
+    printf("bench-bridge: clips=%d pairs=%d switches=%ld direct=%ld tween=%ld (mean steps %.2f) "
+           "unreachable=%ld window=%d min_blend=%d frames, step=%d\n",
+           nc, nc * nc, switches, switches - tweens, tweens,
+           switches ? (double)steps / (double)switches : 0.0, unreachable,
+           players[0].desc.window_frames, blend_frames, step);
+    double om = pct(&ours, 0.5), o95 = pct(&ours, 0.95), omax = ours.n ? ours.v[ours.n - 1] : 0;
+    printf("bench-bridge: reaction ours median=%.0f ms p95=%.0f ms max=%.0f ms | "
+           "wait-for-end median=%.0f ms p95=%.0f ms  (targets: median<=100 p95<=200)\n",
+           om, o95, omax, pct(&base, 0.5), pct(&base, 0.95));
+    printf("bench-bridge: clips' own fastest-joint speed (cm/frame) median=%.2f p99=%.2f "
+           "max=%.2f over the library's frames (every joint's samples: p99=%.2f); a jump is "
+           "'over own p99' when above the p99 of both clips it joins\n",
+           lib_median, lib_p99, lib_max, lib_joint_p99);
+    for (int k = 0; k < 3; k++) {
+        mode *md = &modes[k];
+        double jm = md->jump.n ? (qsort(md->jump.v, md->jump.n, sizeof(double), cmp_double),
+                                  md->jump.v[md->jump.n - 1])
+                               : 0;
+        double bm = md->blend.n ? (qsort(md->blend.v, md->blend.n, sizeof(double), cmp_double),
+                                   md->blend.v[md->blend.n - 1])
+                                : 0;
+        printf("bench-bridge: jump at switch %-15s max=%.2f p95=%.2f median=%.2f cm/frame, "
+               "over own p99: %d of %zu (%.1f%%); added during blend max=%.2f p95=%.2f\n",
+               md->name, jm, pct(&md->jump, 0.95), pct(&md->jump, 0.5), md->over_p99, md->jump.n,
+               md->jump.n ? 100.0 * md->over_p99 / (double)md->jump.n : 0.0, bm,
+               pct(&md->blend, 0.95));
+    }
+    const cub_bridge_step *w = &worst.first;
+    printf("bench-bridge: worst blend: %s@%d requested %s: first switch %s@%d -> %s@%d d=%.3f "
+           "%s, jump %.2f, during blend %.2f cm/frame\n",
+           cl.lib.clips[w->from_clip].name, worst_m, cl.lib.clips[worst_b].name,
+           cl.lib.clips[w->from_clip].name, w->from_frame, cl.lib.clips[w->to_clip].name,
+           w->to_frame, w->d / 65536.0, worst.tween ? "tween" : "direct", worst.jump_cm,
+           worst.blend_cm);
+    fprintf(stderr, "bench-bridge: %.1f s\n", secs);
+    for (int k = 0; k < 3; k++) {
+        free(modes[k].jump.v);
+        free(modes[k].blend.v);
+        free(work[k]);
+    }
+    free(ours.v);
+    free(base.v);
+    free(all.v);
+    free(joints.v);
+    free(p99);
+    free(top);
+    cub_coachlib_free(&cl);
+    return 0;
+}

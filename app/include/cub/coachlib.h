@@ -1,0 +1,43 @@
+/* coachlib — the coach's clips as the firmware's bridge table: loads the
+ * shipped library (assets/clips/bear.cubclips), its bridge tags
+ * (assets/clips/bear.tags.xml) and the bear (assets/bear/bear.xml), checks
+ * they belong together, and builds the cub_bridge_table the switch planner
+ * and the clip player read (firmware/include/cub/bridge.h): every clip, the
+ * fuzzy features of every frame (forward kinematics on the bear), the
+ * bridge frames and the tagged links. The distance weights and threshold
+ * are the ones the tags were made with.
+ *
+ * Every failure names the file (and line, for the XML) and the problem:
+ *   bear.tags.xml:12: clip "jump" has 91 frames in the library, 90 here
+ * The app layer: heap for the owned memory, freed by cub_coachlib_free. */
+#ifndef CUB_COACHLIB_H
+#define CUB_COACHLIB_H
+
+#include "cub/bridge.h"
+#include "cub/character.h"
+#include "cub/err.h"
+#include "cub/io.h"
+#include "cub/pack.h"
+#include "cub/tags.h"
+
+typedef struct cub_coachlib {
+    cub_character bear;
+    cub_library lib;
+    cub_tags tags;
+    cub_bridge_table table; /* finished; clips in library order */
+    void *table_mem;        /* owned */
+} cub_coachlib;
+
+/* Load the three files and build the table. out is zeroed first; on
+ * failure everything is freed again and diag says what is wrong. */
+cub_err cub_coachlib_load(const char *library_path, const char *tags_path,
+                          const char *bear_path, cub_coachlib *out, cub_diag *diag);
+/* The same from an assets folder: <dir>/clips/bear.cubclips,
+ * <dir>/clips/bear.tags.xml, <dir>/bear/bear.xml. */
+cub_err cub_coachlib_load_assets(const char *assets_dir, cub_coachlib *out, cub_diag *diag);
+/* Index of a clip by name, or -1. */
+int cub_coachlib_find(const cub_coachlib *cl, const char *name);
+/* Free what it owns; the struct is zeroed. NULL is fine. */
+void cub_coachlib_free(cub_coachlib *cl);
+
+#endif

@@ -1,0 +1,261 @@
+/* music — FluidSynth behind cub/music.h: one synthesiser, one SoundFont,
+ * FluidSynth's own MIDI player timed by the samples it renders (never by a
+ * wall clock), and the music clock counted in frames rendered. */
+#include <errno.h>
+#include <fluidsynth.h>
+#include <pthread.h>
+#include <stdatomic.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cub/music.h"
+
+#define PPM 1000000
+
+struct cub_music {
+    fluid_settings_t *settings;
+    fluid_synth_t *synth;
+    fluid_player_t *player; /* NULL until play */
+    uint8_t *midi;          /* the loaded file (FluidSynth copies it per player) */
+    size_t midi_len;
+    cub_midi_info info;
+    int rate;
+    int playing;                  /* play called, stop not (under lock) */
+    pthread_mutex_t lock;         /* render vs load / play / stop */
+    atomic_uint_least64_t frames; /* rendered since play */
+    atomic_int player_busy;       /* FluidSynth's player has events left */
+    atomic_int scale_ppm;         /* clock scale, parts per million */
+};
+
+/* FluidSynth's last error, kept for our diagnostics instead of stderr. */
+static _Thread_local char last_error[200];
+
+static void log_quiet(int level, const char *message, void *data)
+{
+    (void)data;
+    if (level <= FLUID_ERR) snprintf(last_error, sizeof(last_error), "%s", message);
+}
+
+static cub_err fail(cub_diag *diag, cub_err e, const char *file, const char *what,
+                    const char *detail)
+{
+    if (!diag) return e;
+    memset(diag, 0, sizeof(*diag));
+    snprintf(diag->file, sizeof(diag->file), "%s", file ? file : "music");
+    snprintf(diag->msg, sizeof(diag->msg), "%s%s%s", what, detail && detail[0] ? ": " : "",
+             detail ? detail : "");
+    return e;
+}
+
+static cub_err load_soundfont(cub_music *m, const char *path, cub_diag *diag)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) return fail(diag, CUB_ERR_IO, path, "cannot read the SoundFont", strerror(errno));
+    char head[12] = {0};
+    size_t got = fread(head, 1, sizeof(head), f);
+    fclose(f);
+    /* FluidSynth would hand other files to its DLS loader, which complains
+     * on stderr; a SoundFont 2 is a RIFF file of form "sfbk". */
+    if (got < sizeof(head) || memcmp(head, "RIFF", 4) != 0 || memcmp(head + 8, "sfbk", 4) != 0)
+        return fail(diag, CUB_ERR_FORMAT, path, "not a SoundFont 2 file (no RIFF sfbk header)",
+                    NULL);
+    last_error[0] = '\0';
+    if (fluid_synth_sfload(m->synth, path, 1) == FLUID_FAILED)
+        return fail(diag, CUB_ERR_FORMAT, path, "FluidSynth cannot load this SoundFont",
+                    last_error);
+    return CUB_OK;
+}
+
+cub_err cub_music_open(const cub_music_desc *desc, cub_music **out, cub_diag *diag)
+{
+    cub_music_desc d = desc ? *desc : (cub_music_desc){0};
+    if (!out) return fail(diag, CUB_ERR_ARG, NULL, "cub_music_open: no output", NULL);
+    *out = NULL;
+    if (!d.soundfont) d.soundfont = CUB_MUSIC_SOUNDFONT;
+    if (!d.rate) d.rate = 44100;
+    if (!d.gain_permille) d.gain_permille = 800;
+    if (d.rate < 8000 || d.rate > 96000 || d.gain_permille < 0 || d.gain_permille > 10000)
+        return fail(diag, CUB_ERR_ARG, NULL, "cub_music_open: rate or gain out of range", NULL);
+    for (int level = FLUID_PANIC; level <= FLUID_DBG; level++)
+        fluid_set_log_function(level, log_quiet, NULL);
+    cub_music *m = calloc(1, sizeof(*m));
+    if (!m) return fail(diag, CUB_ERR_NOMEM, NULL, "out of memory", NULL);
+    m->rate = d.rate;
+    atomic_init(&m->frames, 0);
+    atomic_init(&m->player_busy, 0);
+    atomic_init(&m->scale_ppm, PPM);
+    pthread_mutex_init(&m->lock, NULL);
+    m->settings = new_fluid_settings();
+    if (m->settings) {
+        fluid_settings_setnum(m->settings, "synth.sample-rate", d.rate);
+        fluid_settings_setnum(m->settings, "synth.gain", d.gain_permille / 1000.0);
+        /* The player must follow the samples rendered, not the system
+         * clock: the audio is the music clock. */
+        fluid_settings_setstr(m->settings, "player.timing-source", "sample");
+        m->synth = new_fluid_synth(m->settings);
+    }
+    if (!m->synth) {
+        cub_music_close(m);
+        return fail(diag, CUB_ERR_DEVICE, NULL, "FluidSynth cannot start a synthesiser",
+                    last_error);
+    }
+    cub_err e = load_soundfont(m, d.soundfont, diag);
+    if (e) {
+        cub_music_close(m);
+        return e;
+    }
+    *out = m;
+    return CUB_OK;
+}
+
+/* Under the lock. */
+static void drop_player(cub_music *m)
+{
+    if (m->player) {
+        fluid_player_stop(m->player);
+        delete_fluid_player(m->player);
+        m->player = NULL;
+    }
+    m->playing = 0;
+    atomic_store(&m->player_busy, 0);
+    if (m->synth) fluid_synth_all_notes_off(m->synth, -1);
+}
+
+void cub_music_close(cub_music *m)
+{
+    if (!m) return;
+    pthread_mutex_lock(&m->lock);
+    drop_player(m);
+    pthread_mutex_unlock(&m->lock);
+    if (m->synth) delete_fluid_synth(m->synth);
+    if (m->settings) delete_fluid_settings(m->settings);
+    pthread_mutex_destroy(&m->lock);
+    free(m->midi);
+    free(m);
+}
+
+cub_err cub_music_load(cub_music *m, const char *midi_path, cub_diag *diag)
+{
+    if (!m || !midi_path)
+        return fail(diag, CUB_ERR_ARG, NULL, "cub_music_load: bad arguments", NULL);
+    char *data = NULL;
+    size_t len = 0;
+    cub_diag scratch;
+    cub_err e = cub_io_read_file(midi_path, &data, &len, diag ? diag : &scratch);
+    if (e) return e;
+    cub_midi_info info;
+    e = cub_midi_scan((const uint8_t *)data, len, midi_path, &info, diag);
+    if (!e && info.notes == 0)
+        e = fail(diag, CUB_ERR_FORMAT, midi_path, "the song has no notes", NULL);
+    if (e) {
+        free(data);
+        return e;
+    }
+    pthread_mutex_lock(&m->lock);
+    drop_player(m);
+    free(m->midi);
+    m->midi = (uint8_t *)data;
+    m->midi_len = len;
+    m->info = info;
+    pthread_mutex_unlock(&m->lock);
+    return CUB_OK;
+}
+
+cub_err cub_music_play(cub_music *m)
+{
+    if (!m) return CUB_ERR_ARG;
+    cub_err e = CUB_OK;
+    pthread_mutex_lock(&m->lock);
+    drop_player(m);
+    if (!m->midi) {
+        e = CUB_ERR_EMPTY;
+    } else {
+        /* A new player per play: FluidSynth's player starts a file from its
+         * beginning only when it loads it. */
+        m->player = new_fluid_player(m->synth);
+        if (!m->player || fluid_player_add_mem(m->player, m->midi, m->midi_len) != FLUID_OK ||
+            fluid_player_play(m->player) != FLUID_OK) {
+            drop_player(m);
+            e = CUB_ERR_DEVICE;
+        } else {
+            m->playing = 1;
+            atomic_store(&m->frames, 0);
+            atomic_store(&m->player_busy, 1);
+        }
+    }
+    pthread_mutex_unlock(&m->lock);
+    return e;
+}
+
+void cub_music_stop(cub_music *m)
+{
+    if (!m) return;
+    pthread_mutex_lock(&m->lock);
+    drop_player(m);
+    pthread_mutex_unlock(&m->lock);
+}
+
+void cub_music_render(cub_music *m, int16_t *stereo, int frames)
+{
+    if (!stereo || frames <= 0) return;
+    if (!m) {
+        memset(stereo, 0, (size_t)frames * 2 * sizeof(int16_t));
+        return;
+    }
+    pthread_mutex_lock(&m->lock);
+    if (m->playing) {
+        fluid_synth_write_s16(m->synth, frames, stereo, 0, 2, stereo, 1, 2);
+        atomic_fetch_add(&m->frames, (uint64_t)frames);
+        /* The song ends at its last tick; FluidSynth's player reports DONE
+         * only once the last notes have rung out, seconds later. */
+        atomic_store(&m->player_busy,
+                     fluid_player_get_status(m->player) == FLUID_PLAYER_PLAYING &&
+                         fluid_player_get_current_tick(m->player) < m->info.end_tick);
+    } else {
+        memset(stereo, 0, (size_t)frames * 2 * sizeof(int16_t));
+    }
+    pthread_mutex_unlock(&m->lock);
+}
+
+void cub_music_fill(void *user, int16_t *stereo, int frames)
+{
+    cub_music_render((cub_music *)user, stereo, frames);
+}
+
+uint64_t cub_music_frames(const cub_music *m)
+{
+    return m ? atomic_load(&((cub_music *)m)->frames) : 0;
+}
+
+int64_t cub_music_clock_us(const cub_music *m)
+{
+    if (!m) return 0;
+    /* Floor first, then scale: exact frames/rate when the scale is 1, and
+     * no overflow for days of audio. */
+    int64_t us = (int64_t)(cub_music_frames(m) * PPM / (uint64_t)m->rate);
+    int ppm = atomic_load(&((cub_music *)m)->scale_ppm);
+    return ppm == PPM ? us : us * ppm / PPM;
+}
+
+int64_t cub_music_length_us(const cub_music *m)
+{
+    return m && m->midi ? m->info.length_us : 0;
+}
+
+int cub_music_playing(const cub_music *m)
+{
+    return m ? atomic_load(&((cub_music *)m)->player_busy) : 0;
+}
+
+int cub_music_rate(const cub_music *m)
+{
+    return m ? m->rate : 0;
+}
+
+cub_err cub_music_set_clock_scale(cub_music *m, double scale)
+{
+    if (!m || !(scale >= 0.5 && scale <= 2.0)) return CUB_ERR_ARG;
+    atomic_store(&m->scale_ppm, (int)(scale * PPM + 0.5));
+    return CUB_OK;
+}

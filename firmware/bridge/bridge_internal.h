@@ -1,0 +1,14 @@
+/* bridge internals shared by the table, the planner and the player. */
+#ifndef CUB_BRIDGE_INTERNAL_H
+#define CUB_BRIDGE_INTERNAL_H
+
+#include "cub/bridge.h"
+
+/* World joint positions of a pose with the root's x and z taken off: the
+ * body's shape and height, wherever on the floor it stands (the root's
+ * drift over the floor is smoothed apart, see the player). */
+cub_err cub_bridge_body_mm(const cub_skeleton *skel, const cub_pose *pose, cub_vec3 *out);
+/* The largest distance between matching joints of two such shapes, mm Q16. */
+cub_q16 cub_bridge_shape_dist_mm(const cub_vec3 *a, const cub_vec3 *b, int joints);
+
+#endif

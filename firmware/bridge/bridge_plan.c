@@ -1,0 +1,413 @@
+/* bridge: the planner (SEEDS.md § 000, "Switching").
+ *
+ * Direct: the current clip's upcoming frames against the wanted clip's
+ * bridge frames, front half first; the soonest frame within the threshold
+ * wins, then the smallest d. Tween: Dijkstra on frames of play over the
+ * table's bridge frames: the current clip enters any clip X at a bridge
+ * frame it reaches within the window (the same direct test), X plays on to
+ * a tagged link into the next clip, and so on until the wanted clip is
+ * entered, front half first. Within the threshold the soonest frame wins
+ * and, at it, the bridge frame whose body is closest (measured directly on
+ * the poses: the fuzzy d is coarse); wait_cost_mm may trade waiting for a
+ * closer body. Both are tried in a 6-frame window first,
+ * then in windows twice as long, up to one pass of the current clip:
+ * reacting soon matters more than a perfect path. */
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+
+#include "bridge_internal.h"
+
+/* An intermediate clip is shown for at least this many frames: a shorter
+ * visit is a flicker, not a move. */
+#define MIN_DWELL_FRAMES 2 /* a tween clip shows this long at least, inside the blend */
+#define NO_DIST INT32_MAX
+
+typedef struct node {
+    int64_t cost;      /* seeds: body distance + waiting cost */
+    int32_t dist;      /* frames from now until this bridge frame is entered */
+    int32_t prev;      /* previous node, -1: entered from the current clip */
+    int32_t from_frame;/* the frame of the previous clip the switch leaves */
+    int32_t hops;
+    int64_t at_q16;    /* that frame on the previous clip's unwrapped line */
+    cub_q16 d;
+    int16_t clip;
+    uint8_t done;
+    uint8_t reserved_;
+} node;
+
+/* The planner's scratch: the tween's nodes, a pose and its body shape. */
+typedef struct scratch {
+    cub_pose pose;
+    cub_vec3 body[CUB_MOTION_MAX_JOINTS];
+    int have_body; /* body holds the frame below */
+    int body_frame;
+    node nodes[];
+} scratch;
+
+size_t cub_bridge_plan_work_size(const cub_bridge_table *t)
+{
+    if (!t || !t->clips) return 0;
+    return sizeof(scratch) +
+           (size_t)(t->desc.bridge_total > 0 ? t->desc.bridge_total : 1) * sizeof(node) + 8;
+}
+
+static scratch *scratch_of(void *work)
+{
+    return (scratch *)(((uintptr_t)work + 7) & ~(uintptr_t)7);
+}
+
+/* The body shape of frame f of the current clip (computed once per frame). */
+static const cub_vec3 *current_body(const cub_bridge_table *t, const cub_bridge_query *q, int f,
+                                    scratch *w)
+{
+    if (w->have_body && w->body_frame == f) return w->body;
+    const cub_clip *clip = &t->clips[q->from_clip].clip;
+    if (cub_motion_clip_get_frame(clip, f, &w->pose) ||
+        cub_bridge_body_mm(clip->skel, &w->pose, w->body))
+        return NULL;
+    w->have_body = 1;
+    w->body_frame = f;
+    return w->body;
+}
+
+/* How bad switching from current frame f to bridge node i after k frames
+ * of waiting is: body distance + waiting. */
+static int64_t switch_cost(const cub_bridge_table *t, const cub_bridge_query *q, int f, int k,
+                           int i, scratch *w)
+{
+    const cub_vec3 *now = current_body(t, q, f, w);
+    if (!now) return INT64_MAX;
+    int joints = t->desc.skel->joint_count;
+    int64_t wait = q->wait_cost_mm ? q->wait_cost_mm : CUB_BRIDGE_WAIT_COST_MM;
+    return (int64_t)cub_bridge_shape_dist_mm(now, t->bridge_body_mm + (size_t)i * joints, joints) +
+           wait * k;
+}
+
+static const cub_fuzzy_frame *features(const cub_bridge_table *t, int clip, int frame)
+{
+    return &t->fuzzy[t->clips[clip].first_frame + frame];
+}
+
+static int frames_of(const cub_bridge_table *t, int clip)
+{
+    return t->clips[clip].clip.frame_count;
+}
+
+/* The current clip's k-th upcoming frame: unwrapped, and as a frame index
+ * (-1 past the end of a clip that does not loop). */
+static int upcoming(const cub_bridge_query *q, int n, int64_t g0, int k, int64_t *unwrapped)
+{
+    int64_t g = g0 + k;
+    *unwrapped = g;
+    if (q->from_loops) return (int)(g % n);
+    return g < n ? (int)g : -1;
+}
+
+/* A looping clip's next pass starts with a blend out of its last frame,
+ * so its first frame is not on screen at that moment: no switch there
+ * (the frame before it is the same moment). */
+static int at_pass_start(const cub_bridge_query *q, int n, int64_t g0, int k)
+{
+    return q->from_loops && k > 0 && (g0 + k) % n == 0;
+}
+
+/* A switch inside one clip must jump at least a quarter of it (as the
+ * tagger's self links do): shorter is a stutter, not a repeat. */
+static int jump_ok(int same, int from, int to, int n)
+{
+    int j = from > to ? from - to : to - from;
+    return !same || 4 * j >= n;
+}
+
+typedef struct hit {
+    int k, frame;
+    int64_t at, cost;
+    cub_q16 d;
+} hit;
+
+/* The best upcoming frame within the window, within the threshold of one
+ * of the wanted clip's bridge frames in half `back` (see switch_cost). */
+static int direct_search(const cub_bridge_table *t, const cub_bridge_query *q, int64_t g0,
+                         int window, int back, scratch *w, hit *out)
+{
+    int nf = frames_of(t, q->from_clip), nt = frames_of(t, q->to_clip);
+    const cub_bridge_clip *to = &t->clips[q->to_clip];
+    const int16_t *bridges = t->bridges + to->first_bridge;
+    int found = 0;
+    for (int k = 0; k < window; k++) {
+        int64_t at;
+        int gf = upcoming(q, nf, g0, k, &at);
+        if (gf < 0) break;
+        if (at_pass_start(q, nf, g0, k)) continue;
+        const cub_fuzzy_frame *now = features(t, q->from_clip, gf);
+        for (int i = 0; i < to->bridge_count; i++) {
+            int b = bridges[i];
+            if ((2 * b >= nt) != back) continue;
+            if (!jump_ok(q->from_clip == q->to_clip, gf, b, nf)) continue;
+            cub_q16 d = cub_fuzzy_distance(now, features(t, q->to_clip, b), &t->desc.fuzzy);
+            if (d >= t->desc.fuzzy.threshold) continue;
+            int64_t cost = switch_cost(t, q, gf, k, to->first_bridge + i, w);
+            if (!found || cost < out->cost) *out = (hit){k, b, at, cost, d};
+            found = 1;
+        }
+    }
+    return found;
+}
+
+/* The soonest upcoming frame within the window that is within the
+ * threshold of one of the wanted clip's first q->start_frames frames, the
+ * earliest of those first (see cub_bridge_query.start_frames). */
+static int start_search(const cub_bridge_table *t, const cub_bridge_query *q, int64_t g0,
+                        int window, hit *out)
+{
+    int nf = frames_of(t, q->from_clip), nt = frames_of(t, q->to_clip);
+    int starts = q->start_frames < nt ? q->start_frames : nt;
+    for (int k = 0; k < window; k++) {
+        int64_t at;
+        int gf = upcoming(q, nf, g0, k, &at);
+        if (gf < 0) break;
+        if (at_pass_start(q, nf, g0, k)) continue;
+        const cub_fuzzy_frame *now = features(t, q->from_clip, gf);
+        for (int b = 0; b < starts; b++) {
+            if (!jump_ok(q->from_clip == q->to_clip, gf, b, nf)) continue;
+            cub_q16 d = cub_fuzzy_distance(now, features(t, q->to_clip, b), &t->desc.fuzzy);
+            if (d >= t->desc.fuzzy.threshold) continue;
+            *out = (hit){k, b, at, 0, d};
+            return 1;
+        }
+    }
+    return 0;
+}
+
+/* ---- the tween ------------------------------------------------------- */
+
+/* Enter every other clip's bridge frames reachable directly in the window,
+ * each at its best frame (see switch_cost). */
+static void seed_nodes(const cub_bridge_table *t, const cub_bridge_query *q, int64_t g0,
+                       int window, scratch *w)
+{
+    node *nodes = w->nodes;
+    for (int x = 0; x < t->desc.clip_count; x++) {
+        const cub_bridge_clip *cx = &t->clips[x];
+        for (int i = 0; i < cx->bridge_count; i++)
+            nodes[cx->first_bridge + i] = (node){INT64_MAX, NO_DIST, -1, 0, 0, 0, 0,
+                                                 (int16_t)x, 0, 0};
+    }
+    int nf = frames_of(t, q->from_clip);
+    for (int k = 0; k < window; k++) {
+        int64_t at;
+        int gf = upcoming(q, nf, g0, k, &at);
+        if (gf < 0) break;
+        if (at_pass_start(q, nf, g0, k)) continue;
+        const cub_fuzzy_frame *now = features(t, q->from_clip, gf);
+        for (int x = 0; x < t->desc.clip_count; x++) {
+            if (x == q->from_clip || x == q->to_clip) continue;
+            const cub_bridge_clip *cx = &t->clips[x];
+            for (int i = 0; i < cx->bridge_count; i++) {
+                int v = cx->first_bridge + i;
+                cub_q16 d = cub_fuzzy_distance(now, features(t, x, t->bridges[v]),
+                                               &t->desc.fuzzy);
+                if (d >= t->desc.fuzzy.threshold) continue;
+                int64_t cost = switch_cost(t, q, gf, k, v, w);
+                if (cost < nodes[v].cost)
+                    nodes[v] = (node){cost, k, -1, gf, 1, at << 16, d, (int16_t)x, 0, 0};
+            }
+        }
+    }
+}
+
+/* Node index of bridge frame f of clip c (f is a bridge frame: tag links
+ * were validated against the table). */
+static int node_of(const cub_bridge_table *t, int c, int f)
+{
+    const cub_bridge_clip *cc = &t->clips[c];
+    const int16_t *b = t->bridges + cc->first_bridge;
+    int lo = 0, hi = cc->bridge_count - 1;
+    while (lo < hi) {
+        int mid = (lo + hi) / 2;
+        if (b[mid] < f)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return cc->first_bridge + lo;
+}
+
+static void relax_from(const cub_bridge_table *t, node *nodes, int u)
+{
+    int x = nodes[u].clip, entry = t->bridges[u];
+    for (int y = 0; y < t->desc.clip_count; y++) {
+        if (y == x) continue;
+        const cub_bridge_pair *pair = &t->pairs[x * t->desc.clip_count + y];
+        for (int i = 0; i < pair->count; i++) {
+            const cub_bridge_link *l = &t->links[pair->first + i];
+            if (l->a < entry + MIN_DWELL_FRAMES) continue;
+            int32_t dist = nodes[u].dist + (l->a - entry);
+            int v = node_of(t, y, l->b);
+            if (nodes[v].done || dist >= nodes[v].dist) continue;
+            nodes[v] = (node){0, dist, u, l->a, nodes[u].hops + 1, (int64_t)l->a << 16,
+                              l->d, (int16_t)y, 0, 0};
+        }
+    }
+}
+
+/* Dijkstra: the unfinished node with the least dist (lowest index on ties). */
+static int pop_min(const node *nodes, int count)
+{
+    int best = -1;
+    for (int i = 0; i < count; i++)
+        if (!nodes[i].done && nodes[i].dist != NO_DIST &&
+            (best < 0 || nodes[i].dist < nodes[best].dist))
+            best = i;
+    return best;
+}
+
+/* Write the chain ending at node `end` into the plan, first step first. */
+static void write_chain(const cub_bridge_table *t, const cub_bridge_query *q, const node *nodes,
+                        int end, cub_bridge_plan *out)
+{
+    int n = nodes[end].hops;
+    out->step_count = n;
+    out->total_frames = nodes[end].dist;
+    for (int v = end, i = n - 1; v >= 0 && i >= 0; v = nodes[v].prev, i--) {
+        const node *nv = &nodes[v];
+        int from = nv->prev >= 0 ? nodes[nv->prev].clip : q->from_clip;
+        out->step[i] = (cub_bridge_step){from, nv->from_frame, nv->clip, t->bridges[v],
+                                         nv->d, CUB_BRIDGE_TWEEN, nv->at_q16};
+        if (nv->prev < 0) out->wait_frames = nv->dist;
+    }
+}
+
+/* A move's start through one other clip: into a clip seeded by
+ * seed_nodes, play it at least MIN_DWELL_FRAMES, then out of one of its
+ * frames into one of the wanted clip's first q->start_frames frames (by d).
+ * The quickest such route that arrives within max_frames, or 0. */
+static int start_tween(const cub_bridge_table *t, const cub_bridge_query *q, int max_frames,
+                       scratch *w, cub_bridge_plan *out)
+{
+    const node *nodes = w->nodes;
+    int nt = frames_of(t, q->to_clip), starts = q->start_frames < nt ? q->start_frames : nt;
+    int best_total = max_frames + 1, bu = -1, ba = 0, bs = 0;
+    cub_q16 bd = 0;
+    for (int u = 0; u < t->desc.bridge_total; u++) {
+        if (nodes[u].dist == NO_DIST || nodes[u].prev >= 0) continue;
+        int x = nodes[u].clip, entry = t->bridges[u], nx = frames_of(t, x);
+        for (int a = entry + MIN_DWELL_FRAMES; a < nx; a++) {
+            int total = nodes[u].dist + (a - entry);
+            if (total >= best_total) break;
+            for (int s = 0; s < starts; s++) {
+                cub_q16 d = cub_fuzzy_distance(features(t, x, a), features(t, q->to_clip, s),
+                                               &t->desc.fuzzy);
+                if (d >= t->desc.fuzzy.threshold) continue;
+                best_total = total, bu = u, ba = a, bs = s, bd = d;
+                break;
+            }
+        }
+    }
+    if (bu < 0) return 0;
+    const node *n = &nodes[bu];
+    out->step_count = 2;
+    out->step[0] = (cub_bridge_step){q->from_clip, n->from_frame, n->clip, t->bridges[bu], n->d,
+                                     CUB_BRIDGE_TWEEN, n->at_q16};
+    out->step[1] = (cub_bridge_step){n->clip, ba, q->to_clip, bs, bd, CUB_BRIDGE_TWEEN,
+                                     (int64_t)ba << 16};
+    out->wait_frames = n->dist;
+    out->total_frames = best_total;
+    return 1;
+}
+
+static int tween_search(const cub_bridge_table *t, const cub_bridge_query *q, int64_t g0,
+                        int window, scratch *w, cub_bridge_plan *out)
+{
+    int count = t->desc.bridge_total;
+    node *nodes = w->nodes;
+    seed_nodes(t, q, g0, window, w);
+    for (;;) {
+        int u = pop_min(nodes, count);
+        if (u < 0) break;
+        nodes[u].done = 1;
+        if (nodes[u].clip != q->to_clip && nodes[u].hops < CUB_BRIDGE_MAX_STEPS)
+            relax_from(t, nodes, u);
+    }
+    /* The wanted clip's front half first, then its back half. */
+    int nt = frames_of(t, q->to_clip);
+    const cub_bridge_clip *to = &t->clips[q->to_clip];
+    for (int back = 0; back <= 1; back++) {
+        int best = -1;
+        for (int i = 0; i < to->bridge_count; i++) {
+            int v = to->first_bridge + i;
+            if ((2 * t->bridges[v] >= nt) != back || nodes[v].dist == NO_DIST) continue;
+            if (best < 0 || nodes[v].dist < nodes[best].dist) best = v;
+        }
+        if (best >= 0) {
+            write_chain(t, q, nodes, best, out);
+            return 1;
+        }
+    }
+    return 0;
+}
+
+/* ---- the plan -------------------------------------------------------- */
+
+static int query_ok(const cub_bridge_table *t, const cub_bridge_query *q)
+{
+    int n = t->desc.clip_count;
+    return q->from_clip >= 0 && q->from_clip < n && q->to_clip >= 0 && q->to_clip < n &&
+           q->pos_q16 >= 0 && q->pos_q16 < ((int64_t)1 << 46) && q->window_frames >= 0 &&
+           q->wait_cost_mm >= 0 && q->start_frames >= 0;
+}
+
+cub_err cub_bridge_plan_switch(const cub_bridge_table *t, const cub_bridge_query *q,
+                               cub_bridge_plan *out, void *work, size_t work_size)
+{
+    if (out) memset(out, 0, sizeof *out);
+    if (!t || !q || !out || !t->finished || !query_ok(t, q)) return CUB_ERR_ARG;
+    if (!work || work_size < cub_bridge_plan_work_size(t)) return CUB_ERR_NOMEM;
+    int nf = frames_of(t, q->from_clip);
+    /* The first frame still to come; a clip that does not loop holds its
+     * last frame once there. */
+    int64_t g0 = (q->pos_q16 + 0xFFFF) >> 16;
+    if (!q->from_loops && g0 > nf - 1) g0 = nf - 1;
+    int limit = q->from_loops ? nf : (int)(nf - g0);
+    int window = q->window_frames ? q->window_frames : CUB_BRIDGE_WINDOW_FRAMES;
+    scratch *w = scratch_of(work);
+    w->have_body = 0;
+    hit h;
+    int first = window < limit ? window : limit;
+    if (q->start_frames > 0 && start_search(t, q, g0, first, &h)) {
+        out->step_count = 1;
+        out->step[0] = (cub_bridge_step){q->from_clip, (int)(h.at % nf), q->to_clip, h.frame, h.d,
+                                         CUB_BRIDGE_DIRECT, h.at << 16};
+        out->wait_frames = out->total_frames = h.k;
+        out->window_frames = window;
+        return CUB_OK;
+    }
+    if (q->start_frames > 0 && t->desc.bridge_total > 0) {
+        seed_nodes(t, q, g0, first, w);
+        if (start_tween(t, q, 2 * first, w, out)) {
+            out->window_frames = window;
+            return CUB_OK;
+        }
+    }
+    for (;;) {
+        if (window > limit) window = limit;
+        for (int back = 0; back <= 1; back++) {
+            if (!direct_search(t, q, g0, window, back, w, &h)) continue;
+            out->step_count = 1;
+            out->step[0] = (cub_bridge_step){q->from_clip, (int)(h.at % nf), q->to_clip, h.frame,
+                                             h.d, CUB_BRIDGE_DIRECT, h.at << 16};
+            out->wait_frames = out->total_frames = h.k;
+            out->window_frames = window;
+            return CUB_OK;
+        }
+        if (t->desc.bridge_total > 0 && tween_search(t, q, g0, window, w, out)) {
+            out->window_frames = window;
+            return CUB_OK;
+        }
+        if (window >= limit) break;
+        window *= 2;
+    }
+    memset(out, 0, sizeof *out);
+    return CUB_ERR_RANGE;
+}

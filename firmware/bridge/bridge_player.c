@@ -1,0 +1,365 @@
+/* bridge: the player — plays the coach's clip, carries out planned switches
+ * at their exact frame and reports them, and smooths the cut. Time moves in
+ * integer nanosecond arithmetic with the remainder kept, so between
+ * switches any split of the same total time lands on the same position
+ * (across a switch, within 1/65536 frame). */
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+
+#include "bridge_internal.h"
+
+static int speed_ok(cub_q16 s)
+{
+    return s >= CUB_BRIDGE_SPEED_MIN_Q16 && s <= CUB_BRIDGE_SPEED_MAX_Q16;
+}
+
+static cub_q16 speed_or_default(cub_q16 s)
+{
+    return s == 0 ? CUB_Q16_ONE : s;
+}
+
+static const cub_clip *clip_of(const cub_bridge_player *p, int c)
+{
+    return &p->desc.table->clips[c].clip;
+}
+
+size_t cub_bridge_player_mem_size(const cub_bridge_player_desc *desc)
+{
+    return desc ? cub_bridge_plan_work_size(desc->table) : 0;
+}
+
+cub_err cub_bridge_player_init(cub_bridge_player *p, const cub_bridge_player_desc *desc,
+                               void *mem, size_t mem_size)
+{
+    if (!p || !desc || !desc->table || !desc->table->finished || !mem) return CUB_ERR_ARG;
+    if (desc->blend_frames < 0 || desc->blend_frames > CUB_BRIDGE_MAX_BLEND_FRAMES ||
+        desc->window_frames < 0 || desc->wait_cost_mm < 0 || desc->blend_speed_mm < 0 ||
+        desc->smooth < CUB_BRIDGE_SMOOTH_INERTIAL ||
+        desc->smooth > CUB_BRIDGE_SMOOTH_CROSSFADE)
+        return CUB_ERR_ARG;
+    if (mem_size < cub_bridge_player_mem_size(desc)) return CUB_ERR_NOMEM;
+    memset(p, 0, sizeof *p);
+    p->desc = *desc;
+    if (!p->desc.blend_frames) p->desc.blend_frames = CUB_BRIDGE_BLEND_FRAMES;
+    if (!p->desc.window_frames) p->desc.window_frames = CUB_BRIDGE_WINDOW_FRAMES;
+    if (!p->desc.blend_speed_mm) p->desc.blend_speed_mm = CUB_BRIDGE_BLEND_SPEED_MM;
+    p->work = mem;
+    p->work_size = mem_size;
+    p->speed_q16 = CUB_Q16_ONE;
+    p->clip = -1;
+    return CUB_OK;
+}
+
+cub_err cub_bridge_player_start(cub_bridge_player *p, int clip, int frame, cub_q16 speed_q16,
+                                int loop)
+{
+    speed_q16 = speed_or_default(speed_q16);
+    if (!p || !p->desc.table || clip < 0 || clip >= p->desc.table->desc.clip_count ||
+        !speed_ok(speed_q16))
+        return CUB_ERR_ARG;
+    if (frame < 0 || frame >= clip_of(p, clip)->frame_count) return CUB_ERR_ARG;
+    p->clip = clip;
+    p->loop = loop != 0;
+    p->pos_q16 = (int64_t)frame << 16;
+    p->speed_q16 = speed_q16;
+    p->rem = 0;
+    p->done_sent = 0;
+    p->plan.step_count = 0;
+    p->next_step = 0;
+    p->blending = 0;
+    return CUB_OK;
+}
+
+int cub_bridge_player_pending(const cub_bridge_player *p)
+{
+    return p && p->next_step < p->plan.step_count;
+}
+
+cub_err cub_bridge_player_request(cub_bridge_player *p, int clip, cub_q16 speed_q16, int loop,
+                                  cub_bridge_plan *out)
+{
+    speed_q16 = speed_or_default(speed_q16);
+    if (out) memset(out, 0, sizeof *out);
+    if (!p || p->clip < 0 || !speed_ok(speed_q16)) return CUB_ERR_ARG;
+    if (clip < 0 || clip >= p->desc.table->desc.clip_count) return CUB_ERR_ARG;
+    cub_bridge_query q = {p->clip, p->pos_q16, p->loop, clip, p->desc.window_frames,
+                          p->desc.wait_cost_mm, p->desc.start_frames};
+    cub_bridge_plan plan;
+    cub_err e = cub_bridge_plan_switch(p->desc.table, &q, &plan, p->work, p->work_size);
+    if (e) return e;
+    p->plan = plan;
+    p->next_step = 0;
+    p->want_speed_q16 = speed_q16;
+    p->want_loop = loop != 0;
+    if (out) *out = plan;
+    return CUB_OK;
+}
+
+cub_err cub_bridge_player_set_speed(cub_bridge_player *p, cub_q16 speed_q16)
+{
+    if (!p || !speed_ok(speed_q16)) return CUB_ERR_ARG;
+    p->speed_q16 = speed_q16;
+    return CUB_OK;
+}
+
+/* ---- sampling ------------------------------------------------------- */
+
+/* The pose of clip c at unwrapped position pos (Q16 frames): a looping clip
+ * joins its last frame to its first, one that does not holds its ends. */
+static cub_err sample(const cub_clip *clip, int64_t pos_q16, int loop, cub_pose *tmp,
+                      cub_pose *out)
+{
+    int n = clip->frame_count;
+    int64_t f = pos_q16 >> 16;
+    cub_q16 frac = (cub_q16)(pos_q16 & 0xFFFF);
+    int f0, f1;
+    if (loop) {
+        /* The pass's last frame holds; the next pass starts with a blend
+         * (see wrap in advance): a clip cut from a capture does not join
+         * its first frame. */
+        f0 = (int)(f % n);
+        f1 = f0 + 1 < n ? f0 + 1 : f0;
+    } else {
+        f0 = f >= n - 1 ? n - 1 : (int)f;
+        f1 = f0 + 1 < n ? f0 + 1 : f0;
+        if (f >= n - 1) frac = 0;
+    }
+    cub_err e = cub_motion_clip_get_frame(clip, f0, out);
+    if (e || frac == 0 || f1 == f0) return e;
+    e = cub_motion_clip_get_frame(clip, f1, tmp);
+    return e ? e : cub_motion_pose_blend(out, tmp, frac, out);
+}
+
+cub_err cub_bridge_player_raw_pose(const cub_bridge_player *p, cub_pose *out)
+{
+    if (!p || !out || p->clip < 0) return CUB_ERR_ARG;
+    cub_bridge_player *mp = (cub_bridge_player *)p; /* scratch only */
+    return sample(clip_of(p, p->clip), p->pos_q16, p->loop, &mp->scratch[1], out);
+}
+
+/* 1 - smoothstep(s): 1 at s = 0, 0 at s >= 1, flat at both ends. */
+static cub_q16 fade_weight(int64_t progress_q16, int frames)
+{
+    if (progress_q16 <= 0) return CUB_Q16_ONE;
+    if (progress_q16 >= (int64_t)frames << 16) return 0;
+    cub_q16 s = (cub_q16)(progress_q16 / frames);
+    cub_q16 s2 = cub_fx_mul(s, s);
+    return CUB_Q16_ONE - (3 * s2 - 2 * cub_fx_mul(s2, s));
+}
+
+/* Apply the inertialization offset onto a raw pose: the joints' with
+ * weight w, the root's drift over the floor with its own weight w_xz. */
+static void apply_offset(const cub_bridge_player *p, cub_q16 w, cub_q16 w_xz, cub_pose *pose)
+{
+    cub_quat id = cub_fx_quat_identity();
+    for (int j = 0; j < pose->joint_count; j++) {
+        cub_quat o = cub_fx_quat_nlerp(id, p->off_rot[j], w);
+        pose->rot[j] = cub_fx_quat_normalize(cub_fx_quat_mul(o, pose->rot[j]));
+    }
+    pose->root_mm.x += cub_fx_mul(p->off_root_mm.x, w_xz);
+    pose->root_mm.y += cub_fx_mul(p->off_root_mm.y, w);
+    pose->root_mm.z += cub_fx_mul(p->off_root_mm.z, w_xz);
+}
+
+cub_err cub_bridge_player_pose(cub_bridge_player *p, cub_pose *out)
+{
+    cub_err e = cub_bridge_player_raw_pose(p, out);
+    if (e || !p->blending) return e;
+    int64_t progress = p->pos_q16 - p->blend_from_q16;
+    cub_q16 w = fade_weight(progress, p->blend_len);
+    cub_q16 w_xz = fade_weight(progress, p->root_len);
+    if (w == 0 && w_xz == 0) {
+        p->blending = 0;
+        return CUB_OK;
+    }
+    if (p->desc.smooth == CUB_BRIDGE_SMOOTH_INERTIAL) {
+        apply_offset(p, w, w_xz, out);
+        return CUB_OK;
+    }
+    e = sample(clip_of(p, p->old_clip), p->old_pos_q16, p->old_loop, &p->scratch[1],
+               &p->scratch[0]);
+    return e ? e : cub_motion_pose_blend(out, &p->scratch[0], w, out);
+}
+
+/* Frames a blend needs so that fading an offset of dist_mm adds at most
+ * blend_speed_mm per frame (smoothstep's steepest slope is 1.5 / frames). */
+static int blend_length(const cub_bridge_player *p, cub_q16 dist_mm, int at_least)
+{
+    int64_t n = ((int64_t)dist_mm * 3 / 2 + p->desc.blend_speed_mm - 1) / p->desc.blend_speed_mm;
+    if (n < at_least) n = at_least;
+    return n > CUB_BRIDGE_MAX_BLEND_FRAMES ? CUB_BRIDGE_MAX_BLEND_FRAMES : (int)n;
+}
+
+/* At a cut (a switch, or a looping clip's new pass): remember what was on
+ * screen at position src_pos of the clip playing, and how far frame
+ * to_frame of to_clip is from it, so the new clip can start from it. */
+static cub_err begin_blend(cub_bridge_player *p, int64_t src_pos_q16, int to_clip, int to_frame)
+{
+    if (p->desc.smooth == CUB_BRIDGE_SMOOTH_NONE) return CUB_OK;
+    int64_t saved_pos = p->pos_q16;
+    p->pos_q16 = src_pos_q16;
+    cub_pose *src = &p->scratch[2], *dst = &p->scratch[1];
+    cub_err e = cub_bridge_player_pose(p, src);
+    p->pos_q16 = saved_pos;
+    if (!e) e = cub_motion_clip_get_frame(clip_of(p, to_clip), to_frame, dst);
+    if (e) return e;
+    /* The body's distance sets the blend's length; the root's drift over
+     * the floor gets its own, longer one. */
+    const cub_skeleton *sk = p->desc.table->desc.skel;
+    if ((e = cub_bridge_body_mm(sk, src, p->body[0])) || (e = cub_bridge_body_mm(sk, dst, p->body[1])))
+        return e;
+    p->blend_len = blend_length(p, cub_bridge_shape_dist_mm(p->body[0], p->body[1], sk->joint_count),
+                                p->desc.blend_frames);
+    cub_vec3 d = cub_fx_vec3_sub(src->root_mm, dst->root_mm);
+    d.y = 0;
+    p->root_len = blend_length(p, cub_fx_vec3_length(d), p->blend_len);
+    if (p->desc.smooth == CUB_BRIDGE_SMOOTH_CROSSFADE) {
+        p->old_clip = p->clip;
+        p->old_loop = p->loop;
+        p->old_pos_q16 = src_pos_q16;
+        p->old_speed_q16 = p->speed_q16;
+        return CUB_OK;
+    }
+    for (int j = 0; j < dst->joint_count; j++)
+        p->off_rot[j] = cub_fx_quat_mul(src->rot[j], cub_fx_quat_conj(dst->rot[j]));
+    p->off_root_mm = cub_fx_vec3_sub(src->root_mm, dst->root_mm);
+    return CUB_OK;
+}
+
+/* ---- time ----------------------------------------------------------- */
+
+/* Microseconds to cover dq Q16 frames of a clip at a speed. */
+static int64_t time_us(int64_t dq, uint32_t frame_ns, cub_q16 speed)
+{
+    return dq * (int64_t)frame_ns / ((int64_t)speed * 1000);
+}
+
+/* Q16 frames covered in dt_us, keeping the remainder in *rem. */
+static int64_t frames_q16(int64_t dt_us, uint32_t frame_ns, cub_q16 speed, uint64_t *rem)
+{
+    uint64_t num = (uint64_t)dt_us * 1000u * (uint64_t)speed + *rem;
+    *rem = num % frame_ns;
+    return (int64_t)(num / frame_ns);
+}
+
+static void emit(cub_bridge_event *ev, int max_ev, int *n, const cub_bridge_event *e)
+{
+    if (*n < max_ev) ev[*n] = *e;
+    (*n)++;
+}
+
+/* Carry out the next planned step: overshoot (Q16 frames past the switch
+ * frame, old clip) carries on into the new clip at the new speed. */
+static cub_err do_switch(cub_bridge_player *p, int64_t overshoot_q16)
+{
+    const cub_bridge_step *s = &p->plan.step[p->next_step++];
+    cub_err e = begin_blend(p, s->at_q16, s->to_clip, s->to_frame);
+    if (e) return e;
+    const cub_clip *from = clip_of(p, p->clip), *to = clip_of(p, s->to_clip);
+    int last = p->next_step == p->plan.step_count;
+    int64_t carry = overshoot_q16 * (int64_t)from->frame_ns / (int64_t)to->frame_ns;
+    carry = carry * p->want_speed_q16 / p->speed_q16;
+    if (p->desc.smooth == CUB_BRIDGE_SMOOTH_CROSSFADE) p->old_pos_q16 += overshoot_q16;
+    p->clip = s->to_clip;
+    p->loop = last ? p->want_loop : 0;
+    p->speed_q16 = p->want_speed_q16;
+    p->pos_q16 = ((int64_t)s->to_frame << 16) + carry;
+    p->blend_from_q16 = (int64_t)s->to_frame << 16;
+    p->blending = p->desc.smooth != CUB_BRIDGE_SMOOTH_NONE;
+    p->rem = 0;
+    p->done_sent = 0;
+    return CUB_OK;
+}
+
+/* A looping clip starts a new pass at mark: a cut from its (held) last
+ * frame to its first, smoothed like a switch. */
+static cub_err wrap(cub_bridge_player *p, int64_t mark)
+{
+    if (p->desc.smooth == CUB_BRIDGE_SMOOTH_NONE) return CUB_OK;
+    cub_err e = begin_blend(p, mark - 1, p->clip, 0);
+    if (e) return e;
+    p->old_loop = 0; /* a crossfade holds the old pass's last frame */
+    p->old_pos_q16 = (int64_t)(clip_of(p, p->clip)->frame_count - 1) << 16;
+    p->blend_from_q16 = mark;
+    p->blending = 1;
+    return CUB_OK;
+}
+
+/* The next thing that happens on the current clip, as a position: the
+ * planned switch, the end of a clip that does not loop, or the end of a
+ * looping clip's pass. INT64_MAX: nothing. */
+static int64_t next_mark(const cub_bridge_player *p, int *is_switch)
+{
+    int n = clip_of(p, p->clip)->frame_count;
+    int64_t mark = INT64_MAX;
+    *is_switch = 0;
+    if (p->loop) {
+        mark = ((p->pos_q16 >> 16) / n + 1) * n;
+        mark <<= 16;
+    } else if (!p->done_sent) {
+        mark = (int64_t)(n - 1) << 16;
+    }
+    if (cub_bridge_player_pending(p) && p->plan.step[p->next_step].at_q16 <= mark) {
+        mark = p->plan.step[p->next_step].at_q16;
+        *is_switch = 1;
+    }
+    return mark;
+}
+
+cub_err cub_bridge_player_advance(cub_bridge_player *p, int64_t dt_us, cub_bridge_event *ev,
+                                  int max_ev, int *n_ev)
+{
+    if (n_ev) *n_ev = 0;
+    if (!p || p->clip < 0 || dt_us < 0 || dt_us > 60000000 || max_ev < 0 || (max_ev && !ev) ||
+        !n_ev)
+        return CUB_ERR_ARG;
+    const cub_clip *c = clip_of(p, p->clip);
+    int64_t t_us = 0; /* time at pos, from the start of this call */
+    int64_t end = p->pos_q16 + frames_q16(dt_us, c->frame_ns, p->speed_q16, &p->rem);
+    if (p->blending && p->desc.smooth == CUB_BRIDGE_SMOOTH_CROSSFADE) {
+        uint64_t r = 0;
+        p->old_pos_q16 += frames_q16(dt_us, clip_of(p, p->old_clip)->frame_ns,
+                                     p->old_speed_q16, &r);
+    }
+    for (int guard = 0; guard < 4 * CUB_BRIDGE_MAX_STEPS + 64; guard++) {
+        int is_switch;
+        int64_t mark = next_mark(p, &is_switch);
+        if (mark > end) break;
+        t_us += time_us(mark - p->pos_q16, c->frame_ns, p->speed_q16);
+        if (t_us > dt_us) t_us = dt_us;
+        cub_bridge_event e = {.t_us = t_us, .clip = p->clip};
+        if (is_switch) {
+            e.type = CUB_BRIDGE_EV_SWITCH;
+            e.step = p->plan.step[p->next_step];
+            cub_err err = do_switch(p, end - mark);
+            if (err) return err;
+            e.clip = p->clip;
+            c = clip_of(p, p->clip);
+            end = p->pos_q16;
+            p->pos_q16 = (int64_t)e.step.to_frame << 16;
+        } else {
+            e.type = CUB_BRIDGE_EV_DONE;
+            e.looped = p->loop;
+            p->done_sent = !p->loop;
+            if (p->loop) {
+                cub_err err = wrap(p, mark);
+                if (err) return err;
+            }
+            p->pos_q16 = mark;
+        }
+        emit(ev, max_ev, n_ev, &e);
+    }
+    /* A clip that does not loop holds its last frame. */
+    int64_t last = (int64_t)(c->frame_count - 1) << 16;
+    p->pos_q16 = (!p->loop && end > last) ? last : end;
+    if (*n_ev > max_ev) *n_ev = max_ev;
+    return CUB_OK;
+}
+
+cub_err cub_bridge_player_set_start_frames(cub_bridge_player *p, int start_frames)
+{
+    if (!p || start_frames < 0) return CUB_ERR_ARG;
+    p->desc.start_frames = start_frames;
+    return CUB_OK;
+}

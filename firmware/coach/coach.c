@@ -1,0 +1,424 @@
+/* The coach's state machine (ARCHITECTURE.md "Coach states"):
+ *
+ *   idle --START/clap--> wake --wake_up done--> dance --wrong--> correct
+ *   correct: correcting clip, then the move at demo speed, again and again
+ *            --right--> dance (inside the same move's span, found from the
+ *            music clock); N wrong in a row --> worried --done--> correct
+ *   dance --song end--> cheer --done--> idle
+ *   idle/dance/correct/worried --quiet attract_after--> attract
+ *   attract --quiet doze_after--> doze;   attract/doze --START/clap--> wake
+ *   any --STOP--> idle
+ *
+ * Every change goes out through coach_out.c (actions + log lines). */
+#include <string.h>
+
+#include "coach_internal.h"
+
+#define ATTRACT_DEFAULT_MS 20000u
+#define DOZE_DEFAULT_MS 60000u
+#define WORRIED_DEFAULT 3u
+#define DEMO_SPEED_DEFAULT ((cub_q16)45875) /* 0.7 */
+
+/* ---- checking the desc --------------------------------------------------- */
+
+static bool clip_ok(const cub_coach_desc *d, int32_t clip)
+{
+    return clip >= 0 && clip < d->clip_count;
+}
+
+static cub_err check_desc(const cub_coach_desc *d)
+{
+    if (!d->moves || d->move_count <= 0 || d->clip_count <= 0) return CUB_ERR_ARG;
+    const cub_coach_roles *r = &d->roles;
+    const int32_t roles[] = {r->idle,       r->wake_up,  r->attract, r->doze,
+                             r->head_shake, r->watch_me, r->worried, r->cheer};
+    for (size_t i = 0; i < sizeof roles / sizeof roles[0]; i++)
+        if (!clip_ok(d, roles[i])) return CUB_ERR_ARG;
+    int64_t prev_end_ms = 0;
+    for (int32_t i = 0; i < d->move_count; i++) {
+        const cub_coach_move *m = &d->moves[i];
+        if (!clip_ok(d, m->clip) || m->reps < 2 || m->span_ms <= 0 || m->speed_q16 < 0)
+            return CUB_ERR_ARG;
+        if (m->tag_ms < prev_end_ms) return CUB_ERR_ARG; /* tags go back or moves overlap */
+        prev_end_ms = (int64_t)m->tag_ms + m->span_ms;
+        if (prev_end_ms > INT32_MAX) return CUB_ERR_ARG;
+    }
+    if (d->doze_after_ms <= d->attract_after_ms || d->demo_speed_q16 < 0) return CUB_ERR_ARG;
+    return CUB_OK;
+}
+
+/* ---- song positions ------------------------------------------------------ */
+
+static const cub_coach_move *cur_move(const cub_coach *c)
+{
+    return &c->desc.moves[c->move];
+}
+
+/* Song time at which repetition rep of move m starts (rep == reps: its end). */
+static int32_t rep_start_ms(const cub_coach_move *m, int32_t rep)
+{
+    return m->tag_ms + (int32_t)((int64_t)m->span_ms * rep / m->reps);
+}
+
+static int32_t move_end_ms(const cub_coach_move *m)
+{
+    return m->tag_ms + m->span_ms;
+}
+
+static cub_q16 move_speed(const cub_coach *c, int32_t m, cub_q16 factor_q16)
+{
+    cub_q16 base = c->desc.moves[m].speed_q16 ? c->desc.moves[m].speed_q16 : CUB_Q16_ONE;
+    return cub_fx_mul(base, factor_q16);
+}
+
+/* The song time now: the audio clock, or the loop clock since the music
+ * started when the app gives no audio clock. */
+static int64_t song_now_ms(const cub_coach *c, int32_t music_ms)
+{
+    return music_ms >= 0 ? music_ms : (c->now_us - c->music_start_us) / 1000;
+}
+
+static bool in_song(const cub_coach *c)
+{
+    return (c->state == CUB_COACH_DANCE || c->state == CUB_COACH_CORRECT ||
+            c->state == CUB_COACH_WORRIED) &&
+           c->phase != COACH_PH_OUTRO;
+}
+
+static void leave_song(cub_coach *c)
+{
+    c->move = -1;
+    c->rep = 0;
+    c->phase = COACH_PH_NONE;
+    c->misses = 0;
+    c->tag_pending = false;
+}
+
+/* ---- entering states ----------------------------------------------------- */
+
+static void go_idle(cub_coach *c, int32_t reason)
+{
+    coach_out_state(c, CUB_COACH_IDLE, reason);
+    if (c->music_on) coach_out_music(c, false, reason);
+    leave_song(c);
+    coach_out_clip(c, c->desc.roles.idle, CUB_Q16_ONE, true, CUB_COACH_WHY_IDLE);
+    if (c->hint >= 0) coach_out_hint(c, CUB_COACH_HINT_NONE, reason);
+    c->quiet_since_us = c->now_us;
+}
+
+static void go_resting(cub_coach *c, int32_t to, int32_t clip, int32_t reason)
+{
+    coach_out_state(c, to, reason);
+    if (c->music_on) coach_out_music(c, false, reason);
+    leave_song(c);
+    coach_out_clip(c, clip, CUB_Q16_ONE, true, reason);
+    if (c->hint >= 0) coach_out_hint(c, CUB_COACH_HINT_NONE, reason);
+}
+
+static void go_wake(cub_coach *c, int32_t reason)
+{
+    coach_out_state(c, CUB_COACH_WAKE, reason);
+    coach_out_clip(c, c->desc.roles.wake_up, CUB_Q16_ONE, false, reason);
+}
+
+static void show_move_hint(cub_coach *c, int32_t reason)
+{
+    if (c->player_in_view) coach_out_hint(c, c->move, reason);
+}
+
+/* Start repetition rep of move m now, at the speed that meets the music at
+ * the move's end tag. */
+static void begin_move(cub_coach *c, int32_t m, int32_t rep, int32_t reason, int32_t music_ms)
+{
+    c->move = m;
+    c->rep = rep;
+    c->phase = COACH_PH_MOVES;
+    const cub_coach_move *mv = cur_move(c);
+    cub_q16 factor = coach_sync_at(c, rep_start_ms(mv, rep), move_end_ms(mv), music_ms);
+    c->tag_pending = rep == 0;
+    coach_out_clip(c, mv->clip, move_speed(c, m, factor), false, reason);
+    show_move_hint(c, reason);
+}
+
+/* Move m starts now, or, when the song has an intro or a gap before it,
+ * after the idle clip once the music reaches its tag. (Between adjacent
+ * moves a dance slightly ahead of the music goes on: the sync slows it.) */
+static void begin_or_wait(cub_coach *c, int32_t m, int32_t reason, int32_t music_ms)
+{
+    c->move = m;
+    c->rep = 0;
+    const int32_t tag_ms = c->desc.moves[m].tag_ms;
+    const int32_t prev_end_ms = m > 0 ? move_end_ms(&c->desc.moves[m - 1]) : 0;
+    if (tag_ms <= prev_end_ms || song_now_ms(c, music_ms) >= tag_ms) {
+        begin_move(c, m, 0, reason, music_ms);
+        return;
+    }
+    c->phase = COACH_PH_WAIT;
+    c->tag_pending = false;
+    coach_out_clip(c, c->desc.roles.idle, CUB_Q16_ONE, true,
+                   m == 0 ? CUB_COACH_WHY_INTRO : CUB_COACH_WHY_IDLE);
+    show_move_hint(c, reason);
+}
+
+static void go_outro(cub_coach *c)
+{
+    c->phase = COACH_PH_OUTRO;
+    c->tag_pending = false;
+    coach_out_clip(c, c->desc.roles.idle, CUB_Q16_ONE, true, CUB_COACH_WHY_OUTRO);
+    if (c->hint >= 0) coach_out_hint(c, CUB_COACH_HINT_NONE, CUB_COACH_WHY_OUTRO);
+}
+
+static void start_dance(cub_coach *c)
+{
+    c->move = 0;
+    c->rep = 0;
+    c->misses = 0;
+    c->sync_q16 = CUB_Q16_ONE;
+    coach_out_state(c, CUB_COACH_DANCE, CUB_COACH_WHY_WOKE);
+    coach_out_music(c, true, CUB_COACH_WHY_WOKE);
+    c->music_start_us = c->now_us;
+    /* The audio clock the app passed was read before this start. */
+    begin_or_wait(c, 0, CUB_COACH_WHY_MOVE, CUB_COACH_NO_MUSIC);
+}
+
+/* A wrong verdict: the correcting clip at once (head shake and watch me in
+ * turn), then the demonstration. */
+static void go_correct(cub_coach *c)
+{
+    if (c->state != CUB_COACH_CORRECT) coach_out_state(c, CUB_COACH_CORRECT, CUB_COACH_WHY_WRONG);
+    c->phase = COACH_PH_FIX;
+    c->tag_pending = false;
+    int32_t clip = (c->corrections & 1u) ? c->desc.roles.watch_me : c->desc.roles.head_shake;
+    c->corrections++;
+    coach_out_clip(c, clip, CUB_Q16_ONE, false, CUB_COACH_WHY_CORRECT);
+}
+
+static void demo(cub_coach *c)
+{
+    c->phase = COACH_PH_DEMO;
+    cub_q16 speed = cub_fx_mul(move_speed(c, c->move, CUB_Q16_ONE), c->desc.demo_speed_q16);
+    coach_out_clip(c, cur_move(c)->clip, speed, false, CUB_COACH_WHY_DEMO);
+}
+
+static void go_worried(cub_coach *c)
+{
+    c->misses = 0;
+    coach_out_state(c, CUB_COACH_WORRIED, CUB_COACH_WHY_MISSES);
+    c->phase = COACH_PH_NONE;
+    coach_out_clip(c, c->desc.roles.worried, CUB_Q16_ONE, false, CUB_COACH_WHY_WORRIED);
+}
+
+/* A right verdict ends the correction. The music played on meanwhile, so
+ * the dance resumes where the music is: the nearest repetition start of
+ * the move it is in (normally the corrected move: each move lasts at least
+ * two repetitions, seed 000 § Choreography). */
+static void resume(cub_coach *c, int32_t music_ms)
+{
+    int32_t m = c->move, rep = c->rep;
+    const int32_t last = c->desc.move_count - 1;
+    if (music_ms >= 0) {
+        while (m < last && c->desc.moves[m + 1].tag_ms <= music_ms)
+            m++;
+        const cub_coach_move *mv = &c->desc.moves[m];
+        int64_t into_ms = (int64_t)music_ms - mv->tag_ms;
+        rep = into_ms <= 0 ? 0 : (int32_t)((into_ms * mv->reps + mv->span_ms / 2) / mv->span_ms);
+    }
+    if (rep < c->desc.moves[m].reps) {
+        c->move = m;
+        c->rep = rep;
+        coach_out_state(c, CUB_COACH_DANCE, CUB_COACH_WHY_RIGHT);
+        begin_move(c, m, rep, CUB_COACH_WHY_RESUME, music_ms);
+    } else if (m < last) { /* the move is (nearly) over: on to the next */
+        c->move = m + 1;
+        c->rep = 0;
+        coach_out_state(c, CUB_COACH_DANCE, CUB_COACH_WHY_RIGHT);
+        begin_or_wait(c, m + 1, CUB_COACH_WHY_RESUME, music_ms);
+    } else {
+        c->move = m;
+        c->rep = c->desc.moves[m].reps - 1;
+        coach_out_state(c, CUB_COACH_DANCE, CUB_COACH_WHY_RIGHT);
+        go_outro(c);
+    }
+}
+
+/* ---- events -------------------------------------------------------------- */
+
+static bool resting(const cub_coach *c)
+{
+    return c->state == CUB_COACH_IDLE || c->state == CUB_COACH_ATTRACT ||
+           c->state == CUB_COACH_DOZE;
+}
+
+static void on_button(cub_coach *c, int32_t button)
+{
+    if (button == CUB_BUTTON_START && resting(c))
+        go_wake(c, CUB_COACH_WHY_START);
+    else if (button == CUB_BUTTON_STOP && c->state != CUB_COACH_IDLE)
+        go_idle(c, CUB_COACH_WHY_STOP);
+}
+
+static void on_verdict(cub_coach *c, const cub_event *ev, int32_t music_ms)
+{
+    const bool about_this_move = in_song(c) && ev->a == c->move;
+    if (ev->b) {
+        c->misses = 0;
+        if (about_this_move && (c->state == CUB_COACH_CORRECT || c->state == CUB_COACH_WORRIED))
+            resume(c, music_ms);
+        return;
+    }
+    const bool dancing = c->state == CUB_COACH_DANCE && c->phase == COACH_PH_MOVES;
+    if (!about_this_move || !(dancing || c->state == CUB_COACH_CORRECT)) {
+        coach_out_ignore(c, ev);
+        return;
+    }
+    if (++c->misses >= (int32_t)c->desc.worried_after)
+        go_worried(c);
+    else if (c->phase != COACH_PH_FIX) /* never cut a head shake short */
+        go_correct(c);
+}
+
+static void on_player(cub_coach *c, bool in_view)
+{
+    c->player_in_view = in_view;
+    if (!in_view) {
+        coach_out_hint(c, CUB_COACH_HINT_COME_CLOSER, CUB_COACH_WHY_PLAYER);
+        return;
+    }
+    if (c->hint == CUB_COACH_HINT_COME_CLOSER)
+        coach_out_hint(c, in_song(c) ? c->move : CUB_COACH_HINT_NONE, CUB_COACH_WHY_PLAYER);
+    if (c->state == CUB_COACH_DOZE)
+        go_resting(c, CUB_COACH_ATTRACT, c->desc.roles.attract, CUB_COACH_WHY_PLAYER);
+}
+
+static void on_clip_done(cub_coach *c, const cub_event *ev, int32_t music_ms)
+{
+    if (ev->a != c->clip) { /* a clip already replaced, or a looping one */
+        coach_out_ignore(c, ev);
+        return;
+    }
+    switch (c->state) {
+    case CUB_COACH_WAKE: start_dance(c); break;
+    case CUB_COACH_DANCE:
+        if (c->phase != COACH_PH_MOVES) break;
+        if (c->rep + 1 < cur_move(c)->reps)
+            begin_move(c, c->move, c->rep + 1, CUB_COACH_WHY_REP, music_ms);
+        else if (c->move + 1 < c->desc.move_count)
+            begin_or_wait(c, c->move + 1, CUB_COACH_WHY_MOVE, music_ms);
+        else
+            go_outro(c);
+        break;
+    case CUB_COACH_CORRECT: demo(c); break; /* after the correcting clip, and again */
+    case CUB_COACH_WORRIED:
+        coach_out_state(c, CUB_COACH_CORRECT, CUB_COACH_WHY_CALMED);
+        demo(c);
+        break;
+    case CUB_COACH_CHEER: go_idle(c, CUB_COACH_WHY_CHEERED); break;
+    default: break;
+    }
+}
+
+/* The player reached move a's first frame, at song time b: set its speed
+ * so that it ends on its end tag together with the music. */
+static void on_music_tag(cub_coach *c, const cub_event *ev, int32_t music_ms)
+{
+    if (c->state != CUB_COACH_DANCE || c->phase != COACH_PH_MOVES || ev->a != c->move ||
+        !c->tag_pending || music_ms < 0) {
+        coach_out_ignore(c, ev);
+        return;
+    }
+    c->tag_pending = false;
+    cub_q16 factor = coach_sync_at(c, ev->b, move_end_ms(cur_move(c)), music_ms);
+    coach_out_speed(c, move_speed(c, c->move, factor), CUB_COACH_WHY_SYNC);
+}
+
+static void on_song_end(cub_coach *c)
+{
+    c->music_on = false; /* it ended by itself: nothing to stop */
+    if (c->state != CUB_COACH_DANCE && c->state != CUB_COACH_CORRECT &&
+        c->state != CUB_COACH_WORRIED)
+        return;
+    coach_out_state(c, CUB_COACH_CHEER, CUB_COACH_WHY_SONG_END);
+    leave_song(c);
+    coach_out_clip(c, c->desc.roles.cheer, CUB_Q16_ONE, false, CUB_COACH_WHY_CHEER);
+    if (c->hint >= 0) coach_out_hint(c, CUB_COACH_HINT_NONE, CUB_COACH_WHY_SONG_END);
+}
+
+/* ---- the public calls ---------------------------------------------------- */
+
+cub_err cub_coach_init(cub_coach *c, const cub_coach_desc *desc, int64_t now_us)
+{
+    if (!c || !desc) return CUB_ERR_ARG;
+    cub_coach_desc d = *desc;
+    if (!d.attract_after_ms) d.attract_after_ms = ATTRACT_DEFAULT_MS;
+    if (!d.doze_after_ms) d.doze_after_ms = DOZE_DEFAULT_MS;
+    if (!d.worried_after) d.worried_after = WORRIED_DEFAULT;
+    if (!d.demo_speed_q16) d.demo_speed_q16 = DEMO_SPEED_DEFAULT;
+    if (d.worried_after > INT32_MAX) return CUB_ERR_ARG;
+    cub_err err = check_desc(&d);
+    if (err) return err;
+    memset(c, 0, sizeof *c);
+    c->desc = d;
+    c->state = CUB_COACH_IDLE;
+    c->move = -1;
+    c->clip = -1;
+    c->speed_q16 = c->sync_q16 = c->rate_q16 = CUB_Q16_ONE;
+    c->player_in_view = true; /* no "come closer" until told nobody is there */
+    c->hint = CUB_COACH_HINT_NONE;
+    c->now_us = c->quiet_since_us = c->state_since_us = now_us;
+    c->anchor_ms = -1;
+    coach_out_clip(c, d.roles.idle, CUB_Q16_ONE, true, CUB_COACH_WHY_IDLE);
+    return CUB_OK;
+}
+
+cub_err cub_coach_handle(cub_coach *c, const cub_event *ev, int32_t music_ms)
+{
+    if (!c || !ev) return CUB_ERR_ARG;
+    c->action_count = 0; /* even on error: no stale actions to redo */
+    const bool names_move = ev->type == CUB_EV_VERDICT || ev->type == CUB_EV_MUSIC_TAG;
+    if (names_move && (ev->a < 0 || ev->a >= c->desc.move_count)) return CUB_ERR_RANGE;
+    if (ev->t_us > c->now_us) c->now_us = ev->t_us;
+    coach_sync_observe(c, music_ms);
+    const bool interaction = ev->type == CUB_EV_BUTTON_DOWN || ev->type == CUB_EV_CLAP ||
+                             ev->type == CUB_EV_VERDICT || (ev->type == CUB_EV_PLAYER && ev->a);
+    if (interaction) c->quiet_since_us = c->now_us;
+    switch (ev->type) {
+    case CUB_EV_BUTTON_DOWN: on_button(c, ev->a); break;
+    case CUB_EV_CLAP:
+        if (resting(c)) go_wake(c, CUB_COACH_WHY_CLAP);
+        break;
+    case CUB_EV_VERDICT: on_verdict(c, ev, music_ms); break;
+    case CUB_EV_PLAYER: on_player(c, ev->a != 0); break;
+    case CUB_EV_CLIP_DONE: on_clip_done(c, ev, music_ms); break;
+    case CUB_EV_MUSIC_TAG: on_music_tag(c, ev, music_ms); break;
+    case CUB_EV_SONG_END: on_song_end(c); break;
+    default: break;
+    }
+    return CUB_OK;
+}
+
+cub_err cub_coach_tick(cub_coach *c, int64_t now_us, int32_t music_ms)
+{
+    if (!c) return CUB_ERR_ARG;
+    c->action_count = 0;
+    if (now_us > c->now_us) c->now_us = now_us;
+    coach_sync_observe(c, music_ms);
+    if (c->state == CUB_COACH_DANCE && c->phase == COACH_PH_WAIT &&
+        song_now_ms(c, music_ms) >= cur_move(c)->tag_ms)
+        begin_move(c, c->move, 0, CUB_COACH_WHY_MOVE, music_ms);
+    const int64_t quiet_ms = (c->now_us - c->quiet_since_us) / 1000;
+    switch (c->state) {
+    case CUB_COACH_IDLE:
+    case CUB_COACH_DANCE:
+    case CUB_COACH_CORRECT:
+    case CUB_COACH_WORRIED:
+        if (quiet_ms >= c->desc.attract_after_ms)
+            go_resting(c, CUB_COACH_ATTRACT, c->desc.roles.attract, CUB_COACH_WHY_QUIET);
+        break;
+    case CUB_COACH_ATTRACT:
+        if (quiet_ms >= c->desc.doze_after_ms)
+            go_resting(c, CUB_COACH_DOZE, c->desc.roles.doze, CUB_COACH_WHY_QUIET);
+        break;
+    default: break;
+    }
+    return CUB_OK;
+}

@@ -1,0 +1,282 @@
+/* bridge — switching the coach from one clip to another at once, unnoticed
+ * (SEEDS.md § 000, "Switching"; issue 4).
+ *
+ *   table    every clip of the library with its per-frame fuzzy features,
+ *            its bridge frames and, for each ordered clip pair, the tagged
+ *            links (a, b, d, half). Built once at init in caller memory.
+ *   planner  given where the current clip is and the clip wanted next:
+ *            look at the current clip's upcoming frames (any frame, not only
+ *            tagged ones: that is what makes the reaction fast) against the
+ *            wanted clip's bridge frames, FRONT HALF FIRST, then the back
+ *            half, and take a frame within the threshold (d < 0.4) that
+ *            the current clip reaches soon (see below). None: a TWEEN,
+ *            the quickest chain of tagged links through other clips
+ *            (Dijkstra on play time over the bridge frames; fixed memory).
+ *            The search looks 6 frames (200 ms) ahead first and widens the
+ *            window (x2) up to one whole clip only when nothing is found.
+ *   player   plays the coach: advances time, switches exactly at the
+ *            planned frame, reports switches and clip ends, and gives the
+ *            pose with the cut smoothed.
+ *
+ * Choosing the frame: the soonest upcoming frame within the threshold;
+ * at that frame, the bridge frame whose body (joint positions, the root's
+ * x and z taken off) is closest. wait_cost_mm can trade waiting for a
+ * closer body (cost = distance + wait_cost_mm per frame), but measured it
+ * does not pay: at 30 mm/frame the p95 reaction grows from 67 to 100 ms
+ * while the naive cut's median shrinks only 33.3 -> 32.2 cm and the
+ * smoothed jump stays the same (p95 8.1 cm/frame both): the adaptive blend
+ * below absorbs the distance anyway.
+ *
+ * Smoothing: INERTIALIZATION (a decaying offset), the default. At every
+ * cut (a switch, or a looping clip starting its next pass) the offset
+ * between the pose on screen and the new frame (a local rotation per joint
+ * and the root translation) is taken, added to the new clip, and faded out
+ * by w = 1 - smoothstep: no step in position, none in the offset's speed.
+ * Each blend lasts as long as its distance needs for the fade to add at
+ * most blend_speed_mm (2.5 cm) per frame, at least 6 frames, at most 60;
+ * the root's drift over the floor (capture clips walk up to 90 cm) fades
+ * on its own, longer clock. Measured by `cubtool bench-bridge` over the
+ * shipped library (all 529 ordered pairs, every 5th frame, 10511
+ * switches): the largest joint jump at the switch is 11.3 cm/frame for
+ * ours (p95 8.1, median 3.6), 107.0 for a naive cut (p95 68.2, median
+ * 33.2), 86.9 for a crossfade of the same length (p95 6.6); the clips' own
+ * fastest joint moves up to 15.6 cm/frame (p99 10.1). The crossfade keeps
+ * playing the old clip, so it blends two motions and, when the clips stand
+ * apart, drags the body between them (up to 89.9 cm/frame added while it
+ * runs; ours adds at most 12.6, p95 4.6); the offset needs only the pose
+ * at the cut and one quaternion multiply per joint.
+ *
+ * Units: positions in clips are frames, Q16.16 (`pos_q16`), measured on
+ * the clip's unwrapped time line (a looping clip keeps counting past its
+ * end); speed is Q16.16 (1.0 = the clip's own rate), d Q16.16 in [0, 1],
+ * times microseconds. Fixed point, deterministic, no allocation: the table
+ * and the player take caller memory sized by their mem_size functions.
+ */
+#ifndef CUB_BRIDGE_H
+#define CUB_BRIDGE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "cub/err.h"
+#include "cub/fuzzy.h"
+#include "cub/fx.h"
+#include "cub/motion.h"
+
+#define CUB_BRIDGE_MAX_STEPS 8                     /* longest plan: 1 direct or a tween */
+#define CUB_BRIDGE_SPEED_MIN_Q16 (CUB_Q16_ONE / 4)  /* 0.25: slowest demonstration */
+#define CUB_BRIDGE_SPEED_MAX_Q16 (2 * CUB_Q16_ONE)  /* 2.0 */
+#define CUB_BRIDGE_WINDOW_FRAMES 6                 /* first look-ahead: 200 ms at 30 fps */
+#define CUB_BRIDGE_BLEND_FRAMES 6                  /* shortest smoothing */
+#define CUB_BRIDGE_BLEND_SPEED_MM CUB_Q16_INT(25)   /* 2.5 cm/frame at most added by a blend */
+#define CUB_BRIDGE_MAX_BLEND_FRAMES 60
+#define CUB_BRIDGE_WAIT_COST_MM CUB_Q16_MAX /* waiting outweighs any body distance */
+
+/* ---- the table --------------------------------------------------------- */
+
+/* "From frame a of clip A, switch to frame b of clip B" (a tag link). */
+typedef struct cub_bridge_link {
+    int16_t a, b;
+    uint8_t back; /* b lies in B's back half (2*b >= frames) */
+    uint8_t reserved_[3];
+    cub_q16 d;
+} cub_bridge_link;
+
+typedef struct cub_bridge_table_desc {
+    const cub_skeleton *skel; /* every clip's skeleton */
+    cub_fuzzy_body body;      /* joints the features read, indices into skel */
+    cub_fuzzy_config fuzzy;   /* weights and threshold; zero = seed defaults */
+    int clip_count;
+    int frame_total;  /* sum of all clips' frame counts */
+    int bridge_total; /* sum of all clips' bridge frame counts */
+    int link_total;   /* sum of all pairs' link counts */
+} cub_bridge_table_desc;
+
+typedef struct cub_bridge_clip {
+    cub_clip clip;    /* frame data stays in the caller's memory */
+    int first_frame;  /* its frame 0 in the table's fuzzy[] */
+    int first_bridge; /* its first bridge frame in bridges[] */
+    int bridge_count;
+} cub_bridge_clip;
+
+typedef struct cub_bridge_pair {
+    int32_t first, count; /* into links[]; count -1: not set yet */
+} cub_bridge_pair;
+
+typedef struct cub_bridge_table {
+    cub_bridge_table_desc desc; /* fuzzy filled with defaults, normalised */
+    cub_bridge_clip *clips;     /* [clip_count] */
+    cub_fuzzy_frame *fuzzy;     /* [frame_total] features of every frame */
+    int16_t *bridges;           /* [bridge_total] ascending per clip */
+    cub_bridge_pair *pairs;     /* [from * clip_count + to] */
+    cub_bridge_link *links;     /* [link_total] */
+    cub_vec3 *bridge_body_mm;   /* [bridge_total * joints] each bridge frame's
+                                   joint positions, root x and z taken off */
+    int clips_added, frames_used, bridges_used, links_used;
+    int finished;
+} cub_bridge_table;
+
+/* Bytes the table needs; 0 if the desc is impossible (counts < 0, no clip). */
+size_t cub_bridge_table_mem_size(const cub_bridge_table_desc *desc);
+/* CUB_ERR_ARG (NULL, bad counts, bad body), CUB_ERR_NOMEM (mem too small). */
+cub_err cub_bridge_table_init(cub_bridge_table *t, const cub_bridge_table_desc *desc, void *mem,
+                              size_t mem_size);
+/* Add the next clip, in library order. bridge_frames ascending, in range.
+ * fuzzy: the clip's per-frame features, or NULL to compute them here by
+ * forward kinematics (cub_fuzzy_features on world positions). The table
+ * keeps a copy of the cub_clip struct; its frame data must outlive it.
+ * CUB_ERR_ARG (bad frames, other skeleton), CUB_ERR_FULL (too many). */
+cub_err cub_bridge_table_add_clip(cub_bridge_table *t, const cub_clip *clip,
+                                  const int *bridge_frames, int bridge_count,
+                                  const cub_fuzzy_frame *fuzzy);
+/* The links of one ordered pair, once per pair, after both clips were
+ * added. Every a must be a bridge frame of `from`, every b one of `to`.
+ * CUB_ERR_ARG (bad link), CUB_ERR_FULL (link_total exceeded). */
+cub_err cub_bridge_table_set_links(cub_bridge_table *t, int from, int to,
+                                   const cub_bridge_link *links, int count);
+/* All clips added? Pairs never set have no links. CUB_ERR_RANGE if not. */
+cub_err cub_bridge_table_finish(cub_bridge_table *t);
+
+/* ---- the planner ------------------------------------------------------- */
+
+typedef enum cub_bridge_via {
+    CUB_BRIDGE_DIRECT = 0, /* one switch, into the wanted clip */
+    CUB_BRIDGE_TWEEN = 1,  /* a step of a chain through other clips */
+} cub_bridge_via;
+
+/* One switch: play `from_clip` until its unwrapped position at_q16 (a
+ * whole frame; from_frame = that frame modulo the clip), then continue
+ * `to_clip` at to_frame. */
+typedef struct cub_bridge_step {
+    int from_clip, from_frame;
+    int to_clip, to_frame;
+    cub_q16 d;
+    cub_bridge_via via;
+    int64_t at_q16;
+} cub_bridge_step;
+
+typedef struct cub_bridge_plan {
+    int step_count;
+    cub_bridge_step step[CUB_BRIDGE_MAX_STEPS];
+    int wait_frames;  /* frames of the current clip still played before step 0 */
+    int total_frames; /* frames until the wanted clip starts (via a tween: longer) */
+    int window_frames; /* the look-ahead window the plan was found in */
+} cub_bridge_plan;
+
+typedef struct cub_bridge_query {
+    int from_clip;
+    int64_t pos_q16; /* where from_clip is now (unwrapped, >= 0) */
+    int from_loops;  /* from_clip wraps around (look-ahead wraps too) */
+    int to_clip;     /* the same clip: a jump of at least a quarter of it */
+    int window_frames; /* first look-ahead window; 0 = CUB_BRIDGE_WINDOW_FRAMES */
+    cub_q16 wait_cost_mm; /* what a frame of waiting costs against body distance
+                             (mm); 0 = CUB_BRIDGE_WAIT_COST_MM: the soonest frame */
+    int start_frames;  /* > 0: first try to enter the wanted clip at one of its
+                          first start_frames frames (tagged or not, by d), the
+                          soonest within the first window: a move then begins
+                          at its beginning and keeps its music time. 0 = off */
+} cub_bridge_query;
+
+/* Scratch memory the planner needs for this table (the tween search). */
+size_t cub_bridge_plan_work_size(const cub_bridge_table *t);
+/* Plan the switch. CUB_ERR_ARG (bad query, unfinished table), CUB_ERR_NOMEM
+ * (work too small), CUB_ERR_RANGE: the wanted clip cannot be reached from
+ * here by any chain of links (out->step_count is 0). */
+cub_err cub_bridge_plan_switch(const cub_bridge_table *t, const cub_bridge_query *q,
+                               cub_bridge_plan *out, void *work, size_t work_size);
+
+/* ---- the player -------------------------------------------------------- */
+
+typedef enum cub_bridge_smooth {
+    CUB_BRIDGE_SMOOTH_INERTIAL = 0, /* decaying offset (the default, see above) */
+    CUB_BRIDGE_SMOOTH_NONE,         /* a naive cut (for measuring) */
+    CUB_BRIDGE_SMOOTH_CROSSFADE,    /* nlerp old -> new clip (for measuring) */
+} cub_bridge_smooth;
+
+typedef struct cub_bridge_player_desc {
+    const cub_bridge_table *table; /* finished */
+    cub_bridge_smooth smooth;
+    int blend_frames;  /* shortest blend; 0 = CUB_BRIDGE_BLEND_FRAMES; <= MAX_BLEND_FRAMES */
+    cub_q16 blend_speed_mm; /* most joint speed the fading offset may add, mm per
+                               frame; 0 = CUB_BRIDGE_BLEND_SPEED_MM. Sets each
+                               blend's length from the distance it must cover */
+    int window_frames; /* 0 = CUB_BRIDGE_WINDOW_FRAMES */
+    cub_q16 wait_cost_mm; /* the planner's, see cub_bridge_query; 0 = default */
+    int start_frames;     /* the planner's, see cub_bridge_query; 0 = off */
+} cub_bridge_player_desc;
+
+typedef enum cub_bridge_event_type {
+    CUB_BRIDGE_EV_SWITCH = 1, /* step: a switch happened */
+    CUB_BRIDGE_EV_DONE = 2,   /* clip reached its end (looping: one more pass) */
+} cub_bridge_event_type;
+
+typedef struct cub_bridge_event {
+    int type;
+    int64_t t_us;          /* when, from the start of the advance call */
+    cub_bridge_step step;  /* SWITCH */
+    int clip;              /* DONE: the clip; SWITCH: the clip now playing */
+    int looped;            /* DONE: the clip loops and goes on */
+} cub_bridge_event;
+
+typedef struct cub_bridge_player {
+    cub_bridge_player_desc desc;
+    void *work;
+    size_t work_size;
+    int clip, loop;
+    int64_t pos_q16;  /* unwrapped position in clip */
+    cub_q16 speed_q16;
+    uint64_t rem;     /* sub-Q16 time remainder (exact, no drift) */
+    int done_sent;
+    /* the pending plan */
+    cub_bridge_plan plan;
+    int next_step;
+    cub_q16 want_speed_q16;
+    int want_loop;
+    /* smoothing: inertialization offset, or the crossfade's old clip */
+    int blending;
+    int64_t blend_from_q16; /* where the blend began in the current clip */
+    int blend_len, root_len; /* frames: the joints', the root's drift's */
+    cub_vec3 body[2][CUB_MOTION_MAX_JOINTS];
+    cub_quat off_rot[CUB_MOTION_MAX_JOINTS];
+    cub_vec3 off_root_mm;
+    int old_clip, old_loop;
+    int64_t old_pos_q16;
+    cub_q16 old_speed_q16;
+    cub_pose scratch[3];
+} cub_bridge_player;
+
+/* Bytes of scratch memory the player needs (the planner's work). */
+size_t cub_bridge_player_mem_size(const cub_bridge_player_desc *desc);
+/* CUB_ERR_ARG (no table, unfinished, bad blend), CUB_ERR_NOMEM. */
+cub_err cub_bridge_player_init(cub_bridge_player *p, const cub_bridge_player_desc *desc,
+                               void *mem, size_t mem_size);
+/* Start playing a clip at a frame, at once and without smoothing (boot,
+ * or after STOP). CUB_ERR_ARG for a bad clip, frame or speed. speed_q16 0
+ * = 1.0; otherwise within [SPEED_MIN, SPEED_MAX]. */
+cub_err cub_bridge_player_start(cub_bridge_player *p, int clip, int frame, cub_q16 speed_q16,
+                                int loop);
+/* Ask for another clip: plans the switch (replacing any pending plan) and
+ * copies the plan to out (may be NULL). The clip plays at speed_q16 (0 =
+ * 1.0) once entered; tween clips play at that speed too. CUB_ERR_ARG (bad
+ * clip or speed), CUB_ERR_RANGE (no way there; playback goes on as it was). */
+cub_err cub_bridge_player_request(cub_bridge_player *p, int clip, cub_q16 speed_q16, int loop,
+                                  cub_bridge_plan *out);
+/* Change the speed of what plays now (music sync). CUB_ERR_ARG if out of bounds. */
+cub_err cub_bridge_player_set_speed(cub_bridge_player *p, cub_q16 speed_q16);
+/* How later requests enter their clip (cub_bridge_query.start_frames): the
+ * app asks for a move's beginning when it starts a move, and for the
+ * quickest entry when it must react (a correction). CUB_ERR_ARG if < 0. */
+cub_err cub_bridge_player_set_start_frames(cub_bridge_player *p, int start_frames);
+/* Move time on by dt_us (>= 0): switch exactly at the planned frames,
+ * report events into ev[max_ev] (count in *n_ev; events past max_ev are
+ * dropped, the playback is not). */
+cub_err cub_bridge_player_advance(cub_bridge_player *p, int64_t dt_us, cub_bridge_event *ev,
+                                  int max_ev, int *n_ev);
+/* The pose to show now, with the cut smoothed. */
+cub_err cub_bridge_player_pose(cub_bridge_player *p, cub_pose *out);
+/* The pose the current clip alone gives now (no smoothing). */
+cub_err cub_bridge_player_raw_pose(const cub_bridge_player *p, cub_pose *out);
+/* A switch is still planned (a request not yet carried out). */
+int cub_bridge_player_pending(const cub_bridge_player *p);
+
+#endif

@@ -1,0 +1,813 @@
+/* coach: the behaviour state machine and the music-sync rule. Bad input
+ * first, then every transition, the sync formula, a simulated player
+ * following a music clock 5 % slow or fast, and a scripted song whose
+ * whole event log is pinned. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "cub/coach.h"
+
+/* ---- fixture: a clip library, a three-move song, a log recorder ------- */
+
+enum {
+    C_IDLE,
+    C_WAKE,
+    C_WAVE,
+    C_DOZE,
+    C_SHAKE,
+    C_WATCH,
+    C_WORRIED,
+    C_CHEER,
+    C_CLAP,
+    C_SWAY,
+    C_ROBOT,
+    C_COUNT
+};
+static const char *const names[C_COUNT] = {"idle",       "wake_up",  "wave",    "doze",
+                                           "head_shake", "watch_me", "worried", "cheer",
+                                           "clap",       "sway",     "robot"};
+
+/* clap: 4 reps of 2 s; sway: 2 reps of 2 s at its own speed 1.25; a 1 s
+ * gap; robot: 3 reps of 2 s. */
+static const cub_coach_move song[3] = {
+    {.clip = C_CLAP, .reps = 4, .tag_ms = 0, .span_ms = 8000},
+    {.clip = C_SWAY, .reps = 2, .speed_q16 = 81920, .tag_ms = 8000, .span_ms = 4000},
+    {.clip = C_ROBOT, .reps = 3, .tag_ms = 13000, .span_ms = 6000},
+};
+
+#define MAX_LINES 400
+#define SESSION_LOG_FNV 0x7911af02u /* the scripted session's whole log, pinned */
+typedef struct recorder {
+    char lines[MAX_LINES][160];
+    int n;
+} recorder;
+static recorder rec;
+static cub_log log_to_rec;
+
+static void rec_sink(void *u, const char *line, size_t len)
+{
+    recorder *r = u;
+    if (r->n < MAX_LINES) snprintf(r->lines[r->n++], sizeof r->lines[0], "%.*s", (int)len, line);
+}
+
+static cub_coach_desc make_desc(void)
+{
+    memset(&rec, 0, sizeof rec);
+    log_to_rec = (cub_log){.sink = rec_sink, .user = &rec};
+    cub_coach_desc d = {.moves = song,
+                        .move_count = 3,
+                        .clip_count = C_COUNT,
+                        .clip_names = names,
+                        .log = &log_to_rec};
+    assert_int_equal(cub_coach_roles_by_name(names, C_COUNT, &d.roles), CUB_OK);
+    return d;
+}
+
+static void send(cub_coach *c, int64_t t_ms, int32_t type, int32_t a, int32_t b, int32_t music_ms)
+{
+    cub_event ev = {.t_us = t_ms * 1000, .type = type, .a = a, .b = b};
+    assert_int_equal(cub_coach_handle(c, &ev, music_ms), CUB_OK);
+}
+
+static void tick(cub_coach *c, int64_t t_ms, int32_t music_ms)
+{
+    assert_int_equal(cub_coach_tick(c, t_ms * 1000, music_ms), CUB_OK);
+}
+
+/* The n-th action of kind in this call's output (0-based), or NULL. */
+static const cub_coach_action *act(const cub_coach *c, int32_t kind, int n)
+{
+    for (int i = 0; i < c->action_count; i++)
+        if (c->actions[i].kind == kind && n-- == 0) return &c->actions[i];
+    return NULL;
+}
+
+static void expect_clip(const cub_coach *c, int32_t clip, cub_q16 speed, bool loop, int32_t reason)
+{
+    const cub_coach_action *a = act(c, CUB_COACH_ACT_CLIP, 0);
+    assert_non_null(a);
+    assert_int_equal(a->clip, clip);
+    if (speed) assert_int_equal(a->speed_q16, speed);
+    assert_int_equal(a->loop, loop);
+    assert_int_equal(a->reason, reason);
+}
+
+static bool logged(const char *needle)
+{
+    for (int i = 0; i < rec.n; i++)
+        if (strstr(rec.lines[i], needle)) return true;
+    return false;
+}
+
+/* Idle -> START at t_ms -> wake_up done 1 s later -> dancing move 0. */
+static void to_dance(cub_coach *c, int64_t t_ms)
+{
+    send(c, t_ms, CUB_EV_BUTTON_DOWN, CUB_BUTTON_START, 0, CUB_COACH_NO_MUSIC);
+    send(c, t_ms + 1000, CUB_EV_CLIP_DONE, C_WAKE, 0, CUB_COACH_NO_MUSIC);
+    assert_int_equal(c->state, CUB_COACH_DANCE);
+}
+
+/* ---- bad input ----------------------------------------------------------- */
+
+static void test_bad_desc_is_refused(void **s)
+{
+    cub_coach c;
+    cub_coach_desc d = make_desc();
+    cub_coach_move bad[3];
+    assert_int_equal(cub_coach_init(NULL, &d, 0), CUB_ERR_ARG);
+    assert_int_equal(cub_coach_init(&c, NULL, 0), CUB_ERR_ARG);
+
+    cub_coach_desc e = d;
+    e.moves = NULL;
+    assert_int_equal(cub_coach_init(&c, &e, 0), CUB_ERR_ARG);
+    e = d;
+    e.move_count = 0;
+    assert_int_equal(cub_coach_init(&c, &e, 0), CUB_ERR_ARG);
+    e = d;
+    e.roles.cheer = C_COUNT; /* a role outside the library */
+    assert_int_equal(cub_coach_init(&c, &e, 0), CUB_ERR_ARG);
+    e = d;
+    e.attract_after_ms = 70000; /* after the default doze (60 s) */
+    assert_int_equal(cub_coach_init(&c, &e, 0), CUB_ERR_ARG);
+
+    struct {
+        int field;
+        int32_t value;
+    } cases[] = {
+        {0, -1},   {0, C_COUNT}, /* clip */
+        {1, 1},    {1, 0},       /* reps < 2 */
+        {2, 0},    {2, -5},      /* span */
+        {3, 7999},               /* move 1 starts before move 0 ends */
+        {4, -1},                 /* negative speed */
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        memcpy(bad, song, sizeof bad);
+        cub_coach_move *m = cases[i].field == 3 ? &bad[1] : &bad[0];
+        if (cases[i].field == 0) m->clip = cases[i].value;
+        if (cases[i].field == 1) m->reps = cases[i].value;
+        if (cases[i].field == 2) m->span_ms = cases[i].value;
+        if (cases[i].field == 3) m->tag_ms = cases[i].value;
+        if (cases[i].field == 4) m->speed_q16 = cases[i].value;
+        e = d;
+        e.moves = bad;
+        assert_int_equal(cub_coach_init(&c, &e, 0), CUB_ERR_ARG);
+    }
+    cub_coach_roles r;
+    const char *few[] = {"idle", "wave"};
+    assert_int_equal(cub_coach_roles_by_name(NULL, 3, &r), CUB_ERR_ARG);
+    assert_int_equal(cub_coach_roles_by_name(few, 0, &r), CUB_ERR_ARG);
+    assert_int_equal(cub_coach_roles_by_name(few, 2, &r), CUB_ERR_FORMAT);
+    assert_int_equal(r.attract, 1);
+    assert_int_equal(r.cheer, -1);
+}
+
+static void test_bad_events_change_nothing(void **s)
+{
+    cub_coach c;
+    cub_coach_desc d = make_desc();
+    assert_int_equal(cub_coach_init(&c, &d, 0), CUB_OK);
+    cub_event ev = {.type = CUB_EV_VERDICT, .a = 3, .b = 0};
+    assert_int_equal(cub_coach_handle(NULL, &ev, 0), CUB_ERR_ARG);
+    assert_int_equal(cub_coach_handle(&c, NULL, 0), CUB_ERR_ARG);
+    assert_int_equal(cub_coach_tick(NULL, 0, 0), CUB_ERR_ARG);
+    to_dance(&c, 1000);
+    assert_int_equal(cub_coach_handle(&c, &ev, 0), CUB_ERR_RANGE);
+    assert_int_equal(c.action_count, 0); /* the last call's actions are not repeated */
+    ev.a = -1;
+    assert_int_equal(cub_coach_handle(&c, &ev, 0), CUB_ERR_RANGE);
+    ev = (cub_event){.type = CUB_EV_MUSIC_TAG, .a = 99, .b = 0};
+    assert_int_equal(cub_coach_handle(&c, &ev, 0), CUB_ERR_RANGE);
+    assert_int_equal(c.state, CUB_COACH_DANCE);
+    /* Events the coach does not use, and a clip-done of a clip it did not
+     * ask for, leave it dancing with no action. */
+    int32_t other[] = {CUB_EV_DEPTH_FRAME, CUB_EV_TIMER, CUB_EV_QUIT, CUB_EV_BUTTON_UP, 12345};
+    for (size_t i = 0; i < sizeof other / sizeof other[0]; i++) {
+        send(&c, 3000, other[i], 0, 0, 500);
+        assert_int_equal(c.action_count, 0);
+    }
+    send(&c, 3000, CUB_EV_CLIP_DONE, C_ROBOT, 0, 500);
+    assert_int_equal(c.action_count, 0);
+    assert_true(logged("coach ignore event=clip_done a=10"));
+    /* Time going backwards is taken as no time passing. */
+    send(&c, 10, CUB_EV_PLAYER, 0, 0, 500);
+    assert_int_equal(c.now_us, 3000000);
+    assert_int_equal(c.state, CUB_COACH_DANCE);
+}
+
+/* ---- transitions --------------------------------------------------------- */
+
+static void test_init_idles_and_start_wakes_into_the_dance(void **s)
+{
+    cub_coach c;
+    cub_coach_desc d = make_desc();
+    assert_int_equal(cub_coach_init(&c, &d, 0), CUB_OK);
+    assert_int_equal(c.state, CUB_COACH_IDLE);
+    expect_clip(&c, C_IDLE, CUB_Q16_ONE, true, CUB_COACH_WHY_IDLE);
+    assert_int_equal(c.desc.attract_after_ms, 20000);
+    assert_int_equal(c.desc.worried_after, 3);
+
+    send(&c, 1000, CUB_EV_BUTTON_DOWN, CUB_BUTTON_START, 0, CUB_COACH_NO_MUSIC);
+    assert_int_equal(c.state, CUB_COACH_WAKE);
+    assert_int_equal(act(&c, CUB_COACH_ACT_STATE, 0)->reason, CUB_COACH_WHY_START);
+    expect_clip(&c, C_WAKE, CUB_Q16_ONE, false, CUB_COACH_WHY_START);
+
+    send(&c, 2500, CUB_EV_CLIP_DONE, C_WAKE, 0, CUB_COACH_NO_MUSIC);
+    assert_int_equal(c.state, CUB_COACH_DANCE);
+    assert_non_null(act(&c, CUB_COACH_ACT_MUSIC_START, 0));
+    expect_clip(&c, C_CLAP, CUB_Q16_ONE, false, CUB_COACH_WHY_MOVE);
+    assert_int_equal(act(&c, CUB_COACH_ACT_HINT, 0)->hint, 0);
+    assert_true(logged("t=2.500 coach state from=wake to=dance reason=woke move=0 rep=0"));
+    assert_true(
+        logged("t=2.500 coach request clip=clap speed=1.000 loop=0 reason=move move=0 rep=0"));
+}
+
+static void test_clap_wakes_from_idle_attract_and_doze(void **s)
+{
+    cub_coach c;
+    cub_coach_desc d = make_desc();
+    d.attract_after_ms = 5000;
+    d.doze_after_ms = 9000;
+    const int64_t at_ms[] = {0, 5000, 9000}; /* idle, attract, doze */
+    for (int i = 0; i < 3; i++) {
+        assert_int_equal(cub_coach_init(&c, &d, 0), CUB_OK);
+        tick(&c, at_ms[i], CUB_COACH_NO_MUSIC);
+        if (i == 2) tick(&c, at_ms[i] + 1, CUB_COACH_NO_MUSIC); /* attract first, then doze */
+        send(&c, at_ms[i] + 10, CUB_EV_CLAP, 0, 0, CUB_COACH_NO_MUSIC);
+        assert_int_equal(c.state, CUB_COACH_WAKE);
+        expect_clip(&c, C_WAKE, CUB_Q16_ONE, false, CUB_COACH_WHY_CLAP);
+    }
+    /* A clap while dancing does not restart anything. */
+    to_dance(&c, 20000);
+    send(&c, 22000, CUB_EV_CLAP, 0, 0, 1000);
+    assert_int_equal(c.action_count, 0);
+}
+
+static void test_wrong_verdict_corrects_in_the_same_call(void **s)
+{
+    cub_coach c;
+    cub_coach_desc d = make_desc();
+    assert_int_equal(cub_coach_init(&c, &d, 0), CUB_OK);
+    to_dance(&c, 1000);
+    send(&c, 3500, CUB_EV_VERDICT, 0, 0, 1500);
+    assert_int_equal(c.state, CUB_COACH_CORRECT);
+    const cub_coach_action *st = act(&c, CUB_COACH_ACT_STATE, 0);
+    assert_int_equal(st->from, CUB_COACH_DANCE);
+    assert_int_equal(st->to, CUB_COACH_CORRECT);
+    assert_true(st < act(&c, CUB_COACH_ACT_CLIP, 0)); /* state first, then the clip */
+    expect_clip(&c, C_SHAKE, CUB_Q16_ONE, false, CUB_COACH_WHY_CORRECT);
+    assert_true(logged("t=3.500 coach state from=dance to=correct reason=wrong move=0 rep=0"));
+    assert_true(logged("t=3.500 coach request clip=head_shake speed=1.000 loop=0 reason=correct"));
+    /* A verdict about another move (late, from before a switch) is set aside. */
+    send(&c, 3600, CUB_EV_VERDICT, 2, 0, 1600);
+    assert_int_equal(c.action_count, 0);
+    assert_int_equal(c.misses, 1);
+}
+
+static void test_correction_repeats_until_right_then_resumes_same_move(void **s)
+{
+    cub_coach c;
+    cub_coach_desc d = make_desc();
+    assert_int_equal(cub_coach_init(&c, &d, 0), CUB_OK);
+    to_dance(&c, 1000);
+    send(&c, 2000, CUB_EV_VERDICT, 0, 0, 1000);
+    send(&c, 3000, CUB_EV_CLIP_DONE, C_SHAKE, 0, 2000);
+    const cub_q16 demo = 45875;   /* 0.7 */
+    for (int i = 0; i < 3; i++) { /* the demonstration again and again */
+        expect_clip(&c, C_CLAP, demo, false, CUB_COACH_WHY_DEMO);
+        assert_int_equal(c.state, CUB_COACH_CORRECT);
+        send(&c, 4000 + 2800 * i, CUB_EV_CLIP_DONE, C_CLAP, 0, 3000 + 2800 * i);
+    }
+    /* Right at music 5.1 s: move 0 (0..8 s, 2 s a rep) at its rep 3 (6 s)
+     * is nearest; the dance resumes there, faster to catch up. */
+    send(&c, 12000, CUB_EV_VERDICT, 0, 1, 5100);
+    assert_int_equal(c.state, CUB_COACH_DANCE);
+    assert_int_equal(c.move, 0);
+    assert_int_equal(c.rep, 3);
+    const cub_coach_action *a = act(&c, CUB_COACH_ACT_CLIP, 0);
+    assert_int_equal(a->clip, C_CLAP);
+    assert_int_equal(a->reason, CUB_COACH_WHY_RESUME);
+    assert_int_equal(a->speed_q16, cub_coach_sync_speed(6000, 5100, 2000, c.rate_q16, 0));
+    assert_true(logged("coach state from=correct to=dance reason=right move=0 rep=3"));
+
+    /* The demonstration of sway runs at 0.7 of the move's own speed 1.25. */
+    send(&c, 13000, CUB_EV_CLIP_DONE, C_CLAP, 0, 8000);
+    expect_clip(&c, C_SWAY, 0, false, CUB_COACH_WHY_MOVE);
+    send(&c, 13500, CUB_EV_VERDICT, 1, 0, 8500);
+    send(&c, 14000, CUB_EV_CLIP_DONE, C_WATCH, 0, 9000); /* the second correction: watch_me */
+    expect_clip(&c, C_SWAY, cub_fx_mul(81920, demo), false, CUB_COACH_WHY_DEMO);
+}
+
+static void test_resume_follows_the_music_past_the_move(void **s)
+{
+    cub_coach c;
+    cub_coach_desc d = make_desc();
+    struct {
+        int32_t music_ms;
+        int32_t move, rep, state_phase;
+    } cases[] = {
+        {8900, 1, 0, 0},    /* early in sway: rep 0 */
+        {10900, 1, 1, 0},   /* rep 1 of sway */
+        {11900, -1, -1, 1}, /* sway nearly over, robot at 13 s: wait in idle */
+        {13200, 2, 0, 0},   /* robot rep 0 */
+        {18800, -1, -1, 2}, /* robot nearly over, last move: outro */
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        assert_int_equal(cub_coach_init(&c, &d, 0), CUB_OK);
+        to_dance(&c, 0);
+        c.move = 1; /* corrected sway */
+        send(&c, 2000, CUB_EV_VERDICT, 1, 0, 8200);
+        send(&c, 3000, CUB_EV_VERDICT, 1, 1, cases[i].music_ms);
+        assert_int_equal(c.state, CUB_COACH_DANCE);
+        const cub_coach_action *a = act(&c, CUB_COACH_ACT_CLIP, 0);
+        if (cases[i].state_phase == 0) {
+            assert_int_equal(c.move, cases[i].move);
+            assert_int_equal(c.rep, cases[i].rep);
+            assert_int_equal(a->clip, song[cases[i].move].clip);
+        } else {
+            assert_int_equal(a->clip, C_IDLE);
+            assert_true(a->loop);
+            assert_int_equal(a->reason,
+                             cases[i].state_phase == 1 ? CUB_COACH_WHY_IDLE : CUB_COACH_WHY_OUTRO);
+        }
+    }
+    /* While waiting for robot's tag the tick starts it on time. */
+    assert_int_equal(cub_coach_init(&c, &d, 0), CUB_OK);
+    to_dance(&c, 0);
+    c.move = 1;
+    send(&c, 2000, CUB_EV_VERDICT, 1, 0, 8200);
+    send(&c, 3000, CUB_EV_VERDICT, 1, 1, 11900);
+    tick(&c, 3900, 12990);
+    assert_int_equal(c.action_count, 0);
+    tick(&c, 3933, 13010);
+    expect_clip(&c, C_ROBOT, 0, false, CUB_COACH_WHY_MOVE);
+}
+
+static void test_attract_then_doze_after_the_configured_quiet(void **s)
+{
+    cub_coach c;
+    cub_coach_desc d = make_desc();
+    d.attract_after_ms = 5000;
+    d.doze_after_ms = 9000;
+    assert_int_equal(cub_coach_init(&c, &d, 0), CUB_OK);
+    tick(&c, 4999, CUB_COACH_NO_MUSIC);
+    assert_int_equal(c.state, CUB_COACH_IDLE);
+    tick(&c, 5000, CUB_COACH_NO_MUSIC);
+    assert_int_equal(c.state, CUB_COACH_ATTRACT);
+    expect_clip(&c, C_WAVE, CUB_Q16_ONE, true, CUB_COACH_WHY_QUIET);
+    tick(&c, 8999, CUB_COACH_NO_MUSIC);
+    assert_int_equal(c.state, CUB_COACH_ATTRACT);
+    tick(&c, 9000, CUB_COACH_NO_MUSIC);
+    assert_int_equal(c.state, CUB_COACH_DOZE);
+    expect_clip(&c, C_DOZE, CUB_Q16_ONE, true, CUB_COACH_WHY_QUIET);
+    /* A child walking in makes the dozing bear wave. */
+    send(&c, 9500, CUB_EV_PLAYER, 1, 0, CUB_COACH_NO_MUSIC);
+    assert_int_equal(c.state, CUB_COACH_ATTRACT);
+
+    /* In the dance, verdicts are the interaction: without them, attract
+     * (and the music stops); with them, the dance goes on. */
+    assert_int_equal(cub_coach_init(&c, &d, 0), CUB_OK);
+    to_dance(&c, 0); /* quiet since 0: the START */
+    send(&c, 4000, CUB_EV_VERDICT, 0, 1, 3000);
+    tick(&c, 8999, 7999);
+    assert_int_equal(c.state, CUB_COACH_DANCE);
+    tick(&c, 9000, 8000);
+    assert_int_equal(c.state, CUB_COACH_ATTRACT);
+    assert_non_null(act(&c, CUB_COACH_ACT_MUSIC_STOP, 0));
+    assert_true(logged("t=9.000 coach state from=dance to=attract reason=quiet move=0 rep=0"));
+}
+
+static void test_worried_after_n_misses_then_back_to_correcting(void **s)
+{
+    cub_coach c;
+    cub_coach_desc d = make_desc();
+    assert_int_equal(cub_coach_init(&c, &d, 0), CUB_OK);
+    to_dance(&c, 0);
+    send(&c, 2000, CUB_EV_VERDICT, 0, 0, 1000);
+    expect_clip(&c, C_SHAKE, CUB_Q16_ONE, false, CUB_COACH_WHY_CORRECT);
+    send(&c, 2500, CUB_EV_VERDICT, 0, 0, 1500); /* during the head shake: counted only */
+    assert_null(act(&c, CUB_COACH_ACT_CLIP, 0));
+    assert_int_equal(c.misses, 2);
+    send(&c, 2600, CUB_EV_VERDICT, 0, 1, 1600); /* right: back to dancing */
+    assert_int_equal(c.state, CUB_COACH_DANCE);
+    send(&c, 2700, CUB_EV_VERDICT, 0, 0, 1700);
+    expect_clip(&c, C_WATCH, CUB_Q16_ONE, false, CUB_COACH_WHY_CORRECT); /* in turn */
+    send(&c, 2800, CUB_EV_CLIP_DONE, C_WATCH, 0, 1800);
+    expect_clip(&c, C_CLAP, 45875, false, CUB_COACH_WHY_DEMO);
+    send(&c, 3000, CUB_EV_VERDICT, 0, 0, 2000); /* wrong during the demo: correct again */
+    expect_clip(&c, C_SHAKE, CUB_Q16_ONE, false, CUB_COACH_WHY_CORRECT);
+    assert_int_equal(c.state, CUB_COACH_CORRECT);
+    send(&c, 4000, CUB_EV_VERDICT, 0, 0, 3000);
+    assert_int_equal(c.state, CUB_COACH_WORRIED);
+    assert_int_equal(act(&c, CUB_COACH_ACT_STATE, 0)->reason, CUB_COACH_WHY_MISSES);
+    expect_clip(&c, C_WORRIED, CUB_Q16_ONE, false, CUB_COACH_WHY_WORRIED);
+    send(&c, 4500, CUB_EV_VERDICT, 0, 0, 3500); /* wrong while worried: no scolding */
+    assert_int_equal(act(&c, CUB_COACH_ACT_CLIP, 0), NULL);
+    send(&c, 5000, CUB_EV_CLIP_DONE, C_WORRIED, 0, 4000);
+    assert_int_equal(c.state, CUB_COACH_CORRECT);
+    expect_clip(&c, C_CLAP, 45875, false, CUB_COACH_WHY_DEMO);
+    /* The count starts again: two more misses correct, the third worries. */
+    send(&c, 6000, CUB_EV_VERDICT, 0, 0, 5000);
+    send(&c, 6500, CUB_EV_VERDICT, 0, 0, 5500);
+    assert_int_equal(c.state, CUB_COACH_CORRECT);
+    send(&c, 7000, CUB_EV_VERDICT, 0, 1, 6000); /* right resets it */
+    assert_int_equal(c.misses, 0);
+    assert_int_equal(c.state, CUB_COACH_DANCE);
+}
+
+static void test_song_end_cheers_then_idles(void **s)
+{
+    cub_coach c;
+    cub_coach_desc d = make_desc();
+    assert_int_equal(cub_coach_init(&c, &d, 0), CUB_OK);
+    to_dance(&c, 0);
+    send(&c, 20000, CUB_EV_SONG_END, 0, 0, 19000);
+    assert_int_equal(c.state, CUB_COACH_CHEER);
+    expect_clip(&c, C_CHEER, CUB_Q16_ONE, false, CUB_COACH_WHY_CHEER);
+    assert_int_equal(act(&c, CUB_COACH_ACT_HINT, 0)->hint, CUB_COACH_HINT_NONE);
+    send(&c, 23000, CUB_EV_CLIP_DONE, C_CHEER, 0, CUB_COACH_NO_MUSIC);
+    assert_int_equal(c.state, CUB_COACH_IDLE);
+    expect_clip(&c, C_IDLE, CUB_Q16_ONE, true, CUB_COACH_WHY_IDLE);
+    assert_null(act(&c, CUB_COACH_ACT_MUSIC_STOP, 0)); /* it ended by itself */
+}
+
+/* Bring a fresh coach into state s. */
+static void drive_to(cub_coach *c, int s)
+{
+    cub_coach_desc d = make_desc();
+    d.attract_after_ms = 5000;
+    d.doze_after_ms = 9000;
+    assert_int_equal(cub_coach_init(c, &d, 0), CUB_OK);
+    switch (s) {
+    case CUB_COACH_WAKE: send(c, 100, CUB_EV_BUTTON_DOWN, CUB_BUTTON_START, 0, -1); break;
+    case CUB_COACH_DANCE: to_dance(c, 100); break;
+    case CUB_COACH_CORRECT:
+        to_dance(c, 100);
+        send(c, 2000, CUB_EV_VERDICT, 0, 0, 900);
+        break;
+    case CUB_COACH_WORRIED:
+        to_dance(c, 100);
+        for (int i = 0; i < 3; i++)
+            send(c, 2000 + i, CUB_EV_VERDICT, 0, 0, 900);
+        break;
+    case CUB_COACH_ATTRACT: tick(c, 5000, -1); break;
+    case CUB_COACH_DOZE:
+        tick(c, 5000, -1);
+        tick(c, 9000, -1);
+        break;
+    case CUB_COACH_CHEER:
+        to_dance(c, 100);
+        send(c, 2000, CUB_EV_SONG_END, 0, 0, 900);
+        break;
+    default: break;
+    }
+    assert_int_equal(c->state, s);
+}
+
+static void test_stop_returns_to_idle_from_every_state(void **s)
+{
+    cub_coach c;
+    for (int st = 0; st < CUB_COACH_STATE_COUNT; st++) {
+        drive_to(&c, st);
+        const bool music = c.music_on;
+        send(&c, 9500, CUB_EV_BUTTON_DOWN, CUB_BUTTON_STOP, 0, 1000);
+        assert_int_equal(c.state, CUB_COACH_IDLE);
+        assert_false(c.music_on);
+        if (st == CUB_COACH_IDLE) continue; /* already there: nothing to do */
+        expect_clip(&c, C_IDLE, CUB_Q16_ONE, true, CUB_COACH_WHY_IDLE);
+        assert_int_equal(act(&c, CUB_COACH_ACT_STATE, 0)->reason, CUB_COACH_WHY_STOP);
+        assert_int_equal(act(&c, CUB_COACH_ACT_MUSIC_STOP, 0) != NULL, music);
+        assert_int_equal(c.move, -1);
+    }
+}
+
+static void test_player_away_shows_come_closer(void **s)
+{
+    cub_coach c;
+    cub_coach_desc d = make_desc();
+    assert_int_equal(cub_coach_init(&c, &d, 0), CUB_OK);
+    to_dance(&c, 0);
+    send(&c, 2000, CUB_EV_PLAYER, 0, 0, 1000);
+    assert_int_equal(act(&c, CUB_COACH_ACT_HINT, 0)->hint, CUB_COACH_HINT_COME_CLOSER);
+    assert_true(logged("t=2.000 coach hint show=come_closer reason=player"));
+    send(&c, 3000, CUB_EV_CLIP_DONE, C_CLAP, 0, 2000); /* next rep: the hint stays */
+    assert_null(act(&c, CUB_COACH_ACT_HINT, 0));
+    send(&c, 4000, CUB_EV_PLAYER, 1, 0, 3000);
+    assert_int_equal(act(&c, CUB_COACH_ACT_HINT, 0)->hint, 0);
+}
+
+/* ---- music sync ---------------------------------------------------------- */
+
+static void test_sync_speed_behind_ahead_and_bounded(void **s)
+{
+    const cub_q16 one = CUB_Q16_ONE;
+    assert_int_equal(cub_coach_sync_speed(4000, 4000, 4000, one, 0), one); /* on time */
+    /* Music 200 ms behind: 4000 ms of dance in 4200 ms of music. */
+    assert_int_equal(cub_coach_sync_speed(4000, 3800, 4000, one, 0), 62415); /* 0.952 */
+    assert_int_equal(cub_coach_sync_speed(4000, 4200, 4000, one, 0), 68985); /* 1.053 */
+    /* Bounded to 1 -+ 0.15 (9830/65536), or a bound given. */
+    assert_int_equal(cub_coach_sync_speed(4000, 2000, 4000, one, 0), one - 9830);
+    assert_int_equal(cub_coach_sync_speed(4000, 6000, 4000, one, 0), one + 9830);
+    assert_int_equal(cub_coach_sync_speed(4000, 3000, 4000, one, 3277), one - 3277);
+    assert_int_equal(cub_coach_sync_speed(4000, 9000, 4000, one, 0), one + 9830); /* past */
+    /* A music clock running 5 % slow: the dance slows to it. */
+    assert_int_equal(cub_coach_sync_speed(4000, 4000, 4000, 62259, 0), 62259);
+    assert_int_equal(cub_coach_sync_speed(4000, 3900, 4000, 62259, 0), 60740);
+    /* Degenerate input: no span, unknown rate, absurd bound. */
+    assert_int_equal(cub_coach_sync_speed(4000, 3000, 0, one, 0), one);
+    assert_int_equal(cub_coach_sync_speed(4000, 3800, 4000, 0, 0), 62415);
+    assert_true(cub_coach_sync_speed(4000, 0, 4000, one, 5 * one) > 0);
+    assert_int_equal(cub_coach_sync_speed(INT32_MAX, INT32_MIN, INT32_MAX, INT32_MAX, 0),
+                     one + 9830);
+    assert_int_equal(cub_coach_sync_speed(INT32_MIN, INT32_MAX, INT32_MAX, 1, 0), one + 9830);
+    printf("coach: sync speed behind200=%.4f ahead200=%.4f bounded=%.4f/%.4f slow5%%=%.4f\n",
+           62415 / 65536.0, 68985 / 65536.0, (one - 9830) / 65536.0, (one + 9830) / 65536.0,
+           62259 / 65536.0);
+}
+
+static void test_music_tag_sets_the_moves_speed(void **s)
+{
+    cub_coach c;
+    cub_coach_desc d = make_desc();
+    assert_int_equal(cub_coach_init(&c, &d, 0), CUB_OK);
+    to_dance(&c, 0);                                   /* music starts at 1.000 */
+    tick(&c, 1100, 60);                                /* the audio clock moves: anchor */
+    send(&c, 3100, CUB_EV_CLIP_DONE, C_CLAP, 0, 2000); /* rate 1940/2000 = 0.97 */
+    send(&c, 9000, CUB_EV_CLIP_DONE, C_CLAP, 0, 0);
+    send(&c, 9001, CUB_EV_CLIP_DONE, C_CLAP, 0, 0);
+    send(&c, 9002, CUB_EV_CLIP_DONE, C_CLAP, 0, 7800); /* sway starts at 7.8 s of music */
+    assert_true(c.tag_pending);
+    send(&c, 9040, CUB_EV_MUSIC_TAG, 1, 8000, 7840);
+    const cub_coach_action *a = act(&c, CUB_COACH_ACT_SPEED, 0);
+    assert_non_null(a);
+    cub_q16 f = cub_coach_sync_speed(8000, 7840, 4000, c.rate_q16, 0);
+    assert_true(f < CUB_Q16_ONE); /* the music is behind the tag: slower */
+    assert_int_equal(a->speed_q16, cub_fx_mul(81920, f));
+    assert_true(logged("t=9.040 coach sync move=1 music_ms=7840 tag_ms=8000 speed="));
+    /* Only once per move. */
+    send(&c, 9050, CUB_EV_MUSIC_TAG, 1, 8000, 7850);
+    assert_null(act(&c, CUB_COACH_ACT_SPEED, 0));
+}
+
+/* A scripted input at t_ms: a = -1 means "the move being danced". */
+typedef struct script_ev {
+    int32_t t_ms, type, a, b;
+} script_ev;
+
+typedef struct session {
+    const cub_coach_move *moves;
+    int32_t move_count;
+    int rate_permille;       /* the music clock against the loop clock */
+    const script_ev *script; /* in time order */
+    int script_count;
+    bool record;            /* log into the recorder */
+    cub_q16 sync_bound_q16; /* 0: the default */
+    /* out */
+    int64_t worst_us, worst_tag_us; /* |music - dance| while moves play / at first frames */
+    int32_t song_ms;
+    int32_t end_state;
+} session;
+
+static int64_t clip_len_us(const session *ss, const cub_coach_action *a)
+{
+    if (a->reason == CUB_COACH_WHY_MOVE || a->reason == CUB_COACH_WHY_REP ||
+        a->reason == CUB_COACH_WHY_RESUME || a->reason == CUB_COACH_WHY_DEMO)
+        return (int64_t)ss->moves[a->move].span_ms * 1000 / ss->moves[a->move].reps;
+    return a->loop ? 1000000 : 1500000; /* idle loops; wake_up, head_shake, cheer... */
+}
+
+static void note_error(int64_t err_us, int64_t *worst_us)
+{
+    if (err_us < 0) err_us = -err_us;
+    if (err_us > *worst_us) *worst_us = err_us;
+}
+
+/* A small player, all integer so that every CPU gives the same log: plays
+ * what the coach asks at the asked speed, posts clip-done at a clip's end
+ * and the music tag at a move's first frame; the music clock runs at
+ * rate_permille of the loop clock after a 60 ms start-up and ends the song
+ * at the last move's end. START at the first tick. */
+static void run_session(session *ss)
+{
+    const cub_coach_move *last = &ss->moves[ss->move_count - 1];
+    ss->song_ms = last->tag_ms + last->span_ms;
+    ss->worst_us = ss->worst_tag_us = 0;
+    cub_coach c;
+    cub_coach_desc d = make_desc();
+    d.moves = ss->moves;
+    d.move_count = ss->move_count;
+    if (!ss->record) d.log = NULL;
+    d.attract_after_ms = 100000; /* the sync runs give no verdicts */
+    d.doze_after_ms = 200000;
+    d.sync_bound_q16 = ss->sync_bound_q16;
+    assert_int_equal(cub_coach_init(&c, &d, 0), CUB_OK);
+    int64_t now = 0, music_start_us = -1;
+    int64_t pos_us = 0, len_us = 1000000; /* song time into the clip */
+    int32_t clip = C_IDLE;
+    cub_q16 speed = CUB_Q16_ONE;
+    cub_q16 base = CUB_Q16_ONE; /* the move's own speed: song time runs at speed/base */
+    bool loop = true, dancing = false, started = false;
+    int next = 0;
+    for (int step = 0; step < 9000; step++) {
+        now += 33333;
+        int64_t music_us = -1;
+        if (music_start_us >= 0)
+            music_us = now < music_start_us + 60000
+                           ? 0
+                           : (now - music_start_us - 60000) * ss->rate_permille / 1000;
+        const int32_t music_ms = music_us < 0 ? CUB_COACH_NO_MUSIC : (int32_t)(music_us / 1000);
+        pos_us += (int64_t)33333 * speed / base;
+        const bool done = !loop && pos_us >= len_us;
+        if (pos_us >= len_us) pos_us -= len_us; /* the next clip or pass goes on from there */
+        cub_event ev = {.t_us = now};
+        if (!started) {
+            ev = (cub_event){.t_us = now, .type = CUB_EV_BUTTON_DOWN, .a = CUB_BUTTON_START};
+            started = true;
+        } else if (next < ss->script_count && ss->script[next].t_ms * 1000 <= now) {
+            const script_ev *e = &ss->script[next++];
+            ev =
+                (cub_event){.t_us = now, .type = e->type, .a = e->a < 0 ? c.move : e->a, .b = e->b};
+        } else if (music_us >= (int64_t)ss->song_ms * 1000) {
+            ev.type = CUB_EV_SONG_END;
+            music_start_us = -1;
+        } else if (done) {
+            ev = (cub_event){.t_us = now, .type = CUB_EV_CLIP_DONE, .a = clip};
+        }
+        if (ev.type)
+            assert_int_equal(cub_coach_handle(&c, &ev, music_ms), CUB_OK);
+        else
+            assert_int_equal(cub_coach_tick(&c, now, music_ms), CUB_OK);
+        const cub_coach_action *move_start = NULL;
+        for (int i = 0; i < c.action_count; i++) {
+            const cub_coach_action *a = &c.actions[i];
+            if (a->kind == CUB_COACH_ACT_MUSIC_START) music_start_us = now;
+            if (a->kind == CUB_COACH_ACT_MUSIC_STOP) music_start_us = -1;
+            if (a->kind == CUB_COACH_ACT_SPEED) speed = a->speed_q16;
+            if (a->kind != CUB_COACH_ACT_CLIP) continue;
+            if (!done) pos_us = 0; /* a switch mid-clip starts the new one afresh */
+            clip = a->clip;
+            speed = a->speed_q16;
+            loop = a->loop;
+            len_us = clip_len_us(ss, a);
+            base = CUB_Q16_ONE;
+            if (a->move >= 0 && a->clip == ss->moves[a->move].clip && !a->loop)
+                base = ss->moves[a->move].speed_q16 ? ss->moves[a->move].speed_q16 : CUB_Q16_ONE;
+            dancing = a->reason == CUB_COACH_WHY_MOVE || a->reason == CUB_COACH_WHY_REP ||
+                      a->reason == CUB_COACH_WHY_RESUME;
+            if (a->rep == 0 && dancing) move_start = a;
+        }
+        if (move_start) { /* the first frame: the app posts the move's tag */
+            const int32_t tag_ms = ss->moves[move_start->move].tag_ms;
+            const int64_t music_now_us = music_us < 0 ? 0 : music_us; /* started this step */
+            note_error(music_now_us - (int64_t)tag_ms * 1000 - pos_us, &ss->worst_tag_us);
+            cub_event tag = {
+                .t_us = now, .type = CUB_EV_MUSIC_TAG, .a = move_start->move, .b = tag_ms};
+            assert_int_equal(cub_coach_handle(&c, &tag, (int32_t)(music_now_us / 1000)), CUB_OK);
+            const cub_coach_action *a = act(&c, CUB_COACH_ACT_SPEED, 0);
+            if (a) speed = a->speed_q16;
+        }
+        if (c.state == CUB_COACH_DANCE && dancing && music_us >= 0) {
+            const cub_coach_move *m = &ss->moves[c.move];
+            const int64_t rep_us =
+                (int64_t)m->tag_ms * 1000 + (int64_t)m->span_ms * 1000 * c.rep / m->reps;
+            note_error(music_us - rep_us - pos_us, &ss->worst_us);
+        }
+        if (c.state == CUB_COACH_IDLE && step > 10) break;
+    }
+    ss->end_state = c.state;
+}
+
+static void test_sync_keeps_the_dance_on_a_skewed_music_clock(void **s)
+{
+    static cub_coach_move moves[8];
+    const int32_t rep_ms[8] = {2000, 1500, 2500, 2000, 1800, 2200, 2000, 1600};
+    int32_t t_ms = 2000; /* a 2 s intro */
+    for (int i = 0; i < 8; i++) {
+        moves[i] = (cub_coach_move){.clip = C_CLAP + i % 3, .reps = 2 + i % 3, .tag_ms = t_ms};
+        moves[i].span_ms = moves[i].reps * rep_ms[i];
+        t_ms += moves[i].span_ms;
+    }
+    const int rates[] = {950, 1000, 1050};
+    for (int i = 0; i < 3; i++) {
+        session ss = {.moves = moves, .move_count = 8, .rate_permille = rates[i]};
+        run_session(&ss);
+        printf("coach: music clock x%.2f: dance vs music max %.1f ms (%.2f frames), at move "
+               "starts %.1f ms, over a %d s song of 8 moves\n",
+               rates[i] / 1000.0, ss.worst_us / 1000.0, ss.worst_us / 33333.0,
+               ss.worst_tag_us / 1000.0, (int)(ss.song_ms / 1000));
+        assert_int_equal(ss.end_state, CUB_COACH_IDLE); /* danced, cheered, rested */
+        assert_true(ss.worst_tag_us <= 66667);          /* within 2 frames of every tag */
+        assert_true(ss.worst_us <= 66667);
+        /* The same without sync (a bound of 1/65536): the drift it removes. */
+        session off = {
+            .moves = moves, .move_count = 8, .rate_permille = rates[i], .sync_bound_q16 = 1};
+        run_session(&off);
+        printf("coach: music clock x%.2f without sync: max %.1f ms\n", rates[i] / 1000.0,
+               off.worst_us / 1000.0);
+        if (rates[i] != 1000) assert_true(off.worst_us > 10 * ss.worst_us);
+    }
+}
+
+/* FNV-1a over the log, line by line. */
+static uint32_t log_hash(void)
+{
+    uint32_t h = 2166136261u;
+    for (int i = 0; i < rec.n; i++)
+        for (const char *p = rec.lines[i];; p++) {
+            h = (h ^ (uint8_t)*p) * 16777619u;
+            if (!*p) break;
+        }
+    return h;
+}
+
+static const script_ev session_script[] = {
+    {3000, CUB_EV_VERDICT, -1, 1},
+    {4500, CUB_EV_VERDICT, -1, 0},  /* head_shake, then the slow demo */
+    {7000, CUB_EV_VERDICT, -1, 1},  /* right: back into the same move */
+    {9500, CUB_EV_VERDICT, -1, 0},  /* watch_me this time, then the demo */
+    {12000, CUB_EV_PLAYER, 0, 0},   /* the child steps out of view ... */
+    {12500, CUB_EV_VERDICT, -1, 1}, /* (the judge's last word) */
+    {13000, CUB_EV_PLAYER, 1, 0},   /* ... and back */
+    {15000, CUB_EV_VERDICT, -1, 0},
+    {15100, CUB_EV_VERDICT, -1, 0},
+    {15200, CUB_EV_VERDICT, -1, 0}, /* three in a row: worried */
+    {17500, CUB_EV_VERDICT, -1, 1},
+};
+
+/* The state changes of the scripted session, in order. */
+static const char *const session_states[] = {
+    "coach state from=idle to=wake reason=start",
+    "coach state from=wake to=dance reason=woke move=0 rep=0",
+    "coach state from=dance to=correct reason=wrong move=0 rep=1",
+    "coach state from=correct to=dance reason=right move=0 rep=3", /* the same move */
+    "coach state from=dance to=correct reason=wrong move=1 rep=0",
+    "coach state from=correct to=dance reason=right move=1 rep=1",
+    "coach state from=dance to=correct reason=wrong move=2 rep=0",
+    "coach state from=correct to=worried reason=misses move=2 rep=0",
+    "coach state from=worried to=correct reason=calmed move=2 rep=0",
+    "coach state from=correct to=dance reason=right move=2",
+    "coach state from=dance to=cheer reason=song_end",
+    "coach state from=cheer to=idle reason=cheered",
+};
+
+static void test_scripted_session_gives_the_same_log_every_time(void **s)
+{
+    session ss = {.moves = song,
+                  .move_count = 3,
+                  .rate_permille = 1000,
+                  .script = session_script,
+                  .script_count = (int)(sizeof session_script / sizeof session_script[0]),
+                  .record = true};
+    run_session(&ss);
+    assert_int_equal(ss.end_state, CUB_COACH_IDLE);
+    static recorder first;
+    first = rec;
+    uint32_t h1 = log_hash();
+    run_session(&ss);
+    assert_int_equal(rec.n, first.n);
+    for (int i = 0; i < rec.n; i++)
+        assert_string_equal(rec.lines[i], first.lines[i]);
+    assert_int_equal(log_hash(), h1);
+
+    int k = 0;
+    const int want = (int)(sizeof session_states / sizeof session_states[0]);
+    for (int i = 0; i < rec.n; i++) {
+        printf("coach trace: %s\n", rec.lines[i]);
+        if (!strstr(rec.lines[i], " coach state ")) continue;
+        assert_true(k < want);
+        assert_non_null(strstr(rec.lines[i], session_states[k]));
+        k++;
+    }
+    assert_int_equal(k, want);
+    printf("coach: scripted session %d log lines, fnv1a=%08x\n", rec.n, (unsigned)h1);
+    assert_int_equal(h1, SESSION_LOG_FNV);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_bad_desc_is_refused),
+        cmocka_unit_test(test_bad_events_change_nothing),
+        cmocka_unit_test(test_init_idles_and_start_wakes_into_the_dance),
+        cmocka_unit_test(test_clap_wakes_from_idle_attract_and_doze),
+        cmocka_unit_test(test_wrong_verdict_corrects_in_the_same_call),
+        cmocka_unit_test(test_correction_repeats_until_right_then_resumes_same_move),
+        cmocka_unit_test(test_resume_follows_the_music_past_the_move),
+        cmocka_unit_test(test_attract_then_doze_after_the_configured_quiet),
+        cmocka_unit_test(test_worried_after_n_misses_then_back_to_correcting),
+        cmocka_unit_test(test_song_end_cheers_then_idles),
+        cmocka_unit_test(test_stop_returns_to_idle_from_every_state),
+        cmocka_unit_test(test_player_away_shows_come_closer),
+        cmocka_unit_test(test_sync_speed_behind_ahead_and_bounded),
+        cmocka_unit_test(test_music_tag_sets_the_moves_speed),
+        cmocka_unit_test(test_sync_keeps_the_dance_on_a_skewed_music_clock),
+        cmocka_unit_test(test_scripted_session_gives_the_same_log_every_time),
+    };
+    return cmocka_run_group_tests_name("coach", tests, NULL, NULL);
+}
