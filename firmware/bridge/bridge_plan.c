@@ -350,6 +350,17 @@ static int tween_search(const cub_bridge_table *t, const cub_bridge_query *q, in
 
 /* ---- the plan -------------------------------------------------------- */
 
+/* A plan of one direct switch: play on h.k frames, then into h.frame. */
+static void write_direct(const cub_bridge_query *q, int nf, const hit *h, int window,
+                         cub_bridge_plan *out)
+{
+    out->step_count = 1;
+    out->step[0] = (cub_bridge_step){q->from_clip, (int)(h->at % nf), q->to_clip, h->frame, h->d,
+                                     CUB_BRIDGE_DIRECT, h->at << 16};
+    out->wait_frames = out->total_frames = h->k;
+    out->window_frames = window;
+}
+
 static int query_ok(const cub_bridge_table *t, const cub_bridge_query *q)
 {
     int n = t->desc.clip_count;
@@ -376,11 +387,7 @@ cub_err cub_bridge_plan_switch(const cub_bridge_table *t, const cub_bridge_query
     hit h;
     int first = window < limit ? window : limit;
     if (q->start_frames > 0 && start_search(t, q, g0, first, &h)) {
-        out->step_count = 1;
-        out->step[0] = (cub_bridge_step){q->from_clip, (int)(h.at % nf), q->to_clip, h.frame, h.d,
-                                         CUB_BRIDGE_DIRECT, h.at << 16};
-        out->wait_frames = out->total_frames = h.k;
-        out->window_frames = window;
+        write_direct(q, nf, &h, window, out);
         return CUB_OK;
     }
     if (q->start_frames > 0 && t->desc.bridge_total > 0) {
@@ -394,11 +401,7 @@ cub_err cub_bridge_plan_switch(const cub_bridge_table *t, const cub_bridge_query
         if (window > limit) window = limit;
         for (int back = 0; back <= 1; back++) {
             if (!direct_search(t, q, g0, window, back, w, &h)) continue;
-            out->step_count = 1;
-            out->step[0] = (cub_bridge_step){q->from_clip, (int)(h.at % nf), q->to_clip, h.frame,
-                                             h.d, CUB_BRIDGE_DIRECT, h.at << 16};
-            out->wait_frames = out->total_frames = h.k;
-            out->window_frames = window;
+            write_direct(q, nf, &h, window, out);
             return CUB_OK;
         }
         if (t->desc.bridge_total > 0 && tween_search(t, q, g0, window, w, out)) {
