@@ -344,3 +344,17 @@ cub_err cub_dance_pose(cub_dance *d, float *xyz)
     if (!e) cub_motion_world_to_float(d->world_mm, d->cl.lib.skel.joint_count, xyz);
     return e;
 }
+
+float cub_dance_figure_height_mm(const cub_dance *d)
+{
+    static cub_pose rest;
+    static cub_vec3 world[CUB_MOTION_MAX_JOINTS];
+    const cub_skeleton *skel = &d->cl.lib.skel;
+    cub_motion_pose_rest(skel, &rest);
+    rest.root_mm = skel->joints[0].offset_mm; /* the rest pose stands on the floor */
+    float top_mm = 0;
+    if (cub_motion_forward(skel, &rest, world, NULL) == CUB_OK)
+        for (int j = 0; j < skel->joint_count; j++)
+            if (world[j].y / 65536.0f > top_mm) top_mm = world[j].y / 65536.0f;
+    return top_mm > 0 ? 1.3f * top_mm : 0;
+}

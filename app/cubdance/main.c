@@ -123,13 +123,6 @@ static int run(const cub_app_options *o, cub_board *board, FILE *log, const cub_
         fprintf(stderr, "cubdance: out of memory\n");
         goto done;
     }
-    if (cub_board_display_active(board)) {
-        cub_render_desc rd = {.width = w, .height = h};
-        if (cub_render_create(&rd, &s.render)) {
-            fprintf(stderr, "cubdance: the renderer could not start (GLES2)\n");
-            goto done;
-        }
-    }
     int64_t t0 = cub_board_now_us(board);
     if (o->seconds > 0) s.stop_at_us = t0 + (int64_t)(o->seconds * 1e6);
     const char *display = !cub_board_display_active(board)   ? "none"
@@ -147,6 +140,16 @@ static int run(const cub_app_options *o, cub_board *board, FILE *log, const cub_
                       cub_board_name(), display, w, h, cub_board_depth_source(board), clock,
                       s.clip_name, clip->skel.joint_count);
     if (open_extras(o, board, &loop, t0, &s)) goto done;
+    if (cub_board_display_active(board)) {
+        /* Frame the coach: the bear is a toy, about a metre tall. */
+        cub_render_desc rd = {.width = w, .height = h,
+                              .figure_height_mm = s.dance ? cub_dance_figure_height_mm(s.dance)
+                                                          : 0};
+        if (cub_render_create(&rd, &s.render)) {
+            fprintf(stderr, "cubdance: the renderer could not start (GLES2)\n");
+            goto done;
+        }
+    }
     cub_loop_hooks hooks = cub_session_hooks(&s);
     cub_err err = cub_loop_run(&loop, &hooks, 0);
     cub_log_event(&loop.log, cub_board_now_us(board), "app", "end",
