@@ -3,12 +3,24 @@
 # camera (the judge is scripted), the virtual clock (so the event log is exact), a song,
 # a judge timeline and button presses.
 #   run_scenario.sh EMULATOR|"" CUBDANCE OUT_DIR NAME SECONDS [cubdance options...]
+# With REPLAY_DUMP set, the depth inset replays that fakenect dump (skipped,
+# exit 77, when the dump is absent); else there is no depth camera.
 set -euo pipefail
 emu=$1 exe=$2 out=$3 name=$4 seconds=$5
 shift 5
 mkdir -p "$out"
 export EGL_PLATFORM=surfaceless SDL_AUDIODRIVER=dummy
+depth=(--depth off)
+if [ -n "${REPLAY_DUMP:-}" ]; then
+    if [ ! -f "$REPLAY_DUMP/INDEX.txt" ]; then
+        echo "SKIP: no fakenect dump at $REPLAY_DUMP"
+        exit 77
+    fi
+    export FAKENECT_PATH="$REPLAY_DUMP"
+    export LD_LIBRARY_PATH="${CUB_FAKENECT_DIR}${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
+    depth=(--replay "$REPLAY_DUMP")
+fi
 # shellcheck disable=SC2086
-$emu "$exe" --headless --size 64x48 --depth off --clock virtual --seconds "$seconds" \
+$emu "$exe" --headless --size 64x48 "${depth[@]}" --clock virtual --seconds "$seconds" \
     --log "$out/$name.log" "$@"
 echo "--- $name: $(wc -l < "$out/$name.log") log lines in $out/$name.log"
