@@ -3,6 +3,8 @@
  *   'T': a bridge tag file (cub/tags.h), validated against a fixed library.
  *   'S': a song's choreography (cub/song.h), against a fixed library.
  *   'L': the scripted judge timeline (app/cubdance/timeline.h).
+ *   'U': a button timeline (board/common/buttons_script.h).
+ *   'G': the box's GPIO config (board/pi/gpio.h).
  *   'X': a character (XML, cub_character_parse).
  *   'P': a clip pack as is; 'Q': a clip pack whose last 4 bytes the harness
  *        replaces by the right CRC, so mutations get past the CRC check.
@@ -24,6 +26,8 @@
 #include "cub/pack.h"
 #include "cub/song.h"
 #include "cub/tags.h"
+#include "buttons_script.h"
+#include "gpio.h"
 #include "timeline.h"
 
 #define MARK "\n==AMC==\n"
@@ -31,6 +35,43 @@
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 static int fuzz_tags(const char *text, size_t len);
 static int fuzz_song(const char *text, size_t len);
+
+/* A button timeline that parses hands out its edges in time order, as many
+ * as it says it has. */
+static int fuzz_buttons(const char *text, size_t len)
+{
+    cub_button_script *s = NULL;
+    char err[300];
+    if (cub_button_script_parse(text, len, "fuzz.buttons", &s, err, sizeof err) != CUB_OK) {
+        if (!err[0]) abort();
+        return 0;
+    }
+    cub_event ev;
+    int64_t last = INT64_MIN;
+    size_t n = 0;
+    while (cub_button_script_next(s, INT64_MAX, &ev)) {
+        if (ev.t_us < last || (ev.type != CUB_EV_BUTTON_DOWN && ev.type != CUB_EV_BUTTON_UP))
+            abort();
+        last = ev.t_us;
+        n++;
+    }
+    if (n != cub_button_script_edges(s)) abort();
+    cub_button_script_free(s);
+    return 0;
+}
+
+/* A GPIO config that parses names its lines and a debounce in range. */
+static int fuzz_gpio(const char *text, size_t len)
+{
+    cub_gpio_config cfg;
+    char err[300];
+    if (cub_gpio_config_parse(text, len, "fuzz.conf", &cfg, err, sizeof err) != CUB_OK) {
+        if (!err[0]) abort();
+        return 0;
+    }
+    if (cfg.debounce_ms < 0 || cfg.debounce_ms > 1000) abort();
+    return 0;
+}
 
 /* A timeline that parses hands out its events in time order, each once. */
 static int fuzz_timeline(const char *text, size_t len)
@@ -169,6 +210,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         return 0;
     if (data[0] == 'T')
         return fuzz_tags((const char *)data + 1, size - 1);
+    if (data[0] == 'U')
+        return fuzz_buttons((const char *)data + 1, size - 1);
+    if (data[0] == 'G')
+        return fuzz_gpio((const char *)data + 1, size - 1);
     if (data[0] == 'L')
         return fuzz_timeline((const char *)data + 1, size - 1);
     if (data[0] == 'S')
