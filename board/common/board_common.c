@@ -251,3 +251,57 @@ cub_err cub_board_storage_path(cub_board *b, const char *name, char *buf, size_t
     }
     return CUB_OK;
 }
+
+/* ---- opening a board of a kind ------------------------------------------ */
+
+static cub_err open_display(const cub_board_kind *kind, cub_board *b, char *err,
+                            size_t err_size)
+{
+    const cub_board_desc *d = &b->desc;
+    switch (d->display) {
+    case CUB_DISPLAY_NONE: return CUB_OK;
+    case CUB_DISPLAY_HEADLESS:
+        return cub_display_open_headless(d->width, d->height, &b->display, err, err_size);
+    case CUB_DISPLAY_WINDOW:
+        return cub_display_open_window(d->width, d->height, kind->video_driver, &b->display, err,
+                                       err_size);
+    case CUB_DISPLAY_AUTO:
+        if ((!kind->probe_window || cub_display_window_available()) &&
+            cub_display_open_window(d->width, d->height, kind->video_driver, &b->display, err,
+                                    err_size) == CUB_OK)
+            return CUB_OK;
+        if (kind->say_fallback) fprintf(stderr, "cubdance: %s (drawing headless instead)\n", err);
+        return cub_display_open_headless(d->width, d->height, &b->display, err, err_size);
+    }
+    snprintf(err, err_size, "board: unknown display mode %d", (int)d->display);
+    return CUB_ERR_ARG;
+}
+
+cub_err cub_board_open_kind(const cub_board_kind *kind, const cub_board_desc *desc,
+                            cub_board **out, char *err_msg, size_t err_size)
+{
+    char local[512];
+    if (!err_msg || err_size == 0) {
+        err_msg = local;
+        err_size = sizeof local;
+    }
+    err_msg[0] = '\0';
+    if (!out) {
+        snprintf(err_msg, err_size, "board: no place for the board (out is NULL)");
+        return CUB_ERR_ARG;
+    }
+    *out = NULL;
+    cub_board *b = NULL;
+    cub_err e = cub_board_common_open(desc, &b, err_msg, err_size);
+    if (e) return e;
+    e = open_display(kind, b, err_msg, err_size);
+    if (!e) e = cub_board_common_start(b, err_msg, err_size);
+    /* Buttons last: a debouncer starts from the board's clock. */
+    if (!e && !b->script && kind->open_buttons) e = kind->open_buttons(b, desc, err_msg, err_size);
+    if (e) {
+        cub_board_common_close(b);
+        return e;
+    }
+    *out = b;
+    return CUB_OK;
+}

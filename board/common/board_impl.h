@@ -3,8 +3,8 @@
  * board_common.c implements every cub_board_* function that is the same on
  * both boards (clock, depth, display, audio, storage, button dispatch).
  * Each board (board/sim, board/pi) implements cub_board_open/close/name:
- * it calls cub_board_common_open, opens its display and buttons, and last
- * cub_board_common_start, which starts the clock and opens the depth source. */
+ * it describes itself as a cub_board_kind (video driver, display fallback,
+ * its own buttons) and calls cub_board_open_kind. */
 #ifndef CUB_BOARD_IMPL_H
 #define CUB_BOARD_IMPL_H
 
@@ -41,6 +41,23 @@ cub_board_desc cub_board_desc_defaults(const cub_board_desc *desc);
  * storage, the depth source and the button script. */
 cub_err cub_board_common_open(const cub_board_desc *desc, cub_board **out, char *err,
                               size_t err_size);
+/* What makes a board itself; board_common.c does the rest of opening it. */
+typedef struct cub_board_kind {
+    const char *video_driver; /* SDL's video driver for a window; NULL = SDL's choice */
+    int probe_window;         /* AUTO: open a window only if one can open here
+                                 (a PC may have no display at all) */
+    int say_fallback;         /* AUTO: tell stderr when the window fails and it
+                                 draws headless (the box is meant to show on HDMI) */
+    /* The board's own buttons, opened last (after the clock starts) unless a
+     * button script replaces them; NULL = none beyond the window's keys. */
+    cub_err (*open_buttons)(cub_board *b, const cub_board_desc *desc, char *err,
+                            size_t err_size);
+} cub_board_kind;
+
+/* cub_board_open for a board of this kind: common parts, display, clock and
+ * depth, then its buttons; on failure everything is closed again. */
+cub_err cub_board_open_kind(const cub_board_kind *kind, const cub_board_desc *desc,
+                            cub_board **out, char *err_msg, size_t err_size);
 /* Start the board's clock (t = 0 from now) and open the depth source. */
 cub_err cub_board_common_start(cub_board *board, char *err, size_t err_size);
 /* Release everything the board holds (safe on a half-open board). */
