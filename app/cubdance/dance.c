@@ -152,8 +152,11 @@ void cub_dance_handle(cub_dance *d, cub_loop *loop, const cub_event *ev)
 static void pull_music(cub_dance *d, int64_t t_us)
 {
     if (!d->music_pull || !d->music_started) return;
-    int rate = cub_music_rate(d->music);
-    uint64_t due = (uint64_t)(t_us - d->pull_origin_us) * (uint64_t)rate / 1000000u;
+    /* A sound card off its rate (--music-clock-scale) takes that many more
+     * or fewer frames a second; the music clock counts them, true to the
+     * music it played. */
+    uint64_t card_us = (uint64_t)(t_us - d->pull_origin_us) * d->pull_scale_ppm / 1000000u;
+    uint64_t due = card_us * (uint64_t)cub_music_rate(d->music) / 1000000u;
     while (cub_music_frames(d->music) < due) {
         uint64_t n = due - cub_music_frames(d->music);
         cub_music_render(d->music, d->pcm, (int)(n > PCM_FRAMES ? PCM_FRAMES : n));
@@ -167,22 +170,24 @@ static void post(cub_loop *loop, int64_t t_us, int32_t type, int32_t a, int32_t 
 }
 
 /* Entering the clip of the move being danced: its music tag, the song time
- * of the frame reached (SEEDS.md § 000, "Music sync"). */
-static void post_music_tag(cub_dance *d, cub_loop *loop, int64_t t_us, const cub_bridge_step *s)
+ * of the frame shown now (SEEDS.md § 000, "Music sync"). Now, not at the
+ * switch: the music clock was read at the end of this advance, and the
+ * coach compares the two. */
+static void post_music_tag(cub_dance *d, cub_loop *loop, int64_t now_us, const cub_bridge_step *s)
 {
     int m = d->coach.move;
     if (d->coach.state != CUB_COACH_DANCE || m < 0 || m >= d->song.move_count) return;
     const cub_coach_move *mv = &d->moves[m];
-    if (s->to_clip != mv->clip) return;
-    int frames = d->cl.lib.clips[mv->clip].clip.frame_count;
+    if (s->to_clip != mv->clip || d->player.clip != mv->clip) return;
+    int64_t intervals_q16 = (int64_t)(d->cl.lib.clips[mv->clip].clip.frame_count - 1) << 16;
     int64_t rep_ms = mv->span_ms / mv->reps;
-    int32_t tag = mv->tag_ms + (int32_t)(rep_ms * d->coach.rep + rep_ms * s->to_frame / frames);
-    cub_log_event(d->log, t_us, "music", "tag", "move=%d tag_ms=%d music_ms=%d", m, tag,
+    int32_t tag = mv->tag_ms + (int32_t)(rep_ms * d->coach.rep + rep_ms * d->player.pos_q16 / intervals_q16);
+    cub_log_event(d->log, now_us, "music", "tag", "move=%d tag_ms=%d music_ms=%d", m, tag,
                   music_ms(d));
-    post(loop, t_us, CUB_EV_MUSIC_TAG, m, tag);
+    post(loop, now_us, CUB_EV_MUSIC_TAG, m, tag);
 }
 
-static void player_events(cub_dance *d, cub_loop *loop, int64_t t0_us,
+static void player_events(cub_dance *d, cub_loop *loop, int64_t t0_us, int64_t now_us,
                           const cub_bridge_event *ev, int n)
 {
     for (int i = 0; i < n; i++) {
@@ -192,7 +197,7 @@ static void player_events(cub_dance *d, cub_loop *loop, int64_t t0_us,
             cub_log_event(d->log, t, "bridge", "switch", "from=%s@%d to=%s@%d d=%q via=%s",
                           clip_name(d, s->from_clip), s->from_frame, clip_name(d, s->to_clip),
                           s->to_frame, s->d, s->via == CUB_BRIDGE_TWEEN ? "tween" : "direct");
-            post_music_tag(d, loop, t, s);
+            post_music_tag(d, loop, now_us, s);
         } else if (ev[i].type == CUB_BRIDGE_EV_DONE && !ev[i].looped) {
             int clip = ev[i].clip == d->played_clip ? d->requested_clip : ev[i].clip;
             cub_log_event(d->log, t, "bridge", "done", "clip=%s", clip_name(d, ev[i].clip));
@@ -214,7 +219,7 @@ void cub_dance_poll(cub_dance *d, cub_loop *loop, int64_t now_us)
     int64_t dt = now_us > d->last_tick_us ? now_us - d->last_tick_us : 0;
     d->last_tick_us += dt;
     if (cub_bridge_player_advance(&d->player, dt, ev, MAX_PLAYER_EVENTS, &n) == CUB_OK)
-        player_events(d, loop, now_us - dt, ev, n);
+        player_events(d, loop, now_us - dt, now_us, ev, n);
 }
 
 void cub_dance_tick(cub_dance *d, cub_loop *loop, int64_t t_us)
@@ -244,6 +249,62 @@ static void fill_moves(cub_dance *d)
     }
 }
 
+/* ---- entering a move on its music tag ------------------------------------ */
+
+/* Song ms by which a move should be asked for before its tag: what the
+ * planned route takes, less the content it skips (a route may land past
+ * the clip's first frame). */
+static int32_t route_lead_ms(const cub_dance *d, const cub_bridge_plan *plan, int move)
+{
+    const cub_coach_move *mv = &d->moves[move];
+    const cub_clip *clip = &d->cl.lib.clips[mv->clip].clip;
+    int64_t speed = mv->speed_q16 ? mv->speed_q16 : CUB_Q16_ONE;
+    int64_t route_ms = (int64_t)plan->total_frames * clip->frame_ns / 1000000 * CUB_Q16_ONE / speed;
+    int to_frame = plan->step_count > 0 ? plan->step[plan->step_count - 1].to_frame : 0;
+    int64_t skip_ms = (int64_t)mv->span_ms / mv->reps * to_frame / (clip->frame_count - 1);
+    return (int32_t)(route_ms - skip_ms);
+}
+
+/* The coach asks this while it waits for a move's tag (after the intro or
+ * a gap): how long from where the player is now. */
+static int32_t entry_lead_now(void *user, int32_t clip)
+{
+    cub_dance *d = user;
+    int m = d->coach.move;
+    if (m < 0 || m >= d->song.move_count || d->moves[m].clip != clip) return 0;
+    cub_bridge_query q = {.from_clip = -1, .to_clip = clip, .start_frames = START_FRAMES};
+    cub_bridge_plan plan;
+    if (cub_bridge_player_preview(&d->player, &q, &plan)) return 0;
+    return route_lead_ms(d, &plan, m);
+}
+
+/* The lead of a route into move `to` from the last frame of clip `from`
+ * (where a repetition ends), or 0 when there is none. */
+static int32_t lead_from_end(cub_dance *d, int from, int to)
+{
+    int frames = d->cl.lib.clips[from].clip.frame_count;
+    cub_bridge_query q = {.from_clip = from, .pos_q16 = (int64_t)(frames - 1) << 16,
+                          .to_clip = d->moves[to].clip, .start_frames = START_FRAMES};
+    cub_bridge_plan plan;
+    return cub_bridge_player_preview(&d->player, &q, &plan) ? 0 : route_lead_ms(d, &plan, to);
+}
+
+/* A repetition, and a move that follows the one before at once, is asked
+ * for when the repetition before ends: plan those routes now, from its last
+ * frame, so the coach can end that repetition early (or late) by their
+ * length. */
+static void plan_move_leads(cub_dance *d)
+{
+    for (int i = 0; i < d->song.move_count; i++) {
+        cub_coach_move *mv = &d->moves[i];
+        mv->rep_lead_ms = lead_from_end(d, mv->clip, i);
+        mv->lead_ms = i > 0 ? lead_from_end(d, d->moves[i - 1].clip, i) : 0;
+        cub_log_event(d->log, d->last_tick_us, "music", "lead",
+                      "move=%d clip=%s lead_ms=%d rep_lead_ms=%d", i, clip_name(d, mv->clip),
+                      mv->lead_ms, mv->rep_lead_ms);
+    }
+}
+
 static cub_err open_coach(cub_dance *d, const cub_app_options *o, int64_t now_us, char *err,
                           size_t size)
 {
@@ -253,7 +314,8 @@ static cub_err open_coach(cub_dance *d, const cub_app_options *o, int64_t now_us
     cub_coach_desc cd = {.moves = d->moves, .move_count = d->song.move_count,
                          .clip_count = n, .clip_names = d->clip_names, .log = d->log,
                          .attract_after_ms = (uint32_t)(o->attract_after_s * 1000),
-                         .doze_after_ms = (uint32_t)(o->doze_after_s * 1000)};
+                         .doze_after_ms = (uint32_t)(o->doze_after_s * 1000),
+                         .entry_lead_ms = entry_lead_now, .user = d};
     fill_moves(d);
     if (cub_coach_roles_by_name(d->clip_names, n, &cd.roles)) {
         snprintf(err, size, "%s: the library lacks one of the coach's clips (idle, wake_up, "
@@ -290,8 +352,7 @@ static cub_err open_music(cub_dance *d, const cub_app_options *o, char *err, siz
     cub_music_desc md = {.rate = cub_board_audio_rate(d->board)};
     if (cub_music_open(&md, &d->music, &diag)) return fail(err, size, &diag, "music");
     if (cub_music_load(d->music, d->song.midi_path, &diag)) return fail(err, size, &diag, "song");
-    if (o->music_clock_scale != 1.0 && cub_music_set_clock_scale(d->music, o->music_clock_scale))
-        return snprintf(err, size, "--music-clock-scale out of range"), CUB_ERR_ARG;
+
     d->pcm = malloc(PCM_FRAMES * 2 * sizeof(int16_t));
     if (!d->pcm) return CUB_ERR_NOMEM;
     /* Real time: the audio device plays the music and clocks it. Virtual
@@ -303,6 +364,12 @@ static cub_err open_music(cub_dance *d, const cub_app_options *o, char *err, siz
         else
             d->music_pull = 1;
     }
+    /* --music-clock-scale: rendered here, the music itself runs off its
+     * rate; played by a device we cannot speed up, only its clock lies. */
+    d->pull_scale_ppm = (uint32_t)(o->music_clock_scale * 1000000 + 0.5);
+    if (d->audio_open && o->music_clock_scale != 1.0 &&
+        cub_music_set_clock_scale(d->music, o->music_clock_scale))
+        return snprintf(err, size, "--music-clock-scale out of range"), CUB_ERR_ARG;
     return CUB_OK;
 }
 
@@ -320,7 +387,10 @@ cub_err cub_dance_open(cub_dance *d, const cub_app_options *o, cub_board *board,
     cub_err e = open_music(d, o, err, err_size);
     if (!e) e = open_coach(d, o, now_us, err, err_size);
     if (!e) e = open_player(d, err, err_size);
-    if (!e) d->last_tick_us = now_us;
+    if (!e) {
+        d->last_tick_us = now_us;
+        plan_move_leads(d); /* the coach reads the moves through its desc */
+    }
     d->played_clip = d->requested_clip = -1;
     return e;
 }

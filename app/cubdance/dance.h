@@ -33,6 +33,7 @@ typedef struct cub_dance {
     int song_end_sent;
     int audio_open;          /* real clock: the board's audio device plays it */
     int64_t pull_origin_us;  /* loop time the pulled music started */
+    uint32_t pull_scale_ppm; /* pulled frames per loop second, ppm of the rate */
     int16_t *pcm;            /* scratch for pulled rendering */
     cub_coach coach;
     cub_coach_move moves[CUB_SONG_MAX_MOVES];

@@ -129,7 +129,10 @@ static cub_err check_clip(const cub_xml_el *el, const cub_library *lib, cub_song
                                  mv->clip, lib->clips[c].kind);
     mv->clip_index = c;
     const cub_clip *clip = &lib->clips[c].clip;
-    int64_t clip_us = (int64_t)clip->frame_count * clip->frame_ns / 1000;
+    /* A repetition plays the clip from its first frame to its last: one
+     * frame interval fewer than it has frames (the last meets the next
+     * repetition's first). */
+    int64_t clip_us = (int64_t)(clip->frame_count - 1) * clip->frame_ns / 1000;
     int64_t dance_us = clip_us * mv->reps, span_us = mv->end_us - mv->start_us;
     if (clip_us <= 0 || span_us <= 0)
         return cub_xml_fail(el, diag, "clip '%s' or its span has no length", mv->clip);

@@ -96,6 +96,22 @@ cub_err cub_bridge_player_request(cub_bridge_player *p, int clip, cub_q16 speed_
     return CUB_OK;
 }
 
+cub_err cub_bridge_player_preview(cub_bridge_player *p, const cub_bridge_query *q,
+                                  cub_bridge_plan *out)
+{
+    if (!p || !q || !out) return CUB_ERR_ARG;
+    cub_bridge_query here = *q;
+    if (here.from_clip < 0) {
+        if (p->clip < 0) return CUB_ERR_ARG;
+        here.from_clip = p->clip;
+        here.pos_q16 = p->pos_q16;
+        here.from_loops = p->loop;
+    }
+    if (!here.window_frames) here.window_frames = p->desc.window_frames;
+    if (!here.wait_cost_mm) here.wait_cost_mm = p->desc.wait_cost_mm;
+    return cub_bridge_plan_switch(p->desc.table, &here, out, p->work, p->work_size);
+}
+
 cub_err cub_bridge_player_set_speed(cub_bridge_player *p, cub_q16 speed_q16)
 {
     if (!p || !speed_ok(speed_q16)) return CUB_ERR_ARG;

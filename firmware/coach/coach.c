@@ -126,18 +126,55 @@ static void show_move_hint(cub_coach *c, int32_t reason)
     if (c->player_in_view) coach_out_hint(c, c->move, reason);
 }
 
-/* Start repetition rep of move m now, at the speed that meets the music at
- * the move's end tag. */
-static void begin_move(cub_coach *c, int32_t m, int32_t rep, int32_t reason, int32_t music_ms)
+/* The dance of repetition rep of move m aims at the next tag: the next
+ * repetition's start, or after the last the move's end. It should get
+ * there this much early, so that the route on (back to the clip's start,
+ * or into the next move when that follows at once) shows the next tag's
+ * frame on time. Bounded by half a repetition. */
+static int32_t sync_lead_ms(const cub_coach *c, int32_t m, int32_t rep)
+{
+    const cub_coach_move *mv = &c->desc.moves[m];
+    int32_t lead = 0;
+    if (rep + 1 < mv->reps)
+        lead = mv->rep_lead_ms;
+    else if (m + 1 < c->desc.move_count && c->desc.moves[m + 1].tag_ms <= move_end_ms(mv))
+        lead = c->desc.moves[m + 1].lead_ms; /* after a gap, the wait has its own lead */
+    const int32_t half_rep = mv->span_ms / mv->reps / 2;
+    return lead < -half_rep ? -half_rep : lead > half_rep ? half_rep : lead;
+}
+
+/* The player reached a frame of move m at song time pos_ms: the speed that
+ * meets the music at the next tag. */
+static cub_q16 sync_move(cub_coach *c, int32_t pos_ms, int32_t music_ms)
+{
+    const cub_coach_move *mv = cur_move(c);
+    const int32_t target_ms = c->rep + 1 < mv->reps ? rep_start_ms(mv, c->rep + 1) : move_end_ms(mv);
+    return coach_sync_at(c, pos_ms, target_ms, sync_lead_ms(c, c->move, c->rep), music_ms);
+}
+
+/* Start repetition rep of move m now. It plays at the sync factor of the
+ * moment until the player reaches its first frame (a bridge, a tween may
+ * lie between) and the app posts that frame's music tag: the sync then. */
+static void begin_move(cub_coach *c, int32_t m, int32_t rep, int32_t reason)
 {
     c->move = m;
     c->rep = rep;
     c->phase = COACH_PH_MOVES;
-    const cub_coach_move *mv = cur_move(c);
-    cub_q16 factor = coach_sync_at(c, rep_start_ms(mv, rep), move_end_ms(mv), music_ms);
-    c->tag_pending = rep == 0;
-    coach_out_clip(c, mv->clip, move_speed(c, m, factor), false, reason);
+    c->tag_pending = true;
+    coach_out_clip(c, cur_move(c)->clip, move_speed(c, m, c->sync_q16), false, reason);
     show_move_hint(c, reason);
+}
+
+/* While waiting for move m's tag: begin it once the music is that close
+ * to the tag that the route there (entry_lead_ms) lands on it. */
+static bool time_to_begin(const cub_coach *c, int32_t m, int32_t music_ms)
+{
+    const cub_coach_move *mv = &c->desc.moves[m];
+    int32_t lead = c->desc.entry_lead_ms ? c->desc.entry_lead_ms(c->desc.user, mv->clip) : 0;
+    const int32_t half_rep = mv->span_ms / mv->reps / 2;
+    if (lead < -half_rep) lead = -half_rep;
+    if (lead > half_rep) lead = half_rep;
+    return song_now_ms(c, music_ms) + lead >= mv->tag_ms;
 }
 
 /* Move m starts now, or, when the song has an intro or a gap before it,
@@ -149,8 +186,8 @@ static void begin_or_wait(cub_coach *c, int32_t m, int32_t reason, int32_t music
     c->rep = 0;
     const int32_t tag_ms = c->desc.moves[m].tag_ms;
     const int32_t prev_end_ms = m > 0 ? move_end_ms(&c->desc.moves[m - 1]) : 0;
-    if (tag_ms <= prev_end_ms || song_now_ms(c, music_ms) >= tag_ms) {
-        begin_move(c, m, 0, reason, music_ms);
+    if (tag_ms <= prev_end_ms || time_to_begin(c, m, music_ms)) {
+        begin_move(c, m, 0, reason);
         return;
     }
     c->phase = COACH_PH_WAIT;
@@ -227,7 +264,7 @@ static void resume(cub_coach *c, int32_t music_ms)
         c->move = m;
         c->rep = rep;
         coach_out_state(c, CUB_COACH_DANCE, CUB_COACH_WHY_RIGHT);
-        begin_move(c, m, rep, CUB_COACH_WHY_RESUME, music_ms);
+        begin_move(c, m, rep, CUB_COACH_WHY_RESUME);
     } else if (m < last) { /* the move is (nearly) over: on to the next */
         c->move = m + 1;
         c->rep = 0;
@@ -301,7 +338,7 @@ static void on_clip_done(cub_coach *c, const cub_event *ev, int32_t music_ms)
     case CUB_COACH_DANCE:
         if (c->phase != COACH_PH_MOVES) break;
         if (c->rep + 1 < cur_move(c)->reps)
-            begin_move(c, c->move, c->rep + 1, CUB_COACH_WHY_REP, music_ms);
+            begin_move(c, c->move, c->rep + 1, CUB_COACH_WHY_REP);
         else if (c->move + 1 < c->desc.move_count)
             begin_or_wait(c, c->move + 1, CUB_COACH_WHY_MOVE, music_ms);
         else
@@ -317,8 +354,9 @@ static void on_clip_done(cub_coach *c, const cub_event *ev, int32_t music_ms)
     }
 }
 
-/* The player reached move a's first frame, at song time b: set its speed
- * so that it ends on its end tag together with the music. */
+/* The player reached a frame of move a (its first, or a later one when the
+ * route entered past it), at song time b: set the speed that meets the
+ * music at the next tag. Once per entry into the move's clip. */
 static void on_music_tag(cub_coach *c, const cub_event *ev, int32_t music_ms)
 {
     if (c->state != CUB_COACH_DANCE || c->phase != COACH_PH_MOVES || ev->a != c->move ||
@@ -327,7 +365,7 @@ static void on_music_tag(cub_coach *c, const cub_event *ev, int32_t music_ms)
         return;
     }
     c->tag_pending = false;
-    cub_q16 factor = coach_sync_at(c, ev->b, move_end_ms(cur_move(c)), music_ms);
+    cub_q16 factor = sync_move(c, ev->b, music_ms);
     coach_out_speed(c, move_speed(c, c->move, factor), CUB_COACH_WHY_SYNC);
 }
 
@@ -403,8 +441,8 @@ cub_err cub_coach_tick(cub_coach *c, int64_t now_us, int32_t music_ms)
     if (now_us > c->now_us) c->now_us = now_us;
     coach_sync_observe(c, music_ms);
     if (c->state == CUB_COACH_DANCE && c->phase == COACH_PH_WAIT &&
-        song_now_ms(c, music_ms) >= cur_move(c)->tag_ms)
-        begin_move(c, c->move, 0, CUB_COACH_WHY_MOVE, music_ms);
+        time_to_begin(c, c->move, music_ms))
+        begin_move(c, c->move, 0, CUB_COACH_WHY_MOVE);
     const int64_t quiet_ms = (c->now_us - c->quiet_since_us) / 1000;
     switch (c->state) {
     case CUB_COACH_IDLE:

@@ -28,8 +28,10 @@ void coach_out_ignore(cub_coach *c, const cub_event *ev);
 /* Note the music clock (starts the rate measurement); call on every input. */
 void coach_sync_observe(cub_coach *c, int32_t music_ms);
 /* The sync factor for a dance at song time pos_ms with its target tag
- * target_ms ahead; updates c->sync_q16 and c->rate_q16 and logs it. Keeps
- * the current factor when the music clock is unknown. */
-cub_q16 coach_sync_at(cub_coach *c, int32_t pos_ms, int32_t target_ms, int32_t music_ms);
+ * target_ms ahead, to be reached lead_ms of music early (the next move's
+ * route); updates c->sync_q16 and c->rate_q16 and logs it. Keeps the
+ * current factor when the music clock is unknown. */
+cub_q16 coach_sync_at(cub_coach *c, int32_t pos_ms, int32_t target_ms, int32_t lead_ms,
+                      int32_t music_ms);
 
 #endif

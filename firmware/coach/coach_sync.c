@@ -51,12 +51,15 @@ static cub_q16 measure_rate(const cub_coach *c, int32_t music_ms)
     return (cub_q16)r;
 }
 
-cub_q16 coach_sync_at(cub_coach *c, int32_t pos_ms, int32_t target_ms, int32_t music_ms)
+cub_q16 coach_sync_at(cub_coach *c, int32_t pos_ms, int32_t target_ms, int32_t lead_ms,
+                      int32_t music_ms)
 {
     if (music_ms < 0 || !c->music_on) return c->sync_q16;
     c->rate_q16 = measure_rate(c, music_ms);
-    c->sync_q16 = cub_coach_sync_speed(pos_ms, music_ms, target_ms - pos_ms, c->rate_q16,
-                                       c->desc.sync_bound_q16);
+    /* The dance plays target - pos of song while the music plays that less
+     * the lead: the same as a dance lead_ms further behind. */
+    c->sync_q16 = cub_coach_sync_speed(pos_ms - lead_ms, music_ms, target_ms - pos_ms,
+                                       c->rate_q16, c->desc.sync_bound_q16);
     cub_log_event(c->desc.log, c->now_us, "coach", "sync",
                   "move=%d music_ms=%d tag_ms=%d speed=%q rep=%d rate=%q", c->move, music_ms,
                   pos_ms, c->sync_q16, c->rep, c->rate_q16);

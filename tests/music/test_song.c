@@ -22,7 +22,7 @@ static void make_lib(void)
     for (int i = 0; i < 15; i++) {
         snprintf(lib_clips[i].name, sizeof(lib_clips[i].name), "%c", i < 14 ? 'a' + i : 'w');
         snprintf(lib_clips[i].kind, sizeof(lib_clips[i].kind), "%s", i < 14 ? "dance" : "coach");
-        lib_clips[i].clip.frame_count = 60;
+        lib_clips[i].clip.frame_count = 61; /* 60 intervals: 2 s */
         lib_clips[i].clip.frame_ns = 33333333;
     }
 }

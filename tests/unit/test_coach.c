@@ -43,7 +43,7 @@ static const cub_coach_move song[3] = {
 };
 
 #define MAX_LINES 400
-#define SESSION_LOG_FNV 0x7911af02u /* the scripted session's whole log, pinned */
+#define SESSION_LOG_FNV 0xacbdcac1u /* the scripted session's whole log, pinned */
 typedef struct recorder {
     char lines[MAX_LINES][160];
     int n;
@@ -285,7 +285,10 @@ static void test_correction_repeats_until_right_then_resumes_same_move(void **s)
         send(&c, 4000 + 2800 * i, CUB_EV_CLIP_DONE, C_CLAP, 0, 3000 + 2800 * i);
     }
     /* Right at music 5.1 s: move 0 (0..8 s, 2 s a rep) at its rep 3 (6 s)
-     * is nearest; the dance resumes there, faster to catch up. */
+     * is nearest; the dance resumes there at the sync factor of the moment
+     * and, once the player shows its first frame (the music tag), slower:
+     * the music is behind that repetition's tag. */
+    const cub_q16 factor = c.sync_q16;
     send(&c, 12000, CUB_EV_VERDICT, 0, 1, 5100);
     assert_int_equal(c.state, CUB_COACH_DANCE);
     assert_int_equal(c.move, 0);
@@ -293,8 +296,13 @@ static void test_correction_repeats_until_right_then_resumes_same_move(void **s)
     const cub_coach_action *a = act(&c, CUB_COACH_ACT_CLIP, 0);
     assert_int_equal(a->clip, C_CLAP);
     assert_int_equal(a->reason, CUB_COACH_WHY_RESUME);
-    assert_int_equal(a->speed_q16, cub_coach_sync_speed(6000, 5100, 2000, c.rate_q16, 0));
+    assert_int_equal(a->speed_q16, factor);
     assert_true(logged("coach state from=correct to=dance reason=right move=0 rep=3"));
+    send(&c, 12030, CUB_EV_MUSIC_TAG, 0, 6000, 5130);
+    a = act(&c, CUB_COACH_ACT_SPEED, 0);
+    assert_non_null(a);
+    assert_int_equal(a->speed_q16, cub_coach_sync_speed(6000, 5130, 2000, c.rate_q16, 0));
+    assert_true(a->speed_q16 < CUB_Q16_ONE);
 
     /* The demonstration of sway runs at 0.7 of the move's own speed 1.25. */
     send(&c, 13000, CUB_EV_CLIP_DONE, C_CLAP, 0, 8000);
@@ -546,13 +554,29 @@ static void test_music_tag_sets_the_moves_speed(void **s)
     send(&c, 9040, CUB_EV_MUSIC_TAG, 1, 8000, 7840);
     const cub_coach_action *a = act(&c, CUB_COACH_ACT_SPEED, 0);
     assert_non_null(a);
-    cub_q16 f = cub_coach_sync_speed(8000, 7840, 4000, c.rate_q16, 0);
+    /* Aimed at the next tag: sway's rep 1 at 10 s. */
+    cub_q16 f = cub_coach_sync_speed(8000, 7840, 2000, c.rate_q16, 0);
     assert_true(f < CUB_Q16_ONE); /* the music is behind the tag: slower */
     assert_int_equal(a->speed_q16, cub_fx_mul(81920, f));
     assert_true(logged("t=9.040 coach sync move=1 music_ms=7840 tag_ms=8000 speed="));
-    /* Only once per move. */
+    /* Only once per repetition begun. */
     send(&c, 9050, CUB_EV_MUSIC_TAG, 1, 8000, 7850);
     assert_null(act(&c, CUB_COACH_ACT_SPEED, 0));
+    /* The last repetition aims at the move's end less the next move's lead
+     * (its route lands on its tag): clap's rep 3 (6..8 s), sway 300 ms. */
+    static cub_coach_move led[3];
+    memcpy(led, d.moves, sizeof led);
+    led[1].lead_ms = 300;
+    d.moves = led;
+    assert_int_equal(cub_coach_init(&c, &d, 0), CUB_OK);
+    to_dance(&c, 0);
+    for (int rep = 1; rep <= 3; rep++)
+        send(&c, 1100 + rep, CUB_EV_CLIP_DONE, C_CLAP, 0, 0);
+    send(&c, 1105, CUB_EV_MUSIC_TAG, 0, 6000, 6000);
+    a = act(&c, CUB_COACH_ACT_SPEED, 0);
+    assert_non_null(a);
+    assert_int_equal(a->speed_q16, cub_coach_sync_speed(5700, 6000, 2000, c.rate_q16, 0));
+    assert_true(a->speed_q16 > CUB_Q16_ONE); /* 2 s of clap in 1.7 s of music */
 }
 
 /* A scripted input at t_ms: a = -1 means "the move being danced". */
@@ -590,7 +614,7 @@ static void note_error(int64_t err_us, int64_t *worst_us)
 
 /* A small player, all integer so that every CPU gives the same log: plays
  * what the coach asks at the asked speed, posts clip-done at a clip's end
- * and the music tag at a move's first frame; the music clock runs at
+ * and the music tag at each repetition's first frame; the music clock runs at
  * rate_permille of the loop clock after a 60 ms start-up and ends the song
  * at the last move's end. START at the first tick. */
 static void run_session(session *ss)
@@ -660,14 +684,16 @@ static void run_session(session *ss)
                 base = ss->moves[a->move].speed_q16 ? ss->moves[a->move].speed_q16 : CUB_Q16_ONE;
             dancing = a->reason == CUB_COACH_WHY_MOVE || a->reason == CUB_COACH_WHY_REP ||
                       a->reason == CUB_COACH_WHY_RESUME;
-            if (a->rep == 0 && dancing) move_start = a;
+            if (dancing) move_start = a;
         }
-        if (move_start) { /* the first frame: the app posts the move's tag */
-            const int32_t tag_ms = ss->moves[move_start->move].tag_ms;
+        if (move_start) { /* its first frame: the app posts the repetition's tag */
+            const cub_coach_move *m = &ss->moves[move_start->move];
+            const int64_t tag_us =
+                (int64_t)m->tag_ms * 1000 + (int64_t)m->span_ms * 1000 * move_start->rep / m->reps;
             const int64_t music_now_us = music_us < 0 ? 0 : music_us; /* started this step */
-            note_error(music_now_us - (int64_t)tag_ms * 1000 - pos_us, &ss->worst_tag_us);
-            cub_event tag = {
-                .t_us = now, .type = CUB_EV_MUSIC_TAG, .a = move_start->move, .b = tag_ms};
+            note_error(music_now_us - tag_us - pos_us, &ss->worst_tag_us);
+            cub_event tag = {.t_us = now, .type = CUB_EV_MUSIC_TAG, .a = move_start->move,
+                             .b = (int32_t)((tag_us + pos_us) / 1000)};
             assert_int_equal(cub_coach_handle(&c, &tag, (int32_t)(music_now_us / 1000)), CUB_OK);
             const cub_coach_action *a = act(&c, CUB_COACH_ACT_SPEED, 0);
             if (a) speed = a->speed_q16;

@@ -261,6 +261,12 @@ cub_err cub_bridge_player_start(cub_bridge_player *p, int clip, int frame, cub_q
  * clip or speed), CUB_ERR_RANGE (no way there; playback goes on as it was). */
 cub_err cub_bridge_player_request(cub_bridge_player *p, int clip, cub_q16 speed_q16, int loop,
                                   cub_bridge_plan *out);
+/* Plan without carrying anything out (how soon could the player be in
+ * that clip?): q as for cub_bridge_plan_switch, in the player's scratch
+ * memory; q->from_clip < 0 means from where the player is now, and zero
+ * window/wait cost take the player's. Errors as cub_bridge_plan_switch. */
+cub_err cub_bridge_player_preview(cub_bridge_player *p, const cub_bridge_query *q,
+                                  cub_bridge_plan *out);
 /* Change the speed of what plays now (music sync). CUB_ERR_ARG if out of bounds. */
 cub_err cub_bridge_player_set_speed(cub_bridge_player *p, cub_q16 speed_q16);
 /* How later requests enter their clip (cub_bridge_query.start_frames): the

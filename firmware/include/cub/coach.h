@@ -17,9 +17,11 @@
  * Music sync: the dance's song time is known at a move's first frame (its
  * music tag) and at the start of every repetition (tag + span * rep / reps).
  * There the coach compares it with the audio clock and sets the speed of
- * what plays next with cub_coach_sync_speed, using the music's rate against
- * the loop clock as measured since the music started, so a sound card 5 %
- * slow is followed rather than chased. The music plays on through a
+ * what plays next with cub_coach_sync_speed, aiming at the next tag (the
+ * next repetition's start; after the last one, the next move's tag less
+ * its lead_ms), using the music's rate against the loop clock as measured
+ * since the music started, so a sound card 5 % slow is followed rather
+ * than chased. The music plays on through a
  * correction; the dance resumes at the repetition nearest to the music.
  * Speeds are Q16.16, times microseconds (loop) or milliseconds (song).
  * Integer only, no allocation: the same events give the same actions.
@@ -111,6 +113,16 @@ typedef struct cub_coach_move {
     int32_t tag_ms;    /* music time of the move's first frame */
     int32_t span_ms;   /* music time of all its repetitions; the next tag is
                           at tag_ms + span_ms or later */
+    int32_t lead_ms;   /* optional: song time by which the move before should
+                          end early so that the route into this one (bridge
+                          frames, a tween) shows this move's content of
+                          tag_ms on time: the route's length less the content
+                          it skips (it may enter past the first frame), so it
+                          may be negative. Used when the move follows the one
+                          before without a gap; 0 = none */
+    int32_t rep_lead_ms; /* optional: the same for the move's own next
+                            repetition (from its last frame to its first
+                            frames); 0 = none */
 } cub_coach_move;
 
 /* The coach's own clips (indices in the clip library). No defaults: see
@@ -134,6 +146,12 @@ typedef struct cub_coach_desc {
     uint32_t worried_after;        /* default 3 wrong verdicts in a row */
     cub_q16 demo_speed_q16;        /* default 0.7: the slower demonstration */
     cub_q16 sync_bound_q16;        /* default 0.15: speed stays in 1 +- bound */
+    /* Optional: the lead of a move started from where the player is now
+     * (see cub_coach_move.lead_ms), asked every tick while the coach waits
+     * for a move's tag after an intro or a gap, so that the move begins
+     * that much early. NULL = 0. */
+    int32_t (*entry_lead_ms)(void *user, int32_t clip);
+    void *user;
 } cub_coach_desc;
 
 typedef struct cub_coach {
@@ -171,9 +189,10 @@ cub_err cub_coach_init(cub_coach *c, const cub_coach_desc *desc, int64_t now_us)
  *   VERDICT     a = move, b = 1 right / 0 wrong; about another move: ignored
  *   PLAYER      a = 0 shows "come closer", a = 1 takes it back
  *   CLIP_DONE   a = clip; only the clip last requested counts
- *   MUSIC_TAG   a = move, b = song ms of the frame reached (the move's tag,
- *               or later if the player entered past its first frame); acted
- *               on once per move start, with music_ms the audio clock
+ *   MUSIC_TAG   a = move, b = song ms of the frame reached (the tag of the
+ *               repetition begun, or later if the player entered past its
+ *               first frame); acted on once per repetition begun, with
+ *               music_ms the audio clock: the music sync
  *   SONG_END    cheer
  * Buttons, claps, verdicts and a player arriving count as interaction (they
  * restart the attract/doze countdown). Other events are ignored (CUB_OK).
