@@ -10,7 +10,10 @@
  *                     clips' own 99th-percentile joint speed (cm/frame);
  *   added speed: the most joint speed the smoothing adds to the clip's own
  *                     motion while it runs (frames after the cut), so a
- *                     jump cannot hide in the frames after the switch. */
+ *                     jump cannot hide in the frames after the switch. Ours
+ *                     carries the old clip's velocity over the cut and lets
+ *                     it fade; that counts here as added, though it is the
+ *                     old clip's own motion going on. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>

@@ -9,6 +9,11 @@
 
 #include "bridge_internal.h"
 
+/* The velocity a cut carries over fades within this many frames (or the
+ * blend, if shorter): long enough that the first frame after the cut moves
+ * mostly as the old clip did, short enough not to overshoot far. */
+#define VEL_FRAMES_MAX 10
+
 static int speed_ok(cub_q16 s)
 {
     return s >= CUB_BRIDGE_SPEED_MIN_Q16 && s <= CUB_BRIDGE_SPEED_MAX_Q16;
@@ -164,18 +169,33 @@ static cub_q16 fade_weight(int64_t progress_q16, int frames)
     return CUB_Q16_ONE - (3 * s2 - 2 * cub_fx_mul(s2, s));
 }
 
+/* t (1 - t/T)^2, in frames: 0 at t = 0 but rising at slope 1 (so the
+ * offset moves with the velocity it carries over), back to 0 and flat at
+ * t = T. Q16.16 frames in and out. */
+static cub_q16 vel_weight(int64_t progress_q16, int frames)
+{
+    if (progress_q16 <= 0 || progress_q16 >= (int64_t)frames << 16) return 0;
+    cub_q16 rest = CUB_Q16_ONE - (cub_q16)(progress_q16 / frames);
+    return cub_fx_mul((cub_q16)progress_q16, cub_fx_mul(rest, rest));
+}
+
 /* Apply the inertialization offset onto a raw pose: the joints' with
- * weight w, the root's drift over the floor with its own weight w_xz. */
-static void apply_offset(const cub_bridge_player *p, cub_q16 w, cub_q16 w_xz, cub_pose *pose)
+ * weight w, the root's drift over the floor with its own weight w_xz, and
+ * the carried-over velocity for v frames. */
+static void apply_offset(const cub_bridge_player *p, cub_q16 w, cub_q16 w_xz, cub_q16 v,
+                         cub_pose *pose)
 {
     cub_quat id = cub_fx_quat_identity();
     for (int j = 0; j < pose->joint_count; j++) {
         cub_quat o = cub_fx_quat_nlerp(id, p->off_rot[j], w);
+        if (v && p->vel_angle[j])
+            o = cub_fx_quat_mul(
+                cub_fx_quat_from_axis_angle(p->vel_axis[j], cub_fx_mul(p->vel_angle[j], v)), o);
         pose->rot[j] = cub_fx_quat_normalize(cub_fx_quat_mul(o, pose->rot[j]));
     }
-    pose->root_mm.x += cub_fx_mul(p->off_root_mm.x, w_xz);
-    pose->root_mm.y += cub_fx_mul(p->off_root_mm.y, w);
-    pose->root_mm.z += cub_fx_mul(p->off_root_mm.z, w_xz);
+    pose->root_mm.x += cub_fx_mul(p->off_root_mm.x, w_xz) + cub_fx_mul(p->vel_root_mm.x, v);
+    pose->root_mm.y += cub_fx_mul(p->off_root_mm.y, w) + cub_fx_mul(p->vel_root_mm.y, v);
+    pose->root_mm.z += cub_fx_mul(p->off_root_mm.z, w_xz) + cub_fx_mul(p->vel_root_mm.z, v);
 }
 
 cub_err cub_bridge_player_pose(cub_bridge_player *p, cub_pose *out)
@@ -190,7 +210,7 @@ cub_err cub_bridge_player_pose(cub_bridge_player *p, cub_pose *out)
         return CUB_OK;
     }
     if (p->desc.smooth == CUB_BRIDGE_SMOOTH_INERTIAL) {
-        apply_offset(p, w, w_xz, out);
+        apply_offset(p, w, w_xz, vel_weight(progress, p->vel_len), out);
         return CUB_OK;
     }
     e = sample(clip_of(p, p->old_clip), p->old_pos_q16, p->old_loop, &p->scratch[1],
@@ -207,29 +227,103 @@ static int blend_length(const cub_bridge_player *p, cub_q16 dist_mm, int at_leas
     return n > CUB_BRIDGE_MAX_BLEND_FRAMES ? CUB_BRIDGE_MAX_BLEND_FRAMES : (int)n;
 }
 
+/* The rotation q as an axis (any length, Q2.30 scale) and an angle in
+ * [0, pi]: q and -q are the same rotation. */
+static void axis_angle(cub_quat q, cub_vec3 *axis, cub_q16 *angle)
+{
+    int32_t sign = q.w < 0 ? -1 : 1;
+    *axis = (cub_vec3){sign * q.x, sign * q.y, sign * q.z};
+    *angle = cub_fx_quat_angle(q);
+}
+
+/* The velocity the offset carries over at a cut, per frame of the new
+ * clip: what the old motion did over its last frame (scaled by the speed
+ * ratio) less what the new clip does over its first, seen through the
+ * offset. With it the body keeps moving as it moved when the clips change,
+ * then takes up the new clip's motion over vel_len frames. */
+static void carry_velocity(cub_bridge_player *p, const cub_pose *src_prev, const cub_pose *src,
+                           const cub_pose *dst, const cub_pose *dst_next, cub_q16 ratio_q16)
+{
+    for (int j = 0; j < dst->joint_count; j++) {
+        cub_quat old_step = cub_fx_quat_mul(src->rot[j], cub_fx_quat_conj(src_prev->rot[j]));
+        if (ratio_q16 != CUB_Q16_ONE) {
+            cub_vec3 ax;
+            cub_q16 ang;
+            axis_angle(old_step, &ax, &ang);
+            old_step = cub_fx_quat_from_axis_angle(ax, cub_fx_mul(ang, ratio_q16));
+        }
+        cub_quat new_step = cub_fx_quat_mul(dst_next->rot[j], cub_fx_quat_conj(dst->rot[j]));
+        cub_quat seen = cub_fx_quat_mul(cub_fx_quat_mul(p->off_rot[j], new_step),
+                                        cub_fx_quat_conj(p->off_rot[j]));
+        cub_quat v = cub_fx_quat_normalize(cub_fx_quat_mul(old_step, cub_fx_quat_conj(seen)));
+        axis_angle(v, &p->vel_axis[j], &p->vel_angle[j]);
+    }
+    cub_vec3 old_root = cub_fx_vec3_scale(cub_fx_vec3_sub(src->root_mm, src_prev->root_mm), ratio_q16);
+    p->vel_root_mm = cub_fx_vec3_sub(old_root, cub_fx_vec3_sub(dst_next->root_mm, dst->root_mm));
+}
+
+/* How far a joint may travel while the offset fades: each ancestor's
+ * rotation offset swings it along an arc of at most angle x distance, and
+ * these add up along the chain (a straight-line distance between the two
+ * poses can be far shorter: a shoulder and an elbow turning opposite ways
+ * swing the paw wide and bring it back). world: the pose at the cut. */
+static cub_q16 offset_path_mm(const cub_bridge_player *p, const cub_skeleton *sk,
+                              const cub_vec3 *world)
+{
+    cub_q16 angle[CUB_MOTION_MAX_JOINTS];
+    for (int j = 0; j < sk->joint_count; j++)
+        angle[j] = cub_fx_quat_angle(p->off_rot[j]);
+    int64_t worst = 0;
+    for (int j = 0; j < sk->joint_count; j++) {
+        int64_t path = 0;
+        for (int a = sk->joints[j].parent; a >= 0; a = sk->joints[a].parent)
+            path += cub_fx_mul(cub_fx_vec3_length(cub_fx_vec3_sub(world[j], world[a])), angle[a]);
+        if (path > worst) worst = path;
+    }
+    return worst > INT32_MAX ? INT32_MAX : (cub_q16)worst;
+}
+
 /* At a cut (a switch, or a looping clip's new pass): remember what was on
  * screen at position src_pos of the clip playing, and how far frame
- * to_frame of to_clip is from it, so the new clip can start from it. */
-static cub_err begin_blend(cub_bridge_player *p, int64_t src_pos_q16, int to_clip, int to_frame)
+ * to_frame of to_clip is from it, so the new clip can start from it; the
+ * new clip plays at new_speed_q16. */
+static cub_err begin_blend(cub_bridge_player *p, int64_t src_pos_q16, int to_clip, int to_frame,
+                           cub_q16 new_speed_q16)
 {
     if (p->desc.smooth == CUB_BRIDGE_SMOOTH_NONE) return CUB_OK;
     int64_t saved_pos = p->pos_q16;
-    p->pos_q16 = src_pos_q16;
     cub_pose *src = &p->scratch[2], *dst = &p->scratch[1];
+    cub_pose *src_prev = &p->scratch[3], *dst_next = &p->scratch[4];
+    p->pos_q16 = src_pos_q16;
     cub_err e = cub_bridge_player_pose(p, src);
+    /* A frame earlier, as it was shown (the pose uses scratch[1]: dst after). */
+    p->pos_q16 = src_pos_q16 >= CUB_Q16_ONE ? src_pos_q16 - CUB_Q16_ONE : src_pos_q16;
+    if (!e) e = cub_bridge_player_pose(p, src_prev);
     p->pos_q16 = saved_pos;
-    if (!e) e = cub_motion_clip_get_frame(clip_of(p, to_clip), to_frame, dst);
+    const cub_clip *to = clip_of(p, to_clip);
+    if (!e) e = cub_motion_clip_get_frame(to, to_frame, dst);
+    if (!e)
+        e = cub_motion_clip_get_frame(to, to_frame + 1 < to->frame_count ? to_frame + 1 : to_frame,
+                                      dst_next);
     if (e) return e;
     /* The body's distance sets the blend's length; the root's drift over
      * the floor gets its own, longer one. */
     const cub_skeleton *sk = p->desc.table->desc.skel;
     if ((e = cub_bridge_body_mm(sk, src, p->body[0])) || (e = cub_bridge_body_mm(sk, dst, p->body[1])))
         return e;
-    p->blend_len = blend_length(p, cub_bridge_shape_dist_mm(p->body[0], p->body[1], sk->joint_count),
-                                p->desc.blend_frames);
+    cub_q16 dist_mm = cub_bridge_shape_dist_mm(p->body[0], p->body[1], sk->joint_count);
+    for (int j = 0; j < dst->joint_count; j++)
+        p->off_rot[j] = cub_fx_quat_mul(src->rot[j], cub_fx_quat_conj(dst->rot[j]));
+    p->off_root_mm = cub_fx_vec3_sub(src->root_mm, dst->root_mm);
+    if (p->desc.smooth == CUB_BRIDGE_SMOOTH_INERTIAL) {
+        cub_q16 path_mm = offset_path_mm(p, sk, p->body[0]);
+        if (path_mm > dist_mm) dist_mm = path_mm;
+    }
+    p->blend_len = blend_length(p, dist_mm, p->desc.blend_frames);
     cub_vec3 d = cub_fx_vec3_sub(src->root_mm, dst->root_mm);
     d.y = 0;
     p->root_len = blend_length(p, cub_fx_vec3_length(d), p->blend_len);
+    p->vel_len = p->blend_len < VEL_FRAMES_MAX ? p->blend_len : VEL_FRAMES_MAX;
     if (p->desc.smooth == CUB_BRIDGE_SMOOTH_CROSSFADE) {
         p->old_clip = p->clip;
         p->old_loop = p->loop;
@@ -237,9 +331,7 @@ static cub_err begin_blend(cub_bridge_player *p, int64_t src_pos_q16, int to_cli
         p->old_speed_q16 = p->speed_q16;
         return CUB_OK;
     }
-    for (int j = 0; j < dst->joint_count; j++)
-        p->off_rot[j] = cub_fx_quat_mul(src->rot[j], cub_fx_quat_conj(dst->rot[j]));
-    p->off_root_mm = cub_fx_vec3_sub(src->root_mm, dst->root_mm);
+    carry_velocity(p, src_prev, src, dst, dst_next, cub_fx_div(p->speed_q16, new_speed_q16));
     return CUB_OK;
 }
 
@@ -270,7 +362,7 @@ static void emit(cub_bridge_event *ev, int max_ev, int *n, const cub_bridge_even
 static cub_err do_switch(cub_bridge_player *p, int64_t overshoot_q16)
 {
     const cub_bridge_step *s = &p->plan.step[p->next_step++];
-    cub_err e = begin_blend(p, s->at_q16, s->to_clip, s->to_frame);
+    cub_err e = begin_blend(p, s->at_q16, s->to_clip, s->to_frame, p->want_speed_q16);
     if (e) return e;
     const cub_clip *from = clip_of(p, p->clip), *to = clip_of(p, s->to_clip);
     int last = p->next_step == p->plan.step_count;
@@ -293,7 +385,7 @@ static cub_err do_switch(cub_bridge_player *p, int64_t overshoot_q16)
 static cub_err wrap(cub_bridge_player *p, int64_t mark)
 {
     if (p->desc.smooth == CUB_BRIDGE_SMOOTH_NONE) return CUB_OK;
-    cub_err e = begin_blend(p, mark - 1, p->clip, 0);
+    cub_err e = begin_blend(p, mark - 1, p->clip, 0, p->speed_q16);
     if (e) return e;
     p->old_loop = 0; /* a crossfade holds the old pass's last frame */
     p->old_pos_q16 = (int64_t)(clip_of(p, p->clip)->frame_count - 1) << 16;

@@ -479,6 +479,42 @@ static void test_pose_is_continuous_at_the_switch(void **s)
     assert_true(fade < naive / 400.0);
 }
 
+/* The cut keeps the body's speed: clip 0 moves the root 5 mm a frame (v
+ * rises 1/40 a frame), clip 1 from frame 12 moves it 14 mm a
+ * frame (0.07). Right after the switch the root goes on at 5, then takes
+ * up 14 as the carried velocity fades (10 frames). */
+static void test_cut_keeps_the_speed_then_takes_up_the_new_one(void **s)
+{
+    (void)s;
+    build_soon_table();
+    static cub_bridge_player p;
+    static cub_pose pose;
+    cub_bridge_player_desc pd = {.table = &S.table};
+    assert_int_equal(cub_bridge_player_init(&p, &pd, S.work, sizeof S.work), CUB_OK);
+    assert_int_equal(cub_bridge_player_start(&p, 0, 2, 0, 1), CUB_OK);
+    double x[1500];
+    int cut = -1;
+    for (int i = 0; i < 1500; i++) { /* 1 ms steps; the request after 300 */
+        if (i == 300) assert_int_equal(cub_bridge_player_request(&p, 1, 0, 1, NULL), CUB_OK);
+        cub_bridge_event ev[4];
+        int n;
+        assert_int_equal(cub_bridge_player_advance(&p, 1000, ev, 4, &n), CUB_OK);
+        if (n && ev[0].type == CUB_BRIDGE_EV_SWITCH) cut = i;
+        assert_int_equal(cub_bridge_player_pose(&p, &pose), CUB_OK);
+        x[i] = pose.root_mm.x / 65536.0;
+    }
+    assert_true(cut >= 300 && cut < 400);
+    const double ms_per_frame = 33.333333;
+    double before = (x[cut - 1] - x[cut - 11]) / 10 * ms_per_frame;
+    double after = (x[cut + 10] - x[cut]) / 10 * ms_per_frame;
+    double later = (x[cut + 320] - x[cut + 280]) / 40 * ms_per_frame;
+    printf("bridge: root speed before the cut %.2f, just after %.2f, 9 frames on %.2f mm/frame\n",
+           before, after, later);
+    assert_true(before > 4.9 && before < 5.1);
+    assert_true(after > 4.5 && after < 6.0); /* not 14: the old speed goes on */
+    assert_true(later > 12.0 && later < 18.0); /* the new clip's 14, the offsets nearly faded */
+}
+
 /* Play the tween 0 -> 2 -> 1 for one second in steps of step_us. */
 static void play_tween(cub_bridge_player *p, void *work, size_t size, int64_t step_us,
                        int *switches)
@@ -534,6 +570,7 @@ int main(void)
         cmocka_unit_test(test_speed_bounds),
         cmocka_unit_test(test_player_switches_exactly_at_the_planned_frame),
         cmocka_unit_test(test_pose_is_continuous_at_the_switch),
+        cmocka_unit_test(test_cut_keeps_the_speed_then_takes_up_the_new_one),
         cmocka_unit_test(test_playback_is_deterministic),
     };
     return cmocka_run_group_tests_name("bridge", tests, NULL, NULL);
