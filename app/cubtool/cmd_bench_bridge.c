@@ -253,7 +253,6 @@ int cub_cmd_bench_bridge(int argc, char **argv)
         for (int b = 0; b < nc; b++) {
             int n = cl.lib.clips[a].clip.frame_count;
             for (int m = 0; m < n; m += step) {
-                double own = p99[a] > p99[b] ? p99[a] : p99[b];
                 for (int k = 0; k < 3; k++) {
                     run r = play(&cl, &players[k], a, m, b, blend_frames);
                     if (!r.ok) {
@@ -263,6 +262,10 @@ int cub_cmd_bench_bridge(int argc, char **argv)
                     if (k == 0 && r.blend_cm > worst.blend_cm) worst = r, worst_m = m, worst_b = b;
                     push(&modes[k].jump, r.jump_cm);
                     push(&modes[k].blend, r.blend_cm);
+                    /* The clips the first switch joins (a tween's first
+                     * step enters a clip on the way, not b). */
+                    int to = r.first.to_clip;
+                    double own = p99[a] > p99[to] ? p99[a] : p99[to];
                     modes[k].over_p99 += r.jump_cm > own;
                     if (k) continue;
                     switches++;
