@@ -48,7 +48,7 @@
  * 107.0 for a naive cut (p95 65.7, median 29.7), 86.9 for a crossfade of
  * the same length (p95 6.6); the clips' own fastest joint moves up to 15.6
  * cm/frame (p99 10.1). Without the carried velocity ours was p95 7.8,
- * median 3.7, 12 % above both p99s. The crossfade keeps playing the old
+ * median 3.7, 6.9 % above both p99s. The crossfade keeps playing the old
  * clip, so it blends two motions and, when the clips stand apart, drags
  * the body between them (up to 89.9 cm/frame added while it runs; ours
  * adds at most 15.3, p95 5.3, counting the carried-over velocity); the
