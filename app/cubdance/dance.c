@@ -100,10 +100,26 @@ static void start_music(cub_dance *d, int64_t t_us)
 {
     if (cub_music_play(d->music) != CUB_OK) return;
     d->music_started = 1;
+    d->music_paused = 0;
     d->song_end_sent = 0;
     d->pull_origin_us = t_us;
     cub_log_event(d->log, t_us, "music", "start", "song=\"%s\" bpm=%d length_ms=%lld",
                   d->song.name, d->song.bpm, (long long)(cub_song_length_us(&d->song) / 1000));
+}
+
+/* Hold the music (its clock too) or go on; rendered music starts counting
+ * its due frames again from where it held. */
+static void pause_music(cub_dance *d, int paused, int64_t t_us)
+{
+    if (!d->music_started || paused == d->music_paused) return;
+    cub_music_pause(d->music, paused);
+    d->music_paused = paused;
+    if (paused)
+        d->paused_at_us = t_us;
+    else
+        d->pull_origin_us += t_us - d->paused_at_us;
+    cub_log_event(d->log, t_us, "music", paused ? "pause" : "resume", "music_ms=%d",
+                  music_ms(d));
 }
 
 static void execute_actions(cub_dance *d, int64_t t_us)
@@ -117,7 +133,10 @@ static void execute_actions(cub_dance *d, int64_t t_us)
         case CUB_COACH_ACT_MUSIC_STOP:
             cub_music_stop(d->music);
             d->music_started = 0;
+            d->music_paused = 0;
             break;
+        case CUB_COACH_ACT_MUSIC_PAUSE: pause_music(d, 1, t_us); break;
+        case CUB_COACH_ACT_MUSIC_RESUME: pause_music(d, 0, t_us); break;
         default: break; /* hints and states: logged by the coach; drawn by the renderer later */
         }
     }
@@ -151,7 +170,7 @@ void cub_dance_handle(cub_dance *d, cub_loop *loop, const cub_event *ev)
  * the loop's time says, so the music clock is as deterministic as the rest. */
 static void pull_music(cub_dance *d, int64_t t_us)
 {
-    if (!d->music_pull || !d->music_started) return;
+    if (!d->music_pull || !d->music_started || d->music_paused) return;
     /* A sound card off its rate (--music-clock-scale) takes that many more
      * or fewer frames a second; the music clock counts them, true to the
      * music it played. */

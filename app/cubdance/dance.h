@@ -31,6 +31,8 @@ typedef struct cub_dance {
     int music_pull;          /* virtual clock: the tick renders the music */
     int music_started;       /* the song's music was started (and not stopped) */
     int song_end_sent;
+    int music_paused;        /* held by the coach (the camera is gone) */
+    int64_t paused_at_us;    /* ... since this loop time */
     int audio_open;          /* real clock: the board's audio device plays it */
     int64_t pull_origin_us;  /* loop time the pulled music started */
     uint32_t pull_scale_ppm; /* pulled frames per loop second, ppm of the rate */

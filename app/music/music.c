@@ -22,6 +22,7 @@ struct cub_music {
     cub_midi_info info;
     int rate;
     int playing;                  /* play called, stop not (under lock) */
+    int paused;                   /* held: render gives silence (under lock) */
     pthread_mutex_t lock;         /* render vs load / play / stop */
     atomic_uint_least64_t frames; /* rendered since play */
     atomic_int player_busy;       /* FluidSynth's player has events left */
@@ -118,6 +119,7 @@ static void drop_player(cub_music *m)
         m->player = NULL;
     }
     m->playing = 0;
+    m->paused = 0;
     atomic_store(&m->player_busy, 0);
     if (m->synth) fluid_synth_all_notes_off(m->synth, -1);
 }
@@ -180,6 +182,7 @@ cub_err cub_music_play(cub_music *m)
             e = CUB_ERR_DEVICE;
         } else {
             m->playing = 1;
+            m->paused = 0;
             atomic_store(&m->frames, 0);
             atomic_store(&m->player_busy, 1);
         }
@@ -204,7 +207,7 @@ void cub_music_render(cub_music *m, int16_t *stereo, int frames)
         return;
     }
     pthread_mutex_lock(&m->lock);
-    if (m->playing) {
+    if (m->playing && !m->paused) {
         fluid_synth_write_s16(m->synth, frames, stereo, 0, 2, stereo, 1, 2);
         atomic_fetch_add(&m->frames, (uint64_t)frames);
         /* The song ends at its last tick; FluidSynth's player reports DONE
@@ -215,6 +218,14 @@ void cub_music_render(cub_music *m, int16_t *stereo, int frames)
     } else {
         memset(stereo, 0, (size_t)frames * 2 * sizeof(int16_t));
     }
+    pthread_mutex_unlock(&m->lock);
+}
+
+void cub_music_pause(cub_music *m, int paused)
+{
+    if (!m) return;
+    pthread_mutex_lock(&m->lock);
+    m->paused = m->playing && paused;
     pthread_mutex_unlock(&m->lock);
 }
 

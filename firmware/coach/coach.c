@@ -5,7 +5,9 @@
  *            --right--> dance (inside the same move's span, found from the
  *            music clock); N wrong in a row --> worried --done--> correct
  *   dance --song end--> cheer --done--> idle
- *   idle/dance/correct/worried --quiet attract_after--> attract
+ *   dance/correct/worried --camera lost--> paused --camera back--> dance
+ *            (the music holds meanwhile; the dance resumes where it is)
+ *   idle/dance/correct/worried/paused --quiet attract_after--> attract
  *   attract --quiet doze_after--> doze;   attract/doze --START/clap--> wake
  *   any --STOP--> idle
  *
@@ -249,10 +251,15 @@ static void go_worried(cub_coach *c)
  * the dance resumes where the music is: the nearest repetition start of
  * the move it is in (normally the corrected move: each move lasts at least
  * two repetitions, seed 000 § Choreography). */
-static void resume(cub_coach *c, int32_t music_ms)
+static void resume(cub_coach *c, int32_t music_ms, int32_t why)
 {
     int32_t m = c->move, rep = c->rep;
     const int32_t last = c->desc.move_count - 1;
+    if (music_ms >= 0 && music_ms < c->desc.moves[m].tag_ms) { /* the intro, a gap */
+        coach_out_state(c, CUB_COACH_DANCE, why);
+        begin_or_wait(c, m, CUB_COACH_WHY_RESUME, music_ms);
+        return;
+    }
     if (music_ms >= 0) {
         while (m < last && c->desc.moves[m + 1].tag_ms <= music_ms)
             m++;
@@ -263,17 +270,17 @@ static void resume(cub_coach *c, int32_t music_ms)
     if (rep < c->desc.moves[m].reps) {
         c->move = m;
         c->rep = rep;
-        coach_out_state(c, CUB_COACH_DANCE, CUB_COACH_WHY_RIGHT);
+        coach_out_state(c, CUB_COACH_DANCE, why);
         begin_move(c, m, rep, CUB_COACH_WHY_RESUME);
     } else if (m < last) { /* the move is (nearly) over: on to the next */
         c->move = m + 1;
         c->rep = 0;
-        coach_out_state(c, CUB_COACH_DANCE, CUB_COACH_WHY_RIGHT);
+        coach_out_state(c, CUB_COACH_DANCE, why);
         begin_or_wait(c, m + 1, CUB_COACH_WHY_RESUME, music_ms);
     } else {
         c->move = m;
         c->rep = c->desc.moves[m].reps - 1;
-        coach_out_state(c, CUB_COACH_DANCE, CUB_COACH_WHY_RIGHT);
+        coach_out_state(c, CUB_COACH_DANCE, why);
         go_outro(c);
     }
 }
@@ -300,7 +307,7 @@ static void on_verdict(cub_coach *c, const cub_event *ev, int32_t music_ms)
     if (ev->b) {
         c->misses = 0;
         if (about_this_move && (c->state == CUB_COACH_CORRECT || c->state == CUB_COACH_WORRIED))
-            resume(c, music_ms);
+            resume(c, music_ms, CUB_COACH_WHY_RIGHT);
         return;
     }
     const bool dancing = c->state == CUB_COACH_DANCE && c->phase == COACH_PH_MOVES;
@@ -369,6 +376,44 @@ static void on_music_tag(cub_coach *c, const cub_event *ev, int32_t music_ms)
     coach_out_speed(c, move_speed(c, c->move, factor), CUB_COACH_WHY_SYNC);
 }
 
+/* The camera went mid-song: hold the music and the dance, say so. The
+ * outro (every move danced, the music playing to its end) pauses too. */
+static void pause_for_camera(cub_coach *c)
+{
+    c->paused_phase = c->phase;
+    coach_out_state(c, CUB_COACH_PAUSED, CUB_COACH_WHY_CAMERA);
+    coach_music_pause(c, true, CUB_COACH_WHY_CAMERA);
+    c->phase = COACH_PH_NONE;
+    c->tag_pending = false;
+    coach_out_clip(c, c->desc.roles.idle, CUB_Q16_ONE, true, CUB_COACH_WHY_CAMERA);
+    coach_out_hint(c, CUB_COACH_HINT_CANT_SEE, CUB_COACH_WHY_CAMERA);
+}
+
+static void resume_after_camera(cub_coach *c, int32_t music_ms)
+{
+    coach_music_pause(c, false, CUB_COACH_WHY_CAMERA);
+    coach_out_hint(c, c->player_in_view ? CUB_COACH_HINT_NONE : CUB_COACH_HINT_COME_CLOSER,
+                   CUB_COACH_WHY_CAMERA);
+    if (c->paused_phase == COACH_PH_OUTRO) {
+        coach_out_state(c, CUB_COACH_DANCE, CUB_COACH_WHY_CAMERA);
+        go_outro(c);
+        return;
+    }
+    resume(c, music_ms, CUB_COACH_WHY_CAMERA);
+}
+
+static void on_camera(cub_coach *c, const cub_event *ev, int32_t music_ms)
+{
+    const bool singing = c->state == CUB_COACH_DANCE || c->state == CUB_COACH_CORRECT ||
+                         c->state == CUB_COACH_WORRIED;
+    if (!ev->a && singing)
+        pause_for_camera(c);
+    else if (ev->a && c->state == CUB_COACH_PAUSED)
+        resume_after_camera(c, music_ms);
+    else
+        coach_out_ignore(c, ev);
+}
+
 static void on_song_end(cub_coach *c)
 {
     c->music_on = false; /* it ended by itself: nothing to stop */
@@ -429,6 +474,7 @@ cub_err cub_coach_handle(cub_coach *c, const cub_event *ev, int32_t music_ms)
     case CUB_EV_CLIP_DONE: on_clip_done(c, ev, music_ms); break;
     case CUB_EV_MUSIC_TAG: on_music_tag(c, ev, music_ms); break;
     case CUB_EV_SONG_END: on_song_end(c); break;
+    case CUB_EV_CAMERA: on_camera(c, ev, music_ms); break;
     default: break;
     }
     return CUB_OK;
@@ -449,6 +495,7 @@ cub_err cub_coach_tick(cub_coach *c, int64_t now_us, int32_t music_ms)
     case CUB_COACH_DANCE:
     case CUB_COACH_CORRECT:
     case CUB_COACH_WORRIED:
+    case CUB_COACH_PAUSED:
         if (quiet_ms >= c->desc.attract_after_ms)
             go_resting(c, CUB_COACH_ATTRACT, c->desc.roles.attract, CUB_COACH_WHY_QUIET);
         break;

@@ -20,6 +20,9 @@ void coach_out_state(cub_coach *c, int32_t to, int32_t reason);
 void coach_out_clip(cub_coach *c, int32_t clip, cub_q16 speed_q16, bool loop, int32_t reason);
 void coach_out_speed(cub_coach *c, cub_q16 speed_q16, int32_t reason);
 void coach_out_music(cub_coach *c, bool on, int32_t reason);
+/* Hold (paused = true) or go on with the music; its clock holds too, so
+ * the rate measurement starts afresh. */
+void coach_music_pause(cub_coach *c, bool paused, int32_t reason);
 /* Only when the hint changes. */
 void coach_out_hint(cub_coach *c, int32_t hint, int32_t reason);
 /* A log line without an action (events the coach set aside). */

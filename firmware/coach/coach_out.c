@@ -6,13 +6,14 @@
 #include "coach_internal.h"
 
 static const char *const state_names[CUB_COACH_STATE_COUNT] = {
-    "idle", "wake", "dance", "correct", "worried", "attract", "doze", "cheer",
+    "idle", "wake", "dance", "correct", "worried", "attract", "doze", "cheer", "paused",
 };
 
 static const char *const reason_names[CUB_COACH_WHY_COUNT] = {
     "init",  "start", "clap",     "stop",  "woke",    "intro",   "move",   "rep",
     "wrong", "right", "correct",  "demo",  "misses",  "worried", "calmed", "resume",
     "sync",  "outro", "song_end", "cheer", "cheered", "quiet",   "player", "idle",
+    "camera",
 };
 
 const char *cub_coach_state_name(int32_t state)
@@ -144,6 +145,21 @@ void coach_out_music(cub_coach *c, bool on, int32_t reason)
                   on ? "start" : "stop", cub_coach_reason_name(reason));
 }
 
+void coach_music_pause(cub_coach *c, bool paused, int32_t reason)
+{
+    c->anchor_ms = -1; /* the clock stood still: measure the rate afresh */
+    push(c, paused ? CUB_COACH_ACT_MUSIC_PAUSE : CUB_COACH_ACT_MUSIC_RESUME, reason);
+    cub_log_event(c->desc.log, c->now_us, "coach", "music", "action=%s reason=%s",
+                  paused ? "pause" : "resume", cub_coach_reason_name(reason));
+}
+
+static const char *hint_name(int32_t hint)
+{
+    return hint == CUB_COACH_HINT_COME_CLOSER ? "come_closer"
+           : hint == CUB_COACH_HINT_CANT_SEE  ? "cant_see"
+                                              : "none";
+}
+
 void coach_out_hint(cub_coach *c, int32_t hint, int32_t reason)
 {
     if (hint == c->hint) return;
@@ -155,8 +171,7 @@ void coach_out_hint(cub_coach *c, int32_t hint, int32_t reason)
                       cub_coach_reason_name(reason));
     else
         cub_log_event(c->desc.log, c->now_us, "coach", "hint", "show=%s reason=%s",
-                      hint == CUB_COACH_HINT_COME_CLOSER ? "come_closer" : "none",
-                      cub_coach_reason_name(reason));
+                      hint_name(hint), cub_coach_reason_name(reason));
 }
 
 void coach_out_ignore(cub_coach *c, const cub_event *ev)

@@ -206,6 +206,7 @@ const char *cub_loop_event_name(int32_t type)
     case CUB_EV_CLAP: return "clap";
     case CUB_EV_PLAYER: return "player";
     case CUB_EV_CLIP_DONE: return "clip_done";
+    case CUB_EV_CAMERA: return "camera";
     case CUB_EV_MUSIC_TAG: return "music_tag";
     case CUB_EV_SONG_END: return "song_end";
     default: return type >= CUB_EV_USER ? "user" : "unknown";

@@ -312,6 +312,61 @@ static void test_correction_repeats_until_right_then_resumes_same_move(void **s)
     expect_clip(&c, C_SWAY, cub_fx_mul(81920, demo), false, CUB_COACH_WHY_DEMO);
 }
 
+/* The Kinect goes mid-song: the music and the dance hold with "can't see
+ * you"; verdicts are set aside; when frames come back the music goes on
+ * and the dance resumes where the music is. Outside a song nothing
+ * happens; STOP and a long wait still work from the pause. */
+static void test_camera_loss_pauses_the_song_and_resumes_it(void **s)
+{
+    cub_coach c;
+    cub_coach_desc d = make_desc();
+    assert_int_equal(cub_coach_init(&c, &d, 0), CUB_OK);
+    send(&c, 100, CUB_EV_CAMERA, 0, 0, CUB_COACH_NO_MUSIC); /* idle: nothing to pause */
+    assert_int_equal(c.state, CUB_COACH_IDLE);
+    assert_null(act(&c, CUB_COACH_ACT_MUSIC_PAUSE, 0));
+    to_dance(&c, 200);
+    send(&c, 3000, CUB_EV_CLIP_DONE, C_CLAP, 0, 1800); /* rep 1 of clap */
+    send(&c, 3500, CUB_EV_CAMERA, 0, 0, 2300);
+    assert_int_equal(c.state, CUB_COACH_PAUSED);
+    assert_non_null(act(&c, CUB_COACH_ACT_MUSIC_PAUSE, 0));
+    expect_clip(&c, C_IDLE, CUB_Q16_ONE, true, CUB_COACH_WHY_CAMERA);
+    const cub_coach_action *h = act(&c, CUB_COACH_ACT_HINT, 0);
+    assert_non_null(h);
+    assert_int_equal(h->hint, CUB_COACH_HINT_CANT_SEE);
+    assert_true(logged("coach state from=dance to=paused reason=camera move=0 rep=1"));
+    assert_true(logged("coach hint show=cant_see reason=camera"));
+    send(&c, 4000, CUB_EV_VERDICT, 0, 0, 2300); /* the music holds: 2.3 s */
+    assert_int_equal(c.state, CUB_COACH_PAUSED);
+    send(&c, 9000, CUB_EV_CAMERA, 1, 0, 2300);
+    assert_int_equal(c.state, CUB_COACH_DANCE);
+    assert_non_null(act(&c, CUB_COACH_ACT_MUSIC_RESUME, 0));
+    assert_int_equal(c.move, 0);
+    assert_int_equal(c.rep, 1); /* 2.3 s: nearest repetition start 2 s */
+    assert_true(logged("coach state from=paused to=dance reason=camera move=0 rep=1"));
+    /* Paused again, then STOP: idle, the music stops. */
+    send(&c, 9500, CUB_EV_CAMERA, 0, 0, 2800);
+    send(&c, 9600, CUB_EV_BUTTON_DOWN, CUB_BUTTON_STOP, 0, 2800);
+    assert_int_equal(c.state, CUB_COACH_IDLE);
+    assert_non_null(act(&c, CUB_COACH_ACT_MUSIC_STOP, 0));
+    /* Paused during the intro and back: wait for the move's tag again. */
+    static cub_coach_move late[3];
+    memcpy(late, song, sizeof late);
+    for (int i = 0; i < 3; i++) late[i].tag_ms += 2000; /* a 2 s intro */
+    d.moves = late;
+    assert_int_equal(cub_coach_init(&c, &d, 0), CUB_OK);
+    to_dance(&c, 0);
+    send(&c, 1500, CUB_EV_CAMERA, 0, 0, 400);
+    send(&c, 1600, CUB_EV_CAMERA, 1, 0, 400);
+    assert_int_equal(c.state, CUB_COACH_DANCE);
+    assert_int_equal(c.phase, 1); /* COACH_PH_WAIT: the idle clip until 2 s of music */
+    expect_clip(&c, C_IDLE, CUB_Q16_ONE, true, CUB_COACH_WHY_INTRO);
+    /* Paused for longer than attract_after: attract (the song is over). */
+    send(&c, 1700, CUB_EV_CAMERA, 0, 0, 500);
+    tick(&c, 1700 + c.desc.attract_after_ms + 10, 500);
+    assert_int_equal(c.state, CUB_COACH_ATTRACT);
+    assert_non_null(act(&c, CUB_COACH_ACT_MUSIC_STOP, 0));
+}
+
 static void test_resume_follows_the_music_past_the_move(void **s)
 {
     cub_coach c;
@@ -472,6 +527,10 @@ static void drive_to(cub_coach *c, int s)
     case CUB_COACH_CHEER:
         to_dance(c, 100);
         send(c, 2000, CUB_EV_SONG_END, 0, 0, 900);
+        break;
+    case CUB_COACH_PAUSED:
+        to_dance(c, 100);
+        send(c, 2000, CUB_EV_CAMERA, 0, 0, 900);
         break;
     default: break;
     }
@@ -825,6 +884,7 @@ int main(void)
         cmocka_unit_test(test_wrong_verdict_corrects_in_the_same_call),
         cmocka_unit_test(test_correction_repeats_until_right_then_resumes_same_move),
         cmocka_unit_test(test_resume_follows_the_music_past_the_move),
+        cmocka_unit_test(test_camera_loss_pauses_the_song_and_resumes_it),
         cmocka_unit_test(test_attract_then_doze_after_the_configured_quiet),
         cmocka_unit_test(test_worried_after_n_misses_then_back_to_correcting),
         cmocka_unit_test(test_song_end_cheers_then_idles),

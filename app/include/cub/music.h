@@ -52,6 +52,9 @@ cub_err cub_music_load(cub_music *m, const char *midi_path, cub_diag *diag);
 cub_err cub_music_play(cub_music *m);
 /* Stop playing (all notes off); the clock stops where it is. */
 void cub_music_stop(cub_music *m);
+/* Hold the song where it is (paused = 1: silence, the clock stands still)
+ * or go on from there (0). Nothing happens when nothing plays. */
+void cub_music_pause(cub_music *m, int paused);
 
 /* Render `frames` frames of interleaved stereo int16 into stereo[2*frames].
  * Silence when not playing. While playing the clock advances by exactly

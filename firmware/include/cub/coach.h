@@ -48,6 +48,7 @@ typedef enum cub_coach_state {
     CUB_COACH_ATTRACT,  /* nobody interacted for a while: wave */
     CUB_COACH_DOZE,     /* nobody for longer: doze */
     CUB_COACH_CHEER,    /* the song ended */
+    CUB_COACH_PAUSED,   /* the camera is gone mid-song: music paused, "can't see you" */
     CUB_COACH_STATE_COUNT
 } cub_coach_state;
 
@@ -77,6 +78,7 @@ typedef enum cub_coach_reason {
     CUB_COACH_WHY_QUIET,   /* no interaction for attract_after / doze_after */
     CUB_COACH_WHY_PLAYER,  /* a player came into view or left */
     CUB_COACH_WHY_IDLE,    /* the idle clip */
+    CUB_COACH_WHY_CAMERA,  /* the camera went or came back */
     CUB_COACH_WHY_COUNT
 } cub_coach_reason;
 
@@ -87,10 +89,13 @@ typedef enum cub_coach_action_kind {
     CUB_COACH_ACT_MUSIC_STOP,
     CUB_COACH_ACT_HINT,  /* show hint: a move index or one of CUB_COACH_HINT_* */
     CUB_COACH_ACT_STATE, /* the state changed from -> to */
+    CUB_COACH_ACT_MUSIC_PAUSE,  /* hold the music where it is (its clock stops too) */
+    CUB_COACH_ACT_MUSIC_RESUME, /* go on from there */
 } cub_coach_action_kind;
 
 #define CUB_COACH_HINT_NONE (-1)        /* clear the hint */
 #define CUB_COACH_HINT_COME_CLOSER (-2) /* nobody in view: "come closer" */
+#define CUB_COACH_HINT_CANT_SEE (-3)    /* the camera is gone: "I can't see you" */
 
 typedef struct cub_coach_action {
     int32_t kind;      /* cub_coach_action_kind */
@@ -164,6 +169,7 @@ typedef struct cub_coach {
     cub_q16 sync_q16;     /* music-sync factor applied to the move's speed */
     cub_q16 rate_q16;     /* music ms per loop ms, as measured */
     int32_t misses;       /* wrong verdicts in a row */
+    int32_t paused_phase; /* the dance's phase when the camera went */
     uint32_t corrections; /* correcting clips played (they alternate) */
     bool music_on, tag_pending, player_in_view;
     int32_t hint; /* the hint last shown */
@@ -194,6 +200,10 @@ cub_err cub_coach_init(cub_coach *c, const cub_coach_desc *desc, int64_t now_us)
  *               first frame); acted on once per repetition begun, with
  *               music_ms the audio clock: the music sync
  *   SONG_END    cheer
+ *   CAMERA      a = 0 mid-song (dance, correct, worried): pause the music and
+ *               the dance, show "can't see you"; a = 1 while paused: resume
+ *               the music and the dance where the music is (as after a
+ *               correction). Outside a song: ignored
  * Buttons, claps, verdicts and a player arriving count as interaction (they
  * restart the attract/doze countdown). Other events are ignored (CUB_OK).
  * CUB_ERR_ARG for NULL; CUB_ERR_RANGE for a verdict or music tag naming a

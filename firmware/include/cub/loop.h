@@ -31,6 +31,7 @@ typedef enum cub_event_type {
     CUB_EV_CLIP_DONE,   /* the coach's clip played to its end: a = clip index */
     CUB_EV_MUSIC_TAG,   /* playback reached a music time tag: a = move index, b = tag ms */
     CUB_EV_SONG_END,    /* the song's music finished */
+    CUB_EV_CAMERA,      /* a = 0 depth frames stopped coming (the Kinect is gone), 1 they are back */
     CUB_EV_USER,        /* first value free for app-defined events */
 } cub_event_type;
 
