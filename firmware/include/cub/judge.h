@@ -1,0 +1,180 @@
+/* judge — from the player's skeleton (cub/track.h) to the coach's input
+ * (SEEDS.md § 000, "Recognising the child's move"): a verdict per move
+ * repetition, claps (the clap that wakes the coach), waves, and presence.
+ *
+ * Feed it every tracker frame with cub_judge_frame (t_us increasing).
+ * Tell it what is taught with cub_judge_begin_rep. Each call fills a
+ * cub_judge_out with the events of that frame; `ev` of each is the loop
+ * event to post (CUB_EV_VERDICT / CUB_EV_CLAP / CUB_EV_PLAYER; a wave has
+ * no coach event and carries CUB_EV_NONE). Integer only, no allocation:
+ * the same frames and calls give the same events on every CPU.
+ *
+ * Verdicts, exactly:
+ * - A repetition r has keys (feature, set), its window [start_us,
+ *   end_us + beat_us) (a child one beat late still counts) and optionally
+ *   the coach's expected fuzzy frame.
+ * - A frame MATCHES r when the tracker says CUB_TRACK_OK, every key's
+ *   membership mu(feature, set) >= key_mu, and, if r has an expected
+ *   frame, cub_fuzzy_distance(child, expected) <= pose_d_max.
+ * - A run is a stretch of consecutive matching frames (any non-matching
+ *   frame ends it). A run is HELD once t(last) - t(first) >= hold_ms.
+ * - A held run credits the OLDEST open repetition whose window holds its
+ *   frames and that is not yet right: that verdict (b = 1) is issued at
+ *   once, in the frame where the run becomes held. One run credits one
+ *   repetition: to credit another, the keys must drop and be reached again
+ *   (a late child's pose at the start of the next repetition counts for
+ *   the late one, not for both).
+ * - A repetition still without a right verdict gets a wrong one (b = 0) in
+ *   the first frame with t_us >= end_us + beat_us. Why: no_player when no
+ *   frame of its window was CUB_TRACK_OK, pose when the keys were held but
+ *   never close enough to the expected frame, else missed, naming the key
+ *   with the lowest best membership (no key, no player, standing still:
+ *   all wrong).
+ * - cub_judge_cancel_reps drops open repetitions without a verdict (the
+ *   coach abandoned them).
+ *
+ * Clap: the hands (HAND_L/R) come together fast and meet in front of the
+ * body, then part. Meet: hand gap < clap_meet of the shoulder width, the
+ * gap having been >= clap_open of it within the last clap_approach_ms, the
+ * hands in front of the trunk with the forearms reaching forward (see
+ * clap_pose in firmware/judge/judge_gesture.c for the exact bounds, from
+ * hip to a bit above shoulder height; hands meeting overhead with the
+ * forearms up are a wave, hands clasped at the belt are not a clap). Part: the gap grows by clap_part of the width within
+ * clap_part_ms of the meet. The clap is issued at the part (so hands
+ * brought together and held, as when carrying something, are no clap);
+ * after it none for clap_refractory_ms.
+ * Wave: a hand above its elbow and its shoulder moves side to side (x,
+ * relative to its shoulder) with at least wave_reversals reversals, each
+ * swing at least wave_swing of the shoulder width, reversals at most
+ * wave_gap_ms apart. Frames with the hand lower pause the count (a big
+ * two-arm wave dips below the shoulders); a clap clears it. One event per
+ * waving episode (an episode ends when wave_gap_ms passes without a
+ * reversal).
+ * Presence: in view after present_frames CUB_TRACK_OK frames in a row, out
+ * of view after absent_frames non-OK frames in a row (any other tracker
+ * status counts as not seen). Starts out of view. A CUB_EV_PLAYER on each
+ * change.
+ *
+ * Posture keys (sit, jump) read the CoG over the floor: desc floor_y_mm and
+ * stand_cog_mm when known, else estimated online (floor from the lower
+ * foot, standing CoG tracked slowly from the first frames in view). */
+#ifndef CUB_JUDGE_H
+#define CUB_JUDGE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "cub/err.h"
+#include "cub/fuzzy.h"
+#include "cub/fx.h"
+#include "cub/loop.h"
+#include "cub/track.h"
+
+#define CUB_JUDGE_MAX_KEYS 4   /* key points per move (cub_song allows 4) */
+#define CUB_JUDGE_MAX_OPEN 4   /* repetitions open at once (incl. late tails) */
+#define CUB_JUDGE_MAX_EVENTS 8 /* events one frame can produce */
+
+/* Zero-initialised fields take the defaults shown. Ratios are Q16.16. */
+typedef struct cub_judge_desc {
+    uint16_t key_mu;           /* 16384 (0.5): a key is reached at this membership */
+    int32_t hold_ms;           /* 100: a match held this long counts */
+    cub_q16 pose_d_max;        /* 0.45: d to the expected frame, when given */
+    int32_t present_frames;    /* 5 OK frames in a row: in view */
+    int32_t absent_frames;     /* 30 non-OK frames in a row: out of view */
+    cub_q16 clap_meet;         /* 0.55 of the shoulder width: hands meet */
+    cub_q16 clap_open;         /* 1.0: the gap before the approach */
+    int32_t clap_approach_ms;  /* 400 */
+    cub_q16 clap_part;         /* 0.25: the gap growth that ends a clap */
+    int32_t clap_part_ms;      /* 600 */
+    int32_t clap_refractory_ms;/* 200 */
+    cub_q16 wave_swing;        /* 0.25 */
+    int32_t wave_reversals;    /* 2 */
+    int32_t wave_gap_ms;       /* 2000 */
+    cub_q16 floor_y_mm;        /* with stand_cog_mm > 0: fixed calibration */
+    cub_q16 stand_cog_mm;      /* 0: estimate online */
+    cub_log *log;              /* optional: one line per event */
+} cub_judge_desc;
+
+/* One repetition of a move to judge. */
+typedef struct cub_judge_key {
+    int32_t feature; /* cub_fuzzy_feature */
+    int32_t set;     /* index of the set (cub_fuzzy_set_name) */
+} cub_judge_key;
+
+typedef struct cub_judge_rep {
+    int32_t move, rep; /* song move index (the verdict's a) and repetition */
+    int32_t key_count; /* 1..CUB_JUDGE_MAX_KEYS */
+    cub_judge_key keys[CUB_JUDGE_MAX_KEYS];
+    int64_t start_us, end_us; /* the repetition in loop time, end > start */
+    int64_t beat_us;          /* the late allowance, >= 0 (one beat) */
+    const cub_fuzzy_frame *expected; /* optional: the coach's pose (copied) */
+} cub_judge_rep;
+
+typedef enum cub_judge_kind {
+    CUB_JUDGE_VERDICT = 1,
+    CUB_JUDGE_CLAP,
+    CUB_JUDGE_WAVE,
+    CUB_JUDGE_PLAYER,
+} cub_judge_kind;
+
+typedef enum cub_judge_why {
+    CUB_JUDGE_WHY_KEYS = 1, /* right: the keys were held */
+    CUB_JUDGE_WHY_MISSED,   /* wrong: a key never held (key = the weakest) */
+    CUB_JUDGE_WHY_POSE,     /* wrong: keys held, pose too far from expected */
+    CUB_JUDGE_WHY_NO_PLAYER,/* wrong: nobody tracked in the window */
+    CUB_JUDGE_WHY_CLAP,
+    CUB_JUDGE_WHY_WAVE,
+    CUB_JUDGE_WHY_IN_VIEW,
+    CUB_JUDGE_WHY_OUT_OF_VIEW,
+} cub_judge_why;
+
+typedef struct cub_judge_event {
+    cub_event ev;     /* ready to post (type CUB_EV_NONE for a wave) */
+    int32_t kind;     /* cub_judge_kind */
+    int32_t why;      /* cub_judge_why */
+    int32_t move, rep;/* verdicts; -1 otherwise */
+    int32_t feature;  /* verdicts: the key's feature (cub_fuzzy_feature)... */
+    int32_t set;      /* ...and set concerned; -1 none */
+    cub_q16 value;    /* verdict: the key's best membership (0..1) or min d;
+                         clap: hand gap at the meet (mm); wave: reversals;
+                         player: 1 / 0 */
+    int32_t side;     /* wave: 0 left hand, 1 right hand; else -1 */
+} cub_judge_event;
+
+typedef struct cub_judge_out {
+    int32_t count;
+    cub_judge_event events[CUB_JUDGE_MAX_EVENTS];
+} cub_judge_out;
+
+typedef struct cub_judge cub_judge; /* lives in caller memory */
+
+/* Bytes cub_judge_init needs (desc may be NULL: defaults). */
+size_t cub_judge_mem_size(const cub_judge_desc *desc);
+/* Set up a judge in mem (8-byte aligned). CUB_ERR_ARG (NULL, a negative
+ * or absurd tunable), CUB_ERR_NOMEM (mem_size too small). */
+cub_err cub_judge_init(const cub_judge_desc *desc, void *mem, size_t mem_size, cub_judge **out);
+
+/* Open a repetition. CUB_ERR_ARG: bad key (feature or set out of range,
+ * key_count outside 1..4), end_us <= start_us, beat_us < 0. CUB_ERR_FULL:
+ * CUB_JUDGE_MAX_OPEN repetitions already open. */
+cub_err cub_judge_begin_rep(cub_judge *j, const cub_judge_rep *rep);
+/* Drop every open repetition without a verdict; returns how many. */
+int32_t cub_judge_cancel_reps(cub_judge *j);
+
+/* One tracker frame at t_us. Always fills *out (count may be 0). A frame
+ * whose t_us is not after the previous one is ignored. CUB_ERR_ARG only
+ * for NULL pointers. */
+cub_err cub_judge_frame(cub_judge *j, int64_t t_us, const cub_track_skeleton *skel,
+                        cub_judge_out *out);
+
+/* The last frame's fuzzy features (zero before the first OK frame). */
+const cub_fuzzy_frame *cub_judge_last_features(const cub_judge *j);
+
+/* A log line for an event, e.g. "verdict move=3 rep=1 result=wrong
+ * why=missed key=RHE best=0.420"; returns its length (cut to size). */
+size_t cub_judge_describe(const cub_judge_event *e, char *buf, size_t size);
+
+/* "keys", "missed", ...; "?" out of range. */
+const char *cub_judge_why_name(int32_t why);
+
+#endif

@@ -1,0 +1,206 @@
+/* judge: set-up, the per-frame driver, presence, the posture calibration
+ * and the event lines. See cub/judge.h for the rules. */
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+
+#include "cub/judge.h"
+#include "judge_internal.h"
+
+/* The Kinect SDK's 20 joints as the fuzzy features read them. */
+static const cub_fuzzy_body kinect_body = {
+    .hip_centre = CUB_TJ_HIP_CENTRE,
+    .spine = CUB_TJ_SPINE,
+    .shoulder_centre = CUB_TJ_SHOULDER_CENTRE,
+    .head = CUB_TJ_HEAD,
+    .shoulder = {CUB_TJ_SHOULDER_L, CUB_TJ_SHOULDER_R},
+    .elbow = {CUB_TJ_ELBOW_L, CUB_TJ_ELBOW_R},
+    .wrist = {CUB_TJ_WRIST_L, CUB_TJ_WRIST_R},
+    .hip = {CUB_TJ_HIP_L, CUB_TJ_HIP_R},
+    .knee = {CUB_TJ_KNEE_L, CUB_TJ_KNEE_R},
+    .ankle = {CUB_TJ_ANKLE_L, CUB_TJ_ANKLE_R},
+};
+
+#define PCT(n) ((cub_q16)((n) * 65536 / 100)) /* n hundredths in Q16.16 */
+
+static void fill_defaults(cub_judge_desc *d)
+{
+    if (!d->key_mu) d->key_mu = CUB_FUZZY_ONE / 2;
+    if (!d->hold_ms) d->hold_ms = 100;
+    if (!d->pose_d_max) d->pose_d_max = PCT(45);
+    if (!d->present_frames) d->present_frames = 5;
+    if (!d->absent_frames) d->absent_frames = 30;
+    if (!d->clap_meet) d->clap_meet = PCT(55);
+    if (!d->clap_open) d->clap_open = PCT(100);
+    if (!d->clap_approach_ms) d->clap_approach_ms = 400;
+    if (!d->clap_part) d->clap_part = PCT(25);
+    if (!d->clap_part_ms) d->clap_part_ms = 600;
+    if (!d->clap_refractory_ms) d->clap_refractory_ms = 200;
+    if (!d->wave_swing) d->wave_swing = PCT(25);
+    if (!d->wave_reversals) d->wave_reversals = 2;
+    if (!d->wave_gap_ms) d->wave_gap_ms = 2000;
+}
+
+static int desc_ok(const cub_judge_desc *d)
+{
+    const int32_t ms[] = {d->hold_ms, d->clap_approach_ms, d->clap_part_ms,
+                          d->clap_refractory_ms, d->wave_gap_ms};
+    for (size_t i = 0; i < sizeof ms / sizeof ms[0]; i++)
+        if (ms[i] < 0 || ms[i] > 60000) return 0;
+    const cub_q16 ratio[] = {d->pose_d_max, d->clap_meet, d->clap_open, d->clap_part,
+                             d->wave_swing};
+    for (size_t i = 0; i < sizeof ratio / sizeof ratio[0]; i++)
+        if (ratio[i] < 0 || ratio[i] > CUB_Q16_INT(8)) return 0;
+    return d->key_mu <= CUB_FUZZY_ONE && d->present_frames > 0 && d->present_frames <= 1000 &&
+           d->absent_frames > 0 && d->absent_frames <= 1000 && d->wave_reversals > 0 &&
+           d->wave_reversals <= 100 && d->stand_cog_mm >= 0;
+}
+
+size_t cub_judge_mem_size(const cub_judge_desc *desc)
+{
+    (void)desc;
+    return sizeof(cub_judge);
+}
+
+cub_err cub_judge_init(const cub_judge_desc *desc, void *mem, size_t mem_size, cub_judge **out)
+{
+    if (!mem || !out) return CUB_ERR_ARG;
+    *out = NULL;
+    if ((uintptr_t)mem % 8 != 0) return CUB_ERR_ARG;
+    if (mem_size < sizeof(cub_judge)) return CUB_ERR_NOMEM;
+    cub_judge_desc d = desc ? *desc : (cub_judge_desc){0};
+    fill_defaults(&d);
+    if (!desc_ok(&d)) return CUB_ERR_ARG;
+    cub_judge *j = mem;
+    memset(j, 0, sizeof *j);
+    j->d = d;
+    j->body = kinect_body;
+    if (d.stand_cog_mm > 0) {
+        j->body.floor_y_mm = d.floor_y_mm;
+        j->body.stand_cog_mm = d.stand_cog_mm;
+        j->calibrated = 1;
+    }
+    *out = j;
+    return CUB_OK;
+}
+
+int32_t judge_dist_mm(cub_vec3 a, cub_vec3 b)
+{
+    int64_t dx = judge_mm(a.x) - (int64_t)judge_mm(b.x);
+    int64_t dy = judge_mm(a.y) - (int64_t)judge_mm(b.y);
+    int64_t dz = judge_mm(a.z) - (int64_t)judge_mm(b.z);
+    return (int32_t)cub_fx_isqrt64((uint64_t)(dx * dx + dy * dy + dz * dz));
+}
+
+void judge_emit(cub_judge *j, cub_judge_out *out, const cub_judge_event *e)
+{
+    if (out->count < CUB_JUDGE_MAX_EVENTS) out->events[out->count++] = *e;
+    if (j->d.log) {
+        char line[160];
+        cub_judge_describe(e, line, sizeof line);
+        cub_log_event(j->d.log, e->ev.t_us, "judge", line, NULL);
+    }
+}
+
+/* Presence with hysteresis over frames. */
+static void presence(cub_judge *j, int64_t t_us, int ok, cub_judge_out *out)
+{
+    j->ok_run = ok ? j->ok_run + 1 : 0;
+    j->bad_run = ok ? 0 : j->bad_run + 1;
+    int flip = j->in_view ? j->bad_run >= j->d.absent_frames : j->ok_run >= j->d.present_frames;
+    if (!flip) return;
+    j->in_view = !j->in_view;
+    cub_judge_event e = {
+        .ev = {.t_us = t_us, .type = CUB_EV_PLAYER, .a = j->in_view},
+        .kind = CUB_JUDGE_PLAYER,
+        .why = j->in_view ? CUB_JUDGE_WHY_IN_VIEW : CUB_JUDGE_WHY_OUT_OF_VIEW,
+        .move = -1, .rep = -1, .feature = -1, .set = -1, .side = -1,
+        .value = j->in_view ? CUB_Q16_ONE : 0,
+    };
+    judge_emit(j, out, &e);
+}
+
+/* Floor and standing CoG, when the desc did not fix them: the floor
+ * follows the lower foot (down at once, up slowly: a jump lifts the feet
+ * for a few frames only), the standing CoG height follows the CoG at 1/64
+ * per frame from the first frame seen (a child enters standing). */
+static void calibrate(cub_judge *j, const cub_track_skeleton *s)
+{
+    if (j->d.stand_cog_mm > 0) return;
+    cub_q16 fl = s->joint_mm[CUB_TJ_FOOT_L].y, fr = s->joint_mm[CUB_TJ_FOOT_R].y;
+    cub_q16 low = fl < fr ? fl : fr;
+    if (!j->calibrated || low < j->body.floor_y_mm)
+        j->body.floor_y_mm = low;
+    else
+        j->body.floor_y_mm += (cub_q16)(((int64_t)low - j->body.floor_y_mm) / 128);
+    cub_q16 cog = cub_fuzzy_cog_height_mm(&j->body, s->joint_mm, CUB_TJ_COUNT);
+    if (cog < CUB_Q16_INT(100)) cog = CUB_Q16_INT(100); /* a degenerate frame */
+    if (!j->calibrated)
+        j->body.stand_cog_mm = cog;
+    else
+        j->body.stand_cog_mm += (cub_q16)(((int64_t)cog - j->body.stand_cog_mm) / 64);
+    j->calibrated = 1;
+}
+
+cub_err cub_judge_frame(cub_judge *j, int64_t t_us, const cub_track_skeleton *skel,
+                        cub_judge_out *out)
+{
+    if (!out) return CUB_ERR_ARG;
+    out->count = 0;
+    if (!j || !skel) return CUB_ERR_ARG;
+    if (j->have_t && t_us <= j->last_t_us) return CUB_OK;
+    j->have_t = 1;
+    j->last_t_us = t_us;
+    int ok = skel->status == CUB_TRACK_OK;
+    presence(j, t_us, ok, out);
+    const cub_fuzzy_frame *f = NULL;
+    if (ok) {
+        calibrate(j, skel);
+        if (cub_fuzzy_features(&j->body, skel->joint_mm, CUB_TJ_COUNT, &j->last) == CUB_OK)
+            f = &j->last;
+        judge_gestures(j, t_us, skel, out);
+    } else {
+        judge_gestures_reset(j);
+    }
+    judge_reps_frame(j, t_us, f, out);
+    return CUB_OK;
+}
+
+const cub_fuzzy_frame *cub_judge_last_features(const cub_judge *j)
+{
+    return j ? &j->last : NULL;
+}
+
+static const char *const why_names[] = {
+    "?", "keys", "missed", "pose", "no_player", "clap", "wave", "in_view", "out_of_view",
+};
+
+const char *cub_judge_why_name(int32_t why)
+{
+    if (why < 1 || why >= (int32_t)(sizeof why_names / sizeof why_names[0])) return "?";
+    return why_names[why];
+}
+
+size_t cub_judge_describe(const cub_judge_event *e, char *buf, size_t size)
+{
+    if (!e || !buf || size == 0) return 0;
+    const char *why = cub_judge_why_name(e->why);
+    switch (e->kind) {
+    case CUB_JUDGE_VERDICT: {
+        const char *key = e->feature >= 0 ? cub_fuzzy_feature_name(e->feature) : "-";
+        const char *set = e->feature >= 0 ? cub_fuzzy_set_name(e->feature, e->set) : "-";
+        const char *what = e->why == CUB_JUDGE_WHY_POSE ? "d" : "best";
+        return cub_log_format(buf, size, "verdict move=%d rep=%d result=%s why=%s key=%s=%s %s=%q",
+                              e->move, e->rep, e->ev.b ? "right" : "wrong", why, key, set, what,
+                              e->value);
+    }
+    case CUB_JUDGE_CLAP:
+        return cub_log_format(buf, size, "clap gap_mm=%d", (int)(e->value >> 16));
+    case CUB_JUDGE_WAVE:
+        return cub_log_format(buf, size, "wave hand=%s reversals=%d", e->side ? "right" : "left",
+                              (int)(e->value >> 16));
+    case CUB_JUDGE_PLAYER:
+        return cub_log_format(buf, size, "player in_view=%d why=%s", e->ev.a, why);
+    default: return cub_log_format(buf, size, "unknown kind=%d", e->kind);
+    }
+}

@@ -1,0 +1,194 @@
+/* judge: claps and waves from the hands (cub/judge.h gives the rules).
+ * Distances in whole millimetres (ample for hands), ratios of the
+ * shoulder width in Q16.16. */
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+
+#include "cub/judge.h"
+#include "judge_internal.h"
+
+#define MIN_WIDTH_MM 150 /* a shoulder width below this is tracker noise */
+
+/* ratio (Q16.16) of width_mm, in mm. */
+static int32_t part_of(cub_q16 ratio, int32_t width_mm)
+{
+    return (int32_t)(((int64_t)ratio * width_mm) >> 16);
+}
+
+void judge_gestures_reset(cub_judge *j)
+{
+    j->clap.n = 0;
+    j->clap.met = 0;
+    memset(j->wave, 0, sizeof j->wave);
+}
+
+static void clap_push(clap_state *c, int64_t t_us, int32_t gap_mm)
+{
+    c->t_us[c->head] = t_us;
+    c->gap_mm[c->head] = gap_mm;
+    c->head = (c->head + 1) % JUDGE_HIST;
+    if (c->n < JUDGE_HIST) c->n++;
+}
+
+/* The widest hand gap of the frames since t_us. */
+static int32_t clap_widest_since(const clap_state *c, int64_t t_us)
+{
+    int32_t widest = 0;
+    for (int i = 0; i < c->n; i++) {
+        int k = (c->head - 1 - i + 2 * JUDGE_HIST) % JUDGE_HIST;
+        if (c->t_us[k] < t_us) break;
+        if (c->gap_mm[k] > widest) widest = c->gap_mm[k];
+    }
+    return widest;
+}
+
+/* Hands in clapping position, from their height h (0 at hip-centre, 1 at
+ * shoulder-centre height) and the forearms' slope (rise over forward
+ * reach, summed over both forearms; the hands must be ahead of the
+ * elbows), measured on UTKinect and MSR Action3D:
+ * - h in [-1/8, 1.5] (a low clap dips below the hip-centre: UTKinect
+ *   -0.05) and the midpoint not behind the shoulders;
+ * - above shoulder-centre (h > 1), slope <= 1/2: a high clap reaches
+ *   forward (MSR: 0.2..0.33 at h 1.1..1.3), a two-hand overhead wave
+ *   points the forearms up (UTKinect: slope 0.66 and more, h 1.1 and up);
+ * - slope >= -1/2, and >= -1/3 below h = 1/4: hands clasped at the belt
+ *   (before a throw, when lowering the arms) hang the forearms (-0.37 and
+ *   steeper at h ~0.05), while low claps keep them near level (-0.27 at
+ *   h 0.03..0.12; -0.40 at h 0.3). */
+static int clap_pose(const cub_track_skeleton *s, int32_t width_mm)
+{
+    const cub_vec3 *w = s->joint_mm;
+    int64_t hip = judge_mm(w[CUB_TJ_HIP_CENTRE].y);
+    int64_t h_mm = judge_mm(w[CUB_TJ_SHOULDER_CENTRE].y) - hip;
+    int64_t rel = ((int64_t)judge_mm(w[CUB_TJ_HAND_L].y) + judge_mm(w[CUB_TJ_HAND_R].y)) / 2 - hip;
+    int64_t mz = ((int64_t)judge_mm(w[CUB_TJ_HAND_L].z) + judge_mm(w[CUB_TJ_HAND_R].z)) / 2;
+    int64_t dy = (int64_t)judge_mm(w[CUB_TJ_HAND_L].y) - judge_mm(w[CUB_TJ_ELBOW_L].y) +
+                 judge_mm(w[CUB_TJ_HAND_R].y) - judge_mm(w[CUB_TJ_ELBOW_R].y);
+    int64_t reach = (int64_t)judge_mm(w[CUB_TJ_ELBOW_L].z) - judge_mm(w[CUB_TJ_HAND_L].z) +
+                    judge_mm(w[CUB_TJ_ELBOW_R].z) - judge_mm(w[CUB_TJ_HAND_R].z);
+    if (h_mm <= 0 || 8 * rel < -h_mm || 2 * rel > 3 * h_mm || reach <= 0) return 0;
+    if (mz > (int64_t)judge_mm(w[CUB_TJ_SHOULDER_CENTRE].z) + width_mm / 2) return 0;
+    if (rel > h_mm && 2 * dy > reach) return 0;
+    if (2 * dy < -reach) return 0;
+    return 4 * rel >= h_mm || 3 * dy >= -reach;
+}
+
+static void clap_step(cub_judge *j, int64_t t_us, const cub_track_skeleton *s, int32_t width_mm,
+                      cub_judge_out *out)
+{
+    clap_state *c = &j->clap;
+    const cub_judge_desc *d = &j->d;
+    int32_t gap = judge_dist_mm(s->joint_mm[CUB_TJ_HAND_L], s->joint_mm[CUB_TJ_HAND_R]);
+    if (c->met) {
+        if (gap < c->min_gap_mm) c->min_gap_mm = gap;
+        if (gap - c->min_gap_mm >= part_of(d->clap_part, width_mm)) {
+            c->met = 0;
+            c->clapped = 1;
+            c->last_clap_us = t_us;
+            memset(j->wave, 0, sizeof j->wave); /* hands that met were no wave */
+            cub_judge_event e = {
+                .ev = {.t_us = t_us, .type = CUB_EV_CLAP},
+                .kind = CUB_JUDGE_CLAP, .why = CUB_JUDGE_WHY_CLAP,
+                .move = -1, .rep = -1, .feature = -1, .set = -1, .side = -1,
+                .value = CUB_Q16_INT(c->min_gap_mm),
+            };
+            judge_emit(j, out, &e);
+        } else if (t_us - c->met_us > (int64_t)d->clap_part_ms * 1000) {
+            c->met = 0; /* hands held together: no clap */
+        }
+    } else if (gap < part_of(d->clap_meet, width_mm) &&
+               (!c->clapped || t_us - c->last_clap_us >= (int64_t)d->clap_refractory_ms * 1000) &&
+               clap_widest_since(c, t_us - (int64_t)d->clap_approach_ms * 1000) >=
+                   part_of(d->clap_open, width_mm) &&
+               clap_pose(s, width_mm)) {
+        c->met = 1;
+        c->met_us = t_us;
+        c->min_gap_mm = gap;
+    }
+    clap_push(c, t_us, gap);
+}
+
+static void wave_restart(wave_state *w, int64_t t_us, int32_t x)
+{
+    w->active = 1;
+    w->dir = 0;
+    w->reversals = 0;
+    w->fired = 0;
+    w->lo_mm = w->hi_mm = w->extreme_mm = x;
+    w->last_us = t_us;
+}
+
+/* Direction changes of the hand's x with hysteresis `swing`. */
+static void wave_track(wave_state *w, int64_t t_us, int32_t x, int32_t swing)
+{
+    if (w->dir == 0) {
+        if (x < w->lo_mm) w->lo_mm = x;
+        if (x > w->hi_mm) w->hi_mm = x;
+        if (x - w->lo_mm >= swing || w->hi_mm - x >= swing) {
+            w->dir = x - w->lo_mm >= swing ? 1 : -1;
+            w->extreme_mm = x;
+            w->last_us = t_us;
+        }
+        return;
+    }
+    if ((x - w->extreme_mm) * w->dir > 0) {
+        w->extreme_mm = x;
+    } else if ((w->extreme_mm - x) * w->dir >= swing) {
+        w->dir = -w->dir;
+        w->extreme_mm = x;
+        w->reversals++;
+        w->last_us = t_us;
+    }
+}
+
+static void wave_step(cub_judge *j, int64_t t_us, const cub_track_skeleton *s, int side,
+                      int32_t width_mm, cub_judge_out *out)
+{
+    static const int hand[2] = {CUB_TJ_HAND_L, CUB_TJ_HAND_R};
+    static const int elbow[2] = {CUB_TJ_ELBOW_L, CUB_TJ_ELBOW_R};
+    static const int shoulder[2] = {CUB_TJ_SHOULDER_L, CUB_TJ_SHOULDER_R};
+    wave_state *w = &j->wave[side];
+    const cub_vec3 *p = s->joint_mm;
+    int raised = p[hand[side]].y > p[elbow[side]].y && p[hand[side]].y > p[shoulder[side]].y &&
+                 s->confidence[hand[side]] > 0;
+    int32_t x = judge_mm(p[hand[side]].x) - judge_mm(p[shoulder[side]].x);
+    if (!raised) return; /* a big wave dips below the shoulder: wave_gap_ms ends it */
+    if (!w->active || t_us - w->last_us > (int64_t)j->d.wave_gap_ms * 1000)
+        wave_restart(w, t_us, x);
+    wave_track(w, t_us, x, part_of(j->d.wave_swing, width_mm));
+    if (w->fired || w->reversals < j->d.wave_reversals) return;
+    w->fired = 1;
+    cub_judge_event e = {
+        .ev = {.t_us = t_us, .type = CUB_EV_NONE},
+        .kind = CUB_JUDGE_WAVE, .why = CUB_JUDGE_WHY_WAVE,
+        .move = -1, .rep = -1, .feature = -1, .set = -1, .side = side,
+        .value = CUB_Q16_INT(w->reversals),
+    };
+    judge_emit(j, out, &e);
+}
+
+/* The shoulder width the ratios read, followed at 1/16 per frame: the
+ * Kinect's shoulders collapse for a few frames when the arms cross over
+ * the head, and such frames (under 0.6 of the width) are left out. */
+static int32_t shoulder_width(cub_judge *j, const cub_track_skeleton *s)
+{
+    int32_t w = judge_dist_mm(s->joint_mm[CUB_TJ_SHOULDER_L], s->joint_mm[CUB_TJ_SHOULDER_R]);
+    if (w < MIN_WIDTH_MM) w = MIN_WIDTH_MM;
+    if (j->width_mm == 0)
+        j->width_mm = w;
+    else if ((int64_t)w * 10 >= (int64_t)j->width_mm * 6)
+        j->width_mm += (w - j->width_mm) / 16;
+    return j->width_mm;
+}
+
+void judge_gestures(cub_judge *j, int64_t t_us, const cub_track_skeleton *s, cub_judge_out *out)
+{
+    int32_t width = shoulder_width(j, s);
+    if (s->confidence[CUB_TJ_HAND_L] > 0 && s->confidence[CUB_TJ_HAND_R] > 0)
+        clap_step(j, t_us, s, width, out);
+    else
+        j->clap.met = 0;
+    for (int side = 0; side < 2; side++)
+        wave_step(j, t_us, s, side, width, out);
+}

@@ -1,0 +1,93 @@
+/* judge internals shared by its files: the state in caller memory. */
+#ifndef CUB_JUDGE_INTERNAL_H
+#define CUB_JUDGE_INTERNAL_H
+
+#include <stdint.h>
+
+#include "cub/judge.h"
+
+#define JUDGE_HIST 32 /* frames of hand-gap history (about 1 s at 30 fps) */
+
+typedef struct rep_slot {
+    int used;
+    uint32_t seq; /* opening order: the oldest open repetition is credited first */
+    int32_t move, rep, key_count;
+    cub_judge_key keys[CUB_JUDGE_MAX_KEYS];
+    int64_t start_us, close_us;
+    int has_expected;
+    cub_fuzzy_frame expected;
+    int right;          /* a right verdict was issued */
+    int seen;           /* an OK frame fell in the window */
+    int keys_held;      /* the keys alone were held once (for why=pose) */
+    int run_on;         /* in a run of matching frames */
+    int64_t run_first_us;
+    int keys_run_on;    /* the same for the keys alone */
+    int64_t keys_run_first_us;
+    uint16_t best_mu[CUB_JUDGE_MAX_KEYS];
+    cub_q16 min_d;
+} rep_slot;
+
+/* Keys just credited: a run of them credits no other repetition until the
+ * keys drop (one run, one repetition). */
+typedef struct consumed_keys {
+    int used;
+    int32_t key_count;
+    cub_judge_key keys[CUB_JUDGE_MAX_KEYS];
+} consumed_keys;
+
+typedef struct clap_state {
+    int64_t t_us[JUDGE_HIST];
+    int32_t gap_mm[JUDGE_HIST];
+    int32_t n, head;  /* entries held, next slot */
+    int met;          /* hands met, waiting for them to part */
+    int64_t met_us;
+    int32_t min_gap_mm;
+    int64_t last_clap_us;
+    int clapped;      /* last_clap_us is valid */
+} clap_state;
+
+typedef struct wave_state {
+    int active, dir, fired;
+    int32_t reversals;
+    int32_t lo_mm, hi_mm, extreme_mm;
+    int64_t last_us;  /* the last direction change */
+} wave_state;
+
+struct cub_judge {
+    cub_judge_desc d;   /* defaults filled in */
+    int64_t last_t_us;
+    int have_t;
+    int in_view;
+    int32_t ok_run, bad_run;
+    int calibrated;     /* floor and standing CoG known */
+    cub_fuzzy_body body;
+    cub_fuzzy_frame last;
+    uint32_t next_seq;
+    rep_slot reps[CUB_JUDGE_MAX_OPEN];
+    consumed_keys consumed[CUB_JUDGE_MAX_OPEN];
+    int32_t width_mm;   /* shoulder width, smoothed; 0 = not yet seen */
+    clap_state clap;
+    wave_state wave[2];
+};
+
+/* Integer millimetres of a Q16.16 position component, rounded down. */
+static inline int32_t judge_mm(cub_q16 v)
+{
+    return (int32_t)(v >> 16);
+}
+
+/* |a - b| in whole millimetres. */
+int32_t judge_dist_mm(cub_vec3 a, cub_vec3 b);
+
+/* Append an event to out (dropped when full) and log it. */
+void judge_emit(cub_judge *j, cub_judge_out *out, const cub_judge_event *e);
+
+/* judge_gesture.c: claps and waves of one OK frame; reset when not seen. */
+void judge_gestures(cub_judge *j, int64_t t_us, const cub_track_skeleton *s, cub_judge_out *out);
+void judge_gestures_reset(cub_judge *j);
+
+/* judge_reps.c: the repetitions' verdicts for one frame; f NULL when the
+ * frame is not OK. */
+void judge_reps_frame(cub_judge *j, int64_t t_us, const cub_fuzzy_frame *f, cub_judge_out *out);
+
+#endif

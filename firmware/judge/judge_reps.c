@@ -1,0 +1,200 @@
+/* judge: verdicts per move repetition (cub/judge.h, "Verdicts, exactly"). */
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+
+#include "cub/judge.h"
+#include "judge_internal.h"
+
+static int keys_valid(const cub_judge_rep *r)
+{
+    if (r->key_count < 1 || r->key_count > CUB_JUDGE_MAX_KEYS) return 0;
+    for (int k = 0; k < r->key_count; k++) {
+        int32_t f = r->keys[k].feature;
+        if (f < 0 || f >= CUB_FUZZY_FEATURE_COUNT) return 0;
+        if (r->keys[k].set < 0 || r->keys[k].set >= cub_fuzzy_set_count(f)) return 0;
+    }
+    return 1;
+}
+
+cub_err cub_judge_begin_rep(cub_judge *j, const cub_judge_rep *r)
+{
+    if (!j || !r || !keys_valid(r) || r->end_us <= r->start_us || r->beat_us < 0) return CUB_ERR_ARG;
+    if (r->end_us > INT64_MAX - r->beat_us) return CUB_ERR_ARG;
+    rep_slot *s = NULL;
+    for (int i = 0; i < CUB_JUDGE_MAX_OPEN && !s; i++)
+        if (!j->reps[i].used) s = &j->reps[i];
+    if (!s) return CUB_ERR_FULL;
+    memset(s, 0, sizeof *s);
+    s->used = 1;
+    s->seq = j->next_seq++;
+    s->move = r->move;
+    s->rep = r->rep;
+    s->key_count = r->key_count;
+    memcpy(s->keys, r->keys, sizeof s->keys);
+    s->start_us = r->start_us;
+    s->close_us = r->end_us + r->beat_us;
+    if (r->expected) {
+        s->has_expected = 1;
+        s->expected = *r->expected;
+    }
+    s->min_d = CUB_Q16_ONE;
+    return CUB_OK;
+}
+
+int32_t cub_judge_cancel_reps(cub_judge *j)
+{
+    if (!j) return 0;
+    int32_t n = 0;
+    for (int i = 0; i < CUB_JUDGE_MAX_OPEN; i++) {
+        n += j->reps[i].used;
+        j->reps[i].used = 0;
+    }
+    return n;
+}
+
+/* Do all keys reach their sets in f? */
+static int keys_match(const cub_judge_key *keys, int32_t n, const cub_fuzzy_frame *f,
+                      uint16_t key_mu)
+{
+    for (int k = 0; k < n; k++)
+        if (f->mu[keys[k].feature][keys[k].set] < key_mu) return 0;
+    return 1;
+}
+
+static int same_keys(const cub_judge_key *a, int32_t na, const cub_judge_key *b, int32_t nb)
+{
+    return na == nb && memcmp(a, b, (size_t)na * sizeof *a) == 0;
+}
+
+static int is_consumed(const cub_judge *j, const rep_slot *s)
+{
+    for (int i = 0; i < CUB_JUDGE_MAX_OPEN; i++)
+        if (j->consumed[i].used &&
+            same_keys(j->consumed[i].keys, j->consumed[i].key_count, s->keys, s->key_count))
+            return 1;
+    return 0;
+}
+
+static void consume(cub_judge *j, const rep_slot *s)
+{
+    if (is_consumed(j, s)) return;
+    consumed_keys *c = &j->consumed[0]; /* the oldest is overwritten when full */
+    for (int i = 0; i < CUB_JUDGE_MAX_OPEN; i++)
+        if (!j->consumed[i].used) {
+            c = &j->consumed[i];
+            break;
+        }
+    c->used = 1;
+    c->key_count = s->key_count;
+    memcpy(c->keys, s->keys, sizeof c->keys);
+}
+
+/* Keys that dropped (or a frame without a player) may credit again. */
+static void release_consumed(cub_judge *j, const cub_fuzzy_frame *f)
+{
+    for (int i = 0; i < CUB_JUDGE_MAX_OPEN; i++) {
+        consumed_keys *c = &j->consumed[i];
+        if (c->used && (!f || !keys_match(c->keys, c->key_count, f, j->d.key_mu))) c->used = 0;
+    }
+}
+
+static cub_judge_event verdict(const rep_slot *s, int64_t t_us, int right, int32_t why)
+{
+    cub_judge_event e = {
+        .ev = {.t_us = t_us, .type = CUB_EV_VERDICT, .a = s->move, .b = right},
+        .kind = CUB_JUDGE_VERDICT,
+        .why = why,
+        .move = s->move,
+        .rep = s->rep,
+        .feature = -1,
+        .set = -1,
+        .side = -1,
+    };
+    return e;
+}
+
+/* The wrong verdict of a window that closed: why, and which key. */
+static cub_judge_event wrong(const rep_slot *s, int64_t t_us)
+{
+    int32_t why = !s->seen ? CUB_JUDGE_WHY_NO_PLAYER
+                  : s->keys_held && s->has_expected ? CUB_JUDGE_WHY_POSE
+                                                    : CUB_JUDGE_WHY_MISSED;
+    cub_judge_event e = verdict(s, t_us, 0, why);
+    if (why == CUB_JUDGE_WHY_POSE) {
+        e.value = s->min_d;
+        return e;
+    }
+    int weak = 0;
+    for (int k = 1; k < s->key_count; k++)
+        if (s->best_mu[k] < s->best_mu[weak]) weak = k;
+    e.feature = s->keys[weak].feature;
+    e.set = s->keys[weak].set;
+    e.value = (cub_q16)s->best_mu[weak] * 2; /* Q1.15 -> Q16.16 */
+    return e;
+}
+
+/* One frame of one open repetition inside its window; 1 when it is now
+ * right. */
+static int rep_step(cub_judge *j, rep_slot *s, int64_t t_us, const cub_fuzzy_frame *f)
+{
+    if (!f) {
+        s->run_on = s->keys_run_on = 0;
+        return 0;
+    }
+    s->seen = 1;
+    for (int k = 0; k < s->key_count; k++) {
+        uint16_t mu = f->mu[s->keys[k].feature][s->keys[k].set];
+        if (mu > s->best_mu[k]) s->best_mu[k] = mu;
+    }
+    int keys = keys_match(s->keys, s->key_count, f, j->d.key_mu);
+    int close = 1;
+    if (keys && s->has_expected) {
+        cub_q16 d = cub_fuzzy_distance(f, &s->expected, NULL);
+        if (d < s->min_d) s->min_d = d;
+        close = d <= j->d.pose_d_max;
+    }
+    if (keys && !s->keys_run_on) s->keys_run_first_us = t_us;
+    s->keys_run_on = keys;
+    if (keys && t_us - s->keys_run_first_us >= (int64_t)j->d.hold_ms * 1000) s->keys_held = 1;
+    int match = keys && close && !is_consumed(j, s);
+    if (match && !s->run_on) s->run_first_us = t_us;
+    s->run_on = match;
+    return match && t_us - s->run_first_us >= (int64_t)j->d.hold_ms * 1000;
+}
+
+/* The open slot with the lowest seq above `after` (after = -1: any). */
+static rep_slot *next_oldest(cub_judge *j, int64_t after)
+{
+    rep_slot *best = NULL;
+    for (int i = 0; i < CUB_JUDGE_MAX_OPEN; i++) {
+        rep_slot *s = &j->reps[i];
+        if (s->used && (int64_t)s->seq > after && (!best || s->seq < best->seq)) best = s;
+    }
+    return best;
+}
+
+void judge_reps_frame(cub_judge *j, int64_t t_us, const cub_fuzzy_frame *f, cub_judge_out *out)
+{
+    release_consumed(j, f);
+    for (rep_slot *s = next_oldest(j, -1); s; s = next_oldest(j, s->seq)) {
+        if (t_us >= s->close_us) {
+            if (!s->right) {
+                cub_judge_event e = wrong(s, t_us);
+                judge_emit(j, out, &e);
+            }
+            s->used = 0;
+            continue;
+        }
+        if (s->right || t_us < s->start_us) continue;
+        if (rep_step(j, s, t_us, f)) {
+            s->right = 1;
+            consume(j, s);
+            cub_judge_event e = verdict(s, t_us, 1, CUB_JUDGE_WHY_KEYS);
+            e.feature = s->keys[0].feature;
+            e.set = s->keys[0].set;
+            e.value = (cub_q16)s->best_mu[0] * 2;
+            judge_emit(j, out, &e);
+        }
+    }
+}

@@ -1,0 +1,570 @@
+/* test_judge — the judge on synthetic skeleton sequences with exact
+ * expected events: bad input first, then verdicts (on time, late by a
+ * beat, too late, wrong arm, standing still, no player, one run for one
+ * repetition, the expected pose), claps, waves, presence, determinism.
+ * A child of 1.3 m stands 2.5 m from the camera, facing it (track.h camera
+ * space: x right, y up, z away; the player's right at +x), 30 fps. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "cub/judge.h"
+
+#define FRAME_US 33333
+
+static cub_vec3 mm(int x, int y, int z)
+{
+    return (cub_vec3){CUB_Q16_INT(x), CUB_Q16_INT(y), CUB_Q16_INT(z)};
+}
+
+/* What the child does in a frame. */
+typedef struct pose {
+    int bend[2];      /* elbow bent 90 degrees, forearm forward: 0 left, 1 right */
+    int clap_gap;     /* > 0: hands in front of the chest, this far apart (mm) */
+    int wave_dx;      /* right hand raised above the head, shifted sideways (mm) */
+    int waving;       /* use wave_dx */
+    int arms_up;      /* both arms straight up */
+    int status;       /* cub_track_status */
+} pose;
+
+static cub_track_skeleton child(pose p)
+{
+    cub_track_skeleton s = {.status = p.status, .player_id = 1};
+    cub_vec3 *j = s.joint_mm;
+    const int z = 2500;
+    j[CUB_TJ_HIP_CENTRE] = mm(0, 800, z);
+    j[CUB_TJ_SPINE] = mm(0, 900, z);
+    j[CUB_TJ_SHOULDER_CENTRE] = mm(0, 1150, z);
+    j[CUB_TJ_HEAD] = mm(0, 1300, z);
+    for (int side = 0; side < 2; side++) {
+        int sx = side ? 1 : -1; /* the right side at +x */
+        int sh = side ? CUB_TJ_SHOULDER_R : CUB_TJ_SHOULDER_L;
+        int hip = side ? CUB_TJ_HIP_R : CUB_TJ_HIP_L;
+        j[sh] = mm(170 * sx, 1100, z);
+        j[sh + 1] = mm(190 * sx, 850, z);       /* elbow: arm hanging */
+        j[sh + 2] = mm(200 * sx, 620, z);       /* wrist */
+        j[sh + 3] = mm(200 * sx, 560, z);       /* hand */
+        if (p.bend[side]) {
+            j[sh + 2] = mm(190 * sx, 850, z - 230);
+            j[sh + 3] = mm(190 * sx, 850, z - 290);
+        }
+        if (p.arms_up) {
+            j[sh + 1] = mm(175 * sx, 1350, z);
+            j[sh + 2] = mm(180 * sx, 1580, z);
+            j[sh + 3] = mm(180 * sx, 1640, z);
+        }
+        if (p.clap_gap > 0) {
+            int hx = p.clap_gap / 2 * sx;
+            j[sh + 1] = mm(190 * sx, 880, z - 50);
+            j[sh + 2] = mm((190 * sx + hx) / 2, 930, z - 250);
+            j[sh + 3] = mm(hx, 950, z - 300);
+        }
+        if (p.waving && side == 1) {
+            j[sh + 1] = mm(260, 1150, z);
+            j[sh + 2] = mm(260 + p.wave_dx, 1380, z);
+            j[sh + 3] = mm(260 + p.wave_dx, 1450, z);
+        }
+        j[hip] = mm(80 * sx, 780, z);
+        j[hip + 1] = mm(85 * sx, 450, z);
+        j[hip + 2] = mm(85 * sx, 100, z);
+        j[hip + 3] = mm(85 * sx, 30, z - 80);
+    }
+    for (int k = 0; k < CUB_TJ_COUNT; k++)
+        s.confidence[k] = CUB_Q16_ONE;
+    return s;
+}
+
+/* ---- a judge and a recorder ------------------------------------------- */
+
+#define MAX_REC 64
+
+typedef struct rec {
+    _Alignas(16) unsigned char mem[4096];
+    cub_judge *j;
+    int n;
+    cub_judge_event ev[MAX_REC];
+} rec;
+
+static void rec_init(rec *r, const cub_judge_desc *d)
+{
+    memset(r, 0, sizeof *r);
+    assert_true(cub_judge_mem_size(d) <= sizeof r->mem);
+    assert_int_equal(cub_judge_init(d, r->mem, sizeof r->mem, &r->j), CUB_OK);
+}
+
+static void feed(rec *r, int frame, pose p)
+{
+    cub_track_skeleton s = child(p);
+    cub_judge_out out;
+    assert_int_equal(cub_judge_frame(r->j, (int64_t)frame * FRAME_US, &s, &out), CUB_OK);
+    for (int i = 0; i < out.count; i++) {
+        assert_true(r->n < MAX_REC);
+        r->ev[r->n++] = out.events[i];
+    }
+}
+
+static int count(const rec *r, int kind)
+{
+    int n = 0;
+    for (int i = 0; i < r->n; i++)
+        n += r->ev[i].kind == kind;
+    return n;
+}
+
+static const cub_judge_event *first(const rec *r, int kind)
+{
+    for (int i = 0; i < r->n; i++)
+        if (r->ev[i].kind == kind) return &r->ev[i];
+    fail_msg("no event of kind %d", kind);
+    return NULL;
+}
+
+/* The k-th event of a kind. */
+static const cub_judge_event *nth(const rec *r, int kind, int k)
+{
+    for (int i = 0; i < r->n; i++)
+        if (r->ev[i].kind == kind && k-- == 0) return &r->ev[i];
+    fail_msg("no event %d of kind %d", k, kind);
+    return NULL;
+}
+
+/* A repetition of move 3 with key RHE=true, frames [from, to), one beat
+ * of 15 frames (500 ms at 120 bpm). */
+static cub_judge_rep rep_rhe(int rep, int from, int to)
+{
+    cub_judge_rep r = {
+        .move = 3,
+        .rep = rep,
+        .key_count = 1,
+        .keys = {{CUB_FUZZY_RHE, 1}},
+        .start_us = (int64_t)from * FRAME_US,
+        .end_us = (int64_t)to * FRAME_US,
+        .beat_us = 15LL * FRAME_US,
+    };
+    return r;
+}
+
+static const pose STILL = {{0, 0}, 0, 0, 0, 0, CUB_TRACK_OK};
+
+static pose bent_right(void)
+{
+    pose p = STILL;
+    p.bend[1] = 1;
+    return p;
+}
+
+/* Frames [0, n) standing still except `pose_p` in [from, to). */
+static void play(rec *r, int n, int from, int to, pose pose_p)
+{
+    for (int f = 0; f < n; f++)
+        feed(r, f, f >= from && f < to ? pose_p : STILL);
+}
+
+/* ---- bad input ---------------------------------------------------------- */
+
+static void test_bad_input_is_refused(void **state)
+{
+    (void)state;
+    _Alignas(16) unsigned char mem[4096];
+    cub_judge *j;
+    assert_int_equal(cub_judge_init(NULL, NULL, sizeof mem, &j), CUB_ERR_ARG);
+    assert_int_equal(cub_judge_init(NULL, mem, sizeof mem, NULL), CUB_ERR_ARG);
+    assert_int_equal(cub_judge_init(NULL, mem + 1, sizeof mem - 1, &j), CUB_ERR_ARG);
+    assert_int_equal(cub_judge_init(NULL, mem, 16, &j), CUB_ERR_NOMEM);
+    cub_judge_desc bad = {.hold_ms = -1};
+    assert_int_equal(cub_judge_init(&bad, mem, sizeof mem, &j), CUB_ERR_ARG);
+    assert_int_equal(cub_judge_init(NULL, mem, sizeof mem, &j), CUB_OK);
+
+    cub_judge_rep r = rep_rhe(0, 0, 30);
+    r.keys[0].set = 2; /* RHE has two sets */
+    assert_int_equal(cub_judge_begin_rep(j, &r), CUB_ERR_ARG);
+    r = rep_rhe(0, 0, 30);
+    r.keys[0].feature = CUB_FUZZY_FEATURE_COUNT;
+    assert_int_equal(cub_judge_begin_rep(j, &r), CUB_ERR_ARG);
+    r = rep_rhe(0, 0, 30);
+    r.key_count = 0;
+    assert_int_equal(cub_judge_begin_rep(j, &r), CUB_ERR_ARG);
+    r = rep_rhe(0, 30, 30);
+    assert_int_equal(cub_judge_begin_rep(j, &r), CUB_ERR_ARG);
+    r = rep_rhe(0, 0, 30);
+    r.beat_us = -1;
+    assert_int_equal(cub_judge_begin_rep(j, &r), CUB_ERR_ARG);
+    assert_int_equal(cub_judge_begin_rep(NULL, &r), CUB_ERR_ARG);
+    for (int i = 0; i < CUB_JUDGE_MAX_OPEN; i++)
+        assert_int_equal(cub_judge_begin_rep(j, &(cub_judge_rep){.key_count = 1, .start_us = 0,
+                                                                   .end_us = 1}),
+                         CUB_OK);
+    r = rep_rhe(0, 0, 30);
+    assert_int_equal(cub_judge_begin_rep(j, &r), CUB_ERR_FULL);
+    assert_int_equal(cub_judge_cancel_reps(j), CUB_JUDGE_MAX_OPEN);
+
+    cub_judge_out out = {.count = 5};
+    cub_track_skeleton s = child(STILL);
+    assert_int_equal(cub_judge_frame(j, 0, NULL, &out), CUB_ERR_ARG);
+    assert_int_equal(out.count, 0);
+    assert_int_equal(cub_judge_frame(NULL, 0, &s, &out), CUB_ERR_ARG);
+    assert_int_equal(cub_judge_frame(j, 0, &s, NULL), CUB_ERR_ARG);
+    /* A garbage skeleton (huge coordinates, unknown status) is no crash. */
+    memset(&s, 0x7f, sizeof s);
+    assert_int_equal(cub_judge_frame(j, 1, &s, &out), CUB_OK);
+    s.status = CUB_TRACK_OK;
+    assert_int_equal(cub_judge_frame(j, 2, &s, &out), CUB_OK);
+    memset(&s, 0x80, sizeof s);
+    s.status = CUB_TRACK_OK;
+    assert_int_equal(cub_judge_frame(j, 3, &s, &out), CUB_OK);
+    /* Time not moving forward: ignored. */
+    assert_int_equal(cub_judge_frame(j, 3, &s, &out), CUB_OK);
+    assert_int_equal(out.count, 0);
+    assert_string_equal(cub_judge_why_name(99), "?");
+}
+
+/* ---- verdicts ----------------------------------------------------------- */
+
+static void test_key_reached_on_time_is_right_at_once(void **state)
+{
+    (void)state;
+    rec r;
+    rec_init(&r, NULL);
+    cub_judge_rep rep = rep_rhe(0, 0, 60);
+    assert_int_equal(cub_judge_begin_rep(r.j, &rep), CUB_OK);
+    play(&r, 100, 20, 30, bent_right());
+    assert_int_equal(count(&r, CUB_JUDGE_VERDICT), 1);
+    const cub_judge_event *v = first(&r, CUB_JUDGE_VERDICT);
+    assert_int_equal(v->ev.type, CUB_EV_VERDICT);
+    assert_int_equal(v->ev.a, 3);
+    assert_int_equal(v->ev.b, 1);
+    assert_int_equal(v->why, CUB_JUDGE_WHY_KEYS);
+    /* Held from frame 20; 100 ms later is frame 24 (frame 23 is 99.999 ms). */
+    assert_int_equal(v->ev.t_us, 24LL * FRAME_US);
+    char line[160];
+    cub_judge_describe(v, line, sizeof line);
+    assert_string_equal(line, "verdict move=3 rep=0 result=right why=keys key=RHE=true best=1.000");
+}
+
+static void test_child_late_by_a_beat_is_right(void **state)
+{
+    (void)state;
+    rec r;
+    rec_init(&r, NULL);
+    cub_judge_rep rep = rep_rhe(0, 0, 60); /* closes at frame 75 */
+    assert_int_equal(cub_judge_begin_rep(r.j, &rep), CUB_OK);
+    play(&r, 100, 65, 72, bent_right());
+    assert_int_equal(count(&r, CUB_JUDGE_VERDICT), 1);
+    const cub_judge_event *v = first(&r, CUB_JUDGE_VERDICT);
+    assert_int_equal(v->ev.b, 1);
+    assert_int_equal(v->ev.t_us, 69LL * FRAME_US);
+}
+
+static void test_child_later_than_a_beat_is_wrong_at_the_close(void **state)
+{
+    (void)state;
+    rec r;
+    rec_init(&r, NULL);
+    cub_judge_rep rep = rep_rhe(0, 0, 60);
+    assert_int_equal(cub_judge_begin_rep(r.j, &rep), CUB_OK);
+    play(&r, 100, 73, 90, bent_right()); /* would be held at 77 */
+    assert_int_equal(count(&r, CUB_JUDGE_VERDICT), 1);
+    const cub_judge_event *v = first(&r, CUB_JUDGE_VERDICT);
+    assert_int_equal(v->ev.b, 0);
+    assert_int_equal(v->why, CUB_JUDGE_WHY_MISSED);
+    /* The window closes at 60 + 15 frames: the first frame at or past it. */
+    assert_true(v->ev.t_us >= (int64_t)rep.end_us + rep.beat_us);
+    assert_int_equal(v->ev.t_us, 75LL * FRAME_US);
+}
+
+static void test_wrong_arm_is_wrong_naming_the_key(void **state)
+{
+    (void)state;
+    rec r;
+    rec_init(&r, NULL);
+    cub_judge_rep rep = rep_rhe(1, 0, 60);
+    assert_int_equal(cub_judge_begin_rep(r.j, &rep), CUB_OK);
+    pose left = STILL;
+    left.bend[0] = 1;
+    play(&r, 100, 10, 50, left);
+    assert_int_equal(count(&r, CUB_JUDGE_VERDICT), 1);
+    const cub_judge_event *v = first(&r, CUB_JUDGE_VERDICT);
+    assert_int_equal(v->ev.b, 0);
+    assert_int_equal(v->why, CUB_JUDGE_WHY_MISSED);
+    assert_int_equal(v->feature, CUB_FUZZY_RHE);
+    assert_int_equal(v->set, 1);
+    assert_true(v->value < CUB_Q16_HALF);
+    char line[160];
+    cub_judge_describe(v, line, sizeof line);
+    assert_non_null(strstr(line, "verdict move=3 rep=1 result=wrong why=missed key=RHE=true"));
+}
+
+static void test_standing_still_is_wrong(void **state)
+{
+    (void)state;
+    rec r;
+    rec_init(&r, NULL);
+    cub_judge_rep rep = rep_rhe(0, 0, 60);
+    assert_int_equal(cub_judge_begin_rep(r.j, &rep), CUB_OK);
+    play(&r, 100, 0, 0, STILL);
+    assert_int_equal(count(&r, CUB_JUDGE_VERDICT), 1);
+    assert_int_equal(first(&r, CUB_JUDGE_VERDICT)->ev.b, 0);
+    assert_int_equal(first(&r, CUB_JUDGE_VERDICT)->why, CUB_JUDGE_WHY_MISSED);
+}
+
+static void test_no_player_is_wrong_and_not_in_view(void **state)
+{
+    (void)state;
+    rec r;
+    rec_init(&r, NULL);
+    cub_judge_rep rep = rep_rhe(0, 0, 60);
+    assert_int_equal(cub_judge_begin_rep(r.j, &rep), CUB_OK);
+    pose gone = bent_right(); /* a skeleton the tracker does not vouch for */
+    gone.status = CUB_TRACK_NO_PLAYER;
+    for (int f = 0; f < 100; f++)
+        feed(&r, f, gone);
+    assert_int_equal(r.n, 1);
+    const cub_judge_event *v = first(&r, CUB_JUDGE_VERDICT);
+    assert_int_equal(v->ev.b, 0);
+    assert_int_equal(v->why, CUB_JUDGE_WHY_NO_PLAYER);
+    assert_int_equal(count(&r, CUB_JUDGE_PLAYER), 0);
+}
+
+/* A late child's pose in the next repetition's first beat counts for the
+ * late one only; the next needs the keys reached again. */
+static void test_one_run_credits_one_repetition(void **state)
+{
+    (void)state;
+    for (int again = 0; again < 2; again++) {
+        rec r;
+        rec_init(&r, NULL);
+        cub_judge_rep a = rep_rhe(0, 0, 60), b = rep_rhe(1, 60, 120);
+        assert_int_equal(cub_judge_begin_rep(r.j, &a), CUB_OK);
+        for (int f = 0; f < 160; f++) {
+            if (f == 60) assert_int_equal(cub_judge_begin_rep(r.j, &b), CUB_OK);
+            int bent = (f >= 62 && f < 80) || (again && f >= 100 && f < 110);
+            feed(&r, f, bent ? bent_right() : STILL);
+        }
+        assert_int_equal(count(&r, CUB_JUDGE_VERDICT), 2);
+        const cub_judge_event *va = nth(&r, CUB_JUDGE_VERDICT, 0);
+        const cub_judge_event *vb = nth(&r, CUB_JUDGE_VERDICT, 1);
+        assert_int_equal(va->rep, 0);
+        assert_int_equal(va->ev.b, 1);
+        assert_int_equal(va->ev.t_us, 66LL * FRAME_US);
+        assert_int_equal(vb->rep, 1);
+        assert_int_equal(vb->ev.b, again);
+        assert_int_equal(vb->ev.t_us, again ? 104LL * FRAME_US : 135LL * FRAME_US);
+    }
+}
+
+static void test_expected_pose_must_be_near(void **state)
+{
+    (void)state;
+    rec r;
+    rec_init(&r, NULL);
+    /* The coach's pose: right elbow bent, left arm hanging. */
+    play(&r, 5, 0, 5, bent_right());
+    cub_fuzzy_frame expected = *cub_judge_last_features(r.j);
+    cub_judge_rep rep = rep_rhe(0, 10, 70);
+    rep.expected = &expected;
+    assert_int_equal(cub_judge_begin_rep(r.j, &rep), CUB_OK);
+    /* The child bends the right elbow but with both arms raised high. */
+    pose p = STILL;
+    p.arms_up = 1;
+    for (int f = 5; f < 100; f++) {
+        cub_track_skeleton s = child(f >= 20 && f < 50 ? p : STILL);
+        if (f >= 20 && f < 50) { /* bend the raised right forearm forward */
+            s.joint_mm[CUB_TJ_WRIST_R] = mm(175, 1350, 2270);
+            s.joint_mm[CUB_TJ_HAND_R] = mm(175, 1350, 2210);
+        }
+        cub_judge_out out;
+        assert_int_equal(cub_judge_frame(r.j, (int64_t)f * FRAME_US, &s, &out), CUB_OK);
+        for (int i = 0; i < out.count; i++)
+            r.ev[r.n++] = out.events[i];
+    }
+    const cub_judge_event *v = first(&r, CUB_JUDGE_VERDICT);
+    assert_int_equal(v->ev.b, 0);
+    assert_int_equal(v->why, CUB_JUDGE_WHY_POSE);
+    assert_true(v->value > CUB_Q16_INT(45) / 100);
+
+    /* The same child doing the coach's pose is right. */
+    rec_init(&r, NULL);
+    play(&r, 5, 0, 5, bent_right());
+    assert_int_equal(cub_judge_begin_rep(r.j, &rep), CUB_OK);
+    for (int f = 5; f < 100; f++)
+        feed(&r, f, f >= 20 && f < 50 ? bent_right() : STILL);
+    assert_int_equal(first(&r, CUB_JUDGE_VERDICT)->ev.b, 1);
+}
+
+/* ---- claps, waves, presence --------------------------------------------- */
+
+/* One clap: hands 600 mm apart, together in 4 frames, apart again. */
+static int clap_gap_at(int f)
+{
+    static const int gap[] = {600, 450, 300, 150, 40, 30, 60, 200, 400, 600};
+    return f >= 0 && f < 10 ? gap[f] : 600;
+}
+
+static void test_one_clap_one_event(void **state)
+{
+    (void)state;
+    rec r;
+    rec_init(&r, NULL);
+    for (int f = 0; f < 40; f++) {
+        pose p = STILL;
+        p.clap_gap = clap_gap_at(f - 20);
+        feed(&r, f, p);
+    }
+    assert_int_equal(count(&r, CUB_JUDGE_CLAP), 1);
+    const cub_judge_event *c = first(&r, CUB_JUDGE_CLAP);
+    assert_int_equal(c->ev.type, CUB_EV_CLAP);
+    /* Met at 23 (150 mm < 0.55 x 340), min 30 mm at 25, apart by 85 mm at 27. */
+    assert_int_equal(c->ev.t_us, 27LL * FRAME_US);
+    assert_int_equal(c->value, CUB_Q16_INT(30));
+    assert_int_equal(count(&r, CUB_JUDGE_WAVE), 0);
+}
+
+static void test_claps_in_a_row_and_held_hands(void **state)
+{
+    (void)state;
+    rec r;
+    rec_init(&r, NULL);
+    /* Three claps 12 frames (400 ms) apart, then hands brought together and
+     * held (carrying a box): no fourth. */
+    for (int f = 0; f < 120; f++) {
+        pose p = STILL;
+        p.clap_gap = f < 36 ? clap_gap_at(f % 12) : f < 80 ? 600 : f < 84 ? 600 - (f - 80) * 150 : 40;
+        feed(&r, f, p);
+    }
+    assert_int_equal(count(&r, CUB_JUDGE_CLAP), 3);
+}
+
+static void test_wave_needs_two_reversals(void **state)
+{
+    (void)state;
+    static const int dx[] = {0, 60, 120, 150, 120, 60, 0, -60, -120, -150, -120, -60};
+    for (int cycles = 0; cycles < 2; cycles++) {
+        rec r;
+        rec_init(&r, NULL);
+        /* cycles 0: one swing out and back (one reversal); 1: back and forth. */
+        int n = cycles ? 36 : 7;
+        for (int f = 0; f < 60; f++) {
+            pose p = STILL;
+            p.waving = f < n;
+            p.wave_dx = dx[f % 12];
+            feed(&r, f, p);
+        }
+        assert_int_equal(count(&r, CUB_JUDGE_WAVE), cycles);
+        if (cycles) {
+            const cub_judge_event *w = first(&r, CUB_JUDGE_WAVE);
+            assert_int_equal(w->side, 1);
+            assert_int_equal(w->ev.type, CUB_EV_NONE);
+            /* Out from 0 to +150, back past 150 - 85 at frame 5, out again
+             * past -150 + 85 at frame 11. */
+            assert_int_equal(w->ev.t_us, 11LL * FRAME_US);
+        }
+        assert_int_equal(count(&r, CUB_JUDGE_CLAP), 0);
+    }
+}
+
+static void test_presence_hysteresis(void **state)
+{
+    (void)state;
+    rec r;
+    rec_init(&r, NULL);
+    pose gone = STILL;
+    gone.status = CUB_TRACK_PARTLY_OUT;
+    int f = 0;
+    for (; f < 4; f++)
+        feed(&r, f, STILL); /* 4 OK frames: not yet */
+    feed(&r, f++, gone);
+    for (int k = 0; k < 5; k++)
+        feed(&r, f++, STILL); /* frames 5..9: in view at the 5th */
+    assert_int_equal(r.n, 1);
+    assert_int_equal(r.ev[0].ev.type, CUB_EV_PLAYER);
+    assert_int_equal(r.ev[0].ev.a, 1);
+    assert_int_equal(r.ev[0].ev.t_us, 9LL * FRAME_US);
+    for (int k = 0; k < 29; k++)
+        feed(&r, f++, gone); /* a glitch shorter than 30 frames */
+    feed(&r, f++, STILL);
+    assert_int_equal(r.n, 1);
+    for (int k = 0; k < 30; k++)
+        feed(&r, f++, gone);
+    assert_int_equal(r.n, 2);
+    assert_int_equal(r.ev[1].ev.a, 0);
+    assert_int_equal(r.ev[1].why, CUB_JUDGE_WHY_OUT_OF_VIEW);
+    assert_int_equal(r.ev[1].ev.t_us, (int64_t)(f - 1) * FRAME_US);
+}
+
+/* ---- determinism -------------------------------------------------------- */
+
+static void log_sink(void *user, const char *line, size_t len)
+{
+    char *buf = user;
+    size_t have = strlen(buf);
+    if (have + len + 2 < 4096) {
+        memcpy(buf + have, line, len);
+        buf[have + len] = '\n';
+        buf[have + len + 1] = '\0';
+    }
+}
+
+static void run_mixed(rec *r, char *log_text)
+{
+    static cub_log log;
+    log = (cub_log){.sink = log_sink, .user = log_text};
+    cub_judge_desc d = {.log = &log};
+    rec_init(r, &d);
+    for (int f = 0; f < 400; f++) {
+        if (f % 60 == 0) {
+            cub_judge_rep rep = rep_rhe(f / 60, f, f + 60);
+            assert_int_equal(cub_judge_begin_rep(r->j, &rep), CUB_OK);
+        }
+        pose p = STILL;
+        int phase = f % 60;
+        if ((f / 60) % 2 == 0 && phase >= 30 && phase < 40) p.bend[1] = 1;
+        if (f >= 200 && f < 240) p.clap_gap = clap_gap_at(f % 12);
+        if (f >= 300 && f < 340) p.status = CUB_TRACK_NO_PLAYER;
+        feed(r, f, p);
+    }
+}
+
+static void test_same_input_same_events(void **state)
+{
+    (void)state;
+    static rec a, b;
+    static char la[4096], lb[4096];
+    la[0] = lb[0] = '\0';
+    run_mixed(&a, la);
+    run_mixed(&b, lb);
+    assert_int_equal(a.n, b.n);
+    assert_true(a.n >= 8);
+    assert_memory_equal(a.ev, b.ev, (size_t)a.n * sizeof a.ev[0]);
+    assert_string_equal(la, lb);
+    assert_non_null(strstr(la, " judge verdict move=3 rep=0 result=right why=keys"));
+    assert_non_null(strstr(la, " judge verdict move=3 rep=1 result=wrong why=missed key=RHE=true"));
+    assert_non_null(strstr(la, " judge clap gap_mm="));
+    assert_non_null(strstr(la, " judge player in_view=1"));
+    printf("judge: mixed run log (%d events):\n%s", a.n, la);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_bad_input_is_refused),
+        cmocka_unit_test(test_key_reached_on_time_is_right_at_once),
+        cmocka_unit_test(test_child_late_by_a_beat_is_right),
+        cmocka_unit_test(test_child_later_than_a_beat_is_wrong_at_the_close),
+        cmocka_unit_test(test_wrong_arm_is_wrong_naming_the_key),
+        cmocka_unit_test(test_standing_still_is_wrong),
+        cmocka_unit_test(test_no_player_is_wrong_and_not_in_view),
+        cmocka_unit_test(test_one_run_credits_one_repetition),
+        cmocka_unit_test(test_expected_pose_must_be_near),
+        cmocka_unit_test(test_one_clap_one_event),
+        cmocka_unit_test(test_claps_in_a_row_and_held_hands),
+        cmocka_unit_test(test_wave_needs_two_reversals),
+        cmocka_unit_test(test_presence_hysteresis),
+        cmocka_unit_test(test_same_input_same_events),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
