@@ -1,0 +1,84 @@
+/* cubtool bench-track [DUMP_DIR] — the tracker's cost on one core:
+ * milliseconds per frame (median, p95) over a dump (default: the real
+ * Skeltrack frames under the data dir), repeated to at least 300 frames,
+ * and the tracker's memory. Build Release for figures that mean anything. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "commands.h"
+#include "cub/track.h"
+
+#define FRAME_PIXELS (CUB_TRACK_WIDTH * CUB_TRACK_HEIGHT)
+#define BENCH_MIN_RUNS 300
+
+/* The dump loader lives in cmd_eval_track.c. */
+typedef struct track_dump {
+    int n;
+    uint16_t *raw;
+    int64_t *t_us;
+    char (*name)[128];
+} track_dump;
+int cub_track_dump_load(const char *dir, track_dump *d, int max_frames);
+void cub_track_dump_free(track_dump *d);
+
+static double now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+int cub_cmd_bench_track(int argc, char **argv)
+{
+    char def[4096];
+    const char *dir = NULL;
+    for (int i = 1; i < argc; i++) {
+        if (!strcmp(argv[i], "--help")) {
+            printf("usage: cubtool bench-track [DUMP_DIR]\n"
+                   "Milliseconds per frame (median, p95) of the tracker on one core, and its memory.\n"
+                   "DUMP_DIR defaults to <data>/depth/skeltrack ($CUB_DATA_DIR or the build's data dir).\n");
+            return 0;
+        }
+        dir = argv[i];
+    }
+    if (!dir) {
+        const char *data = getenv("CUB_DATA_DIR");
+        snprintf(def, sizeof def, "%s/depth/skeltrack", data ? data : CUB_DATA_DIR_DEFAULT);
+        dir = def;
+    }
+    track_dump d;
+    if (cub_track_dump_load(dir, &d, 2000)) return 1;
+    cub_track_desc desc = {0};
+    size_t sz = cub_track_mem_size(&desc);
+    void *mem = aligned_alloc(16, (sz + 15) / 16 * 16);
+    cub_tracker *t = NULL;
+    if (!mem || cub_track_init(&desc, mem, sz, &t)) {
+        fprintf(stderr, "bench-track: cannot set up the tracker\n");
+        return 1;
+    }
+    int runs = d.n < BENCH_MIN_RUNS ? (BENCH_MIN_RUNS + d.n - 1) / d.n * d.n : d.n;
+    double *ms = malloc((size_t)runs * sizeof *ms);
+    for (int r = 0; ms && r < runs; r++) {
+        cub_track_skeleton s;
+        int f = r % d.n;
+        double t0 = now_ms();
+        cub_track_frame(t, d.raw + (size_t)f * FRAME_PIXELS, (int64_t)r * 33333, NULL, &s);
+        ms[r] = now_ms() - t0;
+    }
+    if (!ms) return 1;
+    qsort(ms, (size_t)runs, sizeof *ms, cmp_double);
+    printf("bench-track: %s frames=%d runs=%d median=%.3f ms p95=%.3f ms max=%.3f ms memory=%zu bytes\n", dir, d.n,
+           runs, ms[runs / 2], ms[runs * 95 / 100], ms[runs - 1], sz);
+    free(ms);
+    free(mem);
+    cub_track_dump_free(&d);
+    return 0;
+}

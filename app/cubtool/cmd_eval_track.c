@@ -1,0 +1,251 @@
+/* cubtool eval-track DUMP_DIR [TRUTH] — run the tracker over a fakenect
+ * dump (INDEX.txt + d-*.pgm, raw 11-bit little-endian) and compare with the
+ * true joints: per-joint mean error (mm), share within 10 cm per joint and
+ * overall, status counts, frames per second. Also: --print (each frame's
+ * joints as pixels and mm). The dump loader is shared with bench-track. */
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "commands.h"
+#include "cub/track.h"
+
+#define EVAL_MAX_FRAMES 20000
+#define FRAME_PIXELS (CUB_TRACK_WIDTH * CUB_TRACK_HEIGHT)
+
+/* One dump in memory: frames in INDEX order (depth frames only). */
+typedef struct track_dump {
+    int n;
+    uint16_t *raw;   /* n * FRAME_PIXELS */
+    int64_t *t_us;   /* n */
+    char (*name)[128];
+} track_dump;
+
+/* A PGM of the dump: "P5 640 480 65535\n" then little-endian uint16.
+ * Malformed or truncated files are refused with a message. */
+static int read_pgm(const char *path, uint16_t *out)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        fprintf(stderr, "eval-track: %s: %s\n", path, strerror(errno));
+        return -1;
+    }
+    int w = 0, h = 0, maxv = 0;
+    if (fscanf(f, "P5 %d %d %d", &w, &h, &maxv) != 3 || w != CUB_TRACK_WIDTH || h != CUB_TRACK_HEIGHT ||
+        maxv != 65535 || fgetc(f) == EOF) {
+        fprintf(stderr, "eval-track: %s: not a 640x480 16-bit P5 depth frame\n", path);
+        fclose(f);
+        return -1;
+    }
+    uint8_t *buf = malloc(FRAME_PIXELS * 2);
+    size_t got = buf ? fread(buf, 1, FRAME_PIXELS * 2, f) : 0;
+    fclose(f);
+    if (got != FRAME_PIXELS * 2) {
+        fprintf(stderr, "eval-track: %s: truncated (%zu of %d bytes)\n", path, got, FRAME_PIXELS * 2);
+        free(buf);
+        return -1;
+    }
+    for (int i = 0; i < FRAME_PIXELS; i++) out[i] = (uint16_t)(buf[2 * i] | buf[2 * i + 1] << 8);
+    free(buf);
+    return 0;
+}
+
+void cub_track_dump_free(track_dump *d);
+void cub_track_dump_free(track_dump *d)
+{
+    free(d->raw), free(d->t_us), free(d->name);
+    memset(d, 0, sizeof *d);
+}
+
+/* Loads every depth frame of DIR/INDEX.txt; a bad frame is reported and
+ * skipped. Returns 0 when at least one frame loaded. */
+int cub_track_dump_load(const char *dir, track_dump *d, int max_frames);
+int cub_track_dump_load(const char *dir, track_dump *d, int max_frames)
+{
+    memset(d, 0, sizeof *d);
+    char path[4096];
+    snprintf(path, sizeof path, "%s/INDEX.txt", dir);
+    FILE *f = fopen(path, "r");
+    if (!f) {
+        fprintf(stderr, "eval-track: %s: %s\n", path, strerror(errno));
+        return -1;
+    }
+    char line[512];
+    int cap = 0;
+    while (fgets(line, sizeof line, f) && d->n < max_frames) {
+        line[strcspn(line, "\r\n")] = 0;
+        if (line[0] != 'd' || line[1] != '-' || strlen(line) >= 128) continue;
+        if (d->n == cap) {
+            cap = cap ? cap * 2 : 64;
+            d->raw = realloc(d->raw, (size_t)cap * FRAME_PIXELS * sizeof *d->raw);
+            d->t_us = realloc(d->t_us, (size_t)cap * sizeof *d->t_us);
+            d->name = realloc(d->name, (size_t)cap * sizeof *d->name);
+            if (!d->raw || !d->t_us || !d->name) {
+                fclose(f);
+                return -1;
+            }
+        }
+        snprintf(path, sizeof path, "%s/%s", dir, line);
+        if (read_pgm(path, d->raw + (size_t)d->n * FRAME_PIXELS)) continue;
+        /* d-<sec>.<frac>-<us>.pgm: the seconds stamp */
+        double sec = strtod(line + 2, NULL);
+        d->t_us[d->n] = (int64_t)(sec * 1e6);
+        snprintf(d->name[d->n], sizeof d->name[d->n], "%s", line);
+        d->n++;
+    }
+    fclose(f);
+    if (d->n == 0) fprintf(stderr, "eval-track: %s: no depth frames\n", dir);
+    return d->n ? 0 : -1;
+}
+
+/* truth.txt as cub/synth.h documents it (v1): '#' comments, a line
+ * "gravity gx gy gz", then per frame "frame t_s ts" and 20 x "x y z v".
+ * A minimal reader of our own so that evaluation needs no synth library. */
+typedef struct truth_row {
+    double p[CUB_TJ_COUNT][3];
+    int vis[CUB_TJ_COUNT];
+    int have;
+} truth_row;
+
+static truth_row *read_truth(const char *path, int n, cub_vec3 *gravity, int *have_gravity)
+{
+    FILE *f = fopen(path, "r");
+    if (!f) return NULL;
+    truth_row *tr = calloc((size_t)n, sizeof *tr);
+    static char line[8192];
+    int ln = 0;
+    while (tr && fgets(line, sizeof line, f)) {
+        ln++;
+        if (line[0] == '#' || line[0] == '\n') continue;
+        double g[3];
+        if (sscanf(line, "gravity %lf %lf %lf", &g[0], &g[1], &g[2]) == 3) {
+            *gravity = (cub_vec3){(cub_q16)(g[0] * 65536), (cub_q16)(g[1] * 65536), (cub_q16)(g[2] * 65536)};
+            *have_gravity = 1;
+            continue;
+        }
+        char *p = line, *e;
+        long fr = strtol(p, &e, 10);
+        if (e == p) goto bad;
+        p = e;
+        strtod(p, &e), p = e;
+        strtod(p, &e), p = e;
+        truth_row row = {.have = 1};
+        for (int j = 0; j < CUB_TJ_COUNT; j++) {
+            for (int k = 0; k < 3; k++) {
+                row.p[j][k] = strtod(p, &e);
+                if (e == p) goto bad;
+                p = e;
+            }
+            row.vis[j] = (int)strtol(p, &e, 10);
+            if (e == p) goto bad;
+            p = e;
+        }
+        if (fr >= 0 && fr < n) tr[fr] = row;
+        continue;
+    bad:
+        fprintf(stderr, "eval-track: %s:%d: expected `frame t_s ts` then 20 x `x y z v`\n", path, ln);
+    }
+    fclose(f);
+    return tr;
+}
+
+static double now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec + ts.tv_nsec * 1e-9;
+}
+
+static void print_frame(const char *name, const cub_track_skeleton *s)
+{
+    printf("%s status=%d id=%d\n", name, (int)s->status, (int)s->player_id);
+    for (int j = 0; j < CUB_TJ_COUNT; j++) {
+        double x = s->joint_mm[j].x / 65536.0, y = s->joint_mm[j].y / 65536.0, z = s->joint_mm[j].z / 65536.0;
+        double u = z > 0 ? CUB_TRACK_CX + x * CUB_TRACK_FOCAL_PX / z : 0;
+        double v = z > 0 ? CUB_TRACK_CY - y * CUB_TRACK_FOCAL_PX / z : 0;
+        printf("  %-15s u=%4.0f v=%4.0f  x=%6.0f y=%6.0f z=%6.0f conf=%.2f\n", cub_track_joint_name(j), u, v, x, y,
+               z, s->confidence[j] / 65536.0);
+    }
+}
+
+int cub_cmd_eval_track(int argc, char **argv)
+{
+    const char *dir = NULL, *truth = NULL;
+    int print = 0, no_gravity = 0;
+    for (int i = 1; i < argc; i++) {
+        if (!strcmp(argv[i], "--help")) {
+            printf("usage: cubtool eval-track DUMP_DIR [TRUTH] [--print] [--no-gravity]\n"
+                   "Runs the tracker over a fakenect dump; with TRUTH (default DUMP_DIR/truth.txt)\n"
+                   "prints per-joint mean error, share within 10 cm, status counts, fps. The\n"
+                   "truth's gravity is given to the tracker unless --no-gravity.\n");
+            return 0;
+        }
+        if (!strcmp(argv[i], "--print")) print = 1;
+        else if (!strcmp(argv[i], "--no-gravity")) no_gravity = 1;
+        else if (!dir) dir = argv[i];
+        else if (!truth) truth = argv[i];
+    }
+    if (!dir) {
+        fprintf(stderr, "usage: cubtool eval-track DUMP_DIR [TRUTH] [--print]\n");
+        return 2;
+    }
+    track_dump d;
+    if (cub_track_dump_load(dir, &d, EVAL_MAX_FRAMES)) return 1;
+    char tpath[4096];
+    if (!truth) snprintf(tpath, sizeof tpath, "%s/truth.txt", dir), truth = tpath;
+    cub_vec3 grav = {0, 0, 0};
+    int have_grav = 0;
+    truth_row *tr = read_truth(truth, d.n, &grav, &have_grav);
+    if (no_gravity) have_grav = 0;
+
+    cub_track_desc desc = {0};
+    size_t sz = cub_track_mem_size(&desc);
+    void *mem = aligned_alloc(16, (sz + 15) / 16 * 16);
+    cub_tracker *t = NULL;
+    if (!mem || cub_track_init(&desc, mem, sz, &t)) {
+        fprintf(stderr, "eval-track: cannot set up the tracker\n");
+        return 1;
+    }
+    double err_sum[CUB_TJ_COUNT] = {0};
+    int within[CUB_TJ_COUNT] = {0}, count[CUB_TJ_COUNT] = {0}, status[5] = {0};
+    double secs = 0;
+    for (int f = 0; f < d.n; f++) {
+        cub_track_skeleton s;
+        double t0 = now_s();
+        cub_track_frame(t, d.raw + (size_t)f * FRAME_PIXELS, d.t_us[f], have_grav ? &grav : NULL, &s);
+        secs += now_s() - t0;
+        if (s.status >= 0 && s.status < 5) status[s.status]++;
+        if (print) print_frame(d.name[f], &s);
+        if (!tr || !tr[f].have) continue;
+        for (int j = 0; j < CUB_TJ_COUNT; j++) {
+            if (!tr[f].vis[j]) continue;
+            double dx = s.joint_mm[j].x / 65536.0 - tr[f].p[j][0], dy = s.joint_mm[j].y / 65536.0 - tr[f].p[j][1],
+                   dz = s.joint_mm[j].z / 65536.0 - tr[f].p[j][2];
+            double e = dx * dx + dy * dy + dz * dz;
+            e = e > 0 ? sqrt(e) : 0;
+            err_sum[j] += e, count[j]++, within[j] += e <= 100.0;
+        }
+    }
+    int all_n = 0, all_in = 0;
+    if (tr) {
+        printf("%-15s %8s %8s %6s\n", "joint", "mean_mm", "<=10cm", "n");
+        for (int j = 0; j < CUB_TJ_COUNT; j++) {
+            if (!count[j]) continue;
+            printf("%-15s %8.0f %7.1f%% %6d\n", cub_track_joint_name(j), err_sum[j] / count[j],
+                   100.0 * within[j] / count[j], count[j]);
+            all_n += count[j], all_in += within[j];
+        }
+        if (all_n) printf("eval-track: %.1f%% of joints within 10 cm (%d of %d)\n", 100.0 * all_in / all_n, all_in, all_n);
+    } else {
+        printf("eval-track: no truth at %s (status and speed only)\n", truth);
+    }
+    printf("eval-track: frames=%d ok=%d no_player=%d too_close=%d too_far=%d partly_out=%d fps=%.0f\n", d.n,
+           status[0], status[1], status[2], status[3], status[4], secs > 0 ? d.n / secs : 0.0);
+    free(tr);
+    free(mem);
+    cub_track_dump_free(&d);
+    return 0;
+}

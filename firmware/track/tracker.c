@@ -1,0 +1,130 @@
+/* tracker — one Kinect v1 depth frame to the player's 20-joint skeleton.
+ *
+ * Method: geodesic extremities on a downsampled depth graph, then a body
+ * model placed by proportions. Per frame:
+ *   1. a 160x120 grid of 4x4-pixel cells, each the nearest valid reading
+ *      (raw -> mm by table); 19 200 cells instead of 307 200 pixels;
+ *   2. the floor: up from gravity when given, else the camera pitch whose
+ *      height histogram has the densest low layer; floor cells go;
+ *   3. blobs by depth continuity; person-like blobs (size, upright extent,
+ *      not wall-wide) are candidates; the player is the nearest one near the
+ *      centre, then always the blob nearest last frame's player (the same
+ *      player_id while it stays within reach), so a second person walking
+ *      in never takes over; small blobs in front of the player and inside
+ *      its outline are merged back (hands before the chest);
+ *   4. root = the silhouette's thickest cell (the torso); Dijkstra over the
+ *      player's cells with 3D step lengths; the extremities are the
+ *      farthest points, found one by one (head, hands, feet);
+ *   5. the head is the central upper extremity (or, with hands up beside
+ *      it, the top of the body's column above the root); stature from the
+ *      floor or from where the silhouette widens below the head (the neck
+ *      base, which also places the shoulder centre); the torso axis runs
+ *      from the shoulder centre (on the head's path) to the root; elbows and
+ *      knees are the path cells that fit both bone lengths; limbs without an
+ *      extremity keep last frame's pose relative to the body (confidence 0);
+ *   6. smoothing that averages jitter but passes real motion through.
+ *
+ * Why this and not a per-pixel forest (the Kinect SDK's way): a forest needs
+ * a large labelled training set of children's bodies and depth renders, and
+ * tens of lookups per pixel; we have neither the set nor the cycles on a
+ * Pi-class core. Geodesic extremities (Skeltrack's idea) need no training,
+ * are invariant to pose and body size, and cost one Dijkstra per extremity
+ * on a few thousand cells. Skeltrack loses accuracy in the joint placement
+ * (elbows from a fixed fraction of the path, shoulders from the head only);
+ * here joints come from the path cells that satisfy the bone lengths of a
+ * body scaled to the measured stature, and the player selection, floor and
+ * temporal parts are ours. Everything is integer: bit-identical everywhere.
+ *
+ * Measured (cubtool eval-track, gravity from the truth; proportions tuned on
+ * CMU 13_29 only): 13_29 88 % of joints within 10 cm; not tuned on: 14_14
+ * 87 %, 141_16 99 %, 05_06 94 %, animdraw jumping_jacks 95 %; real Skeltrack
+ * frames: head, shoulders and hands 39 of 39 within 10 cm, elbows 2 of 16.
+ * About 1.4 ms per frame (child at 2.2 m) and 2.6 ms (adult at 1.3 m) on
+ * this machine, 1.2 MB of state.
+ *
+ * Defaults: min_mm 500, max_mm 4500 (readings outside are ignored). Status:
+ * TOO_CLOSE when the player's centre is nearer than 1000 mm, TOO_FAR beyond
+ * 3500 mm, PARTLY_OUT when the body touches the image's edge. */
+#include "trk_internal.h"
+
+#define TRK_DEFAULT_MIN_MM 500
+#define TRK_DEFAULT_MAX_MM 4500
+#define TRK_CLOSE_MM 1000
+#define TRK_FAR_MM 3500
+#define TRK_LOST_RESET 30 /* frames without the player before a new one may take over */
+
+size_t cub_track_mem_size(const cub_track_desc *desc)
+{
+    (void)desc;
+    return sizeof(cub_tracker) + 16;
+}
+
+cub_err cub_track_init(const cub_track_desc *desc, void *mem, size_t mem_size, cub_tracker **out)
+{
+    if (!desc || !mem || !out) return CUB_ERR_ARG;
+    if ((uintptr_t)mem % 16) return CUB_ERR_ARG;
+    if (mem_size < sizeof(cub_tracker)) return CUB_ERR_NOMEM;
+    cub_tracker *t = mem;
+    memset(t, 0, sizeof *t);
+    t->min_mm = desc->min_mm > 0 ? desc->min_mm : TRK_DEFAULT_MIN_MM;
+    t->max_mm = desc->max_mm > 0 ? desc->max_mm : TRK_DEFAULT_MAX_MM;
+    if (t->max_mm > 8191) t->max_mm = 8191;
+    if (t->min_mm >= t->max_mm) return CUB_ERR_ARG;
+    for (int32_t p = 0; p < TRK_PITCHES; p++) {
+        /* pitch -20..+20 degrees about the camera's x axis */
+        cub_q16 a = (p - TRK_PITCHES / 2) * 2 * 1144; /* 1144 = 1 degree in Q16 radians */
+        t->pitch_up[p] = (cub_vec3){0, cub_fx_cos(a), cub_fx_sin(a)};
+    }
+    t->up = t->pitch_up[TRK_PITCHES / 2];
+    *out = t;
+    return CUB_OK;
+}
+
+static int32_t status_of(const cub_tracker *t, int32_t comp)
+{
+    const trk_comp *c = &t->comps[comp];
+    int32_t z = (int32_t)(c->sz / c->n);
+    if (z < TRK_CLOSE_MM) return CUB_TRACK_TOO_CLOSE;
+    if (z > TRK_FAR_MM) return CUB_TRACK_TOO_FAR;
+    int32_t border = 0;
+    for (int32_t gx = 0; gx < TRK_GW; gx++) border += t->mask[gx] + t->mask[(TRK_GH - 1) * TRK_GW + gx];
+    for (int32_t gy = 0; gy < TRK_GH; gy++) border += t->mask[gy * TRK_GW] + t->mask[gy * TRK_GW + TRK_GW - 1];
+    return border > 2 ? CUB_TRACK_PARTLY_OUT : CUB_TRACK_OK;
+}
+
+static void no_player(cub_tracker *t, cub_track_skeleton *out)
+{
+    if (++t->lost_frames > TRK_LOST_RESET) t->tracked = false;
+    if (t->have_prev) *out = t->prev;
+    out->status = CUB_TRACK_NO_PLAYER;
+    for (int j = 0; j < CUB_TJ_COUNT; j++) out->confidence[j] = 0;
+}
+
+cub_err cub_track_frame(cub_tracker *t, const uint16_t *raw, int64_t t_us, const cub_vec3 *gravity_mm,
+                        cub_track_skeleton *out)
+{
+    if (!t || !raw || !out) return CUB_ERR_ARG;
+    (void)t_us;
+    memset(out, 0, sizeof *out);
+    t->frame_no++;
+    trk_grid_fill(t, raw);
+    trk_floor_update(t, gravity_mm);
+    trk_floor_remove(t);
+    trk_components(t);
+    int32_t comp = trk_pick_player(t);
+    int32_t root = comp >= 0 ? trk_root_cell(t) : -1;
+    if (root < 0) {
+        no_player(t, out);
+        return CUB_OK;
+    }
+    int32_t ext[TRK_MAX_EXTREMA];
+    int32_t n = trk_extrema(t, root, 150, ext, TRK_MAX_EXTREMA);
+    out->status = status_of(t, comp);
+    out->player_id = t->player_id;
+    trk_fit_skeleton(t, root, ext, n, out);
+    trk_smooth(t, out);
+    t->lost_frames = 0;
+    t->prev = *out;
+    t->have_prev = true;
+    return CUB_OK;
+}

@@ -1,0 +1,162 @@
+/* Geodesic distances over the player's surface: the torso root, shortest
+ * paths (Dijkstra on the 8-connected grid, edge = 3D step length) and the
+ * extremities (head, hands, feet) as the farthest points, one at a time. */
+#include "trk_internal.h"
+
+/* The root is the cell deepest inside the silhouette (chamfer 3-4
+ * distance): the torso is the body's thickest part at any pose. */
+int32_t trk_root_cell(cub_tracker *t)
+{
+    int32_t *d = t->distx;
+    for (int32_t i = 0; i < TRK_CELLS; i++) d[i] = t->mask[i] ? 1 << 20 : 0;
+    for (int32_t gy = 0; gy < TRK_GH; gy++)
+        for (int32_t gx = 0; gx < TRK_GW; gx++) {
+            int32_t i = gy * TRK_GW + gx;
+            if (!d[i]) continue;
+            int32_t m = d[i];
+            if (gx == 0 || gy == 0) m = 3;
+            if (gx > 0 && d[i - 1] + 3 < m) m = d[i - 1] + 3;
+            if (gy > 0 && d[i - TRK_GW] + 3 < m) m = d[i - TRK_GW] + 3;
+            if (gy > 0 && gx > 0 && d[i - TRK_GW - 1] + 4 < m) m = d[i - TRK_GW - 1] + 4;
+            if (gy > 0 && gx < TRK_GW - 1 && d[i - TRK_GW + 1] + 4 < m) m = d[i - TRK_GW + 1] + 4;
+            d[i] = m;
+        }
+    int32_t best = -1, best_d = 0;
+    for (int32_t gy = TRK_GH - 1; gy >= 0; gy--)
+        for (int32_t gx = TRK_GW - 1; gx >= 0; gx--) {
+            int32_t i = gy * TRK_GW + gx;
+            if (!d[i]) continue;
+            int32_t m = d[i];
+            if (gx == TRK_GW - 1 || gy == TRK_GH - 1) m = 3;
+            if (gx < TRK_GW - 1 && d[i + 1] + 3 < m) m = d[i + 1] + 3;
+            if (gy < TRK_GH - 1 && d[i + TRK_GW] + 3 < m) m = d[i + TRK_GW] + 3;
+            if (gy < TRK_GH - 1 && gx < TRK_GW - 1 && d[i + TRK_GW + 1] + 4 < m) m = d[i + TRK_GW + 1] + 4;
+            if (gy < TRK_GH - 1 && gx > 0 && d[i + TRK_GW - 1] + 4 < m) m = d[i + TRK_GW - 1] + 4;
+            d[i] = m;
+            /* silhouette thickness in mm, so near and far parts compare */
+            int32_t thick = m * t->z[i];
+            if (thick > best_d) best_d = thick, best = i;
+        }
+    return best;
+}
+
+/* |v| within about 8 %, no square root: a + 11/32 b + 1/4 c, a >= b >= c. */
+static int32_t approx_len(int32_t dx, int32_t dy, int32_t dz)
+{
+    int32_t a = trk_abs(dx), b = trk_abs(dy), c = trk_abs(dz), s;
+    if (a < b) s = a, a = b, b = s;
+    if (b < c) s = b, b = c, c = s;
+    if (a < b) s = a, a = b, b = s;
+    return a + ((11 * b) >> 5) + (c >> 2);
+}
+
+static void heap_push(cub_tracker *t, int32_t *n, uint32_t key, int32_t cell)
+{
+    if (*n >= TRK_HEAP_CAP) return;
+    uint64_t v = ((uint64_t)key << 32) | (uint32_t)cell;
+    int32_t i = (*n)++;
+    while (i > 0) {
+        int32_t p = (i - 1) / 2;
+        if (t->heap[p] <= v) break;
+        t->heap[i] = t->heap[p];
+        i = p;
+    }
+    t->heap[i] = v;
+}
+
+static uint64_t heap_pop(cub_tracker *t, int32_t *n)
+{
+    uint64_t top = t->heap[0], last = t->heap[--(*n)];
+    int32_t i = 0;
+    for (;;) {
+        int32_t c = 2 * i + 1;
+        if (c >= *n) break;
+        if (c + 1 < *n && t->heap[c + 1] < t->heap[c]) c++;
+        if (t->heap[c] >= last) break;
+        t->heap[i] = t->heap[c];
+        i = c;
+    }
+    if (*n > 0) t->heap[i] = last;
+    return top;
+}
+
+/* Dijkstra over the mask from whatever the heap holds, lowering dist
+ * where it improves (so repeated runs give the distance to the nearest
+ * source). */
+static void run_heap(cub_tracker *t, int32_t *dist, int32_t *parent, int32_t n)
+{
+    static const int8_t dgx[8] = {-1, 1, 0, 0, -1, 1, -1, 1}, dgy[8] = {0, 0, -1, 1, -1, -1, 1, 1};
+    while (n > 0) {
+        uint64_t v = heap_pop(t, &n);
+        int32_t i = (int32_t)(uint32_t)v, d = (int32_t)(v >> 32);
+        if (d > dist[i]) continue;
+        int32_t gx = i % TRK_GW, gy = i / TRK_GW;
+        for (int k = 0; k < 8; k++) {
+            int32_t nx = gx + dgx[k], ny = gy + dgy[k];
+            if (nx < 0 || ny < 0 || nx >= TRK_GW || ny >= TRK_GH) continue;
+            int32_t j = ny * TRK_GW + nx;
+            if (!t->mask[j]) continue;
+            int32_t nd = d + approx_len(t->x[j] - t->x[i], t->y[j] - t->y[i], t->z[j] - t->z[i]);
+            if (nd >= dist[j]) continue;
+            dist[j] = nd;
+            if (parent) parent[j] = i;
+            heap_push(t, &n, (uint32_t)nd, j);
+        }
+    }
+}
+
+void trk_geodesic(cub_tracker *t, int32_t *dist, int32_t *parent, int32_t src)
+{
+    int32_t n = 0;
+    dist[src] = 0;
+    if (parent) parent[src] = -1;
+    heap_push(t, &n, 0, src);
+    run_heap(t, dist, parent, n);
+}
+
+/* Parts merged in front of the body (a hand before the chest or face) may
+ * be cut off from it by a thin band of no reading (the projector's
+ * shadow): bridge gaps of up to two cells with their 3D length. */
+#define BRIDGE_CELLS 2
+static void bridge_gaps(cub_tracker *t, int32_t *dist, int32_t *parent)
+{
+    int32_t n = 0;
+    for (int32_t i = 0; i < TRK_CELLS; i++) {
+        if (!t->mask[i] || dist[i] != TRK_INF) continue;
+        int32_t gx = i % TRK_GW, gy = i / TRK_GW, best = TRK_INF, from = -1;
+        for (int32_t dy = -BRIDGE_CELLS; dy <= BRIDGE_CELLS; dy++)
+            for (int32_t dx = -BRIDGE_CELLS; dx <= BRIDGE_CELLS; dx++) {
+                int32_t nx = gx + dx, ny = gy + dy;
+                if (nx < 0 || ny < 0 || nx >= TRK_GW || ny >= TRK_GH) continue;
+                int32_t j = ny * TRK_GW + nx;
+                if (!t->mask[j] || dist[j] == TRK_INF) continue;
+                int32_t d = dist[j] + approx_len(t->x[j] - t->x[i], t->y[j] - t->y[i], t->z[j] - t->z[i]);
+                if (d < best) best = d, from = j;
+            }
+        if (from < 0) continue;
+        dist[i] = best, parent[i] = from;
+        heap_push(t, &n, (uint32_t)best, i);
+    }
+    run_heap(t, dist, parent, n);
+}
+
+/* Up to max_out extremities, farthest first, each at least min_mm of
+ * surface away from the root and from every extremity found before. */
+int32_t trk_extrema(cub_tracker *t, int32_t root, int32_t min_mm, int32_t *out, int32_t max_out)
+{
+    for (int32_t i = 0; i < TRK_CELLS; i++) t->dist0[i] = TRK_INF;
+    trk_geodesic(t, t->dist0, t->parent0, root);
+    bridge_gaps(t, t->dist0, t->parent0);
+    bridge_gaps(t, t->dist0, t->parent0);
+    memcpy(t->distx, t->dist0, sizeof t->distx);
+    int32_t n = 0;
+    while (n < max_out) {
+        int32_t best = -1, best_d = min_mm;
+        for (int32_t i = 0; i < TRK_CELLS; i++)
+            if (t->mask[i] && t->distx[i] != TRK_INF && t->distx[i] > best_d) best_d = t->distx[i], best = i;
+        if (best < 0) break;
+        out[n++] = best;
+        trk_geodesic(t, t->distx, NULL, best);
+    }
+    return n;
+}

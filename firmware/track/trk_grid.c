@@ -1,0 +1,249 @@
+/* The tracker's first stages on the 160x120 grid: depth per cell, the
+ * floor, connected blobs, and which blob is the player. */
+#include "trk_internal.h"
+
+int32_t trk_len(int32_t dx, int32_t dy, int32_t dz)
+{
+    uint64_t s = (uint64_t)((int64_t)dx * dx) + (uint64_t)((int64_t)dy * dy) + (uint64_t)((int64_t)dz * dz);
+    return (int32_t)cub_fx_isqrt64(s);
+}
+
+/* A cell's depth: the nearest valid of four samples inside it. Nearest,
+ * not mean, so thin limbs in front of a farther surface keep their depth
+ * instead of blending into a phantom in between. */
+void trk_grid_fill(cub_tracker *t, const uint16_t *raw)
+{
+    static const uint8_t off[4][2] = {{1, 1}, {3, 3}, {1, 3}, {3, 1}};
+    for (int32_t gy = 0; gy < TRK_GH; gy++) {
+        for (int32_t gx = 0; gx < TRK_GW; gx++) {
+            int32_t best = 0;
+            for (int k = 0; k < 4; k++) {
+                int32_t u = gx * TRK_CELL_PX + off[k][0], v = gy * TRK_CELL_PX + off[k][1];
+                int32_t mm = cub_track_raw_to_mm_int(raw[v * CUB_TRACK_WIDTH + u]);
+                if (mm >= t->min_mm && mm <= t->max_mm && (best == 0 || mm < best)) best = mm;
+            }
+            int32_t i = gy * TRK_GW + gx;
+            t->z[i] = (int16_t)best;
+            t->x[i] = (gx * TRK_CELL_PX + 2 - CUB_TRACK_CX) * best / CUB_TRACK_FOCAL_PX;
+            t->y[i] = (CUB_TRACK_CY - gy * TRK_CELL_PX - 2) * best / CUB_TRACK_FOCAL_PX;
+        }
+    }
+}
+
+/* Height histogram peak along up: the floor is the lowest height that many
+ * cells in the lower image share. Returns the count, *h_mm the height. */
+#define FLOOR_BIN_MM 25
+#define FLOOR_BINS 200 /* heights -4000 .. +1000 mm */
+#define FLOOR_MIN_CELLS 200
+static int32_t floor_peak(const cub_tracker *t, cub_vec3 up, int32_t *h_mm)
+{
+    int32_t hist[FLOOR_BINS], total = 0;
+    memset(hist, 0, sizeof hist);
+    for (int32_t i = TRK_CELLS / 2; i < TRK_CELLS; i += 1 + (i & 1)) {
+        if (!t->z[i]) continue;
+        total++;
+        int32_t b = (trk_along(t->x[i], t->y[i], t->z[i], up) + 4000) / FLOOR_BIN_MM;
+        if (b >= 0 && b < FLOOR_BINS) hist[b]++;
+    }
+    for (int32_t b = 0; b + 1 < FLOOR_BINS; b++) {
+        int32_t c = hist[b] + hist[b + 1];
+        /* dense: a real floor holds a good share of the lower image */
+        if (c < FLOOR_MIN_CELLS / 2 || c * 8 < total) continue;
+        int32_t best = hist[b + 1] > hist[b] ? b + 1 : b;
+        *h_mm = best * FLOOR_BIN_MM - 4000 + FLOOR_BIN_MM / 2;
+        /* and a floor recedes: its cells span depth, unlike the cut-off
+         * bottom of a body standing close */
+        int32_t zmin = INT32_MAX, zmax = 0;
+        for (int32_t i = TRK_CELLS / 2; i < TRK_CELLS; i += 1 + (i & 1)) {
+            if (!t->z[i]) continue;
+            int32_t h = trk_along(t->x[i], t->y[i], t->z[i], up);
+            if (h < *h_mm - FLOOR_BIN_MM || h > *h_mm + FLOOR_BIN_MM) continue;
+            if (t->z[i] < zmin) zmin = t->z[i];
+            if (t->z[i] > zmax) zmax = t->z[i];
+        }
+        if (zmax - zmin < 700) return 0;
+        /* continuously: no depth gaps (two bodies' cut-off bottoms are not a floor) */
+        uint64_t slices = 0;
+        for (int32_t i = TRK_CELLS / 2; i < TRK_CELLS; i += 1 + (i & 1)) {
+            if (!t->z[i]) continue;
+            int32_t h = trk_along(t->x[i], t->y[i], t->z[i], up);
+            if (h >= *h_mm - FLOOR_BIN_MM && h <= *h_mm + FLOOR_BIN_MM && (t->z[i] - zmin) / 100 < 64)
+                slices |= (uint64_t)1 << ((t->z[i] - zmin) / 100);
+        }
+        int32_t span = (zmax - zmin) / 100 + 1, filled = 0;
+        for (int32_t k = 0; k < span && k < 64; k++) filled += (int32_t)((slices >> k) & 1);
+        if (filled * 10 < (span < 64 ? span : 64) * 7) return 0;
+        return c + (best + 1 < FLOOR_BINS ? hist[best + 1] : 0);
+    }
+    return 0;
+}
+
+static cub_vec3 unit_q16(cub_vec3 v)
+{
+    int64_t l = cub_fx_isqrt64((uint64_t)((int64_t)v.x * v.x + (int64_t)v.y * v.y + (int64_t)v.z * v.z));
+    if (l == 0) return (cub_vec3){0, CUB_Q16_ONE, 0};
+    return (cub_vec3){(int32_t)((int64_t)v.x * 65536 / l), (int32_t)((int64_t)v.y * 65536 / l),
+                      (int32_t)((int64_t)v.z * 65536 / l)};
+}
+
+/* With gravity, up is known and only the floor's height is searched. Without
+ * it the camera's pitch is searched too (roll assumed small), every 8th
+ * frame: the pitch whose histogram has the densest low layer wins. */
+void trk_floor_update(cub_tracker *t, const cub_vec3 *gravity_mm)
+{
+    int32_t h = 0;
+    if (gravity_mm && (gravity_mm->x || gravity_mm->y || gravity_mm->z)) {
+        /* scale down so the squares fit in 64 bits whatever the length */
+        cub_vec3 g = *gravity_mm;
+        while (trk_abs(g.x) > (1 << 24) || trk_abs(g.y) > (1 << 24) || trk_abs(g.z) > (1 << 24))
+            g.x /= 2, g.y /= 2, g.z /= 2;
+        t->up = unit_q16((cub_vec3){-g.x, -g.y, -g.z});
+        t->have_floor = floor_peak(t, t->up, &h) >= FLOOR_MIN_CELLS;
+        if (t->have_floor) t->floor_h_mm = h;
+        return;
+    }
+    if (t->have_floor && (t->frame_no & 7) && t->lost_frames == 0) return;
+    int32_t best = 0, best_h = 0, best_p = TRK_PITCHES / 2;
+    for (int32_t p = 0; p < TRK_PITCHES; p++) {
+        int32_t c = floor_peak(t, t->pitch_up[p], &h);
+        if (c > best) best = c, best_h = h, best_p = p;
+    }
+    if (best >= FLOOR_MIN_CELLS) {
+        t->up = t->pitch_up[best_p];
+        t->floor_h_mm = best_h;
+        t->have_floor = true;
+    } else if (!t->have_floor) {
+        t->up = t->pitch_up[TRK_PITCHES / 2];
+    }
+}
+
+/* Floor cells (and anything under it) go; feet keep what is 40 mm up. */
+void trk_floor_remove(cub_tracker *t)
+{
+    if (!t->have_floor) return;
+    int32_t cut = t->floor_h_mm + 40;
+    for (int32_t i = 0; i < TRK_CELLS; i++)
+        if (t->z[i] && trk_along(t->x[i], t->y[i], t->z[i], t->up) < cut) t->z[i] = 0;
+}
+
+/* Neighbours belong together when their depths differ by less than this:
+ * the disparity step (and a slanted surface's step) grows with depth. */
+static int32_t joins_mm(int32_t z) { return 40 + z / 20; }
+
+static void comp_add(cub_tracker *t, trk_comp *c, int32_t i)
+{
+    int32_t gx = i % TRK_GW, gy = i / TRK_GW, z = t->z[i];
+    int32_t h = trk_along(t->x[i], t->y[i], z, t->up);
+    c->n++;
+    c->sx += t->x[i], c->sy += t->y[i], c->sz += z;
+    c->area_mm2 += (int64_t)z * z * (TRK_CELL_PX * TRK_CELL_PX) / (CUB_TRACK_FOCAL_PX * CUB_TRACK_FOCAL_PX);
+    if (h < c->hmin) c->hmin = h;
+    if (h > c->hmax) c->hmax = h;
+    if (t->x[i] < c->xmin) c->xmin = t->x[i];
+    if (t->x[i] > c->xmax) c->xmax = t->x[i];
+    if (gx < c->gx0) c->gx0 = gx;
+    if (gx > c->gx1) c->gx1 = gx;
+    if (gy < c->gy0) c->gy0 = gy;
+    if (gy > c->gy1) c->gy1 = gy;
+    if (gx == 0 || gy == 0 || gx == TRK_GW - 1 || gy == TRK_GH - 1) c->border++;
+}
+
+/* Flood fill with 4-neighbours; blobs past TRK_MAX_COMPS stay unlabelled. */
+void trk_components(cub_tracker *t)
+{
+    for (int32_t i = 0; i < TRK_CELLS; i++) t->label[i] = -1;
+    t->ncomps = 0;
+    for (int32_t s = 0; s < TRK_CELLS && t->ncomps < TRK_MAX_COMPS; s++) {
+        if (!t->z[s] || t->label[s] >= 0) continue;
+        int16_t id = (int16_t)t->ncomps++;
+        trk_comp *c = &t->comps[id];
+        *c = (trk_comp){.hmin = INT32_MAX, .hmax = INT32_MIN, .xmin = INT32_MAX, .xmax = INT32_MIN,
+                        .gx0 = TRK_GW, .gx1 = -1, .gy0 = TRK_GH, .gy1 = -1};
+        int32_t top = 0;
+        t->stack[top++] = s;
+        t->label[s] = id;
+        while (top) {
+            int32_t i = t->stack[--top];
+            comp_add(t, c, i);
+            int32_t gx = i % TRK_GW, gy = i / TRK_GW, j = joins_mm(t->z[i]);
+            int32_t nb[4] = {gx > 0 ? i - 1 : -1, gx < TRK_GW - 1 ? i + 1 : -1, gy > 0 ? i - TRK_GW : -1,
+                             gy < TRK_GH - 1 ? i + TRK_GW : -1};
+            for (int k = 0; k < 4; k++) {
+                int32_t n = nb[k];
+                if (n < 0 || !t->z[n] || t->label[n] >= 0) continue;
+                if (trk_abs(t->z[n] - t->z[i]) > j) continue;
+                t->label[n] = id;
+                t->stack[top++] = n;
+            }
+        }
+    }
+    for (int32_t gy = 1; gy < TRK_GH - 1; gy++)
+        for (int32_t i = gy * TRK_GW + 1; i < gy * TRK_GW + TRK_GW - 1; i++) {
+            int16_t l = t->label[i];
+            if (l >= 0 && t->label[i - 1] == l && t->label[i + 1] == l && t->label[i - TRK_GW] == l &&
+                t->label[i + TRK_GW] == l)
+                t->comps[l].interior++;
+        }
+}
+
+/* A person-like blob: big enough, solid (noise makes sparse, stringy
+ * blobs), upright extent of a body (or the upper part of one), not as wide
+ * as a wall. */
+static bool person_like(const trk_comp *c)
+{
+    return c->n >= 40 && c->interior * 10 >= c->n * 4 && c->area_mm2 >= 40000 && c->hmax - c->hmin >= 350 && c->hmax - c->hmin <= 2300 &&
+           c->xmax - c->xmin <= 2200;
+}
+
+static trk_p3 comp_centre(const trk_comp *c)
+{
+    return (trk_p3){(int32_t)(c->sx / c->n), (int32_t)(c->sy / c->n), (int32_t)(c->sz / c->n)};
+}
+
+/* Small blobs in front of the player and overlapping it in the image are
+ * its own hands and forearms (a hand before the chest is a depth jump). */
+static void merge_front_parts(cub_tracker *t, int32_t pid)
+{
+    const trk_comp *p = &t->comps[pid];
+    int32_t pz = (int32_t)(p->sz / p->n);
+    trk_p3 pc = comp_centre(p);
+    for (int32_t k = 0; k < t->ncomps; k++) {
+        const trk_comp *c = &t->comps[k];
+        if (k == pid || c->n < 3 || c->area_mm2 > 80000) continue;
+        if (c->gx1 < p->gx0 - 2 || c->gx0 > p->gx1 + 2 || c->gy1 < p->gy0 - 2 || c->gy0 > p->gy1 + 2) continue;
+        trk_p3 cc = comp_centre(c);
+        if (cc.z > pz + 100 || cc.z < pz - 900 || trk_abs(cc.x - pc.x) > 1000) continue;
+        for (int32_t i = 0; i < TRK_CELLS; i++)
+            if (t->label[i] == k) t->mask[i] = 1;
+    }
+}
+
+int32_t trk_pick_player(cub_tracker *t)
+{
+    int32_t best = -1;
+    int64_t best_score = INT64_MAX;
+    for (int32_t k = 0; k < t->ncomps; k++) {
+        const trk_comp *c = &t->comps[k];
+        if (!person_like(c)) continue;
+        trk_p3 cc = comp_centre(c);
+        int64_t score;
+        if (t->tracked) {
+            /* the same person: the blob nearest where the player was */
+            int32_t d = trk_len(cc.x - t->centre.x, cc.y - t->centre.y, cc.z - t->centre.z);
+            score = d <= 700 ? d : 1000000 + cc.z + 2 * trk_abs(cc.x);
+        } else {
+            score = 1000000 + cc.z + 2 * trk_abs(cc.x); /* nearest, near the centre */
+        }
+        if (score < best_score) best_score = score, best = k;
+    }
+    memset(t->mask, 0, sizeof t->mask);
+    if (best < 0) return -1;
+    bool same = t->tracked && best_score < 1000000;
+    if (!same) t->player_id = ++t->next_id;
+    t->tracked = true;
+    t->centre = comp_centre(&t->comps[best]);
+    for (int32_t i = 0; i < TRK_CELLS; i++)
+        if (t->label[i] == best) t->mask[i] = 1;
+    merge_front_parts(t, best);
+    return best;
+}

@@ -1,0 +1,97 @@
+/* The tracker's private state and the stages it runs (tracker.c explains
+ * the method). Everything works on a 160x120 grid of 4x4-pixel cells. */
+#ifndef CUB_TRK_INTERNAL_H
+#define CUB_TRK_INTERNAL_H
+
+#include <stdbool.h>
+#include <stdint.h>
+#include <string.h>
+
+#include "cub/track.h"
+
+#define TRK_CELL_PX 4
+#define TRK_GW (CUB_TRACK_WIDTH / TRK_CELL_PX)
+#define TRK_GH (CUB_TRACK_HEIGHT / TRK_CELL_PX)
+#define TRK_CELLS (TRK_GW * TRK_GH)
+#define TRK_MAX_EXTREMA 7
+#define TRK_INF INT32_MAX
+#define TRK_HEAP_CAP (TRK_CELLS * 4)
+#define TRK_PITCHES 21 /* floor search without gravity: -20..+20 degrees */
+
+/* A point in camera space, whole millimetres. */
+typedef struct trk_p3 {
+    int32_t x, y, z;
+} trk_p3;
+
+/* One connected blob of the grid. */
+typedef struct trk_comp {
+    int32_t n;
+    int64_t sx, sy, sz, area_mm2;
+    int32_t hmin, hmax, xmin, xmax;
+    int32_t gx0, gx1, gy0, gy1; /* grid bounding box */
+    int32_t border;             /* cells on the image's edge */
+    int32_t interior;           /* cells whose 4 neighbours are all in the blob */
+} trk_comp;
+
+#define TRK_MAX_COMPS 256
+
+struct cub_tracker {
+    int32_t min_mm, max_mm;
+    /* per frame */
+    int16_t z[TRK_CELLS]; /* mm, 0 = nothing there (or removed) */
+    int32_t x[TRK_CELLS], y[TRK_CELLS];
+    int16_t label[TRK_CELLS]; /* component, -1 none */
+    uint8_t mask[TRK_CELLS];  /* 1 = the player's */
+    int32_t dist0[TRK_CELLS], parent0[TRK_CELLS];
+    int32_t distx[TRK_CELLS];
+    int32_t stack[TRK_CELLS];
+    uint64_t heap[TRK_HEAP_CAP];
+    trk_comp comps[TRK_MAX_COMPS];
+    int32_t ncomps;
+    /* the ground: unit up vector (Q16.16) and the floor's height along it */
+    cub_vec3 pitch_up[TRK_PITCHES];
+    cub_vec3 up;
+    int32_t floor_h_mm;
+    bool have_floor;
+    int32_t frame_no;
+    /* the player across frames */
+    bool tracked;
+    int32_t player_id, next_id, lost_frames;
+    trk_p3 centre;
+    int32_t stature_mm;
+    int32_t neck_drop_mm; /* head top to the neck base (smoothed), 0 unknown */
+    int32_t head_cell, stature_seen_mm; /* this frame's, for tools */
+    cub_track_skeleton prev;
+    bool have_prev;
+};
+
+/* Dot product of a mm point with a Q16.16 unit vector: mm. */
+static inline int32_t trk_along(int32_t x, int32_t y, int32_t z, cub_vec3 u)
+{
+    return (int32_t)(((int64_t)x * u.x + (int64_t)y * u.y + (int64_t)z * u.z) >> 16);
+}
+
+static inline int32_t trk_abs(int32_t a) { return a < 0 ? -a : a; }
+
+/* Exact Euclidean length in mm. */
+int32_t trk_len(int32_t dx, int32_t dy, int32_t dz);
+
+/* trk_grid.c */
+void trk_grid_fill(cub_tracker *t, const uint16_t *raw);
+void trk_floor_update(cub_tracker *t, const cub_vec3 *gravity_mm);
+void trk_floor_remove(cub_tracker *t);
+void trk_components(cub_tracker *t);
+/* Index of the player's component (and merges limbs in front into mask), -1 none. */
+int32_t trk_pick_player(cub_tracker *t);
+
+/* trk_geo.c */
+int32_t trk_root_cell(cub_tracker *t);
+void trk_geodesic(cub_tracker *t, int32_t *dist, int32_t *parent, int32_t src);
+int32_t trk_extrema(cub_tracker *t, int32_t root, int32_t min_mm, int32_t *out, int32_t max_out);
+
+/* trk_fit.c */
+void trk_fit_skeleton(cub_tracker *t, int32_t root, int32_t *ext, int32_t next,
+                      cub_track_skeleton *out);
+void trk_smooth(cub_tracker *t, cub_track_skeleton *out);
+
+#endif
