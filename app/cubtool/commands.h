@@ -11,5 +11,6 @@ int cub_cmd_tag(int argc, char **argv);      /* tag bridge frames across a libra
 int cub_cmd_bench_bridge(int argc, char **argv); /* measure clip switching */
 int cub_cmd_eval_track(int argc, char **argv);  /* the tracker on a depth dump: accuracy */
 int cub_cmd_bench_track(int argc, char **argv); /* the tracker: ms per frame, memory */
+int cub_cmd_synth_depth(int argc, char **argv); /* a synthetic child as Kinect depth */
 
 #endif

@@ -19,6 +19,7 @@ static const command commands[] = {
     {"bench-bridge", cub_cmd_bench_bridge, "measure clip switching: reaction latency, joint jumps"},
     {"eval-track", cub_cmd_eval_track, "the tracker on a depth dump: joint errors, statuses, fps"},
     {"bench-track", cub_cmd_bench_track, "the tracker's ms per frame and memory"},
+    {"synth-depth", cub_cmd_synth_depth, "a synthetic child as Kinect v1 depth: fakenect dump + truth"},
 };
 
 static void usage(FILE *f)

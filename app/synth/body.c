@@ -1,0 +1,137 @@
+/* The body: rounded primitives placed by the 20 joints, in child
+ * proportions. Radii are fractions of the height H (a 1150 mm child: upper
+ * arm 35 mm, thigh 58 mm, head 74 x 104 x 90 mm), times the build factor;
+ * loose clothes widen the torso and thighs and add a skirt-like hem. */
+#include "synth_internal.h"
+
+#define NECK_F 0.03f    /* neck length / H */
+#define HEAD_UP_F 0.09f /* head half-height / H */
+#define FOOT_R_F 0.028f
+
+float synth_body_above_shoulders_mm(const synth_body_shape *s)
+{
+    return s->height_mm * (NECK_F + 2 * HEAD_UP_F);
+}
+
+float synth_body_hand_mm(const synth_body_shape *s)
+{
+    return s->height_mm * 0.045f;
+}
+
+void synth_body_foot_ends(sv3 ankle, sv3 foot, sv3 *heel, sv3 *toe)
+{
+    *heel = v3_lerp(ankle, foot, -0.25f);
+    *toe = v3_lerp(ankle, foot, 1.25f);
+}
+
+float synth_body_sole_mm(const synth_body_shape *s)
+{
+    return s->height_mm * FOOT_R_F;
+}
+
+void synth_body_head(const synth_body_shape *s, sv3 sc, sv3 head_dir_point, sv3 *centre, sv3 *top)
+{
+    sv3 u = v3_norm(v3_sub(head_dir_point, sc));
+    float h = s->height_mm;
+    *centre = v3_add(sc, v3_mul(u, h * (NECK_F + HEAD_UP_F)));
+    *top = v3_add(*centre, v3_mul(u, h * HEAD_UP_F));
+}
+
+static float loose_add(const synth_body_shape *s, float f)
+{
+    return s->loose ? f * s->height_mm : 0;
+}
+
+float synth_body_joint_radius(const synth_body_shape *s, int j)
+{
+    float h = s->height_mm, b = s->build;
+    switch (j) {
+    case CUB_TJ_HIP_CENTRE:
+    case CUB_TJ_SPINE:
+    case CUB_TJ_SHOULDER_CENTRE: return 0.06f * h * b + loose_add(s, 0.02f);
+    case CUB_TJ_HEAD: return 0.078f * h;
+    case CUB_TJ_HIP_L:
+    case CUB_TJ_HIP_R: return 0.05f * h * b + loose_add(s, 0.015f);
+    case CUB_TJ_KNEE_L:
+    case CUB_TJ_KNEE_R: return 0.036f * h * b;
+    case CUB_TJ_SHOULDER_L:
+    case CUB_TJ_SHOULDER_R: return 0.038f * h * b;
+    case CUB_TJ_ELBOW_L:
+    case CUB_TJ_ELBOW_R: return 0.028f * h * b;
+    default: return 0.025f * h;
+    }
+}
+
+static synth_prim capsule(sv3 a, sv3 b, float r, uint8_t owner)
+{
+    synth_prim p = {.kind = PRIM_CAPSULE, .owner = owner, .a = a, .b = b, .r = r};
+    return p;
+}
+
+static synth_prim ellipsoid(sv3 c, const sv3 axis[3], float rx, float ry, float rz, uint8_t owner)
+{
+    synth_prim p = {.kind = PRIM_ELLIPSOID, .owner = owner, .a = c};
+    for (int i = 0; i < 3; i++)
+        p.axis[i] = axis[i];
+    p.radii[0] = rx;
+    p.radii[1] = ry;
+    p.radii[2] = rz;
+    return p;
+}
+
+/* side (x), up (y), forward (z): an orthonormal frame from up and a rough
+ * side direction. */
+static void frame_of(sv3 up, sv3 side, sv3 axis[3])
+{
+    axis[1] = v3_norm(up);
+    axis[0] = v3_norm(v3_sub(side, v3_mul(axis[1], v3_dot(side, axis[1]))));
+    axis[2] = v3_cross(axis[0], axis[1]);
+}
+
+int synth_body_prims(const synth_body_shape *s, const sv3 p[SP_COUNT], uint8_t owner,
+                     synth_prim *out)
+{
+    float h = s->height_mm, b = s->build;
+    int n = 0;
+    sv3 ax[3];
+    frame_of(v3_sub(p[CUB_TJ_HEAD], p[CUB_TJ_SHOULDER_CENTRE]),
+             v3_sub(p[CUB_TJ_SHOULDER_L], p[CUB_TJ_SHOULDER_R]), ax);
+    out[n++] = ellipsoid(p[CUB_TJ_HEAD], ax, 0.064f * h, HEAD_UP_F * h, 0.078f * h, owner);
+    out[n++] = capsule(p[CUB_TJ_SHOULDER_CENTRE], p[CUB_TJ_HEAD], 0.03f * h * b, owner);
+
+    frame_of(v3_sub(p[CUB_TJ_SHOULDER_CENTRE], p[CUB_TJ_HIP_CENTRE]),
+             v3_sub(p[CUB_TJ_SHOULDER_L], p[CUB_TJ_SHOULDER_R]), ax);
+    float wide = loose_add(s, 0.02f);
+    out[n++] = ellipsoid(v3_lerp(p[CUB_TJ_SPINE], p[CUB_TJ_SHOULDER_CENTRE], 0.35f), ax,
+                         0.095f * h * b + wide, 0.15f * h, 0.06f * h * b + wide, owner);
+    out[n++] = ellipsoid(v3_lerp(p[CUB_TJ_HIP_CENTRE], p[CUB_TJ_SPINE], 0.2f), ax,
+                         0.09f * h * b + wide, 0.12f * h, 0.058f * h * b + wide, owner);
+    out[n++] = capsule(p[CUB_TJ_SHOULDER_L], p[CUB_TJ_SHOULDER_R], 0.038f * h * b, owner);
+    out[n++] = capsule(p[CUB_TJ_HIP_L], p[CUB_TJ_HIP_R], 0.05f * h * b, owner);
+    for (int side = 0; side < 2; side++) {
+        int sh = side ? CUB_TJ_SHOULDER_R : CUB_TJ_SHOULDER_L;
+        out[n++] = capsule(p[sh], p[sh + 1], 0.03f * h * b, owner);
+        out[n++] = capsule(p[sh + 1], p[sh + 2], 0.025f * h * b, owner);
+        sv3 tip = v3_lerp(p[sh + 2], p[sh + 3], 2.0f);
+        out[n++] = capsule(p[sh + 2], tip, 0.021f * h, owner);
+        int hip = side ? CUB_TJ_HIP_R : CUB_TJ_HIP_L;
+        out[n++] = capsule(p[hip], p[hip + 1], 0.05f * h * b + loose_add(s, 0.015f), owner);
+        out[n++] = capsule(p[hip + 1], p[hip + 2], 0.036f * h * b, owner);
+        sv3 heel, toe;
+        synth_body_foot_ends(p[hip + 2], p[hip + 3], &heel, &toe);
+        out[n++] = capsule(heel, toe, FOOT_R_F * h, owner);
+    }
+    if (s->loose) {
+        sv3 hips = v3_lerp(p[CUB_TJ_HIP_L], p[CUB_TJ_HIP_R], 0.5f);
+        sv3 knees = v3_lerp(p[CUB_TJ_KNEE_L], p[CUB_TJ_KNEE_R], 0.5f);
+        synth_prim c = {.kind = PRIM_CYLINDER,
+                        .owner = owner,
+                        .a = v3_lerp(p[CUB_TJ_HIP_CENTRE], p[CUB_TJ_SPINE], 0.3f),
+                        .b = v3_lerp(hips, knees, 0.55f),
+                        .r = 0.115f * h * b};
+        out[n++] = c;
+    }
+    for (int i = 0; i < n; i++)
+        synth_prim_bound(&out[i]);
+    return n;
+}

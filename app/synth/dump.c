@@ -1,0 +1,124 @@
+/* The fakenect dump: INDEX.txt plus one d-<time>-<timestamp>.pgm per frame
+ * ("P5 640 480 65535\n", then little-endian uint16 raw values, as
+ * fakenect-record writes and ../shared/data/depth/skeltrack holds), and
+ * truth.txt beside them. */
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "synth_internal.h"
+
+#define T0_S 1300000000.0 /* the first frame's time, as in the real dump */
+#define TS0 1000000u      /* the first timestamp */
+
+void cub_synth_frame_name(int frame, float fps, char *buf, size_t size, double *t_s, uint32_t *ts)
+{
+    double t = T0_S + frame / (double)fps;
+    /* The Kinect's frame timestamps tick at about 60 MHz. */
+    uint32_t stamp = TS0 + (uint32_t)frame * (uint32_t)lround(60e6 / fps);
+    if (buf) snprintf(buf, size, "d-%f-%u.pgm", t, stamp);
+    if (t_s) *t_s = t;
+    if (ts) *ts = stamp;
+}
+
+static cub_err io_fail(cub_diag *diag, const char *file, const char *what)
+{
+    if (diag) {
+        memset(diag, 0, sizeof(*diag));
+        snprintf(diag->file, sizeof(diag->file), "%.250s", file);
+        snprintf(diag->msg, sizeof(diag->msg), "%s: %s", what, strerror(errno));
+    }
+    return CUB_ERR_IO;
+}
+
+static int make_dirs(const char *dir)
+{
+    char p[512];
+    snprintf(p, sizeof(p), "%s", dir);
+    for (char *c = p + 1; *c; c++)
+        if (*c == '/') {
+            *c = 0;
+            if (mkdir(p, 0777) != 0 && errno != EEXIST) return -1;
+            *c = '/';
+        }
+    return (mkdir(p, 0777) != 0 && errno != EEXIST) ? -1 : 0;
+}
+
+static int write_pgm(const char *path, const uint16_t *raw)
+{
+    FILE *f = fopen(path, "wb");
+    if (!f) return -1;
+    static unsigned char bytes[CUB_TRACK_WIDTH * CUB_TRACK_HEIGHT * 2];
+    for (int i = 0; i < CUB_TRACK_WIDTH * CUB_TRACK_HEIGHT; i++) {
+        bytes[2 * i] = (unsigned char)(raw[i] & 0xff);
+        bytes[2 * i + 1] = (unsigned char)(raw[i] >> 8);
+    }
+    int ok = fprintf(f, "P5 %d %d 65535\n", CUB_TRACK_WIDTH, CUB_TRACK_HEIGHT) > 0 &&
+             fwrite(bytes, 1, sizeof(bytes), f) == sizeof(bytes);
+    return (fclose(f) == 0 && ok) ? 0 : -1;
+}
+
+static void write_truth_head(FILE *f, const float g[3])
+{
+    fprintf(f, "# cub-synth truth v1: line 2 'gravity gx gy gz' (down, camera space, length "
+               "1000); then per frame: frame t_s ts, then 20 joints (");
+    for (int j = 0; j < CUB_TJ_COUNT; j++)
+        fprintf(f, "%s%s", j ? " " : "", cub_track_joint_name(j));
+    fprintf(f, ") as x y z v: mm, camera space (x right, y up, z away), v 1 = visible\n");
+    fprintf(f, "gravity %.3f %.3f %.3f\n", g[0], g[1], g[2]);
+}
+
+static void write_truth_frame(FILE *f, const cub_synth_truth_frame *t)
+{
+    fprintf(f, "%d %f %u", t->frame, t->t_s, t->ts);
+    for (int j = 0; j < CUB_TJ_COUNT; j++)
+        fprintf(f, " %.1f %.1f %.1f %d", t->joint_mm[j][0], t->joint_mm[j][1], t->joint_mm[j][2],
+                t->visible[j]);
+    fputc('\n', f);
+}
+
+cub_err cub_synth_write_dump(cub_synth *s, const char *dir, int frames, int verbose, cub_diag *diag)
+{
+    if (!s || !dir) return CUB_ERR_ARG;
+    int total = cub_synth_frame_count(s);
+    if (frames <= 0 || frames > total) frames = total;
+    if (make_dirs(dir) != 0) return io_fail(diag, dir, "cannot create the folder");
+    char path[700], name[96];
+    snprintf(path, sizeof(path), "%s/INDEX.txt", dir);
+    FILE *index = fopen(path, "w");
+    if (!index) return io_fail(diag, path, "cannot write");
+    snprintf(path, sizeof(path), "%s/truth.txt", dir);
+    FILE *truth = fopen(path, "w");
+    if (!truth) {
+        fclose(index);
+        return io_fail(diag, path, "cannot write");
+    }
+    float g[3];
+    cub_synth_gravity(s, g);
+    write_truth_head(truth, g);
+    uint16_t *raw = malloc(CUB_TRACK_WIDTH * CUB_TRACK_HEIGHT * sizeof(uint16_t));
+    cub_err err = raw ? CUB_OK : CUB_ERR_NOMEM;
+    for (int i = 0; i < frames && !err; i++) {
+        cub_synth_truth_frame t;
+        err = cub_synth_render(s, i, raw, &t, NULL, NULL);
+        if (err) break;
+        cub_synth_frame_name(i, synth_fps(s), name, sizeof(name), NULL, NULL);
+        snprintf(path, sizeof(path), "%s/%s", dir, name);
+        if (write_pgm(path, raw) != 0) {
+            err = io_fail(diag, path, "cannot write");
+            break;
+        }
+        fprintf(index, "%s\n", name);
+        write_truth_frame(truth, &t);
+        if (verbose && (i % 30 == 29 || i + 1 == frames))
+            fprintf(stderr, "\rsynth-depth: frame %d/%d", i + 1, frames);
+    }
+    if (verbose) fputc('\n', stderr);
+    free(raw);
+    int bad = fclose(index) != 0;
+    bad |= fclose(truth) != 0;
+    if (!err && bad) err = io_fail(diag, dir, "cannot finish writing INDEX.txt or truth.txt");
+    return err;
+}

@@ -1,0 +1,310 @@
+/* The scene and the performance: segments of clips played back to back
+ * (blended), the player placed facing the camera, the optional room and
+ * second person, and one frame's render with its truth. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "synth_internal.h"
+
+#define PI_F 3.14159265f
+#define MAX_PRIMS 96
+#define NPIX (CUB_TRACK_WIDTH * CUB_TRACK_HEIGHT)
+
+typedef struct seg {
+    synth_actor *actor;
+    double from_s, dur_s, start_s; /* clip time, length, start in the performance */
+    int mirror;
+    float cos_b, sin_b; /* yaw that turns the clip's mean facing to the camera */
+    sv3 centre;         /* the clip's mean ground position (actor frame) */
+    float floor_y;      /* the lowest sole over the segment (actor frame) */
+} seg;
+
+struct cub_synth {
+    cub_synth_desc d;
+    seg *segs;
+    int nseg;
+    double total_s;
+    seg second;
+    int has_second;
+    synth_body_shape shape, second_shape;
+    synth_camera cam, proj;
+    synth_prim room[32];
+    int nroom;
+    float *depth, *proj_depth;
+    uint8_t *owner;
+    /* the room does not move: rendered once, copied under every frame */
+    float *room_depth, *room_proj_depth;
+    uint8_t *room_owner;
+};
+
+static void defaults(cub_synth_desc *d)
+{
+    if (!d->data_dir) d->data_dir = getenv("CUB_DATA_DIR");
+    if (d->height_mm <= 0) d->height_mm = 1150;
+    if (d->distance_mm <= 0) d->distance_mm = 2200;
+    if (d->camera_height_mm <= 0) d->camera_height_mm = 800;
+    if (d->fps <= 0) d->fps = 30;
+    if (d->blend_s <= 0) d->blend_s = 0.3f;
+    if (d->second_height_mm <= 0) d->second_height_mm = 1650;
+    if (d->second_x_mm == 0) d->second_x_mm = 700;
+    if (d->second_dz_mm == 0) d->second_dz_mm = 900;
+}
+
+static float build_factor(int build)
+{
+    return build == CUB_SYNTH_SLIM ? 0.82f : build == CUB_SYNTH_STURDY ? 1.22f : 1.0f;
+}
+
+/* Mean facing, mean ground position and lowest sole over the segment. */
+static void fit_segment(seg *s, float sole_mm)
+{
+    sv3 p[SP_COUNT], left = v3(0, 0, 0), centre = v3(0, 0, 0);
+    float low = 1e30f;
+    const int K = 24;
+    for (int k = 0; k < K; k++) {
+        synth_actor_points(s->actor, s->from_s + s->dur_s * k / (K - 1), p);
+        left = v3_add(left, v3_sub(p[CUB_TJ_HIP_L], p[CUB_TJ_HIP_R]));
+        left = v3_add(left, v3_sub(p[CUB_TJ_SHOULDER_L], p[CUB_TJ_SHOULDER_R]));
+        centre = v3_add(centre, v3_mul(p[CUB_TJ_HIP_CENTRE], 1.0f / K));
+        for (int a = CUB_TJ_ANKLE_L; a <= CUB_TJ_ANKLE_R; a += CUB_TJ_ANKLE_R - CUB_TJ_ANKLE_L) {
+            sv3 heel, toe;
+            synth_body_foot_ends(p[a], p[a + 1], &heel, &toe);
+            low = fminf(low, fminf(heel.y, toe.y));
+        }
+    }
+    /* Turn the mean left direction to -x: the player faces -z, the camera. */
+    float beta = PI_F - atan2f(left.z, left.x);
+    s->cos_b = cosf(beta);
+    s->sin_b = sinf(beta);
+    s->centre = centre;
+    s->floor_y = low - sole_mm;
+}
+
+/* The segment's points at clip time t, in the player frame (floor y = 0,
+ * facing -z, centred on x = z = 0). */
+static void segment_points(const seg *s, double t_s, sv3 out[SP_COUNT])
+{
+    sv3 p[SP_COUNT];
+    synth_actor_points(s->actor, t_s, p);
+    for (int j = 0; j < SP_COUNT; j++) {
+        float x = p[j].x - s->centre.x, z = p[j].z - s->centre.z;
+        out[j] = v3(x * s->cos_b - z * s->sin_b, p[j].y - s->floor_y, x * s->sin_b + z * s->cos_b);
+    }
+    if (!s->mirror) return;
+    for (int j = 0; j < SP_COUNT; j++)
+        out[j].x = -out[j].x;
+    for (int k = 0; k < 4; k++) { /* shoulder..hand, hip..foot: L and R swap */
+        sv3 t = out[CUB_TJ_SHOULDER_L + k];
+        out[CUB_TJ_SHOULDER_L + k] = out[CUB_TJ_SHOULDER_R + k];
+        out[CUB_TJ_SHOULDER_R + k] = t;
+        t = out[CUB_TJ_HIP_L + k];
+        out[CUB_TJ_HIP_L + k] = out[CUB_TJ_HIP_R + k];
+        out[CUB_TJ_HIP_R + k] = t;
+    }
+}
+
+static void player_points(const cub_synth *s, double t_s, sv3 out[SP_COUNT])
+{
+    int k = 0;
+    while (k + 1 < s->nseg && t_s >= s->segs[k + 1].start_s)
+        k++;
+    const seg *g = &s->segs[k];
+    double local = t_s - g->start_s;
+    if (local > g->dur_s) local = g->dur_s;
+    segment_points(g, g->from_s + local, out);
+    if (k > 0 && local < s->d.blend_s) {
+        sv3 prev[SP_COUNT];
+        const seg *q = &s->segs[k - 1];
+        segment_points(q, q->from_s + q->dur_s, prev);
+        float w = (float)(local / s->d.blend_s);
+        w = w * w * (3 - 2 * w);
+        for (int j = 0; j < SP_COUNT; j++)
+            out[j] = v3_lerp(prev[j], out[j], w);
+    }
+}
+
+static void set_cameras(cub_synth *s)
+{
+    float th = s->d.tilt_deg * PI_F / 180.0f, c = cosf(th), n = sinf(th);
+    s->cam.origin = v3(0, s->d.camera_height_mm, 0);
+    s->cam.x = v3(1, 0, 0);
+    s->cam.y = v3(0, c, -n);
+    s->cam.z = v3(0, n, c);
+    s->proj = s->cam;
+    s->proj.origin = v3_add(s->cam.origin, v3_mul(s->cam.x, CUB_SYNTH_PROJECTOR_X_MM));
+}
+
+void cub_synth_gravity(const cub_synth *s, float g[3])
+{
+    sv3 down = v3(0, -1000.0f, 0);
+    g[0] = v3_dot(down, s->cam.x);
+    g[1] = v3_dot(down, s->cam.y);
+    g[2] = v3_dot(down, s->cam.z);
+}
+
+static cub_err load_segment(cub_synth *s, seg *g, const char *clip, float height_mm, double from_s,
+                            double to_s, int mirror, cub_diag *diag)
+{
+    cub_err err = synth_actor_load(clip, s->d.data_dir, height_mm, &g->actor, diag);
+    if (err) return err;
+    double len = synth_actor_duration_s(g->actor);
+    if (from_s < 0 || from_s >= len) {
+        synth_actor_free(g->actor);
+        g->actor = NULL;
+        if (diag) {
+            memset(diag, 0, sizeof(*diag));
+            snprintf(diag->file, sizeof(diag->file), "%.250s", clip);
+            snprintf(diag->msg, sizeof(diag->msg), "from %.2f s is outside the clip (%.2f s)",
+                     from_s, len);
+        }
+        return CUB_ERR_RANGE;
+    }
+    g->from_s = from_s;
+    g->dur_s = (to_s <= 0 || to_s > len ? len : to_s) - from_s;
+    if (g->dur_s <= 0) g->dur_s = 1.0 / s->d.fps;
+    g->mirror = mirror;
+    synth_body_shape shape = {.height_mm = height_mm, .build = 1};
+    fit_segment(g, synth_body_sole_mm(&shape));
+    return CUB_OK;
+}
+
+cub_err cub_synth_open(const cub_synth_desc *desc, const cub_synth_segment *segs, int n,
+                       cub_synth **out, cub_diag *diag)
+{
+    if (!desc || !out || n < 0 || (n > 0 && !segs)) return CUB_ERR_ARG;
+    cub_synth *s = calloc(1, sizeof(*s));
+    if (!s) return CUB_ERR_NOMEM;
+    s->d = *desc;
+    defaults(&s->d);
+    s->shape = (synth_body_shape){s->d.height_mm, build_factor(s->d.build), s->d.loose_clothes};
+    s->second_shape = (synth_body_shape){s->d.second_height_mm, 1.0f, 0};
+    set_cameras(s);
+    synth_room_build(s->d.distance_mm, s->d.room, s->room, &s->nroom);
+    s->segs = calloc((size_t)(n ? n : 1), sizeof(seg));
+    s->depth = malloc(NPIX * sizeof(float));
+    s->proj_depth = malloc(NPIX * sizeof(float));
+    s->owner = malloc(NPIX);
+    s->room_depth = malloc(NPIX * sizeof(float));
+    s->room_proj_depth = malloc(NPIX * sizeof(float));
+    s->room_owner = malloc(NPIX);
+    cub_err err = (s->segs && s->depth && s->proj_depth && s->owner && s->room_depth &&
+                   s->room_proj_depth && s->room_owner)
+                      ? CUB_OK
+                      : CUB_ERR_NOMEM;
+    if (!err) {
+        synth_raycast(&s->cam, s->room, s->nroom, s->room_depth, s->room_owner, 1);
+        synth_raycast(&s->proj, s->room, s->nroom, s->room_proj_depth, NULL, 1);
+    }
+    for (int i = 0; i < n && !err; i++) {
+        err = load_segment(s, &s->segs[i], segs[i].clip, s->d.height_mm, segs[i].from_s,
+                           segs[i].to_s, segs[i].mirror, diag);
+        s->nseg = err ? i : i + 1;
+        s->segs[i].start_s = s->total_s;
+        s->total_s += s->segs[i].dur_s;
+    }
+    if (!err && s->d.second_clip) {
+        err = load_segment(s, &s->second, s->d.second_clip, s->d.second_height_mm, 0, 0, 0, diag);
+        s->has_second = !err;
+    }
+    if (err) {
+        cub_synth_close(s);
+        return err;
+    }
+    *out = s;
+    return CUB_OK;
+}
+
+void cub_synth_close(cub_synth *s)
+{
+    if (!s) return;
+    for (int i = 0; i < s->nseg; i++)
+        synth_actor_free(s->segs[i].actor);
+    if (s->has_second) synth_actor_free(s->second.actor);
+    free(s->segs);
+    free(s->depth);
+    free(s->proj_depth);
+    free(s->owner);
+    free(s->room_depth);
+    free(s->room_proj_depth);
+    free(s->room_owner);
+    free(s);
+}
+
+float synth_fps(const cub_synth *s)
+{
+    return s->d.fps;
+}
+
+int cub_synth_frame_count(const cub_synth *s)
+{
+    return (int)(s->total_s * s->d.fps + 1e-6);
+}
+
+static sv3 to_world(sv3 p, float dx, float dz)
+{
+    return v3(p.x + dx, p.y, p.z + dz);
+}
+
+static void truth_of(const cub_synth *s, const sv3 pts[SP_COUNT], cub_synth_truth_frame *t)
+{
+    for (int j = 0; j < CUB_TJ_COUNT; j++) {
+        sv3 c = v3_sub(pts[j], s->cam.origin);
+        float x = v3_dot(c, s->cam.x), y = v3_dot(c, s->cam.y), z = v3_dot(c, s->cam.z);
+        t->joint_mm[j][0] = x;
+        t->joint_mm[j][1] = y;
+        t->joint_mm[j][2] = z;
+        t->visible[j] = 0;
+        if (z < 100) continue;
+        int u = (int)lroundf(CUB_TRACK_CX + CUB_TRACK_FOCAL_PX * x / z);
+        int v = (int)lroundf(CUB_TRACK_CY - CUB_TRACK_FOCAL_PX * y / z);
+        if (u < 0 || v < 0 || u >= CUB_TRACK_WIDTH || v >= CUB_TRACK_HEIGHT) continue;
+        /* Seen when the surface at its pixel is this body's, not something
+         * in front of it (an arm across the chest). */
+        float margin = synth_body_joint_radius(&s->shape, j) + 50.0f;
+        int i = v * CUB_TRACK_WIDTH + u;
+        t->visible[j] = s->owner[i] == OWNER_PLAYER && s->depth[i] >= z - margin;
+    }
+}
+
+cub_err cub_synth_render(cub_synth *s, int frame, uint16_t *raw, cub_synth_truth_frame *truth,
+                         float *depth_mm, uint8_t *owner)
+{
+    if (!s || !raw || frame < 0) return CUB_ERR_ARG;
+    synth_prim prims[MAX_PRIMS];
+    int n = 0;
+    double t_s = frame / (double)s->d.fps;
+    sv3 pts[SP_COUNT];
+    if (s->nseg > 0) {
+        player_points(s, t_s, pts);
+        for (int j = 0; j < SP_COUNT; j++)
+            pts[j] = to_world(pts[j], 0, s->d.distance_mm);
+        n += synth_body_prims(&s->shape, pts, OWNER_PLAYER, prims + n);
+    }
+    if (s->has_second) {
+        sv3 q[SP_COUNT];
+        const seg *g = &s->second;
+        segment_points(g, g->from_s + fmod(t_s, g->dur_s), q);
+        for (int j = 0; j < SP_COUNT; j++)
+            q[j] = to_world(q[j], s->d.second_x_mm, s->d.distance_mm + s->d.second_dz_mm);
+        n += synth_body_prims(&s->second_shape, q, OWNER_SECOND, prims + n);
+    }
+    memcpy(s->depth, s->room_depth, NPIX * sizeof(float));
+    memcpy(s->owner, s->room_owner, NPIX);
+    synth_raycast(&s->cam, prims, n, s->depth, s->owner, 0);
+    if (!s->d.clean) {
+        memcpy(s->proj_depth, s->room_proj_depth, NPIX * sizeof(float));
+        synth_raycast(&s->proj, prims, n, s->proj_depth, NULL, 0);
+    }
+    synth_rng rng = {s->d.seed * 0x2545F4914F6CDD1Dull + (uint64_t)frame * 0x9E3779B97F4A7C15ull};
+    synth_kinect_apply(s->depth, s->proj_depth, s->d.clean, &rng, raw);
+    if (truth) {
+        memset(truth, 0, sizeof(*truth));
+        truth->frame = frame;
+        cub_synth_frame_name(frame, s->d.fps, NULL, 0, &truth->t_s, &truth->ts);
+        if (s->nseg > 0) truth_of(s, pts, truth);
+    }
+    if (depth_mm) memcpy(depth_mm, s->depth, NPIX * sizeof(float));
+    if (owner) memcpy(owner, s->owner, NPIX);
+    return CUB_OK;
+}

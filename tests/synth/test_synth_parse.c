@@ -1,0 +1,191 @@
+/* The synth's text formats: truth.txt and sequence files. First what bad
+ * input gets (an error naming the file and the line), then round trips.
+ * No data needed. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "cub/synth.h"
+
+#define HEAD "# cub-synth truth v1: test\n"
+
+/* A frame line with every joint at (j, 2j, 1000 + j), visible. */
+static void frame_line(char *buf, size_t size, int frame, const char *vis_of_last)
+{
+    int n = snprintf(buf, size, "%d 1300000000.%06d %u", frame, frame * 33333,
+                     1000000u + 2000000u * (unsigned)frame);
+    for (int j = 0; j < CUB_TJ_COUNT; j++)
+        n += snprintf(buf + n, size - (size_t)n, " %d %d %d %s", j, 2 * j, 1000 + j,
+                      j + 1 == CUB_TJ_COUNT ? vis_of_last : "1");
+    snprintf(buf + n, size - (size_t)n, "\n");
+}
+
+static void expect_bad_truth(const char *text, int line, const char *needle)
+{
+    cub_synth_truth t;
+    cub_diag d;
+    char shown[600];
+    cub_err err = cub_synth_truth_parse(text, strlen(text), "bad.txt", &t, &d);
+    assert_int_equal(err, CUB_ERR_FORMAT);
+    cub_diag_str(&d, shown, sizeof(shown));
+    printf("synth truth: rejected as expected: %s\n", shown);
+    assert_string_equal(d.file, "bad.txt");
+    assert_int_equal(d.line, line);
+    assert_non_null(strstr(d.msg, needle));
+    assert_null(t.frames);
+}
+
+static void test_truth_rejects_malformed_files(void **state)
+{
+    (void)state;
+    char f0[4096], f1[4096], text[10000];
+    frame_line(f0, sizeof(f0), 0, "1");
+    frame_line(f1, sizeof(f1), 1, "1");
+    expect_bad_truth("", 1, "not a truth file");
+    expect_bad_truth("# something else\ngravity 0 -1000 0\n", 1, "not a truth file");
+    expect_bad_truth(HEAD, 1, "no 'gravity'");
+    expect_bad_truth(HEAD "gravity 0 -1000\n", 2, "gravity");
+    expect_bad_truth(HEAD "gravity 0 x 0\n", 2, "bad gravity");
+    expect_bad_truth(HEAD "gravity 0 0 0\n", 2, "zero");
+    expect_bad_truth(HEAD "gravity 0 -1000 0\n0 1.0 5 1 2\n", 3, "expected 83 fields");
+    snprintf(text, sizeof(text), HEAD "gravity 0 -1000 0\n%s%s", f1, f0);
+    expect_bad_truth(text, 4, "does not follow");
+    frame_line(f1, sizeof(f1), 1, "2");
+    snprintf(text, sizeof(text), HEAD "gravity 0 -1000 0\n%s# note\n%s", f0, f1);
+    expect_bad_truth(text, 5, "visibility of foot_r");
+    frame_line(f1, sizeof(f1), 1, "1");
+    char *nan = strstr(f1, " 1001 ");
+    memcpy(nan, " nan  ", 6);
+    snprintf(text, sizeof(text), HEAD "gravity 0 -1000 0\n%s%s", f0, f1);
+    expect_bad_truth(text, 4, "bad z of spine");
+    /* a truncated last line */
+    snprintf(text, sizeof(text), HEAD "gravity 0 -1000 0\n%s%.100s", f0, f0);
+    expect_bad_truth(text, 4, "expected 83 fields");
+    expect_bad_truth(HEAD "gravity 0 -1000 0\n-1 1.0 5 1\n", 3, "expected 83");
+    /* a NUL byte inside line 3 */
+    cub_synth_truth t;
+    cub_diag d;
+    static const char nul[] = HEAD "gravity 0 -1000 0\n0 1\0 2\n";
+    assert_int_equal(cub_synth_truth_parse(nul, sizeof(nul) - 1, "bad.txt", &t, &d),
+                     CUB_ERR_FORMAT);
+    assert_int_equal(d.line, 3);
+    assert_non_null(strstr(d.msg, "NUL"));
+}
+
+static void test_truth_reads_frames_and_comments(void **state)
+{
+    (void)state;
+    char f0[4096], f1[4096], text[10000];
+    frame_line(f0, sizeof(f0), 0, "1");
+    frame_line(f1, sizeof(f1), 3, "0");
+    snprintf(text, sizeof(text), HEAD "gravity 0 -996.2 87.2\n%s\n# comment\n%s", f0, f1);
+    cub_synth_truth t;
+    cub_diag d;
+    assert_int_equal(cub_synth_truth_parse(text, strlen(text), "ok.txt", &t, &d), CUB_OK);
+    assert_int_equal(t.frame_count, 2);
+    assert_true(t.gravity[2] > 87.1f && t.gravity[2] < 87.3f);
+    assert_int_equal(t.frames[1].frame, 3);
+    assert_int_equal(t.frames[1].ts, 7000000u);
+    assert_true(t.frames[1].t_s > 1300000000.09 && t.frames[1].t_s < 1300000000.11);
+    assert_true(t.frames[1].joint_mm[CUB_TJ_FOOT_R][2] == 1019.0f);
+    assert_int_equal(t.frames[1].visible[CUB_TJ_FOOT_R], 0);
+    assert_int_equal(t.frames[1].visible[CUB_TJ_HEAD], 1);
+    cub_synth_truth_free(&t);
+    cub_synth_truth_free(&t); /* twice is harmless */
+}
+
+static void expect_bad_sequence(const char *text, int line, const char *needle)
+{
+    cub_synth_segment *s;
+    int n;
+    cub_diag d;
+    char shown[600];
+    assert_int_equal(cub_synth_sequence_parse(text, strlen(text), "seq.txt", &s, &n, &d),
+                     CUB_ERR_FORMAT);
+    printf("synth sequence: rejected as expected: %s\n", cub_diag_str(&d, shown, sizeof(shown)));
+    assert_int_equal(d.line, line);
+    assert_non_null(strstr(d.msg, needle));
+    assert_null(s);
+    assert_int_equal(n, 0);
+}
+
+static void test_sequence_rejects_malformed_lines(void **state)
+{
+    (void)state;
+    expect_bad_sequence("", 0, "no segments");
+    expect_bad_sequence("# only a comment\n", 1, "no segments");
+    expect_bad_sequence("13_29 0\n", 1, "expected 'clip from_s to_s");
+    expect_bad_sequence("13_29 0 2\n13_29 x 2\n", 2, "bad from_s");
+    expect_bad_sequence("13_29 3 2\n", 1, "bad to_s");
+    expect_bad_sequence("13_29 0 2 mirrored\n", 1, "expected 'mirror'");
+    expect_bad_sequence("13_29 0 2 mirror extra\n", 1, "expected 'clip");
+    expect_bad_sequence("13_29 -1 2\n", 1, "bad from_s");
+    cub_synth_segment *seg;
+    int n;
+    cub_diag d;
+    static const char nul[] = "13_29 0 2\n\0x 0 2\n";
+    assert_int_equal(cub_synth_sequence_parse(nul, sizeof(nul) - 1, "seq.txt", &seg, &n, &d),
+                     CUB_ERR_FORMAT);
+    assert_int_equal(d.line, 2);
+    assert_non_null(strstr(d.msg, "NUL"));
+}
+
+static void test_sequence_reads_segments(void **state)
+{
+    (void)state;
+    const char *text = "# the song\n13_29 0 4.5\n\n141_16 1 end mirror\r\n  05_06\t2 3";
+    cub_synth_segment *s;
+    int n;
+    cub_diag d;
+    assert_int_equal(cub_synth_sequence_parse(text, strlen(text), "seq.txt", &s, &n, &d), CUB_OK);
+    assert_int_equal(n, 3);
+    assert_string_equal(s[0].clip, "13_29");
+    assert_true(s[0].to_s == 4.5 && !s[0].mirror);
+    assert_true(s[1].from_s == 1 && s[1].to_s == 0 && s[1].mirror);
+    assert_string_equal(s[2].clip, "05_06");
+    assert_true(s[2].from_s == 2 && s[2].to_s == 3);
+    free(s);
+}
+
+static void test_raw_mapping_follows_the_formula(void **state)
+{
+    (void)state;
+    assert_int_equal(cub_synth_mm_to_raw(499), CUB_TRACK_RAW_NO_READING);
+    assert_int_equal(cub_synth_mm_to_raw(4001), CUB_TRACK_RAW_NO_READING);
+    assert_int_equal(cub_synth_raw_to_mm(2047), 0.0);
+    /* the ends of the range map to the first and last levels inside it */
+    assert_true(cub_synth_raw_to_mm(cub_synth_mm_to_raw(500)) >= 500);
+    assert_true(cub_synth_raw_to_mm((uint16_t)(cub_synth_mm_to_raw(500) - 1)) < 500);
+    assert_true(cub_synth_raw_to_mm(cub_synth_mm_to_raw(4000)) <= 4000);
+    assert_true(cub_synth_raw_to_mm((uint16_t)(cub_synth_mm_to_raw(4000) + 1)) > 4000);
+    for (double mm = 501; mm <= 3994; mm += 7.3) {
+        uint16_t r = cub_synth_mm_to_raw(mm);
+        assert_true(r < 2047);
+        double back = cub_synth_raw_to_mm(r);
+        /* within half a quantisation step of the true depth */
+        double step =
+            cub_synth_raw_to_mm((uint16_t)(r + 1)) - cub_synth_raw_to_mm((uint16_t)(r - 1));
+        assert_true(fabs(back - mm) <= step / 4 * 1.1);
+        /* the firmware's table agrees with the formula to a millimetre */
+        assert_true(abs((int)cub_track_raw_to_mm_int(r) - (int)lround(back)) <= 1);
+    }
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_truth_rejects_malformed_files),
+        cmocka_unit_test(test_truth_reads_frames_and_comments),
+        cmocka_unit_test(test_sequence_rejects_malformed_lines),
+        cmocka_unit_test(test_sequence_reads_segments),
+        cmocka_unit_test(test_raw_mapping_follows_the_formula),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
