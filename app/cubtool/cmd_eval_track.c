@@ -174,16 +174,18 @@ static void print_frame(const char *name, const cub_track_skeleton *s)
 int cub_cmd_eval_track(int argc, char **argv)
 {
     const char *dir = NULL, *truth = NULL;
-    int print = 0, no_gravity = 0;
+    int print = 0, no_gravity = 0, per_frame = 0;
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--help")) {
-            printf("usage: cubtool eval-track DUMP_DIR [TRUTH] [--print] [--no-gravity]\n"
+            printf("usage: cubtool eval-track DUMP_DIR [TRUTH] [--print] [--per-frame] [--no-gravity]\n"
                    "Runs the tracker over a fakenect dump; with TRUTH (default DUMP_DIR/truth.txt)\n"
                    "prints per-joint mean error, share within 10 cm, status counts, fps. The\n"
-                   "truth's gravity is given to the tracker unless --no-gravity.\n");
+                   "truth's gravity is given to the tracker unless --no-gravity. --per-frame: one\n"
+                   "line per frame (status, mean error, the joints off by more than 10 cm).\n");
             return 0;
         }
         if (!strcmp(argv[i], "--print")) print = 1;
+        else if (!strcmp(argv[i], "--per-frame")) per_frame = 1;
         else if (!strcmp(argv[i], "--no-gravity")) no_gravity = 1;
         else if (!dir) dir = argv[i];
         else if (!truth) truth = argv[i];
@@ -220,6 +222,9 @@ int cub_cmd_eval_track(int argc, char **argv)
         if (s.status >= 0 && s.status < 5) status[s.status]++;
         if (print) print_frame(d.name[f], &s);
         if (!tr || !tr[f].have) continue;
+        double f_sum = 0;
+        int f_n = 0;
+        char f_off[512] = "";
         for (int j = 0; j < CUB_TJ_COUNT; j++) {
             if (!tr[f].vis[j]) continue;
             double dx = s.joint_mm[j].x / 65536.0 - tr[f].p[j][0], dy = s.joint_mm[j].y / 65536.0 - tr[f].p[j][1],
@@ -227,7 +232,12 @@ int cub_cmd_eval_track(int argc, char **argv)
             double e = dx * dx + dy * dy + dz * dz;
             e = e > 0 ? sqrt(e) : 0;
             err_sum[j] += e, count[j]++, within[j] += e <= 100.0;
+            f_sum += e, f_n++;
+            if (e > 100.0 && strlen(f_off) < sizeof f_off - 32)
+                snprintf(f_off + strlen(f_off), sizeof f_off - strlen(f_off), " %s=%.0f", cub_track_joint_name(j), e);
         }
+        if (per_frame)
+            printf("frame %d status=%d mean=%.0fmm off:%s\n", f, (int)s.status, f_n ? f_sum / f_n : 0.0, f_off);
     }
     int all_n = 0, all_in = 0;
     if (tr) {

@@ -13,14 +13,20 @@
  *      in never takes over; small blobs in front of the player and inside
  *      its outline are merged back (hands before the chest);
  *   4. root = the silhouette's thickest cell (the torso); Dijkstra over the
- *      player's cells with 3D step lengths; the extremities are the
- *      farthest points, found one by one (head, hands, feet);
+ *      player's cells with 3D step lengths, depth jumps between neighbours
+ *      costing extra (a hand before the chest stays at its arm's end); the
+ *      extremities are the farthest points, found one by one;
  *   5. the head is the central upper extremity (or, with hands up beside
  *      it, the top of the body's column above the root); stature from the
  *      floor or from where the silhouette widens below the head (the neck
  *      base, which also places the shoulder centre); the torso axis runs
- *      from the shoulder centre (on the head's path) to the root; elbows and
- *      knees are the path cells that fit both bone lengths; limbs without an
+ *      from the shoulder centre (on the head's path) to the root; a limb is
+ *      a leg when its path joins the torso below the root and is long (a
+ *      kick to the side stays a leg), or its tip is low; elbows and knees
+ *      are the path cells that fit both bone lengths, scaled to the limb's
+ *      stretched length learnt per player (bodies differ from the
+ *      proportions, and lengths that do not add up let the fit drift on a
+ *      straight limb); limbs without an
  *      extremity keep last frame's pose relative to the body (confidence 0);
  *   6. smoothing that averages jitter but passes real motion through.
  *
@@ -35,12 +41,15 @@
  * body scaled to the measured stature, and the player selection, floor and
  * temporal parts are ours. Everything is integer: bit-identical everywhere.
  *
- * Measured (cubtool eval-track, gravity from the truth; proportions tuned on
- * CMU 13_29 only): 13_29 88 % of joints within 10 cm; not tuned on: 14_14
- * 87 %, 141_16 99 %, 05_06 94 %, animdraw jumping_jacks 95 %; real Skeltrack
- * frames: head, shoulders and hands 39 of 39 within 10 cm, elbows 2 of 16.
- * About 1.4 ms per frame (child at 2.2 m) and 2.6 ms (adult at 1.3 m) on
- * this machine, 1.2 MB of state.
+ * Measured (cubtool eval-track on cubtool synth-depth dumps, 7.5 fps,
+ * gravity from the truth; tuned on CMU 13_29 and the animdraw clips only):
+ * 13_29 86 %, jumping_jacks 98 %; not tuned on: 14_14 86 %, 141_16 99 %,
+ * 141_16 with a room and a second person 99.7 %, 02_01 (walk) 89.5 %;
+ * clips whose child travels out of view or beyond 3.5 m score far lower
+ * (05_06 59 %, 131_03 64 %). Real Skeltrack frames: head, shoulders and
+ * hands 39 of 39 within 10 cm, elbows 4 of 16. About 1 ms per frame
+ * (child at 2.2 m) and 2.7 ms (adult at 1.3 m) on this machine, 1.2 MB
+ * of state.
  *
  * Defaults: min_mm 500, max_mm 4500 (readings outside are ignored). Status:
  * TOO_CLOSE when the player's centre is nearer than 1000 mm, TOO_FAR beyond

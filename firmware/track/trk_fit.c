@@ -169,27 +169,52 @@ static int32_t pick_head(const cub_tracker *t, int32_t root, const int32_t *ext,
     return best;
 }
 
-static void pick_limbs(const cub_tracker *t, const int32_t *ext, int32_t n, int32_t stature, trk_p3 sc, trk_p3 hc,
-                       cub_vec3 axis, cub_vec3 lat, limb_pick *lp)
+/* Where a limb joins the torso: the cell on the tip's path to the root
+ * that is base_mm of surface from the root. An arm's path enters through
+ * the shoulder, a leg's through the hip, whatever the limb's pose (a leg
+ * kicked up to the side is still a leg). */
+static int32_t path_base(const cub_tracker *t, int32_t tip, int32_t base_mm)
+{
+    int32_t i = tip;
+    for (int32_t steps = 0; t->parent0[i] >= 0 && t->dist0[i] > base_mm && steps < 800; steps++) i = t->parent0[i];
+    return i;
+}
+
+static void pick_limbs(const cub_tracker *t, int32_t root, const int32_t *ext, int32_t n, int32_t stature,
+                       trk_p3 sc, trk_p3 hc, cub_vec3 axis, cub_vec3 lat, limb_pick *lp)
 {
     int32_t hands[TRK_MAX_EXTREMA], feet[TRK_MAX_EXTREMA], nh = 0, nf = 0;
+    int32_t hb[TRK_MAX_EXTREMA], fb[TRK_MAX_EXTREMA];
+    trk_p3 r = cell_p(t, root);
     for (int32_t k = 0; k < n; k++) {
         if (k == lp->head) continue;
         trk_p3 p = cell_p(t, ext[k]);
+        int32_t b = path_base(t, ext[k], pm(stature, 200));
+        trk_p3 bp = cell_p(t, b);
+        /* the attachment above or below the root; the tip's height decides
+         * only when the attachment is level with the root */
+        int32_t bh = trk_along(bp.x - r.x, bp.y - r.y, bp.z - r.z, axis);
         int32_t dh = trk_along(p.x - hc.x, p.y - hc.y, p.z - hc.z, axis);
-        if (dh < -pm(stature, 250)) feet[nf++] = ext[k];
-        else hands[nh++] = ext[k];
+        /* a hand hanging against the hip joins the torso low too, by a
+         * short cut: a leg raised high is also far along the surface */
+        bool leg = dh < -pm(stature, 250) || (bh < -pm(stature, 40) && t->dist0[ext[k]] > pm(stature, 550));
+        if (leg) fb[nf] = b, feet[nf++] = ext[k];
+        else hb[nh] = b, hands[nh++] = ext[k];
     }
-    int32_t *lists[2] = {hands, feet}, counts[2] = {nh, nf}, *dst[2] = {lp->hand, lp->foot};
+    int32_t *lists[2] = {hands, feet}, *bases[2] = {hb, fb}, counts[2] = {nh, nf}, *dst[2] = {lp->hand, lp->foot};
     trk_p3 centre[2] = {sc, hc};
     for (int g = 0; g < 2; g++) {
         dst[g][0] = dst[g][1] = -1;
-        /* the two farthest along the surface (extrema come farthest first) */
+        /* the two farthest along the surface (extrema come farthest first);
+         * the side from where the limb joins the torso (a hand crossing
+         * the body keeps its name), then from the tip */
         int32_t m = counts[g] < 2 ? counts[g] : 2;
         int32_t s[2] = {0, 0};
         for (int32_t k = 0; k < m; k++) {
-            trk_p3 p = cell_p(t, lists[g][k]);
-            s[k] = TRK_LEFT_SIGN * trk_along(p.x - centre[g].x, p.y - centre[g].y, p.z - centre[g].z, lat);
+            trk_p3 p = cell_p(t, lists[g][k]), b = cell_p(t, bases[g][k]);
+            trk_p3 c = centre[g];
+            s[k] = TRK_LEFT_SIGN * (0 * trk_along(b.x - c.x, b.y - c.y, b.z - c.z, lat) +
+                                    trk_along(p.x - c.x, p.y - c.y, p.z - c.z, lat));
         }
         if (m == 2) {
             int left = s[0] > s[1] ? 0 : 1;
@@ -238,27 +263,48 @@ static trk_p3 hand_centre(const cub_tracker *t, int32_t tip, int32_t reach_mm)
     return (trk_p3){(int32_t)(sx / n), (int32_t)(sy / n), (int32_t)(sz / n)};
 }
 
-static void fit_arm(const cub_tracker *t, cub_track_skeleton *s, int side, int32_t tip, int32_t st)
+/* The limb's stretched length, learnt: it rises quickly to the longest
+ * span seen (a straight limb) and sinks slowly, within 25 % of the
+ * proportions. Bone lengths scaled to it put the middle joint right on a
+ * straight limb, where lengths that do not add up make the fit drift. */
+static int32_t learn_reach(cub_tracker *t, int k, int32_t span_mm, int32_t nominal_mm)
+{
+    int32_t cur = t->reach_mm[k] ? t->reach_mm[k] : nominal_mm * 9 / 10;
+    if (span_mm > cur) cur += (span_mm - cur) / 3;
+    else cur -= cur / 200;
+    if (cur > nominal_mm * 5 / 4) cur = nominal_mm * 5 / 4;
+    if (cur < nominal_mm * 3 / 4) cur = nominal_mm * 3 / 4;
+    t->reach_mm[k] = cur;
+    return cur;
+}
+
+static void fit_arm(cub_tracker *t, cub_track_skeleton *s, int side, int32_t tip, int32_t st)
 {
     int js = side ? CUB_TJ_SHOULDER_R : CUB_TJ_SHOULDER_L;
     trk_p3 sh = got(s, js);
     int32_t r = radius(st, R_LIMB);
     trk_p3 hand = inside(hand_centre(t, tip, pm(st, P_HAND_REACH)), r);
     trk_p3 wrist = inside(cell_p(t, path_at(t, tip, pm(st, P_WRIST_IN))), r);
-    trk_p3 elbow = inside(cell_p(t, path_middle(t, tip, sh, pm(st, P_UPPER_ARM), wrist, pm(st, P_FOREARM))), r);
+    int32_t lu = pm(st, P_UPPER_ARM), lf = pm(st, P_FOREARM);
+    int32_t reach = learn_reach(t, side, dist3(sh, wrist), lu + lf);
+    lu = reach * lu / (lu + lf), lf = reach - lu;
+    trk_p3 elbow = inside(cell_p(t, path_middle(t, tip, sh, lu, wrist, lf)), r);
     put(s, js + 1, elbow, CUB_Q16_ONE * 3 / 4);
     put(s, js + 2, wrist, CUB_Q16_ONE);
     put(s, js + 3, hand, CUB_Q16_ONE);
 }
 
-static void fit_leg(const cub_tracker *t, cub_track_skeleton *s, int side, int32_t tip, int32_t st)
+static void fit_leg(cub_tracker *t, cub_track_skeleton *s, int side, int32_t tip, int32_t st)
 {
     int jh = side ? CUB_TJ_HIP_R : CUB_TJ_HIP_L;
     trk_p3 hip = got(s, jh);
     int32_t r = radius(st, R_LIMB);
     trk_p3 foot = inside(cell_p(t, path_at(t, tip, pm(st, P_FOOT_UP))), r);
     trk_p3 ankle = inside(cell_p(t, path_at(t, tip, pm(st, P_ANKLE_UP))), r);
-    trk_p3 knee = inside(cell_p(t, path_middle(t, tip, hip, pm(st, P_THIGH), ankle, pm(st, P_SHIN))), r);
+    int32_t lt = pm(st, P_THIGH), ls = pm(st, P_SHIN);
+    int32_t reach = learn_reach(t, 2 + side, dist3(hip, ankle), lt + ls);
+    lt = reach * lt / (lt + ls), ls = reach - lt;
+    trk_p3 knee = inside(cell_p(t, path_middle(t, tip, hip, lt, ankle, ls)), r);
     put(s, jh + 1, knee, CUB_Q16_ONE * 3 / 4);
     put(s, jh + 2, ankle, CUB_Q16_ONE);
     put(s, jh + 3, foot, CUB_Q16_ONE);
@@ -372,7 +418,7 @@ void trk_fit_skeleton(cub_tracker *t, int32_t root, int32_t *ext, int32_t next, 
     put(s, CUB_TJ_HIP_L, add_s(hp, lft, pm(st, P_HIP_HALF)), CUB_Q16_ONE / 2);
     put(s, CUB_TJ_HIP_R, add_s(hp, lft, -pm(st, P_HIP_HALF)), CUB_Q16_ONE / 2);
 
-    pick_limbs(t, ext, next, st, sc, hc, axis, lat, &lp);
+    pick_limbs(t, root, ext, next, st, sc, hc, axis, lat, &lp);
     for (int side = 0; side < 2; side++) {
         int js = side ? CUB_TJ_SHOULDER_R : CUB_TJ_SHOULDER_L, jh = side ? CUB_TJ_HIP_R : CUB_TJ_HIP_L;
         if (lp.hand[side] >= 0) fit_arm(t, s, side, lp.hand[side], st);

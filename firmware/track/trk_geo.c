@@ -50,6 +50,9 @@ static int32_t approx_len(int32_t dx, int32_t dy, int32_t dz)
     return a + ((11 * b) >> 5) + (c >> 2);
 }
 
+#define TRK_JUMP_MM 40
+#define TRK_JUMP_COST 4
+
 static void heap_push(cub_tracker *t, int32_t *n, uint32_t key, int32_t cell)
 {
     if (*n >= TRK_HEAP_CAP) return;
@@ -96,7 +99,12 @@ static void run_heap(cub_tracker *t, int32_t *dist, int32_t *parent, int32_t n)
             if (nx < 0 || ny < 0 || nx >= TRK_GW || ny >= TRK_GH) continue;
             int32_t j = ny * TRK_GW + nx;
             if (!t->mask[j]) continue;
+            int32_t dz = trk_abs(t->z[j] - t->z[i]);
             int32_t nd = d + approx_len(t->x[j] - t->x[i], t->y[j] - t->y[i], t->z[j] - t->z[i]);
+            /* a depth jump between neighbours is mostly an edge (a hand or
+             * forearm lying before the chest), not surface: crossing it
+             * costs extra, so the hand stays far along its own arm */
+            if (dz > TRK_JUMP_MM) nd += TRK_JUMP_COST * (dz - TRK_JUMP_MM);
             if (nd >= dist[j]) continue;
             dist[j] = nd;
             if (parent) parent[j] = i;

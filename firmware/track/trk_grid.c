@@ -239,7 +239,10 @@ int32_t trk_pick_player(cub_tracker *t)
     memset(t->mask, 0, sizeof t->mask);
     if (best < 0) return -1;
     bool same = t->tracked && best_score < 1000000;
-    if (!same) t->player_id = ++t->next_id;
+    if (!same) {
+        t->player_id = ++t->next_id;
+        memset(t->reach_mm, 0, sizeof t->reach_mm); /* another body */
+    }
     t->tracked = true;
     t->centre = comp_centre(&t->comps[best]);
     for (int32_t i = 0; i < TRK_CELLS; i++)

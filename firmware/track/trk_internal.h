@@ -61,6 +61,10 @@ struct cub_tracker {
     int32_t stature_mm;
     int32_t neck_drop_mm; /* head top to the neck base (smoothed), 0 unknown */
     int32_t head_cell, stature_seen_mm; /* this frame's, for tools */
+    /* root joint to end joint when stretched (shoulder-wrist, hip-ankle;
+     * left arm, right arm, left leg, right leg), 0 unknown: learnt per
+     * player, as bodies differ from the proportions */
+    int32_t reach_mm[4];
     cub_track_skeleton prev;
     bool have_prev;
 };
