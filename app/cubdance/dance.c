@@ -73,8 +73,42 @@ static cub_err plan_correction(cub_dance *d, const cub_coach_action *a, cub_brid
     return CUB_OK;
 }
 
+/* Tell the judge what the child should do now: a repetition of a move
+ * (danced, resumed or demonstrated) opens a window as long as the clip
+ * plays at its speed, plus a beat for a late child; anything else the
+ * coach asks for (a correction, the idle clip) closes what was open. */
+static void judge_clip(cub_dance *d, const cub_coach_action *a, int64_t t_us)
+{
+    if (!d->watch) return;
+    const int m = a->move;
+    const int is_rep = enters_at_start(a->reason) && m >= 0 && m < d->song.move_count &&
+                       d->moves[m].clip == a->clip;
+    if (!is_rep) {
+        cub_watch_cancel_reps(d->watch);
+        return;
+    }
+    const cub_song_move *sm = &d->song.moves[m];
+    const cub_clip *clip = &d->cl.lib.clips[a->clip].clip;
+    int64_t speed = a->speed_q16 > 0 ? a->speed_q16 : CUB_Q16_ONE;
+    int64_t play_us = (int64_t)(clip->frame_count - 1) * clip->frame_ns / 1000 * CUB_Q16_ONE / speed;
+    cub_judge_rep r = {.move = m, .rep = a->rep, .key_count = sm->key_count,
+                       .start_us = t_us, .end_us = t_us + play_us,
+                       .beat_us = d->song.bpm > 0 ? 60000000 / d->song.bpm : 0};
+    for (int k = 0; k < sm->key_count && k < CUB_JUDGE_MAX_KEYS; k++)
+        r.keys[k] = (cub_judge_key){.feature = sm->keys[k].feature, .set = sm->keys[k].set};
+    cub_err e = cub_watch_begin_rep(d->watch, &r);
+    if (e == CUB_ERR_FULL) { /* frames stopped coming: nothing closed the old ones */
+        cub_watch_cancel_reps(d->watch);
+        e = cub_watch_begin_rep(d->watch, &r);
+    }
+    if (e)
+        cub_log_event(d->log, t_us, "judge", "error", "what=begin_rep move=%d rep=%d error=\"%s\"",
+                      m, a->rep, cub_err_str(e));
+}
+
 static void request_clip(cub_dance *d, const cub_coach_action *a, int64_t t_us)
 {
+    judge_clip(d, a, t_us);
     /* A correction may enter its clip at any frame of its front half that is
      * close enough (d < 0.4), not only at a tagged one: the quickest way in. */
     int front_half = d->cl.lib.clips[a->clip].clip.frame_count / 2;
@@ -144,23 +178,11 @@ static void execute_actions(cub_dance *d, int64_t t_us)
 
 /* ---- events ------------------------------------------------------------- */
 
-static void log_judge(cub_dance *d, const cub_event *ev)
-{
-    if (ev->type == CUB_EV_VERDICT)
-        cub_log_event(d->log, ev->t_us, "judge", "verdict", "move=%d result=%s", ev->a,
-                      ev->b ? "right" : "wrong");
-    else if (ev->type == CUB_EV_PLAYER)
-        cub_log_event(d->log, ev->t_us, "judge", "player", "present=%d", ev->a);
-    else if (ev->type == CUB_EV_CLAP)
-        cub_log_event(d->log, ev->t_us, "judge", "clap", NULL);
-}
-
 void cub_dance_handle(cub_dance *d, cub_loop *loop, const cub_event *ev)
 {
     cub_event e = *ev;
     /* The scripted judge speaks of "the move being taught now". */
     if (e.type == CUB_EV_VERDICT && e.a < 0) e.a = d->coach.move < 0 ? 0 : d->coach.move;
-    log_judge(d, &e);
     if (cub_coach_handle(&d->coach, &e, music_ms(d)) == CUB_OK) execute_actions(d, e.t_us);
 }
 

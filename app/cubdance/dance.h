@@ -22,6 +22,7 @@
 #include "cub/music.h"
 #include "cub/song.h"
 #include "options.h"
+#include "watch.h"
 
 typedef struct cub_dance {
     cub_coachlib cl;
@@ -45,6 +46,7 @@ typedef struct cub_dance {
     cub_log *log;
     int64_t last_tick_us;
     int played_clip, requested_clip; /* a correction played in place of another */
+    cub_watch *watch;                /* the judge to tell what is taught, or NULL */
     cub_pose pose;
     cub_vec3 world_mm[CUB_MOTION_MAX_JOINTS];
 } cub_dance;

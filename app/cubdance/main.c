@@ -94,12 +94,21 @@ static int open_extras(const cub_app_options *o, cub_board *board, cub_loop *loo
         fprintf(stderr, "cubdance: %s\n", err);
         return -1;
     }
+    if (strcmp(cub_board_depth_source(board), "off") != 0) {
+        s->watch = calloc(1, sizeof *s->watch);
+        cub_err e = s->watch ? cub_watch_open(s->watch, &loop->log) : CUB_ERR_NOMEM;
+        if (e) {
+            fprintf(stderr, "cubdance: the tracker would not start (%s)\n", cub_err_str(e));
+            return -1;
+        }
+    }
     if (!o->song_path) return 0;
     s->dance = calloc(1, sizeof *s->dance);
     if (!s->dance || cub_dance_open(s->dance, o, board, &loop->log, t0, err, sizeof err)) {
         fprintf(stderr, "cubdance: %s\n", s->dance ? err : "out of memory");
         return -1;
     }
+    s->dance->watch = s->watch;
     return 0;
 }
 
@@ -161,6 +170,8 @@ static int run(const cub_app_options *o, cub_board *board, FILE *log, const cub_
 done:
     if (s.dance) cub_dance_close(s.dance);
     free(s.dance);
+    if (s.watch) cub_watch_close(s.watch);
+    free(s.watch);
     cub_timeline_free(s.timeline);
     if (s.render) cub_render_destroy(s.render);
     free(s.depth_copy);

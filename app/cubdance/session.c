@@ -65,6 +65,7 @@ static void poll_depth(cub_session *s, cub_loop *loop, int64_t now_us)
         cub_event ev = {.t_us = f.t_us, .type = CUB_EV_DEPTH_FRAME, .a = (int32_t)f.seq};
         cub_loop_post(loop, &ev);
         s->depth_state = CUB_OK;
+        if (s->watch) cub_watch_frame(s->watch, loop, f.t_us, f.raw, f.accel);
     } else if (err != CUB_ERR_EMPTY && err != s->depth_state) {
         /* The end of a replay, or a live camera failing: once per change. */
         s->depth_state = err;
@@ -73,7 +74,24 @@ static void poll_depth(cub_session *s, cub_loop *loop, int64_t now_us)
         else
             cub_log_event(&loop->log, now_us, "depth", "error", "frames=%u error=\"%s\"",
                           s->depth_frames, cub_err_str(err));
+        if (s->watch) cub_watch_source_gone(s->watch, loop, now_us, err == CUB_ERR_END ? "end" : "error");
     }
+}
+
+/* The scripted judge's events (--timeline), logged as the real judge logs
+ * its own: a verdict speaks of the move being taught now. */
+static void post_scripted(cub_session *s, cub_loop *loop, cub_event *ev)
+{
+    if (ev->type == CUB_EV_VERDICT && ev->a < 0)
+        ev->a = s->dance && s->dance->coach.move >= 0 ? s->dance->coach.move : 0;
+    if (ev->type == CUB_EV_VERDICT)
+        cub_log_event(&loop->log, ev->t_us, "judge", "verdict", "move=%d result=%s", ev->a,
+                      ev->b ? "right" : "wrong");
+    else if (ev->type == CUB_EV_PLAYER)
+        cub_log_event(&loop->log, ev->t_us, "judge", "player", "present=%d", ev->a);
+    else if (ev->type == CUB_EV_CLAP)
+        cub_log_event(&loop->log, ev->t_us, "judge", "clap", NULL);
+    cub_loop_post(loop, ev);
 }
 
 static void hook_poll(void *u, cub_loop *loop, int64_t now_us)
@@ -81,7 +99,7 @@ static void hook_poll(void *u, cub_loop *loop, int64_t now_us)
     cub_session *s = u;
     cub_board_poll_buttons(s->board, loop, now_us);
     cub_event ev;
-    while (cub_timeline_next(s->timeline, now_us, &ev)) cub_loop_post(loop, &ev);
+    while (cub_timeline_next(s->timeline, now_us, &ev)) post_scripted(s, loop, &ev);
     if (s->dance) cub_dance_poll(s->dance, loop, now_us);
     if (strcmp(cub_board_depth_source(s->board), "off") != 0) poll_depth(s, loop, now_us);
 }
@@ -164,6 +182,7 @@ static void hook_tick(void *u, cub_loop *loop, int64_t t_us)
         cub_loop_stop(loop);
         return;
     }
+    if (s->watch) cub_watch_tick(s->watch, loop, t_us);
     if (s->dance) cub_dance_tick(s->dance, loop, t_us);
     if (!s->render) return;
     cub_err err = coach_world(s, t_us);

@@ -13,6 +13,7 @@
 #include "dance.h"
 #include "options.h"
 #include "timeline.h"
+#include "watch.h"
 
 typedef enum cub_app_state { CUB_APP_WAITING = 0, CUB_APP_PLAYING } cub_app_state;
 
@@ -30,6 +31,7 @@ typedef struct cub_session {
     const cub_io_motion *clip; /* without a song: the clip played on START */
     cub_dance *dance;          /* with a song: the coach leads it (else NULL) */
     cub_timeline *timeline;    /* scripted judge events, or NULL */
+    cub_watch *watch;          /* the tracker and judge on the depth frames, or NULL */
     const char *clip_name;   /* its file name, for the log */
     cub_loop *loop;
     cub_app_state state;
