@@ -12,7 +12,13 @@
  * next recorded frame time (it ignores the timeout), returns < 0 at the end
  * of the dump, and calls exit() on a missing FAKENECT_PATH or a missing
  * file named in INDEX.txt. We check the dump first so bad input gives an
- * error instead of a dead program. */
+ * error instead of a dead program.
+ *
+ * Under the virtual clock a replay is paced by its recorded timestamps
+ * (60 MHz ticks) on the loop's own clock: a frame is handed out once the
+ * loop reaches its recorded time after the first, with that time as its
+ * arrival. A recording then plays at its own rate whatever the machine's
+ * speed, and a gap in it (a camera that stopped) is a gap in the loop. */
 #define _GNU_SOURCE /* RTLD_DEFAULT */
 
 #include "clock.h"
@@ -42,7 +48,18 @@ struct cub_depth_freenect {
     int ended;
     int tilt_ok;
     int replay;          /* fakenect is serving a recorded dump */
+    int paced;           /* a replay under the virtual clock: see above */
+    int have_first;
+    uint32_t first_timestamp;
+    int64_t first_t_us;
 };
+
+/* When a replayed frame is due on the virtual clock (60 MHz ticks; the
+ * unsigned difference survives a wrap of the 32-bit counter). */
+static int64_t due_us(const cub_depth_freenect *s, uint32_t timestamp)
+{
+    return s->first_t_us + (int64_t)(uint32_t)(timestamp - s->first_timestamp) / 60;
+}
 
 static void on_depth(freenect_device *dev, void *depth, uint32_t timestamp)
 {
@@ -52,6 +69,12 @@ static void on_depth(freenect_device *dev, void *depth, uint32_t timestamp)
     s->back_seq = s->arrived++;
     s->back_timestamp = timestamp;
     s->back_t_us = cub_board_clock_now_us(s->clock);
+    if (s->paced && !s->have_first) {
+        s->have_first = 1;
+        s->first_timestamp = timestamp;
+        s->first_t_us = s->back_t_us;
+    }
+    if (s->paced) s->back_t_us = due_us(s, timestamp);
     s->fresh = 1;
 }
 
@@ -184,6 +207,7 @@ cub_err cub_depth_freenect_open(const cub_board_clock *clock, cub_depth_freenect
     s->held = -1;
     s->tilt_ok = 1;
     s->replay = fakenect_loaded();
+    s->paced = s->replay && clock->is_virtual;
     cub_err e = start(s, err, err_size);
     if (e) {
         cub_depth_freenect_close(s);
@@ -211,7 +235,11 @@ static void read_accel(cub_depth_freenect *s, int16_t accel[3])
 
 cub_err cub_depth_freenect_poll(cub_depth_freenect *s, cub_depth_frame *out)
 {
-    if (!s->ended) {
+    /* Paced: a frame waiting for its time is neither handed out nor
+     * overwritten by the next one. */
+    if (s->paced && s->fresh && cub_board_clock_now_us(s->clock) < s->back_t_us)
+        return CUB_ERR_EMPTY;
+    if (!s->ended && !(s->paced && s->fresh)) {
         struct timeval no_wait = {0, 0};
         if (freenect_process_events_timeout(s->ctx, &no_wait) < 0) {
             /* Only a replay ends: on a live Kinect an error (a USB hiccup,
@@ -224,6 +252,9 @@ cub_err cub_depth_freenect_poll(cub_depth_freenect *s, cub_depth_frame *out)
     }
     if (!s->fresh) {
         return s->ended ? CUB_ERR_END : CUB_ERR_EMPTY;
+    }
+    if (s->paced && cub_board_clock_now_us(s->clock) < s->back_t_us) {
+        return CUB_ERR_EMPTY;
     }
     s->held = s->back;
     s->fresh = 0;

@@ -253,6 +253,56 @@ static void test_dance_follows_a_music_clock_5_percent_off(void **s)
     assert_true(runs >= 2);
 }
 
+/* The Kinect stops mid-song (make_gap_dump.sh: no frames from 7 s to 10 s
+ * of the replay) and comes back: the coach pauses the song within a
+ * second and a half of the last frame, with "can't see you" and the music
+ * held; the first frame back resumes the music where it stood and the
+ * dance. */
+static void test_camera_loss_pauses_the_song_until_frames_return(void **s)
+{
+    char path[1024], buf[64];
+    snprintf(path, sizeof path, "%s/camera.log", out_dir);
+    FILE *f = fopen(path, "r");
+    if (!f) {
+        print_message("SKIP: no camera run (the Skeltrack dump is absent)\n");
+        skip();
+    }
+    fclose(f);
+    logread log;
+    load("camera", &log);
+    int last = -1; /* the last frame before the gap */
+    for (int i = logread_find(&log, 0, "depth", "frame"); i >= 0 && log.lines[i].t_s < 7.0;
+         i = logread_find(&log, i + 1, "depth", "frame"))
+        last = i;
+    assert_true(last >= 0);
+    int lost = logread_find(&log, last, "watch", "camera");
+    assert_true(lost >= 0);
+    assert_string_equal(field(&log, lost, "state", buf, sizeof buf), "lost");
+    const double t_lost = log.lines[lost].t_s, t_last = log.lines[last].t_s;
+    assert_true(t_lost - t_last <= 1.5);
+    int paused = next_state(&log, lost, "paused");
+    assert_true(paused >= 0 && log.lines[paused].t_s == t_lost);
+    int hint = logread_find(&log, paused, "coach", "hint");
+    assert_true(hint >= 0);
+    assert_string_equal(field(&log, hint, "show", buf, sizeof buf), "cant_see");
+    int hold = logread_find(&log, paused, "music", "pause");
+    assert_true(hold >= 0);
+    int back = logread_find(&log, lost + 1, "watch", "camera");
+    assert_true(back >= 0);
+    assert_string_equal(field(&log, back, "state", buf, sizeof buf), "back");
+    assert_true(log.lines[back].t_s >= 10.0 && log.lines[back].t_s < 10.1);
+    int resumed = next_state(&log, back, "dance");
+    assert_true(resumed >= 0 && log.lines[resumed].t_s == log.lines[back].t_s);
+    int go_on = logread_find(&log, back, "music", "resume");
+    assert_true(go_on >= 0);
+    assert_true(number(&log, go_on, "music_ms") == number(&log, hold, "music_ms"));
+    printf("scenario: camera gone after %.3f s: paused at %.3f s (%.0f ms after the last "
+           "frame), music held at %.0f ms; frames back at %.3f s: dance resumed at once\n",
+           t_last, t_lost, (t_lost - t_last) * 1000, number(&log, hold, "music_ms"),
+           log.lines[back].t_s);
+    logread_free(&log);
+}
+
 static void test_demo_song_log_is_the_committed_one(void **s)
 {
     char path[1024];
@@ -297,6 +347,7 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_stop_returns_to_idle_from_every_state),
         cmocka_unit_test(test_start_and_clap_wake_the_coach),
         cmocka_unit_test(test_dance_follows_a_music_clock_5_percent_off),
+        cmocka_unit_test(test_camera_loss_pauses_the_song_until_frames_return),
         cmocka_unit_test(test_demo_song_log_is_the_committed_one),
     };
     return cmocka_run_group_tests_name("scenarios", tests, NULL, NULL);
