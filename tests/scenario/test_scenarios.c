@@ -303,6 +303,42 @@ static void test_camera_loss_pauses_the_song_until_frames_return(void **s)
     logread_free(&log);
 }
 
+/* Garbage frames (make_garbage_dump.sh: 2-3 s no reading, 3-4 s zeros,
+ * 4-5 s random values) in a replay: the box runs on, the tracker says no
+ * player from the first garbage frame and finds the player again with the
+ * first good frame. */
+static void test_garbage_frames_give_no_player_and_recover(void **s)
+{
+    char path[1024], buf[64], before[64] = "";
+    snprintf(path, sizeof path, "%s/garbage.log", out_dir);
+    FILE *f = fopen(path, "r");
+    if (!f) {
+        print_message("SKIP: no garbage run (the Skeltrack dump is absent)\n");
+        skip();
+    }
+    fclose(f);
+    logread log;
+    load("garbage", &log);
+    int none = -1, again = -1;
+    for (int i = logread_find(&log, 0, "track", "status"); i >= 0;
+         i = logread_find(&log, i + 1, "track", "status")) {
+        field(&log, i, "to", buf, sizeof buf);
+        if (log.lines[i].t_s < 2.0) snprintf(before, sizeof before, "%s", buf);
+        if (none < 0 && !strcmp(buf, "no_player")) none = i;
+        if (none >= 0 && again < 0 && strcmp(buf, "no_player")) again = i;
+    }
+    assert_true(before[0] && strcmp(before, "no_player"));
+    assert_true(none >= 0 && again >= 0);
+    assert_true(log.lines[none].t_s >= 2.0 && log.lines[none].t_s < 2.04);
+    assert_true(log.lines[again].t_s >= 5.0 && log.lines[again].t_s < 5.04);
+    assert_string_equal(field(&log, again, "to", buf, sizeof buf), before);
+    assert_true(logread_find(&log, again, "app", "end") >= 0); /* ran to its end */
+    printf("scenario: garbage frames 2-5 s: no player from %.3f s, the player (%s) again at "
+           "%.3f s, the run went on to its end\n",
+           log.lines[none].t_s, before, log.lines[again].t_s);
+    logread_free(&log);
+}
+
 static void test_demo_song_log_is_the_committed_one(void **s)
 {
     char path[1024];
@@ -348,6 +384,7 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_start_and_clap_wake_the_coach),
         cmocka_unit_test(test_dance_follows_a_music_clock_5_percent_off),
         cmocka_unit_test(test_camera_loss_pauses_the_song_until_frames_return),
+        cmocka_unit_test(test_garbage_frames_give_no_player_and_recover),
         cmocka_unit_test(test_demo_song_log_is_the_committed_one),
     };
     return cmocka_run_group_tests_name("scenarios", tests, NULL, NULL);

@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# Make a fakenect dump with garbage in it: the 8 real Skeltrack frames
+# cycled at 30 fps for 2 s, then 1 s of frames with no reading at all
+# (2047 everywhere), 1 s of all zeros, 1 s of random values (seeded: the
+# same every run), then 3 s of the real frames again. Real frames are
+# symbolic links; the three garbage frames are written once and linked.
+#   make_garbage_dump.sh SRC_DUMP OUT_DIR
+# Exits 77 (skip) when the source dump is absent.
+set -euo pipefail
+src=$1 out=$2
+if [ ! -f "$src/INDEX.txt" ]; then
+    echo "SKIP: no fakenect dump at $src"
+    exit 77
+fi
+mapfile -t frames < <(grep '^d-' "$src/INDEX.txt")
+rm -rf "$out"
+mkdir -p "$out/garbage"
+header='P5 640 480 65535\n'
+{ printf "$header"; perl -e 'print pack("v", 2047) x 307200'; } > "$out/garbage/none.pgm"
+{ printf "$header"; head -c 614400 /dev/zero; } > "$out/garbage/zeros.pgm"
+{ printf "$header"; perl -e 'srand(7); print pack("v*", map { int(rand(65536)) } 1 .. 307200)'; } \
+    > "$out/garbage/random.pgm"
+: > "$out/INDEX.txt"
+for ((k = 0; k < 8 * 30; k++)); do
+    case $((k / 30)) in
+    2) target="$out/garbage/none.pgm" ;;
+    3) target="$out/garbage/zeros.pgm" ;;
+    4) target="$out/garbage/random.pgm" ;;
+    *) target="$(cd "$src" && pwd)/${frames[k % ${#frames[@]}]}" ;;
+    esac
+    t=$(printf '%d.%06d' $((1300000000 + k / 30)) $(((k % 30) * 1000000 / 30)))
+    name="d-$t-$((1000000 + 2000000 * k)).pgm"
+    ln -s "$(cd "$(dirname "$target")" && pwd)/$(basename "$target")" "$out/$name"
+    echo "$name" >> "$out/INDEX.txt"
+done
+echo "garbage dump: $(wc -l < "$out/INDEX.txt") frames in $out (2-3 s no reading, 3-4 s zeros, 4-5 s random)"
