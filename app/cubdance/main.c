@@ -159,6 +159,7 @@ static int run(const cub_app_options *o, cub_board *board, FILE *log, const cub_
             goto done;
         }
     }
+    if (o->stats) s.tick_hist = calloc(CUB_SESSION_TICK_BINS, sizeof *s.tick_hist);
     cub_loop_hooks hooks = cub_session_hooks(&s);
     cub_err err = cub_loop_run(&loop, &hooks, 0);
     cub_log_event(&loop.log, cub_board_now_us(board), "app", "end",
@@ -166,6 +167,7 @@ static int run(const cub_app_options *o, cub_board *board, FILE *log, const cub_
                   (unsigned long long)loop.tick_count, s.depth_frames, s.frames_written);
     if (o->frames_dir)
         printf("cubdance: %u frames written to %s\n", s.frames_written, o->frames_dir);
+    cub_session_print_stats(&s, stdout);
     rc = err || s.frame_error ? -1 : 0;
 done:
     if (s.dance) cub_dance_close(s.dance);
@@ -176,6 +178,7 @@ done:
     if (s.render) cub_render_destroy(s.render);
     free(s.depth_copy);
     free(s.rgba);
+    free(s.tick_hist);
     return rc;
 }
 

@@ -62,6 +62,9 @@ static void usage(FILE *f, const char *prog)
 "  --clock MODE           real (default) or virtual: time moves by whole ticks\n"
 "                         as fast as the machine goes, so a replay gives the\n"
 "                         same event log on every machine\n"
+"  --stats                print at the end how much CPU each tick took (median,\n"
+"                         p95, max; tracker, judge, coach, render: the whole tick)\n"
+"                         and the peak resident memory\n"
 "  --help                 this text\n"
 "  --version              the version\n"
 "\n"
@@ -189,6 +192,8 @@ cub_app_parse cub_app_parse_options(int argc, char **argv, cub_app_options *o, F
             o->display = CUB_DISPLAY_WINDOW;
         } else if (!strcmp(a, "--headless")) {
             o->display = CUB_DISPLAY_HEADLESS;
+        } else if (!strcmp(a, "--stats")) {
+            o->stats = 1;
         } else if (takes_value(a)) {
             if (i + 1 >= argc) {
                 fprintf(err, "cubdance: %s needs a value (see --help)\n", a);

@@ -20,6 +20,7 @@ typedef struct cub_app_options {
     int frame_every;            /* write every Nth tick (default 30 = 1 per second) */
     double seconds;             /* stop after this long; 0 = run until quit */
     int virtual_clock;          /* --clock virtual */
+    int stats;                  /* --stats: print tick CPU time and peak memory at the end */
     /* The dance (issue 4): with a song the coach leads it. */
     const char *song_path;      /* a choreography (a .song.xml in assets/songs), or NULL */
     const char *timeline_path;  /* scripted verdicts / presence / claps, or NULL */

@@ -7,7 +7,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
+#include <time.h>
 
 #include "cub/png.h"
 #include "cub/track.h"
@@ -94,9 +96,30 @@ static void post_scripted(cub_session *s, cub_loop *loop, cub_event *ev)
     cub_loop_post(loop, ev);
 }
 
+/* The CPU time of this thread (the loop's): what a tick costs, not the
+ * time it waits (fakenect's replay sleeps count for nothing). */
+static int64_t thread_cpu_us(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return (int64_t)ts.tv_sec * 1000000 + ts.tv_nsec / 1000;
+}
+
+static void count_tick(cub_session *s)
+{
+    if (!s->tick_hist) return;
+    int64_t us = thread_cpu_us() - s->tick_cpu0_us;
+    int64_t bin = us / CUB_SESSION_TICK_BIN_US;
+    if (bin >= CUB_SESSION_TICK_BINS) s->tick_over++;
+    else s->tick_hist[bin]++;
+    if (us > s->tick_max_us) s->tick_max_us = us;
+    s->tick_count++;
+}
+
 static void hook_poll(void *u, cub_loop *loop, int64_t now_us)
 {
     cub_session *s = u;
+    if (s->tick_hist) s->tick_cpu0_us = thread_cpu_us();
     cub_board_poll_buttons(s->board, loop, now_us);
     cub_event ev;
     while (cub_timeline_next(s->timeline, now_us, &ev)) post_scripted(s, loop, &ev);
@@ -174,9 +197,8 @@ static void write_frame(cub_session *s, uint64_t tick)
     s->frames_written++;
 }
 
-static void hook_tick(void *u, cub_loop *loop, int64_t t_us)
+static void tick_work(cub_session *s, cub_loop *loop, int64_t t_us)
 {
-    cub_session *s = u;
     if (s->stop_at_us && t_us >= s->stop_at_us) {
         cub_log_event(&loop->log, t_us, "app", "stop", "reason=seconds");
         cub_loop_stop(loop);
@@ -199,6 +221,36 @@ static void hook_tick(void *u, cub_loop *loop, int64_t t_us)
     if (s->opt->frames_dir && loop->tick_count % (uint64_t)s->opt->frame_every == 0)
         write_frame(s, loop->tick_count);
     cub_board_display_swap(s->board);
+}
+
+static void hook_tick(void *u, cub_loop *loop, int64_t t_us)
+{
+    cub_session *s = u;
+    tick_work(s, loop, t_us);
+    count_tick(s);
+}
+
+/* The tick's CPU time at quantile q (0..1), ms; from the bins (25 us). */
+static double tick_quantile_ms(const cub_session *s, double q)
+{
+    uint32_t want = (uint32_t)(q * s->tick_count), seen = 0;
+    for (int b = 0; b < CUB_SESSION_TICK_BINS; b++) {
+        seen += s->tick_hist[b];
+        if (seen > want) return (b + 0.5) * CUB_SESSION_TICK_BIN_US / 1000.0;
+    }
+    return s->tick_max_us / 1000.0;
+}
+
+void cub_session_print_stats(const cub_session *s, FILE *out)
+{
+    if (!s->tick_hist || !s->tick_count) return;
+    struct rusage ru;
+    getrusage(RUSAGE_SELF, &ru);
+    fprintf(out,
+            "cubdance: tick CPU (poll, track, judge, coach, render) median=%.2f ms p95=%.2f ms "
+            "max=%.2f ms over %u ticks; peak resident memory %.1f MB\n",
+            tick_quantile_ms(s, 0.5), tick_quantile_ms(s, 0.95), s->tick_max_us / 1000.0,
+            s->tick_count, ru.ru_maxrss / 1024.0);
 }
 
 cub_loop_hooks cub_session_hooks(cub_session *s)

@@ -5,6 +5,7 @@
 #define CUB_APP_SESSION_H
 
 #include <stdint.h>
+#include <stdio.h>
 
 #include "cub/board.h"
 #include "cub/io.h"
@@ -50,9 +51,18 @@ typedef struct cub_session {
     int pose_error;          /* the clip could not be sampled: reported once */
     uint32_t frames_written;
     int frame_error;         /* a frame could not be written: reported once */
+    /* --stats: CPU time per tick, poll to render, in 25 us bins */
+    uint32_t *tick_hist;
+    uint32_t tick_count, tick_over; /* ticks counted; ... beyond the last bin */
+    int64_t tick_cpu0_us, tick_max_us;
 } cub_session;
+
+#define CUB_SESSION_TICK_BIN_US 25
+#define CUB_SESSION_TICK_BINS 4000 /* up to 100 ms */
 
 /* The hooks that plug a session into cub_loop_run. */
 cub_loop_hooks cub_session_hooks(cub_session *s);
+/* --stats: the ticks' CPU time and the peak resident memory, one line. */
+void cub_session_print_stats(const cub_session *s, FILE *out);
 
 #endif
