@@ -11,6 +11,7 @@
 #include <time.h>
 
 #include "commands.h"
+#include "cub/synth.h"
 #include "cub/track.h"
 
 #define EVAL_MAX_FRAMES 20000
@@ -101,55 +102,32 @@ int cub_track_dump_load(const char *dir, track_dump *d, int max_frames)
     return d->n ? 0 : -1;
 }
 
-/* truth.txt as cub/synth.h documents it (v1): '#' comments, a line
- * "gravity gx gy gz", then per frame "frame t_s ts" and 20 x "x y z v".
- * A minimal reader of our own so that evaluation needs no synth library. */
-typedef struct truth_row {
-    double p[CUB_TJ_COUNT][3];
-    int vis[CUB_TJ_COUNT];
-    int have;
-} truth_row;
-
-static truth_row *read_truth(const char *path, int n, cub_vec3 *gravity, int *have_gravity)
+/* The truth (cub/synth.h's reader: checked line by line, fuzzed), or NULL
+ * when there is none; a truth that is there but bad is an error. */
+static int load_truth(const char *path, cub_synth_truth *t, int *have)
 {
+    *have = 0;
     FILE *f = fopen(path, "r");
-    if (!f) return NULL;
-    truth_row *tr = calloc((size_t)n, sizeof *tr);
-    static char line[8192];
-    int ln = 0;
-    while (tr && fgets(line, sizeof line, f)) {
-        ln++;
-        if (line[0] == '#' || line[0] == '\n') continue;
-        double g[3];
-        if (sscanf(line, "gravity %lf %lf %lf", &g[0], &g[1], &g[2]) == 3) {
-            *gravity = (cub_vec3){(cub_q16)(g[0] * 65536), (cub_q16)(g[1] * 65536), (cub_q16)(g[2] * 65536)};
-            *have_gravity = 1;
-            continue;
-        }
-        char *p = line, *e;
-        long fr = strtol(p, &e, 10);
-        if (e == p) goto bad;
-        p = e;
-        strtod(p, &e), p = e;
-        strtod(p, &e), p = e;
-        truth_row row = {.have = 1};
-        for (int j = 0; j < CUB_TJ_COUNT; j++) {
-            for (int k = 0; k < 3; k++) {
-                row.p[j][k] = strtod(p, &e);
-                if (e == p) goto bad;
-                p = e;
-            }
-            row.vis[j] = (int)strtol(p, &e, 10);
-            if (e == p) goto bad;
-            p = e;
-        }
-        if (fr >= 0 && fr < n) tr[fr] = row;
-        continue;
-    bad:
-        fprintf(stderr, "eval-track: %s:%d: expected `frame t_s ts` then 20 x `x y z v`\n", path, ln);
-    }
+    if (!f) return 0; /* no truth: statuses and speed only */
     fclose(f);
-    return tr;
+    cub_diag diag = {0};
+    char msg[600];
+    if (cub_synth_truth_read(path, t, &diag)) {
+        fprintf(stderr, "eval-track: %s\n", cub_diag_str(&diag, msg, sizeof msg));
+        return -1;
+    }
+    *have = 1;
+    return 0;
+}
+
+/* The truth of dump frame f (matched by its frame number), or NULL. */
+static const cub_synth_truth_frame *truth_of(const cub_synth_truth *t, int have, int f)
+{
+    if (!have) return NULL;
+    if (f < t->frame_count && t->frames[f].frame == f) return &t->frames[f];
+    for (int i = 0; i < t->frame_count; i++)
+        if (t->frames[i].frame == f) return &t->frames[i];
+    return NULL;
 }
 
 static double now_s(void)
@@ -198,10 +176,15 @@ int cub_cmd_eval_track(int argc, char **argv)
     if (cub_track_dump_load(dir, &d, EVAL_MAX_FRAMES)) return 1;
     char tpath[4096];
     if (!truth) snprintf(tpath, sizeof tpath, "%s/truth.txt", dir), truth = tpath;
-    cub_vec3 grav = {0, 0, 0};
-    int have_grav = 0;
-    truth_row *tr = read_truth(truth, d.n, &grav, &have_grav);
-    if (no_gravity) have_grav = 0;
+    cub_synth_truth tt = {0};
+    int have_truth = 0;
+    if (load_truth(truth, &tt, &have_truth)) {
+        cub_track_dump_free(&d);
+        return 1;
+    }
+    cub_vec3 grav = {(cub_q16)(tt.gravity[0] * 65536), (cub_q16)(tt.gravity[1] * 65536),
+                     (cub_q16)(tt.gravity[2] * 65536)};
+    int have_grav = have_truth && !no_gravity;
 
     cub_track_desc desc = {0};
     size_t sz = cub_track_mem_size(&desc);
@@ -221,14 +204,16 @@ int cub_cmd_eval_track(int argc, char **argv)
         secs += now_s() - t0;
         if (s.status >= 0 && s.status < 5) status[s.status]++;
         if (print) print_frame(d.name[f], &s);
-        if (!tr || !tr[f].have) continue;
+        const cub_synth_truth_frame *tr = truth_of(&tt, have_truth, f);
+        if (!tr) continue;
         double f_sum = 0;
         int f_n = 0;
         char f_off[512] = "";
         for (int j = 0; j < CUB_TJ_COUNT; j++) {
-            if (!tr[f].vis[j]) continue;
-            double dx = s.joint_mm[j].x / 65536.0 - tr[f].p[j][0], dy = s.joint_mm[j].y / 65536.0 - tr[f].p[j][1],
-                   dz = s.joint_mm[j].z / 65536.0 - tr[f].p[j][2];
+            if (!tr->visible[j]) continue;
+            double dx = s.joint_mm[j].x / 65536.0 - tr->joint_mm[j][0],
+                   dy = s.joint_mm[j].y / 65536.0 - tr->joint_mm[j][1],
+                   dz = s.joint_mm[j].z / 65536.0 - tr->joint_mm[j][2];
             double e = dx * dx + dy * dy + dz * dz;
             e = e > 0 ? sqrt(e) : 0;
             err_sum[j] += e, count[j]++, within[j] += e <= 100.0;
@@ -240,7 +225,7 @@ int cub_cmd_eval_track(int argc, char **argv)
             printf("frame %d status=%d mean=%.0fmm off:%s\n", f, (int)s.status, f_n ? f_sum / f_n : 0.0, f_off);
     }
     int all_n = 0, all_in = 0;
-    if (tr) {
+    if (have_truth) {
         printf("%-15s %8s %8s %6s\n", "joint", "mean_mm", "<=10cm", "n");
         for (int j = 0; j < CUB_TJ_COUNT; j++) {
             if (!count[j]) continue;
@@ -254,7 +239,7 @@ int cub_cmd_eval_track(int argc, char **argv)
     }
     printf("eval-track: frames=%d ok=%d no_player=%d too_close=%d too_far=%d partly_out=%d fps=%.0f\n", d.n,
            status[0], status[1], status[2], status[3], status[4], secs > 0 ? d.n / secs : 0.0);
-    free(tr);
+    cub_synth_truth_free(&tt);
     free(mem);
     cub_track_dump_free(&d);
     return 0;
