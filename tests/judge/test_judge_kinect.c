@@ -30,14 +30,6 @@
 #include "cub/judge.h"
 #include "kinect_read.h"
 
-static int dir_of(const char *sub, char *buf, size_t size)
-{
-    const char *data = getenv("CUB_DATA_DIR");
-    struct stat st;
-    if (!data) return 0;
-    snprintf(buf, size, "%s/skeletons/%s", data, sub);
-    return stat(buf, &st) == 0 && S_ISDIR(st.st_mode);
-}
 
 /* Frame i of s as the tracker would give it (confidence 1: the readers
  * keep no confidence). mirror negates x. */
@@ -208,7 +200,7 @@ static void test_utkinect_claps_and_waves(void **state)
 {
     (void)state;
     char dir[1024], path[2048], err[2600];
-    if (!dir_of("utkinect", dir, sizeof dir)) {
+    if (!kinect_data_dir("utkinect", dir, sizeof dir)) {
         printf("judge: no $CUB_DATA_DIR/skeletons/utkinect, skipping\n");
         skip();
     }
@@ -258,7 +250,7 @@ static void test_msr_claps_and_kicks(void **state)
 {
     (void)state;
     char dir[1024], path[2048], err[2600];
-    if (!dir_of("msr-action3d", dir, sizeof dir)) {
+    if (!kinect_data_dir("msr-action3d", dir, sizeof dir)) {
         printf("judge: no $CUB_DATA_DIR/skeletons/msr-action3d, skipping\n");
         skip();
     }

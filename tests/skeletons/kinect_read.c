@@ -7,6 +7,7 @@
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <sys/stat.h>
 #include <string.h>
 
 static int fail(char *err, size_t size, const char *path, int line, const char *fmt, ...)
@@ -277,4 +278,13 @@ cub_fuzzy_body kinect_body_for(const kinect_seq *s, int from, int to)
     if (n > 0) body.stand_cog_mm = fz_q16(quantile(v, n, all ? 0.9 : 0.5));
     free(v);
     return body;
+}
+
+int kinect_data_dir(const char *sub, char *buf, size_t size)
+{
+    const char *data = getenv("CUB_DATA_DIR");
+    struct stat st;
+    if (!data) return 0;
+    snprintf(buf, size, "%s/skeletons/%s", data, sub);
+    return stat(buf, &st) == 0 && S_ISDIR(st.st_mode);
 }

@@ -34,6 +34,10 @@ int kinect_read_msr(const char *path, kinect_seq *out, char *err, size_t err_siz
 
 void kinect_free(kinect_seq *s);
 
+/* $CUB_DATA_DIR/skeletons/<sub> into buf: 1 when that folder exists, 0
+ * when it (or CUB_DATA_DIR) does not (the tests then skip). */
+int kinect_data_dir(const char *sub, char *buf, size_t size);
+
 /* One labelled interval of a UTKinect run, inclusive frame numbers. */
 typedef struct utk_interval {
     char run[16];    /* "s01_e01" */
