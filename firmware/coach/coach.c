@@ -3,7 +3,10 @@
  *   idle --START/clap--> wake --wake_up done--> dance --wrong--> correct
  *   correct: correcting clip, then the move at demo speed, again and again
  *            --right--> dance (inside the same move's span, found from the
- *            music clock); N wrong in a row --> worried --done--> correct
+ *            music clock); N wrong in a row --> worried --done--> correct;
+ *            a demonstration ending after the music has left the move's
+ *            span --> dance with the music (a child who does not get it
+ *            is not held on one move for the rest of the song)
  *   dance --song end--> cheer --done--> idle
  *   dance/correct/worried --camera lost--> paused --camera back--> dance
  *            (the music holds meanwhile; the dance resumes where it is)
@@ -334,6 +337,12 @@ static void on_player(cub_coach *c, bool in_view)
         go_resting(c, CUB_COACH_ATTRACT, c->desc.roles.attract, CUB_COACH_WHY_PLAYER);
 }
 
+/* The music has played past the end of the move being corrected. */
+static bool music_left_move(const cub_coach *c, int32_t music_ms)
+{
+    return music_ms >= 0 && c->move >= 0 && music_ms >= move_end_ms(cur_move(c));
+}
+
 static void on_clip_done(cub_coach *c, const cub_event *ev, int32_t music_ms)
 {
     if (ev->a != c->clip) { /* a clip already replaced, or a looping one */
@@ -351,10 +360,18 @@ static void on_clip_done(cub_coach *c, const cub_event *ev, int32_t music_ms)
         else
             go_outro(c);
         break;
-    case CUB_COACH_CORRECT: demo(c); break; /* after the correcting clip, and again */
+    case CUB_COACH_CORRECT: /* after the correcting clip, and again */
+        if (music_left_move(c, music_ms))
+            resume(c, music_ms, CUB_COACH_WHY_MOVED_ON);
+        else
+            demo(c);
+        break;
     case CUB_COACH_WORRIED:
         coach_out_state(c, CUB_COACH_CORRECT, CUB_COACH_WHY_CALMED);
-        demo(c);
+        if (music_left_move(c, music_ms))
+            resume(c, music_ms, CUB_COACH_WHY_MOVED_ON);
+        else
+            demo(c);
         break;
     case CUB_COACH_CHEER: go_idle(c, CUB_COACH_WHY_CHEERED); break;
     default: break;

@@ -282,7 +282,7 @@ static void test_correction_repeats_until_right_then_resumes_same_move(void **s)
     for (int i = 0; i < 3; i++) { /* the demonstration again and again */
         expect_clip(&c, C_CLAP, demo, false, CUB_COACH_WHY_DEMO);
         assert_int_equal(c.state, CUB_COACH_CORRECT);
-        send(&c, 4000 + 2800 * i, CUB_EV_CLIP_DONE, C_CLAP, 0, 3000 + 2800 * i);
+        send(&c, 4000 + 2800 * i, CUB_EV_CLIP_DONE, C_CLAP, 0, 2000 + 1000 * i);
     }
     /* Right at music 5.1 s: move 0 (0..8 s, 2 s a rep) at its rep 3 (6 s)
      * is nearest; the dance resumes there at the sync factor of the moment
@@ -365,6 +365,26 @@ static void test_camera_loss_pauses_the_song_and_resumes_it(void **s)
     tick(&c, 1700 + c.desc.attract_after_ms + 10, 500);
     assert_int_equal(c.state, CUB_COACH_ATTRACT);
     assert_non_null(act(&c, CUB_COACH_ACT_MUSIC_STOP, 0));
+}
+
+/* A child who does not get it is not held on one move for the rest of
+ * the song: a demonstration that ends after the music has left the move's
+ * span hands over to the dance where the music is. */
+static void test_correction_gives_way_when_the_music_moves_on(void **s)
+{
+    cub_coach c;
+    cub_coach_desc d = make_desc();
+    assert_int_equal(cub_coach_init(&c, &d, 0), CUB_OK);
+    to_dance(&c, 1000);
+    send(&c, 7000, CUB_EV_VERDICT, 0, 0, 6000);
+    send(&c, 8000, CUB_EV_CLIP_DONE, C_SHAKE, 0, 7000); /* still in clap's span: demo */
+    expect_clip(&c, C_CLAP, 45875, false, CUB_COACH_WHY_DEMO);
+    send(&c, 11000, CUB_EV_CLIP_DONE, C_CLAP, 0, 8600); /* music in sway's span now */
+    assert_int_equal(c.state, CUB_COACH_DANCE);
+    assert_int_equal(c.move, 1);
+    assert_int_equal(c.rep, 0);
+    assert_true(logged("coach state from=correct to=dance reason=moved_on move=1 rep=0"));
+    expect_clip(&c, C_SWAY, 0, false, CUB_COACH_WHY_RESUME);
 }
 
 static void test_resume_follows_the_music_past_the_move(void **s)
@@ -885,6 +905,7 @@ int main(void)
         cmocka_unit_test(test_correction_repeats_until_right_then_resumes_same_move),
         cmocka_unit_test(test_resume_follows_the_music_past_the_move),
         cmocka_unit_test(test_camera_loss_pauses_the_song_and_resumes_it),
+        cmocka_unit_test(test_correction_gives_way_when_the_music_moves_on),
         cmocka_unit_test(test_attract_then_doze_after_the_configured_quiet),
         cmocka_unit_test(test_worried_after_n_misses_then_back_to_correcting),
         cmocka_unit_test(test_song_end_cheers_then_idles),

@@ -79,6 +79,7 @@ typedef enum cub_coach_reason {
     CUB_COACH_WHY_PLAYER,  /* a player came into view or left */
     CUB_COACH_WHY_IDLE,    /* the idle clip */
     CUB_COACH_WHY_CAMERA,  /* the camera went or came back */
+    CUB_COACH_WHY_MOVED_ON, /* the music left the corrected move: dance on with it */
     CUB_COACH_WHY_COUNT
 } cub_coach_reason;
 
