@@ -95,7 +95,9 @@ static void release_consumed(cub_judge *j, const cub_fuzzy_frame *f)
 {
     for (int i = 0; i < CUB_JUDGE_MAX_OPEN; i++) {
         consumed_keys *c = &j->consumed[i];
-        if (c->used && (!f || !keys_match(c->keys, c->key_count, f, j->d.key_mu))) c->used = 0;
+        if (c->used && (!f || !keys_match(c->keys, c->key_count, f,
+                                          (uint16_t)(j->d.key_mu - j->d.key_mu / 5))))
+            c->used = 0;
     }
 }
 
@@ -147,7 +149,11 @@ static int rep_step(cub_judge *j, rep_slot *s, int64_t t_us, const cub_fuzzy_fra
         uint16_t mu = f->mu[s->keys[k].feature][s->keys[k].set];
         if (mu > s->best_mu[k]) s->best_mu[k] = mu;
     }
-    int keys = keys_match(s->keys, s->key_count, f, j->d.key_mu);
+    /* Hysteresis: a run once started goes on while every key stays above
+     * four fifths of key_mu, so a tracker's jitter at the top of a move
+     * does not break it. */
+    uint16_t th = s->keys_run_on ? (uint16_t)(j->d.key_mu - j->d.key_mu / 5) : j->d.key_mu;
+    int keys = keys_match(s->keys, s->key_count, f, th);
     int close = 1;
     if (keys && s->has_expected) {
         cub_q16 d = cub_fuzzy_distance(f, &s->expected, NULL);

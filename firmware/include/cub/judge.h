@@ -17,11 +17,14 @@
  *   membership mu(feature, set) >= key_mu, and, if r has an expected
  *   frame, cub_fuzzy_distance(child, expected) <= pose_d_max.
  * - A run is a stretch of consecutive matching frames (any non-matching
- *   frame ends it). A run is HELD once t(last) - t(first) >= hold_ms.
+ *   frame ends it); once a run has started, its keys need only stay at or
+ *   above 4/5 of key_mu (hysteresis: the tracker's jitter at the top of a
+ *   move does not end it). A run is HELD once t(last) - t(first) >= hold_ms.
  * - A held run credits the OLDEST open repetition whose window holds its
  *   frames and that is not yet right: that verdict (b = 1) is issued at
  *   once, in the frame where the run becomes held. One run credits one
- *   repetition: to credit another, the keys must drop and be reached again
+ *   repetition: to credit another, the keys must drop (below 4/5 of key_mu)
+ *   and be reached again
  *   (a late child's pose at the start of the next repetition counts for
  *   the late one, not for both).
  * - A repetition still without a right verdict gets a wrong one (b = 0) in
