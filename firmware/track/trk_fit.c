@@ -152,19 +152,58 @@ typedef struct limb_pick {
     int32_t head;
 } limb_pick;
 
+/* Percent of a disk of rho_mm around cell c (in the image plane) that the
+ * player's surface fills at about c's depth: a head is round and fills its
+ * disk, a raised forearm or hand crosses it as a strip. */
+static int32_t disk_fill_pct(const cub_tracker *t, int32_t c, int32_t rho_mm)
+{
+    int32_t z0 = t->z[c], rc = rho_mm * CUB_TRACK_FOCAL_PX / ((z0 ? z0 : 1) * TRK_CELL_PX);
+    if (rc < 1) rc = 1;
+    if (rc > 12) rc = 12;
+    int32_t gx0 = c % TRK_GW, gy0 = c / TRK_GW, in = 0, all = 0;
+    for (int32_t dy = -rc; dy <= rc; dy++)
+        for (int32_t dx = -rc; dx <= rc; dx++) {
+            if (dx * dx + dy * dy > rc * rc) continue;
+            all++;
+            int32_t gx = gx0 + dx, gy = gy0 + dy;
+            if (gx < 0 || gy < 0 || gx >= TRK_GW || gy >= TRK_GH) continue;
+            int32_t i = gy * TRK_GW + gx;
+            if (t->mask[i] && trk_abs(t->z[i] - z0) < 2 * rho_mm) in++;
+        }
+    return in * 100 / all;
+}
+
 /* The head: above the root, central, not a hand held in front; the nearer
  * to last frame's head the better. */
-static int32_t pick_head(const cub_tracker *t, int32_t root, const int32_t *ext, int32_t n)
+static int32_t pick_head(const cub_tracker *t, int32_t root, const int32_t *ext, int32_t n, int32_t st0,
+                         bool *is_round)
 {
+    *is_round = false;
+    int32_t min_geo_mm = pm(st0, 220);
     trk_p3 r = cell_p(t, root);
     int32_t best = -1, best_cost = INT32_MAX;
     for (int32_t k = 0; k < n; k++) {
         trk_p3 p = cell_p(t, ext[k]);
         int32_t dh = p.y - r.y; /* image-up: the head is found before the up vector matters */
         if (trk_along(p.x - r.x, p.y - r.y, p.z - r.z, t->up) < 100 && dh < 100) continue;
-        int32_t cost = 3 * trk_abs(p.x - r.x) + 2 * (r.z - p.z > 100 ? r.z - p.z - 100 : 0) + dh / 4;
-        if (t->have_prev && t->lost_frames == 0) cost += dist3(p, got(&t->prev, CUB_TJ_HEAD));
-        if (cost < best_cost) best_cost = cost, best = k;
+        /* a head sticks out of the torso by its neck and itself; a shallow
+         * bump (a shoulder between arms held down) is no head */
+        if (t->dist0[ext[k]] < min_geo_mm) continue;
+        /* central, not in front of the torso, far out along the surface
+         * (a head stands out by neck and skull, a shoulder bump does not),
+         * and round (a raised hand beside the head is a strip) */
+        int32_t cost = 2 * trk_abs(p.x - r.x) + 2 * (r.z - p.z > 100 ? r.z - p.z - 100 : 0) - t->dist0[ext[k]];
+        /* (an arm held out level fills a far, coarse disk too, but it
+         * reaches out more than up) */
+        bool round = disk_fill_pct(t, path_at(t, ext[k], pm(st0, P_HEAD_DOWN)), pm(st0, 60)) >= 75 &&
+                     trk_abs(p.x - r.x) < dh;
+        if (!round) cost += 600;
+        /* last frame's head helps, but a wrong one must not hold on */
+        if (t->have_prev && t->lost_frames == 0) {
+            int32_t d = dist3(p, got(&t->prev, CUB_TJ_HEAD));
+            cost += d < 300 ? d : 300;
+        }
+        if (cost < best_cost) best_cost = cost, best = k, *is_round = round;
     }
     return best;
 }
@@ -222,6 +261,30 @@ static void pick_limbs(const cub_tracker *t, int32_t root, const int32_t *ext, i
         } else if (m == 1) {
             dst[g][s[0] > 0 ? 0 : 1] = lists[g][0];
         }
+    }
+}
+
+/* Legs held together make one extremity for two feet: a leg whose tip
+ * hangs well above the floor (or that has none) while the body stands on
+ * it takes the lowest cell on its side of the hips, away from the other
+ * foot, when that cell touches the floor. */
+static void feet_on_floor(const cub_tracker *t, trk_p3 hc, cub_vec3 lat, int32_t st, limb_pick *lp)
+{
+    if (!t->have_floor) return;
+    for (int side = 0; side < 2; side++) {
+        int32_t tip = lp->foot[side], other = lp->foot[1 - side];
+        if (tip >= 0 && trk_along(t->x[tip], t->y[tip], t->z[tip], t->up) - t->floor_h_mm < pm(st, 150)) continue;
+        int32_t best = -1, best_h = INT32_MAX;
+        for (int32_t i = 0; i < TRK_CELLS; i++) {
+            if (!t->mask[i] || t->dist0[i] == TRK_INF) continue;
+            int32_t l = TRK_LEFT_SIGN * trk_along(t->x[i] - hc.x, t->y[i] - hc.y, t->z[i] - hc.z, lat);
+            if ((side == 0) != (l > 0) || trk_abs(l) > pm(st, 200)) continue;
+            int32_t h = trk_along(t->x[i], t->y[i], t->z[i], t->up);
+            if (h >= best_h) continue;
+            if (other >= 0 && dist3(cell_p(t, i), cell_p(t, other)) < pm(st, 150)) continue;
+            best_h = h, best = i;
+        }
+        if (best >= 0 && best_h - t->floor_h_mm < pm(st, 100)) lp->foot[side] = best;
     }
 }
 
@@ -349,10 +412,12 @@ static int32_t column_top(const cub_tracker *t, int32_t root, int32_t max_rise_m
 
 void trk_fit_skeleton(cub_tracker *t, int32_t root, int32_t *ext, int32_t next, cub_track_skeleton *s)
 {
-    limb_pick lp = {.head = pick_head(t, root, ext, next)};
     int32_t st0 = t->stature_mm ? t->stature_mm : 1200;
-    if (lp.head < 0 || trk_abs(t->x[ext[lp.head]] - t->x[root]) > pm(st0, 90)) {
-        /* no central extremity: the head is the column's top */
+    bool round;
+    limb_pick lp = {.head = pick_head(t, root, ext, next, st0, &round)};
+    if (lp.head < 0 || (!round && trk_abs(t->x[ext[lp.head]] - t->x[root]) > pm(st0, 90))) {
+        /* no round, central extremity: the head is the column's top (a
+         * head leaning aside is round, hands up beside it are not) */
         int32_t top = column_top(t, root, pm(st0, 450));
         if (top >= 0) {
             lp.head = -1;
@@ -376,7 +441,9 @@ void trk_fit_skeleton(cub_tracker *t, int32_t root, int32_t *ext, int32_t next, 
     bool on_floor = t->have_floor && hmin - t->floor_h_mm < 120;
     int32_t neck = 0;
     int32_t st = lp.head >= 0 ? measure_stature(t, head, on_floor, &neck) : 0;
-    if (neck >= 120 && neck <= 400) {
+    /* a neck base far from where the body's proportions put it is an arm
+     * or a leaning head widening the silhouette, not the shoulders */
+    if (neck >= pm(st0, 100) && neck <= pm(st0, 250)) {
         int32_t cur = t->neck_drop_mm; /* arms beside the head fool one frame */
         if (cur && neck > cur + cur / 8) neck = cur + cur / 8;
         if (cur && neck < cur - cur / 8) neck = cur - cur / 8;
@@ -419,6 +486,7 @@ void trk_fit_skeleton(cub_tracker *t, int32_t root, int32_t *ext, int32_t next, 
     put(s, CUB_TJ_HIP_R, add_s(hp, lft, -pm(st, P_HIP_HALF)), CUB_Q16_ONE / 2);
 
     pick_limbs(t, root, ext, next, st, sc, hc, axis, lat, &lp);
+    if (on_floor) feet_on_floor(t, hc, lat, st, &lp);
     for (int side = 0; side < 2; side++) {
         int js = side ? CUB_TJ_SHOULDER_R : CUB_TJ_SHOULDER_L, jh = side ? CUB_TJ_HIP_R : CUB_TJ_HIP_L;
         if (lp.hand[side] >= 0) fit_arm(t, s, side, lp.hand[side], st);

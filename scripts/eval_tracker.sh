@@ -1,0 +1,105 @@
+#!/bin/sh
+# The tracker's accuracy protocol (issue 5): share of joints within 10 cm on
+# synthetic Kinect depth of clips the tracker was NOT tuned on.
+#
+#   scripts/eval_tracker.sh BUILD_DIR [--tuning]
+#
+# Held-out set (default): Bandai Namco Research Motiondataset-1 clips
+# (CC BY-NC, ../shared/data/mocap/bandai: for tests and benchmarks only, never
+# shipped), motions and styles that keep the child in view, plus one render
+# with a furnished room and a second person. NEVER tune on these: change the
+# tracker against the tuning set (--tuning: CMU and AnimatedDrawings clips),
+# then run this once to measure.
+#
+# Every clip is rendered with the same seed, 90 frames at 10 fps, into a
+# temporary folder (614 KB a frame) that is deleted at the end; set
+# EVAL_DUMPS=DIR to keep the renders there and reuse them on the next run.
+# Prints the exact commands, per clip the share within 10 cm, overall, and
+# per joint over the whole set.
+set -eu
+
+usage() { echo "usage: scripts/eval_tracker.sh BUILD_DIR [--tuning]" >&2; exit 2; }
+[ $# -ge 1 ] || usage
+BUILD=$1
+SET=heldout
+[ "${2:-}" = "--tuning" ] && SET=tuning
+TOOL=$BUILD/app/cubtool/cubtool
+[ -x "$TOOL" ] || { echo "eval_tracker: no cubtool at $TOOL (build the cubtool target)" >&2; exit 1; }
+HERE=$(cd "$(dirname "$0")" && pwd)
+DATA=${CUB_DATA_DIR:-$HERE/../../shared/data}
+[ -d "$DATA/mocap" ] || { echo "eval_tracker: no mocap under $DATA (set CUB_DATA_DIR)" >&2; exit 1; }
+
+# name | synth-depth arguments (besides --out, --data, --seed, --frames, --fps)
+heldout_set() {
+    cat <<'EOF'
+bye_childish|--clip dataset-1_bye_childish_001
+bye_happy|--clip dataset-1_bye_happy_001
+byebye_active|--clip dataset-1_byebye_active_001
+byebye_childish|--clip dataset-1_byebye_childish_001
+bow_happy|--clip dataset-1_bow_happy_001
+guide_active|--clip dataset-1_guide_active_001
+guide_childish|--clip dataset-1_guide_childish_001
+call|--clip dataset-1_call_normal_001
+respond|--clip dataset-1_respond_normal_001
+kick|--clip dataset-1_kick_normal_001
+punch|--clip dataset-1_punch_normal_001
+dance_short|--clip dataset-1_dance-short_normal_001 --from 10
+dance_room_2nd|--clip dataset-1_dance-short_normal_001 --from 30 --room --second-person dataset-1_bye_happy_001
+EOF
+}
+tuning_set() {
+    cat <<'EOF'
+13_29|--clip 13_29
+14_14|--clip 14_14
+141_16|--clip 141_16
+02_01|--clip 02_01
+jumping_jacks|--clip jumping_jacks
+141_16_room_2nd|--clip 141_16 --room --second-person 13_29
+13_29_small_slim|--clip 13_29 --height 1000 --build slim
+14_14_tall_loose|--clip 14_14 --height 1300 --loose --from 3
+jesse_dance|--clip jesse_dance
+dab_sturdy|--clip dab --build sturdy
+EOF
+}
+
+if [ -n "${EVAL_DUMPS:-}" ]; then
+    DUMPS=$EVAL_DUMPS
+    mkdir -p "$DUMPS"
+    KEEP=1
+else
+    DUMPS=$(mktemp -d "${TMPDIR:-/tmp}/eval_tracker.XXXXXX")
+    KEEP=0
+fi
+cleanup() { [ "$KEEP" = 1 ] || rm -rf "$DUMPS"; }
+trap cleanup EXIT INT TERM
+
+COMMON="--seed 1 --frames 90 --fps 10"
+REPORT=$DUMPS/report.$$
+: >"$REPORT"
+echo "eval_tracker: $SET set, $COMMON, data $DATA"
+${SET}_set | while IFS='|' read -r name args; do
+    out=$DUMPS/$SET-$name
+    if [ ! -f "$out/truth.txt" ]; then
+        echo "+ $TOOL synth-depth $args $COMMON --data $DATA --out $out"
+        # shellcheck disable=SC2086
+        "$TOOL" synth-depth $args $COMMON --data "$DATA" --out "$out" >/dev/null 2>&1 ||
+            { echo "eval_tracker: synth-depth failed for $name" >&2; exit 1; }
+    fi
+    echo "+ $TOOL eval-track $out"
+    "$TOOL" eval-track "$out" >"$out/eval.txt"
+    # per joint rows: name mean_mm pct n -> within count (pct has one decimal)
+    awk -v clip="$name" '
+        /^[a-z_]+ +[0-9]+ +[0-9.]+% +[0-9]+$/ { p = $3; sub("%", "", p); printf "J %s %d %d\n", $1, int(p * $4 / 100 + 0.5), $4 }
+        /of joints within 10 cm/ { s = $0; sub(/.*\(/, "", s); sub(/\).*/, "", s); split(s, a, " of "); printf "C %s %d %d\n", clip, a[1], a[2] }
+    ' "$out/eval.txt" >>"$REPORT"
+done
+
+awk '
+    $1 == "C" { printf "clip %-16s %5.1f%%  (%d of %d)\n", $2, 100 * $3 / $4, $3, $4; cw += $3; cn += $4
+                if (100 * $3 / $4 < worst || worst == "") { worst = 100 * $3 / $4; wname = $2 } }
+    $1 == "J" { if (!($2 in jn)) order[++nj] = $2; jw[$2] += $3; jn[$2] += $4 }
+    END {
+        printf "overall               %5.1f%%  (%d of %d joints within 10 cm); worst clip %s %.1f%%\n", 100 * cw / cn, cw, cn, wname, worst
+        for (k = 1; k <= nj; k++) { j = order[k]; printf "joint %-16s %5.1f%%  (%d of %d)\n", j, 100 * jw[j] / jn[j], jw[j], jn[j] }
+    }' "$REPORT"
+rm -f "$REPORT"
