@@ -50,15 +50,19 @@ struct cub_depth_freenect {
     int replay;          /* fakenect is serving a recorded dump */
     int paced;           /* a replay under the virtual clock: see above */
     int have_first;
-    uint32_t first_timestamp;
+    uint32_t last_timestamp;
+    uint64_t ticks;      /* 60 MHz ticks since the first frame, past the counter's wraps */
     int64_t first_t_us;
 };
 
-/* When a replayed frame is due on the virtual clock (60 MHz ticks; the
- * unsigned difference survives a wrap of the 32-bit counter). */
-static int64_t due_us(const cub_depth_freenect *s, uint32_t timestamp)
+/* When a replayed frame is due on the virtual clock. The Kinect's 60 MHz
+ * counter is 32 bits and wraps every 71.6 s: the ticks are summed frame to
+ * frame (each step taken modulo 2^32), so any length of recording works. */
+static int64_t due_us(cub_depth_freenect *s, uint32_t timestamp)
 {
-    return s->first_t_us + (int64_t)(uint32_t)(timestamp - s->first_timestamp) / 60;
+    s->ticks += (uint32_t)(timestamp - s->last_timestamp);
+    s->last_timestamp = timestamp;
+    return s->first_t_us + (int64_t)(s->ticks / 60);
 }
 
 static void on_depth(freenect_device *dev, void *depth, uint32_t timestamp)
@@ -71,7 +75,7 @@ static void on_depth(freenect_device *dev, void *depth, uint32_t timestamp)
     s->back_t_us = cub_board_clock_now_us(s->clock);
     if (s->paced && !s->have_first) {
         s->have_first = 1;
-        s->first_timestamp = timestamp;
+        s->last_timestamp = timestamp;
         s->first_t_us = s->back_t_us;
     }
     if (s->paced) s->back_t_us = due_us(s, timestamp);
