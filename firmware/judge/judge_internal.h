@@ -13,7 +13,7 @@ typedef struct rep_slot {
     uint32_t seq; /* opening order: the oldest open repetition is credited first */
     int32_t move, rep, key_count;
     cub_judge_key keys[CUB_JUDGE_MAX_KEYS];
-    int64_t start_us, close_us;
+    int64_t start_us, close_us, beat_us;
     int has_expected;
     cub_fuzzy_frame expected;
     int right;          /* a right verdict was issued */
@@ -28,9 +28,12 @@ typedef struct rep_slot {
 } rep_slot;
 
 /* Keys just credited: a run of them credits no other repetition until the
- * keys drop (one run, one repetition). */
+ * keys drop (one run, one repetition), or until it has gone on a beat into
+ * a repetition that began after the credit (a pose held on, as in a
+ * sway: it counts again). */
 typedef struct consumed_keys {
     int used;
+    int64_t at_us; /* when the run was credited */
     int32_t key_count;
     cub_judge_key keys[CUB_JUDGE_MAX_KEYS];
 } consumed_keys;

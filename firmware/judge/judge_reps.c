@@ -34,6 +34,7 @@ cub_err cub_judge_begin_rep(cub_judge *j, const cub_judge_rep *r)
     memcpy(s->keys, r->keys, sizeof s->keys);
     s->start_us = r->start_us;
     s->close_us = r->end_us + r->beat_us;
+    s->beat_us = r->beat_us;
     if (r->expected) {
         s->has_expected = 1;
         s->expected = *r->expected;
@@ -67,18 +68,27 @@ static int same_keys(const cub_judge_key *a, int32_t na, const cub_judge_key *b,
     return na == nb && memcmp(a, b, (size_t)na * sizeof *a) == 0;
 }
 
-static int is_consumed(const cub_judge *j, const rep_slot *s)
+/* Do credited keys still block repetition s at t_us? Not once the pose
+ * has been held a beat into a repetition that began after the credit. */
+static int is_consumed(const cub_judge *j, const rep_slot *s, int64_t t_us)
 {
-    for (int i = 0; i < CUB_JUDGE_MAX_OPEN; i++)
-        if (j->consumed[i].used &&
-            same_keys(j->consumed[i].keys, j->consumed[i].key_count, s->keys, s->key_count))
-            return 1;
+    for (int i = 0; i < CUB_JUDGE_MAX_OPEN; i++) {
+        const consumed_keys *c = &j->consumed[i];
+        if (!c->used || !same_keys(c->keys, c->key_count, s->keys, s->key_count)) continue;
+        if (s->start_us > c->at_us && t_us >= s->start_us + s->beat_us) continue;
+        return 1;
+    }
     return 0;
 }
 
-static void consume(cub_judge *j, const rep_slot *s)
+static void consume(cub_judge *j, const rep_slot *s, int64_t t_us)
 {
-    if (is_consumed(j, s)) return;
+    for (int i = 0; i < CUB_JUDGE_MAX_OPEN; i++) /* a run credits again: renew its mark */
+        if (j->consumed[i].used &&
+            same_keys(j->consumed[i].keys, j->consumed[i].key_count, s->keys, s->key_count)) {
+            j->consumed[i].at_us = t_us;
+            return;
+        }
     consumed_keys *c = &j->consumed[0]; /* the oldest is overwritten when full */
     for (int i = 0; i < CUB_JUDGE_MAX_OPEN; i++)
         if (!j->consumed[i].used) {
@@ -86,6 +96,7 @@ static void consume(cub_judge *j, const rep_slot *s)
             break;
         }
     c->used = 1;
+    c->at_us = t_us;
     c->key_count = s->key_count;
     memcpy(c->keys, s->keys, sizeof c->keys);
 }
@@ -163,7 +174,7 @@ static int rep_step(cub_judge *j, rep_slot *s, int64_t t_us, const cub_fuzzy_fra
     if (keys && !s->keys_run_on) s->keys_run_first_us = t_us;
     s->keys_run_on = keys;
     if (keys && t_us - s->keys_run_first_us >= (int64_t)j->d.hold_ms * 1000) s->keys_held = 1;
-    int match = keys && close && !is_consumed(j, s);
+    int match = keys && close && !is_consumed(j, s, t_us);
     if (match && !s->run_on) s->run_first_us = t_us;
     s->run_on = match;
     return match && t_us - s->run_first_us >= (int64_t)j->d.hold_ms * 1000;
@@ -195,7 +206,7 @@ void judge_reps_frame(cub_judge *j, int64_t t_us, const cub_fuzzy_frame *f, cub_
         if (s->right || t_us < s->start_us) continue;
         if (rep_step(j, s, t_us, f)) {
             s->right = 1;
-            consume(j, s);
+            consume(j, s, t_us);
             cub_judge_event e = verdict(s, t_us, 1, CUB_JUDGE_WHY_KEYS);
             e.feature = s->keys[0].feature;
             e.set = s->keys[0].set;

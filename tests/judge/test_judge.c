@@ -357,6 +357,31 @@ static void test_one_run_credits_one_repetition(void **state)
     }
 }
 
+/* A pose held on (a sway, a stance) counts for every repetition it is
+ * held through: a beat into the next repetition the credit is renewed. */
+static void test_a_pose_held_on_counts_for_each_repetition(void **state)
+{
+    (void)state;
+    rec r;
+    rec_init(&r, NULL);
+    cub_judge_rep a = rep_rhe(0, 0, 60), b = rep_rhe(1, 60, 120), c = rep_rhe(2, 120, 180);
+    assert_int_equal(cub_judge_begin_rep(r.j, &a), CUB_OK);
+    for (int f = 0; f < 220; f++) {
+        if (f == 60) assert_int_equal(cub_judge_begin_rep(r.j, &b), CUB_OK);
+        if (f == 120) assert_int_equal(cub_judge_begin_rep(r.j, &c), CUB_OK);
+        feed(&r, f, f >= 10 ? bent_right() : STILL);
+    }
+    assert_int_equal(count(&r, CUB_JUDGE_VERDICT), 3);
+    for (int k = 0; k < 3; k++) {
+        const cub_judge_event *v = nth(&r, CUB_JUDGE_VERDICT, k);
+        assert_int_equal(v->rep, k);
+        assert_int_equal(v->ev.b, 1);
+    }
+    /* Not before a beat (15 frames here) of the next repetition has passed. */
+    assert_true(nth(&r, CUB_JUDGE_VERDICT, 1)->ev.t_us >= 75LL * FRAME_US);
+    assert_true(nth(&r, CUB_JUDGE_VERDICT, 2)->ev.t_us >= 135LL * FRAME_US);
+}
+
 static void test_expected_pose_must_be_near(void **state)
 {
     (void)state;
@@ -559,6 +584,7 @@ int main(void)
         cmocka_unit_test(test_standing_still_is_wrong),
         cmocka_unit_test(test_no_player_is_wrong_and_not_in_view),
         cmocka_unit_test(test_one_run_credits_one_repetition),
+        cmocka_unit_test(test_a_pose_held_on_counts_for_each_repetition),
         cmocka_unit_test(test_expected_pose_must_be_near),
         cmocka_unit_test(test_one_clap_one_event),
         cmocka_unit_test(test_claps_in_a_row_and_held_hands),

@@ -24,7 +24,9 @@
  *   frames and that is not yet right: that verdict (b = 1) is issued at
  *   once, in the frame where the run becomes held. One run credits one
  *   repetition: to credit another, the keys must drop (below 4/5 of key_mu)
- *   and be reached again
+ *   and be reached again, or the run must go on a whole beat into a
+ *   repetition that began after the credit (a pose held on, as in a sway,
+ *   counts for each repetition it is held through)
  *   (a late child's pose at the start of the next repetition counts for
  *   the late one, not for both).
  * - A repetition still without a right verdict gets a wrong one (b = 0) in
