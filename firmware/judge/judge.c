@@ -142,6 +142,25 @@ static void calibrate(cub_judge *j, const cub_track_skeleton *s)
     j->calibrated = 1;
 }
 
+/* The fuzzy features of the child's pose, but the arm raise (RH, LH) read
+ * along the whole arm, shoulder to wrist: the tracker places elbows least
+ * well of all joints (a raised arm lost half its raise when the elbow was
+ * put low), and an arm is raised as far as its wrist is, bent or not. */
+static cub_err arm_aware_features(cub_judge *j, const cub_track_skeleton *skel)
+{
+    cub_err e = cub_fuzzy_features(&j->body, skel->joint_mm, CUB_TJ_COUNT, &j->last);
+    if (e) return e;
+    cub_fuzzy_body whole_arm = j->body;
+    whole_arm.elbow[0] = j->body.wrist[0];
+    whole_arm.elbow[1] = j->body.wrist[1];
+    cub_fuzzy_frame raise;
+    if (cub_fuzzy_features(&whole_arm, skel->joint_mm, CUB_TJ_COUNT, &raise) == CUB_OK) {
+        memcpy(j->last.mu[CUB_FUZZY_RH], raise.mu[CUB_FUZZY_RH], sizeof raise.mu[0]);
+        memcpy(j->last.mu[CUB_FUZZY_LH], raise.mu[CUB_FUZZY_LH], sizeof raise.mu[0]);
+    }
+    return CUB_OK;
+}
+
 cub_err cub_judge_frame(cub_judge *j, int64_t t_us, const cub_track_skeleton *skel,
                         cub_judge_out *out)
 {
@@ -156,8 +175,7 @@ cub_err cub_judge_frame(cub_judge *j, int64_t t_us, const cub_track_skeleton *sk
     const cub_fuzzy_frame *f = NULL;
     if (ok) {
         calibrate(j, skel);
-        if (cub_fuzzy_features(&j->body, skel->joint_mm, CUB_TJ_COUNT, &j->last) == CUB_OK)
-            f = &j->last;
+        if (arm_aware_features(j, skel) == CUB_OK) f = &j->last;
         judge_gestures(j, t_us, skel, out);
     } else {
         judge_gestures_reset(j);

@@ -393,7 +393,8 @@ static void test_expected_pose_must_be_near(void **state)
     cub_judge_rep rep = rep_rhe(0, 10, 70);
     rep.expected = &expected;
     assert_int_equal(cub_judge_begin_rep(r.j, &rep), CUB_OK);
-    /* The child bends the right elbow but with both arms raised high. */
+    /* The child bends the right elbow but with both arms raised high, both
+     * forearms bent forward (the arm raise is read shoulder to wrist). */
     pose p = STILL;
     p.arms_up = 1;
     for (int f = 5; f < 100; f++) {
@@ -401,6 +402,8 @@ static void test_expected_pose_must_be_near(void **state)
         if (f >= 20 && f < 50) { /* bend the raised right forearm forward */
             s.joint_mm[CUB_TJ_WRIST_R] = mm(175, 1350, 2270);
             s.joint_mm[CUB_TJ_HAND_R] = mm(175, 1350, 2210);
+            s.joint_mm[CUB_TJ_WRIST_L] = mm(-175, 1350, 2270);
+            s.joint_mm[CUB_TJ_HAND_L] = mm(-175, 1350, 2210);
         }
         cub_judge_out out;
         assert_int_equal(cub_judge_frame(r.j, (int64_t)f * FRAME_US, &s, &out), CUB_OK);

@@ -13,6 +13,10 @@
  * - A repetition r has keys (feature, set), its window [start_us,
  *   end_us + beat_us) (a child one beat late still counts) and optionally
  *   the coach's expected fuzzy frame.
+ * - The child's features are the fuzzy features of SEEDS.md, except that
+ *   the arm raise (RH, LH) is read along the whole arm, shoulder to wrist:
+ *   the tracker places elbows least well, and an arm is raised as far as
+ *   its wrist is.
  * - A frame MATCHES r when the tracker says CUB_TRACK_OK, every key's
  *   membership mu(feature, set) >= key_mu, and, if r has an expected
  *   frame, cub_fuzzy_distance(child, expected) <= pose_d_max.
