@@ -1,80 +1,31 @@
-/* From extremities to twenty joints: label the extremities (head, hands,
- * feet), measure the player's stature, then place the joints along the
- * geodesic paths and the torso axis with body proportions (in 1/1000 of
- * stature: the synthetic child's skeleton of cub/synth.h, measured on its
- * truth for CMU clip 13_29, the tuning clip). */
-#include "trk_internal.h"
+/* From extremities to twenty joints: label the extremities (hands, feet;
+ * the head and stature come from trk_head.c), then place the joints along
+ * the geodesic paths and the torso axis with body proportions
+ * (trk_body.h). */
+#include "trk_body.h"
 
-/* Which side of the image the player's left lands on: -1 as the Kinect
- * mirrors its images (cub/synth.h): a player facing the camera shows the
- * left hand at smaller camera x. */
-#define TRK_LEFT_SIGN (-1)
-
-/* proportions, per mille of stature */
+/* hands close in side keep last frame's names, per mille of stature */
 enum {
-    P_HEAD_DOWN = 85,      /* head top to head centre along the face */
-    P_NECK_DOWN = 200,     /* head top to shoulder centre */
-    P_WIDEN = 150,         /* head top to where the silhouette widens (neck base) */
-    P_BELOW_NECK = 40,     /* neck base to shoulder centre */
-    P_SPINE = 95,         /* shoulder centre to spine */
-    P_HIPC = 165,          /* shoulder centre to hip centre */
-    P_SHOULDER_HALF = 100, /* half the shoulder width */
-    P_SHOULDER_DROP = -20,
-    P_SHOULDER_RUN = 50, /* where the shoulders' width is measured */
-    R_ARM_EDGE = 15,     /* shoulder joint to the deltoid's outer surface */
-    P_HIP_HALF = 56,
-    P_HIP_DROP = 70,
-    P_UPPER_ARM = 190,
-    P_FOREARM = 130,
-    P_HAND_REACH = 80, /* the hand's surface around the fingertip */
-    P_WRIST_IN = 75,
-    P_THIGH = 267,
-    P_SHIN = 285,
-    P_ANKLE_UP = 80,
-    P_FOOT_UP = 40,
-    R_HEAD = 55, /* surface to joint: the part's radius */
-    R_TORSO = 60,
-    R_LIMB = 25,
+    SWAP_NEAR = 100,  /* apart across the body by less than */
+    SWAP_MARGIN = 50, /* the other naming nearer last frame's by more than */
 };
 
-static int32_t pm(int32_t stature, int32_t per_mille) { return stature * per_mille / 1000; }
-
-/* A part's radius: proportional, but a grown-up's chest is not deeper than
- * what the joint conventions put inside the surface. */
-static int32_t radius(int32_t stature, int32_t per_mille)
-{
-    int32_t r = pm(stature, per_mille);
-    return r > 75 ? 75 : r;
-}
-
-static trk_p3 cell_p(const cub_tracker *t, int32_t i) { return (trk_p3){t->x[i], t->y[i], t->z[i]}; }
-
-static int32_t dist3(trk_p3 a, trk_p3 b) { return trk_len(a.x - b.x, a.y - b.y, a.z - b.z); }
-
-static trk_p3 add_s(trk_p3 a, cub_vec3 dir_q16, int32_t mm)
-{
-    return (trk_p3){a.x + (int32_t)(((int64_t)dir_q16.x * mm) >> 16), a.y + (int32_t)(((int64_t)dir_q16.y * mm) >> 16),
-                    a.z + (int32_t)(((int64_t)dir_q16.z * mm) >> 16)};
-}
-
-/* Surface point to the part's axis: back along the camera's ray. */
-static trk_p3 inside(trk_p3 p, int32_t r_mm) { return (trk_p3){p.x, p.y, p.z + r_mm}; }
+/* a hand before the torso, per mille of stature */
+enum {
+    HF_FRONT = 70,  /* nearer the camera than the torso's surface by */
+    HF_MIN = 150,   /* at least this far from the shoulder */
+    HF_CROSS = 50,  /* how far across the body's middle */
+    HF_OTHER = 100, /* away from the other hand */
+    HF_ABOVE = 0,   /* an extremity on the torso: below the shoulders by */
+    HF_WIDE = 200,  /* and within this of the middle */
+    HF_CELLS = 4,   /* cells before the torso, fewer is noise */
+};
 
 static cub_vec3 unit(int32_t x, int32_t y, int32_t z)
 {
     int32_t l = trk_len(x, y, z);
     if (l == 0) return (cub_vec3){0, CUB_Q16_ONE, 0};
     return (cub_vec3){(int32_t)((int64_t)x * 65536 / l), (int32_t)((int64_t)y * 65536 / l), (int32_t)((int64_t)z * 65536 / l)};
-}
-
-/* The cell on the path from tip toward the root where the straight-line
- * distance from the tip first reaches mm (the root if never). */
-static int32_t path_at(const cub_tracker *t, int32_t tip, int32_t mm)
-{
-    trk_p3 p0 = cell_p(t, tip);
-    int32_t i = tip;
-    while (t->parent0[i] >= 0 && dist3(p0, cell_p(t, i)) < mm) i = t->parent0[i];
-    return i;
 }
 
 /* The middle joint of a limb (elbow, knee): the path cell whose distances to
@@ -88,35 +39,6 @@ static int32_t path_middle(const cub_tracker *t, int32_t tip, trk_p3 a, int32_t 
         if (e < best_err) best_err = e, best = i;
     }
     return best;
-}
-
-/* Stature from the head top: the floor when the feet are on it, else the
- * drop from the head top to where the silhouette widens into shoulders. */
-static int32_t measure_stature(const cub_tracker *t, int32_t head, bool on_floor, int32_t *neck_drop_mm)
-{
-    trk_p3 top = cell_p(t, head);
-    *neck_drop_mm = 0;
-    int32_t gx = head % TRK_GW, wmax = 0;
-    bool frozen = false;
-    for (int32_t gy = head / TRK_GW; gy < TRK_GH; gy++) {
-        int32_t i = gy * TRK_GW + gx;
-        if (!t->mask[i]) continue;
-        int32_t a = gx, b = gx;
-        while (a > 0 && t->mask[i - (gx - a) - 1]) a--;
-        while (b < TRK_GW - 1 && t->mask[i + (b - gx) + 1]) b++;
-        int32_t w = (b - a + 1) * TRK_CELL_PX * t->z[i] / CUB_TRACK_FOCAL_PX;
-        int32_t drop = top.y - t->y[i];
-        if (wmax > 0 && drop > 100 && w * 10 > wmax * 19) {
-            *neck_drop_mm = drop;
-            break;
-        }
-        /* the head's width: the widest row until the neck narrows it */
-        if (w * 10 < wmax * 9) frozen = true;
-        if (!frozen && w > wmax) wmax = w;
-        gx = (a + b) / 2;
-    }
-    if (on_floor) return trk_along(top.x, top.y, top.z, t->up) - t->floor_h_mm;
-    return *neck_drop_mm * 1000 / P_WIDEN;
 }
 
 /* Half the width of the silhouette's run through p's row (mm), 0 if p
@@ -136,77 +58,10 @@ static int32_t run_half_mm(const cub_tracker *t, trk_p3 p)
     return (t->x[row + b] - t->x[row + a]) / 2;
 }
 
-static void put(cub_track_skeleton *s, int j, trk_p3 p, cub_q16 conf)
-{
-    s->joint_mm[j] = (cub_vec3){p.x * 65536, p.y * 65536, p.z * 65536};
-    s->confidence[j] = conf;
-}
-
-static trk_p3 got(const cub_track_skeleton *s, int j)
-{
-    return (trk_p3){s->joint_mm[j].x >> 16, s->joint_mm[j].y >> 16, s->joint_mm[j].z >> 16};
-}
-
 typedef struct limb_pick {
     int32_t hand[2], foot[2]; /* extremum cell per side (0 = left), -1 none */
     int32_t head;
 } limb_pick;
-
-/* Percent of a disk of rho_mm around cell c (in the image plane) that the
- * player's surface fills at about c's depth: a head is round and fills its
- * disk, a raised forearm or hand crosses it as a strip. */
-static int32_t disk_fill_pct(const cub_tracker *t, int32_t c, int32_t rho_mm)
-{
-    int32_t z0 = t->z[c], rc = rho_mm * CUB_TRACK_FOCAL_PX / ((z0 ? z0 : 1) * TRK_CELL_PX);
-    if (rc < 1) rc = 1;
-    if (rc > 12) rc = 12;
-    int32_t gx0 = c % TRK_GW, gy0 = c / TRK_GW, in = 0, all = 0;
-    for (int32_t dy = -rc; dy <= rc; dy++)
-        for (int32_t dx = -rc; dx <= rc; dx++) {
-            if (dx * dx + dy * dy > rc * rc) continue;
-            all++;
-            int32_t gx = gx0 + dx, gy = gy0 + dy;
-            if (gx < 0 || gy < 0 || gx >= TRK_GW || gy >= TRK_GH) continue;
-            int32_t i = gy * TRK_GW + gx;
-            if (t->mask[i] && trk_abs(t->z[i] - z0) < 2 * rho_mm) in++;
-        }
-    return in * 100 / all;
-}
-
-/* The head: above the root, central, not a hand held in front; the nearer
- * to last frame's head the better. */
-static int32_t pick_head(const cub_tracker *t, int32_t root, const int32_t *ext, int32_t n, int32_t st0,
-                         bool *is_round)
-{
-    *is_round = false;
-    int32_t min_geo_mm = pm(st0, 220);
-    trk_p3 r = cell_p(t, root);
-    int32_t best = -1, best_cost = INT32_MAX;
-    for (int32_t k = 0; k < n; k++) {
-        trk_p3 p = cell_p(t, ext[k]);
-        int32_t dh = p.y - r.y; /* image-up: the head is found before the up vector matters */
-        if (trk_along(p.x - r.x, p.y - r.y, p.z - r.z, t->up) < 100 && dh < 100) continue;
-        /* a head sticks out of the torso by its neck and itself; a shallow
-         * bump (a shoulder between arms held down) is no head */
-        if (t->dist0[ext[k]] < min_geo_mm) continue;
-        /* central, not in front of the torso, far out along the surface
-         * (a head stands out by neck and skull, a shoulder bump does not),
-         * and round (a raised hand beside the head is a strip) */
-        int32_t cost = 2 * trk_abs(p.x - r.x) + 2 * (r.z - p.z > 100 ? r.z - p.z - 100 : 0) - t->dist0[ext[k]];
-        /* (an arm held out level fills a far, coarse disk too, but it
-         * reaches out more than up) */
-        bool round = disk_fill_pct(t, path_at(t, ext[k], pm(st0, P_HEAD_DOWN)), pm(st0, 60)) >= 75 &&
-                     trk_abs(p.x - r.x) < dh;
-        if (!round) cost += 600;
-        /* last frame's head helps, but a wrong one must not hold on */
-        if (t->have_prev && t->lost_frames == 0) {
-            int32_t d = dist3(p, got(&t->prev, CUB_TJ_HEAD));
-            cost += d < 300 ? d : 300;
-        }
-        if (cost < best_cost) best_cost = cost, best = k, *is_round = round;
-    }
-    return best;
-}
 
 /* Where a limb joins the torso: the cell on the tip's path to the root
  * that is base_mm of surface from the root. An arm's path enters through
@@ -257,6 +112,13 @@ static void pick_limbs(const cub_tracker *t, int32_t root, const int32_t *ext, i
         }
         if (m == 2) {
             int left = s[0] > s[1] ? 0 : 1;
+            /* hands close in side (crossed, or one before the other): the
+             * naming nearer last frame's hands, so they do not swap */
+            if (g == 0 && trk_abs(s[0] - s[1]) < pm(stature, SWAP_NEAR) && t->have_prev && t->lost_frames == 0) {
+                trk_p3 pl = got(&t->prev, CUB_TJ_HAND_L), pr = got(&t->prev, CUB_TJ_HAND_R);
+                trk_p3 a = cell_p(t, lists[g][left]), b = cell_p(t, lists[g][1 - left]);
+                if (dist3(a, pr) + dist3(b, pl) + pm(stature, SWAP_MARGIN) < dist3(a, pl) + dist3(b, pr)) left = 1 - left;
+            }
             dst[g][0] = lists[g][left], dst[g][1] = lists[g][1 - left];
         } else if (m == 1) {
             dst[g][s[0] > 0 ? 0 : 1] = lists[g][0];
@@ -391,77 +253,51 @@ static void guess_chain(const cub_tracker *t, cub_track_skeleton *s, int j0, cub
     }
 }
 
-/* The top of the body's column straight above the root: where the head
- * is when it is not an extremity (hands up beside it join it to the arms).
- * Climbs while the surface continues; parts nearer than the torso (an arm
- * across it) are climbed past, not taken for the head. */
-static int32_t column_top(const cub_tracker *t, int32_t root, int32_t max_rise_mm)
+/* An extremity on the torso's surface (not before it): a shoulder bump or
+ * the elbow of an arm whose hand lies before the chest. */
+static bool on_torso(const cub_tracker *t, int32_t root, int32_t i, trk_p3 sc, trk_p3 hc, cub_vec3 axis, cub_vec3 lft,
+                     int32_t st)
 {
-    int32_t best = -1, gx = root % TRK_GW, z0 = t->z[root];
-    for (int32_t c = gx - 1; c <= gx + 1; c++) {
-        if (c < 0 || c >= TRK_GW) continue;
-        int32_t top = -1;
-        for (int32_t i = (root / TRK_GW) * TRK_GW + c; i >= 0 && t->mask[i]; i -= TRK_GW) {
-            if (t->y[i] - t->y[root] > max_rise_mm || t->z[i] > z0 + 150) break;
-            if (t->z[i] >= z0 - 150) top = i;
-        }
-        if (top >= 0 && (best < 0 || t->y[top] > t->y[best])) best = top;
+    if (t->z[i] <= t->z[root] - pm(st, HF_FRONT)) return false;
+    trk_p3 p = cell_p(t, i);
+    int32_t up_sc = trk_along(p.x - sc.x, p.y - sc.y, p.z - sc.z, axis);
+    int32_t up_hc = trk_along(p.x - hc.x, p.y - hc.y, p.z - hc.z, axis);
+    int32_t l = trk_along(p.x - sc.x, p.y - sc.y, p.z - sc.z, lft);
+    /* below the hips it is a leg's, not an arm's */
+    return up_sc <= pm(st, HF_ABOVE) && (up_hc < 0 || trk_abs(l) <= pm(st, HF_WIDE));
+}
+
+/* A hand held before the torso is no extremity (its path ends in the
+ * chest), but the forearm and hand stand out in depth: among the cells
+ * clearly nearer the camera than the torso's surface, on the shoulder's
+ * side and within the arm's reach, the farthest from the shoulder. */
+static int32_t hand_in_front(const cub_tracker *t, int32_t root, trk_p3 sh, trk_p3 sc, trk_p3 hc, cub_vec3 axis,
+                             cub_vec3 lft, int side, int32_t st, int32_t other)
+{
+    int32_t zf = t->z[root] - pm(st, HF_FRONT), reach = pm(st, P_UPPER_ARM + P_FOREARM + P_HAND_REACH);
+    int32_t best = -1, best_d = pm(st, HF_MIN), nfront = 0, sgn = side ? -1 : 1;
+    for (int32_t i = 0; i < TRK_CELLS; i++) {
+        if (!t->mask[i] || t->dist0[i] == TRK_INF || t->z[i] > zf) continue;
+        trk_p3 p = cell_p(t, i);
+        /* between the hips and a little above the shoulders */
+        int32_t up_sc = trk_along(p.x - sc.x, p.y - sc.y, p.z - sc.z, axis);
+        int32_t up_hc = trk_along(p.x - hc.x, p.y - hc.y, p.z - hc.z, axis);
+        if (up_sc > pm(st, 60) || up_hc < -pm(st, 60)) continue;
+        if (sgn * trk_along(p.x - sc.x, p.y - sc.y, p.z - sc.z, lft) < -pm(st, HF_CROSS)) continue;
+        int32_t d = dist3(p, sh);
+        if (d > reach) continue;
+        if (other >= 0 && dist3(p, cell_p(t, other)) < pm(st, HF_OTHER)) continue;
+        nfront++;
+        if (d > best_d) best_d = d, best = i;
     }
-    return best;
+    return nfront >= HF_CELLS ? best : -1;
 }
 
 void trk_fit_skeleton(cub_tracker *t, int32_t root, int32_t *ext, int32_t next, cub_track_skeleton *s)
 {
-    int32_t st0 = t->stature_mm ? t->stature_mm : 1200;
-    bool round;
-    limb_pick lp = {.head = pick_head(t, root, ext, next, st0, &round)};
-    if (lp.head < 0 || (!round && trk_abs(t->x[ext[lp.head]] - t->x[root]) > pm(st0, 90))) {
-        /* no round, central extremity: the head is the column's top (a
-         * head leaning aside is round, hands up beside it are not) */
-        int32_t top = column_top(t, root, pm(st0, 450));
-        if (top >= 0) {
-            lp.head = -1;
-            for (int32_t k = 0; k < next; k++)
-                if (dist3(cell_p(t, ext[k]), cell_p(t, top)) < pm(st0, 100)) lp.head = k;
-            if (lp.head < 0) {
-                /* in place of the nearest extremity when the list is full */
-                if (next == TRK_MAX_EXTREMA) next--;
-                ext[next] = top;
-                lp.head = next++;
-            }
-        }
-    }
-    int32_t head = lp.head >= 0 ? ext[lp.head] : root;
-    int32_t hmin = INT32_MAX;
-    for (int32_t i = 0; i < TRK_CELLS; i++)
-        if (t->mask[i]) {
-            int32_t h = trk_along(t->x[i], t->y[i], t->z[i], t->up);
-            if (h < hmin) hmin = h;
-        }
-    bool on_floor = t->have_floor && hmin - t->floor_h_mm < 120;
-    int32_t neck = 0;
-    int32_t st = lp.head >= 0 ? measure_stature(t, head, on_floor, &neck) : 0;
-    /* a neck base far from where the body's proportions put it is an arm
-     * or a leaning head widening the silhouette, not the shoulders */
-    if (neck >= pm(st0, 100) && neck <= pm(st0, 250)) {
-        int32_t cur = t->neck_drop_mm; /* arms beside the head fool one frame */
-        if (cur && neck > cur + cur / 8) neck = cur + cur / 8;
-        if (cur && neck < cur - cur / 8) neck = cur - cur / 8;
-        t->neck_drop_mm = cur ? cur + (neck - cur) / 4 : neck;
-    }
-    t->head_cell = lp.head >= 0 ? head : -1;
-    t->stature_seen_mm = st;
-    if (st >= 700 && st <= 2100) {
-        /* a body does not change size: once known, one odd measurement
-         * (a raised hand beside the head) moves it by 10 % at most */
-        int32_t cur = t->stature_mm;
-        if (cur && st > cur + cur / 10) st = cur + cur / 10;
-        if (cur && st < cur - cur / 10) st = cur - cur / 10;
-        t->stature_mm = cur ? cur + (st - cur) / 4 : st;
-    }
-    if (!t->stature_mm) t->stature_mm = 1200;
-    st = t->stature_mm;
-
+    bool on_floor;
+    limb_pick lp = {.head = trk_fit_head(t, root, ext, &next, &on_floor)};
+    int32_t head = lp.head >= 0 ? ext[lp.head] : root, st = t->stature_mm;
     trk_p3 hd = inside(cell_p(t, path_at(t, head, pm(st, P_HEAD_DOWN))), radius(st, R_HEAD));
     /* the shoulder centre just below the neck base, where one was seen */
     int32_t sc_drop = t->neck_drop_mm ? t->neck_drop_mm + pm(st, P_BELOW_NECK) : pm(st, P_NECK_DOWN);
@@ -487,6 +323,13 @@ void trk_fit_skeleton(cub_tracker *t, int32_t root, int32_t *ext, int32_t next, 
 
     pick_limbs(t, root, ext, next, st, sc, hc, axis, lat, &lp);
     if (on_floor) feet_on_floor(t, hc, lat, st, &lp);
+    for (int side = 0; side < 2; side++) {
+        int32_t h = lp.hand[side];
+        if (h >= 0 && !on_torso(t, root, h, sc, hc, axis, lft, st)) continue;
+        int32_t f = hand_in_front(t, root, got(s, side ? CUB_TJ_SHOULDER_R : CUB_TJ_SHOULDER_L), sc, hc, axis, lft,
+                                  side, st, lp.hand[1 - side]);
+        if (f >= 0) lp.hand[side] = f;
+    }
     for (int side = 0; side < 2; side++) {
         int js = side ? CUB_TJ_SHOULDER_R : CUB_TJ_SHOULDER_L, jh = side ? CUB_TJ_HIP_R : CUB_TJ_HIP_L;
         if (lp.hand[side] >= 0) fit_arm(t, s, side, lp.hand[side], st);

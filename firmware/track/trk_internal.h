@@ -93,6 +93,11 @@ int32_t trk_root_cell(cub_tracker *t);
 void trk_geodesic(cub_tracker *t, int32_t *dist, int32_t *parent, int32_t src);
 int32_t trk_extrema(cub_tracker *t, int32_t root, int32_t min_mm, int32_t *out, int32_t max_out);
 
+/* trk_head.c: picks the head among the extremities (or adds the column's
+ * top to ext, so *next may grow), updates stature_mm and neck_drop_mm;
+ * the head's index in ext, -1 none. */
+int32_t trk_fit_head(cub_tracker *t, int32_t root, int32_t *ext, int32_t *next, bool *on_floor);
+
 /* trk_fit.c */
 void trk_fit_skeleton(cub_tracker *t, int32_t root, int32_t *ext, int32_t next,
                       cub_track_skeleton *out);

@@ -1,0 +1,86 @@
+/* The body model shared by the fitting stages (trk_head.c, trk_fit.c):
+ * proportions in 1/1000 of stature (the synthetic child's skeleton of
+ * cub/synth.h, measured on its truth for CMU clip 13_29, the tuning clip)
+ * and small geometry helpers on grid cells and mm points. */
+#ifndef CUB_TRK_BODY_H
+#define CUB_TRK_BODY_H
+
+#include "trk_internal.h"
+
+/* Which side of the image the player's left lands on: -1 as the Kinect
+ * mirrors its images (cub/synth.h): a player facing the camera shows the
+ * left hand at smaller camera x. */
+#define TRK_LEFT_SIGN (-1)
+
+/* proportions, per mille of stature */
+enum {
+    P_HEAD_DOWN = 85,      /* head top to head centre along the face */
+    P_NECK_DOWN = 200,     /* head top to shoulder centre */
+    P_WIDEN = 150,         /* head top to where the silhouette widens (neck base) */
+    P_BELOW_NECK = 40,     /* neck base to shoulder centre */
+    P_SPINE = 95,         /* shoulder centre to spine */
+    P_HIPC = 165,          /* shoulder centre to hip centre */
+    P_SHOULDER_HALF = 100, /* half the shoulder width */
+    P_SHOULDER_DROP = -20,
+    P_SHOULDER_RUN = 50, /* where the shoulders' width is measured */
+    R_ARM_EDGE = 15,     /* shoulder joint to the deltoid's outer surface */
+    P_HIP_HALF = 56,
+    P_HIP_DROP = 70,
+    P_UPPER_ARM = 190,
+    P_FOREARM = 130,
+    P_HAND_REACH = 80, /* the hand's surface around the fingertip */
+    P_WRIST_IN = 75,
+    P_THIGH = 267,
+    P_SHIN = 285,
+    P_ANKLE_UP = 80,
+    P_FOOT_UP = 40,
+    R_HEAD = 55, /* surface to joint: the part's radius */
+    R_TORSO = 60,
+    R_LIMB = 25,
+};
+
+static inline int32_t pm(int32_t stature, int32_t per_mille) { return stature * per_mille / 1000; }
+
+/* A part's radius: proportional, but a grown-up's chest is not deeper than
+ * what the joint conventions put inside the surface. */
+static inline int32_t radius(int32_t stature, int32_t per_mille)
+{
+    int32_t r = pm(stature, per_mille);
+    return r > 75 ? 75 : r;
+}
+
+static inline trk_p3 cell_p(const cub_tracker *t, int32_t i) { return (trk_p3){t->x[i], t->y[i], t->z[i]}; }
+
+static inline int32_t dist3(trk_p3 a, trk_p3 b) { return trk_len(a.x - b.x, a.y - b.y, a.z - b.z); }
+
+static inline trk_p3 add_s(trk_p3 a, cub_vec3 dir_q16, int32_t mm)
+{
+    return (trk_p3){a.x + (int32_t)(((int64_t)dir_q16.x * mm) >> 16), a.y + (int32_t)(((int64_t)dir_q16.y * mm) >> 16),
+                    a.z + (int32_t)(((int64_t)dir_q16.z * mm) >> 16)};
+}
+
+/* Surface point to the part's axis: back along the camera's ray. */
+static inline trk_p3 inside(trk_p3 p, int32_t r_mm) { return (trk_p3){p.x, p.y, p.z + r_mm}; }
+
+/* The cell on the path from tip toward the root where the straight-line
+ * distance from the tip first reaches mm (the root if never). */
+static inline int32_t path_at(const cub_tracker *t, int32_t tip, int32_t mm)
+{
+    trk_p3 p0 = cell_p(t, tip);
+    int32_t i = tip;
+    while (t->parent0[i] >= 0 && dist3(p0, cell_p(t, i)) < mm) i = t->parent0[i];
+    return i;
+}
+
+static inline void put(cub_track_skeleton *s, int j, trk_p3 p, cub_q16 conf)
+{
+    s->joint_mm[j] = (cub_vec3){p.x * 65536, p.y * 65536, p.z * 65536};
+    s->confidence[j] = conf;
+}
+
+static inline trk_p3 got(const cub_track_skeleton *s, int j)
+{
+    return (trk_p3){s->joint_mm[j].x >> 16, s->joint_mm[j].y >> 16, s->joint_mm[j].z >> 16};
+}
+
+#endif

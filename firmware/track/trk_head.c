@@ -1,0 +1,164 @@
+/* The head and the player's size: which extremity is the head (or the
+ * top of the body's column when none is), the stature and the neck base,
+ * both smoothed over frames as a body does not change size. */
+#include "trk_body.h"
+
+/* Stature from the head top: the floor when the feet are on it, else the
+ * drop from the head top to where the silhouette widens into shoulders. */
+static int32_t measure_stature(const cub_tracker *t, int32_t head, bool on_floor, int32_t *neck_drop_mm)
+{
+    trk_p3 top = cell_p(t, head);
+    *neck_drop_mm = 0;
+    int32_t gx = head % TRK_GW, wmax = 0;
+    bool frozen = false;
+    for (int32_t gy = head / TRK_GW; gy < TRK_GH; gy++) {
+        int32_t i = gy * TRK_GW + gx;
+        if (!t->mask[i]) continue;
+        int32_t a = gx, b = gx;
+        while (a > 0 && t->mask[i - (gx - a) - 1]) a--;
+        while (b < TRK_GW - 1 && t->mask[i + (b - gx) + 1]) b++;
+        int32_t w = (b - a + 1) * TRK_CELL_PX * t->z[i] / CUB_TRACK_FOCAL_PX;
+        int32_t drop = top.y - t->y[i];
+        if (wmax > 0 && drop > 100 && w * 10 > wmax * 19) {
+            *neck_drop_mm = drop;
+            break;
+        }
+        /* the head's width: the widest row until the neck narrows it */
+        if (w * 10 < wmax * 9) frozen = true;
+        if (!frozen && w > wmax) wmax = w;
+        gx = (a + b) / 2;
+    }
+    if (on_floor) return trk_along(top.x, top.y, top.z, t->up) - t->floor_h_mm;
+    return *neck_drop_mm * 1000 / P_WIDEN;
+}
+
+/* Percent of a disk of rho_mm around cell c (in the image plane) that the
+ * player's surface fills at about c's depth: a head is round and fills its
+ * disk, a raised forearm or hand crosses it as a strip. */
+static int32_t disk_fill_pct(const cub_tracker *t, int32_t c, int32_t rho_mm)
+{
+    int32_t z0 = t->z[c], rc = rho_mm * CUB_TRACK_FOCAL_PX / ((z0 ? z0 : 1) * TRK_CELL_PX);
+    if (rc < 1) rc = 1;
+    if (rc > 12) rc = 12;
+    int32_t gx0 = c % TRK_GW, gy0 = c / TRK_GW, in = 0, all = 0;
+    for (int32_t dy = -rc; dy <= rc; dy++)
+        for (int32_t dx = -rc; dx <= rc; dx++) {
+            if (dx * dx + dy * dy > rc * rc) continue;
+            all++;
+            int32_t gx = gx0 + dx, gy = gy0 + dy;
+            if (gx < 0 || gy < 0 || gx >= TRK_GW || gy >= TRK_GH) continue;
+            int32_t i = gy * TRK_GW + gx;
+            if (t->mask[i] && trk_abs(t->z[i] - z0) < 2 * rho_mm) in++;
+        }
+    return in * 100 / all;
+}
+
+/* The head: above the root, central, not a hand held in front; the nearer
+ * to last frame's head the better. */
+static int32_t pick_head(const cub_tracker *t, int32_t root, const int32_t *ext, int32_t n, int32_t st0,
+                         bool *is_round)
+{
+    *is_round = false;
+    int32_t min_geo_mm = pm(st0, 220);
+    trk_p3 r = cell_p(t, root);
+    int32_t best = -1, best_cost = INT32_MAX;
+    for (int32_t k = 0; k < n; k++) {
+        trk_p3 p = cell_p(t, ext[k]);
+        int32_t dh = p.y - r.y; /* image-up: the head is found before the up vector matters */
+        if (trk_along(p.x - r.x, p.y - r.y, p.z - r.z, t->up) < 100 && dh < 100) continue;
+        /* a head sticks out of the torso by its neck and itself; a shallow
+         * bump (a shoulder between arms held down) is no head */
+        if (t->dist0[ext[k]] < min_geo_mm) continue;
+        /* central, not in front of the torso, far out along the surface
+         * (a head stands out by neck and skull, a shoulder bump does not),
+         * and round (a raised hand beside the head is a strip) */
+        int32_t cost = 2 * trk_abs(p.x - r.x) + 2 * (r.z - p.z > 100 ? r.z - p.z - 100 : 0) - t->dist0[ext[k]];
+        /* (an arm held out level fills a far, coarse disk too, but it
+         * reaches out more than up) */
+        bool round = disk_fill_pct(t, path_at(t, ext[k], pm(st0, P_HEAD_DOWN)), pm(st0, 60)) >= 75 &&
+                     trk_abs(p.x - r.x) < dh;
+        if (!round) cost += 600;
+        /* last frame's head helps, but a wrong one must not hold on */
+        if (t->have_prev && t->lost_frames == 0) {
+            int32_t d = dist3(p, got(&t->prev, CUB_TJ_HEAD));
+            cost += d < 300 ? d : 300;
+        }
+        if (cost < best_cost) best_cost = cost, best = k, *is_round = round;
+    }
+    return best;
+}
+
+/* The top of the body's column straight above the root: where the head
+ * is when it is not an extremity (hands up beside it join it to the arms).
+ * Climbs while the surface continues; parts nearer than the torso (an arm
+ * across it) are climbed past, not taken for the head. */
+static int32_t column_top(const cub_tracker *t, int32_t root, int32_t max_rise_mm)
+{
+    int32_t best = -1, gx = root % TRK_GW, z0 = t->z[root];
+    for (int32_t c = gx - 1; c <= gx + 1; c++) {
+        if (c < 0 || c >= TRK_GW) continue;
+        int32_t top = -1;
+        for (int32_t i = (root / TRK_GW) * TRK_GW + c; i >= 0 && t->mask[i]; i -= TRK_GW) {
+            if (t->y[i] - t->y[root] > max_rise_mm || t->z[i] > z0 + 150) break;
+            if (t->z[i] >= z0 - 150) top = i;
+        }
+        if (top >= 0 && (best < 0 || t->y[top] > t->y[best])) best = top;
+    }
+    return best;
+}
+
+int32_t trk_fit_head(cub_tracker *t, int32_t root, int32_t *ext, int32_t *next, bool *on_floor_out)
+{
+    int32_t st0 = t->stature_mm ? t->stature_mm : 1200;
+    bool round;
+    int32_t n = *next;
+    int32_t head_k = pick_head(t, root, ext, n, st0, &round);
+    if (head_k < 0 || (!round && trk_abs(t->x[ext[head_k]] - t->x[root]) > pm(st0, 90))) {
+        /* no round, central extremity: the head is the column's top (a
+         * head leaning aside is round, hands up beside it are not) */
+        int32_t top = column_top(t, root, pm(st0, 450));
+        if (top >= 0) {
+            head_k = -1;
+            for (int32_t k = 0; k < n; k++)
+                if (dist3(cell_p(t, ext[k]), cell_p(t, top)) < pm(st0, 100)) head_k = k;
+            if (head_k < 0) {
+                /* in place of the nearest extremity when the list is full */
+                if (n == TRK_MAX_EXTREMA) n--;
+                ext[n] = top;
+                head_k = n++;
+            }
+        }
+    }
+    int32_t head = head_k >= 0 ? ext[head_k] : root;
+    int32_t hmin = INT32_MAX;
+    for (int32_t i = 0; i < TRK_CELLS; i++)
+        if (t->mask[i]) {
+            int32_t h = trk_along(t->x[i], t->y[i], t->z[i], t->up);
+            if (h < hmin) hmin = h;
+        }
+    bool on_floor = t->have_floor && hmin - t->floor_h_mm < 120;
+    int32_t neck = 0;
+    int32_t st = head_k >= 0 ? measure_stature(t, head, on_floor, &neck) : 0;
+    /* a neck base far from where the body's proportions put it is an arm
+     * or a leaning head widening the silhouette, not the shoulders */
+    if (neck >= pm(st0, 100) && neck <= pm(st0, 250)) {
+        int32_t cur = t->neck_drop_mm; /* arms beside the head fool one frame */
+        if (cur && neck > cur + cur / 8) neck = cur + cur / 8;
+        if (cur && neck < cur - cur / 8) neck = cur - cur / 8;
+        t->neck_drop_mm = cur ? cur + (neck - cur) / 4 : neck;
+    }
+    t->head_cell = head_k >= 0 ? head : -1;
+    t->stature_seen_mm = st;
+    if (st >= 700 && st <= 2100) {
+        /* a body does not change size: once known, one odd measurement
+         * (a raised hand beside the head) moves it by 10 % at most */
+        int32_t cur = t->stature_mm;
+        if (cur && st > cur + cur / 10) st = cur + cur / 10;
+        if (cur && st < cur - cur / 10) st = cur - cur / 10;
+        t->stature_mm = cur ? cur + (st - cur) / 4 : st;
+    }
+    if (!t->stature_mm) t->stature_mm = 1200;
+    *next = n;
+    *on_floor_out = on_floor;
+    return head_k;
+}
