@@ -17,20 +17,6 @@ static cub_err known_attrs(const cub_xml_el *el, const char *const *known, cub_d
                : CUB_OK;
 }
 
-static cub_err get_int(const cub_xml_el *el, const char *attr, int lo, int hi, int *out,
-                       cub_diag *diag)
-{
-    cub_err e = cub_xml_attr_int(el, attr, out);
-    if (e == CUB_ERR_EMPTY)
-        return cub_xml_fail(el, diag, "<%s> needs %s=\"...\"", cub_xml_name(el), attr);
-    if (e)
-        return cub_xml_fail_attr(el, attr, diag, "%s=\"%s\" is not a whole number", attr,
-                                 cub_xml_attr(el, attr));
-    if (*out < lo || *out > hi)
-        return cub_xml_fail_attr(el, attr, diag, "%s=%d is outside [%d, %d]", attr, *out, lo, hi);
-    return CUB_OK;
-}
-
 /* A required text attribute that fits in size bytes (and is not empty). */
 static cub_err get_text(const cub_xml_el *el, const char *attr, char *out, size_t size,
                         cub_diag *diag)
@@ -157,13 +143,13 @@ static cub_err read_move(const cub_xml_el *el, const cub_library *lib, cub_song 
     mv->line = cub_xml_line(el);
     cub_err e = known_attrs(el, known, diag);
     if (!e) e = get_text(el, "clip", mv->clip, sizeof(mv->clip), diag);
-    if (!e) e = get_int(el, "reps", 1, 1000, &mv->reps, diag);
+    if (!e) e = cub_xml_get_int(el, "reps", 1, 1000, &mv->reps, diag);
     if (!e && mv->reps < CUB_SONG_MIN_REPS)
         return cub_xml_fail_attr(el, "reps", diag,
                                  "reps=%d: each move plays at least %d times in a row", mv->reps,
                                  CUB_SONG_MIN_REPS);
-    if (!e) e = get_int(el, "bar", 1, s->bars, &mv->bar, diag);
-    if (!e) e = get_int(el, "bars", 1, s->bars, &mv->bars, diag);
+    if (!e) e = cub_xml_get_int(el, "bar", 1, s->bars, &mv->bar, diag);
+    if (!e) e = cub_xml_get_int(el, "bars", 1, s->bars, &mv->bars, diag);
     if (e) return e;
     if (mv->bar < prev_end_bar)
         return cub_xml_fail_attr(el, "bar", diag,
@@ -213,13 +199,13 @@ static cub_err read_song(const cub_xml_el *root, const char *name, const cub_lib
     if (strcmp(cub_xml_name(root), "song") != 0)
         return cub_xml_fail(root, diag, "the root element is <%s>, not <song>", cub_xml_name(root));
     cub_err e = known_attrs(root, known, diag);
-    if (!e) e = get_int(root, "version", 1, 1, &version, diag);
+    if (!e) e = cub_xml_get_int(root, "version", 1, 1, &version, diag);
     if (!e) e = get_text(root, "name", s->name, sizeof(s->name), diag);
     if (!e) e = get_text(root, "midi", s->midi, sizeof(s->midi), diag);
     if (!e) e = resolve_midi(root, name, s, diag);
-    if (!e) e = get_int(root, "bpm", 30, 300, &s->bpm, diag);
+    if (!e) e = cub_xml_get_int(root, "bpm", 30, 300, &s->bpm, diag);
     if (!e) e = get_meter(root, s, diag);
-    if (!e) e = get_int(root, "bars", 1, MAX_BARS, &s->bars, diag);
+    if (!e) e = cub_xml_get_int(root, "bars", 1, MAX_BARS, &s->bars, diag);
     if (e) return e;
     int prev_end_bar = 1;
     const cub_xml_el *last = root;

@@ -35,20 +35,6 @@ static cub_err get_q16(const cub_xml_el *el, const char *attr, double lo, double
     return CUB_OK;
 }
 
-static cub_err get_int(const cub_xml_el *el, const char *attr, int lo, int hi, int *out,
-                       cub_diag *diag)
-{
-    cub_err e = cub_xml_attr_int(el, attr, out);
-    if (e == CUB_ERR_EMPTY)
-        return cub_xml_fail(el, diag, "<%s> needs %s=\"...\"", cub_xml_name(el), attr);
-    if (e)
-        return cub_xml_fail(el, diag, "%s=\"%s\" is not a whole number", attr,
-                            cub_xml_attr(el, attr));
-    if (*out < lo || *out > hi)
-        return cub_xml_fail(el, diag, "%s=%d is outside [%d, %d]", attr, *out, lo, hi);
-    return CUB_OK;
-}
-
 static cub_err known_attrs(const cub_xml_el *el, const char *const *known, cub_diag *diag)
 {
     const char *bad = cub_xml_unknown_attr(el, known);
@@ -115,10 +101,10 @@ static cub_err read_tagging(const cub_xml_el *el, cub_tag_params *p, cub_diag *d
                                         "spacing_ms",  "max_links",   NULL};
     cub_err e = known_attrs(el, known, diag);
     if (!e) e = get_q16(el, "class_share", 0.0, 1.0, &p->class_share, diag);
-    if (!e) e = get_int(el, "class_clips", 1, 1000000, &p->class_clips, diag);
+    if (!e) e = cub_xml_get_int(el, "class_clips", 1, 1000000, &p->class_clips, diag);
     if (!e) e = get_q16(el, "head_dps", 0.0, 30000.0, &p->head_dps, diag);
-    if (!e) e = get_int(el, "spacing_ms", 1, 1000000, &p->spacing_ms, diag);
-    if (!e) e = get_int(el, "max_links", -1, 1000000, &p->max_links, diag);
+    if (!e) e = cub_xml_get_int(el, "spacing_ms", 1, 1000000, &p->spacing_ms, diag);
+    if (!e) e = cub_xml_get_int(el, "max_links", -1, 1000000, &p->max_links, diag);
     if (!e && p->max_links == 0)
         return cub_xml_fail(el, diag, "max_links=0 would keep no link (-1 keeps all)");
     return e;
@@ -136,7 +122,7 @@ static cub_err read_clip(reader *r, const cub_xml_el *el)
     cub_tag_clip *tc = &r->t->clips[c];
     if (tc->name[0]) return cub_xml_fail(el, r->diag, "clip '%s' is tagged twice", name);
     int frames = 0, lib_frames = r->lib->clips[c].clip.frame_count;
-    if (get_int(el, "frames", 1, INT32_MAX, &frames, r->diag)) return CUB_ERR_FORMAT;
+    if (cub_xml_get_int(el, "frames", 1, INT32_MAX, &frames, r->diag)) return CUB_ERR_FORMAT;
     if (frames != lib_frames)
         return cub_xml_fail(el, r->diag,
                             "clip '%s' has %d frames in the library, not %d (stale tags?)", name,
@@ -153,7 +139,7 @@ static cub_err read_clip(reader *r, const cub_xml_el *el)
     for (cub_xml_el *b = cub_xml_child(el, "bridge"); b; b = cub_xml_next(b, "bridge")) {
         cub_tag_bridge *tb = &tc->bridges[tc->bridge_count];
         if (known_attrs(b, bridge_known, r->diag) ||
-            get_int(b, "frame", 0, frames - 1, &tb->frame, r->diag) ||
+            cub_xml_get_int(b, "frame", 0, frames - 1, &tb->frame, r->diag) ||
             get_class(b, &tb->crisp_class, r->diag))
             return CUB_ERR_FORMAT;
         if (tc->bridge_count > 0 && tb->frame <= tb[-1].frame)
@@ -192,8 +178,8 @@ static cub_err read_link(reader *r, const cub_xml_el *k, int from, int to, cub_t
     static const char *const known[] = {"a", "b", "d", "half", NULL};
     const cub_tag_clip *A = &r->t->clips[from], *B = &r->t->clips[to];
     double thr = (double)r->t->params.fuzzy.threshold / 65536.0;
-    if (known_attrs(k, known, r->diag) || get_int(k, "a", 0, A->frame_count - 1, &l->a, r->diag) ||
-        get_int(k, "b", 0, B->frame_count - 1, &l->b, r->diag) ||
+    if (known_attrs(k, known, r->diag) || cub_xml_get_int(k, "a", 0, A->frame_count - 1, &l->a, r->diag) ||
+        cub_xml_get_int(k, "b", 0, B->frame_count - 1, &l->b, r->diag) ||
         get_q16(k, "d", 0.0, 1.0, &l->d, r->diag))
         return CUB_ERR_FORMAT;
     if (!is_bridge(A, l->a))
@@ -262,7 +248,7 @@ static cub_err read_root(reader *r, const cub_xml_el *root)
                             cub_xml_name(root));
     int version = 0;
     if (known_attrs(root, known, r->diag) ||
-        get_int(root, "version", CUB_TAGS_VERSION, CUB_TAGS_VERSION, &version, r->diag))
+        cub_xml_get_int(root, "version", CUB_TAGS_VERSION, CUB_TAGS_VERSION, &version, r->diag))
         return CUB_ERR_FORMAT;
     const char *lib = cub_xml_attr(root, "library");
     if (!lib || !lib[0] || strlen(lib) >= CUB_TAGS_LIBRARY_LEN)

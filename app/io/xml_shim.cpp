@@ -291,6 +291,20 @@ const char *cub_xml_unknown_attr(const cub_xml_el *el, const char *const *known)
     return nullptr;
 }
 
+cub_err cub_xml_get_int(const cub_xml_el *el, const char *attr, int lo, int hi, int *out,
+                        cub_diag *diag)
+{
+    cub_err e = cub_xml_attr_int(el, attr, out);
+    if (e == CUB_ERR_EMPTY)
+        return cub_xml_fail(el, diag, "<%s> needs %s=\"...\"", cub_xml_name(el), attr);
+    if (e)
+        return cub_xml_fail_attr(el, attr, diag, "%s=\"%s\" is not a whole number", attr,
+                                 cub_xml_attr(el, attr));
+    if (*out < lo || *out > hi)
+        return cub_xml_fail_attr(el, attr, diag, "%s=%d is outside [%d, %d]", attr, *out, lo, hi);
+    return CUB_OK;
+}
+
 cub_err cub_xml_attr_double(const cub_xml_el *el, const char *attr, double *out)
 {
     return cub_xml_attr_doubles(el, attr, out, 1);

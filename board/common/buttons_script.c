@@ -32,14 +32,11 @@ typedef struct parser {
 
 static cub_err fail(const parser *p, const char *fmt, ...)
 {
-    int n = snprintf(p->err, p->err_size, "%s:%d: ", p->file, p->line);
-    if (n >= 0 && (size_t)n < p->err_size) {
-        va_list ap;
-        va_start(ap, fmt);
-        vsnprintf(p->err + n, p->err_size - (size_t)n, fmt, ap);
-        va_end(ap);
-    }
-    return CUB_ERR_FORMAT;
+    va_list ap;
+    va_start(ap, fmt);
+    cub_err e = cub_board_vfail_at(p->err, p->err_size, p->file, p->line, fmt, ap);
+    va_end(ap);
+    return e;
 }
 
 static cub_err push_edge(cub_button_script *s, int64_t t_us, int button, int down, int line)

@@ -37,3 +37,11 @@ cub_err cub_board_read_text(const char *path, const char *what, size_t max_bytes
     *len = got;
     return CUB_OK;
 }
+
+cub_err cub_board_vfail_at(char *err, size_t err_size, const char *file, int line,
+                           const char *fmt, va_list ap)
+{
+    int n = snprintf(err, err_size, "%s:%d: ", file, line);
+    if (n >= 0 && (size_t)n < err_size) vsnprintf(err + n, err_size - (size_t)n, fmt, ap);
+    return CUB_ERR_FORMAT;
+}

@@ -222,16 +222,8 @@ static void seed_nodes(const cub_bridge_table *t, const cub_bridge_query *q, int
 static int node_of(const cub_bridge_table *t, int c, int f)
 {
     const cub_bridge_clip *cc = &t->clips[c];
-    const int16_t *b = t->bridges + cc->first_bridge;
-    int lo = 0, hi = cc->bridge_count - 1;
-    while (lo < hi) {
-        int mid = (lo + hi) / 2;
-        if (b[mid] < f)
-            lo = mid + 1;
-        else
-            hi = mid;
-    }
-    return cc->first_bridge + lo;
+    int i = cub_bridge_lower_bound(t, c, f);
+    return cc->first_bridge + (i < cc->bridge_count ? i : cc->bridge_count - 1);
 }
 
 static void relax_from(const cub_bridge_table *t, node *nodes, int u)

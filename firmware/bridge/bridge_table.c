@@ -158,8 +158,7 @@ cub_err cub_bridge_table_add_clip(cub_bridge_table *t, const cub_clip *clip,
     return CUB_OK;
 }
 
-/* Is f a bridge frame of clip c? (binary search: bridges are ascending) */
-static int is_bridge(const cub_bridge_table *t, int c, int f)
+int cub_bridge_lower_bound(const cub_bridge_table *t, int c, int f)
 {
     const int16_t *b = t->bridges + t->clips[c].first_bridge;
     int lo = 0, hi = t->clips[c].bridge_count;
@@ -170,7 +169,14 @@ static int is_bridge(const cub_bridge_table *t, int c, int f)
         else
             hi = mid;
     }
-    return lo < t->clips[c].bridge_count && b[lo] == f;
+    return lo;
+}
+
+/* Is f a bridge frame of clip c? */
+static int is_bridge(const cub_bridge_table *t, int c, int f)
+{
+    int i = cub_bridge_lower_bound(t, c, f);
+    return i < t->clips[c].bridge_count && t->bridges[t->clips[c].first_bridge + i] == f;
 }
 
 cub_err cub_bridge_table_set_links(cub_bridge_table *t, int from, int to,

@@ -146,6 +146,20 @@ static void test_replay_gives_every_frame_then_end(void **state)
     cub_depth_close(src);
 }
 
+/* Open the freenect source on the dump in dir (FAKENECT_PATH set for the
+ * call, then put back as it was). */
+static cub_err open_dump(const char *dir, cub_depth **src, char *err, size_t err_size)
+{
+    char *saved = getenv("FAKENECT_PATH") ? strdup(getenv("FAKENECT_PATH")) : NULL;
+    setenv("FAKENECT_PATH", dir, 1);
+    cub_err e = cub_depth_open(CUB_DEPTH_FREENECT, &real_clock, src, err, err_size);
+    if (saved) {
+        setenv("FAKENECT_PATH", saved, 1);
+        free(saved);
+    }
+    return e;
+}
+
 /* A dump naming a missing file is refused with INDEX.txt:line, before
  * fakenect could exit() the program. Runs first: fakenect reads
  * FAKENECT_PATH once, at freenect_init. */
@@ -158,15 +172,9 @@ static void test_broken_dump_is_refused_with_line(void **state)
     FILE *f = fopen(path, "w");
     fputs("a-1300000000.000000-0.dump\nd-1300000000.000000-1000.pgm\n", f);
     fclose(f);
-    char *saved = getenv("FAKENECT_PATH") ? strdup(getenv("FAKENECT_PATH")) : NULL;
-    setenv("FAKENECT_PATH", dir, 1);
     cub_depth *src = NULL;
     char err[512];
-    cub_err e = cub_depth_open(CUB_DEPTH_FREENECT, &real_clock, &src, err, sizeof err);
-    if (saved) {
-        setenv("FAKENECT_PATH", saved, 1);
-        free(saved);
-    }
+    cub_err e = open_dump(dir, &src, err, sizeof err);
     unlink(path);
     rmdir(dir);
     if (e == CUB_ERR_DEVICE && strstr(err, "no Kinect")) {
@@ -193,15 +201,9 @@ static void test_short_frame_is_refused(void **state)
     f = fopen(frame, "w");
     fputs("P5 640 480 65535\n0123456789", f);
     fclose(f);
-    char *saved = getenv("FAKENECT_PATH") ? strdup(getenv("FAKENECT_PATH")) : NULL;
-    setenv("FAKENECT_PATH", dir, 1);
     cub_depth *src = NULL;
     char err[512];
-    cub_err e = cub_depth_open(CUB_DEPTH_FREENECT, &real_clock, &src, err, sizeof err);
-    if (saved) {
-        setenv("FAKENECT_PATH", saved, 1);
-        free(saved);
-    }
+    cub_err e = open_dump(dir, &src, err, sizeof err);
     unlink(frame);
     unlink(index);
     rmdir(dir);

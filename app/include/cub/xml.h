@@ -95,6 +95,11 @@ const char *cub_xml_unknown_attr(const cub_xml_el *el, const char *const *known)
  * not such a number (doubles must be finite; ints must fit an int). */
 cub_err cub_xml_attr_double(const cub_xml_el *el, const char *attr, double *out);
 cub_err cub_xml_attr_int(const cub_xml_el *el, const char *attr, int *out);
+/* A required whole-number attribute in [lo, hi]; otherwise CUB_ERR_FORMAT
+ * with diag saying what is wrong at the attribute's line (missing, not a
+ * whole number, out of range). */
+cub_err cub_xml_get_int(const cub_xml_el *el, const char *attr, int lo, int hi, int *out,
+                        cub_diag *diag);
 /* A blank-separated list of exactly n doubles ("0 285 0"). CUB_ERR_EMPTY
  * when absent, CUB_ERR_FORMAT when a value is bad or the count is not n. */
 cub_err cub_xml_attr_doubles(const cub_xml_el *el, const char *attr, double *out, int n);
