@@ -239,10 +239,8 @@ static void read_accel(cub_depth_freenect *s, int16_t accel[3])
 
 cub_err cub_depth_freenect_poll(cub_depth_freenect *s, cub_depth_frame *out)
 {
-    /* Paced: a frame waiting for its time is neither handed out nor
-     * overwritten by the next one. */
-    if (s->paced && s->fresh && cub_board_clock_now_us(s->clock) < s->back_t_us)
-        return CUB_ERR_EMPTY;
+    /* Paced: a frame waiting for its time is not overwritten by the next
+     * one (and is not handed out early, below). */
     if (!s->ended && !(s->paced && s->fresh)) {
         struct timeval no_wait = {0, 0};
         if (freenect_process_events_timeout(s->ctx, &no_wait) < 0) {

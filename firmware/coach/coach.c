@@ -136,6 +136,13 @@ static void show_move_hint(cub_coach *c, int32_t reason)
  * there this much early, so that the route on (back to the clip's start,
  * or into the next move when that follows at once) shows the next tag's
  * frame on time. Bounded by half a repetition. */
+/* A lead of move mv kept within half a repetition either way. */
+static int32_t bounded_lead_ms(const cub_coach_move *mv, int32_t lead)
+{
+    const int32_t half_rep = mv->span_ms / mv->reps / 2;
+    return lead < -half_rep ? -half_rep : lead > half_rep ? half_rep : lead;
+}
+
 static int32_t sync_lead_ms(const cub_coach *c, int32_t m, int32_t rep)
 {
     const cub_coach_move *mv = &c->desc.moves[m];
@@ -144,8 +151,7 @@ static int32_t sync_lead_ms(const cub_coach *c, int32_t m, int32_t rep)
         lead = mv->rep_lead_ms;
     else if (m + 1 < c->desc.move_count && c->desc.moves[m + 1].tag_ms <= move_end_ms(mv))
         lead = c->desc.moves[m + 1].lead_ms; /* after a gap, the wait has its own lead */
-    const int32_t half_rep = mv->span_ms / mv->reps / 2;
-    return lead < -half_rep ? -half_rep : lead > half_rep ? half_rep : lead;
+    return bounded_lead_ms(mv, lead);
 }
 
 /* The player reached a frame of move m at song time pos_ms: the speed that
@@ -176,10 +182,7 @@ static bool time_to_begin(const cub_coach *c, int32_t m, int32_t music_ms)
 {
     const cub_coach_move *mv = &c->desc.moves[m];
     int32_t lead = c->desc.entry_lead_ms ? c->desc.entry_lead_ms(c->desc.user, mv->clip) : 0;
-    const int32_t half_rep = mv->span_ms / mv->reps / 2;
-    if (lead < -half_rep) lead = -half_rep;
-    if (lead > half_rep) lead = half_rep;
-    return song_now_ms(c, music_ms) + lead >= mv->tag_ms;
+    return song_now_ms(c, music_ms) + bounded_lead_ms(mv, lead) >= mv->tag_ms;
 }
 
 /* Move m starts now, or, when the song has an intro or a gap before it,
