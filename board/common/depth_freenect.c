@@ -10,9 +10,11 @@
  * fakenect (Debian 0.5.3) differs from a live device in ways that matter:
  * it serves only FREENECT_DEPTH_11BIT, its process_events sleeps until the
  * next recorded frame time (it ignores the timeout), returns < 0 at the end
- * of the dump, and calls exit() on a missing FAKENECT_PATH or a missing
- * file named in INDEX.txt. We check the dump first so bad input gives an
- * error instead of a dead program.
+ * of the dump, calls exit() on a missing FAKENECT_PATH or a missing file
+ * named in INDEX.txt, and over-reads a short frame file. fakenect_dump.c
+ * checks the dump first: a missing or truncated depth frame is replayed as
+ * a frame without readings (through a private view of the dump), anything
+ * else bad is an error instead of a dead program.
  *
  * Under the virtual clock a replay is paced by its recorded timestamps
  * (60 MHz ticks) on the loop's own clock: a frame is handed out once the
@@ -23,6 +25,7 @@
 
 #include "clock.h"
 #include "depth.h"
+#include "fakenect_dump.h"
 
 #include <dlfcn.h>
 #include <libfreenect.h>
@@ -53,6 +56,7 @@ struct cub_depth_freenect {
     uint32_t last_timestamp;
     uint64_t ticks;      /* 60 MHz ticks since the first frame, past the counter's wraps */
     int64_t first_t_us;
+    cub_fakenect_view view; /* the mended dump fakenect replays, if any */
 };
 
 /* When a replayed frame is due on the virtual clock. The Kinect's 60 MHz
@@ -86,67 +90,6 @@ static void on_depth(freenect_device *dev, void *depth, uint32_t timestamp)
 static int fakenect_loaded(void)
 {
     return dlsym(RTLD_DEFAULT, "sleep_highres") != NULL;
-}
-
-/* One file named by INDEX.txt: it must open, and a frame file must hold a
- * one-line header and a whole frame (fakenect exits or over-reads if not). */
-static int check_dump_file(const char *dir, const char *name, int line, char *err,
-                           size_t err_size)
-{
-    char path[4096];
-    snprintf(path, sizeof path, "%s/%s", dir, name);
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        snprintf(err, err_size, "fakenect dump %s: INDEX.txt:%d: cannot open %s", dir, line, name);
-        return 0;
-    }
-    char head[64];
-    size_t got = fread(head, 1, sizeof head, f);
-    fseek(f, 0, SEEK_END);
-    long size = ftell(f);
-    fclose(f);
-    size_t need = name[0] == 'd' ? FRAME_BYTES : name[0] == 'r' ? (size_t)FRAME_PIXELS * 3 : 0;
-    if (need == 0) {
-        return 1;
-    }
-    const char *nl = memchr(head, '\n', got);
-    if (!nl || size < 0 || (size_t)size < (size_t)(nl - head + 1) + need) {
-        snprintf(err, err_size,
-                 "fakenect dump %s: INDEX.txt:%d: %s is not a 640x480 frame "
-                 "(header line + %zu bytes)",
-                 dir, line, name, need);
-        return 0;
-    }
-    return 1;
-}
-
-static cub_err check_dump(char *err, size_t err_size)
-{
-    const char *dir = getenv("FAKENECT_PATH");
-    if (!dir || !dir[0]) {
-        snprintf(err, err_size, "depth: fakenect is loaded but FAKENECT_PATH is not set "
-                                "(set it to a dump directory)");
-        return CUB_ERR_DEVICE;
-    }
-    char path[4096];
-    snprintf(path, sizeof path, "%s/INDEX.txt", dir);
-    FILE *index = fopen(path, "r");
-    if (!index) {
-        snprintf(err, err_size, "fakenect dump %s: cannot open INDEX.txt", dir);
-        return CUB_ERR_IO;
-    }
-    char line[1024];
-    int n = 0, ok = 1;
-    while (ok && fgets(line, sizeof line, index)) {
-        n++;
-        line[strcspn(line, "\n")] = '\0';
-        if (!line[0]) {
-            break; /* fakenect stops at the first empty line */
-        }
-        ok = check_dump_file(dir, line, n, err, err_size);
-    }
-    fclose(index);
-    return ok ? CUB_OK : CUB_ERR_FORMAT;
 }
 
 static cub_err start(cub_depth_freenect *s, char *err, size_t err_size)
@@ -196,12 +139,6 @@ cub_err cub_depth_freenect_open(const cub_board_clock *clock, cub_depth_freenect
                                 char *err, size_t err_size)
 {
     *out = NULL;
-    if (fakenect_loaded()) {
-        cub_err e = check_dump(err, err_size);
-        if (e) {
-            return e;
-        }
-    }
     cub_depth_freenect *s = calloc(1, sizeof *s);
     if (!s) {
         snprintf(err, err_size, "depth: out of memory");
@@ -212,7 +149,10 @@ cub_err cub_depth_freenect_open(const cub_board_clock *clock, cub_depth_freenect
     s->tilt_ok = 1;
     s->replay = fakenect_loaded();
     s->paced = s->replay && clock->is_virtual;
-    cub_err e = start(s, err, err_size);
+    cub_err e = s->replay ? cub_fakenect_dump_prepare(&s->view, err, err_size) : CUB_OK;
+    if (!e) {
+        e = start(s, err, err_size);
+    }
     if (e) {
         cub_depth_freenect_close(s);
         return e;
@@ -243,7 +183,10 @@ cub_err cub_depth_freenect_poll(cub_depth_freenect *s, cub_depth_frame *out)
      * one (and is not handed out early, below). */
     if (!s->ended && !(s->paced && s->fresh)) {
         struct timeval no_wait = {0, 0};
-        if (freenect_process_events_timeout(s->ctx, &no_wait) < 0) {
+        int got = freenect_process_events_timeout(s->ctx, &no_wait);
+        /* fakenect has read FAKENECT_PATH by now (0.5.3: at its first event). */
+        cub_fakenect_dump_restore_env(&s->view);
+        if (got < 0) {
             /* Only a replay ends: on a live Kinect an error (a USB hiccup,
              * an unplug) is reported and the next poll tries again. */
             if (!s->replay || (s->arrived == 0 && !s->fresh)) {
@@ -285,5 +228,6 @@ void cub_depth_freenect_close(cub_depth_freenect *s)
     if (s->ctx) {
         freenect_shutdown(s->ctx);
     }
+    cub_fakenect_dump_release(&s->view);
     free(s);
 }

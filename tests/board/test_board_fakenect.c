@@ -2,9 +2,14 @@
  * dump ($CUB_DATA_DIR/depth/skeltrack): the calls the box makes to a live
  * Kinect. CMake runs this with LD_LIBRARY_PATH=<fakenect dir> and
  * FAKENECT_PATH=<the dump>. Every frame must arrive, in order, with the
- * dump's timestamps and exactly the dump's pixels, then CUB_ERR_END. */
-#define _POSIX_C_SOURCE 200809L
+ * dump's timestamps and exactly the dump's pixels, then CUB_ERR_END.
+ * Broken dumps: a missing accelerometer file, a short colour frame, or no
+ * good depth frame are refused with INDEX.txt:line; truncated and missing
+ * depth frames among real ones replay as frames without readings (run with
+ * the argument "mended", in a process of its own). */
+#define _GNU_SOURCE /* realpath, symlink, mkdtemp, popen */
 
+#include <fcntl.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -160,9 +165,11 @@ static cub_err open_dump(const char *dir, cub_depth **src, char *err, size_t err
     return e;
 }
 
-/* A dump naming a missing file is refused with INDEX.txt:line, before
- * fakenect could exit() the program. Runs first: fakenect reads
- * FAKENECT_PATH once, at freenect_init. */
+/* A dump naming a missing accelerometer file is refused with
+ * INDEX.txt:line, before fakenect could exit() the program (only depth
+ * frames are mended). Refusals never reach fakenect, so they may run before
+ * the replay: fakenect 0.5.3 replays one dump per process (it reads
+ * FAKENECT_PATH and opens INDEX.txt at its first event, once). */
 static void test_broken_dump_is_refused_with_line(void **state)
 {
     char dir[] = "/tmp/cub_dump_XXXXXX";
@@ -186,39 +193,253 @@ static void test_broken_dump_is_refused_with_line(void **state)
     assert_non_null(strstr(err, "INDEX.txt:1: cannot open a-1300000000.000000-0.dump"));
 }
 
-/* A frame file too short for a 640x480 frame would make fakenect read past
- * its buffer: refused up front. */
-static void test_short_frame_is_refused(void **state)
+
+static void write_file(const char *dir, const char *name, const char *text)
+{
+    char path[1024];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    FILE *f = fopen(path, "w");
+    assert_non_null(f);
+    fputs(text, f);
+    fclose(f);
+}
+
+/* Files and directories directly in dir (the views a test's TMPDIR holds). */
+static int count_entries(const char *dir)
+{
+    char cmd[1100];
+    snprintf(cmd, sizeof cmd, "ls -A '%s' | wc -l", dir);
+    FILE *p = popen(cmd, "r");
+    int n = -1;
+    assert_non_null(p);
+    assert_int_equal(fscanf(p, "%d", &n), 1);
+    pclose(p);
+    return n;
+}
+
+static void remove_tree(const char *dir)
+{
+    char cmd[1100];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    assert_int_equal(system(cmd), 0);
+}
+
+/* A short colour frame would be read past its end: still refused. */
+static void test_short_colour_frame_is_refused(void **state)
 {
     char dir[] = "/tmp/cub_dump_XXXXXX";
     assert_non_null(mkdtemp(dir));
-    char index[256], frame[256];
-    snprintf(index, sizeof index, "%s/INDEX.txt", dir);
-    snprintf(frame, sizeof frame, "%s/d-1300000000.000000-1000.pgm", dir);
-    FILE *f = fopen(index, "w");
-    fputs("d-1300000000.000000-1000.pgm\n", f);
-    fclose(f);
-    f = fopen(frame, "w");
-    fputs("P5 640 480 65535\n0123456789", f);
-    fclose(f);
+    write_file(dir, "INDEX.txt", "r-1300000000.000000-1000.ppm\n");
+    write_file(dir, "r-1300000000.000000-1000.ppm", "P6 640 480 255\n0123456789");
     cub_depth *src = NULL;
     char err[512];
     cub_err e = open_dump(dir, &src, err, sizeof err);
-    unlink(frame);
-    unlink(index);
-    rmdir(dir);
-    printf("fakenect: short frame: %s\n", err);
+    remove_tree(dir);
+    printf("fakenect: short colour frame: %s\n", err);
     assert_int_equal(e, CUB_ERR_FORMAT);
+    assert_null(src);
     assert_non_null(
-        strstr(err, "INDEX.txt:1: d-1300000000.000000-1000.pgm is not a 640x480 frame"));
+        strstr(err, "INDEX.txt:1: r-1300000000.000000-1000.ppm is not a 640x480 frame"));
 }
 
-int main(void)
+/* Every depth frame bad (one truncated, one missing): nothing to replay,
+ * refused naming the first bad file, and no view is left behind. */
+static void test_dump_of_only_bad_frames_is_refused(void **state)
+{
+    char dir[] = "/tmp/cub_dump_XXXXXX", tmp[] = "/tmp/cub_tmp_XXXXXX";
+    assert_non_null(mkdtemp(dir));
+    assert_non_null(mkdtemp(tmp));
+    write_file(dir, "INDEX.txt", "d-1300000000.000000-1000.pgm\nd-1300000000.033333-3000.pgm\n");
+    write_file(dir, "d-1300000000.000000-1000.pgm", "P5 640 480 65535\n0123456789");
+    char *saved_tmp = getenv("TMPDIR") ? strdup(getenv("TMPDIR")) : NULL;
+    setenv("TMPDIR", tmp, 1);
+    cub_depth *src = NULL;
+    char err[512];
+    cub_err e = open_dump(dir, &src, err, sizeof err);
+    saved_tmp ? setenv("TMPDIR", saved_tmp, 1) : unsetenv("TMPDIR");
+    free(saved_tmp);
+    int left = count_entries(tmp);
+    remove_tree(dir);
+    remove_tree(tmp);
+    printf("fakenect: only bad frames: %s\n", err);
+    assert_int_equal(e, CUB_ERR_FORMAT);
+    assert_null(src);
+    assert_non_null(strstr(err, "INDEX.txt:1: d-1300000000.000000-1000.pgm: truncated: 27 of "
+                                "614417 bytes; no good depth frame"));
+    assert_int_equal(left, 0);
+}
+
+/* The mended-dump test: the real frames with line BAD_SHORT + 1 cut short
+ * and line BAD_MISSING + 1 gone. */
+#define BAD_SHORT 3
+#define BAD_MISSING 5
+#define SHORT_BYTES 1234
+
+static void make_mended_dump(const char *src, const dump *d, const char *dir)
+{
+    char real[1024], index[64 * 64] = "", from[2048], to[2048];
+    assert_non_null(realpath(src, real));
+    for (int k = 0; k < d->count; k++) {
+        strcat(index, d->name[k]);
+        strcat(index, "\n");
+        snprintf(from, sizeof from, "%s/%s", real, d->name[k]);
+        snprintf(to, sizeof to, "%s/%s", dir, d->name[k]);
+        if (k == BAD_SHORT) {
+            char bytes[SHORT_BYTES];
+            FILE *in = fopen(from, "rb"), *out = fopen(to, "wb");
+            assert_true(in && out);
+            assert_int_equal(fread(bytes, 1, sizeof bytes, in), sizeof bytes);
+            assert_int_equal(fwrite(bytes, 1, sizeof bytes, out), sizeof bytes);
+            fclose(in);
+            fclose(out);
+        } else if (k != BAD_MISSING) {
+            assert_int_equal(symlink(from, to), 0);
+        }
+    }
+    write_file(dir, "INDEX.txt", index);
+}
+
+/* stderr into path until put back (the board's warnings are the test's). */
+static int capture_stderr(const char *path)
+{
+    fflush(stderr);
+    int saved = dup(2), fd = open(path, O_WRONLY | O_CREAT | O_TRUNC, 0600);
+    assert_true(saved >= 0 && fd >= 0);
+    dup2(fd, 2);
+    close(fd);
+    return saved;
+}
+
+static void put_back_stderr(int saved)
+{
+    fflush(stderr);
+    dup2(saved, 2);
+    close(saved);
+}
+
+/* The warnings the open printed: one line per bad file, naming it. */
+static void check_warnings(const char *path, const dump *d)
+{
+    char line[1024], want[512];
+    int warnings = 0, short_seen = 0, missing_seen = 0;
+    FILE *f = fopen(path, "r");
+    assert_non_null(f);
+    while (fgets(line, sizeof line, f)) {
+        if (!strstr(line, "replayed as a frame without readings")) continue;
+        warnings++;
+        printf("fakenect: warning: %s", line);
+        snprintf(want, sizeof want, "INDEX.txt:%d: %s: truncated: %d of 614417 bytes",
+                 BAD_SHORT + 1, d->name[BAD_SHORT], SHORT_BYTES);
+        short_seen += strstr(line, want) != NULL;
+        snprintf(want, sizeof want, "INDEX.txt:%d: %s: missing", BAD_MISSING + 1,
+                 d->name[BAD_MISSING]);
+        missing_seen += strstr(line, want) != NULL;
+    }
+    fclose(f);
+    assert_int_equal(warnings, 2);
+    assert_int_equal(short_seen, 1);
+    assert_int_equal(missing_seen, 1);
+}
+
+static int valid_pixels(const uint16_t *raw)
+{
+    int n = 0;
+    for (int i = 0; i < FRAME_PIXELS; i++) n += raw[i] != CUB_DEPTH_NO_READING;
+    return n;
+}
+
+/* Replays the mended dump to its end: every frame in order, the bad ones
+ * without a single reading, the good ones (also those after the bad ones)
+ * exactly the real frames. Returns the frames delivered. */
+static int replay_mended(cub_depth *src, const char *real, const dump *d, const char *dump_dir)
+{
+    uint16_t *want = malloc(FRAME_PIXELS * sizeof *want);
+    cub_depth_frame f;
+    cub_err e = CUB_OK;
+    int got = 0;
+    for (int polls = 0; polls < 10000; polls++) {
+        e = cub_depth_poll(src, &f);
+        if (e == CUB_ERR_EMPTY) continue;
+        if (e != CUB_OK) break;
+        /* fakenect has read FAKENECT_PATH: the caller's value is back. */
+        assert_string_equal(getenv("FAKENECT_PATH"), dump_dir);
+        assert_true(got < d->count);
+        assert_int_equal(f.seq, (uint32_t)got);
+        assert_int_equal(f.timestamp, d->timestamp[got]);
+        if (got == BAD_SHORT || got == BAD_MISSING) {
+            assert_int_equal(valid_pixels(f.raw), 0);
+        } else {
+            read_pgm(real, d->name[got], want);
+            assert_memory_equal(f.raw, want, FRAME_PIXELS * sizeof *want);
+        }
+        got++;
+    }
+    free(want);
+    assert_int_equal(e, CUB_ERR_END);
+    return got;
+}
+
+/* A truncated and a missing frame in the middle of real frames: the dump
+ * opens, the bad frames come as frames without readings, the real frames
+ * after them come back, and the private view is gone after close. */
+static void test_truncated_and_missing_frames_replay_without_readings(void **state)
+{
+    const char *real = dump_dir();
+    if (!real) {
+        printf("fakenect: skipped: no real dump (needs $CUB_DATA_DIR/depth/skeltrack)\n");
+        skip();
+    }
+    dump d;
+    read_index(real, &d);
+    assert_true(d.count > BAD_MISSING + 1);
+    char dir[] = "/tmp/cub_dump_XXXXXX", tmp[] = "/tmp/cub_tmp_XXXXXX", log[64];
+    assert_non_null(mkdtemp(dir));
+    assert_non_null(mkdtemp(tmp));
+    make_mended_dump(real, &d, dir);
+    snprintf(log, sizeof log, "%s.stderr", dir);
+    /* FAKENECT_PATH stays set until the end: fakenect reads it at its first
+     * event, in the first poll. */
+    char *saved = strdup(real);
+    setenv("FAKENECT_PATH", dir, 1);
+    setenv("TMPDIR", tmp, 1);
+    int err_fd = capture_stderr(log);
+    cub_depth *src = NULL;
+    char err[512];
+    cub_err e = cub_depth_open(CUB_DEPTH_FREENECT, &real_clock, &src, err, sizeof err);
+    put_back_stderr(err_fd);
+    if (e) fail_msg("mended dump refused: %s: %s", cub_err_str(e), err);
+    check_warnings(log, &d);
+    int views = count_entries(tmp);
+    int got = replay_mended(src, real, &d, dir);
+    cub_depth_close(src);
+    int views_after = count_entries(tmp);
+    setenv("FAKENECT_PATH", saved, 1);
+    free(saved);
+    unlink(log);
+    remove_tree(dir);
+    remove_tree(tmp);
+    printf("fakenect: mended dump: %d/%d frames in order; truncated (line %d) and missing "
+           "(line %d) without readings, the %d real frames exact; views in TMPDIR: %d open, "
+           "%d after close\n",
+           got, d.count, BAD_SHORT + 1, BAD_MISSING + 1, d.count - 2, views, views_after);
+    assert_int_equal(got, d.count);
+    assert_int_equal(views, 1);
+    assert_int_equal(views_after, 0);
+}
+
+/* fakenect replays one dump per process: the mended-dump replay runs in a
+ * process of its own (ctest test_board_fakenect_mended: argument "mended"). */
+int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_broken_dump_is_refused_with_line),
-        cmocka_unit_test(test_short_frame_is_refused),
+        cmocka_unit_test(test_short_colour_frame_is_refused),
+        cmocka_unit_test(test_dump_of_only_bad_frames_is_refused),
         cmocka_unit_test(test_replay_gives_every_frame_then_end),
     };
+    const struct CMUnitTest mended[] = {
+        cmocka_unit_test(test_truncated_and_missing_frames_replay_without_readings),
+    };
+    if (argc > 1 && !strcmp(argv[1], "mended")) return cmocka_run_group_tests(mended, NULL, NULL);
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -304,9 +304,11 @@ static void test_camera_loss_pauses_the_song_until_frames_return(void **s)
 }
 
 /* Garbage frames (make_garbage_dump.sh: 2-3 s no reading, 3-4 s zeros,
- * 4-5 s random values) in a replay: the box runs on, the tracker says no
- * player from the first garbage frame and finds the player again with the
- * first good frame. */
+ * 4-5 s random values; a truncated frame file at 6.0 s and a missing one at
+ * 6.5 s) in a replay: the box runs on, the tracker says no player from the
+ * first garbage frame and finds the player again with the first good frame;
+ * each bad file is one frame without readings: no player for that frame,
+ * the player again at the next. */
 static void test_garbage_frames_give_no_player_and_recover(void **s)
 {
     char path[1024], buf[64], before[64] = "";
@@ -332,10 +334,31 @@ static void test_garbage_frames_give_no_player_and_recover(void **s)
     assert_true(log.lines[none].t_s >= 2.0 && log.lines[none].t_s < 2.04);
     assert_true(log.lines[again].t_s >= 5.0 && log.lines[again].t_s < 5.04);
     assert_string_equal(field(&log, again, "to", buf, sizeof buf), before);
+    const double bad_s[2] = {6.0, 6.5}; /* the truncated frame, the missing one */
+    double lost_s[2], back_s[2];
+    for (int b = 0; b < 2; b++) {
+        int lost = -1, back = -1;
+        for (int i = logread_find(&log, again, "track", "status"); i >= 0 && back < 0;
+             i = logread_find(&log, i + 1, "track", "status")) {
+            if (log.lines[i].t_s < bad_s[b]) continue;
+            field(&log, i, "to", buf, sizeof buf);
+            if (lost < 0 && !strcmp(buf, "no_player")) lost = i;
+            else if (lost >= 0 && strcmp(buf, "no_player")) back = i;
+        }
+        assert_true(lost >= 0 && back >= 0);
+        lost_s[b] = log.lines[lost].t_s;
+        back_s[b] = log.lines[back].t_s;
+        assert_true(lost_s[b] >= bad_s[b] && lost_s[b] < bad_s[b] + 0.01); /* that frame */
+        assert_true(back_s[b] > lost_s[b] && back_s[b] < bad_s[b] + 0.05);  /* the next one */
+        assert_string_equal(field(&log, back, "to", buf, sizeof buf), before);
+    }
     assert_true(logread_find(&log, again, "app", "end") >= 0); /* ran to its end */
     printf("scenario: garbage frames 2-5 s: no player from %.3f s, the player (%s) again at "
            "%.3f s, the run went on to its end\n",
            log.lines[none].t_s, before, log.lines[again].t_s);
+    printf("scenario: truncated frame at 6.0 s: no player at %.3f s, the player again at "
+           "%.3f s; missing frame at 6.5 s: no player at %.3f s, the player again at %.3f s\n",
+           lost_s[0], back_s[0], lost_s[1], back_s[1]);
     logread_free(&log);
 }
 

@@ -1,0 +1,392 @@
+/* fakenect_dump — check a fakenect dump; mend bad depth frames through a
+ * private view (see fakenect_dump.h for why).
+ *
+ * Two passes over INDEX.txt: the first only looks (so a refused dump leaves
+ * nothing behind), the second builds the view. Names are read the way
+ * fakenect reads them: one per line, the first letter is the kind (d depth,
+ * r colour, a accelerometer), and the first empty line ends the dump. */
+#define _GNU_SOURCE /* mkdtemp, symlink, setenv, putenv, realpath */
+
+#include "fakenect_dump.h"
+
+#include "cub/board.h"
+
+#include <dirent.h>
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#define FRAME_PIXELS ((size_t)CUB_DEPTH_W * CUB_DEPTH_H)
+#define HEADER_MAX 64 /* fakenect-record's header lines are ~17 bytes */
+#define NONE_HEADER "P5 640 480 65535\n" /* as fakenect-record writes it */
+#define NAME_MAX_CHARS 1024
+
+/* fakenect keeps the pointer getenv gave it and builds every file path from
+ * it while it replays, even after we put the caller's value back: the
+ * "FAKENECT_PATH=<view>" string must outlive any depth source, so it is
+ * static (fakenect replays one dump per process anyway). */
+static char view_env[sizeof "FAKENECT_PATH=" + CUB_FAKENECT_PATH_MAX];
+
+typedef enum file_fault {
+    FILE_GOOD,
+    FILE_MISSING,     /* will not open: fakenect would exit() */
+    FILE_NOT_REGULAR, /* a directory or a device: fakenect would read nonsense */
+    FILE_SHORT,       /* shorter than header + frame: fakenect would over-read */
+    FILE_NO_HEADER,   /* no header line: fakenect would exit() */
+} file_fault;
+
+typedef struct file_check {
+    file_fault fault;
+    long long size_bytes;
+    size_t need_bytes; /* header line + frame */
+} file_check;
+
+typedef struct index_reader {
+    const char *dir;
+    FILE *f;
+    int line;
+} index_reader;
+
+/* What a scan of the index found. */
+typedef struct dump_scan {
+    int good_frames, bad_frames;
+    int first_bad_line;
+    char first_bad[NAME_MAX_CHARS];
+    file_check first_bad_check;
+    int path_line; /* first name with a '/' (a view cannot hold it); 0: none */
+} dump_scan;
+
+static size_t frame_bytes(const char *name)
+{
+    return name[0] == 'd' ? FRAME_PIXELS * 2 : name[0] == 'r' ? FRAME_PIXELS * 3 : 0;
+}
+
+static file_check check_file(const char *dir, const char *name)
+{
+    file_check c = {FILE_GOOD, 0, 0};
+    char path[2 * CUB_FAKENECT_PATH_MAX];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    FILE *f = fopen(path, "rb");
+    struct stat st;
+    if (!f) {
+        c.fault = FILE_MISSING;
+        return c;
+    }
+    if (fstat(fileno(f), &st) != 0 || !S_ISREG(st.st_mode)) {
+        fclose(f);
+        c.fault = FILE_NOT_REGULAR;
+        return c;
+    }
+    char head[HEADER_MAX];
+    size_t got = fread(head, 1, sizeof head, f);
+    fclose(f);
+    size_t frame = frame_bytes(name);
+    if (frame == 0) return c; /* a-* and others: fakenect only needs them to open */
+    const char *nl = memchr(head, '\n', got);
+    c.size_bytes = (long long)st.st_size;
+    c.need_bytes = (nl ? (size_t)(nl - head + 1) : strlen(NONE_HEADER)) + frame;
+    if ((unsigned long long)st.st_size < c.need_bytes) {
+        c.fault = FILE_SHORT;
+    } else if (!nl) {
+        c.fault = FILE_NO_HEADER;
+    }
+    return c;
+}
+
+static const char *describe(file_check c, char *buf, size_t size)
+{
+    switch (c.fault) {
+    case FILE_GOOD: snprintf(buf, size, "good"); break;
+    case FILE_MISSING: snprintf(buf, size, "missing"); break;
+    case FILE_NOT_REGULAR: snprintf(buf, size, "not a regular file"); break;
+    case FILE_SHORT:
+        snprintf(buf, size, "truncated: %lld of %zu bytes", c.size_bytes, c.need_bytes);
+        break;
+    case FILE_NO_HEADER: snprintf(buf, size, "no header line"); break;
+    }
+    return buf;
+}
+
+static cub_err open_index(index_reader *r, const char *dir, char *err, size_t err_size)
+{
+    char path[CUB_FAKENECT_PATH_MAX + 16];
+    snprintf(path, sizeof path, "%s/INDEX.txt", dir);
+    r->dir = dir;
+    r->line = 0;
+    r->f = fopen(path, "rb");
+    if (!r->f) {
+        snprintf(err, err_size, "fakenect dump %s: cannot open INDEX.txt", dir);
+        return CUB_ERR_IO;
+    }
+    return CUB_OK;
+}
+
+/* The next name: 1; 0 at the end (end of file, or an empty line: fakenect
+ * stops there); -1 with err on a line too long to be a file name. */
+static int next_name(index_reader *r, char *name, char *err, size_t err_size)
+{
+    if (!fgets(name, NAME_MAX_CHARS, r->f)) return 0;
+    r->line++;
+    size_t len = strlen(name);
+    if (len > 0 && name[len - 1] == '\n') {
+        name[len - 1] = '\0';
+    } else if (!feof(r->f)) {
+        snprintf(err, err_size, "fakenect dump %s: INDEX.txt:%d: line longer than %d characters",
+                 r->dir, r->line, NAME_MAX_CHARS - 2);
+        return -1;
+    }
+    return name[0] ? 1 : 0;
+}
+
+/* A fault in a file that is not a depth frame refuses the dump, as before. */
+static cub_err refuse_other(const index_reader *r, const char *name, file_check c, char *err,
+                            size_t err_size)
+{
+    char why[96];
+    if (c.fault == FILE_MISSING) {
+        snprintf(err, err_size, "fakenect dump %s: INDEX.txt:%d: cannot open %s", r->dir, r->line,
+                 name);
+    } else if (frame_bytes(name) == 0) {
+        snprintf(err, err_size, "fakenect dump %s: INDEX.txt:%d: %s: %s", r->dir, r->line, name,
+                 describe(c, why, sizeof why));
+    } else {
+        snprintf(err, err_size,
+                 "fakenect dump %s: INDEX.txt:%d: %s is not a 640x480 frame (header line + %zu "
+                 "bytes): %s",
+                 r->dir, r->line, name, frame_bytes(name), describe(c, why, sizeof why));
+    }
+    return CUB_ERR_FORMAT;
+}
+
+static void note_depth(dump_scan *scan, const index_reader *r, const char *name, file_check c)
+{
+    if (c.fault == FILE_GOOD) {
+        scan->good_frames++;
+        return;
+    }
+    if (scan->bad_frames++ == 0) {
+        scan->first_bad_line = r->line;
+        snprintf(scan->first_bad, sizeof scan->first_bad, "%s", name);
+        scan->first_bad_check = c;
+    }
+}
+
+/* Pass one: look at every file, touch nothing. */
+static cub_err scan_dump(const char *dir, dump_scan *scan, char *err, size_t err_size)
+{
+    index_reader r;
+    cub_err e = open_index(&r, dir, err, err_size);
+    char name[NAME_MAX_CHARS];
+    int more = 0;
+    while (!e && (more = next_name(&r, name, err, err_size)) > 0) {
+        file_check c = check_file(dir, name);
+        if (strchr(name, '/') && !scan->path_line) scan->path_line = r.line;
+        if (name[0] == 'd') {
+            note_depth(scan, &r, name, c);
+        } else if (c.fault != FILE_GOOD) {
+            e = refuse_other(&r, name, c, err, err_size);
+        }
+    }
+    if (r.f) fclose(r.f);
+    return e ? e : more < 0 ? CUB_ERR_FORMAT : CUB_OK;
+}
+
+/* Bad frames are replayed only when there is something real around them. */
+static cub_err judge_scan(const char *dir, const dump_scan *scan, char *err, size_t err_size)
+{
+    char why[96];
+    if (scan->bad_frames > 0 && scan->good_frames == 0) {
+        snprintf(err, err_size,
+                 "fakenect dump %s: INDEX.txt:%d: %s: %s; no good depth frame in the dump: "
+                 "nothing to replay",
+                 dir, scan->first_bad_line, scan->first_bad,
+                 describe(scan->first_bad_check, why, sizeof why));
+        return CUB_ERR_FORMAT;
+    }
+    if (scan->bad_frames > 0 && scan->path_line) {
+        snprintf(err, err_size,
+                 "fakenect dump %s: INDEX.txt:%d: a name with a directory in it; cannot replay "
+                 "the bad frame %s (INDEX.txt:%d) around it",
+                 dir, scan->path_line, scan->first_bad, scan->first_bad_line);
+        return CUB_ERR_FORMAT;
+    }
+    return CUB_OK;
+}
+
+/* Raw 2047 everywhere (the Kinect's "no reading"), little-endian, as
+ * tests/scenario/make_garbage_dump.sh writes none.pgm. */
+static int write_none_frame(const char *path)
+{
+    FILE *f = fopen(path, "wbx"); /* x: a name listed twice is written once */
+    if (!f) return errno == EEXIST ? 0 : -1;
+    unsigned char row[CUB_DEPTH_W * 2];
+    for (size_t i = 0; i < sizeof row; i += 2) {
+        row[i] = CUB_DEPTH_NO_READING & 0xff;
+        row[i + 1] = CUB_DEPTH_NO_READING >> 8;
+    }
+    int ok = fputs(NONE_HEADER, f) >= 0;
+    for (int y = 0; ok && y < CUB_DEPTH_H; y++) ok = fwrite(row, sizeof row, 1, f) == 1;
+    return fclose(f) == 0 && ok ? 0 : -1;
+}
+
+static int copy_file(const char *from, const char *to)
+{
+    FILE *in = fopen(from, "rb"), *out = in ? fopen(to, "wbx") : NULL;
+    char buf[4096];
+    size_t n;
+    int ok = in && out;
+    while (ok && (n = fread(buf, 1, sizeof buf, in)) > 0) ok = fwrite(buf, 1, n, out) == n;
+    ok = ok && !ferror(in);
+    if (in) fclose(in);
+    if (out && fclose(out) != 0) ok = 0;
+    return ok ? 0 : -1;
+}
+
+static int link_file(const char *real_dir, const char *view, const char *name)
+{
+    char target[2 * CUB_FAKENECT_PATH_MAX], path[2 * CUB_FAKENECT_PATH_MAX];
+    snprintf(target, sizeof target, "%s/%s", real_dir, name);
+    snprintf(path, sizeof path, "%s/%s", view, name);
+    return symlink(target, path) == 0 || errno == EEXIST ? 0 : -1;
+}
+
+static cub_err view_failed(cub_fakenect_view *v, const char *what, const char *name, char *err,
+                           size_t err_size)
+{
+    snprintf(err, err_size, "fakenect dump: cannot build the replay view %s: %s %s: %s", v->dir,
+             what, name, strerror(errno));
+    cub_fakenect_dump_release(v);
+    return CUB_ERR_IO;
+}
+
+/* One file of the dump into the view: a link, or a frame without readings. */
+static int add_to_view(cub_fakenect_view *v, const index_reader *r, const char *real_dir,
+                       const char *name)
+{
+    file_check c = name[0] == 'd' ? check_file(r->dir, name) : (file_check){FILE_GOOD, 0, 0};
+    if (c.fault == FILE_GOOD) return link_file(real_dir, v->dir, name);
+    char path[2 * CUB_FAKENECT_PATH_MAX], why[96];
+    snprintf(path, sizeof path, "%s/%s", v->dir, name);
+    if (write_none_frame(path) != 0) return -1;
+    v->bad_frames++;
+    fprintf(stderr,
+            "depth: fakenect dump %s: INDEX.txt:%d: %s: %s: replayed as a frame without "
+            "readings\n",
+            r->dir, r->line, name, describe(c, why, sizeof why));
+    return 0;
+}
+
+static cub_err make_view_dir(cub_fakenect_view *v, char *err, size_t err_size)
+{
+    const char *tmp = getenv("TMPDIR");
+    int n = snprintf(v->dir, sizeof v->dir, "%s/cubdance-replay-XXXXXX",
+                     tmp && tmp[0] ? tmp : "/tmp");
+    if (n < 0 || (size_t)n >= sizeof v->dir || !mkdtemp(v->dir)) {
+        snprintf(err, err_size, "fakenect dump: cannot make a replay view under %s: %s",
+                 tmp && tmp[0] ? tmp : "/tmp", n >= 0 ? strerror(errno) : "path too long");
+        v->dir[0] = '\0';
+        return CUB_ERR_IO;
+    }
+    return CUB_OK; /* mkdtemp makes it 0700 */
+}
+
+/* Pass two: the view (links are absolute, FAKENECT_PATH may be relative). */
+static cub_err build_view(cub_fakenect_view *v, const char *dir, char *err, size_t err_size)
+{
+    char real_dir[CUB_FAKENECT_PATH_MAX], from[CUB_FAKENECT_PATH_MAX + 16];
+    char to[CUB_FAKENECT_PATH_MAX + 16], name[NAME_MAX_CHARS];
+    if (!realpath(dir, real_dir)) return view_failed(v, "resolving", dir, err, err_size);
+    cub_err e = make_view_dir(v, err, err_size);
+    if (e) return e;
+    snprintf(from, sizeof from, "%s/INDEX.txt", dir);
+    snprintf(to, sizeof to, "%s/INDEX.txt", v->dir);
+    if (copy_file(from, to) != 0) return view_failed(v, "copying", from, err, err_size);
+    index_reader r;
+    if ((e = open_index(&r, dir, err, err_size))) {
+        cub_fakenect_dump_release(v);
+        return e;
+    }
+    int more;
+    while ((more = next_name(&r, name, err, err_size)) > 0 &&
+           (!strcmp(name, "INDEX.txt") || add_to_view(v, &r, real_dir, name) == 0)) {
+    }
+    fclose(r.f);
+    if (more != 0) return view_failed(v, "adding", name, err, err_size);
+    snprintf(from, sizeof from, "%s/device.json", dir); /* newer fakenects read it */
+    if (access(from, F_OK) == 0 && link_file(real_dir, v->dir, "device.json") != 0) {
+        return view_failed(v, "linking", from, err, err_size);
+    }
+    return CUB_OK;
+}
+
+static cub_err point_env(cub_fakenect_view *v, const char *dir, char *err, size_t err_size)
+{
+    v->saved_path = strdup(dir);
+    snprintf(view_env, sizeof view_env, "FAKENECT_PATH=%s", v->dir);
+    if (!v->saved_path || putenv(view_env) != 0) {
+        snprintf(err, err_size, "fakenect dump %s: cannot point FAKENECT_PATH at the view", dir);
+        cub_fakenect_dump_release(v);
+        return CUB_ERR_NOMEM;
+    }
+    v->env_pointed = 1;
+    return CUB_OK;
+}
+
+cub_err cub_fakenect_dump_prepare(cub_fakenect_view *v, char *err, size_t err_size)
+{
+    const char *dir = getenv("FAKENECT_PATH");
+    if (!dir || !dir[0]) {
+        snprintf(err, err_size, "depth: fakenect is loaded but FAKENECT_PATH is not set "
+                                "(set it to a dump directory)");
+        return CUB_ERR_DEVICE;
+    }
+    if (strlen(dir) >= CUB_FAKENECT_PATH_MAX) {
+        snprintf(err, err_size, "depth: FAKENECT_PATH is longer than %d characters",
+                 CUB_FAKENECT_PATH_MAX - 1);
+        return CUB_ERR_DEVICE;
+    }
+    dump_scan scan = {0};
+    cub_err e = scan_dump(dir, &scan, err, err_size);
+    if (!e) e = judge_scan(dir, &scan, err, err_size);
+    if (e || scan.bad_frames == 0) return e;
+    /* Copied: point_env replaces the environment string dir points into. */
+    char dump_dir[CUB_FAKENECT_PATH_MAX];
+    snprintf(dump_dir, sizeof dump_dir, "%s", dir);
+    e = build_view(v, dump_dir, err, err_size);
+    return e ? e : point_env(v, dump_dir, err, err_size);
+}
+
+void cub_fakenect_dump_restore_env(cub_fakenect_view *v)
+{
+    if (!v->env_pointed) return;
+    setenv("FAKENECT_PATH", v->saved_path, 1);
+    v->env_pointed = 0;
+}
+
+static void remove_view(const char *view)
+{
+    DIR *d = opendir(view);
+    struct dirent *ent;
+    char path[CUB_FAKENECT_PATH_MAX + NAME_MAX_CHARS + 2];
+    while (d && (ent = readdir(d))) {
+        if (strcmp(ent->d_name, ".") && strcmp(ent->d_name, "..")) {
+            snprintf(path, sizeof path, "%s/%s", view, ent->d_name);
+            unlink(path);
+        }
+    }
+    if (d) closedir(d);
+    rmdir(view);
+}
+
+void cub_fakenect_dump_release(cub_fakenect_view *v)
+{
+    if (!v) return;
+    cub_fakenect_dump_restore_env(v);
+    free(v->saved_path);
+    v->saved_path = NULL;
+    if (v->dir[0]) remove_view(v->dir);
+    v->dir[0] = '\0';
+}
