@@ -126,9 +126,12 @@ static int run(const cub_app_options *o, cub_board *board, FILE *log, const cub_
                       .clip_name = file_name(o->clip_path), .loop = &loop};
     int w = 0, h = 0, rc = -1;
     cub_board_display_size(board, &w, &h);
-    s.depth_copy = calloc(CUB_DEPTH_W * CUB_DEPTH_H, sizeof(uint16_t));
-    s.rgba = malloc((size_t)(w > 0 ? w : 1) * (h > 0 ? h : 1) * 4);
-    if (!s.depth_copy || !s.rgba) {
+    /* Each buffer only when something will fill it: without --frames the
+     * read-back buffer (3.7 MB at 1280x720) would only hold address space. */
+    int depth_on = strcmp(cub_board_depth_source(board), "off") != 0;
+    s.depth_copy = depth_on ? calloc(CUB_DEPTH_W * CUB_DEPTH_H, sizeof(uint16_t)) : NULL;
+    s.rgba = o->frames_dir ? malloc((size_t)(w > 0 ? w : 1) * (h > 0 ? h : 1) * 4) : NULL;
+    if ((depth_on && !s.depth_copy) || (o->frames_dir && !s.rgba)) {
         fprintf(stderr, "cubdance: out of memory\n");
         goto done;
     }

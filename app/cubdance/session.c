@@ -241,6 +241,39 @@ static double tick_quantile_ms(const cub_session *s, double q)
     return s->tick_max_us / 1000.0;
 }
 
+/* One field of /proc/self/status in kB (e.g. "RssAnon"), or -1 where there
+ * is no such file (not Linux) or no such field (kernels before 4.5). */
+static long proc_status_kb(const char *field)
+{
+    FILE *f = fopen("/proc/self/status", "r");
+    if (!f) return -1;
+    char line[256];
+    long kb = -1;
+    size_t n = strlen(field);
+    while (kb < 0 && fgets(line, sizeof line, f))
+        if (strncmp(line, field, n) == 0 && line[n] == ':') kb = strtol(line + n + 1, NULL, 10);
+    fclose(f);
+    return kb;
+}
+
+/* The memory line: the peak, and now what is resident split into what we
+ * (and the libraries) allocated (RssAnon: heap, stacks, SoundFont samples,
+ * GL buffers) and file pages mapped (RssFile: the code of the libraries,
+ * mostly Mesa's libLLVM under llvmpipe; shared with every other process and
+ * dropped by the kernel under pressure). Fields missing from the system are
+ * left out rather than printed as zeros. */
+static void print_memory(FILE *out, long peak_kb)
+{
+    static const char *const fields[][2] = {
+        {"VmRSS", "rss"}, {"RssAnon", "rss_anon"}, {"RssFile", "rss_file"}};
+    fprintf(out, "stats: memory peak_rss=%.1fMB", peak_kb / 1024.0);
+    for (size_t i = 0; i < sizeof fields / sizeof *fields; i++) {
+        long kb = proc_status_kb(fields[i][0]);
+        if (kb >= 0) fprintf(out, " %s=%.1fMB", fields[i][1], kb / 1024.0);
+    }
+    fputc('\n', out);
+}
+
 void cub_session_print_stats(const cub_session *s, FILE *out)
 {
     if (!s->tick_hist || !s->tick_count) return;
@@ -251,6 +284,7 @@ void cub_session_print_stats(const cub_session *s, FILE *out)
             "max=%.2f ms over %u ticks; peak resident memory %.1f MB\n",
             tick_quantile_ms(s, 0.5), tick_quantile_ms(s, 0.95), s->tick_max_us / 1000.0,
             s->tick_count, ru.ru_maxrss / 1024.0);
+    print_memory(out, ru.ru_maxrss);
 }
 
 cub_loop_hooks cub_session_hooks(cub_session *s)

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "cub/music.h"
+#include "sf2_trim.h"
 
 #define MAX_TEMPOS 512
 #define MAX_TICK ((int64_t)1 << 31)
@@ -20,6 +21,12 @@ typedef struct scan {
     uint32_t tempo_us[MAX_TEMPOS];
     int tempo_count;
     cub_midi_info *info;
+    /* For cub_midi_presets: per channel, the first note's and first
+     * Program Change's tick (-1: none), the programs set, and whether a
+     * Bank Select or SysEx was seen. */
+    int64_t first_note[16], first_program[16];
+    uint8_t programs[16][16];
+    int switches_banks;
 } scan;
 
 static cub_err fail(scan *s, size_t at, const char *what)
@@ -76,6 +83,17 @@ static cub_err meta_event(scan *s, size_t end, int64_t tick, int *ended)
     return CUB_OK;
 }
 
+static void note_presets(scan *s, uint8_t status, const uint8_t *data, int64_t tick)
+{
+    int ch = status & 0x0F;
+    if ((status & 0xF0) == 0x90 && data[1] > 0 && s->first_note[ch] < 0) s->first_note[ch] = tick;
+    if ((status & 0xF0) == 0xB0 && (data[0] == 0 || data[0] == 32)) s->switches_banks = 1;
+    if ((status & 0xF0) == 0xC0) {
+        s->programs[ch][data[0] >> 3] |= (uint8_t)(1u << (data[0] & 7));
+        if (s->first_program[ch] < 0 || tick < s->first_program[ch]) s->first_program[ch] = tick;
+    }
+}
+
 static cub_err track(scan *s, size_t end)
 {
     int64_t tick = 0;
@@ -103,6 +121,7 @@ static cub_err track(scan *s, size_t end)
             status = 0;
             e = vlq(s, end, &n);
             if (!e && n > end - s->at) e = fail(s, s->at, "a SysEx longer than its track");
+            s->switches_banks = 1; /* a GS / XG part change could make any channel drums */
             if (!e) s->at += n;
         } else if (b >= 0xF0) {
             e = fail(s, s->at - 1, "a system message that does not belong in a file");
@@ -114,6 +133,7 @@ static cub_err track(scan *s, size_t end)
                 if (s->p[s->at + (size_t)i] & 0x80)
                     return fail(s, s->at + (size_t)i, "a data byte above 127");
             if ((b & 0xF0) == 0x90 && s->p[s->at + 1] > 0) s->info->notes++;
+            note_presets(s, b, s->p + s->at, tick);
             s->at += (size_t)n;
         }
         if (e) return e;
@@ -145,48 +165,79 @@ static int64_t length_us(scan *s)
     return sum / s->info->division;
 }
 
+static cub_err scan_file(scan *s, const uint8_t *data, size_t len, const char *name,
+                         cub_midi_info *out, cub_diag *diag)
+{
+    cub_diag scratch;
+    s->diag = diag ? diag : &scratch;
+    s->name = name ? name : "(midi)";
+    s->p = data;
+    s->len = data ? len : 0;
+    for (int ch = 0; ch < 16; ch++)
+        s->first_note[ch] = s->first_program[ch] = -1;
+    if (!out) return CUB_ERR_ARG;
+    memset(out, 0, sizeof(*out));
+    s->info = out;
+    if (s->len < 14 || memcmp(data, "MThd", 4) != 0)
+        return fail(s, 0, "not a standard MIDI file (no MThd header)");
+    uint32_t hlen = be(data + 4, 4);
+    if (hlen < 6 || hlen > s->len - 8) return fail(s, 4, "a header chunk of a bad length");
+    out->format = (int)be(data + 8, 2);
+    out->tracks = (int)be(data + 10, 2);
+    out->division = (int)be(data + 12, 2);
+    if (out->format > 1) return fail(s, 8, "MIDI format 2 is not supported (0 or 1)");
+    if (out->tracks < 1 || (out->format == 0 && out->tracks != 1))
+        return fail(s, 10, "a bad number of tracks");
+    if (out->division == 0 || (out->division & 0x8000))
+        return fail(s, 12, "SMPTE or zero timing (ticks per quarter note expected)");
+    s->at = 8 + hlen;
+    int found = 0;
+    while (found < out->tracks) {
+        if (s->len - s->at < 8) return fail(s, s->at, "fewer track chunks than the header says");
+        uint32_t clen = be(data + s->at + 4, 4);
+        int is_track = memcmp(data + s->at, "MTrk", 4) == 0;
+        s->at += 8;
+        if (clen > s->len - s->at) return fail(s, s->at - 4, "a chunk longer than the file");
+        size_t end = s->at + clen;
+        if (is_track) {
+            cub_err e = track(s, end);
+            if (e) return e;
+            found++;
+        }
+        s->at = end; /* unknown chunks are skipped, as the standard says */
+    }
+    out->tempo_changes = s->tempo_count;
+    out->length_us = length_us(s);
+    return CUB_OK;
+}
+
 cub_err cub_midi_scan(const uint8_t *data, size_t len, const char *name, cub_midi_info *out,
                       cub_diag *diag)
 {
     scan s;
-    cub_diag scratch;
     memset(&s, 0, sizeof(s));
-    s.diag = diag ? diag : &scratch;
-    s.name = name ? name : "(midi)";
-    s.p = data;
-    s.len = data ? len : 0;
+    return scan_file(&s, data, len, name, out, diag);
+}
+
+cub_err cub_midi_presets(const uint8_t *data, size_t len, cub_sf2_presets *out)
+{
+    scan s;
+    cub_midi_info info;
     if (!out) return CUB_ERR_ARG;
     memset(out, 0, sizeof(*out));
-    s.info = out;
-    if (s.len < 14 || memcmp(data, "MThd", 4) != 0)
-        return fail(&s, 0, "not a standard MIDI file (no MThd header)");
-    uint32_t hlen = be(data + 4, 4);
-    if (hlen < 6 || hlen > s.len - 8) return fail(&s, 4, "a header chunk of a bad length");
-    out->format = (int)be(data + 8, 2);
-    out->tracks = (int)be(data + 10, 2);
-    out->division = (int)be(data + 12, 2);
-    if (out->format > 1) return fail(&s, 8, "MIDI format 2 is not supported (0 or 1)");
-    if (out->tracks < 1 || (out->format == 0 && out->tracks != 1))
-        return fail(&s, 10, "a bad number of tracks");
-    if (out->division == 0 || (out->division & 0x8000))
-        return fail(&s, 12, "SMPTE or zero timing (ticks per quarter note expected)");
-    s.at = 8 + hlen;
-    int found = 0;
-    while (found < out->tracks) {
-        if (s.len - s.at < 8) return fail(&s, s.at, "fewer track chunks than the header says");
-        uint32_t clen = be(data + s.at + 4, 4);
-        int is_track = memcmp(data + s.at, "MTrk", 4) == 0;
-        s.at += 8;
-        if (clen > s.len - s.at) return fail(&s, s.at - 4, "a chunk longer than the file");
-        size_t end = s.at + clen;
-        if (is_track) {
-            cub_err e = track(&s, end);
-            if (e) return e;
-            found++;
-        }
-        s.at = end; /* unknown chunks are skipped, as the standard says */
+    memset(&s, 0, sizeof(s));
+    cub_err e = scan_file(&s, data, len, NULL, &info, NULL);
+    if (e) return e;
+    if (s.switches_banks) return CUB_ERR_UNSUPPORTED;
+    for (int ch = 0; ch < 16 && !e; ch++) {
+        if (s.first_note[ch] < 0) continue; /* silent: its presets never sound */
+        int bank = ch == 9 ? 128 : 0;
+        /* The program FluidSynth starts a channel on, when a note may come
+         * first (ties too: tracks at one tick play in an order not ours). */
+        if (s.first_program[ch] < 0 || s.first_note[ch] <= s.first_program[ch])
+            e = cub_sf2_presets_add(out, bank, 0);
+        for (int pg = 0; pg < 128 && !e; pg++)
+            if (s.programs[ch][pg >> 3] & (1u << (pg & 7))) e = cub_sf2_presets_add(out, bank, pg);
     }
-    out->tempo_changes = s.tempo_count;
-    out->length_us = length_us(&s);
-    return CUB_OK;
+    return e == CUB_ERR_FULL ? CUB_ERR_UNSUPPORTED : e;
 }

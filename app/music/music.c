@@ -10,8 +10,10 @@
 #include <string.h>
 
 #include "cub/music.h"
+#include "sf2_trim.h"
 
 #define PPM 1000000
+#define CUB_MUSIC_POLYPHONY 64 /* voices sounding at once (see cub_music_open) */
 
 struct cub_music {
     fluid_settings_t *settings;
@@ -27,6 +29,9 @@ struct cub_music {
     atomic_uint_least64_t frames; /* rendered since play */
     atomic_int player_busy;       /* FluidSynth's player has events left */
     atomic_int scale_ppm;         /* clock scale, parts per million */
+    char *soundfont;              /* its path */
+    int sfont_id;                 /* FluidSynth's id of what is loaded, -1 = none */
+    int sfont_whole;              /* the whole SoundFont is loaded (kept for every song) */
 };
 
 /* FluidSynth's last error, kept for our diagnostics instead of stderr. */
@@ -49,23 +54,151 @@ static cub_err fail(cub_diag *diag, cub_err e, const char *file, const char *wha
     return e;
 }
 
-static cub_err load_soundfont(cub_music *m, const char *path, cub_diag *diag)
+/* FluidSynth reads SoundFonts through these: real files from disk, and the
+ * one trimmed image being loaded (sf2_trim.h) from memory. sfload reads
+ * everything before it returns (dynamic sample loading is off), on the
+ * calling thread: the image only has to live through that call. */
+typedef struct sf_handle {
+    FILE *f;
+    const uint8_t *p;
+    size_t len, at;
+} sf_handle;
+
+static _Thread_local const uint8_t *image;
+static _Thread_local size_t image_len;
+static _Thread_local const char *image_name;
+
+static void *sf_open(const char *name)
+{
+    sf_handle *h = calloc(1, sizeof(*h));
+    if (!h) return NULL;
+    if (image && image_name && strcmp(name, image_name) == 0) {
+        h->p = image;
+        h->len = image_len;
+    } else if (!(h->f = fopen(name, "rb"))) {
+        free(h);
+        return NULL;
+    }
+    return h;
+}
+
+static int sf_read(void *buf, fluid_long_long_t count, void *handle)
+{
+    sf_handle *h = handle;
+    if (count < 0) return FLUID_FAILED;
+    if (h->f) return fread(buf, 1, (size_t)count, h->f) == (size_t)count ? FLUID_OK : FLUID_FAILED;
+    if ((size_t)count > h->len - h->at) return FLUID_FAILED;
+    memcpy(buf, h->p + h->at, (size_t)count);
+    h->at += (size_t)count;
+    return FLUID_OK;
+}
+
+static int sf_seek(void *handle, fluid_long_long_t offset, int origin)
+{
+    sf_handle *h = handle;
+    if (h->f) return fseek(h->f, (long)offset, origin) == 0 ? FLUID_OK : FLUID_FAILED;
+    fluid_long_long_t base = origin == SEEK_SET   ? 0
+                             : origin == SEEK_CUR ? (fluid_long_long_t)h->at
+                                                  : (fluid_long_long_t)h->len;
+    if (base + offset < 0 || base + offset > (fluid_long_long_t)h->len) return FLUID_FAILED;
+    h->at = (size_t)(base + offset);
+    return FLUID_OK;
+}
+
+static fluid_long_long_t sf_tell(void *handle)
+{
+    sf_handle *h = handle;
+    return h->f ? (fluid_long_long_t)ftell(h->f) : (fluid_long_long_t)h->at;
+}
+
+static int sf_close(void *handle)
+{
+    sf_handle *h = handle;
+    if (h->f) fclose(h->f);
+    free(h);
+    return FLUID_OK;
+}
+
+/* Under the lock (or before anyone else has m): what was loaded goes. */
+static void unload_soundfont(cub_music *m)
+{
+    if (m->sfont_id >= 0) fluid_synth_sfunload(m->synth, m->sfont_id, 1);
+    m->sfont_id = -1;
+    m->sfont_whole = 0;
+}
+
+static cub_err load_whole(cub_music *m, cub_diag *diag)
+{
+    if (m->sfont_whole) return CUB_OK;
+    unload_soundfont(m);
+    last_error[0] = '\0';
+    m->sfont_id = fluid_synth_sfload(m->synth, m->soundfont, 1);
+    if (m->sfont_id == FLUID_FAILED) {
+        m->sfont_id = -1;
+        return fail(diag, CUB_ERR_FORMAT, m->soundfont, "FluidSynth cannot load this SoundFont",
+                    last_error);
+    }
+    m->sfont_whole = 1;
+    return CUB_OK;
+}
+
+/* Only the presets of this song (sf2_trim.h): the General MIDI SoundFont
+ * whole is 15 MB resident in FluidSynth (5.8 MB of samples, 2063 zones),
+ * a song's two presets under 1 MB. The cut file renders bit-identically
+ * (same sample points, loops, generators); whatever cannot be cut exactly
+ * plays from the whole SoundFont instead, as before. */
+static cub_err load_for_song(cub_music *m, const uint8_t *midi, size_t len, cub_diag *diag)
+{
+    static atomic_uint serial;
+    cub_sf2_presets want;
+    uint8_t *img = NULL;
+    size_t img_len = 0;
+    FILE *f = NULL;
+    if (cub_midi_presets(midi, len, &want) != CUB_OK || !(f = fopen(m->soundfont, "rb")) ||
+        cub_sf2_trim(f, m->soundfont, &want, &img, &img_len, NULL) != CUB_OK) {
+        if (f) fclose(f);
+        return load_whole(m, diag);
+    }
+    fclose(f);
+    char name[64];
+    snprintf(name, sizeof(name), "cub-trimmed-soundfont-%u", atomic_fetch_add(&serial, 1));
+    unload_soundfont(m);
+    image = img, image_len = img_len, image_name = name;
+    m->sfont_id = fluid_synth_sfload(m->synth, name, 1);
+    image = NULL, image_len = 0, image_name = NULL;
+    free(img);
+    if (m->sfont_id == FLUID_FAILED) {
+        m->sfont_id = -1;
+        return load_whole(m, diag);
+    }
+    return CUB_OK;
+}
+
+/* Check the SoundFont now, so that a bad one fails at open; load it when
+ * the song is known (load_for_song), or now when it cannot be cut. */
+static cub_err open_soundfont(cub_music *m, const char *path, cub_diag *diag)
 {
     FILE *f = fopen(path, "rb");
     if (!f) return fail(diag, CUB_ERR_IO, path, "cannot read the SoundFont", strerror(errno));
     char head[12] = {0};
     size_t got = fread(head, 1, sizeof(head), f);
-    fclose(f);
     /* FluidSynth would hand other files to its DLS loader, which complains
      * on stderr; a SoundFont 2 is a RIFF file of form "sfbk". */
-    if (got < sizeof(head) || memcmp(head, "RIFF", 4) != 0 || memcmp(head + 8, "sfbk", 4) != 0)
+    if (got < sizeof(head) || memcmp(head, "RIFF", 4) != 0 || memcmp(head + 8, "sfbk", 4) != 0) {
+        fclose(f);
         return fail(diag, CUB_ERR_FORMAT, path, "not a SoundFont 2 file (no RIFF sfbk header)",
                     NULL);
-    last_error[0] = '\0';
-    if (fluid_synth_sfload(m->synth, path, 1) == FLUID_FAILED)
-        return fail(diag, CUB_ERR_FORMAT, path, "FluidSynth cannot load this SoundFont",
-                    last_error);
-    return CUB_OK;
+    }
+    size_t n = strlen(path) + 1;
+    m->soundfont = malloc(n);
+    if (m->soundfont) memcpy(m->soundfont, path, n);
+    if (!m->soundfont) {
+        fclose(f);
+        return fail(diag, CUB_ERR_NOMEM, path, "out of memory", NULL);
+    }
+    cub_err e = cub_sf2_check(f, path, NULL);
+    fclose(f);
+    return e == CUB_OK ? CUB_OK : load_whole(m, diag);
 }
 
 cub_err cub_music_open(const cub_music_desc *desc, cub_music **out, cub_diag *diag)
@@ -83,6 +216,7 @@ cub_err cub_music_open(const cub_music_desc *desc, cub_music **out, cub_diag *di
     cub_music *m = calloc(1, sizeof(*m));
     if (!m) return fail(diag, CUB_ERR_NOMEM, NULL, "out of memory", NULL);
     m->rate = d.rate;
+    m->sfont_id = -1;
     atomic_init(&m->frames, 0);
     atomic_init(&m->player_busy, 0);
     atomic_init(&m->scale_ppm, PPM);
@@ -94,14 +228,27 @@ cub_err cub_music_open(const cub_music_desc *desc, cub_music **out, cub_diag *di
         /* The player must follow the samples rendered, not the system
          * clock: the audio is the music clock. */
         fluid_settings_setstr(m->settings, "player.timing-source", "sample");
+        /* Voices are allocated up front (about 10 KB each): FluidSynth's
+         * default 256 cost 2 MB resident. A children's song rings far fewer
+         * at once (the shipped songs render bit-identically with 64), and a
+         * song that wanted more would have its oldest voices stolen. Dynamic
+         * sample loading would save 5.7 MB more but changes the rendered
+         * audio (Twinkle: 29 % of its samples differ; cf. FluidSynth
+         * issue #1484), so it stays off. */
+        fluid_settings_setint(m->settings, "synth.polyphony", CUB_MUSIC_POLYPHONY);
         m->synth = new_fluid_synth(m->settings);
     }
-    if (!m->synth) {
+    fluid_sfloader_t *loader = m->synth ? new_fluid_defsfloader(m->settings) : NULL;
+    if (loader) {
+        fluid_sfloader_set_callbacks(loader, sf_open, sf_read, sf_seek, sf_tell, sf_close);
+        fluid_synth_add_sfloader(m->synth, loader); /* the synth owns it now */
+    }
+    if (!m->synth || !loader) {
         cub_music_close(m);
         return fail(diag, CUB_ERR_DEVICE, NULL, "FluidSynth cannot start a synthesiser",
                     last_error);
     }
-    cub_err e = load_soundfont(m, d.soundfont, diag);
+    cub_err e = open_soundfont(m, d.soundfont, diag);
     if (e) {
         cub_music_close(m);
         return e;
@@ -133,6 +280,7 @@ void cub_music_close(cub_music *m)
     if (m->synth) delete_fluid_synth(m->synth);
     if (m->settings) delete_fluid_settings(m->settings);
     pthread_mutex_destroy(&m->lock);
+    free(m->soundfont);
     free(m->midi);
     free(m);
 }
@@ -160,8 +308,9 @@ cub_err cub_music_load(cub_music *m, const char *midi_path, cub_diag *diag)
     m->midi = (uint8_t *)data;
     m->midi_len = len;
     m->info = info;
+    e = m->sfont_whole ? CUB_OK : load_for_song(m, m->midi, len, diag);
     pthread_mutex_unlock(&m->lock);
-    return CUB_OK;
+    return e;
 }
 
 cub_err cub_music_play(cub_music *m)

@@ -45,7 +45,10 @@ void cub_music_close(cub_music *m);
 
 /* Stop whatever plays and load a standard MIDI file (format 0 or 1, PPQ
  * timing). The file is checked first — chunks, events, lengths — so a bad
- * file is CUB_ERR_FORMAT with the byte offset, not a silent player. */
+ * file is CUB_ERR_FORMAT with the byte offset, not a silent player. The
+ * SoundFont's samples are loaded here, cut to the presets the song uses
+ * (app/music/sf2_trim.c): a SoundFont that FluidSynth rejects fails here
+ * (CUB_ERR_FORMAT, naming it), after cub_music_open checked its shape. */
 cub_err cub_music_load(cub_music *m, const char *midi_path, cub_diag *diag);
 /* Start the loaded song from its beginning; the clock restarts at 0.
  * CUB_ERR_EMPTY when nothing is loaded. */
