@@ -21,6 +21,14 @@ cub_err cub_judge_begin_rep(cub_judge *j, const cub_judge_rep *r)
 {
     if (!j || !r || !keys_valid(r) || r->end_us <= r->start_us || r->beat_us < 0) return CUB_ERR_ARG;
     if (r->end_us > INT64_MAX - r->beat_us) return CUB_ERR_ARG;
+    /* The bear's repetitions follow one another: when this one begins the
+     * open ones are over, whatever their clip's length at its first speed
+     * said (the coach re-times clips to the music), so their late
+     * allowance runs from now. */
+    for (int i = 0; i < CUB_JUDGE_MAX_OPEN; i++) {
+        rep_slot *o = &j->reps[i];
+        if (o->used && o->close_us > r->start_us + o->beat_us) o->close_us = r->start_us + o->beat_us;
+    }
     rep_slot *s = NULL;
     for (int i = 0; i < CUB_JUDGE_MAX_OPEN && !s; i++)
         if (!j->reps[i].used) s = &j->reps[i];
@@ -177,7 +185,11 @@ static int rep_step(cub_judge *j, rep_slot *s, int64_t t_us, const cub_fuzzy_fra
     int match = keys && close && !is_consumed(j, s, t_us);
     if (match && !s->run_on) s->run_first_us = t_us;
     s->run_on = match;
-    return match && t_us - s->run_first_us >= (int64_t)j->d.hold_ms * 1000;
+    /* Not in the repetition's first beat: a child a beat late is still
+     * finishing the previous repetition there (which, if still open, takes
+     * the credit as the older one); a pose held on past it counts. */
+    return match && t_us - s->run_first_us >= (int64_t)j->d.hold_ms * 1000 &&
+           t_us >= s->start_us + s->beat_us;
 }
 
 /* The open slot with the lowest seq above `after` (after = -1: any). */

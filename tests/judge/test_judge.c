@@ -382,6 +382,55 @@ static void test_a_pose_held_on_counts_for_each_repetition(void **state)
     assert_true(nth(&r, CUB_JUDGE_VERDICT, 2)->ev.t_us >= 135LL * FRAME_US);
 }
 
+/* In a repetition's first beat a late child is still finishing the
+ * previous one: a pose there that ends within the beat credits nothing new
+ * (the previous repetition was right already); held on past it, it does. */
+static void test_pose_in_the_first_beat_belongs_to_the_previous(void **state)
+{
+    (void)state;
+    for (int held_on = 0; held_on < 2; held_on++) {
+        rec r;
+        rec_init(&r, NULL);
+        cub_judge_rep a = rep_rhe(0, 0, 60), b = rep_rhe(1, 60, 120);
+        assert_int_equal(cub_judge_begin_rep(r.j, &a), CUB_OK);
+        for (int f = 0; f < 160; f++) {
+            if (f == 60) assert_int_equal(cub_judge_begin_rep(r.j, &b), CUB_OK);
+            int bent = (f >= 20 && f < 30) || (f >= 62 && f < (held_on ? 80 : 72));
+            feed(&r, f, bent ? bent_right() : STILL);
+        }
+        assert_int_equal(count(&r, CUB_JUDGE_VERDICT), 2);
+        const cub_judge_event *vb = nth(&r, CUB_JUDGE_VERDICT, 1);
+        assert_int_equal(vb->rep, 1);
+        assert_int_equal(vb->ev.b, held_on);
+        /* right once the beat (15 frames) has passed; else wrong at the close */
+        assert_int_equal(vb->ev.t_us, held_on ? 75LL * FRAME_US : 135LL * FRAME_US);
+    }
+}
+
+/* A repetition ends when the next begins (the coach re-timed the clip):
+ * its window closes a beat later, not a beat after its clip's length. */
+static void test_next_repetition_ends_the_open_one(void **state)
+{
+    (void)state;
+    rec r;
+    rec_init(&r, NULL);
+    cub_judge_rep a = rep_rhe(0, 0, 90), b = rep_rhe(1, 60, 120);
+    assert_int_equal(cub_judge_begin_rep(r.j, &a), CUB_OK);
+    for (int f = 0; f < 160; f++) {
+        if (f == 60) assert_int_equal(cub_judge_begin_rep(r.j, &b), CUB_OK);
+        feed(&r, f, f >= 80 && f < 90 ? bent_right() : STILL);
+    }
+    assert_int_equal(count(&r, CUB_JUDGE_VERDICT), 2);
+    const cub_judge_event *va = nth(&r, CUB_JUDGE_VERDICT, 0);
+    const cub_judge_event *vb = nth(&r, CUB_JUDGE_VERDICT, 1);
+    assert_int_equal(va->rep, 0);
+    assert_int_equal(va->ev.b, 0);
+    assert_int_equal(va->ev.t_us, 75LL * FRAME_US); /* not 105 */
+    assert_int_equal(vb->rep, 1);
+    assert_int_equal(vb->ev.b, 1);
+    assert_int_equal(vb->ev.t_us, 84LL * FRAME_US);
+}
+
 static void test_expected_pose_must_be_near(void **state)
 {
     (void)state;
@@ -588,6 +637,8 @@ int main(void)
         cmocka_unit_test(test_no_player_is_wrong_and_not_in_view),
         cmocka_unit_test(test_one_run_credits_one_repetition),
         cmocka_unit_test(test_a_pose_held_on_counts_for_each_repetition),
+        cmocka_unit_test(test_pose_in_the_first_beat_belongs_to_the_previous),
+        cmocka_unit_test(test_next_repetition_ends_the_open_one),
         cmocka_unit_test(test_expected_pose_must_be_near),
         cmocka_unit_test(test_one_clap_one_event),
         cmocka_unit_test(test_claps_in_a_row_and_held_hands),

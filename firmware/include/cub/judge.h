@@ -12,7 +12,8 @@
  * Verdicts, exactly:
  * - A repetition r has keys (feature, set), its window [start_us,
  *   end_us + beat_us) (a child one beat late still counts) and optionally
- *   the coach's expected fuzzy frame.
+ *   the coach's expected fuzzy frame. When the next repetition begins,
+ *   the open ones end: their windows close at most one beat after it.
  * - The child's features are the fuzzy features of SEEDS.md, except that
  *   the arm raise (RH, LH) is read along the whole arm, shoulder to wrist:
  *   the tracker places elbows least well, and an arm is raised as far as
@@ -26,13 +27,17 @@
  *   move does not end it). A run is HELD once t(last) - t(first) >= hold_ms.
  * - A held run credits the OLDEST open repetition whose window holds its
  *   frames and that is not yet right: that verdict (b = 1) is issued at
- *   once, in the frame where the run becomes held. One run credits one
- *   repetition: to credit another, the keys must drop (below 4/5 of key_mu)
- *   and be reached again, or the run must go on a whole beat into a
- *   repetition that began after the credit (a pose held on, as in a sway,
- *   counts for each repetition it is held through)
- *   (a late child's pose at the start of the next repetition counts for
- *   the late one, not for both).
+ *   once, in the frame where the run becomes held, but not before the
+ *   repetition's first beat has passed (start_us + beat_us): in that beat
+ *   a child one beat late is still finishing the previous repetition (the
+ *   arms of a jumping jack on their way down pass "mid" again), which
+ *   must not credit this one; a run held on past the beat does. One run
+ *   credits one repetition: to credit another, the keys must drop (below
+ *   4/5 of key_mu) and be reached again, or the run must go on a whole
+ *   beat into a repetition that began after the credit (a pose held on,
+ *   as in a sway, counts for each repetition it is held through; a late
+ *   child's pose at the start of the next repetition counts for the late
+ *   one, not for both).
  * - A repetition still without a right verdict gets a wrong one (b = 0) in
  *   the first frame with t_us >= end_us + beat_us. Why: no_player when no
  *   frame of its window was CUB_TRACK_OK, pose when the keys were held but
