@@ -1,36 +1,45 @@
 #!/usr/bin/env python3
-"""make_child.py: a synthetic child that dances a whole song, with planted
-mistakes, for the box's end-to-end replay (issue 5, "End to end").
+"""make_child.py: a synthetic child that dances a whole song with the bear,
+with planted mistakes, for the box's end-to-end replay (issue 5, "End to
+end"; scripts/e2e_child.sh runs it all).
 
-    scripts/make_child.py sequence SONG PLAN OUT
+    scripts/make_child.py sequence SONG PLAN OUT [CUES]
         writes OUT/child.seq (a `cubtool synth-depth --sequence` file aligned
         to cubdance's loop time: frame k of the dump is loop time k/30 s) and
-        OUT/expect.txt (every (move, rep) of the song: right or planted
-        wrong, with the loop-time span the child acts it in).
-    scripts/make_child.py check SONG PLAN TRUTH
+        OUT/expect.txt (every coach request the child follows, and for each
+        move the coach leads the verdict expected: right or planted wrong).
+        CUES: the coach's `coach request` lines (a cubdance log, or
+        scripts/child/<song>.cues); without, the song's own timing.
+    scripts/make_child.py check SONG PLAN TRUTH [CUES]
         the TRUE joints (truth.txt of the rendered sequence) through the
-        judge's fuzzy features: per move and repetition, each key's best
-        membership over the repetition's window (start .. end + one beat),
-        held for 100 ms as the judge needs (the min over 4 frames at 30 fps),
-        and `all`: the keys together (the judge needs them in the same frames).
+        judge's fuzzy features: per window the coach opens, each key's best
+        membership (held for 100 ms, the min over 4 frames at 30 fps), and
+        `all`: the keys together (the judge needs them in the same frames).
     scripts/make_child.py scan TRUTH KEY... [--from S --to S] [--every S]
         a clip's key memberships over time (KEY like RH=up), to pick segments.
     scripts/make_child.py score EXPECT LOG
-        the judge's verdicts and the coach's corrections from a cubdance log
-        against expect.txt: the table per repetition and the counts.
+        the judge's verdicts and the coach's corrections in a cubdance log
+        against expect.txt: the table per window and the counts; fails when
+        a planted mistake is not corrected, a move done right is corrected
+        or not judged at all, or the coach did not do what the child
+        followed (a move done right judged wrong without a correction, the
+        coach having moved on, is counted apart).
 
-The end-to-end run (Twinkle; dumps are 614 KB a frame):
-    scripts/make_child.py sequence assets/songs/twinkle.song.xml \
-        scripts/child/twinkle.plan /tmp/e2e
-    cubtool synth-depth --sequence /tmp/e2e/child.seq --out /tmp/e2e/dump
-    cubdance --headless --size 64x48 --replay /tmp/e2e/dump --clock virtual \
-        --song assets/songs/twinkle.song.xml --buttons scripts/demo.buttons \
-        --log /tmp/e2e/events.log --seconds 110
-    scripts/make_child.py score /tmp/e2e/expect.txt /tmp/e2e/events.log
+The child follows the bear, as a child in front of the TV does: each move
+the coach leads (a repetition, a resume, a slow demonstration) it does
+right, REACT seconds after the bear starts it, stretched to the bear's
+span; while the bear corrects (head shake, "watch me"), idles or cheers, it
+stands and watches. A planted mistake replaces the move the first time the
+coach leads that repetition and lasts one beat into what follows (a pose
+in that beat would still count for the late repetition). What the coach
+does depends on the verdicts, so the child's timeline is found by
+following the box's own log until it repeats itself (e2e_child.sh
+--remake); the result is committed as scripts/child/<song>.cues.
 
 Plan file (scripts/child/<song>.plan), '#' comments, one item a line:
     lead S                  loop time of the music's start (cubdance's
-                            `music start` line; START pressed at 0.5 s)
+                            `music start` line; START pressed at 0.5 s),
+                            for the first guess from the song's timing
     stand CLIP FROM TO      the segment that stands still (looped to fill)
     derive NAME SOURCE JOINT=K...  a clip of our own: the BVH SOURCE (under
                             the data dir) with each named joint's local
@@ -40,43 +49,19 @@ Plan file (scripts/child/<song>.plan), '#' comments, one item a line:
                             clips rarely lift the upper arm past 135 deg,
                             where RH=up reaches 0.5); written as
                             OUT/NAME.bvh, usable as NAME in segments
-    move CLIP SEG [SEG...]  one repetition of the song's move CLIP done
+    move CLIP SEG [SEG...]  one repetition of the bear's clip CLIP done
                             right, SEG = mocap `clip:from:to[:mirror]`; the
-                            segments are played back to back and time-scaled
-                            to the repetition's song span (cubtool cannot
-                            change speed, so instead a segment's length is
-                            cut or its end looped: see fit())
+                            segments are played back to back (synth-depth
+                            turns each to face the camera) and fitted to
+                            the bear's span (cubtool cannot change speed,
+                            so a longer take is cut, a shorter one looped:
+                            see fit())
     mistake M R KIND [SEG...]  plant a mistake in move M (0-based song
                             order), repetition R (0-based): KIND still
                             (stand), wrong_arm (the right segments mirrored,
                             or SEGs given), no_jump (SEGs required: the move
                             without its jump / arms up)
-    after S                 the child keeps doing the corrected move right
-                            for S + one repetition after a mistake's late
-                            beat (default 4 s: the correcting clip, <= 2.8
-                            s, with the route into it and a margin)
-
-What the child does after a planted mistake (the rule): the coach gives a
-wrong verdict one beat after the repetition ends (the judge's late
-allowance), cancels the open windows, plays a correcting clip (head shake /
-watch me, ~2-3 s), then demonstrates the move at 0.7 speed with a window
-open, and repeats that until a right verdict; then it resumes where the
-music is. So the child
-  1. acts the mistake over the repetition's span AND the beat after it (a
-     pose reached inside that beat would still credit the late repetition,
-     which would hide the mistake): `still` stands through it, the others
-     stand for that beat;
-  2. then does the corrected move right, back to back at its song tempo,
-     for `after` seconds + one repetition (the correcting clip, then the
-     slow demonstration's window, in which one repetition of the child
-     reaches the keys), even when the song's span of that move has ended;
-  3. then rejoins the song at the next repetition boundary of the music
-     (whatever move the music is in then).
-The repetitions the music passes meanwhile (the one after the mistake, the
-coach's own window of which the correction cancels, and any the child
-spends recovering) are marked `skip` in expect.txt: not counted.
-Planted mistakes must be far enough apart that step 2 ends before the next
-planted repetition starts (checked: an error otherwise)."""
+"""
 import math
 import os
 import re
@@ -359,7 +344,7 @@ def parse_seg(text, where):
 
 
 def read_plan(path):
-    plan = {"lead": 2.733, "stand": None, "moves": {}, "mistakes": [], "after": 4.0,
+    plan = {"lead": 2.733, "stand": None, "moves": {}, "mistakes": [],
             "derive": []}
     for n, raw in enumerate(open(path), 1):
         line = raw.split("#", 1)[0].split()
@@ -369,8 +354,6 @@ def read_plan(path):
         kw, args = line[0], line[1:]
         if kw == "lead" and len(args) == 1:
             plan["lead"] = float(args[0])
-        elif kw == "after" and len(args) == 1:
-            plan["after"] = float(args[0])
         elif kw == "derive" and len(args) >= 3:
             amp = []
             for a in args[2:]:
@@ -413,75 +396,87 @@ def fit(segs, dur):
     return out
 
 
-def build(song, plan):
-    """The child's timeline in loop time: a list of (t0, t1, segs, label),
-    and the expectations."""
-    lead, beat = plan["lead"], song["beat"]
-    moves = song["moves"]
-    for m in moves:
-        if m["clip"] not in plan["moves"]:
-            raise ValueError("the plan has no segments for move %r" % m["clip"])
-    reps = []  # (music t0, t1, move index, rep)
-    for i, m in enumerate(moves):
+REACT = 0.3   # a child starts what the bear shows this long after the bear
+DANCE = ("move", "rep", "resume", "demo")   # coach requests that lead a move
+CUE = re.compile(r"t=\s*([\d.]+) coach request clip=(\S+) .*?reason=(\w+)"
+                 r"(?: move=(\d+) rep=(\d+))?")
+
+
+def read_cues(path):
+    """The coach's requests, (t, clip, reason, move, rep), from a cubdance
+    event log or a cues file (the same `coach request` lines)."""
+    cues = []
+    for n, line in enumerate(open(path), 1):
+        m = CUE.search(line)
+        if not m:
+            continue
+        mv = int(m.group(4)) if m.group(4) is not None else -1
+        rp = int(m.group(5)) if m.group(5) is not None else -1
+        cues.append((float(m.group(1)), m.group(2), m.group(3), mv, rp))
+    if not cues:
+        raise ValueError("%s: no `coach request` lines" % path)
+    return cues
+
+
+def cues_from_song(song, plan):
+    """Cues as if the coach led every repetition on the music's beat, with
+    no correction: the first guess the child follows."""
+    cues, lead = [], plan["lead"]
+    for i, m in enumerate(song["moves"]):
         d = (m["end"] - m["start"]) / m["reps"]
         for r in range(m["reps"]):
-            reps.append((m["start"] + r * d, m["start"] + (r + 1) * d, i, r))
+            cues.append((lead + m["start"] + r * d, m["clip"], "move" if r == 0 else "rep", i, r))
+    cues.append((lead + song["length"], "cheer", "song_end", -1, -1))
+    return cues
+
+
+def build(song, plan, cues):
+    """The child's timeline in loop time, (t0, t1, segs, label), following
+    the coach: every move the bear leads (a repetition, a resume, a slow
+    demonstration) the child does right REACT s later, fitted to the bear's
+    span; anything else (a correcting clip, idle, the cheer) it watches,
+    standing. A planted mistake replaces the move the first time the coach
+    leads that repetition, and lasts one beat into what follows (a pose
+    reached in that beat would still count for the late repetition).
+    Returns the timeline and the expected windows, (cue index, t0, t1,
+    move, rep, expected)."""
+    beat, stand = song["beat"], [plan["stand"]]
+    for _, clip, reason, _, _ in cues:
+        if reason in DANCE and clip not in plan["moves"]:
+            raise ValueError("the plan has no segments for move %r" % clip)
     mist = {(mi, r): (kind, segs) for mi, r, kind, segs in plan["mistakes"]}
+    end = cues[-1][0] + 3.0
+    tl, expect, planted = [(0.0, cues[0][0] + REACT, stand, "lead-in")], [], set()
+    t = tl[0][1]
+    for i, (tc, clip, reason, mi, r) in enumerate(cues):
+        nxt = cues[i + 1][0] if i + 1 < len(cues) else end - REACT
+        t0, t1 = max(tc + REACT, t), nxt + REACT
+        if reason in DANCE:
+            wrong = (mi, r) in mist and (mi, r) not in planted and reason in ("move", "rep")
+            expect.append((i, tc, nxt, mi, r, "wrong:" + mist[(mi, r)][0] if wrong else "right"))
+        if t1 <= t0 + 1e-6:
+            continue
+        if reason not in DANCE:
+            tl.append((t0, t1, stand, "watch " + clip))
+        elif (mi, r) in mist and (mi, r) not in planted and reason in ("move", "rep"):
+            planted.add((mi, r))
+            kind, segs = mist[(mi, r)]
+            if kind == "still":
+                segs = stand
+            elif kind == "wrong_arm" and not segs:
+                segs = [(c, a, b, not mir) for c, a, b, mir in plan["moves"][clip]]
+            tl.append((t0, t1, segs, "%d.%d %s" % (mi, r, kind)))
+            tl.append((t1, t1 + beat, stand, "late beat"))
+            t1 += beat
+        else:
+            tl.append((t0, t1, plan["moves"][clip], "%d.%d %s" % (mi, r, reason)))
+        t = t1
     for key in mist:
-        if not any((x[2], x[3]) == key for x in reps):
-            raise ValueError("mistake at move %d rep %d: no such repetition" % key)
-    tl = []  # music-time pieces: (t0, t1, segs, label)
-    recover = []  # music time from a mistake's end to the child's rejoining
-    t = 0.0
-    busy_until = -1.0
-    for t0, t1, mi, r in reps:
-        if t0 < busy_until - 1e-6:
-            if (mi, r) in mist:
-                raise ValueError("mistake at move %d rep %d falls inside the recovery of an "
-                                 "earlier one (until music %.2f s)" % (mi, r, busy_until))
-            continue
-        if t0 > t + 1e-6:
-            tl.append((t, t0, [plan["stand"]], "gap"))
-        name = moves[mi]["clip"]
-        if (mi, r) not in mist:
-            tl.append((t0, t1, plan["moves"][name], "%d.%d right" % (mi, r)))
-            t = t1
-            continue
-        kind, segs = mist[(mi, r)]
-        if kind == "still":
-            segs = [plan["stand"]]
-        elif kind == "wrong_arm" and not segs:
-            segs = [(c, a, b, not mir) for c, a, b, mir in plan["moves"][name]]
-        tl.append((t0, t1, segs, "%d.%d %s" % (mi, r, kind)))
-        tl.append((t1, t1 + beat, [plan["stand"]], "late beat"))
-        # then the move right, back to back at its song tempo, for `after` s
-        rep_s = (moves[mi]["end"] - moves[mi]["start"]) / moves[mi]["reps"]
-        fix_end = t1 + beat + plan["after"] + rep_s
-        u = t1 + beat
-        while u < fix_end - 1e-6:
-            tl.append((u, min(u + rep_s, fix_end), plan["moves"][name], "%d fix" % mi))
-            u = min(u + rep_s, fix_end)
-        # rejoin at the next repetition boundary (or gap) of the music
-        nxt = [x[0] for x in reps if x[0] >= u - 1e-6]
-        ends = [m["end"] for m in moves if m["end"] >= u - 1e-6]
-        cands = nxt + ends
-        t = u
-        busy_until = min(cands) if cands else u
-        recover.append((t1, busy_until))
-        if busy_until > u + 1e-6:
-            tl.append((u, busy_until, [plan["stand"]], "wait"))
-            t = busy_until
-    if song["length"] + 3 > t:
-        tl.append((t, song["length"] + 3, [plan["stand"]], "outro"))
-    loop = [(0.0, lead, [plan["stand"]], "lead-in")]
-    loop += [(a + lead, b + lead, s, lab) for a, b, s, lab in tl]
-    expect = []
-    for t0, t1, mi, r in reps:
-        tag = "wrong:" + mist[(mi, r)][0] if (mi, r) in mist else "right"
-        if tag == "right" and any(t0 < b - 1e-6 and t1 > a + 1e-6 for a, b in recover):
-            tag = "skip"
-        expect.append((mi, r, moves[mi]["clip"], tag, t0 + lead, t1 + lead))
-    return loop, expect
+        if key not in planted:  # the score counts it missed
+            sys.stderr.write("make_child: warning: the mistake at move %d rep %d is not planted: "
+                             "the coach never leads that repetition\n" % key)
+            expect.append((-1, 0.0, 0.0, key[0], key[1], "unled:" + mist[key][0]))
+    return tl, expect
 
 
 def write_sequence(loop, path, derived):
@@ -496,18 +491,32 @@ def write_sequence(loop, path, derived):
                                                " mirror" if mir else ""))
 
 
-def cmd_sequence(song_path, plan_path, out):
+def plan_and_cues(song_path, plan_path, cues_path):
     song, plan = read_song(song_path), read_plan(plan_path)
-    loop, expect = build(song, plan)
+    cues = read_cues(cues_path) if cues_path else cues_from_song(song, plan)
+    return song, plan, cues
+
+
+def cmd_sequence(song_path, plan_path, out, cues_path):
+    song, plan, cues = plan_and_cues(song_path, plan_path, cues_path)
+    loop, expect = build(song, plan, cues)
     os.makedirs(out, exist_ok=True)
     write_sequence(loop, os.path.join(out, "child.seq"), make_derived(plan, out))
+    dance = {e[0]: e[5] for e in expect}
     with open(os.path.join(out, "expect.txt"), "w") as fh:
-        fh.write("# move rep clip expected loop_from_s loop_to_s\n")
-        for mi, r, clip, tag, a, b in expect:
-            fh.write("%d %d %s %s %.3f %.3f\n" % (mi, r, clip, tag, a, b))
-    print("make_child: %s and %s: %.1f s, %d repetitions, %d planted wrong"
-          % (os.path.join(out, "child.seq"), os.path.join(out, "expect.txt"), loop[-1][1],
-             len(expect), sum(1 for e in expect if e[3].startswith("wrong"))))
+        fh.write("# every coach request the child follows: t_s clip reason move rep, and for\n"
+                 "# the moves the verdict expected (right, or the planted wrong:KIND)\n")
+        fh.write("beat %.4f\n" % song["beat"])
+        for i, (tc, clip, reason, mi, r) in enumerate(cues):
+            tag = dance.get(i, "-")
+            fh.write("%.3f %s %s %d %d %s\n" % (tc, clip, reason, mi, r, tag))
+        for e in expect:
+            if e[0] < 0:
+                fh.write("unled %d %d %s\n" % (e[3], e[4], e[5]))
+    print("make_child: %s and %s: %.1f s, the coach's %d requests (%s), %d moves led, "
+          "%d planted wrong" % (os.path.join(out, "child.seq"), os.path.join(out, "expect.txt"),
+                                loop[-1][1], len(cues), cues_path or "from the song",
+                                sum(1 for e in expect if e[0] >= 0), sum(1 for e in expect if e[5] != "right")))
 
 
 def cmd_scan(truth, keys, t_from, t_to, every):
@@ -524,95 +533,156 @@ def cmd_scan(truth, keys, t_from, t_to, every):
               " ".join("%s=%.0f" % (a, f[a]) for a, _ in ks))
 
 
-def cmd_check(song_path, plan_path, truth):
-    song, plan = read_song(song_path), read_plan(plan_path)
-    _, expect = build(song, plan)
+def cmd_check(song_path, plan_path, truth, cues_path):
+    """The rendered child's TRUE joints over every window the coach opens
+    (the bear's span + one beat): does the truth itself reach the keys?"""
+    song, plan, cues = plan_and_cues(song_path, plan_path, cues_path)
+    _, expect = build(song, plan, cues)
     feats = truth_memberships(read_truth(truth))
     ok = True
-    print("%-14s %4s %-16s %s" % ("move", "rep", "expected", "best held membership per key "
-                                   "(window: rep .. +1 beat)"))
-    for mi, r, clip, tag, a, b in expect:
-        i0, i1 = int(round(a * FPS)), min(len(feats), int(round((b + song["beat"]) * FPS)))
-        cols = []
-        for f, s in song["moves"][mi]["keys"]:
-            v = held([membership(f, s, feats[i][f]) for i in range(i0, i1)])
-            cols.append((f + "=" + s, v))
+    print("%7s %-14s %4s %-16s %s" % ("t_s", "move", "rep", "expected",
+                                      "best held membership per key (window: span + 1 beat)"))
+    for i, t0, t1, mi, r, tag in expect:
+        if i < 0:
+            continue
+        i0, i1 = int(round(t0 * FPS)), min(len(feats), int(round((t1 + song["beat"]) * FPS)))
+        keys = song["moves"][mi]["keys"]
+        cols = [(f + "=" + s, held([membership(f, s, feats[k][f]) for k in range(i0, i1)]))
+                for f, s in keys]
         # the judge needs every key >= 0.5 in the same frames, held 100 ms
-        both = held([min(membership(f, s, feats[i][f]) for f, s in song["moves"][mi]["keys"])
-                     for i in range(i0, i1)])
+        both = held([min(membership(f, s, feats[k][f]) for f, s in keys) for k in range(i0, i1)])
         cols.append(("all", both))
-        reached = both >= 0.5
-        if tag == "skip":
-            cols = cols
-        good = tag == "skip" or reached == (tag == "right")
+        good = (both >= 0.5) == (tag == "right")
         ok &= good
-        print("%-14s %4d %-16s %s  %s" % (clip, r, tag, "  ".join("%s %.2f" % c for c in cols),
-                                          "" if good else "<-- truth disagrees"))
+        print("%7.2f %-14s %4d %-16s %s  %s" % (t0, song["moves"][mi]["clip"], r, tag,
+                                                "  ".join("%s %.2f" % c for c in cols),
+                                                "" if good else "<-- truth disagrees"))
     return 0 if ok else 1
 
 
-def cmd_score(expect_path, log_path):
-    expect = []
-    for line in open(expect_path):
-        if line.startswith("#") or not line.strip():
-            continue
+def read_expect(path):
+    beat, cues, tags, unled = None, [], [], []
+    for n, line in enumerate(open(path), 1):
         v = line.split()
-        expect.append((int(v[0]), int(v[1]), v[2], v[3]))
-    verdicts = {}
-    corrected = {}
-    vre = re.compile(r"t=\s*([\d.]+).*judge verdict move=(\d+) rep=(\d+) result=(\w+)(.*)")
-    # the coach's state line names its own position (the next repetition):
-    # a correction belongs to the wrong verdict logged at the same time
-    cre = re.compile(r"t=\s*([\d.]+).*coach state .*to=(correct|worried) reason=(wrong|misses)")
-    last_wrong = None
+        if not v or v[0].startswith("#"):
+            continue
+        if v[0] == "beat" and len(v) == 2:
+            beat = float(v[1])
+        elif v[0] == "unled" and len(v) == 4:
+            unled.append((int(v[1]), int(v[2]), v[3]))
+        elif len(v) == 6:
+            cues.append((float(v[0]), v[1], v[2], int(v[3]), int(v[4])))
+            tags.append(v[5])
+        else:
+            raise ValueError("%s:%d: cannot read %r" % (path, n, line.strip()))
+    if beat is None or not cues:
+        raise ValueError("%s: no beat or no cues" % path)
+    return beat, cues, tags, unled
+
+
+def cues_diverge(want, got):
+    """The first cue where the coach did not do what the child followed."""
+    for k in range(max(len(want), len(got))):
+        if k >= len(want) or k >= len(got):
+            return k
+        w, g = want[k], got[k]
+        if w[1:] != g[1:] or abs(w[0] - g[0]) > 0.1:
+            return k
+    return None
+
+
+def read_judging(log_path):
+    """Verdicts (t, move, rep, result, detail) and the times corrections
+    began (the coach's state line, logged with the wrong verdict)."""
+    vre = re.compile(r"t=\s*([\d.]+) judge verdict move=(\d+) rep=(\d+) result=(\w+)(.*)")
+    cre = re.compile(r"t=\s*([\d.]+) coach state .*to=(correct|worried) reason=(wrong|misses)")
+    verdicts, corrections = [], []
     for line in open(log_path):
         m = vre.search(line)
         if m:
-            key = (int(m.group(2)), int(m.group(3)))
-            verdicts.setdefault(key, []).append((float(m.group(1)), m.group(4),
-                                                 m.group(5).strip()))
-            if m.group(4) == "wrong":
-                last_wrong = (float(m.group(1)), key)
+            verdicts.append((float(m.group(1)), int(m.group(2)), int(m.group(3)), m.group(4),
+                             m.group(5).strip()))
         m = cre.search(line)
-        if m and last_wrong and abs(last_wrong[0] - float(m.group(1))) < 1e-6:
-            corrected.setdefault(last_wrong[1], []).append(float(m.group(1)))
-    caught = missed = false_fix = right_ok = unjudged = 0
-    print("%4s %4s %-14s %-16s %-8s %-9s %s" % ("move", "rep", "clip", "planted", "verdict",
-                                                 "corrected", "detail"))
-    for mi, r, clip, tag in expect:
-        v = verdicts.get((mi, r), [])
-        first = v[0][1] if v else "-"
-        corr = (mi, r) in corrected
-        if tag == "skip":
-            pass
-        elif tag == "right":
-            if corr or first == "wrong":
-                false_fix += 1
-            elif v:
-                right_ok += 1
+        if m:
+            corrections.append(float(m.group(1)))
+    return verdicts, corrections
+
+
+def cmd_score(expect_path, log_path):
+    """Every window the coach opened: its verdict against the plan. A
+    window gets the first unclaimed verdict of its move and repetition
+    from its start to its end + 2 beats; one with none was cancelled when a
+    correction began inside it (else: unjudged, a failure). Fails when a
+    planted mistake is not judged wrong and corrected, a move done right is
+    judged wrong and corrected, or not judged at all, or the coach did not
+    lead what the child followed; a move done right judged wrong with no
+    correction (the coach had moved on) is counted and printed apart."""
+    beat, want, tags, unled = read_expect(expect_path)
+    got = read_cues(log_path)
+    verdicts, corrections = read_judging(log_path)
+    claimed = set()
+    n = {"caught": 0, "missed": 0, "right": 0, "false": 0, "unseen": 0, "cancelled": 0,
+         "unjudged": 0}
+    print("%7s %4s %4s %-14s %-7s %-16s %-8s %s" % ("t_s", "move", "rep", "clip", "led_as",
+                                                    "planted", "verdict", "detail"))
+    for k, (tc, clip, reason, mi, r) in enumerate(want):
+        if tags[k] == "-":
+            continue
+        end = want[k + 1][0] if k + 1 < len(want) else tc + 10
+        v = next((j for j, x in enumerate(verdicts) if j not in claimed and x[1:3] == (mi, r)
+                  and tc - 1e-6 <= x[0] <= end + 2 * beat + 1e-6), None)
+        fixed = any(tc - 1e-6 <= c <= end + beat + 1e-6 for c in corrections)
+        if v is not None:
+            claimed.add(v)
+            res = verdicts[v][3]
+            corr = res == "wrong" and any(abs(c - verdicts[v][0]) < 1e-6 for c in corrections)
+            if tags[k] == "right":
+                n["right" if res == "right" else "false" if corr else "unseen"] += 1
             else:
-                unjudged += 1
+                n["caught" if corr else "missed"] += 1
+            detail = "t=%.2f %s %s%s" % (verdicts[v][0], res, verdicts[v][4],
+                                         " -> corrected" if corr else "")
         else:
-            if corr and first == "wrong":
-                caught += 1
+            res = "-"
+            if tags[k] == "right":
+                n["cancelled" if fixed else "unjudged"] += 1
             else:
-                missed += 1
-        detail = "; ".join("t=%.2f %s %s" % x for x in v[:3])
-        print("%4d %4d %-14s %-16s %-8s %-9s %s" % (mi, r, clip, tag if tag != "right" else "-",
-                                                    first, "yes" if corr else "-", detail))
-    planted = sum(1 for e in expect if e[3].startswith("wrong"))
-    print("e2e: planted mistakes caught=%d missed=%d of %d; correct repetitions wrongly "
-          "corrected=%d, right=%d, without a verdict=%d" % (caught, missed, planted, false_fix,
-                                                            right_ok, unjudged))
-    return 0 if missed == 0 and false_fix == 0 else 1
+                n["missed"] += 1
+            detail = "cancelled by a correction" if fixed else "NO VERDICT"
+        print("%7.2f %4d %4d %-14s %-7s %-16s %-8s %s" % (tc, mi, r, clip, reason,
+                                                          tags[k] if tags[k] != "right" else "-",
+                                                          res, detail))
+    for mi, r, tag in unled:
+        print("%7s %4d %4d %-14s %-7s %-16s %-8s %s" % ("-", mi, r, "-", "-", tag, "-",
+                                                        "the coach never led it"))
+        n["missed"] += 1
+    planted = sum(1 for t in tags if t.startswith("wrong")) + len(unled)
+    print("e2e: planted mistakes caught=%d missed=%d of %d; repetitions done right: judged "
+          "right=%d, wrongly corrected=%d, judged wrong without a correction=%d, cancelled by "
+          "a correction=%d, without a verdict=%d"
+          % (n["caught"], n["missed"], planted, n["right"], n["false"], n["unseen"],
+             n["cancelled"], n["unjudged"]))
+    if n["unseen"]:
+        print("e2e: NOTE: %d repetition(s) done right were judged wrong (not recognised) where "
+              "the coach did not correct (it had moved on): not a failure of the acceptance "
+              "(no correct repetition triggers a correction), but the child was not credited"
+              % n["unseen"])
+    k = cues_diverge(want, got)
+    if k is not None:
+        w = want[k] if k < len(want) else None
+        g = got[k] if k < len(got) else None
+        print("e2e: the coach did not do what the child followed: request %d was %s, the child "
+              "followed %s (re-make the cues: scripts/e2e_child.sh --remake)" % (k, g, w))
+    return 0 if (n["missed"] == 0 and n["false"] == 0 and n["unjudged"] == 0 and k is None
+                 and planted > 0) else 1
 
 
 def main(argv):
-    if len(argv) >= 4 and argv[0] == "sequence":
-        cmd_sequence(argv[1], argv[2], argv[3])
+    if len(argv) in (4, 5) and argv[0] == "sequence":
+        cmd_sequence(argv[1], argv[2], argv[3], argv[4] if len(argv) == 5 else None)
         return 0
-    if len(argv) >= 4 and argv[0] == "check":
-        return cmd_check(argv[1], argv[2], argv[3])
+    if len(argv) in (4, 5) and argv[0] == "check":
+        return cmd_check(argv[1], argv[2], argv[3], argv[4] if len(argv) == 5 else None)
     if len(argv) >= 3 and argv[0] == "score":
         return cmd_score(argv[1], argv[2])
     if len(argv) >= 3 and argv[0] == "scan":

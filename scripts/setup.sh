@@ -21,9 +21,10 @@ LIBS="libfreenect-dev libsdl2-dev libegl-dev libgles-dev libgpiod-dev
       libegl-mesa0 libgl1-mesa-dri"
 
 # Tools: compiler and build, libFuzzer (clang), fakenect's replay library
-# (libfreenect-bin), the song SoundFont, pictures for golden-image checks.
+# (libfreenect-bin), the song SoundFont, pictures for golden-image checks,
+# python3 for the synthetic child's scripts (scripts/make_child.py).
 TOOLS="build-essential cmake ninja-build pkg-config git clang libclang-rt-14-dev
-       libfreenect-bin timgm6mb-soundfont ca-certificates"
+       libfreenect-bin timgm6mb-soundfont ca-certificates python3"
 
 CROSS="crossbuild-essential-arm64 qemu-user-static"
 

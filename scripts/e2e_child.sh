@@ -1,0 +1,115 @@
+#!/usr/bin/env bash
+# End to end (issue 5): a synthetic child dances Twinkle with planted
+# mistakes, is rendered as Kinect depth, and replayed through fakenect into
+# the real cubdance binary, headless; then every verdict is scored.
+#
+#   scripts/e2e_child.sh BUILD_DIR [--remake [--from CUES]] [--keep DIR]
+#
+# The child follows the bear (scripts/make_child.py): it does each move the
+# coach leads a moment after the bear starts it, watches the corrections,
+# and gets planted repetitions wrong (scripts/child/twinkle.plan). What the
+# coach leads when is in scripts/child/twinkle.cues (the `coach request`
+# lines of the box's own log). The box is deterministic, so a child who
+# follows those cues makes the coach lead exactly them again; the score
+# fails when it does not (the box changed). --remake then renews the cues:
+# starting from the committed cues (or CUES, or the song's own timing when
+# there are none) it renders, replays and re-reads the coach until the
+# coach does what the child followed. Each round settles the coach's
+# requests up to the next one that moved (a correction that ended sooner
+# or later), so it takes a few rounds of ~2 minutes, at most 12.
+#
+# Needs BUILD_DIR/app/cubtool/cubtool and BUILD_DIR/app/cubdance/cubdance,
+# the mocap under $CUB_DATA_DIR (default ../shared/data) and python3. The
+# depth dump is 614 KB a frame (about 2 GB for the song); it is written to
+# a temporary folder (or DIR with --keep) and deleted at the end.
+set -euo pipefail
+usage() { echo "usage: scripts/e2e_child.sh BUILD_DIR [--remake [--from CUES]] [--keep DIR]" >&2; exit 2; }
+[ $# -ge 1 ] || usage
+build=$1
+shift
+remake=0 keep="" from=""
+while [ $# -gt 0 ]; do
+    case $1 in
+        --remake) remake=1 ;;
+        --from) [ $# -ge 2 ] || usage; from=$2; shift ;;
+        --keep) [ $# -ge 2 ] || usage; keep=$2; shift ;;
+        *) usage ;;
+    esac
+    shift
+done
+here=$(cd "$(dirname "$0")" && pwd)
+root=$(cd "$here/.." && pwd)
+data=${CUB_DATA_DIR:-$root/../shared/data}
+tool=$build/app/cubtool/cubtool
+box=$build/app/cubdance/cubdance
+song=$root/assets/songs/twinkle.song.xml
+plan=$here/child/twinkle.plan
+cues=$here/child/twinkle.cues
+for f in "$tool" "$box"; do
+    [ -x "$f" ] || { echo "e2e_child: no $f (build cubtool and cubdance)" >&2; exit 1; }
+done
+if [ ! -d "$data/mocap" ]; then
+    echo "SKIP: e2e_child: no motion capture under $data (set CUB_DATA_DIR)"
+    exit 77
+fi
+fakenect=${CUB_FAKENECT_DIR:-$(ls -d /usr/lib/*/fakenect 2>/dev/null | head -n 1)}
+[ -f "$fakenect/libfreenect.so.0.5" ] || [ -f "$fakenect/libfreenect.so" ] ||
+    { echo "e2e_child: no fakenect library (libfreenect-bin); set CUB_FAKENECT_DIR" >&2; exit 1; }
+
+if [ -n "$keep" ]; then
+    work=$keep
+    mkdir -p "$work"
+else
+    work=$(mktemp -d "${TMPDIR:-/tmp}/e2e_child.XXXXXX")
+    trap 'rm -rf "$work"' EXIT INT TERM
+fi
+
+# one round: the child follows CUES_IN (or the song's timing when empty)
+round() {
+    local cues_in=$1
+    rm -rf "$work/dump"
+    # shellcheck disable=SC2086
+    python3 "$here/make_child.py" sequence "$song" "$plan" "$work" $cues_in
+    echo "+ cubtool synth-depth --sequence $work/child.seq --out $work/dump"
+    "$tool" synth-depth --sequence "$work/child.seq" --data "$data" --out "$work/dump" 2>/dev/null |
+        tail -n 1
+    echo "+ cubdance --replay $work/dump --clock virtual --song twinkle --log $work/events.log"
+    FAKENECT_PATH="$work/dump" LD_LIBRARY_PATH="$fakenect${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" \
+        EGL_PLATFORM=surfaceless SDL_AUDIODRIVER=dummy \
+        "$box" --headless --size 64x48 --replay "$work/dump" --clock virtual \
+        --song "$song" --buttons "$here/demo.buttons" --log "$work/events.log" --seconds 110 \
+        >"$work/cubdance.out" 2>&1 ||
+        { cat "$work/cubdance.out" >&2; echo "e2e_child: cubdance failed" >&2; exit 1; }
+    mv "$work/dump/truth.txt" "$work/truth.txt"
+    rm -rf "$work/dump"
+}
+
+if [ "$remake" = 1 ]; then
+    prev=$from
+    if [ -z "$prev" ] && [ -f "$cues" ]; then
+        prev="$work/cues.0"
+        cp "$cues" "$prev"
+    fi
+    for n in 1 2 3 4 5 6 7 8 9 10 11 12; do
+        echo "e2e_child: --remake round $n"
+        round "$prev"
+        grep " coach request " "$work/events.log" >"$work/cues.$n"
+        status=0
+        python3 "$here/make_child.py" score "$work/expect.txt" "$work/events.log" \
+            >"$work/score.txt" || status=$?
+        if [ -n "$prev" ] && { [ "$status" = 0 ] || cmp -s "$prev" "$work/cues.$n"; }; then
+            cp "$work/cues.$n" "$cues"
+            cat "$work/score.txt"
+            echo "e2e_child: the coach repeated the cues the child followed: wrote $cues"
+            exit "$status"
+        fi
+        prev="$work/cues.$n"
+    done
+    echo "e2e_child: the cues did not settle in 12 rounds (see $work)" >&2
+    cat "$work/score.txt" >&2
+    exit 1
+fi
+
+[ -f "$cues" ] || { echo "e2e_child: no $cues (make it with --remake)" >&2; exit 1; }
+round "$cues"
+python3 "$here/make_child.py" score "$work/expect.txt" "$work/events.log"
