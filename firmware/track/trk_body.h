@@ -18,10 +18,12 @@ enum {
     P_NECK_DOWN = 200,     /* head top to shoulder centre */
     P_WIDEN = 150,         /* head top to where the silhouette widens (neck base) */
     P_BELOW_NECK = 40,     /* neck base to shoulder centre */
-    P_SPINE = 95,         /* shoulder centre to spine */
-    P_HIPC = 165,          /* shoulder centre to hip centre */
+    P_SPINE = 120,         /* shoulder centre to spine */
+    P_HIPC = 165,          /* shoulder centre to the pelvis' middle (the limbs' reference) */
+    P_HIPC_JOINT = 215,    /* shoulder centre to the hip centre joint */
     P_SHOULDER_HALF = 100, /* half the shoulder width */
-    P_SHOULDER_DROP = -20,
+    P_SHOULDER_MIN = 75,   /* the narrowest measured half width believed */
+    P_SHOULDER_DROP = 0,
     P_SHOULDER_RUN = 50, /* where the shoulders' width is measured */
     R_ARM_EDGE = 15,     /* shoulder joint to the deltoid's outer surface */
     P_HIP_HALF = 56,
@@ -36,6 +38,9 @@ enum {
     P_FOOT_UP = 40,
     R_HEAD = 55, /* surface to joint: the part's radius */
     R_TORSO = 60,
+    R_HIP = 50,            /* the thigh's top */
+    R_SHOULDER = 75,       /* the arms' root: surface to the shoulder's middle */
+    R_SHOULDER_JOINT = 40, /* surface to the skeletons' shoulder joint */
     R_LIMB = 25,
 };
 
@@ -82,5 +87,25 @@ static inline trk_p3 got(const cub_track_skeleton *s, int j)
 {
     return (trk_p3){s->joint_mm[j].x >> 16, s->joint_mm[j].y >> 16, s->joint_mm[j].z >> 16};
 }
+
+/* The extremities picked for the limbs, and what naming them needs. */
+typedef struct limb_pick {
+    int32_t hand[2], foot[2]; /* extremum cell per side (0 = left), -1 none */
+    int32_t head;
+    trk_p3 shoulder[2], head_c;
+    int32_t reach_mm; /* shoulder to fingertip, 0 unknown */
+} limb_pick;
+
+/* trk_hands.c: surface distances from both shoulders (lp->shoulder) */
+void trk_from_shoulders(cub_tracker *t, limb_pick *lp);
+/* the hands among the candidate extremities: lp->hand (both -1 when none) */
+void trk_pick_hands(const cub_tracker *t, const int32_t *hands, int32_t nh, limb_pick *lp, trk_p3 sc, cub_vec3 lft,
+                    int32_t st);
+/* extremity i lies on the torso's surface (a shoulder bump, an elbow) */
+bool trk_on_torso(const cub_tracker *t, int32_t root, int32_t i, trk_p3 sc, trk_p3 hc, cub_vec3 axis, cub_vec3 lft,
+                  int32_t st);
+/* a hand before the torso on this side: a cell, -1 none */
+int32_t trk_hand_in_front(const cub_tracker *t, int32_t root, trk_p3 sh, trk_p3 sc, trk_p3 hc, cub_vec3 axis,
+                          cub_vec3 lft, int side, int32_t st, int32_t other);
 
 #endif

@@ -4,21 +4,26 @@
  * (trk_body.h). */
 #include "trk_body.h"
 
-/* hands close in side keep last frame's names, per mille of stature */
+/* legs and feet: a leg's extremity within the arms' reach (percent) and
+ * this far above the floor is a hand; legs held together put the second
+ * foot at least this far from the first (per mille of stature) */
 enum {
-    SWAP_NEAR = 100,  /* apart across the body by less than */
-    SWAP_MARGIN = 50, /* the other naming nearer last frame's by more than */
+    ARM_SLACK = 100,
+    FOOT_ABOVE = 200,
+    FOOT_APART = 60,
 };
-
-/* a hand before the torso, per mille of stature */
+/* the elbow: how far around the path's cell it is looked for (per mille of
+ * stature), and the weight (quarters) of lying out to the arm's side */
 enum {
-    HF_FRONT = 70,  /* nearer the camera than the torso's surface by */
-    HF_MIN = 150,   /* at least this far from the shoulder */
-    HF_CROSS = 50,  /* how far across the body's middle */
-    HF_OTHER = 100, /* away from the other hand */
-    HF_ABOVE = 0,   /* an extremity on the torso: below the shoulders by */
-    HF_WIDE = 200,  /* and within this of the middle */
-    HF_CELLS = 4,   /* cells before the torso, fewer is noise */
+    EL_SEARCH = 100,
+    EL_W_OUT = 4,
+};
+/* the torso's joints: how far (mm) one is moved in depth onto the surface
+ * at most, and the quarters of the torso axis's tilt in depth kept going
+ * down it */
+enum {
+    SURF_NEAR = 200,
+    AXIS_Z = 1,
 };
 
 static cub_vec3 unit(int32_t x, int32_t y, int32_t z)
@@ -58,11 +63,6 @@ static int32_t run_half_mm(const cub_tracker *t, trk_p3 p)
     return (t->x[row + b] - t->x[row + a]) / 2;
 }
 
-typedef struct limb_pick {
-    int32_t hand[2], foot[2]; /* extremum cell per side (0 = left), -1 none */
-    int32_t head;
-} limb_pick;
-
 /* Where a limb joins the torso: the cell on the tip's path to the root
  * that is base_mm of surface from the root. An arm's path enters through
  * the shoulder, a leg's through the hip, whatever the limb's pose (a leg
@@ -74,11 +74,32 @@ static int32_t path_base(const cub_tracker *t, int32_t tip, int32_t base_mm)
     return i;
 }
 
+/* p moved in depth to the player's surface where it projects (the
+ * farthest of the cells around: a hand before the belly is not the belly)
+ * plus r_mm: a torso axis tilted by the chest standing out before the neck
+ * misplaces in depth what lies far along it (the hips). p when no cell is
+ * near its depth. */
+static trk_p3 onto_surface(const cub_tracker *t, trk_p3 p, int32_t r_mm)
+{
+    if (p.z <= 0) return p;
+    int32_t gx0 = (CUB_TRACK_CX + p.x * CUB_TRACK_FOCAL_PX / p.z) / TRK_CELL_PX;
+    int32_t gy0 = (CUB_TRACK_CY - p.y * CUB_TRACK_FOCAL_PX / p.z) / TRK_CELL_PX, zmax = 0;
+    for (int32_t gy = gy0 - 1; gy <= gy0 + 1; gy++)
+        for (int32_t gx = gx0 - 1; gx <= gx0 + 1; gx++) {
+            if (gx < 0 || gy < 0 || gx >= TRK_GW || gy >= TRK_GH) continue;
+            int32_t i = gy * TRK_GW + gx;
+            if (t->mask[i] && trk_abs(t->z[i] + r_mm - p.z) < SURF_NEAR && t->z[i] > zmax) zmax = t->z[i];
+        }
+    return zmax ? (trk_p3){p.x, p.y, zmax + r_mm} : p;
+}
+
+/* Legs and arms among the extremities (all but the head): a leg joins the
+ * torso below the root or ends low, unless it ends within an arm's reach
+ * well above the floor; then the feet and the hands. */
 static void pick_limbs(const cub_tracker *t, int32_t root, const int32_t *ext, int32_t n, int32_t stature,
                        trk_p3 sc, trk_p3 hc, cub_vec3 axis, cub_vec3 lat, limb_pick *lp)
 {
     int32_t hands[TRK_MAX_EXTREMA], feet[TRK_MAX_EXTREMA], nh = 0, nf = 0;
-    int32_t hb[TRK_MAX_EXTREMA], fb[TRK_MAX_EXTREMA];
     trk_p3 r = cell_p(t, root);
     for (int32_t k = 0; k < n; k++) {
         if (k == lp->head) continue;
@@ -92,38 +113,32 @@ static void pick_limbs(const cub_tracker *t, int32_t root, const int32_t *ext, i
         /* a hand hanging against the hip joins the torso low too, by a
          * short cut: a leg raised high is also far along the surface */
         bool leg = dh < -pm(stature, 250) || (bh < -pm(stature, 40) && t->dist0[ext[k]] > pm(stature, 550));
-        if (leg) fb[nf] = b, feet[nf++] = ext[k];
-        else hb[nh] = b, hands[nh++] = ext[k];
-    }
-    int32_t *lists[2] = {hands, feet}, *bases[2] = {hb, fb}, counts[2] = {nh, nf}, *dst[2] = {lp->hand, lp->foot};
-    trk_p3 centre[2] = {sc, hc};
-    for (int g = 0; g < 2; g++) {
-        dst[g][0] = dst[g][1] = -1;
-        /* the two farthest along the surface (extrema come farthest first);
-         * the side from where the limb joins the torso (a hand crossing
-         * the body keeps its name), then from the tip */
-        int32_t m = counts[g] < 2 ? counts[g] : 2;
-        int32_t s[2] = {0, 0};
-        for (int32_t k = 0; k < m; k++) {
-            trk_p3 p = cell_p(t, lists[g][k]), b = cell_p(t, bases[g][k]);
-            trk_p3 c = centre[g];
-            s[k] = TRK_LEFT_SIGN * (0 * trk_along(b.x - c.x, b.y - c.y, b.z - c.z, lat) +
-                                    trk_along(p.x - c.x, p.y - c.y, p.z - c.z, lat));
+        /* a foot is out of the arms' reach, or on the floor */
+        if (leg && lp->reach_mm > 0) {
+            int32_t d = dist3(p, lp->shoulder[0]), d1 = dist3(p, lp->shoulder[1]);
+            int32_t above = trk_along(p.x, p.y, p.z, t->up) - t->floor_h_mm;
+            if (d1 < d) d = d1;
+            if (d < lp->reach_mm && t->have_floor && above > pm(stature, FOOT_ABOVE)) leg = false;
         }
-        if (m == 2) {
-            int left = s[0] > s[1] ? 0 : 1;
-            /* hands close in side (crossed, or one before the other): the
-             * naming nearer last frame's hands, so they do not swap */
-            if (g == 0 && trk_abs(s[0] - s[1]) < pm(stature, SWAP_NEAR) && t->have_prev && t->lost_frames == 0) {
-                trk_p3 pl = got(&t->prev, CUB_TJ_HAND_L), pr = got(&t->prev, CUB_TJ_HAND_R);
-                trk_p3 a = cell_p(t, lists[g][left]), b = cell_p(t, lists[g][1 - left]);
-                if (dist3(a, pr) + dist3(b, pl) + pm(stature, SWAP_MARGIN) < dist3(a, pl) + dist3(b, pr)) left = 1 - left;
-            }
-            dst[g][0] = lists[g][left], dst[g][1] = lists[g][1 - left];
-        } else if (m == 1) {
-            dst[g][s[0] > 0 ? 0 : 1] = lists[g][0];
-        }
+        if (leg) feet[nf++] = ext[k];
+        else hands[nh++] = ext[k];
     }
+    /* the feet: the two farthest along the surface (extrema come farthest
+     * first), each on its side of the hips */
+    lp->foot[0] = lp->foot[1] = -1;
+    int32_t m = nf < 2 ? nf : 2, s[2] = {0, 0};
+    for (int32_t k = 0; k < m; k++) {
+        trk_p3 p = cell_p(t, feet[k]);
+        s[k] = TRK_LEFT_SIGN * trk_along(p.x - hc.x, p.y - hc.y, p.z - hc.z, lat);
+    }
+    if (m == 2) {
+        int left = s[0] > s[1] ? 0 : 1;
+        lp->foot[0] = feet[left], lp->foot[1] = feet[1 - left];
+    } else if (m == 1) {
+        lp->foot[s[0] > 0 ? 0 : 1] = feet[0];
+    }
+    cub_vec3 lft = {lat.x * TRK_LEFT_SIGN, lat.y * TRK_LEFT_SIGN, lat.z * TRK_LEFT_SIGN};
+    trk_pick_hands(t, hands, nh, lp, sc, lft, stature);
 }
 
 /* Legs held together make one extremity for two feet: a leg whose tip
@@ -143,7 +158,7 @@ static void feet_on_floor(const cub_tracker *t, trk_p3 hc, cub_vec3 lat, int32_t
             if ((side == 0) != (l > 0) || trk_abs(l) > pm(st, 200)) continue;
             int32_t h = trk_along(t->x[i], t->y[i], t->z[i], t->up);
             if (h >= best_h) continue;
-            if (other >= 0 && dist3(cell_p(t, i), cell_p(t, other)) < pm(st, 150)) continue;
+            if (other >= 0 && dist3(cell_p(t, i), cell_p(t, other)) < pm(st, FOOT_APART)) continue;
             best_h = h, best = i;
         }
         if (best >= 0 && best_h - t->floor_h_mm < pm(st, 100)) lp->foot[side] = best;
@@ -203,6 +218,35 @@ static int32_t learn_reach(cub_tracker *t, int k, int32_t span_mm, int32_t nomin
     return cur;
 }
 
+/* The elbow near the path's middle cell mid: the
+ * player's cell around it that best fits both bone lengths from a (the
+ * shoulder) and b (the wrist), out to the arm's side rather than toward
+ * the body's middle: an arm against the torso lets the path cut across
+ * the touching surfaces, which pulls the path's cell inward. other: the
+ * other shoulder (the outward direction is away from it, level). (Knees
+ * keep the path's cell: legs together make the search find the other
+ * leg.) */
+static trk_p3 middle_near(const cub_tracker *t, int32_t mid, trk_p3 a, int32_t la, trk_p3 b, int32_t lb, trk_p3 other,
+                          int32_t r, int32_t st, int32_t w_out)
+{
+    trk_p3 m = cell_p(t, mid), c = {(a.x + other.x) / 2, (a.y + other.y) / 2, (a.z + other.z) / 2};
+    int32_t ox = a.x - other.x, oz = a.z - other.z, ol = trk_len(ox, 0, oz);
+    if (ol == 0 || m.z <= 0) return inside(m, r);
+    int32_t rc = pm(st, EL_SEARCH) * CUB_TRACK_FOCAL_PX / (m.z * TRK_CELL_PX) + 1, gx0 = mid % TRK_GW, gy0 = mid / TRK_GW;
+    int32_t best = mid, best_e = INT32_MAX, step = 1 + rc / 10; /* a near body: every few cells will do */
+    for (int32_t gy = gy0 - rc; gy <= gy0 + rc; gy += step)
+        for (int32_t gx = gx0 - rc; gx <= gx0 + rc; gx += step) {
+            if (gx < 0 || gy < 0 || gx >= TRK_GW || gy >= TRK_GH) continue;
+            int32_t i = gy * TRK_GW + gx;
+            if (!t->mask[i]) continue;
+            trk_p3 p = inside(cell_p(t, i), r);
+            int32_t out = (int32_t)(((int64_t)(p.x - c.x) * ox + (int64_t)(p.z - c.z) * oz) / ol);
+            int32_t e = trk_abs(dist3(p, a) - la) + trk_abs(dist3(p, b) - lb) - w_out * out / 4;
+            if (e < best_e) best_e = e, best = i;
+        }
+    return inside(cell_p(t, best), r);
+}
+
 static void fit_arm(cub_tracker *t, cub_track_skeleton *s, int side, int32_t tip, int32_t st)
 {
     int js = side ? CUB_TJ_SHOULDER_R : CUB_TJ_SHOULDER_L;
@@ -213,7 +257,8 @@ static void fit_arm(cub_tracker *t, cub_track_skeleton *s, int side, int32_t tip
     int32_t lu = pm(st, P_UPPER_ARM), lf = pm(st, P_FOREARM);
     int32_t reach = learn_reach(t, side, dist3(sh, wrist), lu + lf);
     lu = reach * lu / (lu + lf), lf = reach - lu;
-    trk_p3 elbow = inside(cell_p(t, path_middle(t, tip, sh, lu, wrist, lf)), r);
+    trk_p3 other = got(s, side ? CUB_TJ_SHOULDER_L : CUB_TJ_SHOULDER_R);
+    trk_p3 elbow = middle_near(t, path_middle(t, tip, sh, lu, wrist, lf), sh, lu, wrist, lf, other, r, st, EL_W_OUT);
     put(s, js + 1, elbow, CUB_Q16_ONE * 3 / 4);
     put(s, js + 2, wrist, CUB_Q16_ONE);
     put(s, js + 3, hand, CUB_Q16_ONE);
@@ -253,46 +298,6 @@ static void guess_chain(const cub_tracker *t, cub_track_skeleton *s, int j0, cub
     }
 }
 
-/* An extremity on the torso's surface (not before it): a shoulder bump or
- * the elbow of an arm whose hand lies before the chest. */
-static bool on_torso(const cub_tracker *t, int32_t root, int32_t i, trk_p3 sc, trk_p3 hc, cub_vec3 axis, cub_vec3 lft,
-                     int32_t st)
-{
-    if (t->z[i] <= t->z[root] - pm(st, HF_FRONT)) return false;
-    trk_p3 p = cell_p(t, i);
-    int32_t up_sc = trk_along(p.x - sc.x, p.y - sc.y, p.z - sc.z, axis);
-    int32_t up_hc = trk_along(p.x - hc.x, p.y - hc.y, p.z - hc.z, axis);
-    int32_t l = trk_along(p.x - sc.x, p.y - sc.y, p.z - sc.z, lft);
-    /* below the hips it is a leg's, not an arm's */
-    return up_sc <= pm(st, HF_ABOVE) && (up_hc < 0 || trk_abs(l) <= pm(st, HF_WIDE));
-}
-
-/* A hand held before the torso is no extremity (its path ends in the
- * chest), but the forearm and hand stand out in depth: among the cells
- * clearly nearer the camera than the torso's surface, on the shoulder's
- * side and within the arm's reach, the farthest from the shoulder. */
-static int32_t hand_in_front(const cub_tracker *t, int32_t root, trk_p3 sh, trk_p3 sc, trk_p3 hc, cub_vec3 axis,
-                             cub_vec3 lft, int side, int32_t st, int32_t other)
-{
-    int32_t zf = t->z[root] - pm(st, HF_FRONT), reach = pm(st, P_UPPER_ARM + P_FOREARM + P_HAND_REACH);
-    int32_t best = -1, best_d = pm(st, HF_MIN), nfront = 0, sgn = side ? -1 : 1;
-    for (int32_t i = 0; i < TRK_CELLS; i++) {
-        if (!t->mask[i] || t->dist0[i] == TRK_INF || t->z[i] > zf) continue;
-        trk_p3 p = cell_p(t, i);
-        /* between the hips and a little above the shoulders */
-        int32_t up_sc = trk_along(p.x - sc.x, p.y - sc.y, p.z - sc.z, axis);
-        int32_t up_hc = trk_along(p.x - hc.x, p.y - hc.y, p.z - hc.z, axis);
-        if (up_sc > pm(st, 60) || up_hc < -pm(st, 60)) continue;
-        if (sgn * trk_along(p.x - sc.x, p.y - sc.y, p.z - sc.z, lft) < -pm(st, HF_CROSS)) continue;
-        int32_t d = dist3(p, sh);
-        if (d > reach) continue;
-        if (other >= 0 && dist3(p, cell_p(t, other)) < pm(st, HF_OTHER)) continue;
-        nfront++;
-        if (d > best_d) best_d = d, best = i;
-    }
-    return nfront >= HF_CELLS ? best : -1;
-}
-
 void trk_fit_skeleton(cub_tracker *t, int32_t root, int32_t *ext, int32_t next, cub_track_skeleton *s)
 {
     bool on_floor;
@@ -307,36 +312,54 @@ void trk_fit_skeleton(cub_tracker *t, int32_t root, int32_t *ext, int32_t next, 
     if (lp.head < 0) axis = t->up;
     cub_vec3 lat = torso_lateral(t, root, pm(st, 150));
     cub_vec3 lft = {lat.x * TRK_LEFT_SIGN, lat.y * TRK_LEFT_SIGN, lat.z * TRK_LEFT_SIGN};
+    /* down the torso in the image's plane: the axis's tilt in depth is
+     * mostly the chest standing out before the neck (depth comes from the
+     * surface below) */
+    cub_vec3 down = unit(axis.x, axis.y, axis.z * AXIS_Z / 4);
     trk_p3 hc = add_s(sc, axis, -pm(st, P_HIPC));
     put(s, CUB_TJ_HEAD, hd, lp.head >= 0 ? CUB_Q16_ONE : 0);
     put(s, CUB_TJ_SHOULDER_CENTRE, sc, CUB_Q16_ONE * 3 / 4);
-    put(s, CUB_TJ_SPINE, add_s(sc, axis, -pm(st, P_SPINE)), CUB_Q16_ONE / 2);
-    put(s, CUB_TJ_HIP_CENTRE, hc, CUB_Q16_ONE / 2);
-    trk_p3 sd = add_s(sc, axis, -pm(st, P_SHOULDER_DROP)), hp = add_s(hc, axis, -pm(st, P_HIP_DROP));
+    put(s, CUB_TJ_SPINE, onto_surface(t, add_s(sc, down, -pm(st, P_SPINE)), radius(st, R_TORSO)), CUB_Q16_ONE / 2);
+    put(s, CUB_TJ_HIP_CENTRE, onto_surface(t, add_s(sc, down, -pm(st, P_HIPC_JOINT)), radius(st, R_TORSO)),
+        CUB_Q16_ONE / 2);
+    trk_p3 sd = add_s(sc, axis, -pm(st, P_SHOULDER_DROP)), hp = add_s(sc, down, -pm(st, P_HIPC + P_HIP_DROP));
     int32_t half = run_half_mm(t, add_s(sc, axis, -pm(st, P_SHOULDER_RUN))) - pm(st, R_ARM_EDGE);
-    if (half < pm(st, 75)) half = pm(st, P_SHOULDER_HALF);
+    if (half < pm(st, P_SHOULDER_MIN)) half = pm(st, P_SHOULDER_HALF);
     if (half > pm(st, 140)) half = pm(st, 140);
-    put(s, CUB_TJ_SHOULDER_L, add_s(sd, lft, half), CUB_Q16_ONE / 2);
-    put(s, CUB_TJ_SHOULDER_R, add_s(sd, lft, -half), CUB_Q16_ONE / 2);
-    put(s, CUB_TJ_HIP_L, add_s(hp, lft, pm(st, P_HIP_HALF)), CUB_Q16_ONE / 2);
-    put(s, CUB_TJ_HIP_R, add_s(hp, lft, -pm(st, P_HIP_HALF)), CUB_Q16_ONE / 2);
+    /* the arms hang from the shoulders deep in the body; the joints the
+     * skeletons name shoulders sit nearer the front */
+    trk_p3 shl = onto_surface(t, add_s(sd, lft, half), radius(st, R_SHOULDER));
+    trk_p3 shr = onto_surface(t, add_s(sd, lft, -half), radius(st, R_SHOULDER));
+    put(s, CUB_TJ_SHOULDER_L, shl, CUB_Q16_ONE / 2);
+    put(s, CUB_TJ_SHOULDER_R, shr, CUB_Q16_ONE / 2);
+    put(s, CUB_TJ_HIP_L, onto_surface(t, add_s(hp, lft, pm(st, P_HIP_HALF)), radius(st, R_HIP)), CUB_Q16_ONE / 2);
+    put(s, CUB_TJ_HIP_R, onto_surface(t, add_s(hp, lft, -pm(st, P_HIP_HALF)), radius(st, R_HIP)), CUB_Q16_ONE / 2);
 
+    lp.shoulder[0] = got(s, CUB_TJ_SHOULDER_L), lp.shoulder[1] = got(s, CUB_TJ_SHOULDER_R), lp.head_c = hd;
+    lp.reach_mm = pm(st, P_UPPER_ARM + P_FOREARM + P_HAND_REACH) * ARM_SLACK / 100;
+    trk_from_shoulders(t, &lp);
     pick_limbs(t, root, ext, next, st, sc, hc, axis, lat, &lp);
     if (on_floor) feet_on_floor(t, hc, lat, st, &lp);
     for (int side = 0; side < 2; side++) {
         int32_t h = lp.hand[side];
-        if (h >= 0 && !on_torso(t, root, h, sc, hc, axis, lft, st)) continue;
-        int32_t f = hand_in_front(t, root, got(s, side ? CUB_TJ_SHOULDER_R : CUB_TJ_SHOULDER_L), sc, hc, axis, lft,
-                                  side, st, lp.hand[1 - side]);
+        if (h >= 0 && !trk_on_torso(t, root, h, sc, hc, axis, lft, st)) continue;
+        int32_t f = trk_hand_in_front(t, root, got(s, side ? CUB_TJ_SHOULDER_R : CUB_TJ_SHOULDER_L), sc, hc, axis, lft,
+                                      side, st, lp.hand[1 - side]);
         if (f >= 0) lp.hand[side] = f;
     }
     for (int side = 0; side < 2; side++) {
-        int js = side ? CUB_TJ_SHOULDER_R : CUB_TJ_SHOULDER_L, jh = side ? CUB_TJ_HIP_R : CUB_TJ_HIP_L;
+        int jh = side ? CUB_TJ_HIP_R : CUB_TJ_HIP_L;
         if (lp.hand[side] >= 0) fit_arm(t, s, side, lp.hand[side], st);
-        else guess_chain(t, s, js, axis, st, false);
         if (lp.foot[side] >= 0) fit_leg(t, s, side, lp.foot[side], st);
         else guess_chain(t, s, jh, axis, st, true);
     }
+    int32_t front = radius(st, R_SHOULDER) - pm(st, R_SHOULDER_JOINT);
+    put(s, CUB_TJ_SHOULDER_L, (trk_p3){shl.x, shl.y, shl.z - front}, CUB_Q16_ONE / 2);
+    put(s, CUB_TJ_SHOULDER_R, (trk_p3){shr.x, shr.y, shr.z - front}, CUB_Q16_ONE / 2);
+    /* (an arm without a hand keeps last frame's pose about the shoulder as
+     * output then) */
+    for (int side = 0; side < 2; side++)
+        if (lp.hand[side] < 0) guess_chain(t, s, side ? CUB_TJ_SHOULDER_R : CUB_TJ_SHOULDER_L, axis, st, false);
 }
 
 /* Light smoothing that does not lag: small moves (sensor jitter) are

@@ -122,6 +122,72 @@ void trk_geodesic(cub_tracker *t, int32_t *dist, int32_t *parent, int32_t src)
     run_heap(t, dist, parent, n);
 }
 
+/* The coarse surface: 2x2 blocks of cells. Any two cells of a block touch,
+ * so two blocks join when a cell on one's border touches one on the
+ * other's; a block stands at its first player cell. */
+static int32_t block_rep(const cub_tracker *t, int32_t bx, int32_t by)
+{
+    int32_t i = 2 * by * TRK_GW + 2 * bx;
+    if (t->mask[i]) return i;
+    if (t->mask[i + 1]) return i + 1;
+    if (t->mask[i + TRK_GW]) return i + TRK_GW;
+    if (t->mask[i + TRK_GW + 1]) return i + TRK_GW + 1;
+    return -1;
+}
+
+static bool blocks_join(const cub_tracker *t, int32_t bx, int32_t by, int32_t dx, int32_t dy)
+{
+    const uint8_t *m = t->mask;
+    int32_t x = 2 * bx, y = 2 * by; /* block A's top left cell */
+    if (dy == 0) {
+        int32_t ca = dx > 0 ? x + 1 : x, cb = dx > 0 ? x + 2 : x - 1; /* the facing columns */
+        return (m[y * TRK_GW + ca] || m[(y + 1) * TRK_GW + ca]) && (m[y * TRK_GW + cb] || m[(y + 1) * TRK_GW + cb]);
+    }
+    if (dx == 0) {
+        int32_t ra = dy > 0 ? y + 1 : y, rb = dy > 0 ? y + 2 : y - 1;
+        return (m[ra * TRK_GW + x] || m[ra * TRK_GW + x + 1]) && (m[rb * TRK_GW + x] || m[rb * TRK_GW + x + 1]);
+    }
+    /* diagonal: only the two facing corners touch */
+    int32_t ax = dx > 0 ? x + 1 : x, ay = dy > 0 ? y + 1 : y;
+    return m[ay * TRK_GW + ax] && m[(ay + dy) * TRK_GW + ax + dx];
+}
+
+void trk_geodesic_coarse(cub_tracker *t, int32_t *dist_b, int32_t src)
+{
+    static const int8_t dbx[8] = {-1, 1, 0, 0, -1, 1, -1, 1}, dby[8] = {0, 0, -1, 1, -1, -1, 1, 1};
+    for (int32_t b = 0; b < TRK_BLOCKS; b++) dist_b[b] = TRK_INF;
+    int32_t sb = (src / TRK_GW / 2) * TRK_BW + (src % TRK_GW) / 2, n = 0;
+    int32_t sr = block_rep(t, sb % TRK_BW, sb / TRK_BW);
+    if (sr < 0) return;
+    dist_b[sb] = approx_len(t->x[sr] - t->x[src], t->y[sr] - t->y[src], t->z[sr] - t->z[src]);
+    heap_push(t, &n, (uint32_t)dist_b[sb], sb);
+    while (n > 0) {
+        uint64_t v = heap_pop(t, &n);
+        int32_t b = (int32_t)(uint32_t)v, d = (int32_t)(v >> 32);
+        if (d > dist_b[b]) continue;
+        int32_t bx = b % TRK_BW, by = b / TRK_BW, i = block_rep(t, bx, by);
+        for (int k = 0; k < 8; k++) {
+            int32_t nx = bx + dbx[k], ny = by + dby[k];
+            if (nx < 0 || ny < 0 || nx >= TRK_BW || ny >= TRK_BH) continue;
+            int32_t j = block_rep(t, nx, ny);
+            if (j < 0 || !blocks_join(t, bx, by, dbx[k], dby[k])) continue;
+            int32_t nd = d + approx_len(t->x[j] - t->x[i], t->y[j] - t->y[i], t->z[j] - t->z[i]);
+            int32_t nb = ny * TRK_BW + nx;
+            if (nd >= dist_b[nb]) continue;
+            dist_b[nb] = nd;
+            heap_push(t, &n, (uint32_t)nd, nb);
+        }
+    }
+}
+
+int32_t trk_coarse_at(const cub_tracker *t, const int32_t *dist_b, int32_t cell)
+{
+    int32_t gx = cell % TRK_GW, gy = cell / TRK_GW, b = (gy / 2) * TRK_BW + gx / 2;
+    int32_t r = block_rep(t, gx / 2, gy / 2);
+    if (r < 0 || dist_b[b] == TRK_INF) return TRK_INF;
+    return dist_b[b] + approx_len(t->x[cell] - t->x[r], t->y[cell] - t->y[r], t->z[cell] - t->z[r]);
+}
+
 /* Parts merged in front of the body (a hand before the chest or face) may
  * be cut off from it by a thin band of no reading (the projector's
  * shadow): bridge gaps of up to two cells with their 3D length. */

@@ -32,6 +32,31 @@ static int32_t measure_stature(const cub_tracker *t, int32_t head, bool on_floor
     return *neck_drop_mm * 1000 / P_WIDEN;
 }
 
+/* no head is wider than this, per mille of stature */
+enum {
+    HEAD_WIDE = 180,
+};
+
+/* Where a head's middle would be below the extremity tip: mm lower in the
+ * image, in the middle of the silhouette's run on that row (the path from
+ * the tip may run down the skull's side, and the top curves away in
+ * depth); the tip itself when that row is off the player. */
+static int32_t below_middle(const cub_tracker *t, int32_t tip, int32_t mm, int32_t max_wide_mm)
+{
+    int32_t z = t->z[tip] > 0 ? t->z[tip] : 1, gx = tip % TRK_GW;
+    int32_t gy = tip / TRK_GW + mm * CUB_TRACK_FOCAL_PX / (z * TRK_CELL_PX);
+    if (gy >= TRK_GH) return tip;
+    int32_t row = gy * TRK_GW;
+    if (!t->mask[row + gx]) return tip;
+    int32_t a = gx, b = gx;
+    while (a > 0 && t->mask[row + a - 1]) a--;
+    while (b < TRK_GW - 1 && t->mask[row + b + 1]) b++;
+    /* wider than a head: the skull merges with a forearm or a shoulder
+     * there, and the run's middle says nothing */
+    if (t->x[row + b] - t->x[row + a] > max_wide_mm) return path_at(t, tip, mm);
+    return row + (a + b) / 2;
+}
+
 /* Percent of a disk of rho_mm around cell c (in the image plane) that the
  * player's surface fills at about c's depth: a head is round and fills its
  * disk, a raised forearm or hand crosses it as a strip. */
@@ -75,8 +100,8 @@ static int32_t pick_head(const cub_tracker *t, int32_t root, const int32_t *ext,
         int32_t cost = 2 * trk_abs(p.x - r.x) + 2 * (r.z - p.z > 100 ? r.z - p.z - 100 : 0) - t->dist0[ext[k]];
         /* (an arm held out level fills a far, coarse disk too, but it
          * reaches out more than up) */
-        bool round = disk_fill_pct(t, path_at(t, ext[k], pm(st0, P_HEAD_DOWN)), pm(st0, 60)) >= 75 &&
-                     trk_abs(p.x - r.x) < dh;
+        int32_t middle = below_middle(t, ext[k], pm(st0, P_HEAD_DOWN), pm(st0, HEAD_WIDE));
+        bool round = disk_fill_pct(t, middle, pm(st0, 60)) >= 75 && trk_abs(p.x - r.x) < dh;
         if (!round) cost += 600;
         /* last frame's head helps, but a wrong one must not hold on */
         if (t->have_prev && t->lost_frames == 0) {

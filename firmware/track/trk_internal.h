@@ -13,6 +13,9 @@
 #define TRK_GW (CUB_TRACK_WIDTH / TRK_CELL_PX)
 #define TRK_GH (CUB_TRACK_HEIGHT / TRK_CELL_PX)
 #define TRK_CELLS (TRK_GW * TRK_GH)
+#define TRK_BW (TRK_GW / 2) /* the coarse grid of 2x2 blocks */
+#define TRK_BH (TRK_GH / 2)
+#define TRK_BLOCKS (TRK_BW * TRK_BH)
 #define TRK_MAX_EXTREMA 7
 #define TRK_INF INT32_MAX
 #define TRK_HEAP_CAP (TRK_CELLS * 4)
@@ -44,6 +47,7 @@ struct cub_tracker {
     uint8_t mask[TRK_CELLS];  /* 1 = the player's */
     int32_t dist0[TRK_CELLS], parent0[TRK_CELLS];
     int32_t distx[TRK_CELLS];
+    int32_t dist_sh[2][TRK_BLOCKS]; /* coarse, along the surface from each shoulder (left, right) */
     int32_t stack[TRK_CELLS];
     uint64_t heap[TRK_HEAP_CAP];
     trk_comp comps[TRK_MAX_COMPS];
@@ -91,6 +95,12 @@ int32_t trk_pick_player(cub_tracker *t);
 /* trk_geo.c */
 int32_t trk_root_cell(cub_tracker *t);
 void trk_geodesic(cub_tracker *t, int32_t *dist, int32_t *parent, int32_t src);
+/* Plain surface lengths (no extra cost for depth jumps) from cell src on
+ * the coarse grid of 2x2 blocks into dist_b (TRK_BLOCKS), a quarter of the
+ * work: for rough decisions (how far a hand is from a shoulder). */
+void trk_geodesic_coarse(cub_tracker *t, int32_t *dist_b, int32_t src);
+/* A cell's distance from such a map, TRK_INF when unreached. */
+int32_t trk_coarse_at(const cub_tracker *t, const int32_t *dist_b, int32_t cell);
 int32_t trk_extrema(cub_tracker *t, int32_t root, int32_t min_mm, int32_t *out, int32_t max_out);
 
 /* trk_head.c: picks the head among the extremities (or adds the column's

@@ -1,0 +1,159 @@
+/* Naming the hands: which extremity is which hand (a cost per candidate
+ * and side, both hands chosen at once), and a hand held before the torso,
+ * which is no extremity. */
+#include "trk_body.h"
+
+/* naming the hands: limits (per mille of stature, or percent of the arm's
+ * reach: shoulder to fingertip) and the cost's weights (quarters) */
+enum {
+    HC_REACH = 130,    /* percent: no farther from its shoulder, straight */
+    HC_GEO = 150,      /* percent: nor along the surface */
+    HC_W_GOWN = 4,     /* along the surface, nearer its own shoulder than the other */
+    HC_W_FAR = 1,      /* far along the arm from its shoulder */
+    HC_W_SIDE = 1,     /* on its own side of the body */
+    HC_W_LONG = 4,     /* standing out far from the root... */
+    HC_LONG = 600,     /* ...up to this */
+    HC_W_PREV = 3,     /* near last frame's hand... */
+    HC_PREV_CAP = 300, /* ...counted up to this */
+    HC_NEAR = 120,     /* a "hand" this near a shoulder is a bump on it... */
+    HC_NEAR_COST = 800,
+    HC_HEAD = 90,      /* ...and one this near the head's centre a bump on the skull */
+    HC_HEAD_COST = 400,
+    HC_NONE = -100,    /* the cost of seeing no hand on a side */
+};
+
+/* a hand before the torso, per mille of stature */
+enum {
+    HF_FRONT = 40,  /* nearer the camera than the torso's surface by */
+    HF_MIN = 150,   /* at least this far from the shoulder */
+    HF_CROSS = 50,  /* how far across the body's middle */
+    HF_OTHER = 100, /* away from the other hand */
+    HF_ABOVE = 0,   /* an extremity on the torso: below the shoulders by */
+    HF_WIDE = 200,  /* and within this of the middle */
+    HF_LEGS = 130,  /* below the hips: within this of the middle */
+    HF_CELLS = 4,   /* cells before the torso, fewer is noise */
+    HF_UP = 60,     /* looked for up to this far above the shoulders */
+};
+
+/* Distances along the surface from the shoulder joint sh (the player's
+ * cell nearest it) into dist, TRK_INF where unreachable. */
+static void from_shoulder(cub_tracker *t, trk_p3 sh, int32_t *dist)
+{
+    for (int32_t b = 0; b < TRK_BLOCKS; b++) dist[b] = TRK_INF;
+    if (sh.z <= 0) return;
+    int32_t gx0 = (CUB_TRACK_CX + sh.x * CUB_TRACK_FOCAL_PX / sh.z) / TRK_CELL_PX;
+    int32_t gy0 = (CUB_TRACK_CY - sh.y * CUB_TRACK_FOCAL_PX / sh.z) / TRK_CELL_PX;
+    int32_t best = -1, best_d = INT32_MAX;
+    for (int32_t gy = gy0 - 4; gy <= gy0 + 4; gy++)
+        for (int32_t gx = gx0 - 4; gx <= gx0 + 4; gx++) {
+            if (gx < 0 || gy < 0 || gx >= TRK_GW || gy >= TRK_GH) continue;
+            int32_t i = gy * TRK_GW + gx;
+            if (!t->mask[i] || t->dist0[i] == TRK_INF) continue;
+            int32_t d = dist3(cell_p(t, i), sh);
+            if (d < best_d) best_d = d, best = i;
+        }
+    if (best >= 0) trk_geodesic_coarse(t, dist, best);
+}
+
+void trk_from_shoulders(cub_tracker *t, limb_pick *lp)
+{
+    from_shoulder(t, lp->shoulder[0], t->dist_sh[0]);
+    from_shoulder(t, lp->shoulder[1], t->dist_sh[1]);
+}
+
+/* The cost of naming candidate c side's hand (mm-like units; lower is
+ * better), INT32_MAX when out of that arm's reach: a hand is nearer its own
+ * shoulder than the other, on its own side of the body, near where it was,
+ * and at the end of a long path (a bump on the torso is not). */
+static int32_t hand_cost(const cub_tracker *t, int32_t c, int side, const limb_pick *lp, trk_p3 sc, cub_vec3 lft,
+                         int32_t st)
+{
+    trk_p3 p = cell_p(t, c);
+    int32_t d = dist3(p, lp->shoulder[side]), d_other = dist3(p, lp->shoulder[1 - side]);
+    if (d > lp->reach_mm * HC_REACH / 100) return INT32_MAX;
+    /* along the surface from each shoulder; a part cut off by the
+     * projector's shadow (a hand before the body) has the straight line */
+    int32_t gs = trk_coarse_at(t, t->dist_sh[side], c), go = trk_coarse_at(t, t->dist_sh[1 - side], c);
+    if (gs == TRK_INF) gs = d;
+    if (go == TRK_INF) go = d_other;
+    /* the arm is no longer than its reach along the surface either (a knee
+     * or a hip bulge within reach is not: its path runs down the torso) */
+    if (gs > lp->reach_mm * HC_GEO / 100) return INT32_MAX;
+    int32_t sgn = side ? -1 : 1, l = sgn * trk_along(p.x - sc.x, p.y - sc.y, p.z - sc.z, lft);
+    int32_t g = t->dist0[c] < pm(st, HC_LONG) ? t->dist0[c] : pm(st, HC_LONG);
+    int32_t cost = -HC_W_SIDE * l / 4 - HC_W_LONG * g / 4;
+    /* nearer its own shoulder than the other; the arm's length from it (a
+     * bump on a shoulder is no hand) */
+    cost += HC_W_GOWN * (gs - go) / 4 - HC_W_FAR * (gs < lp->reach_mm ? gs : lp->reach_mm) / 4;
+    if (gs < pm(st, HC_NEAR) || go < pm(st, HC_NEAR)) cost += pm(st, HC_NEAR_COST);
+    /* on the head's surface: the skull's side, not a hand (a palm's centre
+     * keeps off the head's) */
+    if (lp->head >= 0 && dist3(p, lp->head_c) < pm(st, HC_HEAD)) cost += pm(st, HC_HEAD_COST);
+    if (t->have_prev && t->lost_frames == 0) {
+        int32_t dp = dist3(p, got(&t->prev, side ? CUB_TJ_HAND_R : CUB_TJ_HAND_L));
+        cost += HC_W_PREV * (dp < pm(st, HC_PREV_CAP) ? dp : pm(st, HC_PREV_CAP)) / 4;
+    }
+    return cost;
+}
+
+/* Both hands at once: the pair of candidates (or none for a side) with the
+ * least summed cost. */
+void trk_pick_hands(const cub_tracker *t, const int32_t *hands, int32_t nh, limb_pick *lp, trk_p3 sc, cub_vec3 lft,
+                    int32_t st)
+{
+    int32_t cost[2][TRK_MAX_EXTREMA + 1];
+    for (int side = 0; side < 2; side++) {
+        for (int32_t k = 0; k < nh; k++) cost[side][k] = hand_cost(t, hands[k], side, lp, sc, lft, st);
+        cost[side][nh] = pm(st, HC_NONE); /* no hand seen on this side */
+    }
+    int64_t best = INT64_MAX;
+    lp->hand[0] = lp->hand[1] = -1;
+    for (int32_t a = 0; a <= nh; a++)
+        for (int32_t b = 0; b <= nh; b++) {
+            if (a == b && a < nh) continue;
+            if (cost[0][a] == INT32_MAX || cost[1][b] == INT32_MAX) continue;
+            int64_t c = (int64_t)cost[0][a] + cost[1][b];
+            if (c < best) best = c, lp->hand[0] = a < nh ? hands[a] : -1, lp->hand[1] = b < nh ? hands[b] : -1;
+        }
+}
+
+/* An extremity on the torso's surface (not before it): a shoulder bump or
+ * the elbow of an arm whose hand lies before the chest. */
+bool trk_on_torso(const cub_tracker *t, int32_t root, int32_t i, trk_p3 sc, trk_p3 hc, cub_vec3 axis, cub_vec3 lft,
+                  int32_t st)
+{
+    if (t->z[i] <= t->z[root] - pm(st, HF_FRONT)) return false;
+    trk_p3 p = cell_p(t, i);
+    int32_t up_sc = trk_along(p.x - sc.x, p.y - sc.y, p.z - sc.z, axis);
+    int32_t up_hc = trk_along(p.x - hc.x, p.y - hc.y, p.z - hc.z, axis);
+    int32_t l = trk_along(p.x - sc.x, p.y - sc.y, p.z - sc.z, lft);
+    /* below the hips, within the legs' width, it is a leg's, not an arm's;
+     * a hand hanging beside the thigh is out to the side */
+    return up_sc <= pm(st, HF_ABOVE) && trk_abs(l) <= pm(st, up_hc < 0 ? HF_LEGS : HF_WIDE);
+}
+
+/* A hand held before the torso is no extremity (its path ends in the
+ * chest), but the forearm and hand stand out in depth: among the cells
+ * clearly nearer the camera than the torso's surface, on the shoulder's
+ * side and within the arm's reach, the farthest from the shoulder. */
+int32_t trk_hand_in_front(const cub_tracker *t, int32_t root, trk_p3 sh, trk_p3 sc, trk_p3 hc, cub_vec3 axis,
+                          cub_vec3 lft, int side, int32_t st, int32_t other)
+{
+    int32_t zf = t->z[root] - pm(st, HF_FRONT), reach = pm(st, P_UPPER_ARM + P_FOREARM + P_HAND_REACH);
+    int32_t best = -1, best_d = pm(st, HF_MIN), nfront = 0, sgn = side ? -1 : 1;
+    for (int32_t i = 0; i < TRK_CELLS; i++) {
+        if (!t->mask[i] || t->dist0[i] == TRK_INF || t->z[i] > zf) continue;
+        trk_p3 p = cell_p(t, i);
+        /* between the hips and a little above the shoulders */
+        int32_t up_sc = trk_along(p.x - sc.x, p.y - sc.y, p.z - sc.z, axis);
+        int32_t up_hc = trk_along(p.x - hc.x, p.y - hc.y, p.z - hc.z, axis);
+        if (up_sc > pm(st, HF_UP) || up_hc < -pm(st, 60)) continue;
+        if (sgn * trk_along(p.x - sc.x, p.y - sc.y, p.z - sc.z, lft) < -pm(st, HF_CROSS)) continue;
+        int32_t d = dist3(p, sh);
+        if (d > reach) continue;
+        if (other >= 0 && dist3(p, cell_p(t, other)) < pm(st, HF_OTHER)) continue;
+        nfront++;
+        if (d > best_d) best_d = d, best = i;
+    }
+    return nfront >= HF_CELLS ? best : -1;
+}
