@@ -105,7 +105,7 @@ void trk_pick_hands(const cub_tracker *t, const int32_t *hands, int32_t nh, limb
 bool trk_on_torso(const cub_tracker *t, int32_t root, int32_t i, trk_p3 sc, trk_p3 hc, cub_vec3 axis, cub_vec3 lft,
                   int32_t st);
 /* a hand before the torso on this side: a cell, -1 none */
-int32_t trk_hand_in_front(const cub_tracker *t, int32_t root, trk_p3 sh, trk_p3 sc, trk_p3 hc, cub_vec3 axis,
-                          cub_vec3 lft, int side, int32_t st, int32_t other);
+int32_t trk_hand_in_front(const cub_tracker *t, int32_t root, const limb_pick *lp, trk_p3 sc, trk_p3 hc,
+                          cub_vec3 axis, cub_vec3 lft, int side, int32_t st);
 
 #endif

@@ -115,10 +115,16 @@ static void pick_limbs(const cub_tracker *t, int32_t root, const int32_t *ext, i
         bool leg = dh < -pm(stature, 250) || (bh < -pm(stature, 40) && t->dist0[ext[k]] > pm(stature, 550));
         /* a foot is out of the arms' reach, or on the floor */
         if (leg && lp->reach_mm > 0) {
-            int32_t d = dist3(p, lp->shoulder[0]), d1 = dist3(p, lp->shoulder[1]);
+            /* each arm's reach as learnt (bodies differ), not shorter than
+             * the proportions' */
+            bool in_reach = false;
+            for (int side = 0; side < 2; side++) {
+                int32_t arm = t->reach_mm[side] + pm(stature, P_HAND_REACH);
+                if (arm < lp->reach_mm) arm = lp->reach_mm;
+                if (dist3(p, lp->shoulder[side]) < arm) in_reach = true;
+            }
             int32_t above = trk_along(p.x, p.y, p.z, t->up) - t->floor_h_mm;
-            if (d1 < d) d = d1;
-            if (d < lp->reach_mm && t->have_floor && above > pm(stature, FOOT_ABOVE)) leg = false;
+            if (in_reach && t->have_floor && above > pm(stature, FOOT_ABOVE)) leg = false;
         }
         if (leg) feet[nf++] = ext[k];
         else hands[nh++] = ext[k];
@@ -343,8 +349,7 @@ void trk_fit_skeleton(cub_tracker *t, int32_t root, int32_t *ext, int32_t next, 
     for (int side = 0; side < 2; side++) {
         int32_t h = lp.hand[side];
         if (h >= 0 && !trk_on_torso(t, root, h, sc, hc, axis, lft, st)) continue;
-        int32_t f = trk_hand_in_front(t, root, got(s, side ? CUB_TJ_SHOULDER_R : CUB_TJ_SHOULDER_L), sc, hc, axis, lft,
-                                      side, st, lp.hand[1 - side]);
+        int32_t f = trk_hand_in_front(t, root, &lp, sc, hc, axis, lft, side, st);
         if (f >= 0) lp.hand[side] = f;
     }
     for (int side = 0; side < 2; side++) {

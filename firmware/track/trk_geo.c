@@ -3,12 +3,33 @@
  * extremities (head, hands, feet) as the farthest points, one at a time. */
 #include "trk_internal.h"
 
+/* A depth step between neighbours this large (mm) is an edge: a limb
+ * lying before the torso. */
+#define ROOT_EDGE_MM 60
+
+static bool depth_edge(const cub_tracker *t, int32_t i, int32_t j)
+{
+    return trk_abs(t->z[i] - t->z[j]) > ROOT_EDGE_MM;
+}
+
 /* The root is the cell deepest inside the silhouette (chamfer 3-4
- * distance): the torso is the body's thickest part at any pose. */
+ * distance): the torso is the body's thickest part at any pose. Depth
+ * steps count as the silhouette's edge: a forearm held across the chest
+ * lies over the silhouette's middle, and a root on it puts every path
+ * behind a depth jump. */
 int32_t trk_root_cell(cub_tracker *t)
 {
     int32_t *d = t->distx;
-    for (int32_t i = 0; i < TRK_CELLS; i++) d[i] = t->mask[i] ? 1 << 20 : 0;
+    for (int32_t i = 0; i < TRK_CELLS; i++) {
+        d[i] = t->mask[i] ? 1 << 20 : 0;
+        if (!d[i]) continue;
+        int32_t gx = i % TRK_GW, gy = i / TRK_GW;
+        if ((gx > 0 && t->mask[i - 1] && depth_edge(t, i, i - 1)) ||
+            (gx < TRK_GW - 1 && t->mask[i + 1] && depth_edge(t, i, i + 1)) ||
+            (gy > 0 && t->mask[i - TRK_GW] && depth_edge(t, i, i - TRK_GW)) ||
+            (gy < TRK_GH - 1 && t->mask[i + TRK_GW] && depth_edge(t, i, i + TRK_GW)))
+            d[i] = 3;
+    }
     for (int32_t gy = 0; gy < TRK_GH; gy++)
         for (int32_t gx = 0; gx < TRK_GW; gx++) {
             int32_t i = gy * TRK_GW + gx;

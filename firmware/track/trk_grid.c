@@ -200,6 +200,35 @@ static trk_p3 comp_centre(const trk_comp *c)
     return (trk_p3){(int32_t)(c->sx / c->n), (int32_t)(c->sy / c->n), (int32_t)(c->sz / c->n)};
 }
 
+/* A forearm held across the whole width of a (turned) torso cuts the
+ * body in two blobs by depth: a smaller blob at about the player's depth
+ * that touches it or a part merged in front of it, within the player's
+ * columns (give or take half its width), is the rest of the body. */
+#define CUT_OFF_DZ_MM 300
+static void merge_cut_off(cub_tracker *t, int32_t pid, int32_t pz, const uint8_t *front)
+{
+    uint8_t touch[TRK_MAX_COMPS] = {0};
+    const trk_comp *p = &t->comps[pid];
+    int32_t pw = p->gx1 - p->gx0 + 1;
+    for (int32_t gy = 1; gy < TRK_GH - 1; gy++)
+        for (int32_t i = gy * TRK_GW + 1; i < gy * TRK_GW + TRK_GW - 1; i++) {
+            int16_t l = t->label[i];
+            if (l < 0 || (l != pid && !front[l])) continue;
+            const int32_t nb[4] = {i - 1, i + 1, i - TRK_GW, i + TRK_GW};
+            for (int k = 0; k < 4; k++)
+                if (t->label[nb[k]] >= 0) touch[t->label[nb[k]]] = 1;
+        }
+    for (int32_t k = 0; k < t->ncomps; k++) {
+        const trk_comp *c = &t->comps[k];
+        if (k == pid || front[k] || !touch[k] || c->n < 3) continue;
+        if (trk_abs((int32_t)(c->sz / c->n) - pz) > CUT_OFF_DZ_MM || c->n > p->n) continue;
+        /* within the player's columns: not furniture beside it */
+        if (c->gx0 < p->gx0 - pw / 2 || c->gx1 > p->gx1 + pw / 2) continue;
+        for (int32_t i = 0; i < TRK_CELLS; i++)
+            if (t->label[i] == k) t->mask[i] = 1;
+    }
+}
+
 /* Small blobs in front of the player and overlapping it in the image are
  * its own hands and forearms (a hand before the chest is a depth jump). */
 static void merge_front_parts(cub_tracker *t, int32_t pid)
@@ -207,15 +236,18 @@ static void merge_front_parts(cub_tracker *t, int32_t pid)
     const trk_comp *p = &t->comps[pid];
     int32_t pz = (int32_t)(p->sz / p->n);
     trk_p3 pc = comp_centre(p);
+    uint8_t front[TRK_MAX_COMPS] = {0};
     for (int32_t k = 0; k < t->ncomps; k++) {
         const trk_comp *c = &t->comps[k];
         if (k == pid || c->n < 3 || c->area_mm2 > 80000) continue;
         if (c->gx1 < p->gx0 - 2 || c->gx0 > p->gx1 + 2 || c->gy1 < p->gy0 - 2 || c->gy0 > p->gy1 + 2) continue;
         trk_p3 cc = comp_centre(c);
         if (cc.z > pz + 100 || cc.z < pz - 900 || trk_abs(cc.x - pc.x) > 1000) continue;
+        front[k] = 1;
         for (int32_t i = 0; i < TRK_CELLS; i++)
             if (t->label[i] == k) t->mask[i] = 1;
     }
+    merge_cut_off(t, pid, pz, front);
 }
 
 int32_t trk_pick_player(cub_tracker *t)

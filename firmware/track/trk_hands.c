@@ -20,6 +20,8 @@ enum {
     HC_HEAD = 90,      /* ...and one this near the head's centre a bump on the skull */
     HC_HEAD_COST = 400,
     HC_NONE = -100,    /* the cost of seeing no hand on a side */
+    HC_W_ENTRY = 4,    /* the side the arm's path leaves the torso... */
+    HC_ENTRY = 180,    /* ...this far from the root along the surface */
 };
 
 /* a hand before the torso, per mille of stature */
@@ -27,7 +29,8 @@ enum {
     HF_FRONT = 40,  /* nearer the camera than the torso's surface by */
     HF_MIN = 150,   /* at least this far from the shoulder */
     HF_CROSS = 50,  /* how far across the body's middle */
-    HF_OTHER = 100, /* away from the other hand */
+    HF_OTHER = 50,  /* away from the other hand (fists side by side) */
+    HF_HEAD = 100,  /* and from the head's centre */
     HF_ABOVE = 0,   /* an extremity on the torso: below the shoulders by */
     HF_WIDE = 200,  /* and within this of the middle */
     HF_LEGS = 130,  /* below the hips: within this of the middle */
@@ -82,6 +85,13 @@ static int32_t hand_cost(const cub_tracker *t, int32_t c, int side, const limb_p
     int32_t sgn = side ? -1 : 1, l = sgn * trk_along(p.x - sc.x, p.y - sc.y, p.z - sc.z, lft);
     int32_t g = t->dist0[c] < pm(st, HC_LONG) ? t->dist0[c] : pm(st, HC_LONG);
     int32_t cost = -HC_W_SIDE * l / 4 - HC_W_LONG * g / 4;
+    /* the side where the path from the root (depth steps cost extra on
+     * it, so it follows the arm) leaves the torso: arms crossed before
+     * the body keep their own shoulder */
+    int32_t e = c;
+    for (int32_t steps = 0; t->parent0[e] >= 0 && t->dist0[e] > pm(st, HC_ENTRY) && steps < 800; steps++)
+        e = t->parent0[e];
+    cost -= HC_W_ENTRY * sgn * trk_along(t->x[e] - sc.x, t->y[e] - sc.y, t->z[e] - sc.z, lft) / 4;
     /* nearer its own shoulder than the other; the arm's length from it (a
      * bump on a shoulder is no hand) */
     cost += HC_W_GOWN * (gs - go) / 4 - HC_W_FAR * (gs < lp->reach_mm ? gs : lp->reach_mm) / 4;
@@ -135,12 +145,15 @@ bool trk_on_torso(const cub_tracker *t, int32_t root, int32_t i, trk_p3 sc, trk_
 /* A hand held before the torso is no extremity (its path ends in the
  * chest), but the forearm and hand stand out in depth: among the cells
  * clearly nearer the camera than the torso's surface, on the shoulder's
- * side and within the arm's reach, the farthest from the shoulder. */
-int32_t trk_hand_in_front(const cub_tracker *t, int32_t root, trk_p3 sh, trk_p3 sc, trk_p3 hc, cub_vec3 axis,
-                          cub_vec3 lft, int side, int32_t st, int32_t other)
+ * side and within the arm's reach, the farthest along the surface from
+ * the root. */
+int32_t trk_hand_in_front(const cub_tracker *t, int32_t root, const limb_pick *lp, trk_p3 sc, trk_p3 hc,
+                          cub_vec3 axis, cub_vec3 lft, int side, int32_t st)
 {
+    trk_p3 sh = lp->shoulder[side];
+    int32_t other = lp->hand[1 - side];
     int32_t zf = t->z[root] - pm(st, HF_FRONT), reach = pm(st, P_UPPER_ARM + P_FOREARM + P_HAND_REACH);
-    int32_t best = -1, best_d = pm(st, HF_MIN), nfront = 0, sgn = side ? -1 : 1;
+    int32_t best = -1, best_s = INT32_MIN, nfront = 0, sgn = side ? -1 : 1;
     for (int32_t i = 0; i < TRK_CELLS; i++) {
         if (!t->mask[i] || t->dist0[i] == TRK_INF || t->z[i] > zf) continue;
         trk_p3 p = cell_p(t, i);
@@ -152,8 +165,13 @@ int32_t trk_hand_in_front(const cub_tracker *t, int32_t root, trk_p3 sh, trk_p3 
         int32_t d = dist3(p, sh);
         if (d > reach) continue;
         if (other >= 0 && dist3(p, cell_p(t, other)) < pm(st, HF_OTHER)) continue;
+        /* a face leaning forward is no fist before it */
+        if (lp->head >= 0 && dist3(p, lp->head_c) < pm(st, HF_HEAD)) continue;
         nfront++;
-        if (d > best_d) best_d = d, best = i;
+        /* the fist ends the forearm's path: a guard's elbow hangs as far
+         * from the shoulder as its fist, but is nearer the root along the
+         * surface (depth steps cost extra there) */
+        if (d > pm(st, HF_MIN) && t->dist0[i] > best_s) best_s = t->dist0[i], best = i;
     }
     return nfront >= HF_CELLS ? best : -1;
 }

@@ -32,9 +32,13 @@ static int32_t measure_stature(const cub_tracker *t, int32_t head, bool on_floor
     return *neck_drop_mm * 1000 / P_WIDEN;
 }
 
-/* no head is wider than this, per mille of stature */
+/* per mille of stature, or quarters for weights */
 enum {
-    HEAD_WIDE = 180,
+    HEAD_WIDE = 180,    /* no head is wider than this */
+    HEAD_W_X = 4,       /* weight of lying aside of the root */
+    HEAD_W_UP = 4,      /* weight of standing high above it */
+    HEAD_ABOVE = 1120,  /* no head top this high above the floor, standing */
+    HEAD_COLUMN = 1040, /* the head top below a hand raised above it */
 };
 
 /* Where a head's middle would be below the extremity tip: mm lower in the
@@ -97,7 +101,10 @@ static int32_t pick_head(const cub_tracker *t, int32_t root, const int32_t *ext,
         /* central, not in front of the torso, far out along the surface
          * (a head stands out by neck and skull, a shoulder bump does not),
          * and round (a raised hand beside the head is a strip) */
-        int32_t cost = 2 * trk_abs(p.x - r.x) + 2 * (r.z - p.z > 100 ? r.z - p.z - 100 : 0) - t->dist0[ext[k]];
+        /* and high: a bump on a shoulder stands lower than a head leaning
+         * aside, which lies as far aside of the root as that shoulder */
+        int32_t cost = HEAD_W_X * trk_abs(p.x - r.x) / 4 - HEAD_W_UP * dh / 4 +
+                       2 * (r.z - p.z > 100 ? r.z - p.z - 100 : 0) - t->dist0[ext[k]];
         /* (an arm held out level fills a far, coarse disk too, but it
          * reaches out more than up) */
         int32_t middle = below_middle(t, ext[k], pm(st0, P_HEAD_DOWN), pm(st0, HEAD_WIDE));
@@ -137,11 +144,26 @@ int32_t trk_fit_head(cub_tracker *t, int32_t root, int32_t *ext, int32_t *next, 
     int32_t st0 = t->stature_mm ? t->stature_mm : 1200;
     bool round;
     int32_t n = *next;
+    int32_t hmin = INT32_MAX;
+    for (int32_t i = 0; i < TRK_CELLS; i++)
+        if (t->mask[i]) {
+            int32_t h = trk_along(t->x[i], t->y[i], t->z[i], t->up);
+            if (h < hmin) hmin = h;
+        }
+    bool on_floor = t->have_floor && hmin - t->floor_h_mm < 120;
     int32_t head_k = pick_head(t, root, ext, n, st0, &round);
-    if (head_k < 0 || (!round && trk_abs(t->x[ext[head_k]] - t->x[root]) > pm(st0, 90))) {
+    /* standing, no head top is far above the stature learnt: that is a
+     * hand raised right above the head (a fist is round too) */
+    int32_t rise = pm(st0, 450);
+    if (head_k >= 0 && on_floor && t->stature_mm) {
+        int32_t top = trk_along(t->x[ext[head_k]], t->y[ext[head_k]], t->z[ext[head_k]], t->up) - t->floor_h_mm;
+        int32_t hr = trk_along(t->x[root], t->y[root], t->z[root], t->up) - t->floor_h_mm;
+        if (top > pm(st0, HEAD_ABOVE)) round = false, rise = pm(st0, HEAD_COLUMN) - hr;
+    }
+    if (head_k < 0 || (!round && trk_abs(t->x[ext[head_k]] - t->x[root]) > pm(st0, 90)) || rise < pm(st0, 450)) {
         /* no round, central extremity: the head is the column's top (a
          * head leaning aside is round, hands up beside it are not) */
-        int32_t top = column_top(t, root, pm(st0, 450));
+        int32_t top = column_top(t, root, rise);
         if (top >= 0) {
             head_k = -1;
             for (int32_t k = 0; k < n; k++)
@@ -155,13 +177,6 @@ int32_t trk_fit_head(cub_tracker *t, int32_t root, int32_t *ext, int32_t *next, 
         }
     }
     int32_t head = head_k >= 0 ? ext[head_k] : root;
-    int32_t hmin = INT32_MAX;
-    for (int32_t i = 0; i < TRK_CELLS; i++)
-        if (t->mask[i]) {
-            int32_t h = trk_along(t->x[i], t->y[i], t->z[i], t->up);
-            if (h < hmin) hmin = h;
-        }
-    bool on_floor = t->have_floor && hmin - t->floor_h_mm < 120;
     int32_t neck = 0;
     int32_t st = head_k >= 0 ? measure_stature(t, head, on_floor, &neck) : 0;
     /* a neck base far from where the body's proportions put it is an arm
