@@ -48,19 +48,19 @@ static cub_err add_joint(amc_state *a, const char *name, int parent, const doubl
     for (int i = 0; i < 3; i++) {
         double mm = off[i] * a->m->unit_mm;
         if (!(fabs(mm) <= IO_MM_LIMIT))
-            return io_fail_at(diag, CUB_ERR_FORMAT, a->lx.name, line,
+            return cub_diag_fail(diag, CUB_ERR_FORMAT, a->lx.name, line,
                               "bone '%s' offset %.0f mm is beyond +-32 m", name, mm);
         *k[i] = io_mm_to_q16(mm);
     }
     if (a->m->skel.joint_count >= CUB_MOTION_MAX_JOINTS)
-        return io_fail_at(diag, CUB_ERR_FORMAT, a->lx.name, line, "more than %d joints",
+        return cub_diag_fail(diag, CUB_ERR_FORMAT, a->lx.name, line, "more than %d joints",
                           CUB_MOTION_MAX_JOINTS);
     if (cub_motion_skeleton_find(&a->m->skel, name) >= 0)
-        return io_fail_at(diag, CUB_ERR_FORMAT, a->lx.name, line, "bone '%s' is defined twice",
+        return cub_diag_fail(diag, CUB_ERR_FORMAT, a->lx.name, line, "bone '%s' is defined twice",
                           name);
     cub_err err = cub_motion_skeleton_add(&a->m->skel, name, parent, v, idx);
     if (err)
-        return io_fail_at(diag, CUB_ERR_FORMAT, a->lx.name, line, "bone '%s' refused: %s", name,
+        return cub_diag_fail(diag, CUB_ERR_FORMAT, a->lx.name, line, "bone '%s' refused: %s", name,
                           cub_err_str(err));
     return CUB_OK;
 }
@@ -119,7 +119,7 @@ static cub_err build_skeleton(amc_state *a, cub_diag *diag)
     cub_err err = add_bone(a, 0, diag);
     for (int b = 1; b < s->count && !err; b++)
         if (a->joint_of[b] < 0)
-            err = io_fail_at(diag, CUB_ERR_FORMAT, a->lx.name, s->bone[b].line,
+            err = cub_diag_fail(diag, CUB_ERR_FORMAT, a->lx.name, s->bone[b].line,
                              "bone '%s' does not hang from root (a cycle in :hierarchy)",
                              s->bone[b].name);
     return err;
@@ -258,7 +258,7 @@ static cub_err parse_both(amc_state *a, const char *asf, size_t asf_len, const c
     a->rad_per_unit = a->asf.angle_deg ? IO_PI / 180.0 : 1.0;
     a->m->unit_mm = (desc && desc->unit_mm > 0) ? desc->unit_mm : 25.4 / a->asf.length_unit;
     if (!isfinite(a->m->unit_mm))
-        return io_fail_at(diag, CUB_ERR_ARG, asf_name, 0, "unit_mm is not finite");
+        return cub_diag_fail(diag, CUB_ERR_ARG, asf_name, 0, "unit_mm is not finite");
     io_lex_init(&a->lx, amc ? amc : "", amc_len, asf_name, diag);
     if ((err = build_skeleton(a, diag)))
         return err;
@@ -272,11 +272,11 @@ static cub_err asf_amc(const char *asf, size_t asf_len, const char *asf_name, co
                        cub_io_motion *out, cub_diag *diag)
 {
     if (!out || (!asf && asf_len) || (!amc && amc_len))
-        return io_fail_at(diag, CUB_ERR_ARG, asf_name, 0, "no text or output");
+        return cub_diag_fail(diag, CUB_ERR_ARG, asf_name, 0, "no text or output");
     memset(out, 0, sizeof(*out));
     amc_state *a = calloc(1, sizeof(*a));
     if (!a)
-        return io_fail_at(diag, CUB_ERR_NOMEM, asf_name, 0, "out of memory");
+        return cub_diag_fail(diag, CUB_ERR_NOMEM, asf_name, 0, "out of memory");
     a->m = out;
     cub_err err = parse_both(a, asf, asf_len, asf_name, amc, amc_len, amc_name, desc, diag);
     free(a);

@@ -72,7 +72,7 @@ static cub_err read_dofs(io_lex *lx, asf_bone *b, int is_root)
         else if (axis >= 0 && (t.s[0] == 't' || t.s[0] == 'T'))
             kind = 3 + axis;
         if (kind < 0 || (kind >= 3 && !is_root))
-            return io_fail_at(lx->diag, kind < 0 ? CUB_ERR_FORMAT : CUB_ERR_UNSUPPORTED, lx->name,
+            return cub_diag_fail(lx->diag, kind < 0 ? CUB_ERR_FORMAT : CUB_ERR_UNSUPPORTED, lx->name,
                               t.line, "%s dof %s in '%s'", kind < 0 ? "unknown" : "unsupported",
                               io_tok_show(&t, shown, sizeof(shown)), b->name);
         for (int i = 0; i < b->ndof; i++)

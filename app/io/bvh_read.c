@@ -276,7 +276,7 @@ static cub_err parse_frames(bvh_state *st, cub_io_motion *m, long frames)
     int n_ch = st->total_channels;
     double *vals = malloc(sizeof(double) * (size_t)n_ch);
     if (!vals)
-        return io_fail_at(lx->diag, CUB_ERR_NOMEM, lx->name, 0, "out of memory");
+        return cub_diag_fail(lx->diag, CUB_ERR_NOMEM, lx->name, 0, "out of memory");
     cub_err err = CUB_OK;
     for (long f = 0; f < frames && !err; f++) {
         if (!io_lex_next(lx, &t)) {
@@ -374,7 +374,7 @@ static cub_err parse_bvh(bvh_state *st, const cub_io_desc *desc, cub_io_motion *
                        frames, st->total_channels, io_lex_left(lx));
     m->unit_mm = (desc && desc->unit_mm > 0) ? desc->unit_mm : cub_io_guess_unit_mm(rest_size(st));
     if (!isfinite(m->unit_mm))
-        return io_fail_at(lx->diag, CUB_ERR_ARG, lx->name, 0, "unit_mm is not finite");
+        return cub_diag_fail(lx->diag, CUB_ERR_ARG, lx->name, 0, "unit_mm is not finite");
     if ((err = build_skeleton(st, m)))
         return err;
     int with_trans = 0;
@@ -394,11 +394,11 @@ cub_err cub_io_parse_bvh(const char *text, size_t len, const char *name, const c
         diag = &scratch;
     memset(diag, 0, sizeof(*diag));
     if (!out || (!text && len))
-        return io_fail_at(diag, CUB_ERR_ARG, name ? name : "(memory)", 0, "no text or output");
+        return cub_diag_fail(diag, CUB_ERR_ARG, name ? name : "(memory)", 0, "no text or output");
     memset(out, 0, sizeof(*out));
     bvh_state *st = calloc(1, sizeof(*st));
     if (!st)
-        return io_fail_at(diag, CUB_ERR_NOMEM, name ? name : "(memory)", 0, "out of memory");
+        return cub_diag_fail(diag, CUB_ERR_NOMEM, name ? name : "(memory)", 0, "out of memory");
     io_lex_init(&st->lx, text ? text : "", len, name, diag);
     st->lx.split_braces = 1;
     cub_err err = parse_bvh(st, desc, out);

@@ -96,9 +96,9 @@ static cub_err check_motion(const cub_io_motion *m, const char *path, cub_diag *
     if (!m || !(m->unit_mm > 0) || !isfinite(m->unit_mm) || m->skel.joint_count < 1 ||
         m->skel.joint_count > CUB_MOTION_MAX_JOINTS || m->clip.frame_count < 1 ||
         !m->clip.rot || !m->clip.root_mm || m->clip.frame_ns == 0)
-        return io_fail_at(diag, CUB_ERR_ARG, path, 0, "nothing to save (empty motion or unit)");
+        return cub_diag_fail(diag, CUB_ERR_ARG, path, 0, "nothing to save (empty motion or unit)");
     if (cub_motion_skeleton_validate(&m->skel) != CUB_OK)
-        return io_fail_at(diag, CUB_ERR_ARG, path, 0, "the skeleton is not a valid tree");
+        return cub_diag_fail(diag, CUB_ERR_ARG, path, 0, "the skeleton is not a valid tree");
     for (int j = 0; j < m->skel.joint_count; j++) {
         const cub_io_channels *ch = &m->channels[j];
         const char *re = memchr(ch->rot_order, 0, sizeof(ch->rot_order));
@@ -111,7 +111,7 @@ static cub_err check_motion(const cub_io_motion *m, const char *path, cub_diag *
         for (size_t k = 0; ok && k < np; k++)
             ok = axis_of(ch->pos_order[k]) >= 0 && !memchr(ch->pos_order, ch->pos_order[k], k);
         if (!ok)
-            return io_fail_at(diag, CUB_ERR_ARG, path, 0, "joint %d has a bad channel layout", j);
+            return cub_diag_fail(diag, CUB_ERR_ARG, path, 0, "joint %d has a bad channel layout", j);
     }
     return CUB_OK;
 }
@@ -123,13 +123,13 @@ cub_err cub_io_save_bvh(const char *path, const cub_io_motion *m, cub_diag *diag
         diag = &scratch;
     memset(diag, 0, sizeof(*diag));
     if (!path)
-        return io_fail_at(diag, CUB_ERR_ARG, "(null)", 0, "no path");
+        return cub_diag_fail(diag, CUB_ERR_ARG, "(null)", 0, "no path");
     cub_err err = check_motion(m, path, diag);
     if (err)
         return err;
     FILE *f = fopen(path, "w");
     if (!f)
-        return io_fail_at(diag, CUB_ERR_IO, path, 0, "cannot create: %s", strerror(errno));
+        return cub_diag_fail(diag, CUB_ERR_IO, path, 0, "cannot create: %s", strerror(errno));
     fprintf(f, "HIERARCHY\n");
     write_joint(f, m, 0, 0);
     fprintf(f, "MOTION\nFrames: %d\nFrame Time: %.9f\n", m->clip.frame_count,
@@ -138,6 +138,6 @@ cub_err cub_io_save_bvh(const char *path, const cub_io_motion *m, cub_diag *diag
         write_frame(f, m, fr);
     int bad = ferror(f);
     if (fclose(f) != 0 || bad)
-        return io_fail_at(diag, CUB_ERR_IO, path, 0, "write failed");
+        return cub_diag_fail(diag, CUB_ERR_IO, path, 0, "write failed");
     return CUB_OK;
 }

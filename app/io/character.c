@@ -397,7 +397,7 @@ cub_err cub_character_parse(const char *xml, size_t len, const char *name, cub_c
 {
     const char *file = name ? name : "(memory)";
     if (!out || (!xml && len))
-        return io_fail_at(diag, CUB_ERR_ARG, file, 0, "no text or no output");
+        return cub_diag_fail(diag, CUB_ERR_ARG, file, 0, "no text or no output");
     memset(out, 0, sizeof(*out));
     cub_xml_doc *doc = NULL;
     cub_err err = cub_xml_parse(xml, len, file, &doc, diag);
@@ -405,7 +405,7 @@ cub_err cub_character_parse(const char *xml, size_t len, const char *name, cub_c
     char_ctx *c = calloc(1, sizeof(*c));
     if (!c) {
         cub_xml_free(doc);
-        return io_fail_at(diag, CUB_ERR_NOMEM, file, 0, "out of memory");
+        return cub_diag_fail(diag, CUB_ERR_NOMEM, file, 0, "out of memory");
     }
     c->out = out;
     c->diag = diag;

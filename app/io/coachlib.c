@@ -9,13 +9,10 @@
 
 static cub_err fail(cub_diag *diag, const char *file, cub_err e, const char *fmt, ...)
 {
-    if (!diag) return e;
     const char *base = strrchr(file, '/');
-    snprintf(diag->file, sizeof diag->file, "%s", base ? base + 1 : file);
-    diag->line = 0;
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(diag->msg, sizeof diag->msg, fmt, ap);
+    e = cub_diag_vfail(diag, e, base ? base + 1 : file, 0, fmt, ap);
     va_end(ap);
     return e;
 }

@@ -63,9 +63,7 @@ cub_err io_tok_long(io_lex *lx, const io_tok *t, const char *what, long *out);
 /* Fill the diag (file from lx->name) and return CUB_ERR_FORMAT. */
 cub_err io_fail(io_lex *lx, int line, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));
-/* The same with an explicit error code and file name (no lexer). */
-cub_err io_fail_at(cub_diag *diag, cub_err err, const char *file, int line, const char *fmt,
-                   ...) __attribute__((format(printf, 5, 6)));
+/* With an explicit error code and file name (no lexer): cub_diag_fail. */
 
 /* ---- rotations (doubles) ----------------------------------------------- */
 

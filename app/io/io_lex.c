@@ -191,31 +191,33 @@ cub_err io_tok_long(io_lex *lx, const io_tok *t, const char *what, long *out)
     return CUB_OK;
 }
 
-static void diag_fill(cub_diag *diag, const char *file, int line, const char *fmt, va_list ap)
+cub_err cub_diag_vfail(cub_diag *diag, cub_err err, const char *file, int line, const char *fmt,
+                       va_list ap)
 {
     if (!diag)
-        return;
+        return err;
     snprintf(diag->file, sizeof(diag->file), "%s", file ? file : "");
     diag->line = line;
     vsnprintf(diag->msg, sizeof(diag->msg), fmt, ap);
+    return err;
 }
 
 cub_err io_fail(io_lex *lx, int line, const char *fmt, ...)
 {
     va_list ap;
     va_start(ap, fmt);
-    diag_fill(lx->diag, lx->name, line, fmt, ap);
+    cub_err e = cub_diag_vfail(lx->diag, CUB_ERR_FORMAT, lx->name, line, fmt, ap);
     va_end(ap);
-    return CUB_ERR_FORMAT;
+    return e;
 }
 
-cub_err io_fail_at(cub_diag *diag, cub_err err, const char *file, int line, const char *fmt, ...)
+cub_err cub_diag_fail(cub_diag *diag, cub_err err, const char *file, int line, const char *fmt, ...)
 {
     va_list ap;
     va_start(ap, fmt);
-    diag_fill(diag, file, line, fmt, ap);
+    cub_err e = cub_diag_vfail(diag, err, file, line, fmt, ap);
     va_end(ap);
-    return err;
+    return e;
 }
 
 const char *cub_diag_str(const cub_diag *d, char *buf, size_t size)
@@ -234,12 +236,12 @@ const char *cub_diag_str(const cub_diag *d, char *buf, size_t size)
 cub_err cub_io_read_file(const char *path, char **out, size_t *out_len, cub_diag *diag)
 {
     if (!path || !out || !out_len)
-        return io_fail_at(diag, CUB_ERR_ARG, path ? path : "(null)", 0, "no path or output");
+        return cub_diag_fail(diag, CUB_ERR_ARG, path ? path : "(null)", 0, "no path or output");
     *out = NULL;
     *out_len = 0;
     FILE *f = fopen(path, "rb");
     if (!f)
-        return io_fail_at(diag, CUB_ERR_IO, path, 0, "cannot open: %s", strerror(errno));
+        return cub_diag_fail(diag, CUB_ERR_IO, path, 0, "cannot open: %s", strerror(errno));
     size_t cap = 1 << 16, len = 0;
     char *buf = malloc(cap);
     while (buf) {
@@ -250,7 +252,7 @@ cub_err cub_io_read_file(const char *path, char **out, size_t *out_len, cub_diag
         if (!bigger) {
             free(buf);
             fclose(f);
-            return io_fail_at(diag, CUB_ERR_NOMEM, path, 0, "file too large (over %zu MB)",
+            return cub_diag_fail(diag, CUB_ERR_NOMEM, path, 0, "file too large (over %zu MB)",
                               IO_MEM_CAP_BYTES >> 20);
         }
         buf = bigger;
@@ -261,7 +263,7 @@ cub_err cub_io_read_file(const char *path, char **out, size_t *out_len, cub_diag
     if (failed) {
         cub_err e = buf ? CUB_ERR_IO : CUB_ERR_NOMEM;
         free(buf);
-        return io_fail_at(diag, e, path, 0, "read failed");
+        return cub_diag_fail(diag, e, path, 0, "read failed");
     }
     buf[len] = '\0';
     *out = buf;

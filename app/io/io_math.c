@@ -138,19 +138,19 @@ cub_err io_clip_alloc(cub_io_motion *m, int frame_count, uint32_t frame_ns, int 
                        sizeof(cub_vec3);
     double need = per_frame * frame_count;
     if (frame_count < 1 || need > (double)IO_MEM_CAP_BYTES)
-        return io_fail_at(diag, CUB_ERR_FORMAT, file, line,
+        return cub_diag_fail(diag, CUB_ERR_FORMAT, file, line,
                           "%d frames of %d joints need %.0f MB, over the %zu MB cap", frame_count,
                           joints, need / 1048576.0, IO_MEM_CAP_BYTES >> 20);
     size_t size = cub_motion_clip_mem_size(joints, frame_count, with_trans);
     void *mem = malloc(size ? size : 1);
     if (!mem)
-        return io_fail_at(diag, CUB_ERR_NOMEM, file, line, "out of memory for %d frames",
+        return cub_diag_fail(diag, CUB_ERR_NOMEM, file, line, "out of memory for %d frames",
                           frame_count);
     cub_err err = cub_motion_clip_init(&m->clip, &m->skel, frame_count, frame_ns, with_trans,
                                        mem, size);
     if (err) {
         free(mem);
-        return io_fail_at(diag, err, file, line, "cannot lay out the clip: %s",
+        return cub_diag_fail(diag, err, file, line, "cannot lay out the clip: %s",
                           cub_err_str(err));
     }
     m->frame_mem = mem;

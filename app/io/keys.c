@@ -336,7 +336,7 @@ static cub_err make_frames(keys_parse *p)
     out->mem = malloc(size);
     if (!v || !out->mem) {
         free(v);
-        return io_fail_at(p->lx.diag, CUB_ERR_NOMEM, p->lx.name, 0, "out of memory");
+        return cub_diag_fail(p->lx.diag, CUB_ERR_NOMEM, p->lx.name, 0, "out of memory");
     }
     uint32_t frame_ns = (uint32_t)lround(1e9 / p->fps);
     err = cub_motion_clip_init(&out->clip, p->skel, frames, frame_ns, 0, out->mem, size);
@@ -347,7 +347,7 @@ static cub_err make_frames(keys_parse *p)
         set_frame(p, f, v);
     }
     free(v);
-    if (err) return io_fail_at(p->lx.diag, err, p->lx.name, 0, "cannot lay out %d frames", frames);
+    if (err) return cub_diag_fail(p->lx.diag, err, p->lx.name, 0, "cannot lay out %d frames", frames);
     return CUB_OK;
 }
 
@@ -357,10 +357,10 @@ cub_err cub_keys_parse(const char *text, size_t len, const char *name, const cub
     const char *file = name ? name : "(memory)";
     if (!out || !skel || (!text && len) || skel->joint_count < 1 ||
         skel->joint_count > CUB_MOTION_MAX_JOINTS)
-        return io_fail_at(diag, CUB_ERR_ARG, file, 0, "no text, skeleton or output");
+        return cub_diag_fail(diag, CUB_ERR_ARG, file, 0, "no text, skeleton or output");
     memset(out, 0, sizeof(*out));
     keys_parse *p = calloc(1, sizeof(*p));
-    if (!p) return io_fail_at(diag, CUB_ERR_NOMEM, file, 0, "out of memory");
+    if (!p) return cub_diag_fail(diag, CUB_ERR_NOMEM, file, 0, "out of memory");
     io_lex_init(&p->lx, text ? text : "", len, file, diag);
     p->lx.hash_comments = 1;
     p->skel = skel;
@@ -371,7 +371,7 @@ cub_err cub_keys_parse(const char *text, size_t len, const char *name, const cub
     p->value = calloc((size_t)CUB_KEYS_MAX_KEYS * (size_t)p->channels, sizeof(double));
     p->given = calloc((size_t)CUB_KEYS_MAX_KEYS * (size_t)(skel->joint_count + 1), 1);
     cub_err err = (!p->value || !p->given)
-                      ? io_fail_at(diag, CUB_ERR_NOMEM, file, 0, "out of memory")
+                      ? cub_diag_fail(diag, CUB_ERR_NOMEM, file, 0, "out of memory")
                       : read_lines(p);
     if (!err) {
         fill_held(p);

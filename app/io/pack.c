@@ -138,27 +138,27 @@ static cub_err check_library(const cub_library *lib, const char *file, cub_diag 
 {
     int jn = lib->skel.joint_count;
     if (jn < 1 || jn > CUB_MOTION_MAX_JOINTS || cub_motion_skeleton_validate(&lib->skel))
-        return io_fail_at(diag, CUB_ERR_ARG, file, 0, "the library's skeleton is not valid");
+        return cub_diag_fail(diag, CUB_ERR_ARG, file, 0, "the library's skeleton is not valid");
     if (lib->clip_count < 0 || (lib->clip_count > 0 && !lib->clips))
-        return io_fail_at(diag, CUB_ERR_ARG, file, 0, "bad clip count %d", lib->clip_count);
+        return cub_diag_fail(diag, CUB_ERR_ARG, file, 0, "bad clip count %d", lib->clip_count);
     for (int i = 0; i < lib->clip_count; i++) {
         const cub_library_clip *lc = &lib->clips[i];
         const cub_clip *c = &lc->clip;
         if (!name_ok(lc->name, sizeof(lc->name)) || !name_ok(lc->kind, sizeof(lc->kind)))
-            return io_fail_at(diag, CUB_ERR_ARG, file, 0,
+            return cub_diag_fail(diag, CUB_ERR_ARG, file, 0,
                               "clip %d: name and kind must be printable, 1 to %zu and %zu bytes", i,
                               sizeof(lc->name) - 1, sizeof(lc->kind) - 1);
         if (!c->skel || c->skel->joint_count != jn || c->frame_count < 1 || !c->root_mm ||
             !c->rot || c->frame_ns == 0)
-            return io_fail_at(diag, CUB_ERR_ARG, file, 0,
+            return cub_diag_fail(diag, CUB_ERR_ARG, file, 0,
                               "clip '%s': not a clip of %d joints with frames", lc->name, jn);
         if (c->trans_mm)
-            return io_fail_at(diag, CUB_ERR_UNSUPPORTED, file, 0,
+            return cub_diag_fail(diag, CUB_ERR_UNSUPPORTED, file, 0,
                               "clip '%s' animates joint translations, which packs do not store",
                               lc->name);
         for (int k = 0; k < i; k++)
             if (!strcmp(lib->clips[k].name, lc->name))
-                return io_fail_at(diag, CUB_ERR_ARG, file, 0, "two clips are named '%s'", lc->name);
+                return cub_diag_fail(diag, CUB_ERR_ARG, file, 0, "two clips are named '%s'", lc->name);
     }
     return CUB_OK;
 }
@@ -209,7 +209,7 @@ static uint8_t *put_clip(uint8_t *p, const cub_library_clip *lc, int jn, const c
             cub_quat r = c->rot[(size_t)f * (size_t)jn + (size_t)j];
             pack_quat_to_q14(r, q);
             if (!q30_roughly_unit(r) || !pack_q14_roughly_unit(q)) {
-                *err = io_fail_at(diag, CUB_ERR_ARG, file, 0,
+                *err = cub_diag_fail(diag, CUB_ERR_ARG, file, 0,
                                   "clip '%s' frame %d joint %d: not a unit quaternion", lc->name, f,
                                   j);
                 return p;
@@ -233,7 +233,7 @@ cub_err pack_encode(const cub_library *lib, const char *file, uint8_t **out, siz
     for (int i = 0; i < lib->clip_count; i++)
         size += PACK_CLIP_HEADER_BYTES + (size_t)lib->clips[i].clip.frame_count * (12 + 8 * jn);
     uint8_t *buf = malloc(size), *p = buf;
-    if (!buf) return io_fail_at(diag, CUB_ERR_NOMEM, file, 0, "out of memory for %zu bytes", size);
+    if (!buf) return cub_diag_fail(diag, CUB_ERR_NOMEM, file, 0, "out of memory for %zu bytes", size);
     memcpy(p, PACK_MAGIC, 8);
     put_u32(p + 8, PACK_VERSION);
     put_u32(p + 12, (uint32_t)jn);
@@ -254,7 +254,7 @@ cub_err pack_encode(const cub_library *lib, const char *file, uint8_t **out, siz
 cub_err cub_pack_write(const char *path, const cub_library *lib, cub_diag *diag)
 {
     const char *file = path ? path : "(null)";
-    if (!path || !lib) return io_fail_at(diag, CUB_ERR_ARG, file, 0, "no path or no library");
+    if (!path || !lib) return cub_diag_fail(diag, CUB_ERR_ARG, file, 0, "no path or no library");
     uint8_t *bytes = NULL;
     size_t len = 0;
     cub_err err = pack_encode(lib, file, &bytes, &len, diag);
@@ -262,12 +262,12 @@ cub_err cub_pack_write(const char *path, const cub_library *lib, cub_diag *diag)
     FILE *f = fopen(path, "wb");
     if (!f) {
         free(bytes);
-        return io_fail_at(diag, CUB_ERR_IO, file, 0, "cannot create the file");
+        return cub_diag_fail(diag, CUB_ERR_IO, file, 0, "cannot create the file");
     }
     int ok = fwrite(bytes, 1, len, f) == len;
     ok = (fclose(f) == 0) && ok;
     free(bytes);
-    return ok ? CUB_OK : io_fail_at(diag, CUB_ERR_IO, file, 0, "write failed");
+    return ok ? CUB_OK : cub_diag_fail(diag, CUB_ERR_IO, file, 0, "write failed");
 }
 
 int cub_library_find(const cub_library *lib, const char *name)

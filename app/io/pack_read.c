@@ -29,7 +29,7 @@ static cub_err bad(const pack_reader *r, size_t at, const char *fmt, ...)
     va_start(ap, fmt);
     vsnprintf(msg, sizeof(msg), fmt, ap);
     va_end(ap);
-    return io_fail_at(r->diag, CUB_ERR_FORMAT, r->file, 0, "at byte %zu: %s", at, msg);
+    return cub_diag_fail(r->diag, CUB_ERR_FORMAT, r->file, 0, "at byte %zu: %s", at, msg);
 }
 
 static size_t left(const pack_reader *r)
@@ -188,14 +188,14 @@ static cub_err read_all(pack_reader *r)
     r->clip_at = calloc(clips ? clips : 1, sizeof(size_t));
     r->out->clips = calloc(clips ? clips : 1, sizeof(cub_library_clip));
     if (!r->clip_at || !r->out->clips)
-        return io_fail_at(r->diag, CUB_ERR_NOMEM, r->file, 0, "out of memory for %u clips", clips);
+        return cub_diag_fail(r->diag, CUB_ERR_NOMEM, r->file, 0, "out of memory for %u clips", clips);
     for (uint32_t i = 0; !err && i < clips; i++)
         err = scan_clip(r, (int)i, &mem_total);
     if (!err) err = check_crc(r);
     if (err) return err;
     r->out->mem = malloc(mem_total ? mem_total : 1);
     if (!r->out->mem)
-        return io_fail_at(r->diag, CUB_ERR_NOMEM, r->file, 0, "out of memory for %zu bytes",
+        return cub_diag_fail(r->diag, CUB_ERR_NOMEM, r->file, 0, "out of memory for %zu bytes",
                           mem_total);
     size_t off = 0;
     for (uint32_t i = 0; !err && i < clips; i++) {
@@ -213,7 +213,7 @@ cub_err cub_pack_parse(const void *data, size_t len, const char *name, cub_libra
 {
     const char *file = name ? name : "(memory)";
     if (!out || (!data && len))
-        return io_fail_at(diag, CUB_ERR_ARG, file, 0, "no data or no output");
+        return cub_diag_fail(diag, CUB_ERR_ARG, file, 0, "no data or no output");
     memset(out, 0, sizeof(*out));
     cub_motion_skeleton_reset(&out->skel);
     pack_reader r = {data, len, 0, file, diag, out, NULL};

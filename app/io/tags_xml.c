@@ -140,15 +140,8 @@ cub_err cub_tags_write(const char *path, const cub_tags *tags, cub_diag *diag)
         return CUB_ERR_ARG;
     cub_xml_doc *doc = NULL;
     cub_err e = build_doc(tags, &doc);
-    if (e) {
-        if (diag) {
-            snprintf(diag->file, sizeof diag->file, "%s", path);
-            diag->line = 0;
-            snprintf(diag->msg, sizeof diag->msg, "cannot build the tag document: %s",
-                     cub_err_str(e));
-        }
-        return e;
-    }
+    if (e)
+        return cub_diag_fail(diag, e, path, 0, "cannot build the tag document: %s", cub_err_str(e));
     e = cub_xml_save(doc, path, diag);
     cub_xml_free(doc);
     return e;

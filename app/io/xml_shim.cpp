@@ -49,25 +49,6 @@ const char *doc_name_of(const XMLElement *el)
     return doc ? doc->name.c_str() : "(xml)";
 }
 
-void fill(cub_diag *diag, const char *file, int line, const char *fmt, va_list ap)
-{
-    if (!diag) return;
-    std::snprintf(diag->file, sizeof(diag->file), "%s", file ? file : "");
-    diag->line = line;
-    std::vsnprintf(diag->msg, sizeof(diag->msg), fmt, ap);
-}
-
-cub_err fail(cub_diag *diag, cub_err err, const char *file, int line, const char *fmt, ...)
-    __attribute__((format(printf, 5, 6)));
-cub_err fail(cub_diag *diag, cub_err err, const char *file, int line, const char *fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    fill(diag, file, line, fmt, ap);
-    va_end(ap);
-    return err;
-}
-
 // tinyxml2's error names are for programmers; say it in words.
 const char *parse_problem(tinyxml2::XMLError e)
 {
@@ -167,11 +148,11 @@ cub_err cub_xml_parse(const char *text, size_t len, const char *name, cub_xml_do
                       cub_diag *diag)
 {
     const char *file = name ? name : "(memory)";
-    if (!out) return fail(diag, CUB_ERR_ARG, file, 0, "no output document");
+    if (!out) return cub_diag_fail(diag, CUB_ERR_ARG, file, 0, "no output document");
     *out = nullptr;
-    if (!text && len) return fail(diag, CUB_ERR_ARG, file, 0, "no text");
+    if (!text && len) return cub_diag_fail(diag, CUB_ERR_ARG, file, 0, "no text");
     if (len == 0 || len == static_cast<size_t>(-1))
-        return fail(diag, CUB_ERR_FORMAT, file, 0, "XML: the document is empty");
+        return cub_diag_fail(diag, CUB_ERR_FORMAT, file, 0, "XML: the document is empty");
     cub_xml_doc *doc = nullptr;
     try {
         doc = new cub_xml_doc();
@@ -180,15 +161,15 @@ cub_err cub_xml_parse(const char *text, size_t len, const char *name, cub_xml_do
         if (e != tinyxml2::XML_SUCCESS) {
             int line = doc->ErrorLineNum();
             delete doc;
-            return fail(diag, CUB_ERR_FORMAT, file, line, "XML: %s", parse_problem(e));
+            return cub_diag_fail(diag, CUB_ERR_FORMAT, file, line, "XML: %s", parse_problem(e));
         }
         if (!doc->RootElement()) {
             delete doc;
-            return fail(diag, CUB_ERR_FORMAT, file, 0, "XML: no root element");
+            return cub_diag_fail(diag, CUB_ERR_FORMAT, file, 0, "XML: no root element");
         }
     } catch (...) {
         delete doc;
-        return fail(diag, CUB_ERR_NOMEM, file, 0, "out of memory reading XML");
+        return cub_diag_fail(diag, CUB_ERR_NOMEM, file, 0, "out of memory reading XML");
     }
     *out = doc;
     return CUB_OK;
@@ -341,9 +322,10 @@ cub_err cub_xml_fail(const cub_xml_el *el, cub_diag *diag, const char *fmt, ...)
 {
     va_list ap;
     va_start(ap, fmt);
-    fill(diag, el ? doc_name_of(to_el(el)) : "(xml)", cub_xml_line(el), fmt, ap);
+    const char *file = el ? doc_name_of(to_el(el)) : "(xml)";
+    cub_err e = cub_diag_vfail(diag, CUB_ERR_FORMAT, file, cub_xml_line(el), fmt, ap);
     va_end(ap);
-    return CUB_ERR_FORMAT;
+    return e;
 }
 
 int cub_xml_attr_line(const cub_xml_el *el, const char *attr)
@@ -357,9 +339,10 @@ cub_err cub_xml_fail_attr(const cub_xml_el *el, const char *attr, cub_diag *diag
 {
     va_list ap;
     va_start(ap, fmt);
-    fill(diag, el ? doc_name_of(to_el(el)) : "(xml)", cub_xml_attr_line(el, attr), fmt, ap);
+    const char *file = el ? doc_name_of(to_el(el)) : "(xml)";
+    cub_err e = cub_diag_vfail(diag, CUB_ERR_FORMAT, file, cub_xml_attr_line(el, attr), fmt, ap);
     va_end(ap);
-    return CUB_ERR_FORMAT;
+    return e;
 }
 
 cub_xml_el *cub_xml_add(cub_xml_el *parent, const char *name)
@@ -461,19 +444,19 @@ cub_err cub_xml_save(const cub_xml_doc *doc, const char *path, cub_diag *diag)
     const char *file = path ? path : "(null)";
     char *text = nullptr;
     size_t len = 0;
-    if (!path) return fail(diag, CUB_ERR_ARG, file, 0, "no path");
+    if (!path) return cub_diag_fail(diag, CUB_ERR_ARG, file, 0, "no path");
     cub_err err = cub_xml_print(doc, &text, &len);
     if (err)
-        return fail(diag, err, file, 0, "cannot print the XML document (%s)", cub_err_str(err));
+        return cub_diag_fail(diag, err, file, 0, "cannot print the XML document (%s)", cub_err_str(err));
     std::FILE *f = std::fopen(path, "wb");
     if (!f) {
         std::free(text);
-        return fail(diag, CUB_ERR_IO, file, 0, "cannot create: %s", std::strerror(errno));
+        return cub_diag_fail(diag, CUB_ERR_IO, file, 0, "cannot create: %s", std::strerror(errno));
     }
     bool ok = std::fwrite(text, 1, len, f) == len;
     ok = (std::fclose(f) == 0) && ok;
     std::free(text);
-    if (!ok) return fail(diag, CUB_ERR_IO, file, 0, "write failed: %s", std::strerror(errno));
+    if (!ok) return cub_diag_fail(diag, CUB_ERR_IO, file, 0, "write failed: %s", std::strerror(errno));
     return CUB_OK;
 }
 

@@ -31,10 +31,7 @@ typedef struct scan {
 
 static cub_err fail(scan *s, size_t at, const char *what)
 {
-    snprintf(s->diag->file, sizeof(s->diag->file), "%s", s->name);
-    s->diag->line = 0;
-    snprintf(s->diag->msg, sizeof(s->diag->msg), "byte %zu: %s", at, what);
-    return CUB_ERR_FORMAT;
+    return cub_diag_fail(s->diag, CUB_ERR_FORMAT, s->name, 0, "byte %zu: %s", at, what);
 }
 
 static uint32_t be(const uint8_t *p, int n)

@@ -40,7 +40,7 @@ static cub_err parse_source(const char *word, cub_retarget_source *src, const ch
     const char *colon = strchr(word, ':');
     size_t len = colon ? (size_t)(colon - word) : strlen(word);
     if (len == 0 || len >= CUB_MOTION_NAME_LEN)
-        return rt_fail(diag, CUB_ERR_FORMAT, file, line, "bad source joint name \"%s\"", word);
+        return cub_diag_fail(diag, CUB_ERR_FORMAT, file, line, "bad source joint name \"%s\"", word);
     memcpy(src->name, word, len);
     src->name[len] = '\0';
     src->joint = -1;
@@ -50,7 +50,7 @@ static cub_err parse_source(const char *word, cub_retarget_source *src, const ch
         errno = 0;
         src->weight = strtod(colon + 1, &e);
         if (e == colon + 1 || *e || errno || !isfinite(src->weight) || src->weight <= 0)
-            return rt_fail(diag, CUB_ERR_FORMAT, file, line,
+            return cub_diag_fail(diag, CUB_ERR_FORMAT, file, line,
                            "bad weight \"%s\" for \"%s\" (a number > 0)", colon + 1, src->name);
     }
     return CUB_OK;
@@ -60,17 +60,17 @@ static cub_err parse_line(cub_retarget_map *map, char words[][CUB_MOTION_NAME_LE
                           const char *file, int line, cub_diag *diag)
 {
     if (n < 2)
-        return rt_fail(diag, CUB_ERR_FORMAT, file, line,
+        return cub_diag_fail(diag, CUB_ERR_FORMAT, file, line,
                        "expected `TargetJoint SourceJoint [aim|rot]`, got one word \"%s\"",
                        words[0]);
     if (map->link_count >= CUB_MOTION_MAX_JOINTS)
-        return rt_fail(diag, CUB_ERR_FORMAT, file, line, "more than %d links",
+        return cub_diag_fail(diag, CUB_ERR_FORMAT, file, line, "more than %d links",
                        CUB_MOTION_MAX_JOINTS);
     if (strlen(words[0]) >= CUB_MOTION_NAME_LEN)
-        return rt_fail(diag, CUB_ERR_FORMAT, file, line, "target name \"%s\" too long", words[0]);
+        return cub_diag_fail(diag, CUB_ERR_FORMAT, file, line, "target name \"%s\" too long", words[0]);
     for (int i = 0; i < map->link_count; i++)
         if (!strcmp(map->link[i].target_name, words[0]))
-            return rt_fail(diag, CUB_ERR_FORMAT, file, line,
+            return cub_diag_fail(diag, CUB_ERR_FORMAT, file, line,
                            "target joint \"%s\" already linked on line %d", words[0],
                            map->link[i].line);
     cub_retarget_link *lk = &map->link[map->link_count];
@@ -83,9 +83,9 @@ static cub_err parse_line(cub_retarget_map *map, char words[][CUB_MOTION_NAME_LE
         n--;
     }
     if (n < 2)
-        return rt_fail(diag, CUB_ERR_FORMAT, file, line, "\"%s\" has no source joint", words[0]);
+        return cub_diag_fail(diag, CUB_ERR_FORMAT, file, line, "\"%s\" has no source joint", words[0]);
     if (n - 1 > CUB_RETARGET_MAX_SOURCES)
-        return rt_fail(diag, CUB_ERR_FORMAT, file, line, "more than %d sources for \"%s\"",
+        return cub_diag_fail(diag, CUB_ERR_FORMAT, file, line, "more than %d sources for \"%s\"",
                        CUB_RETARGET_MAX_SOURCES, words[0]);
     double sum = 0;
     for (int i = 1; i < n; i++) {
@@ -106,7 +106,7 @@ cub_err cub_retarget_map_parse(const char *text, size_t len, const char *name,
 {
     const char *file = name ? name : "(map)";
     if (!out || (!text && len))
-        return rt_fail(diag, CUB_ERR_ARG, file, 0, "no text or output");
+        return cub_diag_fail(diag, CUB_ERR_ARG, file, 0, "no text or output");
     memset(out, 0, sizeof(*out));
     snprintf(out->file, sizeof(out->file), "%s", file);
     const char *p = text, *end = text + len;
@@ -116,10 +116,10 @@ cub_err cub_retarget_map_parse(const char *text, size_t len, const char *name,
         if (!eol)
             eol = end;
         if (memchr(p, '\0', (size_t)(eol - p)))
-            return rt_fail(diag, CUB_ERR_FORMAT, file, line, "NUL byte in the table");
+            return cub_diag_fail(diag, CUB_ERR_FORMAT, file, line, "NUL byte in the table");
         int n = split_words(p, eol, words);
         if (n < 0)
-            return rt_fail(diag, CUB_ERR_FORMAT, file, line,
+            return cub_diag_fail(diag, CUB_ERR_FORMAT, file, line,
                            "too many words or a name over %d characters",
                            CUB_MOTION_NAME_LEN - 1);
         if (n > 0) {
@@ -130,7 +130,7 @@ cub_err cub_retarget_map_parse(const char *text, size_t len, const char *name,
         p = eol + 1;
     }
     if (out->link_count == 0)
-        return rt_fail(diag, CUB_ERR_FORMAT, file, 0, "no links in the table");
+        return cub_diag_fail(diag, CUB_ERR_FORMAT, file, 0, "no links in the table");
     return CUB_OK;
 }
 
@@ -150,18 +150,18 @@ cub_err cub_retarget_map_bind(cub_retarget_map *map, const cub_skeleton *target,
                               const cub_skeleton *source, cub_diag *diag)
 {
     if (!map || !target || !source)
-        return rt_fail(diag, CUB_ERR_ARG, "(map)", 0, "no map or skeleton");
+        return cub_diag_fail(diag, CUB_ERR_ARG, "(map)", 0, "no map or skeleton");
     map->bound = 0;
     for (int i = 0; i < map->link_count; i++) {
         cub_retarget_link *lk = &map->link[i];
         lk->target = cub_motion_skeleton_find(target, lk->target_name);
         if (lk->target < 0)
-            return rt_fail(diag, CUB_ERR_FORMAT, map->file, lk->line, "no target joint \"%s\"",
+            return cub_diag_fail(diag, CUB_ERR_FORMAT, map->file, lk->line, "no target joint \"%s\"",
                            lk->target_name);
         for (int s = 0; s < lk->source_count; s++) {
             lk->source[s].joint = cub_motion_skeleton_find(source, lk->source[s].name);
             if (lk->source[s].joint < 0)
-                return rt_fail(diag, CUB_ERR_FORMAT, map->file, lk->line,
+                return cub_diag_fail(diag, CUB_ERR_FORMAT, map->file, lk->line,
                                "no source joint \"%s\" in the source skeleton",
                                lk->source[s].name);
         }
@@ -172,7 +172,7 @@ cub_err cub_retarget_map_bind(cub_retarget_map *map, const cub_skeleton *target,
         for (int k = 0; k < map->link_count && lk->policy == CUB_RETARGET_AIM; k++)
             child |= target->joints[map->link[k].target].parent == lk->target;
         if (lk->policy == CUB_RETARGET_AIM && !child)
-            return rt_fail(diag, CUB_ERR_FORMAT, map->file, lk->line,
+            return cub_diag_fail(diag, CUB_ERR_FORMAT, map->file, lk->line,
                            "\"%s\" is marked aim but no child of it is linked", lk->target_name);
     }
     map->bound = 1;

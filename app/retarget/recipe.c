@@ -61,7 +61,7 @@ static cub_err parse_option(cub_recipe_clip *c, const char *w, const char *file,
         return CUB_OK;
     if (!strncmp(w, "turn=", 5) && parse_num(w + 5, &c->turn_deg) && fabs(c->turn_deg) <= 360)
         return CUB_OK;
-    return rt_fail(diag, CUB_ERR_FORMAT, file, line,
+    return cub_diag_fail(diag, CUB_ERR_FORMAT, file, line,
                    "bad option \"%s\" (speed=0.1..10, turn=-360..360, mirror)", w);
 }
 
@@ -69,25 +69,25 @@ static cub_err parse_clip(cub_recipe *r, recipe_word *w, int n, const char *file
                           cub_diag *diag)
 {
     if (n < 6)
-        return rt_fail(diag, CUB_ERR_FORMAT, file, line,
+        return cub_diag_fail(diag, CUB_ERR_FORMAT, file, line,
                        "expected `name kind source map start_s end_s [options]`, got %d words",
                        n);
     if (r->clip_count >= CUB_RECIPE_MAX_CLIPS)
-        return rt_fail(diag, CUB_ERR_FORMAT, file, line, "more than %d clips",
+        return cub_diag_fail(diag, CUB_ERR_FORMAT, file, line, "more than %d clips",
                        CUB_RECIPE_MAX_CLIPS);
     cub_recipe_clip *c = &r->clip[r->clip_count];
     memset(c, 0, sizeof(*c));
     c->line = line;
     c->speed = 1;
     if (strlen(w[0]) >= sizeof(c->name))
-        return rt_fail(diag, CUB_ERR_FORMAT, file, line, "clip name \"%s\" over %zu characters",
+        return cub_diag_fail(diag, CUB_ERR_FORMAT, file, line, "clip name \"%s\" over %zu characters",
                        w[0], sizeof(c->name) - 1);
     for (int i = 0; i < r->clip_count; i++)
         if (!strcmp(r->clip[i].name, w[0]))
-            return rt_fail(diag, CUB_ERR_FORMAT, file, line, "clip \"%s\" already on line %d",
+            return cub_diag_fail(diag, CUB_ERR_FORMAT, file, line, "clip \"%s\" already on line %d",
                            w[0], r->clip[i].line);
     if (strcmp(w[1], "dance") && strcmp(w[1], "coach"))
-        return rt_fail(diag, CUB_ERR_FORMAT, file, line,
+        return cub_diag_fail(diag, CUB_ERR_FORMAT, file, line,
                        "kind \"%s\" is neither dance nor coach", w[1]);
     snprintf(c->name, sizeof(c->name), "%s", w[0]);
     snprintf(c->kind, sizeof(c->kind), "%s", w[1]);
@@ -95,7 +95,7 @@ static cub_err parse_clip(cub_recipe *r, recipe_word *w, int n, const char *file
     snprintf(c->map, sizeof(c->map), "%s", w[3]);
     if (!parse_num(w[4], &c->start_s) || !parse_num(w[5], &c->end_s) || c->start_s < 0 ||
         (c->end_s > 0 && c->end_s <= c->start_s))
-        return rt_fail(diag, CUB_ERR_FORMAT, file, line,
+        return cub_diag_fail(diag, CUB_ERR_FORMAT, file, line,
                        "bad time range \"%s\" .. \"%s\" (seconds, start < end, or -)", w[4], w[5]);
     for (int i = 6; i < n; i++) {
         cub_err err = parse_option(c, w[i], file, line, diag);
@@ -111,11 +111,11 @@ cub_err cub_recipe_parse(const char *text, size_t len, const char *name, cub_rec
 {
     const char *file = name ? name : "(recipe)";
     if (!out || (!text && len))
-        return rt_fail(diag, CUB_ERR_ARG, file, 0, "no text or output");
+        return cub_diag_fail(diag, CUB_ERR_ARG, file, 0, "no text or output");
     memset(out, 0, sizeof(*out));
     recipe_word *w = malloc(sizeof(recipe_word) * RECIPE_MAX_WORDS);
     if (!w)
-        return rt_fail(diag, CUB_ERR_NOMEM, file, 0, "out of memory");
+        return cub_diag_fail(diag, CUB_ERR_NOMEM, file, 0, "out of memory");
     cub_err err = CUB_OK;
     const char *p = text, *end = text + len;
     for (int line = 1; p < end && !err; line++) {
@@ -124,16 +124,16 @@ cub_err cub_recipe_parse(const char *text, size_t len, const char *name, cub_rec
             eol = end;
         int n = memchr(p, '\0', (size_t)(eol - p)) ? -2 : split(p, eol, w);
         if (n == -2)
-            err = rt_fail(diag, CUB_ERR_FORMAT, file, line, "NUL byte in the recipe");
+            err = cub_diag_fail(diag, CUB_ERR_FORMAT, file, line, "NUL byte in the recipe");
         else if (n < 0)
-            err = rt_fail(diag, CUB_ERR_FORMAT, file, line, "too many words or a word too long");
+            err = cub_diag_fail(diag, CUB_ERR_FORMAT, file, line, "too many words or a word too long");
         else if (n > 0)
             err = parse_clip(out, w, n, file, line, diag);
         p = eol + 1;
     }
     free(w);
     if (!err && out->clip_count == 0)
-        err = rt_fail(diag, CUB_ERR_FORMAT, file, 0, "no clips in the recipe");
+        err = cub_diag_fail(diag, CUB_ERR_FORMAT, file, 0, "no clips in the recipe");
     return err;
 }
 

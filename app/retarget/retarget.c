@@ -15,9 +15,9 @@ static cub_err find_key(rt_ctx *c, const char *name, int *out)
 {
     *out = cub_motion_skeleton_find(c->tgt, name);
     if (*out < 0)
-        return rt_fail(c->diag, CUB_ERR_ARG, c->name, 0, "target has no joint \"%s\"", name);
+        return cub_diag_fail(c->diag, CUB_ERR_ARG, c->name, 0, "target has no joint \"%s\"", name);
     if (c->link_of[*out] < 0)
-        return rt_fail(c->diag, CUB_ERR_FORMAT, c->map->file, 0,
+        return cub_diag_fail(c->diag, CUB_ERR_FORMAT, c->map->file, 0,
                        "key joint \"%s\" is not linked to a source joint", name);
     return CUB_OK;
 }
@@ -29,7 +29,7 @@ static cub_err setup_links(rt_ctx *c)
     for (int l = 0; l < c->links; l++) {
         int t = c->map->link[l].target;
         if (t < 0 || t >= c->tj)
-            return rt_fail(c->diag, CUB_ERR_ARG, c->map->file, c->map->link[l].line,
+            return cub_diag_fail(c->diag, CUB_ERR_ARG, c->map->file, c->map->link[l].line,
                            "link not bound to this target");
         c->link_of[t] = l;
     }
@@ -41,7 +41,7 @@ static cub_err setup_links(rt_ctx *c)
                 break;
             }
         if (lk->policy == CUB_RETARGET_AIM && c->aim_of[lk->target] < 0)
-            return rt_fail(c->diag, CUB_ERR_FORMAT, c->map->file, lk->line,
+            return cub_diag_fail(c->diag, CUB_ERR_FORMAT, c->map->file, lk->line,
                            "\"%s\" is marked aim but no child of it is linked", lk->target_name);
     }
     const cub_retarget_joints *k = &c->d.joints;
@@ -75,7 +75,7 @@ static cub_err alloc_work(rt_ctx *c)
     c->s_wpos = malloc((size_t)c->sj * sizeof(rt_v3));
     if (!c->lpos || !c->lrot || !c->root || !c->local || !c->contact[0] || !c->contact[1] ||
         !c->s_rot || !c->s_wrot || !c->s_trans || !c->s_wpos)
-        return rt_fail(c->diag, CUB_ERR_NOMEM, c->name, 0, "out of memory for %d frames",
+        return cub_diag_fail(c->diag, CUB_ERR_NOMEM, c->name, 0, "out of memory for %d frames",
                        c->frames);
     return CUB_OK;
 }
@@ -164,11 +164,11 @@ static cub_err write_out(const rt_ctx *c, const cub_skeleton *target, cub_io_mot
     size_t size = cub_motion_clip_mem_size(c->tj, c->frames, 0);
     void *mem = malloc(size ? size : 1);
     if (!mem)
-        return rt_fail(c->diag, CUB_ERR_NOMEM, c->name, 0, "out of memory");
+        return cub_diag_fail(c->diag, CUB_ERR_NOMEM, c->name, 0, "out of memory");
     cub_err err = cub_motion_clip_init(&out->clip, &out->skel, c->frames, frame_ns, 0, mem, size);
     if (err) {
         free(mem);
-        return rt_fail(c->diag, err, c->name, 0, "cannot lay out the clip: %s", cub_err_str(err));
+        return cub_diag_fail(c->diag, err, c->name, 0, "cannot lay out the clip: %s", cub_err_str(err));
     }
     out->frame_mem = mem;
     for (int f = 0; f < c->frames; f++) {
@@ -202,9 +202,9 @@ static cub_err check_args(rt_ctx *c, const cub_retarget_desc *desc)
     if (c->d.contact_speed_mm_s <= 0)
         c->d.contact_speed_mm_s = 180;
     if (!c->map->bound)
-        return rt_fail(c->diag, CUB_ERR_ARG, c->map->file, 0, "map not bound to the skeletons");
+        return cub_diag_fail(c->diag, CUB_ERR_ARG, c->map->file, 0, "map not bound to the skeletons");
     if (!c->src->skel || c->src->frame_count < 1 || !c->src->frame_ns)
-        return rt_fail(c->diag, CUB_ERR_ARG, c->name, 0, "empty source clip");
+        return cub_diag_fail(c->diag, CUB_ERR_ARG, c->name, 0, "empty source clip");
     c->tj = c->tgt->joint_count;
     c->sj = c->src->skel->joint_count;
     c->links = c->map->link_count;
@@ -214,7 +214,7 @@ static cub_err check_args(rt_ctx *c, const cub_retarget_desc *desc)
     double end = c->d.end_s > 0 ? c->d.end_s : dur;
     if (!isfinite(c->d.start_s) || !isfinite(end) || c->d.start_s < 0 ||
         end > dur + c->src_dt_s || end <= c->d.start_s)
-        return rt_fail(c->diag, CUB_ERR_RANGE, c->name, 0,
+        return cub_diag_fail(c->diag, CUB_ERR_RANGE, c->name, 0,
                        "time range %.3f..%.3f s is not inside the source (0..%.3f s)",
                        c->d.start_s, end, dur);
     c->frames = (int)floor((end - c->d.start_s) / (c->dt_s * c->d.speed) + 1e-9) + 1;
@@ -226,10 +226,10 @@ cub_err cub_retarget_clip(const cub_retarget_map *map, const cub_skeleton *targe
                           cub_retarget_report *report, cub_diag *diag)
 {
     if (!map || !target || !src || !out)
-        return rt_fail(diag, CUB_ERR_ARG, "(retarget)", 0, "missing map, target, source or out");
+        return cub_diag_fail(diag, CUB_ERR_ARG, "(retarget)", 0, "missing map, target, source or out");
     rt_ctx *c = calloc(1, sizeof(*c));
     if (!c)
-        return rt_fail(diag, CUB_ERR_NOMEM, "(retarget)", 0, "out of memory");
+        return cub_diag_fail(diag, CUB_ERR_NOMEM, "(retarget)", 0, "out of memory");
     c->map = map, c->tgt = target, c->src = src, c->diag = diag;
     cub_retarget_report rep;
     memset(&rep, 0, sizeof(rep));

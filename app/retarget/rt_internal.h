@@ -57,8 +57,4 @@ cub_vec3 rt_v3_to_fx(rt_v3 v);
 void rt_forward(const cub_skeleton *skel, rt_v3 root, const rt_q *rot, const rt_v3 *trans,
                 rt_v3 *world_pos, rt_q *world_rot);
 
-/* Fill the diag and return err. */
-cub_err rt_fail(cub_diag *diag, cub_err err, const char *file, int line, const char *fmt, ...)
-    __attribute__((format(printf, 5, 6)));
-
 #endif

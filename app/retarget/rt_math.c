@@ -1,7 +1,5 @@
 /* Double-precision vectors and quaternions for the offline retargeter. */
 #include <math.h>
-#include <stdarg.h>
-#include <stdio.h>
 #include <string.h>
 
 #include "rt_internal.h"
@@ -181,15 +179,3 @@ void rt_forward(const cub_skeleton *skel, rt_v3 root, const rt_q *rot, const rt_
     }
 }
 
-cub_err rt_fail(cub_diag *diag, cub_err err, const char *file, int line, const char *fmt, ...)
-{
-    if (!diag)
-        return err;
-    snprintf(diag->file, sizeof(diag->file), "%s", file ? file : "");
-    diag->line = line;
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(diag->msg, sizeof(diag->msg), fmt, ap);
-    va_end(ap);
-    return err;
-}

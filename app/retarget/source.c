@@ -151,11 +151,11 @@ cub_err rt_setup_frames(rt_ctx *c)
     rt_v3 left = rt_v3_sub(pos[c->link_of[c->up_leg[0]]], pos[c->link_of[c->up_leg[1]]]);
     if (rt_v3_len(up) < 1e-6 || rt_v3_len(left) < 1e-6 ||
         rt_v3_len(rt_v3_cross(up, left)) < 0.5 * rt_v3_len(up) * rt_v3_len(left))
-        return rt_fail(c->diag, CUB_ERR_FORMAT, c->name, 0,
+        return cub_diag_fail(c->diag, CUB_ERR_FORMAT, c->name, 0,
                        "source rest pose has no clear up (hips->head) and left (hips)");
     rt_v3 up_axis = nearest_axis(up), left_axis = nearest_axis(left);
     if (fabs(rt_v3_dot(up_axis, left_axis)) > 0.5)
-        return rt_fail(c->diag, CUB_ERR_FORMAT, c->name, 0,
+        return cub_diag_fail(c->diag, CUB_ERR_FORMAT, c->name, 0,
                        "source rest pose: up (hips->head) and left (hips) share an axis");
     c->q0 = rt_q_frames(up_axis, left_axis, rt_v3_make(0, 1, 0), rt_v3_make(1, 0, 0));
 
@@ -173,7 +173,7 @@ cub_err rt_setup_frames(rt_ctx *c)
             tgt_low = c->tgt_rest_pos[j].y;
     double tgt_h = c->tgt_rest_pos[c->hips].y - tgt_low;
     if (src_h < 1 || tgt_h < 1)
-        return rt_fail(c->diag, CUB_ERR_FORMAT, c->name, 0,
+        return cub_diag_fail(c->diag, CUB_ERR_FORMAT, c->name, 0,
                        "hip height too small (source %.1f mm, target %.1f mm)", src_h, tgt_h);
     c->k = tgt_h / src_h;
 

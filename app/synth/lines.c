@@ -10,16 +10,11 @@
 
 cub_err synth_fail(cub_diag *diag, const char *file, int line, const char *fmt, ...)
 {
-    if (diag) {
-        memset(diag, 0, sizeof(*diag));
-        snprintf(diag->file, sizeof(diag->file), "%.250s", file ? file : "(memory)");
-        diag->line = line;
-        va_list ap;
-        va_start(ap, fmt);
-        vsnprintf(diag->msg, sizeof(diag->msg), fmt, ap);
-        va_end(ap);
-    }
-    return CUB_ERR_FORMAT;
+    va_list ap;
+    va_start(ap, fmt);
+    cub_err e = cub_diag_vfail(diag, CUB_ERR_FORMAT, file ? file : "(memory)", line, fmt, ap);
+    va_end(ap);
+    return e;
 }
 
 static int blank(char c)
