@@ -165,6 +165,23 @@ static void play(rec *r, int n, int from, int to, pose pose_p)
         feed(r, f, f >= from && f < to ? pose_p : STILL);
 }
 
+/* Frames [0, n): repetition a open from the start, b begun at its start
+ * frame; the child's right elbow bent in the n_spans frame spans [from, to)
+ * of `bent`, standing still otherwise. */
+static void play_two(rec *r, cub_judge_rep a, cub_judge_rep b, int n, const int bent[][2],
+                     int n_spans)
+{
+    assert_int_equal(cub_judge_begin_rep(r->j, &a), CUB_OK);
+    for (int f = 0; f < n; f++) {
+        if ((int64_t)f * FRAME_US == b.start_us)
+            assert_int_equal(cub_judge_begin_rep(r->j, &b), CUB_OK);
+        int in = 0;
+        for (int k = 0; k < n_spans; k++)
+            in |= f >= bent[k][0] && f < bent[k][1];
+        feed(r, f, in ? bent_right() : STILL);
+    }
+}
+
 /* ---- bad input ---------------------------------------------------------- */
 
 static void test_bad_input_is_refused(void **state)
@@ -338,13 +355,8 @@ static void test_one_run_credits_one_repetition(void **state)
     for (int again = 0; again < 2; again++) {
         rec r;
         rec_init(&r, NULL);
-        cub_judge_rep a = rep_rhe(0, 0, 60), b = rep_rhe(1, 60, 120);
-        assert_int_equal(cub_judge_begin_rep(r.j, &a), CUB_OK);
-        for (int f = 0; f < 160; f++) {
-            if (f == 60) assert_int_equal(cub_judge_begin_rep(r.j, &b), CUB_OK);
-            int bent = (f >= 62 && f < 80) || (again && f >= 100 && f < 110);
-            feed(&r, f, bent ? bent_right() : STILL);
-        }
+        const int bent[][2] = {{62, 80}, {100, 110}};
+        play_two(&r, rep_rhe(0, 0, 60), rep_rhe(1, 60, 120), 160, bent, again ? 2 : 1);
         assert_int_equal(count(&r, CUB_JUDGE_VERDICT), 2);
         const cub_judge_event *va = nth(&r, CUB_JUDGE_VERDICT, 0);
         const cub_judge_event *vb = nth(&r, CUB_JUDGE_VERDICT, 1);
@@ -391,13 +403,8 @@ static void test_pose_in_the_first_beat_belongs_to_the_previous(void **state)
     for (int held_on = 0; held_on < 2; held_on++) {
         rec r;
         rec_init(&r, NULL);
-        cub_judge_rep a = rep_rhe(0, 0, 60), b = rep_rhe(1, 60, 120);
-        assert_int_equal(cub_judge_begin_rep(r.j, &a), CUB_OK);
-        for (int f = 0; f < 160; f++) {
-            if (f == 60) assert_int_equal(cub_judge_begin_rep(r.j, &b), CUB_OK);
-            int bent = (f >= 20 && f < 30) || (f >= 62 && f < (held_on ? 80 : 72));
-            feed(&r, f, bent ? bent_right() : STILL);
-        }
+        const int bent[][2] = {{20, 30}, {62, held_on ? 80 : 72}};
+        play_two(&r, rep_rhe(0, 0, 60), rep_rhe(1, 60, 120), 160, bent, 2);
         assert_int_equal(count(&r, CUB_JUDGE_VERDICT), 2);
         const cub_judge_event *vb = nth(&r, CUB_JUDGE_VERDICT, 1);
         assert_int_equal(vb->rep, 1);
@@ -414,12 +421,8 @@ static void test_next_repetition_ends_the_open_one(void **state)
     (void)state;
     rec r;
     rec_init(&r, NULL);
-    cub_judge_rep a = rep_rhe(0, 0, 90), b = rep_rhe(1, 60, 120);
-    assert_int_equal(cub_judge_begin_rep(r.j, &a), CUB_OK);
-    for (int f = 0; f < 160; f++) {
-        if (f == 60) assert_int_equal(cub_judge_begin_rep(r.j, &b), CUB_OK);
-        feed(&r, f, f >= 80 && f < 90 ? bent_right() : STILL);
-    }
+    const int bent[][2] = {{80, 90}};
+    play_two(&r, rep_rhe(0, 0, 90), rep_rhe(1, 60, 120), 160, bent, 1);
     assert_int_equal(count(&r, CUB_JUDGE_VERDICT), 2);
     const cub_judge_event *va = nth(&r, CUB_JUDGE_VERDICT, 0);
     const cub_judge_event *vb = nth(&r, CUB_JUDGE_VERDICT, 1);
