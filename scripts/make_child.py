@@ -451,15 +451,16 @@ def build(song, plan, cues):
     for i, (tc, clip, reason, mi, r) in enumerate(cues):
         nxt = cues[i + 1][0] if i + 1 < len(cues) else end - REACT
         t0, t1 = max(tc + REACT, t), nxt + REACT
+        wrong = reason in ("move", "rep") and (mi, r) in mist and (mi, r) not in planted
+        if wrong:
+            planted.add((mi, r))
         if reason in DANCE:
-            wrong = (mi, r) in mist and (mi, r) not in planted and reason in ("move", "rep")
             expect.append((i, tc, nxt, mi, r, "wrong:" + mist[(mi, r)][0] if wrong else "right"))
         if t1 <= t0 + 1e-6:
             continue
         if reason not in DANCE:
             tl.append((t0, t1, stand, "watch " + clip))
-        elif (mi, r) in mist and (mi, r) not in planted and reason in ("move", "rep"):
-            planted.add((mi, r))
+        elif wrong:
             kind, segs = mist[(mi, r)]
             if kind == "still":
                 segs = stand
