@@ -45,19 +45,35 @@ static float hit_sphere(sv3 o, sv3 d, float dd, sv3 c, float r)
     return near_root(dd, v3_dot(oc, d), v3_dot(oc, oc) - r * r);
 }
 
-static float hit_capsule(const synth_prim *p, sv3 o, sv3 d, float dd)
+/* A ray o + t d against the infinite cylinder of radius r around the line
+ * through a and b: A t^2 + 2 B t + C = 0. A hit at t lies at baoa + t bard
+ * along b - a, scaled by baba: inside the segment when 0 < that < baba. */
+typedef struct axis_quad {
+    float baba, bard, baoa, A, B, C;
+} axis_quad;
+
+static axis_quad axis_quadratic(const synth_prim *p, sv3 o, sv3 d, float dd)
 {
     sv3 ba = v3_sub(p->b, p->a), oa = v3_sub(o, p->a);
-    float baba = v3_dot(ba, ba), bard = v3_dot(ba, d), baoa = v3_dot(ba, oa);
-    float A = baba * dd - bard * bard;
-    float B = baba * v3_dot(oa, d) - baoa * bard;
-    float C = baba * v3_dot(oa, oa) - baoa * baoa - p->r * p->r * baba;
-    if (A > 0 && B * B - A * C < 0)
+    axis_quad q;
+    q.baba = v3_dot(ba, ba);
+    q.bard = v3_dot(ba, d);
+    q.baoa = v3_dot(ba, oa);
+    q.A = q.baba * dd - q.bard * q.bard;
+    q.B = q.baba * v3_dot(oa, d) - q.baoa * q.bard;
+    q.C = q.baba * v3_dot(oa, oa) - q.baoa * q.baoa - p->r * p->r * q.baba;
+    return q;
+}
+
+static float hit_capsule(const synth_prim *p, sv3 o, sv3 d, float dd)
+{
+    axis_quad q = axis_quadratic(p, o, d, dd);
+    if (q.A > 0 && q.B * q.B - q.A * q.C < 0)
         return -1.0f; /* misses the infinite cylinder, so the end spheres too */
-    float t = near_root(A, B, C);
+    float t = near_root(q.A, q.B, q.C);
     if (t > 0) {
-        float y = baoa + t * bard;
-        if (y > 0 && y < baba) return t;
+        float y = q.baoa + t * q.bard;
+        if (y > 0 && y < q.baba) return t;
     }
     /* An end sphere; both when the camera lies inside the infinite
      * cylinder (a limb pointing at the camera). */
@@ -68,20 +84,16 @@ static float hit_capsule(const synth_prim *p, sv3 o, sv3 d, float dd)
 
 static float hit_cylinder(const synth_prim *p, sv3 o, sv3 d, float dd)
 {
-    sv3 ba = v3_sub(p->b, p->a), oc = v3_sub(o, p->a);
-    float baba = v3_dot(ba, ba), bard = v3_dot(ba, d), baoc = v3_dot(ba, oc);
-    float k2 = baba * dd - bard * bard;
-    float k1 = baba * v3_dot(oc, d) - baoc * bard;
-    float k0 = baba * v3_dot(oc, oc) - baoc * baoc - p->r * p->r * baba;
-    float h = k1 * k1 - k2 * k0;
-    if (h < 0 || k2 <= 0) return -1.0f;
+    axis_quad q = axis_quadratic(p, o, d, dd);
+    float h = q.B * q.B - q.A * q.C;
+    if (h < 0 || q.A <= 0) return -1.0f;
     h = sqrtf(h);
-    float t = (-k1 - h) / k2;
-    float y = baoc + t * bard;
-    if (y > 0 && y < baba) return t;
-    if (fabsf(bard) < 1e-6f) return -1.0f;
-    t = ((y < 0 ? 0 : baba) - baoc) / bard; /* the cap facing the ray */
-    return fabsf(k1 + k2 * t) < h ? t : -1.0f;
+    float t = (-q.B - h) / q.A;
+    float y = q.baoa + t * q.bard;
+    if (y > 0 && y < q.baba) return t;
+    if (fabsf(q.bard) < 1e-6f) return -1.0f;
+    t = ((y < 0 ? 0 : q.baba) - q.baoa) / q.bard; /* the cap facing the ray */
+    return fabsf(q.B + q.A * t) < h ? t : -1.0f;
 }
 
 static float hit_ellipsoid(const synth_prim *p, sv3 o, sv3 d)
