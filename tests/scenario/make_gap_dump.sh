@@ -8,20 +8,14 @@
 # Exits 77 (skip) when the source dump is absent.
 set -euo pipefail
 src=$1 out=$2 gap_from=${3:-7} gap_to=${4:-10} end=${5:-13}
-if [ ! -f "$src/INDEX.txt" ]; then
-    echo "SKIP: no fakenect dump at $src"
-    exit 77
-fi
-mapfile -t frames < <(grep '^d-' "$src/INDEX.txt")
+. "$(dirname "$0")/dump_common.sh"
+read_source_frames "$src"
 rm -rf "$out"
 mkdir -p "$out"
 : > "$out/INDEX.txt"
-k=0
-# frame k at k/30 s; the Kinect's 60 MHz timestamp is 2,000,000 a frame
 for ((k = 0; k < end * 30; k++)); do
     if ((k >= gap_from * 30 && k < gap_to * 30)); then continue; fi
-    t=$(printf '%d.%06d' $((1300000000 + k / 30)) $(((k % 30) * 1000000 / 30)))
-    name="d-$t-$((1000000 + 2000000 * k)).pgm"
+    name=$(frame_name "$k")
     ln -s "$(cd "$src" && pwd)/${frames[k % ${#frames[@]}]}" "$out/$name"
     echo "$name" >> "$out/INDEX.txt"
 done

@@ -11,11 +11,8 @@
 # Exits 77 (skip) when the source dump is absent.
 set -euo pipefail
 src=$1 out=$2
-if [ ! -f "$src/INDEX.txt" ]; then
-    echo "SKIP: no fakenect dump at $src"
-    exit 77
-fi
-mapfile -t frames < <(grep '^d-' "$src/INDEX.txt")
+. "$(dirname "$0")/dump_common.sh"
+read_source_frames "$src"
 rm -rf "$out"
 mkdir -p "$out/garbage"
 header='P5 640 480 65535\n'
@@ -33,8 +30,7 @@ for ((k = 0; k < 8 * 30; k++)); do
     *) target="$(cd "$src" && pwd)/${frames[k % ${#frames[@]}]}" ;;
     esac
     [ "$k" -eq 180 ] && target="$out/garbage/truncated.pgm"
-    t=$(printf '%d.%06d' $((1300000000 + k / 30)) $(((k % 30) * 1000000 / 30)))
-    name="d-$t-$((1000000 + 2000000 * k)).pgm"
+    name=$(frame_name "$k")
     if [ "$k" -ne 195 ]; then
         ln -s "$(cd "$(dirname "$target")" && pwd)/$(basename "$target")" "$out/$name"
     fi
