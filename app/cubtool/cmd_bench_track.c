@@ -13,19 +13,9 @@
 
 #include "commands.h"
 #include "cub/track.h"
+#include "track_dump.h"
 
-#define FRAME_PIXELS (CUB_TRACK_WIDTH * CUB_TRACK_HEIGHT)
 #define BENCH_MIN_RUNS 300
-
-/* The dump loader lives in cmd_eval_track.c. */
-typedef struct track_dump {
-    int n;
-    uint16_t *raw;
-    int64_t *t_us;
-    char (*name)[128];
-} track_dump;
-int cub_track_dump_load(const char *dir, track_dump *d, int max_frames);
-void cub_track_dump_free(track_dump *d);
 
 static double now_ms(void)
 {
@@ -73,23 +63,19 @@ int cub_cmd_bench_track(int argc, char **argv)
         snprintf(def, sizeof def, "%s/depth/skeltrack", data ? data : CUB_DATA_DIR_DEFAULT);
         dir = def;
     }
-    track_dump d;
-    if (cub_track_dump_load(dir, &d, 2000)) return 1;
-    cub_track_desc desc = {0};
-    size_t sz = cub_track_mem_size(&desc);
-    void *mem = aligned_alloc(16, (sz + 15) / 16 * 16);
-    cub_tracker *t = NULL;
-    if (!mem || cub_track_init(&desc, mem, sz, &t)) {
-        fprintf(stderr, "bench-track: cannot set up the tracker\n");
-        return 1;
-    }
+    cub_tool_dump d;
+    if (cub_tool_dump_load(dir, &d, 2000, "bench-track")) return 1;
+    void *mem = NULL;
+    cub_tracker *t = cub_tool_tracker_new(&mem, "bench-track");
+    if (!t) return 1;
+    size_t sz = cub_track_mem_size(&(cub_track_desc){0});
     int runs = d.n < BENCH_MIN_RUNS ? (BENCH_MIN_RUNS + d.n - 1) / d.n * d.n : d.n;
     double *ms = malloc((size_t)runs * sizeof *ms);
     for (int r = 0; ms && r < runs; r++) {
         cub_track_skeleton s;
         int f = r % d.n;
         double t0 = now_ms();
-        cub_track_frame(t, d.raw + (size_t)f * FRAME_PIXELS, (int64_t)r * 33333, NULL, &s);
+        cub_track_frame(t, d.raw + (size_t)f * CUB_TOOL_FRAME_PIXELS, (int64_t)r * 33333, NULL, &s);
         ms[r] = now_ms() - t0;
     }
     if (!ms) return 1;
@@ -100,6 +86,6 @@ int cub_cmd_bench_track(int argc, char **argv)
     whole_tick(dir, d.n);
     free(ms);
     free(mem);
-    cub_track_dump_free(&d);
+    cub_tool_dump_free(&d);
     return 0;
 }

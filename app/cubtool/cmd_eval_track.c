@@ -2,7 +2,8 @@
  * dump (INDEX.txt + d-*.pgm, raw 11-bit little-endian) and compare with the
  * true joints: per-joint mean error (mm), share within 10 cm per joint and
  * overall, status counts, frames per second. Also: --print (each frame's
- * joints as pixels and mm). The dump loader is shared with bench-track. */
+ * joints as pixels and mm). The dump loader is track_dump.c (shared with
+ * bench-track). */
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -13,94 +14,9 @@
 #include "commands.h"
 #include "cub/synth.h"
 #include "cub/track.h"
+#include "track_dump.h"
 
 #define EVAL_MAX_FRAMES 20000
-#define FRAME_PIXELS (CUB_TRACK_WIDTH * CUB_TRACK_HEIGHT)
-
-/* One dump in memory: frames in INDEX order (depth frames only). */
-typedef struct track_dump {
-    int n;
-    uint16_t *raw;   /* n * FRAME_PIXELS */
-    int64_t *t_us;   /* n */
-    char (*name)[128];
-} track_dump;
-
-/* A PGM of the dump: "P5 640 480 65535\n" then little-endian uint16.
- * Malformed or truncated files are refused with a message. */
-static int read_pgm(const char *path, uint16_t *out)
-{
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        fprintf(stderr, "eval-track: %s: %s\n", path, strerror(errno));
-        return -1;
-    }
-    int w = 0, h = 0, maxv = 0;
-    if (fscanf(f, "P5 %d %d %d", &w, &h, &maxv) != 3 || w != CUB_TRACK_WIDTH || h != CUB_TRACK_HEIGHT ||
-        maxv != 65535 || fgetc(f) == EOF) {
-        fprintf(stderr, "eval-track: %s: not a 640x480 16-bit P5 depth frame\n", path);
-        fclose(f);
-        return -1;
-    }
-    uint8_t *buf = malloc(FRAME_PIXELS * 2);
-    size_t got = buf ? fread(buf, 1, FRAME_PIXELS * 2, f) : 0;
-    fclose(f);
-    if (got != FRAME_PIXELS * 2) {
-        fprintf(stderr, "eval-track: %s: truncated (%zu of %d bytes)\n", path, got, FRAME_PIXELS * 2);
-        free(buf);
-        return -1;
-    }
-    for (int i = 0; i < FRAME_PIXELS; i++) out[i] = (uint16_t)(buf[2 * i] | buf[2 * i + 1] << 8);
-    free(buf);
-    return 0;
-}
-
-void cub_track_dump_free(track_dump *d);
-void cub_track_dump_free(track_dump *d)
-{
-    free(d->raw), free(d->t_us), free(d->name);
-    memset(d, 0, sizeof *d);
-}
-
-/* Loads every depth frame of DIR/INDEX.txt; a bad frame is reported and
- * skipped. Returns 0 when at least one frame loaded. */
-int cub_track_dump_load(const char *dir, track_dump *d, int max_frames);
-int cub_track_dump_load(const char *dir, track_dump *d, int max_frames)
-{
-    memset(d, 0, sizeof *d);
-    char path[4096];
-    snprintf(path, sizeof path, "%s/INDEX.txt", dir);
-    FILE *f = fopen(path, "r");
-    if (!f) {
-        fprintf(stderr, "eval-track: %s: %s\n", path, strerror(errno));
-        return -1;
-    }
-    char line[512];
-    int cap = 0;
-    while (fgets(line, sizeof line, f) && d->n < max_frames) {
-        line[strcspn(line, "\r\n")] = 0;
-        if (line[0] != 'd' || line[1] != '-' || strlen(line) >= 128) continue;
-        if (d->n == cap) {
-            cap = cap ? cap * 2 : 64;
-            d->raw = realloc(d->raw, (size_t)cap * FRAME_PIXELS * sizeof *d->raw);
-            d->t_us = realloc(d->t_us, (size_t)cap * sizeof *d->t_us);
-            d->name = realloc(d->name, (size_t)cap * sizeof *d->name);
-            if (!d->raw || !d->t_us || !d->name) {
-                fclose(f);
-                return -1;
-            }
-        }
-        snprintf(path, sizeof path, "%s/%s", dir, line);
-        if (read_pgm(path, d->raw + (size_t)d->n * FRAME_PIXELS)) continue;
-        /* d-<sec>.<frac>-<us>.pgm: the seconds stamp */
-        double sec = strtod(line + 2, NULL);
-        d->t_us[d->n] = (int64_t)(sec * 1e6);
-        snprintf(d->name[d->n], sizeof d->name[d->n], "%s", line);
-        d->n++;
-    }
-    fclose(f);
-    if (d->n == 0) fprintf(stderr, "eval-track: %s: no depth frames\n", dir);
-    return d->n ? 0 : -1;
-}
 
 /* The truth (cub/synth.h's reader: checked line by line, fuzzed), or NULL
  * when there is none; a truth that is there but bad is an error. */
@@ -172,35 +88,31 @@ int cub_cmd_eval_track(int argc, char **argv)
         fprintf(stderr, "usage: cubtool eval-track DUMP_DIR [TRUTH] [--print]\n");
         return 2;
     }
-    track_dump d;
-    if (cub_track_dump_load(dir, &d, EVAL_MAX_FRAMES)) return 1;
+    cub_tool_dump d;
+    if (cub_tool_dump_load(dir, &d, EVAL_MAX_FRAMES, "eval-track")) return 1;
     char tpath[4096];
     if (!truth) snprintf(tpath, sizeof tpath, "%s/truth.txt", dir), truth = tpath;
     cub_synth_truth tt = {0};
     int have_truth = 0;
     if (load_truth(truth, &tt, &have_truth)) {
-        cub_track_dump_free(&d);
+        cub_tool_dump_free(&d);
         return 1;
     }
     cub_vec3 grav = {(cub_q16)(tt.gravity[0] * 65536), (cub_q16)(tt.gravity[1] * 65536),
                      (cub_q16)(tt.gravity[2] * 65536)};
     int have_grav = have_truth && !no_gravity;
 
-    cub_track_desc desc = {0};
-    size_t sz = cub_track_mem_size(&desc);
-    void *mem = aligned_alloc(16, (sz + 15) / 16 * 16);
-    cub_tracker *t = NULL;
-    if (!mem || cub_track_init(&desc, mem, sz, &t)) {
-        fprintf(stderr, "eval-track: cannot set up the tracker\n");
-        return 1;
-    }
+    void *mem = NULL;
+    cub_tracker *t = cub_tool_tracker_new(&mem, "eval-track");
+    if (!t) return 1;
     double err_sum[CUB_TJ_COUNT] = {0};
     int within[CUB_TJ_COUNT] = {0}, count[CUB_TJ_COUNT] = {0}, status[5] = {0};
     double secs = 0;
     for (int f = 0; f < d.n; f++) {
         cub_track_skeleton s;
         double t0 = now_s();
-        cub_track_frame(t, d.raw + (size_t)f * FRAME_PIXELS, d.t_us[f], have_grav ? &grav : NULL, &s);
+        cub_track_frame(t, d.raw + (size_t)f * CUB_TOOL_FRAME_PIXELS, d.t_us[f],
+                        have_grav ? &grav : NULL, &s);
         secs += now_s() - t0;
         if (s.status >= 0 && s.status < 5) status[s.status]++;
         if (print) print_frame(d.name[f], &s);
@@ -241,6 +153,6 @@ int cub_cmd_eval_track(int argc, char **argv)
            status[0], status[1], status[2], status[3], status[4], secs > 0 ? d.n / secs : 0.0);
     cub_synth_truth_free(&tt);
     free(mem);
-    cub_track_dump_free(&d);
+    cub_tool_dump_free(&d);
     return 0;
 }
