@@ -56,10 +56,7 @@ static void put32(uint8_t *p, uint32_t v)
 
 static cub_err fail(sf2 *s, cub_err e, const char *what)
 {
-    memset(s->diag, 0, sizeof *s->diag);
-    snprintf(s->diag->file, sizeof s->diag->file, "%s", s->name);
-    snprintf(s->diag->msg, sizeof s->diag->msg, "SoundFont: %s", what);
-    return e;
+    return cub_diag_fail(s->diag, e, s->name, 0, "SoundFont: %s", what);
 }
 
 static cub_err read_at(sf2 *s, uint32_t at, void *buf, size_t n)
