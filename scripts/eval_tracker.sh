@@ -36,7 +36,9 @@ DATA=${CUB_DATA_DIR:-$HERE/../../shared/data}
 
 # name | synth-depth arguments (besides --out, --data, --seed, --frames, --fps);
 # "--segments CLIP FROM TO;CLIP FROM TO;..." is written to a sequence file
-# and rendered with --sequence (segments each turned to face the camera)
+# and rendered with --sequence (segments each turned to face the camera);
+# "--derived NAME" is the clip NAME derived by scripts/child/twinkle.plan
+# (the box's own moves: a mocap clip with some joints' motion amplified)
 heldout_set() {
     cat <<'EOF'
 bye_childish|--clip dataset-1_bye_childish_001
@@ -80,6 +82,8 @@ bye_normal_loose|--clip dataset-1_bye_normal_001 --loose
 guide_normal|--clip dataset-1_guide_normal_001
 byebye_happy_sturdy|--clip dataset-1_byebye_happy_001 --build sturdy
 side_stretch|--segments 14_14 30.0 32.0;14_14 32.0 34.2;14_14 34.2 36.2;14_14 36.2 38.7
+stretch_both_arms|--derived reach_up --from 0.3 --to 3.8
+stretch_one_arm|--derived left_up --from 0.3 --to 3.8
 EOF
 }
 
@@ -102,6 +106,11 @@ ${SET}_set | while IFS='|' read -r name args; do
     out=$DUMPS/$SET-$name
     if [ ! -f "$out/truth.txt" ]; then
         case $args in
+        --derived\ *)
+            rest=${args#--derived }
+            python3 "$HERE/make_child.py" derive "$HERE/child/twinkle.plan" "$DUMPS/derived" ||
+                { echo "eval_tracker: deriving the clips of scripts/child/twinkle.plan failed" >&2; exit 1; }
+            args="--clip $DUMPS/derived/${rest%% *}.bvh ${rest#* }" ;;
         --segments\ *)
             mkdir -p "$out"
             printf '%s\n' "${args#--segments }" | tr ';' '\n' >"$out/sequence.txt"

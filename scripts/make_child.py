@@ -17,6 +17,9 @@ end"; scripts/e2e_child.sh runs it all).
         `all`: the keys together (the judge needs them in the same frames).
     scripts/make_child.py scan TRUTH KEY... [--from S --to S] [--every S]
         a clip's key memberships over time (KEY like RH=up), to pick segments.
+    scripts/make_child.py derive PLAN OUT
+        writes the plan's derived clips (its `derive` lines) as OUT/NAME.bvh
+        (scripts/eval_tracker.sh measures the tracker on them).
     scripts/make_child.py score EXPECT LOG
         the judge's verdicts and the coach's corrections in a cubdance log
         against expect.txt: the table per window and the counts; fails when
@@ -684,6 +687,10 @@ def main(argv):
         return 0
     if len(argv) in (4, 5) and argv[0] == "check":
         return cmd_check(argv[1], argv[2], argv[3], argv[4] if len(argv) == 5 else None)
+    if len(argv) == 3 and argv[0] == "derive":
+        os.makedirs(argv[2], exist_ok=True)
+        make_derived(read_plan(argv[1]), argv[2])
+        return 0
     if len(argv) >= 3 and argv[0] == "score":
         return cmd_score(argv[1], argv[2])
     if len(argv) >= 3 and argv[0] == "scan":

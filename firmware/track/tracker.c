@@ -30,7 +30,11 @@
  *      wrong head cannot hold on), and standing no higher above the floor
  *      than the stature learnt (a fist raised right above the head is
  *      round too: then the head is the body's column's top below that
- *      height); a round head leaning aside is kept, else with hands up
+ *      height), and reached straight up the neck: a hand laid on top of
+ *      the head is round too (the skull below it fills its disk), but its
+ *      path comes round from its elbow, out to the side, and runs far
+ *      along the surface from the skull below it: then the skull's top
+ *      under the hand is the head; a round head leaning aside is kept, else with hands up
  *      beside it the top of the body's column above the root; stature from
  *      the floor or from where the silhouette widens below the head (the
  *      neck base, within the proportions' range, which also places the

@@ -39,6 +39,9 @@ enum {
     HEAD_W_UP = 4,      /* weight of standing high above it */
     HEAD_ABOVE = 1120,  /* no head top this high above the floor, standing */
     HEAD_COLUMN = 1040, /* the head top below a hand raised above it */
+    HEAD_CLIMB = 200,   /* no farther from the head's middle to its top along the surface */
+    HEAD_SKULL_DZ = 50, /* the skull's surface, in depth about the face's */
+    HEAD_ARM_OUT = 110, /* a hand's path leads out to its elbow by more than */
 };
 
 /* Where a head's middle would be below the extremity tip: mm lower in the
@@ -82,8 +85,56 @@ static int32_t disk_fill_pct(const cub_tracker *t, int32_t c, int32_t rho_mm)
     return in * 100 / all;
 }
 
+/* The top of the skull under a hand laid on the head: up the column from
+ * the head's middle while the surface stays at the face's depth (the hand
+ * on top lies deeper or nearer). */
+static int32_t skull_top(const cub_tracker *t, int32_t middle, int32_t depth_mm)
+{
+    int32_t top = middle, z0 = t->z[middle];
+    for (int32_t i = middle - TRK_GW; i >= 0 && t->mask[i] && trk_abs(t->z[i] - z0) < depth_mm; i -= TRK_GW)
+        top = i;
+    return top;
+}
+
+/* How far aside (in x) of the tip its path from the root runs within its
+ * first len_mm: a hand laid on the head is reached from its elbow, out to
+ * the side; a head from the neck, below it. */
+static int32_t path_aside_mm(const cub_tracker *t, int32_t tip, int32_t len_mm)
+{
+    int32_t out = 0, end = t->dist0[tip] - len_mm;
+    for (int32_t i = tip, steps = 0; i >= 0 && t->dist0[i] > end && steps < 400; i = t->parent0[i], steps++)
+        if (trk_abs(t->x[i] - t->x[tip]) > out) out = trk_abs(t->x[i] - t->x[tip]);
+    return out;
+}
+
+/* A head candidate's cost (lower is better) and roundness. */
+static int32_t head_cost(const cub_tracker *t, trk_p3 r, int32_t c, int32_t middle, int32_t st0, bool *round)
+{
+    trk_p3 p = cell_p(t, c);
+    int32_t dh = p.y - r.y; /* image-up: the head is found before the up vector matters */
+    /* central, not in front of the torso, far out along the surface
+     * (a head stands out by neck and skull, a shoulder bump does not),
+     * and round (a raised hand beside the head is a strip) */
+    /* and high: a bump on a shoulder stands lower than a head leaning
+     * aside, which lies as far aside of the root as that shoulder */
+    int32_t cost = HEAD_W_X * trk_abs(p.x - r.x) / 4 - HEAD_W_UP * dh / 4 +
+                   2 * (r.z - p.z > 100 ? r.z - p.z - 100 : 0) - t->dist0[c];
+    /* (an arm held out level fills a far, coarse disk too, but it
+     * reaches out more than up) */
+    *round = disk_fill_pct(t, middle, pm(st0, 60)) >= 75 && trk_abs(p.x - r.x) < dh;
+    if (!*round) cost += 600;
+    /* last frame's head helps, but a wrong one must not hold on */
+    if (t->have_prev && t->lost_frames == 0) {
+        int32_t d = dist3(p, got(&t->prev, CUB_TJ_HEAD));
+        cost += d < 300 ? d : 300;
+    }
+    return cost;
+}
+
 /* The head: above the root, central, not a hand held in front; the nearer
- * to last frame's head the better. */
+ * to last frame's head the better. Returns the head's cell: an extremity,
+ * or the skull's top under a hand laid on the head (no extremity: the hand
+ * covers it). */
 static int32_t pick_head(const cub_tracker *t, int32_t root, const int32_t *ext, int32_t n, int32_t st0,
                          bool *is_round)
 {
@@ -93,29 +144,27 @@ static int32_t pick_head(const cub_tracker *t, int32_t root, const int32_t *ext,
     int32_t best = -1, best_cost = INT32_MAX;
     for (int32_t k = 0; k < n; k++) {
         trk_p3 p = cell_p(t, ext[k]);
-        int32_t dh = p.y - r.y; /* image-up: the head is found before the up vector matters */
-        if (trk_along(p.x - r.x, p.y - r.y, p.z - r.z, t->up) < 100 && dh < 100) continue;
+        if (trk_along(p.x - r.x, p.y - r.y, p.z - r.z, t->up) < 100 && p.y - r.y < 100) continue;
         /* a head sticks out of the torso by its neck and itself; a shallow
          * bump (a shoulder between arms held down) is no head */
         if (t->dist0[ext[k]] < min_geo_mm) continue;
-        /* central, not in front of the torso, far out along the surface
-         * (a head stands out by neck and skull, a shoulder bump does not),
-         * and round (a raised hand beside the head is a strip) */
-        /* and high: a bump on a shoulder stands lower than a head leaning
-         * aside, which lies as far aside of the root as that shoulder */
-        int32_t cost = HEAD_W_X * trk_abs(p.x - r.x) / 4 - HEAD_W_UP * dh / 4 +
-                       2 * (r.z - p.z > 100 ? r.z - p.z - 100 : 0) - t->dist0[ext[k]];
-        /* (an arm held out level fills a far, coarse disk too, but it
-         * reaches out more than up) */
-        int32_t middle = below_middle(t, ext[k], pm(st0, P_HEAD_DOWN), pm(st0, HEAD_WIDE));
-        bool round = disk_fill_pct(t, middle, pm(st0, 60)) >= 75 && trk_abs(p.x - r.x) < dh;
-        if (!round) cost += 600;
-        /* last frame's head helps, but a wrong one must not hold on */
-        if (t->have_prev && t->lost_frames == 0) {
-            int32_t d = dist3(p, got(&t->prev, CUB_TJ_HEAD));
-            cost += d < 300 ? d : 300;
+        int32_t c = ext[k];
+        int32_t middle = below_middle(t, c, pm(st0, P_HEAD_DOWN), pm(st0, HEAD_WIDE));
+        /* the neck leads straight up into the skull; a hand laid on top of
+         * the head is reached round by its arm, far along the surface from
+         * the skull below it: the head is that skull */
+        if (t->dist0[middle] != TRK_INF && t->dist0[c] - t->dist0[middle] > pm(st0, HEAD_CLIMB) &&
+            path_aside_mm(t, c, pm(st0, HEAD_CLIMB)) > pm(st0, HEAD_ARM_OUT)) {
+            int32_t top = skull_top(t, middle, pm(st0, HEAD_SKULL_DZ));
+            /* (under the hand, not up a forearm raised before the face) */
+            if (t->y[top] < t->y[c]) {
+                c = top;
+                middle = below_middle(t, c, pm(st0, P_HEAD_DOWN), pm(st0, HEAD_WIDE));
+            }
         }
-        if (cost < best_cost) best_cost = cost, best = k, *is_round = round;
+        bool round;
+        int32_t cost = head_cost(t, r, c, middle, st0, &round);
+        if (cost < best_cost) best_cost = cost, best = c, *is_round = round;
     }
     return best;
 }
@@ -151,7 +200,16 @@ int32_t trk_fit_head(cub_tracker *t, int32_t root, int32_t *ext, int32_t *next, 
             if (h < hmin) hmin = h;
         }
     bool on_floor = t->have_floor && hmin - t->floor_h_mm < 120;
-    int32_t head_k = pick_head(t, root, ext, n, st0, &round);
+    int32_t head_c = pick_head(t, root, ext, n, st0, &round), head_k = -1;
+    for (int32_t k = 0; k < n && head_c >= 0; k++)
+        if (ext[k] == head_c) head_k = k;
+    if (head_c >= 0 && head_k < 0) {
+        /* the skull under a hand: in place of the nearest extremity when
+         * the list is full */
+        if (n == TRK_MAX_EXTREMA) n--;
+        ext[n] = head_c;
+        head_k = n++;
+    }
     /* standing, no head top is far above the stature learnt: that is a
      * hand raised right above the head (a fist is round too) */
     int32_t rise = pm(st0, 450);
