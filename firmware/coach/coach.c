@@ -97,6 +97,7 @@ static void leave_song(cub_coach *c)
     c->phase = COACH_PH_NONE;
     c->misses = 0;
     c->tag_pending = false;
+    c->show_again = false;
 }
 
 /* ---- entering states ----------------------------------------------------- */
@@ -170,6 +171,7 @@ static void begin_move(cub_coach *c, int32_t m, int32_t rep, int32_t reason)
 {
     c->move = m;
     c->rep = rep;
+    c->show_again = false;
     c->phase = COACH_PH_MOVES;
     c->tag_pending = true;
     coach_out_clip(c, cur_move(c)->clip, move_speed(c, m, c->sync_q16), false, reason);
@@ -307,8 +309,28 @@ static void on_button(cub_coach *c, int32_t button)
         go_idle(c, CUB_COACH_WHY_STOP);
 }
 
+/* A move's last repetition is judged until a beat after the next move
+ * began (a late child still counts), so its wrong verdict comes when the
+ * coach has moved on: while the next move's first repetition plays, or
+ * the coach waits for it, that verdict is still the move just left's. */
+static bool just_left(const cub_coach *c, int32_t m)
+{
+    return c->state == CUB_COACH_DANCE && m >= 0 && m == c->move - 1 &&
+           ((c->phase == COACH_PH_MOVES && c->rep == 0) || c->phase == COACH_PH_WAIT);
+}
+
 static void on_verdict(cub_coach *c, const cub_event *ev, int32_t music_ms)
 {
+    if (!ev->b && just_left(c, ev->a)) {
+        /* back to it: corrected like any other, and shown again once
+         * though its music is over (then the dance goes on where the
+         * music is) */
+        c->move = ev->a;
+        c->rep = c->desc.moves[ev->a].reps - 1;
+        c->phase = COACH_PH_MOVES;
+        c->show_again = true;
+        show_move_hint(c, CUB_COACH_WHY_WRONG);
+    }
     const bool about_this_move = in_song(c) && ev->a == c->move;
     if (ev->b) {
         c->misses = 0;
@@ -364,10 +386,11 @@ static void on_clip_done(cub_coach *c, const cub_event *ev, int32_t music_ms)
             go_outro(c);
         break;
     case CUB_COACH_CORRECT: /* after the correcting clip, and again */
-        if (music_left_move(c, music_ms))
+        if (music_left_move(c, music_ms) && !c->show_again)
             resume(c, music_ms, CUB_COACH_WHY_MOVED_ON);
         else
             demo(c);
+        c->show_again = false;
         break;
     case CUB_COACH_WORRIED:
         coach_out_state(c, CUB_COACH_CORRECT, CUB_COACH_WHY_CALMED);

@@ -270,6 +270,47 @@ static void test_wrong_verdict_corrects_in_the_same_call(void **s)
     assert_int_equal(c.misses, 1);
 }
 
+/* The last repetition's window closes a beat into the next move, so its
+ * wrong verdict comes after the coach moved on: that move is still
+ * corrected and shown again once, then the dance goes on where the music
+ * is. Later, or about an older move, such a verdict is set aside. */
+static void test_last_repetition_wrong_after_the_next_move_began(void **s)
+{
+    cub_coach c;
+    cub_coach_desc d = make_desc();
+    assert_int_equal(cub_coach_init(&c, &d, 0), CUB_OK);
+    to_dance(&c, 1000);
+    send(&c, 1500, CUB_EV_PLAYER, 1, 0, 500);
+    for (int i = 0; i < 4; i++) send(&c, 4000 + 2000 * i, CUB_EV_CLIP_DONE, C_CLAP, 0, 2000 + 2000 * i);
+    expect_clip(&c, C_SWAY, 0, false, CUB_COACH_WHY_MOVE); /* sway rep 0 began at 8 s */
+    send(&c, 10400, CUB_EV_VERDICT, 0, 0, 8400);           /* clap's rep 3: wrong */
+    assert_int_equal(c.state, CUB_COACH_CORRECT);
+    assert_int_equal(c.move, 0);
+    assert_int_equal(c.rep, 3);
+    expect_clip(&c, C_SHAKE, CUB_Q16_ONE, false, CUB_COACH_WHY_CORRECT);
+    assert_true(logged("t=10.400 coach hint show=move move=0"));
+    /* clap's music is over, yet it is shown again, slower */
+    send(&c, 11400, CUB_EV_CLIP_DONE, C_SHAKE, 0, 9400);
+    expect_clip(&c, C_CLAP, 45875, false, CUB_COACH_WHY_DEMO);
+    /* after that one demonstration: on with sway where the music is */
+    send(&c, 13000, CUB_EV_CLIP_DONE, C_CLAP, 0, 9900);
+    assert_int_equal(c.state, CUB_COACH_DANCE);
+    assert_int_equal(c.move, 1);
+    assert_int_equal(c.rep, 1);
+    /* a wrong verdict about clap now (sway's rep 1) is set aside */
+    send(&c, 13100, CUB_EV_VERDICT, 0, 0, 10000);
+    assert_int_equal(c.action_count, 0);
+    assert_int_equal(c.state, CUB_COACH_DANCE);
+    /* sway ends, the coach waits for robot in the gap: sway's last
+     * repetition judged wrong then is corrected too */
+    send(&c, 14700, CUB_EV_CLIP_DONE, C_SWAY, 0, 12000);
+    expect_clip(&c, C_IDLE, CUB_Q16_ONE, true, CUB_COACH_WHY_IDLE);
+    send(&c, 15000, CUB_EV_VERDICT, 1, 0, 12300);
+    assert_int_equal(c.state, CUB_COACH_CORRECT);
+    assert_int_equal(c.move, 1);
+    assert_int_equal(c.rep, 1);
+}
+
 static void test_correction_repeats_until_right_then_resumes_same_move(void **s)
 {
     cub_coach c;
@@ -903,6 +944,7 @@ int main(void)
         cmocka_unit_test(test_clap_wakes_from_idle_attract_and_doze),
         cmocka_unit_test(test_wrong_verdict_corrects_in_the_same_call),
         cmocka_unit_test(test_correction_repeats_until_right_then_resumes_same_move),
+        cmocka_unit_test(test_last_repetition_wrong_after_the_next_move_began),
         cmocka_unit_test(test_resume_follows_the_music_past_the_move),
         cmocka_unit_test(test_camera_loss_pauses_the_song_and_resumes_it),
         cmocka_unit_test(test_correction_gives_way_when_the_music_moves_on),

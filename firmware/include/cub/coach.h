@@ -173,6 +173,7 @@ typedef struct cub_coach {
     int32_t paused_phase; /* the dance's phase when the camera went */
     uint32_t corrections; /* correcting clips played (they alternate) */
     bool music_on, tag_pending, player_in_view;
+    bool show_again; /* correcting the move just left: demonstrate it once */
     int32_t hint; /* the hint last shown */
     int64_t now_us, quiet_since_us, state_since_us;
     int64_t music_start_us; /* loop time the music was started */
@@ -193,7 +194,11 @@ cub_err cub_coach_init(cub_coach *c, const cub_coach_desc *desc, int64_t now_us)
  * taken as the last call's time). What the coach reads from it:
  *   BUTTON_DOWN a = START (wake when resting) / STOP (idle, from anywhere)
  *   CLAP        wake when resting (idle, attract, doze)
- *   VERDICT     a = move, b = 1 right / 0 wrong; about another move: ignored
+ *   VERDICT     a = move, b = 1 right / 0 wrong; about another move: ignored,
+ *               except a wrong one about the move just left while the next
+ *               one's first repetition plays or is waited for (the last
+ *               repetition's window closes a beat late): that move is
+ *               corrected, then the dance resumes where the music is
  *   PLAYER      a = 0 shows "come closer", a = 1 takes it back
  *   CLIP_DONE   a = clip; only the clip last requested counts
  *   MUSIC_TAG   a = move, b = song ms of the frame reached (the tag of the
