@@ -12,9 +12,9 @@
 # plus Bandai takes and styles that are other files than every held-out
 # clip), then run this once to measure.
 #
-# Figures (firmware/track/tracker.c has the details): tuning set 87.7 %
-# (24 clips; its first 23 clips 88.6 %, were 86.2 % and 77.5 %), held out
-# 84.3 % of joints within 10 cm (was 81.1 % and 73.4 %).
+# Figures (firmware/track/tracker.c has the details): tuning set 88.7 %
+# (26 clips; 87.8 % before round 3; 24 clips 87.7 %), held out 85.5 % of
+# joints within 10 cm (84.3 % before round 3, 81.1 % and 73.4 % before).
 #
 # Every clip is rendered with the same seed, 90 frames at 10 fps, into a
 # temporary folder (614 KB a frame) that is deleted at the end; set

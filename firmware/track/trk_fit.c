@@ -18,6 +18,13 @@ enum {
     EL_SEARCH = 100,
     EL_W_OUT = 4,
 };
+/* smoothing: moves within 100 ms (mm) up to which a new position counts
+ * a quarter, a half, three quarters */
+enum {
+    SM_JITTER = 20,
+    SM_SLOW = 60,
+    SM_FAST = 200,
+};
 /* the torso's joints: how far (mm) one is moved in depth onto the surface
  * at most, and the quarters of the torso axis's tilt in depth kept going
  * down it */
@@ -368,14 +375,21 @@ void trk_fit_skeleton(cub_tracker *t, int32_t root, int32_t *ext, int32_t next, 
 }
 
 /* Light smoothing that does not lag: small moves (sensor jitter) are
- * averaged, large ones (a child's real motion) pass straight through. */
+ * averaged, large ones (a child's real motion) pass straight through. The
+ * limits are per 100 ms and scale with the time since the last frame
+ * (33 ms, the Kinect's rate, when unknown): a move that big within that
+ * time is motion at any frame rate. A wrong pick for one frame (hands
+ * swapped, an elbow taken for a hand) jumps further than the limbs move,
+ * and a quarter of it is kept out. */
 void trk_smooth(cub_tracker *t, cub_track_skeleton *s)
 {
     if (!t->have_prev || t->lost_frames > 0 || t->prev.player_id != s->player_id) return;
+    int32_t dt = t->dt_us > 0 ? (t->dt_us < 10000 ? 10000 : t->dt_us) : 33333;
+    int32_t l1 = SM_JITTER * dt / 100000, l2 = SM_SLOW * dt / 100000, l3 = SM_FAST * dt / 100000;
     for (int j = 0; j < CUB_TJ_COUNT; j++) {
         trk_p3 a = got(&t->prev, j), b = got(s, j);
         int32_t d = dist3(a, b), w; /* weight of the new value, /4 */
-        w = d < 15 ? 1 : d < 40 ? 2 : d < 80 ? 3 : 4;
+        w = d < l1 ? 1 : d < l2 ? 2 : d < l3 ? 3 : 4;
         trk_p3 m = {a.x + (b.x - a.x) * w / 4, a.y + (b.y - a.y) * w / 4, a.z + (b.z - a.z) * w / 4};
         put(s, j, m, s->confidence[j]);
     }

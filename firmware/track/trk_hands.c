@@ -10,7 +10,7 @@ enum {
     HC_GEO = 150,      /* percent: nor along the surface */
     HC_W_GOWN = 4,     /* along the surface, nearer its own shoulder than the other */
     HC_W_FAR = 1,      /* far along the arm from its shoulder */
-    HC_W_SIDE = 1,     /* on its own side of the body */
+    HC_W_SIDE = 0,     /* on its own side of the body (0: a sword's grip crosses the hands) */
     HC_W_LONG = 4,     /* standing out far from the root... */
     HC_LONG = 600,     /* ...up to this */
     HC_W_PREV = 3,     /* near last frame's hand... */
