@@ -34,8 +34,9 @@
  *      the head is round too (the skull below it fills its disk), but its
  *      path comes round from its elbow, out to the side, and runs far
  *      along the surface from the skull below it: then the skull's top
- *      under the hand is the head; a round head leaning aside is kept, else with hands up
- *      beside it the top of the body's column above the root; stature from
+ *      under the hand is the head; a round head leaning aside is kept,
+ *      else with hands up beside it the top of the body's column above the
+ *      root; stature from
  *      the floor or from where the silhouette widens below the head (the
  *      neck base, within the proportions' range, which also places the
  *      shoulder centre); the torso axis runs from the shoulder centre (on
@@ -229,10 +230,10 @@ cub_err cub_track_frame(cub_tracker *t, const uint16_t *raw, int64_t t_us, const
 {
     if (!t || !raw || !out) return CUB_ERR_ARG;
     memset(out, 0, sizeof *out);
-    /* the time since the last frame scales the smoothing's limits; a long
-     * gap counts as 200 ms */
+    /* the time since the last frame scales the smoothing's limits: at
+     * least 10 ms, a long gap 200 ms, unknown the Kinect's 33 ms */
     int64_t dt = t_us - t->prev_t_us;
-    t->dt_us = t->have_prev && dt > 0 ? (int32_t)(dt < 200000 ? dt : 200000) : 0;
+    t->dt_us = t->have_prev && dt > 0 ? (int32_t)(dt < 10000 ? 10000 : dt < 200000 ? dt : 200000) : 33333;
     t->prev_t_us = t_us;
     t->frame_no++;
     trk_grid_fill(t, raw);

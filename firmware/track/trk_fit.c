@@ -384,7 +384,7 @@ void trk_fit_skeleton(cub_tracker *t, int32_t root, int32_t *ext, int32_t next, 
 void trk_smooth(cub_tracker *t, cub_track_skeleton *s)
 {
     if (!t->have_prev || t->lost_frames > 0 || t->prev.player_id != s->player_id) return;
-    int32_t dt = t->dt_us > 0 ? (t->dt_us < 10000 ? 10000 : t->dt_us) : 33333;
+    int32_t dt = t->dt_us;
     int32_t l1 = SM_JITTER * dt / 100000, l2 = SM_SLOW * dt / 100000, l3 = SM_FAST * dt / 100000;
     for (int j = 0; j < CUB_TJ_COUNT; j++) {
         trk_p3 a = got(&t->prev, j), b = got(s, j);

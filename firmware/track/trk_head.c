@@ -188,6 +188,20 @@ static int32_t column_top(const cub_tracker *t, int32_t root, int32_t max_rise_m
     return best;
 }
 
+/* The index in ext of the head's cell: the (last) extremity that is that
+ * cell or lies within near_mm of it, else the cell added to the list, in
+ * place of the nearest extremity when the list is full. */
+static int32_t as_extremity(const cub_tracker *t, int32_t *ext, int32_t *n, int32_t cell, int32_t near_mm)
+{
+    int32_t found = -1;
+    for (int32_t k = 0; k < *n; k++)
+        if (ext[k] == cell || dist3(cell_p(t, ext[k]), cell_p(t, cell)) < near_mm) found = k;
+    if (found >= 0) return found;
+    if (*n == TRK_MAX_EXTREMA) (*n)--;
+    ext[*n] = cell;
+    return (*n)++;
+}
+
 int32_t trk_fit_head(cub_tracker *t, int32_t root, int32_t *ext, int32_t *next, bool *on_floor_out)
 {
     int32_t st0 = t->stature_mm ? t->stature_mm : 1200;
@@ -200,16 +214,9 @@ int32_t trk_fit_head(cub_tracker *t, int32_t root, int32_t *ext, int32_t *next, 
             if (h < hmin) hmin = h;
         }
     bool on_floor = t->have_floor && hmin - t->floor_h_mm < 120;
-    int32_t head_c = pick_head(t, root, ext, n, st0, &round), head_k = -1;
-    for (int32_t k = 0; k < n && head_c >= 0; k++)
-        if (ext[k] == head_c) head_k = k;
-    if (head_c >= 0 && head_k < 0) {
-        /* the skull under a hand: in place of the nearest extremity when
-         * the list is full */
-        if (n == TRK_MAX_EXTREMA) n--;
-        ext[n] = head_c;
-        head_k = n++;
-    }
+    int32_t head_c = pick_head(t, root, ext, n, st0, &round);
+    /* (the skull under a hand laid on the head is no extremity yet) */
+    int32_t head_k = head_c >= 0 ? as_extremity(t, ext, &n, head_c, 0) : -1;
     /* standing, no head top is far above the stature learnt: that is a
      * hand raised right above the head (a fist is round too) */
     int32_t rise = pm(st0, 450);
@@ -222,17 +229,7 @@ int32_t trk_fit_head(cub_tracker *t, int32_t root, int32_t *ext, int32_t *next, 
         /* no round, central extremity: the head is the column's top (a
          * head leaning aside is round, hands up beside it are not) */
         int32_t top = column_top(t, root, rise);
-        if (top >= 0) {
-            head_k = -1;
-            for (int32_t k = 0; k < n; k++)
-                if (dist3(cell_p(t, ext[k]), cell_p(t, top)) < pm(st0, 100)) head_k = k;
-            if (head_k < 0) {
-                /* in place of the nearest extremity when the list is full */
-                if (n == TRK_MAX_EXTREMA) n--;
-                ext[n] = top;
-                head_k = n++;
-            }
-        }
+        if (top >= 0) head_k = as_extremity(t, ext, &n, top, pm(st0, 100));
     }
     int32_t head = head_k >= 0 ? ext[head_k] : root;
     int32_t neck = 0;
