@@ -13,10 +13,19 @@ enum {
     FOOT_APART = 60,
 };
 /* the elbow: how far around the path's cell it is looked for (per mille of
- * stature), and the weight (quarters) of lying out to the arm's side */
+ * stature), the weight (quarters) of lying out to the arm's side, the
+ * upper arm's length it fits (per mille of its share of the learnt
+ * reach: the source skeletons' upper arms are ~30 mm shorter than that
+ * share, their forearms not); a folded arm (wrist within EL_FOLDED per mille of the reach from
+ * the shoulder) is looked for farther, with a weight (quarters) of lying
+ * high */
 enum {
     EL_SEARCH = 100,
     EL_W_OUT = 4,
+    EL_UPPER = 900,
+    EL_FOLDED = 350,
+    EL_SEARCH_FOLDED = 220,
+    EL_W_UP = 2,
 };
 /* smoothing: moves within 100 ms (mm) up to which a new position counts
  * a quarter, a half, three quarters */
@@ -24,6 +33,10 @@ enum {
     SM_JITTER = 20,
     SM_SLOW = 60,
     SM_FAST = 200,
+};
+/* the shoulder joints' learnt half width: its largest move per frame (mm) */
+enum {
+    LS_STEP = 8,
 };
 /* the torso's joints: how far (mm) one is moved in depth onto the surface
  * at most, and the quarters of the torso axis's tilt in depth kept going
@@ -54,8 +67,9 @@ static int32_t path_middle(const cub_tracker *t, int32_t tip, trk_p3 a, int32_t 
 }
 
 /* Half the width of the silhouette's run through p's row (mm), 0 if p
- * is off the player. At the shoulders the run always ends in the deltoids,
- * whatever the arms do, so it measures the shoulders of this body. */
+ * is off the player. Just below the shoulders the run ends in the deltoids
+ * or the arms hanging from them (the arms' roots); at the shoulder joints'
+ * height, in the shoulders' round tops (the joints). */
 static int32_t run_half_mm(const cub_tracker *t, trk_p3 p)
 {
     if (p.z <= 0) return 0;
@@ -231,21 +245,38 @@ static int32_t learn_reach(cub_tracker *t, int k, int32_t span_mm, int32_t nomin
     return cur;
 }
 
+/* The shoulder joints' half width, learnt per player from this frame's
+ * measurement m (mm): it moves toward m by at most LS_STEP a frame, a
+ * running median, so a forearm raised beside the shoulder or an arm held
+ * out level (the run goes on along it) for a few frames does not move it;
+ * measurements outside the proportions' range are ignored. */
+static int32_t learn_shoulders(cub_tracker *t, int32_t m, int32_t st)
+{
+    int32_t cur = t->shoulder_half_mm;
+    bool ok = m >= pm(st, P_SHOULDER_MIN) && m <= pm(st, P_SHOULDER_MAX);
+    if (!cur) cur = ok ? m : pm(st, P_SHOULDER_HALF);
+    else if (ok) cur += m > cur + LS_STEP ? LS_STEP : m < cur - LS_STEP ? -LS_STEP : (m - cur) / 2;
+    t->shoulder_half_mm = cur;
+    return cur;
+}
+
 /* The elbow near the path's middle cell mid: the
  * player's cell around it that best fits both bone lengths from a (the
  * shoulder) and b (the wrist), out to the arm's side rather than toward
  * the body's middle: an arm against the torso lets the path cut across
  * the touching surfaces, which pulls the path's cell inward. other: the
- * other shoulder (the outward direction is away from it, level). (Knees
+ * other shoulder (the outward direction is away from it, level);
+ * search_mm: how far around mid; w_up: the weight (quarters) of lying
+ * above the shoulder. (Knees
  * keep the path's cell: legs together make the search find the other
  * leg.) */
 static trk_p3 middle_near(const cub_tracker *t, int32_t mid, trk_p3 a, int32_t la, trk_p3 b, int32_t lb, trk_p3 other,
-                          int32_t r, int32_t st, int32_t w_out)
+                          int32_t r, int32_t search_mm, int32_t w_up)
 {
     trk_p3 m = cell_p(t, mid), c = {(a.x + other.x) / 2, (a.y + other.y) / 2, (a.z + other.z) / 2};
     int32_t ox = a.x - other.x, oz = a.z - other.z, ol = trk_len(ox, 0, oz);
     if (ol == 0 || m.z <= 0) return inside(m, r);
-    int32_t rc = pm(st, EL_SEARCH) * CUB_TRACK_FOCAL_PX / (m.z * TRK_CELL_PX) + 1, gx0 = mid % TRK_GW, gy0 = mid / TRK_GW;
+    int32_t rc = search_mm * CUB_TRACK_FOCAL_PX / (m.z * TRK_CELL_PX) + 1, gx0 = mid % TRK_GW, gy0 = mid / TRK_GW;
     int32_t best = mid, best_e = INT32_MAX, step = 1 + rc / 10; /* a near body: every few cells will do */
     for (int32_t gy = gy0 - rc; gy <= gy0 + rc; gy += step)
         for (int32_t gx = gx0 - rc; gx <= gx0 + rc; gx += step) {
@@ -254,7 +285,8 @@ static trk_p3 middle_near(const cub_tracker *t, int32_t mid, trk_p3 a, int32_t l
             if (!t->mask[i]) continue;
             trk_p3 p = inside(cell_p(t, i), r);
             int32_t out = (int32_t)(((int64_t)(p.x - c.x) * ox + (int64_t)(p.z - c.z) * oz) / ol);
-            int32_t e = trk_abs(dist3(p, a) - la) + trk_abs(dist3(p, b) - lb) - w_out * out / 4;
+            int32_t up = trk_along(p.x - a.x, p.y - a.y, p.z - a.z, t->up);
+            int32_t e = trk_abs(dist3(p, a) - la) + trk_abs(dist3(p, b) - lb) - EL_W_OUT * out / 4 + w_up * up / 4;
             if (e < best_e) best_e = e, best = i;
         }
     return inside(cell_p(t, best), r);
@@ -271,7 +303,13 @@ static void fit_arm(cub_tracker *t, cub_track_skeleton *s, int side, int32_t tip
     int32_t reach = learn_reach(t, side, dist3(sh, wrist), lu + lf);
     lu = reach * lu / (lu + lf), lf = reach - lu;
     trk_p3 other = got(s, side ? CUB_TJ_SHOULDER_L : CUB_TJ_SHOULDER_R);
-    trk_p3 elbow = middle_near(t, path_middle(t, tip, sh, lu, wrist, lf), sh, lu, wrist, lf, other, r, st, EL_W_OUT);
+    /* a folded arm: the elbow fitting both lengths lies on a wide circle
+     * that the path need not cross (a forearm raised before the chest),
+     * and mostly hangs below */
+    bool folded = dist3(sh, wrist) * 1000 < reach * EL_FOLDED;
+    int32_t search = pm(st, folded ? EL_SEARCH_FOLDED : EL_SEARCH), w_up = folded ? EL_W_UP : 0;
+    trk_p3 elbow = middle_near(t, path_middle(t, tip, sh, lu, wrist, lf), sh, lu * EL_UPPER / 1000, wrist, lf, other, r,
+                               search, w_up);
     put(s, js + 1, elbow, CUB_Q16_ONE * 3 / 4);
     put(s, js + 2, wrist, CUB_Q16_ONE);
     put(s, js + 3, hand, CUB_Q16_ONE);
@@ -335,14 +373,21 @@ void trk_fit_skeleton(cub_tracker *t, int32_t root, int32_t *ext, int32_t next, 
     put(s, CUB_TJ_SPINE, onto_surface(t, add_s(sc, down, -pm(st, P_SPINE)), radius(st, R_TORSO)), CUB_Q16_ONE / 2);
     put(s, CUB_TJ_HIP_CENTRE, onto_surface(t, add_s(sc, down, -pm(st, P_HIPC_JOINT)), radius(st, R_TORSO)),
         CUB_Q16_ONE / 2);
-    trk_p3 sd = add_s(sc, axis, -pm(st, P_SHOULDER_DROP)), hp = add_s(sc, down, -pm(st, P_HIPC + P_HIP_DROP));
-    int32_t half = run_half_mm(t, add_s(sc, axis, -pm(st, P_SHOULDER_RUN))) - pm(st, R_ARM_EDGE);
-    if (half < pm(st, P_SHOULDER_MIN)) half = pm(st, P_SHOULDER_HALF);
-    if (half > pm(st, 140)) half = pm(st, 140);
-    /* the arms hang from the shoulders deep in the body; the joints the
-     * skeletons name shoulders sit nearer the front */
-    trk_p3 shl = onto_surface(t, add_s(sd, lft, half), radius(st, R_SHOULDER));
-    trk_p3 shr = onto_surface(t, add_s(sd, lft, -half), radius(st, R_SHOULDER));
+    trk_p3 hp = add_s(sc, down, -pm(st, P_HIPC + P_HIP_DROP));
+    int32_t half = run_half_mm(t, add_s(sc, axis, -pm(st, P_ARM_ROOT_RUN))) - pm(st, R_ARM_ROOT_EDGE);
+    if (half < pm(st, P_ARM_ROOT_MIN)) half = pm(st, P_SHOULDER_HALF);
+    if (half > pm(st, P_SHOULDER_MAX)) half = pm(st, P_SHOULDER_MAX);
+    int32_t jrun = run_half_mm(t, add_s(sc, axis, -pm(st, P_SHOULDER_RUN)));
+    int32_t jhalf = learn_shoulders(t, jrun - pm(st, R_SHOULDER_EDGE), st);
+    /* the arms hang from the shoulders deep in the body (where they
+     * widen the silhouette below the shoulders); the joints the skeletons
+     * name shoulders sit nearer the front, and as far in from the
+     * silhouette's edge at their own height as the shoulder's round top is
+     * thick, whatever the source: CMU's wide, Bandai's close to the neck
+     * (the chest is as wide for both, and below the shoulders it or an arm
+     * held out hides where the joint is) */
+    trk_p3 shl = onto_surface(t, add_s(sc, lft, half), radius(st, R_SHOULDER));
+    trk_p3 shr = onto_surface(t, add_s(sc, lft, -half), radius(st, R_SHOULDER));
     put(s, CUB_TJ_SHOULDER_L, shl, CUB_Q16_ONE / 2);
     put(s, CUB_TJ_SHOULDER_R, shr, CUB_Q16_ONE / 2);
     put(s, CUB_TJ_HIP_L, onto_surface(t, add_s(hp, lft, pm(st, P_HIP_HALF)), radius(st, R_HIP)), CUB_Q16_ONE / 2);
@@ -366,6 +411,8 @@ void trk_fit_skeleton(cub_tracker *t, int32_t root, int32_t *ext, int32_t next, 
         else guess_chain(t, s, jh, axis, st, true);
     }
     int32_t front = radius(st, R_SHOULDER) - pm(st, R_SHOULDER_JOINT);
+    shl = onto_surface(t, add_s(sc, lft, jhalf), radius(st, R_SHOULDER));
+    shr = onto_surface(t, add_s(sc, lft, -jhalf), radius(st, R_SHOULDER));
     put(s, CUB_TJ_SHOULDER_L, (trk_p3){shl.x, shl.y, shl.z - front}, CUB_Q16_ONE / 2);
     put(s, CUB_TJ_SHOULDER_R, (trk_p3){shr.x, shr.y, shr.z - front}, CUB_Q16_ONE / 2);
     /* (an arm without a hand keeps last frame's pose about the shoulder as

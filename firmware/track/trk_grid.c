@@ -250,8 +250,97 @@ static void merge_front_parts(cub_tracker *t, int32_t pid)
     merge_cut_off(t, pid, pz, front);
 }
 
+/* A blob holding both last frame's player and last frame's other person
+ * (a sibling's hand touching the child's, a parent beside it at the same
+ * depth) is two bodies joined: each cell goes to the side whose last
+ * frame's cells it is fewer 4-neighbour steps from, and the other side
+ * becomes a blob of its own. Else the joined blob, its centre near the
+ * player's, is taken whole and the adult's limbs become the child's. */
+#define SPLIT_MIN_CELLS 20 /* cells of each side last frame before a blob is split */
+static void refill_comp(cub_tracker *t, int16_t id)
+{
+    trk_comp *c = &t->comps[id];
+    *c = (trk_comp){.hmin = INT32_MAX, .hmax = INT32_MIN, .xmin = INT32_MAX, .xmax = INT32_MIN,
+                    .gx0 = TRK_GW, .gx1 = -1, .gy0 = TRK_GH, .gy1 = -1};
+    for (int32_t i = 0; i < TRK_CELLS; i++)
+        if (t->label[i] == id) comp_add(t, c, i);
+    for (int32_t gy = 1; gy < TRK_GH - 1; gy++)
+        for (int32_t i = gy * TRK_GW + 1; i < gy * TRK_GW + TRK_GW - 1; i++)
+            if (t->label[i] == id && t->label[i - 1] == id && t->label[i + 1] == id && t->label[i - TRK_GW] == id &&
+                t->label[i + TRK_GW] == id)
+                c->interior++;
+}
+
+/* Multi-source breadth-first fill from both sides' cells of last frame
+ * (side in t->mask), within blob k and its depth joins. */
+static void split_sides(cub_tracker *t, int16_t k)
+{
+    int32_t head = 0, tail = 0;
+    for (int32_t i = 0; i < TRK_CELLS; i++) {
+        t->mask[i] = 0;
+        if (t->label[i] == k && t->who_prev[i]) t->mask[i] = t->who_prev[i], t->stack[tail++] = i;
+    }
+    while (head < tail) {
+        int32_t i = t->stack[head++];
+        int32_t gx = i % TRK_GW, gy = i / TRK_GW, j = joins_mm(t->z[i]);
+        int32_t nb[4] = {gx > 0 ? i - 1 : -1, gx < TRK_GW - 1 ? i + 1 : -1, gy > 0 ? i - TRK_GW : -1,
+                         gy < TRK_GH - 1 ? i + TRK_GW : -1};
+        for (int n = 0; n < 4; n++) {
+            int32_t c = nb[n];
+            if (c < 0 || t->label[c] != k || t->mask[c] || trk_abs(t->z[c] - t->z[i]) > j) continue;
+            t->mask[c] = t->mask[i];
+            t->stack[tail++] = c;
+        }
+    }
+}
+
+static void split_merged(cub_tracker *t)
+{
+    int32_t mine[TRK_MAX_COMPS] = {0}, other[TRK_MAX_COMPS] = {0};
+    for (int32_t i = 0; i < TRK_CELLS; i++) {
+        if (t->label[i] < 0) continue;
+        if (t->who_prev[i] == TRK_WHO_PLAYER) mine[t->label[i]]++;
+        if (t->who_prev[i] == TRK_WHO_OTHER) other[t->label[i]]++;
+    }
+    int32_t n = t->ncomps;
+    for (int16_t k = 0; k < n && t->ncomps < TRK_MAX_COMPS; k++) {
+        if (mine[k] < SPLIT_MIN_CELLS || other[k] < SPLIT_MIN_CELLS) continue;
+        split_sides(t, k);
+        int16_t id = (int16_t)t->ncomps++;
+        for (int32_t i = 0; i < TRK_CELLS; i++)
+            if (t->label[i] == k && t->mask[i] == TRK_WHO_OTHER) t->label[i] = id;
+        refill_comp(t, k);
+        refill_comp(t, id);
+    }
+}
+
+/* Another person stands beside the player, its centre apart along the
+ * floor; the player's own upper body cut off by depth (a forearm across
+ * the waist) is a person-like blob too, but right above its legs. */
+#define SPLIT_APART_MM 400
+static bool apart(const cub_tracker *t, const trk_comp *c)
+{
+    trk_p3 cc = comp_centre(c);
+    int32_t dx = cc.x - t->centre.x, dy = cc.y - t->centre.y, dz = cc.z - t->centre.z;
+    int64_t h = trk_along(dx, dy, dz, t->up);
+    int64_t d2 = (int64_t)dx * dx + (int64_t)dy * dy + (int64_t)dz * dz - h * h;
+    return d2 > (int64_t)SPLIT_APART_MM * SPLIT_APART_MM;
+}
+
+/* What each cell was this frame, for the next frame's split_merged. */
+static void remember_who(cub_tracker *t)
+{
+    bool other[TRK_MAX_COMPS];
+    for (int32_t k = 0; k < t->ncomps; k++) other[k] = person_like(&t->comps[k]) && apart(t, &t->comps[k]);
+    for (int32_t i = 0; i < TRK_CELLS; i++) {
+        int16_t l = t->label[i];
+        t->who_prev[i] = t->mask[i] ? TRK_WHO_PLAYER : l >= 0 && other[l] ? TRK_WHO_OTHER : 0;
+    }
+}
+
 int32_t trk_pick_player(cub_tracker *t)
 {
+    if (t->tracked) split_merged(t);
     int32_t best = -1;
     int64_t best_score = INT64_MAX;
     for (int32_t k = 0; k < t->ncomps; k++) {
@@ -269,16 +358,21 @@ int32_t trk_pick_player(cub_tracker *t)
         if (score < best_score) best_score = score, best = k;
     }
     memset(t->mask, 0, sizeof t->mask);
-    if (best < 0) return -1;
+    if (best < 0) {
+        memset(t->who_prev, 0, sizeof t->who_prev);
+        return -1;
+    }
     bool same = t->tracked && best_score < 1000000;
     if (!same) {
         t->player_id = ++t->next_id;
         memset(t->reach_mm, 0, sizeof t->reach_mm); /* another body */
+        t->shoulder_half_mm = 0;
     }
     t->tracked = true;
     t->centre = comp_centre(&t->comps[best]);
     for (int32_t i = 0; i < TRK_CELLS; i++)
         if (t->label[i] == best) t->mask[i] = 1;
     merge_front_parts(t, best);
+    remember_who(t);
     return best;
 }

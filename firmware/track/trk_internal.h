@@ -19,6 +19,7 @@
 #define TRK_MAX_EXTREMA 7
 #define TRK_INF INT32_MAX
 #define TRK_HEAP_CAP (TRK_CELLS * 4)
+enum { TRK_WHO_PLAYER = 1, TRK_WHO_OTHER = 2 }; /* who_prev */
 #define TRK_PITCHES 21 /* floor search without gravity: -20..+20 degrees */
 
 /* A point in camera space, whole millimetres. */
@@ -45,6 +46,7 @@ struct cub_tracker {
     int32_t x[TRK_CELLS], y[TRK_CELLS];
     int16_t label[TRK_CELLS]; /* component, -1 none */
     uint8_t mask[TRK_CELLS];  /* 1 = the player's */
+    uint8_t who_prev[TRK_CELLS]; /* last frame's: TRK_WHO_PLAYER, TRK_WHO_OTHER (another person-like blob) or 0 */
     int32_t dist0[TRK_CELLS], parent0[TRK_CELLS];
     int32_t distx[TRK_CELLS];
     int32_t dist_sh[2][TRK_BLOCKS]; /* coarse, along the surface from each shoulder (left, right) */
@@ -69,6 +71,7 @@ struct cub_tracker {
      * left arm, right arm, left leg, right leg), 0 unknown: learnt per
      * player, as bodies differ from the proportions */
     int32_t reach_mm[4];
+    int32_t shoulder_half_mm; /* the shoulder joints' half width, learnt per player, 0 unknown */
     cub_track_skeleton prev;
     bool have_prev;
     int64_t prev_t_us; /* last frame's time, and the time since it as the */
