@@ -105,11 +105,13 @@ else
     DUMPS=$(mktemp -d "${TMPDIR:-/tmp}/eval_tracker.XXXXXX")
     KEEP=0
 fi
-cleanup() { [ "$KEEP" = 1 ] || rm -rf "$DUMPS"; }
+# results go to a folder of this run's own: several runs may share the renders
+RESULTS=$(mktemp -d "${TMPDIR:-/tmp}/eval_tracker_results.XXXXXX")
+cleanup() { rm -rf "$RESULTS"; [ "$KEEP" = 1 ] || rm -rf "$DUMPS"; }
 trap cleanup EXIT INT TERM
 
 COMMON="--seed 1 --frames 90 --fps 10"
-REPORT=$DUMPS/report.$$
+REPORT=$RESULTS/report
 : >"$REPORT"
 echo "eval_tracker: $SET set, $COMMON, data $DATA"
 ${SET}_set | while IFS='|' read -r name args; do
@@ -132,12 +134,12 @@ ${SET}_set | while IFS='|' read -r name args; do
             { echo "eval_tracker: synth-depth failed for $name" >&2; exit 1; }
     fi
     echo "+ $TOOL eval-track $out"
-    "$TOOL" eval-track "$out" >"$out/eval.txt"
+    "$TOOL" eval-track "$out" >"$RESULTS/$name.txt"
     # per joint rows: name mean_mm pct n -> within count (pct has one decimal)
     awk -v clip="$name" '
         /^[a-z_]+ +[0-9]+ +[0-9.]+% +[0-9]+$/ { p = $3; sub("%", "", p); printf "J %s %d %d\n", $1, int(p * $4 / 100 + 0.5), $4 }
         /of joints within 10 cm/ { s = $0; sub(/.*\(/, "", s); sub(/\).*/, "", s); split(s, a, " of "); printf "C %s %d %d\n", clip, a[1], a[2] }
-    ' "$out/eval.txt" >>"$REPORT"
+    ' "$RESULTS/$name.txt" >>"$REPORT"
 done
 
 awk '
@@ -148,4 +150,3 @@ awk '
         printf "overall               %5.1f%%  (%d of %d joints within 10 cm); worst clip %s %.1f%%\n", 100 * cw / cn, cw, cn, wname, worst
         for (k = 1; k <= nj; k++) { j = order[k]; printf "joint %-16s %5.1f%%  (%d of %d)\n", j, 100 * jw[j] / jn[j], jw[j], jn[j] }
     }' "$REPORT"
-rm -f "$REPORT"
