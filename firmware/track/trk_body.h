@@ -16,6 +16,8 @@
 enum {
     P_HEAD_DOWN = 85,      /* head top to head centre along the face */
     P_NECK_DOWN = 200,     /* head top to shoulder centre */
+    P_NECK_DOWN_MIN = 180, /* the shoulder centre joint no nearer the head top (the renders: 175-220) */
+    P_NECK_DOWN_MAX = 220, /* nor farther */
     P_WIDEN = 150,         /* head top to where the silhouette widens (neck base) */
     P_BELOW_NECK = 40,     /* neck base to shoulder centre */
     P_SPINE = 120,         /* shoulder centre to spine */
@@ -94,6 +96,7 @@ static inline trk_p3 got(const cub_track_skeleton *s, int j)
 /* The extremities picked for the limbs, and what naming them needs. */
 typedef struct limb_pick {
     int32_t hand[2], foot[2]; /* extremum cell per side (0 = left), -1 none */
+    int32_t elbow[2];         /* an elbow taken for the hand: its cell, else -1 */
     int32_t head;
     trk_p3 shoulder[2], head_c;
     int32_t reach_mm; /* shoulder to fingertip, 0 unknown */
@@ -110,5 +113,8 @@ bool trk_on_torso(const cub_tracker *t, int32_t root, int32_t i, trk_p3 sc, trk_
 /* a hand before the torso on this side: a cell, -1 none */
 int32_t trk_hand_in_front(const cub_tracker *t, int32_t root, const limb_pick *lp, trk_p3 sc, trk_p3 hc,
                           cub_vec3 axis, cub_vec3 lft, int side, int32_t st);
+
+/* an elbow taken for the hand: the fist beyond it, -1 none */
+int32_t trk_hand_beyond(const cub_tracker *t, const limb_pick *lp, trk_p3 hc, cub_vec3 axis, int side, int32_t st);
 
 #endif

@@ -34,6 +34,15 @@ enum {
     SM_SLOW = 60,
     SM_FAST = 200,
 };
+/* the knee: the foot's path runs down the leg's inner side (the shortest
+ * way from the crotch) and meets the thigh's length early, so its cell
+ * lies inward of the joint and above it; the joint is moved out, away
+ * from the other hip, and down the leg toward the ankle (mm; the truth's
+ * knees sit so on every source) */
+enum {
+    KNEE_OUT = 25,
+    KNEE_DOWN = 20,
+};
 /* the shoulder joints' learnt half width: its largest move per frame (mm) */
 enum {
     LS_STEP = 8,
@@ -292,13 +301,25 @@ static trk_p3 middle_near(const cub_tracker *t, int32_t mid, trk_p3 a, int32_t l
     return inside(cell_p(t, best), r);
 }
 
-static void fit_arm(cub_tracker *t, cub_track_skeleton *s, int side, int32_t tip, int32_t st)
+/* The arm from its fingertip cell tip; el: the extremity that was an
+ * elbow taken for the hand (trk_hand_beyond), -1 none. */
+static void fit_arm(cub_tracker *t, cub_track_skeleton *s, int side, int32_t tip, int32_t el, int32_t st)
 {
     int js = side ? CUB_TJ_SHOULDER_R : CUB_TJ_SHOULDER_L;
     trk_p3 sh = got(s, js);
     int32_t r = radius(st, R_LIMB);
     trk_p3 hand = inside(hand_centre(t, tip, pm(st, P_HAND_REACH)), r);
     trk_p3 wrist = inside(cell_p(t, path_at(t, tip, pm(st, P_WRIST_IN))), r);
+    if (el >= 0) {
+        /* the wrist on the forearm's straight line from the fist to the
+         * elbow (not on the fist's path, which runs into the chest) */
+        trk_p3 pe = cell_p(t, el), pt = cell_p(t, tip);
+        int32_t l = dist3(pe, pt), w = pm(st, P_WRIST_IN);
+        if (l > w)
+            wrist = inside((trk_p3){pt.x + (pe.x - pt.x) * w / l, pt.y + (pe.y - pt.y) * w / l,
+                                    pt.z + (pe.z - pt.z) * w / l},
+                           r);
+    }
     int32_t lu = pm(st, P_UPPER_ARM), lf = pm(st, P_FOREARM);
     int32_t reach = learn_reach(t, side, dist3(sh, wrist), lu + lf);
     lu = reach * lu / (lu + lf), lf = reach - lu;
@@ -326,6 +347,9 @@ static void fit_leg(cub_tracker *t, cub_track_skeleton *s, int side, int32_t tip
     int32_t reach = learn_reach(t, 2 + side, dist3(hip, ankle), lt + ls);
     lt = reach * lt / (lt + ls), ls = reach - lt;
     trk_p3 knee = inside(cell_p(t, path_middle(t, tip, hip, lt, ankle, ls)), r);
+    trk_p3 oh = got(s, side ? CUB_TJ_HIP_L : CUB_TJ_HIP_R);
+    knee = add_s(knee, unit(hip.x - oh.x, 0, hip.z - oh.z), KNEE_OUT);
+    knee = add_s(knee, unit(ankle.x - hip.x, ankle.y - hip.y, ankle.z - hip.z), KNEE_DOWN);
     put(s, jh + 1, knee, CUB_Q16_ONE * 3 / 4);
     put(s, jh + 2, ankle, CUB_Q16_ONE);
     put(s, jh + 3, foot, CUB_Q16_ONE);
@@ -352,12 +376,22 @@ static void guess_chain(const cub_tracker *t, cub_track_skeleton *s, int j0, cub
 void trk_fit_skeleton(cub_tracker *t, int32_t root, int32_t *ext, int32_t next, cub_track_skeleton *s)
 {
     bool on_floor;
-    limb_pick lp = {.head = trk_fit_head(t, root, ext, &next, &on_floor)};
+    limb_pick lp = {.head = trk_fit_head(t, root, ext, &next, &on_floor), .elbow = {-1, -1}};
     int32_t head = lp.head >= 0 ? ext[lp.head] : root, st = t->stature_mm;
     trk_p3 hd = inside(cell_p(t, path_at(t, head, pm(st, P_HEAD_DOWN))), radius(st, R_HEAD));
-    /* the shoulder centre just below the neck base, where one was seen */
+    /* the torso hangs from just below the neck base, where one was seen
+     * (the silhouette's shoulders: a long neck, a long torso); the
+     * shoulder centre joint, and the shoulder joints level with it, sit
+     * close to a fixed share of stature below the head top on every
+     * source, which the neck base measured on a silhouette (100-250 per
+     * mille, and a first reading taken on a bent body lasts) may only
+     * nudge */
     int32_t sc_drop = t->neck_drop_mm ? t->neck_drop_mm + pm(st, P_BELOW_NECK) : pm(st, P_NECK_DOWN);
     trk_p3 sc = inside(cell_p(t, path_at(t, head, sc_drop)), radius(st, R_TORSO));
+    int32_t sj_drop = sc_drop < pm(st, P_NECK_DOWN_MIN)   ? pm(st, P_NECK_DOWN_MIN)
+                      : sc_drop > pm(st, P_NECK_DOWN_MAX) ? pm(st, P_NECK_DOWN_MAX)
+                                                          : sc_drop;
+    trk_p3 sj = inside(cell_p(t, path_at(t, head, sj_drop)), radius(st, R_TORSO));
     trk_p3 rt = inside(cell_p(t, root), radius(st, R_TORSO));
     cub_vec3 axis = dist3(sc, rt) > 60 ? unit(sc.x - rt.x, sc.y - rt.y, sc.z - rt.z) : t->up;
     if (lp.head < 0) axis = t->up;
@@ -369,7 +403,7 @@ void trk_fit_skeleton(cub_tracker *t, int32_t root, int32_t *ext, int32_t next, 
     cub_vec3 down = unit(axis.x, axis.y, axis.z * AXIS_Z / 4);
     trk_p3 hc = add_s(sc, axis, -pm(st, P_HIPC));
     put(s, CUB_TJ_HEAD, hd, lp.head >= 0 ? CUB_Q16_ONE : 0);
-    put(s, CUB_TJ_SHOULDER_CENTRE, sc, CUB_Q16_ONE * 3 / 4);
+    put(s, CUB_TJ_SHOULDER_CENTRE, sj, CUB_Q16_ONE * 3 / 4);
     put(s, CUB_TJ_SPINE, onto_surface(t, add_s(sc, down, -pm(st, P_SPINE)), radius(st, R_TORSO)), CUB_Q16_ONE / 2);
     put(s, CUB_TJ_HIP_CENTRE, onto_surface(t, add_s(sc, down, -pm(st, P_HIPC_JOINT)), radius(st, R_TORSO)),
         CUB_Q16_ONE / 2);
@@ -377,7 +411,7 @@ void trk_fit_skeleton(cub_tracker *t, int32_t root, int32_t *ext, int32_t next, 
     int32_t half = run_half_mm(t, add_s(sc, axis, -pm(st, P_ARM_ROOT_RUN))) - pm(st, R_ARM_ROOT_EDGE);
     if (half < pm(st, P_ARM_ROOT_MIN)) half = pm(st, P_SHOULDER_HALF);
     if (half > pm(st, P_SHOULDER_MAX)) half = pm(st, P_SHOULDER_MAX);
-    int32_t jrun = run_half_mm(t, add_s(sc, axis, -pm(st, P_SHOULDER_RUN)));
+    int32_t jrun = run_half_mm(t, add_s(sj, axis, -pm(st, P_SHOULDER_RUN)));
     int32_t jhalf = learn_shoulders(t, jrun - pm(st, R_SHOULDER_EDGE), st);
     /* the arms hang from the shoulders deep in the body (where they
      * widen the silhouette below the shoulders); the joints the skeletons
@@ -404,15 +438,22 @@ void trk_fit_skeleton(cub_tracker *t, int32_t root, int32_t *ext, int32_t next, 
         int32_t f = trk_hand_in_front(t, root, &lp, sc, hc, axis, lft, side, st);
         if (f >= 0) lp.hand[side] = f;
     }
+    /* a forearm pointing at the camera or raised before the chest leaves
+     * its elbow as the arm's extremity: the fist lies beyond it */
+    for (int side = 0; side < 2; side++) {
+        if (lp.hand[side] < 0) continue;
+        int32_t f = trk_hand_beyond(t, &lp, hc, axis, side, st);
+        if (f >= 0) lp.elbow[side] = lp.hand[side], lp.hand[side] = f;
+    }
     for (int side = 0; side < 2; side++) {
         int jh = side ? CUB_TJ_HIP_R : CUB_TJ_HIP_L;
-        if (lp.hand[side] >= 0) fit_arm(t, s, side, lp.hand[side], st);
+        if (lp.hand[side] >= 0) fit_arm(t, s, side, lp.hand[side], lp.elbow[side], st);
         if (lp.foot[side] >= 0) fit_leg(t, s, side, lp.foot[side], st);
         else guess_chain(t, s, jh, axis, st, true);
     }
     int32_t front = radius(st, R_SHOULDER) - pm(st, R_SHOULDER_JOINT);
-    shl = onto_surface(t, add_s(sc, lft, jhalf), radius(st, R_SHOULDER));
-    shr = onto_surface(t, add_s(sc, lft, -jhalf), radius(st, R_SHOULDER));
+    shl = onto_surface(t, add_s(sj, lft, jhalf), radius(st, R_SHOULDER));
+    shr = onto_surface(t, add_s(sj, lft, -jhalf), radius(st, R_SHOULDER));
     put(s, CUB_TJ_SHOULDER_L, (trk_p3){shl.x, shl.y, shl.z - front}, CUB_Q16_ONE / 2);
     put(s, CUB_TJ_SHOULDER_R, (trk_p3){shr.x, shr.y, shr.z - front}, CUB_Q16_ONE / 2);
     /* (an arm without a hand keeps last frame's pose about the shoulder as

@@ -352,6 +352,11 @@ int32_t trk_pick_player(cub_tracker *t)
             /* the same person: the blob nearest where the player was */
             int32_t d = trk_len(cc.x - t->centre.x, cc.y - t->centre.y, cc.z - t->centre.z);
             score = d <= 700 ? d : 1000000 + cc.z + 2 * trk_abs(cc.x);
+            /* a player never yet nearer than the play range's far end
+             * (someone at the back of the room when the box started)
+             * gives way to another person who comes into it: the child
+             * walking in */
+            if (!t->in_play && d > 700 && cc.z <= TRK_FAR_MM) score = -1000000 + cc.z + 2 * trk_abs(cc.x);
         } else {
             score = 1000000 + cc.z + 2 * trk_abs(cc.x); /* nearest, near the centre */
         }
@@ -362,14 +367,16 @@ int32_t trk_pick_player(cub_tracker *t)
         memset(t->who_prev, 0, sizeof t->who_prev);
         return -1;
     }
-    bool same = t->tracked && best_score < 1000000;
+    bool same = t->tracked && best_score >= 0 && best_score < 1000000;
     if (!same) {
         t->player_id = ++t->next_id;
         memset(t->reach_mm, 0, sizeof t->reach_mm); /* another body */
         t->shoulder_half_mm = 0;
+        t->stature_mm = t->neck_drop_mm = 0;
     }
     t->tracked = true;
     t->centre = comp_centre(&t->comps[best]);
+    t->in_play = (same && t->in_play) || t->centre.z <= TRK_FAR_MM;
     for (int32_t i = 0; i < TRK_CELLS; i++)
         if (t->label[i] == best) t->mask[i] = 1;
     merge_front_parts(t, best);

@@ -38,6 +38,14 @@ enum {
     HF_UP = 60,     /* looked for up to this far above the shoulders */
 };
 
+/* an elbow taken for the hand, per mille of stature: the fist beyond it */
+enum {
+    HB_NEAR = 210, /* within a forearm and hand of the extremity */
+    HB_DZ = 40,    /* nearer the camera than it by */
+    HB_MORE = 20,  /* farther from the shoulder than it by */
+    HB_BELOW = 60, /* no lower below the pelvis' middle (a thigh) */
+};
+
 /* Distances along the surface from the shoulder joint sh (the player's
  * cell nearest it) into dist, TRK_INF where unreachable. */
 static void from_shoulder(cub_tracker *t, trk_p3 sh, int32_t *dist)
@@ -174,4 +182,38 @@ int32_t trk_hand_in_front(const cub_tracker *t, int32_t root, const limb_pick *l
         if (d > pm(st, HF_MIN) && t->dist0[i] > best_s) best_s = t->dist0[i], best = i;
     }
     return nfront >= HF_CELLS ? best : -1;
+}
+
+/* An elbow taken for the hand: a forearm pointing at the camera (or held
+ * before the chest) foreshortens into depth steps, the fist is reached
+ * across them from the chest and the elbow ends the arm's path. Then the
+ * fist lies within a forearm of the extremity, nearer the camera and
+ * farther from the shoulder: the nearest such cell, off the face and the
+ * other hand. -1 when none. */
+int32_t trk_hand_beyond(const cub_tracker *t, const limb_pick *lp, trk_p3 hc, cub_vec3 axis, int side, int32_t st)
+{
+    int32_t e = lp->hand[side], other = lp->hand[1 - side];
+    trk_p3 pe = cell_p(t, e), sh = lp->shoulder[side];
+    if (pe.z <= 0) return -1;
+    int32_t de = dist3(pe, sh), lim = pm(st, HB_NEAR), reach = pm(st, P_UPPER_ARM + P_FOREARM + P_HAND_REACH);
+    int32_t rc = lim * CUB_TRACK_FOCAL_PX / (pe.z * TRK_CELL_PX) + 1, gx0 = e % TRK_GW, gy0 = e / TRK_GW;
+    int32_t best = -1, best_z = INT32_MAX, n = 0;
+    for (int32_t gy = gy0 - rc; gy <= gy0 + rc; gy++)
+        for (int32_t gx = gx0 - rc; gx <= gx0 + rc; gx++) {
+            if (gx < 0 || gy < 0 || gx >= TRK_GW || gy >= TRK_GH) continue;
+            int32_t i = gy * TRK_GW + gx;
+            if (!t->mask[i] || t->dist0[i] == TRK_INF || t->z[i] > pe.z - pm(st, HB_DZ)) continue;
+            trk_p3 p = cell_p(t, i);
+            int32_t ds = dist3(p, sh);
+            if (dist3(p, pe) > lim || ds < de + pm(st, HB_MORE) || ds > reach) continue;
+            if (trk_along(p.x - hc.x, p.y - hc.y, p.z - hc.z, axis) < -pm(st, HB_BELOW)) continue;
+            if (other >= 0 && dist3(p, cell_p(t, other)) < pm(st, HF_OTHER)) continue;
+            if (lp->head >= 0 && dist3(p, lp->head_c) < pm(st, HF_HEAD)) continue;
+            n++;
+            /* the nearest the camera, not the farthest from the shoulder:
+             * a fist pointing at the camera is the forearm's nearest part,
+             * and the chest's front can be farther from the shoulder */
+            if (t->z[i] < best_z) best_z = t->z[i], best = i;
+        }
+    return n >= HF_CELLS ? best : -1;
 }

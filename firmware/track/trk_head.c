@@ -43,6 +43,12 @@ enum {
     HEAD_SKULL_DZ = 50, /* the skull's surface, in depth about the face's */
     HEAD_ARM_OUT = 110, /* a hand's path leads out to its elbow by more than */
 };
+/* the stature learnt: one frame's measurement moves it by at most a tenth
+ * up, a twentieth down (before the quarter taken) */
+enum {
+    ST_RISE = 10,
+    ST_SINK = 20,
+};
 
 /* Where a head's middle would be below the extremity tip: mm lower in the
  * image, in the middle of the silhouette's run on that row (the path from
@@ -246,10 +252,13 @@ int32_t trk_fit_head(cub_tracker *t, int32_t root, int32_t *ext, int32_t *next, 
     t->stature_seen_mm = st;
     if (st >= 700 && st <= 2100) {
         /* a body does not change size: once known, one odd measurement
-         * (a raised hand beside the head) moves it by 10 % at most */
+         * (a raised hand beside the head) moves it by 10 % at most; a
+         * body bending or crouching lowers its head top for many frames
+         * (a dancer bent double for a second), but does not shrink: down,
+         * half that */
         int32_t cur = t->stature_mm;
-        if (cur && st > cur + cur / 10) st = cur + cur / 10;
-        if (cur && st < cur - cur / 10) st = cur - cur / 10;
+        if (cur && st > cur + cur / ST_RISE) st = cur + cur / ST_RISE;
+        if (cur && st < cur - cur / ST_SINK) st = cur - cur / ST_SINK;
         t->stature_mm = cur ? cur + (st - cur) / 4 : st;
     }
     if (!t->stature_mm) t->stature_mm = 1200;

@@ -21,6 +21,8 @@
 #define TRK_HEAP_CAP (TRK_CELLS * 4)
 enum { TRK_WHO_PLAYER = 1, TRK_WHO_OTHER = 2 }; /* who_prev */
 #define TRK_PITCHES 21 /* floor search without gravity: -20..+20 degrees */
+#define TRK_CLOSE_MM 1000 /* the play range: the player's centre nearer is TOO_CLOSE, */
+#define TRK_FAR_MM 3500   /* farther TOO_FAR */
 
 /* A point in camera space, whole millimetres. */
 typedef struct trk_p3 {
@@ -63,6 +65,7 @@ struct cub_tracker {
     /* the player across frames */
     bool tracked;
     int32_t player_id, next_id, lost_frames;
+    bool in_play; /* the player has come nearer than TRK_FAR_MM */
     trk_p3 centre;
     int32_t stature_mm;
     int32_t neck_drop_mm; /* head top to the neck base (smoothed), 0 unknown */
