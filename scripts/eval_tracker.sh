@@ -12,10 +12,10 @@
 # plus Bandai takes and styles that are other files than every held-out
 # clip), then run this once to measure.
 #
-# Figures (firmware/track/tracker.c has the details): tuning set 89.9 %
-# after round 5 (30 clips with round 4's four dance-like renders; 88.5 %
+# Figures (firmware/track/tracker.c has the details): tuning set 90.1 %
+# after round 6 (89.9 % after round 5; 30 clips with round 4's four dance-like renders; 88.5 %
 # after round 4, 87.0 % before it; the 26 older clips 90.9 %, 89.4 %,
-# 88.7 %), held out 89.4 % of joints within 10 cm after round 5 (85.5 %
+# 88.7 %), held out 89.4 % of joints within 10 cm after rounds 5 and 6 (85.5 %
 # after round 3, 84.3 %, 81.1 % and 73.4 % before).
 #
 # Every clip is rendered with the same seed, 90 frames at 10 fps, into a

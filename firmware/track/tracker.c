@@ -264,6 +264,23 @@
  * 87 %, guide childish 88 %, the others 93-100 %; elbows 75 (left) and
  * 71 % (right), wrists 73 / 84 %, hands 75 / 83 %, the rest 90-98 %.
  *
+ * Round 6 (the fist beyond): of round 5's elbow-taken-for-the-hand
+ * picks, the wrong ones (boxing, tall loose's side bend) chose a cell
+ * across the body (the other fist before a real hand, the belly) or one
+ * of a few cells; a pick nearer the other shoulder than the extremity
+ * (by 16 per mille) or from fewer than 14 cells is now refused:
+ * 89.9 -> 90.1 % (28904 -> 28967), boxing +38, tall loose +18, stretch
+ * both arms +9, punch 2 unchanged, slash -4/-5, jesse -8; elbows +1.5
+ * points. Not helped: the candidate cells filtered instead of the pick
+ * refused (+31), a deeper fist (HB_DZ 70-120: -23 to +0).
+ * Not taken in round 6 (real Skeltrack elbows lost, as in round 2): the
+ * elbow fitted from the shoulder joint instead of the arm's root (+118
+ * on the tuning set, real elbows 53 -> 50 of 55), a guard's forearm
+ * counted as folded (EL_FOLDED 550: +20, one real elbow lost); the knee
+ * class of wrong hands (an extremity on a foot's path taken for a hand:
+ * +35, too little alone). Held out, run once after round 6 (no
+ * decision taken after it): 89.4 % (13537 of 15147; 13540 after round 5).
+ *
  * Tried in round 2 without effect on the tuning set: a third "leg" offered
  * to the hands' naming (a raised knee wins it); passing over extremities
  * just behind a nearer part; a heavier or longer memory of last frame's

@@ -44,6 +44,8 @@ enum {
     HB_DZ = 40,    /* nearer the camera than it by */
     HB_MORE = 20,  /* farther from the shoulder than it by */
     HB_BELOW = 60, /* no lower below the pelvis' middle (a thigh) */
+    HB_CELLS = 14,  /* such cells, at least (a few are a fold of the sleeve or chest) */
+    HB_ACROSS = 16, /* the fist no nearer the other shoulder than the extremity by */
 };
 
 /* Distances along the surface from the shoulder joint sh (the player's
@@ -189,12 +191,15 @@ int32_t trk_hand_in_front(const cub_tracker *t, int32_t root, const limb_pick *l
  * across them from the chest and the elbow ends the arm's path. Then the
  * fist lies within a forearm of the extremity, nearer the camera and
  * farther from the shoulder: the nearest such cell, off the face and the
- * other hand. -1 when none. */
+ * other hand. -1 when none, or when that cell lies across the body (nearer
+ * the other shoulder than the extremity: the other arm's fist before a
+ * real hand, the belly of a side bend). */
 int32_t trk_hand_beyond(const cub_tracker *t, const limb_pick *lp, trk_p3 hc, cub_vec3 axis, int side, int32_t st)
 {
     int32_t e = lp->hand[side], other = lp->hand[1 - side];
-    trk_p3 pe = cell_p(t, e), sh = lp->shoulder[side];
+    trk_p3 pe = cell_p(t, e), sh = lp->shoulder[side], so = lp->shoulder[1 - side];
     if (pe.z <= 0) return -1;
+    int32_t deo = dist3(pe, so) - pm(st, HB_ACROSS);
     int32_t de = dist3(pe, sh), lim = pm(st, HB_NEAR), reach = pm(st, P_UPPER_ARM + P_FOREARM + P_HAND_REACH);
     int32_t rc = lim * CUB_TRACK_FOCAL_PX / (pe.z * TRK_CELL_PX) + 1, gx0 = e % TRK_GW, gy0 = e / TRK_GW;
     int32_t best = -1, best_z = INT32_MAX, n = 0;
@@ -215,5 +220,7 @@ int32_t trk_hand_beyond(const cub_tracker *t, const limb_pick *lp, trk_p3 hc, cu
              * and the chest's front can be farther from the shoulder */
             if (t->z[i] < best_z) best_z = t->z[i], best = i;
         }
-    return n >= HF_CELLS ? best : -1;
+    /* a fist lies out along its own arm, not back across the body */
+    if (n < HB_CELLS || dist3(cell_p(t, best), so) < deo) return -1;
+    return best;
 }
