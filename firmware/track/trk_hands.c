@@ -40,10 +40,10 @@ enum {
 
 /* an elbow taken for the hand, per mille of stature: the fist beyond it */
 enum {
-    HB_NEAR = 210, /* within a forearm and hand of the extremity */
-    HB_DZ = 40,    /* nearer the camera than it by */
-    HB_MORE = 20,  /* farther from the shoulder than it by */
-    HB_BELOW = 60, /* no lower below the pelvis' middle (a thigh) */
+    HB_NEAR = 210,  /* within a forearm and hand of the extremity */
+    HB_DZ = 40,     /* nearer the camera than it by */
+    HB_MORE = 20,   /* farther from the shoulder than it by */
+    HB_BELOW = 60,  /* no lower below the pelvis' middle (a thigh) */
     HB_CELLS = 14,  /* such cells, at least (a few are a fold of the sleeve or chest) */
     HB_ACROSS = 16, /* the fist no nearer the other shoulder than the extremity by */
 };
