@@ -388,9 +388,7 @@ void trk_fit_skeleton(cub_tracker *t, int32_t root, int32_t *ext, int32_t next, 
      * nudge */
     int32_t sc_drop = t->neck_drop_mm ? t->neck_drop_mm + pm(st, P_BELOW_NECK) : pm(st, P_NECK_DOWN);
     trk_p3 sc = inside(cell_p(t, path_at(t, head, sc_drop)), radius(st, R_TORSO));
-    int32_t sj_drop = sc_drop < pm(st, P_NECK_DOWN_MIN)   ? pm(st, P_NECK_DOWN_MIN)
-                      : sc_drop > pm(st, P_NECK_DOWN_MAX) ? pm(st, P_NECK_DOWN_MAX)
-                                                          : sc_drop;
+    int32_t sj_drop = cub_fx_clamp(sc_drop, pm(st, P_NECK_DOWN_MIN), pm(st, P_NECK_DOWN_MAX)); /* mm */
     trk_p3 sj = inside(cell_p(t, path_at(t, head, sj_drop)), radius(st, R_TORSO));
     trk_p3 rt = inside(cell_p(t, root), radius(st, R_TORSO));
     cub_vec3 axis = dist3(sc, rt) > 60 ? unit(sc.x - rt.x, sc.y - rt.y, sc.z - rt.z) : t->up;
@@ -452,10 +450,11 @@ void trk_fit_skeleton(cub_tracker *t, int32_t root, int32_t *ext, int32_t next, 
         else guess_chain(t, s, jh, axis, st, true);
     }
     int32_t front = radius(st, R_SHOULDER) - pm(st, R_SHOULDER_JOINT);
-    shl = onto_surface(t, add_s(sj, lft, jhalf), radius(st, R_SHOULDER));
-    shr = onto_surface(t, add_s(sj, lft, -jhalf), radius(st, R_SHOULDER));
-    put(s, CUB_TJ_SHOULDER_L, (trk_p3){shl.x, shl.y, shl.z - front}, CUB_Q16_ONE / 2);
-    put(s, CUB_TJ_SHOULDER_R, (trk_p3){shr.x, shr.y, shr.z - front}, CUB_Q16_ONE / 2);
+    /* the output's shoulder joints (the arms were fitted from their roots above) */
+    trk_p3 jl = onto_surface(t, add_s(sj, lft, jhalf), radius(st, R_SHOULDER));
+    trk_p3 jr = onto_surface(t, add_s(sj, lft, -jhalf), radius(st, R_SHOULDER));
+    put(s, CUB_TJ_SHOULDER_L, (trk_p3){jl.x, jl.y, jl.z - front}, CUB_Q16_ONE / 2);
+    put(s, CUB_TJ_SHOULDER_R, (trk_p3){jr.x, jr.y, jr.z - front}, CUB_Q16_ONE / 2);
     /* (an arm without a hand keeps last frame's pose about the shoulder as
      * output then) */
     for (int side = 0; side < 2; side++)

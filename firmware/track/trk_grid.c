@@ -148,6 +148,35 @@ static void comp_add(cub_tracker *t, trk_comp *c, int32_t i)
     if (gx == 0 || gy == 0 || gx == TRK_GW - 1 || gy == TRK_GH - 1) c->border++;
 }
 
+static trk_comp comp_empty(void)
+{
+    return (trk_comp){.hmin = INT32_MAX, .hmax = INT32_MIN, .xmin = INT32_MAX, .xmax = INT32_MIN,
+                      .gx0 = TRK_GW, .gx1 = -1, .gy0 = TRK_GH, .gy1 = -1};
+}
+
+/* Cell i's 4-neighbours on the grid, -1 past its edges. */
+static void neighbours4(int32_t i, int32_t nb[4])
+{
+    int32_t gx = i % TRK_GW, gy = i / TRK_GW;
+    nb[0] = gx > 0 ? i - 1 : -1;
+    nb[1] = gx < TRK_GW - 1 ? i + 1 : -1;
+    nb[2] = gy > 0 ? i - TRK_GW : -1;
+    nb[3] = gy < TRK_GH - 1 ? i + TRK_GW : -1;
+}
+
+/* Every blob's cells whose 4 neighbours are all in it. */
+static void count_interior(cub_tracker *t)
+{
+    for (int32_t k = 0; k < t->ncomps; k++) t->comps[k].interior = 0;
+    for (int32_t gy = 1; gy < TRK_GH - 1; gy++)
+        for (int32_t i = gy * TRK_GW + 1; i < gy * TRK_GW + TRK_GW - 1; i++) {
+            int16_t l = t->label[i];
+            if (l >= 0 && t->label[i - 1] == l && t->label[i + 1] == l && t->label[i - TRK_GW] == l &&
+                t->label[i + TRK_GW] == l)
+                t->comps[l].interior++;
+        }
+}
+
 /* Flood fill with 4-neighbours; blobs past TRK_MAX_COMPS stay unlabelled. */
 void trk_components(cub_tracker *t)
 {
@@ -157,17 +186,15 @@ void trk_components(cub_tracker *t)
         if (!t->z[s] || t->label[s] >= 0) continue;
         int16_t id = (int16_t)t->ncomps++;
         trk_comp *c = &t->comps[id];
-        *c = (trk_comp){.hmin = INT32_MAX, .hmax = INT32_MIN, .xmin = INT32_MAX, .xmax = INT32_MIN,
-                        .gx0 = TRK_GW, .gx1 = -1, .gy0 = TRK_GH, .gy1 = -1};
+        *c = comp_empty();
         int32_t top = 0;
         t->stack[top++] = s;
         t->label[s] = id;
         while (top) {
             int32_t i = t->stack[--top];
             comp_add(t, c, i);
-            int32_t gx = i % TRK_GW, gy = i / TRK_GW, j = joins_mm(t->z[i]);
-            int32_t nb[4] = {gx > 0 ? i - 1 : -1, gx < TRK_GW - 1 ? i + 1 : -1, gy > 0 ? i - TRK_GW : -1,
-                             gy < TRK_GH - 1 ? i + TRK_GW : -1};
+            int32_t j = joins_mm(t->z[i]), nb[4];
+            neighbours4(i, nb);
             for (int k = 0; k < 4; k++) {
                 int32_t n = nb[k];
                 if (n < 0 || !t->z[n] || t->label[n] >= 0) continue;
@@ -177,13 +204,7 @@ void trk_components(cub_tracker *t)
             }
         }
     }
-    for (int32_t gy = 1; gy < TRK_GH - 1; gy++)
-        for (int32_t i = gy * TRK_GW + 1; i < gy * TRK_GW + TRK_GW - 1; i++) {
-            int16_t l = t->label[i];
-            if (l >= 0 && t->label[i - 1] == l && t->label[i + 1] == l && t->label[i - TRK_GW] == l &&
-                t->label[i + TRK_GW] == l)
-                t->comps[l].interior++;
-        }
+    count_interior(t);
 }
 
 /* A person-like blob: big enough, solid (noise makes sparse, stringy
@@ -257,18 +278,13 @@ static void merge_front_parts(cub_tracker *t, int32_t pid)
  * becomes a blob of its own. Else the joined blob, its centre near the
  * player's, is taken whole and the adult's limbs become the child's. */
 #define SPLIT_MIN_CELLS 20 /* cells of each side last frame before a blob is split */
+/* Blob id's sums and bounds again from its cells (interior apart). */
 static void refill_comp(cub_tracker *t, int16_t id)
 {
     trk_comp *c = &t->comps[id];
-    *c = (trk_comp){.hmin = INT32_MAX, .hmax = INT32_MIN, .xmin = INT32_MAX, .xmax = INT32_MIN,
-                    .gx0 = TRK_GW, .gx1 = -1, .gy0 = TRK_GH, .gy1 = -1};
+    *c = comp_empty();
     for (int32_t i = 0; i < TRK_CELLS; i++)
         if (t->label[i] == id) comp_add(t, c, i);
-    for (int32_t gy = 1; gy < TRK_GH - 1; gy++)
-        for (int32_t i = gy * TRK_GW + 1; i < gy * TRK_GW + TRK_GW - 1; i++)
-            if (t->label[i] == id && t->label[i - 1] == id && t->label[i + 1] == id && t->label[i - TRK_GW] == id &&
-                t->label[i + TRK_GW] == id)
-                c->interior++;
 }
 
 /* Multi-source breadth-first fill from both sides' cells of last frame
@@ -282,9 +298,8 @@ static void split_sides(cub_tracker *t, int16_t k)
     }
     while (head < tail) {
         int32_t i = t->stack[head++];
-        int32_t gx = i % TRK_GW, gy = i / TRK_GW, j = joins_mm(t->z[i]);
-        int32_t nb[4] = {gx > 0 ? i - 1 : -1, gx < TRK_GW - 1 ? i + 1 : -1, gy > 0 ? i - TRK_GW : -1,
-                         gy < TRK_GH - 1 ? i + TRK_GW : -1};
+        int32_t j = joins_mm(t->z[i]), nb[4];
+        neighbours4(i, nb);
         for (int n = 0; n < 4; n++) {
             int32_t c = nb[n];
             if (c < 0 || t->label[c] != k || t->mask[c] || trk_abs(t->z[c] - t->z[i]) > j) continue;
@@ -303,6 +318,7 @@ static void split_merged(cub_tracker *t)
         if (t->who_prev[i] == TRK_WHO_OTHER) other[t->label[i]]++;
     }
     int32_t n = t->ncomps;
+    bool split = false;
     for (int16_t k = 0; k < n && t->ncomps < TRK_MAX_COMPS; k++) {
         if (mine[k] < SPLIT_MIN_CELLS || other[k] < SPLIT_MIN_CELLS) continue;
         split_sides(t, k);
@@ -311,7 +327,9 @@ static void split_merged(cub_tracker *t)
             if (t->label[i] == k && t->mask[i] == TRK_WHO_OTHER) t->label[i] = id;
         refill_comp(t, k);
         refill_comp(t, id);
+        split = true;
     }
+    if (split) count_interior(t);
 }
 
 /* Another person stands beside the player, its centre apart along the
@@ -338,6 +356,10 @@ static void remember_who(cub_tracker *t)
     }
 }
 
+/* A person new to the box: the nearest, near the image's centre (lower is
+ * better). */
+static int64_t newcomer_score(trk_p3 cc) { return cc.z + 2 * trk_abs(cc.x); }
+
 int32_t trk_pick_player(cub_tracker *t)
 {
     if (t->tracked) split_merged(t);
@@ -351,14 +373,14 @@ int32_t trk_pick_player(cub_tracker *t)
         if (t->tracked) {
             /* the same person: the blob nearest where the player was */
             int32_t d = trk_len(cc.x - t->centre.x, cc.y - t->centre.y, cc.z - t->centre.z);
-            score = d <= 700 ? d : 1000000 + cc.z + 2 * trk_abs(cc.x);
+            score = d <= 700 ? d : 1000000 + newcomer_score(cc);
             /* a player never yet nearer than the play range's far end
              * (someone at the back of the room when the box started)
              * gives way to another person who comes into it: the child
              * walking in */
-            if (!t->in_play && d > 700 && cc.z <= TRK_FAR_MM) score = -1000000 + cc.z + 2 * trk_abs(cc.x);
+            if (!t->in_play && d > 700 && cc.z <= TRK_FAR_MM) score = -1000000 + newcomer_score(cc);
         } else {
-            score = 1000000 + cc.z + 2 * trk_abs(cc.x); /* nearest, near the centre */
+            score = 1000000 + newcomer_score(cc);
         }
         if (score < best_score) best_score = score, best = k;
     }

@@ -133,6 +133,16 @@ static const cub_judge_event *nth(const rec *r, int kind, int k)
     return NULL;
 }
 
+/* The k-th verdict is about repetition rep, right or not, given at frame
+ * at_frame (the assertions stay on the caller's line in a failure). */
+#define assert_verdict(r, k, rep_no, right, at_frame)                                                                  \
+    do {                                                                                                               \
+        const cub_judge_event *v_ = nth((r), CUB_JUDGE_VERDICT, (k));                                                  \
+        assert_int_equal(v_->rep, (rep_no));                                                                           \
+        assert_int_equal(v_->ev.b, (right));                                                                           \
+        assert_int_equal(v_->ev.t_us, (int64_t)(at_frame) * FRAME_US);                                                 \
+    } while (0)
+
 /* A repetition of move 3 with key RHE=true, frames [from, to), one beat
  * of 15 frames (500 ms at 120 bpm). */
 static cub_judge_rep rep_rhe(int rep, int from, int to)
@@ -358,14 +368,8 @@ static void test_one_run_credits_one_repetition(void **state)
         const int bent[][2] = {{62, 80}, {100, 110}};
         play_two(&r, rep_rhe(0, 0, 60), rep_rhe(1, 60, 120), 160, bent, again ? 2 : 1);
         assert_int_equal(count(&r, CUB_JUDGE_VERDICT), 2);
-        const cub_judge_event *va = nth(&r, CUB_JUDGE_VERDICT, 0);
-        const cub_judge_event *vb = nth(&r, CUB_JUDGE_VERDICT, 1);
-        assert_int_equal(va->rep, 0);
-        assert_int_equal(va->ev.b, 1);
-        assert_int_equal(va->ev.t_us, 66LL * FRAME_US);
-        assert_int_equal(vb->rep, 1);
-        assert_int_equal(vb->ev.b, again);
-        assert_int_equal(vb->ev.t_us, again ? 104LL * FRAME_US : 135LL * FRAME_US);
+        assert_verdict(&r, 0, 0, 1, 66);
+        assert_verdict(&r, 1, 1, again, again ? 104 : 135);
     }
 }
 
@@ -406,11 +410,8 @@ static void test_pose_in_the_first_beat_belongs_to_the_previous(void **state)
         const int bent[][2] = {{20, 30}, {62, held_on ? 80 : 72}};
         play_two(&r, rep_rhe(0, 0, 60), rep_rhe(1, 60, 120), 160, bent, 2);
         assert_int_equal(count(&r, CUB_JUDGE_VERDICT), 2);
-        const cub_judge_event *vb = nth(&r, CUB_JUDGE_VERDICT, 1);
-        assert_int_equal(vb->rep, 1);
-        assert_int_equal(vb->ev.b, held_on);
         /* right once the beat (15 frames) has passed; else wrong at the close */
-        assert_int_equal(vb->ev.t_us, held_on ? 75LL * FRAME_US : 135LL * FRAME_US);
+        assert_verdict(&r, 1, 1, held_on, held_on ? 75 : 135);
     }
 }
 
@@ -424,14 +425,8 @@ static void test_next_repetition_ends_the_open_one(void **state)
     const int bent[][2] = {{80, 90}};
     play_two(&r, rep_rhe(0, 0, 90), rep_rhe(1, 60, 120), 160, bent, 1);
     assert_int_equal(count(&r, CUB_JUDGE_VERDICT), 2);
-    const cub_judge_event *va = nth(&r, CUB_JUDGE_VERDICT, 0);
-    const cub_judge_event *vb = nth(&r, CUB_JUDGE_VERDICT, 1);
-    assert_int_equal(va->rep, 0);
-    assert_int_equal(va->ev.b, 0);
-    assert_int_equal(va->ev.t_us, 75LL * FRAME_US); /* not 105 */
-    assert_int_equal(vb->rep, 1);
-    assert_int_equal(vb->ev.b, 1);
-    assert_int_equal(vb->ev.t_us, 84LL * FRAME_US);
+    assert_verdict(&r, 0, 0, 0, 75); /* not 105 */
+    assert_verdict(&r, 1, 1, 1, 84);
 }
 
 static void test_expected_pose_must_be_near(void **state)
