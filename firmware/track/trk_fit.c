@@ -11,6 +11,7 @@ enum {
     ARM_SLACK = 100,
     FOOT_ABOVE = 200,
     FOOT_APART = 60,
+    ON_FOOT_PATH = 80,  /* an extremity this near a foot's path is the leg's (a knee raised aside) */
 };
 /* the elbow: how far around the path's cell it is looked for (per mille of
  * stature), the weight (quarters) of lying out to the arm's side, the
@@ -100,7 +101,8 @@ static int32_t run_half_mm(const cub_tracker *t, trk_p3 p)
 static int32_t path_base(const cub_tracker *t, int32_t tip, int32_t base_mm)
 {
     int32_t i = tip;
-    for (int32_t steps = 0; t->parent0[i] >= 0 && t->dist0[i] > base_mm && steps < 800; steps++) i = t->parent0[i];
+    for (int32_t steps = 0; t->parent0[i] >= 0 && t->dist0[i] > base_mm && steps < TRK_PATH_STEPS; steps++)
+        i = t->parent0[i];
     return i;
 }
 
@@ -173,8 +175,13 @@ static void pick_limbs(const cub_tracker *t, int32_t root, const int32_t *ext, i
     } else if (m == 1) {
         lp->foot[s[0] > 0 ? 0 : 1] = feet[0];
     }
+    /* a knee raised aside stands out like a hand within reach, but the
+     * foot's path runs through it: it is no hand */
+    int32_t kept = 0;
+    for (int32_t k = 0; k < nh; k++)
+        if (!trk_on_foot_path(t, hands[k], lp, ON_FOOT_PATH, stature)) hands[kept++] = hands[k];
     cub_vec3 lft = {lat.x * TRK_LEFT_SIGN, lat.y * TRK_LEFT_SIGN, lat.z * TRK_LEFT_SIGN};
-    trk_pick_hands(t, hands, nh, lp, sc, lft, stature);
+    trk_pick_hands(t, hands, kept, lp, sc, lft, stature);
 }
 
 /* Legs held together make one extremity for two feet: a leg whose tip

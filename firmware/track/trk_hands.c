@@ -22,6 +22,7 @@ enum {
     HC_NONE = -100,    /* the cost of seeing no hand on a side */
     HC_W_ENTRY = 4,    /* the side the arm's path leaves the torso... */
     HC_ENTRY = 180,    /* ...this far from the root along the surface */
+    HC_FORE = 220,     /* a "hand" this much nearer the camera than its shoulder: the arm points at it */
 };
 
 /* a hand before the torso, per mille of stature */
@@ -36,6 +37,11 @@ enum {
     HF_LEGS = 130,  /* below the hips: within this of the middle */
     HF_CELLS = 4,   /* cells before the torso, fewer is noise */
     HF_UP = 60,     /* looked for up to this far above the shoulders */
+    HF_FOOT_PATH = 80,    /* a cell this near a foot's path is the leg's (a knee raised before the hip) */
+    HF_JOIN_BACK = 100,  /* or its own path, this far back from it... */
+    HF_JOIN_NEAR = 40,   /* ...runs this near a foot's path... */
+    HF_JOIN_FROM = 200,  /* ...this far from the root (beyond the hip)... */
+    HF_JOIN_BEHIND = 80, /* ...along the foot path's cells from this nearer the root than it on */
 };
 
 /* an elbow taken for the hand, per mille of stature: the fist beyond it */
@@ -91,7 +97,10 @@ static int32_t hand_cost(const cub_tracker *t, int32_t c, int side, const limb_p
     if (go == TRK_INF) go = d_other;
     /* the arm is no longer than its reach along the surface either (a knee
      * or a hip bulge within reach is not: its path runs down the torso) */
-    if (gs > lp->reach_mm * HC_GEO / 100) return INT32_MAX;
+    /* (an arm pointing at the camera is foreshortened into depth steps,
+     * and the surface runs round them: there the straight line counts) */
+    bool fore = p.z < lp->shoulder[side].z - pm(st, HC_FORE);
+    if ((fore ? d : gs) > lp->reach_mm * HC_GEO / 100) return INT32_MAX;
     int32_t sgn = side ? -1 : 1, l = sgn * trk_along(p.x - sc.x, p.y - sc.y, p.z - sc.z, lft);
     int32_t g = t->dist0[c] < pm(st, HC_LONG) ? t->dist0[c] : pm(st, HC_LONG);
     int32_t cost = -HC_W_SIDE * l / 4 - HC_W_LONG * g / 4;
@@ -152,6 +161,40 @@ bool trk_on_torso(const cub_tracker *t, int32_t root, int32_t i, trk_p3 sc, trk_
     return up_sc <= pm(st, HF_ABOVE) && trk_abs(l) <= pm(st, up_hc < 0 ? HF_LEGS : HF_WIDE);
 }
 
+/* Point p lies within near_mm of a named foot's path, at least from_mm
+ * along the surface from the root. */
+static bool near_foot_path(const cub_tracker *t, trk_p3 p, const limb_pick *lp, int32_t from_mm,
+                           int32_t near_mm)
+{
+    for (int side = 0; side < 2; side++) {
+        int32_t f = lp->foot[side];
+        if (f < 0 || t->dist0[f] <= from_mm) continue;
+        for (int32_t i = f, n = 0; i >= 0 && n < TRK_PATH_STEPS && t->dist0[i] >= from_mm;
+             i = t->parent0[i], n++)
+            if (dist3(p, cell_p(t, i)) < near_mm) return true;
+    }
+    return false;
+}
+
+/* Cell c lies on a leg: within near_pm (per mille of stature, 0 not
+ * looked at) of a named foot's path, or its own path from the root runs
+ * along one away from the hips (the foot's path follows the raised
+ * thigh's underside, the knee's tip sticks out above it, farther than
+ * near_pm). A real hand's path runs along the arm. */
+bool trk_on_foot_path(const cub_tracker *t, int32_t c, const limb_pick *lp, int32_t near_pm,
+                      int32_t st)
+{
+    int32_t near_mm = pm(st, near_pm);
+    if (near_pm > 0 && near_foot_path(t, cell_p(t, c), lp, t->dist0[c] - near_mm, near_mm))
+        return true;
+    int32_t m = c, back = t->dist0[c] - pm(st, HF_JOIN_BACK);
+    for (int32_t n = 0; t->parent0[m] >= 0 && t->dist0[m] > back && n < TRK_PATH_STEPS; n++)
+        m = t->parent0[m];
+    if (t->dist0[m] <= pm(st, HF_JOIN_FROM)) return false;
+    return near_foot_path(t, cell_p(t, m), lp, t->dist0[m] - pm(st, HF_JOIN_BEHIND),
+                          pm(st, HF_JOIN_NEAR));
+}
+
 /* A hand held before the torso is no extremity (its path ends in the
  * chest), but the forearm and hand stand out in depth: among the cells
  * clearly nearer the camera than the torso's surface, on the shoulder's
@@ -181,7 +224,9 @@ int32_t trk_hand_in_front(const cub_tracker *t, int32_t root, const limb_pick *l
         /* the fist ends the forearm's path: a guard's elbow hangs as far
          * from the shoulder as its fist, but is nearer the root along the
          * surface (depth steps cost extra there) */
-        if (d > pm(st, HF_MIN) && t->dist0[i] > best_s) best_s = t->dist0[i], best = i;
+        if (d <= pm(st, HF_MIN) || t->dist0[i] <= best_s) continue;
+        /* a knee raised before the hip stands out in depth too */
+        if (!trk_on_foot_path(t, i, lp, HF_FOOT_PATH, st)) best_s = t->dist0[i], best = i;
     }
     return nfront >= HF_CELLS ? best : -1;
 }

@@ -18,6 +18,7 @@
 #define TRK_BLOCKS (TRK_BW * TRK_BH)
 #define TRK_MAX_EXTREMA 7
 #define TRK_INF INT32_MAX
+#define TRK_PATH_STEPS 800 /* the most cells walked along a path (a guard, paths are shorter) */
 #define TRK_HEAP_CAP (TRK_CELLS * 4)
 enum { TRK_WHO_PLAYER = 1, TRK_WHO_OTHER = 2 }; /* who_prev */
 #define TRK_PITCHES 21 /* floor search without gravity: -20..+20 degrees */
