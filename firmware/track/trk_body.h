@@ -61,6 +61,13 @@ static inline int32_t radius(int32_t stature, int32_t per_mille)
 
 static inline trk_p3 cell_p(const cub_tracker *t, int32_t i) { return (trk_p3){t->x[i], t->y[i], t->z[i]}; }
 
+/* The grid cell p (mm, camera space, p.z > 0) projects to; may lie off the grid. */
+static inline void grid_of(trk_p3 p, int32_t *gx, int32_t *gy)
+{
+    *gx = (CUB_TRACK_CX + p.x * CUB_TRACK_FOCAL_PX / p.z) / TRK_CELL_PX;
+    *gy = (CUB_TRACK_CY - p.y * CUB_TRACK_FOCAL_PX / p.z) / TRK_CELL_PX;
+}
+
 static inline int32_t dist3(trk_p3 a, trk_p3 b) { return trk_len(a.x - b.x, a.y - b.y, a.z - b.z); }
 
 static inline trk_p3 add_s(trk_p3 a, cub_vec3 dir_q16, int32_t mm)

@@ -83,8 +83,8 @@ static int32_t path_middle(const cub_tracker *t, int32_t tip, trk_p3 a, int32_t 
 static int32_t run_half_mm(const cub_tracker *t, trk_p3 p)
 {
     if (p.z <= 0) return 0;
-    int32_t gx = (CUB_TRACK_CX + p.x * CUB_TRACK_FOCAL_PX / p.z) / TRK_CELL_PX;
-    int32_t gy = (CUB_TRACK_CY - p.y * CUB_TRACK_FOCAL_PX / p.z) / TRK_CELL_PX;
+    int32_t gx, gy;
+    grid_of(p, &gx, &gy);
     if (gx < 0 || gy < 0 || gx >= TRK_GW || gy >= TRK_GH) return 0;
     int32_t row = gy * TRK_GW;
     if (!t->mask[row + gx]) return 0;
@@ -114,8 +114,8 @@ static int32_t path_base(const cub_tracker *t, int32_t tip, int32_t base_mm)
 static trk_p3 onto_surface(const cub_tracker *t, trk_p3 p, int32_t r_mm)
 {
     if (p.z <= 0) return p;
-    int32_t gx0 = (CUB_TRACK_CX + p.x * CUB_TRACK_FOCAL_PX / p.z) / TRK_CELL_PX;
-    int32_t gy0 = (CUB_TRACK_CY - p.y * CUB_TRACK_FOCAL_PX / p.z) / TRK_CELL_PX, zmax = 0;
+    int32_t gx0, gy0, zmax = 0;
+    grid_of(p, &gx0, &gy0);
     for (int32_t gy = gy0 - 1; gy <= gy0 + 1; gy++)
         for (int32_t gx = gx0 - 1; gx <= gx0 + 1; gx++) {
             if (gx < 0 || gy < 0 || gx >= TRK_GW || gy >= TRK_GH) continue;
@@ -362,22 +362,48 @@ static void fit_leg(cub_tracker *t, cub_track_skeleton *s, int side, int32_t tip
     put(s, jh + 3, foot, CUB_Q16_ONE);
 }
 
+/* a limb without an extremity */
+enum {
+    GUESS_BEHIND = 120, /* mm: a joint this far in front of the surface it projects to is still hidden */
+};
+
+/* Point p (a joint inside a limb) agrees with the depth: the cell it
+ * projects to is the player's and not behind it (a limb is seen there or
+ * hidden by a nearer part); off the image it may be. */
+static bool seen_or_hidden(const cub_tracker *t, trk_p3 p)
+{
+    if (p.z <= 0) return false;
+    int32_t gx, gy;
+    grid_of(p, &gx, &gy);
+    if (gx < 0 || gy < 0 || gx >= TRK_GW || gy >= TRK_GH) return true;
+    int32_t i = gy * TRK_GW + gx;
+    return t->mask[i] && t->z[i] <= p.z + GUESS_BEHIND;
+}
+
 /* A limb without an extremity: where it was last frame relative to its
- * root joint, or hanging straight down. Confidence 0. */
+ * root joint, or hanging straight down along the torso, whichever has
+ * more of its joints agreeing with the depth. Confidence 0. */
 static void guess_chain(const cub_tracker *t, cub_track_skeleton *s, int j0, cub_vec3 axis, int32_t st, bool leg)
 {
-    trk_p3 base = got(s, j0);
+    static const int32_t arm[4] = {0, 190, 320, 365}, leg_[4] = {0, 267, 552, 560};
+    trk_p3 base = got(s, j0), hang[4], kept[4];
+    int32_t n_hang = 0, n_kept = -1;
+    bool prev = t->have_prev && t->lost_frames < 15;
     for (int k = 1; k <= 3; k++) {
-        trk_p3 p;
-        if (t->have_prev && t->lost_frames < 15) {
-            trk_p3 pb = got(&t->prev, j0), pj = got(&t->prev, j0 + k);
-            p = (trk_p3){base.x + pj.x - pb.x, base.y + pj.y - pb.y, base.z + pj.z - pb.z};
-        } else {
-            static const int32_t arm[4] = {0, 190, 320, 365}, leg_[4] = {0, 267, 552, 560};
-            p = add_s(base, axis, -pm(st, leg ? leg_[k] : arm[k]));
-        }
-        put(s, j0 + k, p, 0);
+        hang[k] = add_s(base, axis, -pm(st, leg ? leg_[k] : arm[k]));
+        n_hang += seen_or_hidden(t, hang[k]);
     }
+    if (prev) {
+        n_kept = 0;
+        trk_p3 pb = got(&t->prev, j0);
+        for (int k = 1; k <= 3; k++) {
+            trk_p3 pj = got(&t->prev, j0 + k);
+            kept[k] = (trk_p3){base.x + pj.x - pb.x, base.y + pj.y - pb.y, base.z + pj.z - pb.z};
+            n_kept += seen_or_hidden(t, kept[k]);
+        }
+    }
+    bool use_kept = prev && (leg || n_kept > n_hang);
+    for (int k = 1; k <= 3; k++) put(s, j0 + k, use_kept ? kept[k] : hang[k], 0);
 }
 
 void trk_fit_skeleton(cub_tracker *t, int32_t root, int32_t *ext, int32_t next, cub_track_skeleton *s)
@@ -450,6 +476,13 @@ void trk_fit_skeleton(cub_tracker *t, int32_t root, int32_t *ext, int32_t next, 
         int32_t f = trk_hand_beyond(t, &lp, hc, axis, side, st);
         if (f >= 0) lp.elbow[side] = lp.hand[side], lp.hand[side] = f;
     }
+    /* the elbows hang from the arms' roots level with the shoulder joints
+     * (sj, its drop held to the proportions' range), not with the
+     * neck-based centre: a bent or leaning body measures its neck base
+     * low, and a root 80 mm down the flank fits the elbow onto the torso;
+     * the hands were named from the roots above */
+    put(s, CUB_TJ_SHOULDER_L, onto_surface(t, add_s(sj, lft, half), radius(st, R_SHOULDER)), CUB_Q16_ONE / 2);
+    put(s, CUB_TJ_SHOULDER_R, onto_surface(t, add_s(sj, lft, -half), radius(st, R_SHOULDER)), CUB_Q16_ONE / 2);
     for (int side = 0; side < 2; side++) {
         int jh = side ? CUB_TJ_HIP_R : CUB_TJ_HIP_L;
         if (lp.hand[side] >= 0) fit_arm(t, s, side, lp.hand[side], lp.elbow[side], st);

@@ -17,10 +17,10 @@ enum {
     HC_PREV_CAP = 300, /* ...counted up to this */
     HC_NEAR = 120,     /* a "hand" this near a shoulder is a bump on it... */
     HC_NEAR_COST = 800,
-    HC_HEAD = 90,      /* ...and one this near the head's centre a bump on the skull */
+    HC_HEAD = 130,     /* ...and one this near the head's centre a bump on the skull */
     HC_HEAD_COST = 400,
     HC_NONE = -100,    /* the cost of seeing no hand on a side */
-    HC_W_ENTRY = 4,    /* the side the arm's path leaves the torso... */
+    HC_W_ENTRY = 6,    /* the side the arm's path leaves the torso... */
     HC_ENTRY = 180,    /* ...this far from the root along the surface */
     HC_FORE = 220,     /* a "hand" this much nearer the camera than its shoulder: the arm points at it */
 };
@@ -31,7 +31,7 @@ enum {
     HF_MIN = 150,   /* at least this far from the shoulder */
     HF_CROSS = 50,  /* how far across the body's middle */
     HF_OTHER = 50,  /* away from the other hand (fists side by side) */
-    HF_HEAD = 100,  /* and from the head's centre */
+    HF_HEAD = 130,  /* and from the head's centre (a chin leaning forward stands out too) */
     HF_ABOVE = 0,   /* an extremity on the torso: below the shoulders by */
     HF_WIDE = 200,  /* and within this of the middle */
     HF_LEGS = 130,  /* below the hips: within this of the middle */
