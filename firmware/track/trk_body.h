@@ -89,6 +89,18 @@ static inline int32_t path_at(const cub_tracker *t, int32_t tip, int32_t mm)
     return i;
 }
 
+/* The cell on the tip's path to the root that is base_mm of surface from
+ * the root (the root if never). Where a limb joins the torso: an arm's
+ * path enters through the shoulder, a leg's through the hip, whatever the
+ * limb's pose (a leg kicked up to the side is still a leg). */
+static inline int32_t path_base(const cub_tracker *t, int32_t tip, int32_t base_mm)
+{
+    int32_t i = tip;
+    for (int32_t steps = 0; t->parent0[i] >= 0 && t->dist0[i] > base_mm && steps < TRK_PATH_STEPS; steps++)
+        i = t->parent0[i];
+    return i;
+}
+
 static inline void put(cub_track_skeleton *s, int j, trk_p3 p, cub_q16 conf)
 {
     s->joint_mm[j] = (cub_vec3){p.x * 65536, p.y * 65536, p.z * 65536};
@@ -118,8 +130,7 @@ void trk_pick_hands(const cub_tracker *t, const int32_t *hands, int32_t nh, limb
 bool trk_on_torso(const cub_tracker *t, int32_t root, int32_t i, trk_p3 sc, trk_p3 hc, cub_vec3 axis, cub_vec3 lft,
                   int32_t st);
 /* cell c lies on a named foot's path (a knee raised aside: no hand) */
-bool trk_on_foot_path(const cub_tracker *t, int32_t c, const limb_pick *lp, int32_t near_pm,
-                      int32_t st);
+bool trk_on_foot_path(const cub_tracker *t, int32_t c, const limb_pick *lp, int32_t st);
 /* a hand before the torso on this side: a cell, -1 none */
 int32_t trk_hand_in_front(const cub_tracker *t, int32_t root, const limb_pick *lp, trk_p3 sc, trk_p3 hc,
                           cub_vec3 axis, cub_vec3 lft, int side, int32_t st);

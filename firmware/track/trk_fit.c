@@ -11,7 +11,6 @@ enum {
     ARM_SLACK = 100,
     FOOT_ABOVE = 200,
     FOOT_APART = 60,
-    ON_FOOT_PATH = 80,  /* an extremity this near a foot's path is the leg's (a knee raised aside) */
 };
 /* the elbow: how far around the path's cell it is looked for (per mille of
  * stature), the weight (quarters) of lying out to the arm's side, the
@@ -85,25 +84,13 @@ static int32_t run_half_mm(const cub_tracker *t, trk_p3 p)
     if (p.z <= 0) return 0;
     int32_t gx, gy;
     grid_of(p, &gx, &gy);
-    if (gx < 0 || gy < 0 || gx >= TRK_GW || gy >= TRK_GH) return 0;
+    if (!on_grid(gx, gy)) return 0;
     int32_t row = gy * TRK_GW;
     if (!t->mask[row + gx]) return 0;
     int32_t a = gx, b = gx;
     while (a > 0 && t->mask[row + a - 1]) a--;
     while (b < TRK_GW - 1 && t->mask[row + b + 1]) b++;
     return (t->x[row + b] - t->x[row + a]) / 2;
-}
-
-/* Where a limb joins the torso: the cell on the tip's path to the root
- * that is base_mm of surface from the root. An arm's path enters through
- * the shoulder, a leg's through the hip, whatever the limb's pose (a leg
- * kicked up to the side is still a leg). */
-static int32_t path_base(const cub_tracker *t, int32_t tip, int32_t base_mm)
-{
-    int32_t i = tip;
-    for (int32_t steps = 0; t->parent0[i] >= 0 && t->dist0[i] > base_mm && steps < TRK_PATH_STEPS; steps++)
-        i = t->parent0[i];
-    return i;
 }
 
 /* p moved in depth to the player's surface where it projects (the
@@ -118,7 +105,7 @@ static trk_p3 onto_surface(const cub_tracker *t, trk_p3 p, int32_t r_mm)
     grid_of(p, &gx0, &gy0);
     for (int32_t gy = gy0 - 1; gy <= gy0 + 1; gy++)
         for (int32_t gx = gx0 - 1; gx <= gx0 + 1; gx++) {
-            if (gx < 0 || gy < 0 || gx >= TRK_GW || gy >= TRK_GH) continue;
+            if (!on_grid(gx, gy)) continue;
             int32_t i = gy * TRK_GW + gx;
             if (t->mask[i] && trk_abs(t->z[i] + r_mm - p.z) < SURF_NEAR && t->z[i] > zmax) zmax = t->z[i];
         }
@@ -179,7 +166,7 @@ static void pick_limbs(const cub_tracker *t, int32_t root, const int32_t *ext, i
      * foot's path runs through it: it is no hand */
     int32_t kept = 0;
     for (int32_t k = 0; k < nh; k++)
-        if (!trk_on_foot_path(t, hands[k], lp, ON_FOOT_PATH, stature)) hands[kept++] = hands[k];
+        if (!trk_on_foot_path(t, hands[k], lp, stature)) hands[kept++] = hands[k];
     cub_vec3 lft = {lat.x * TRK_LEFT_SIGN, lat.y * TRK_LEFT_SIGN, lat.z * TRK_LEFT_SIGN};
     trk_pick_hands(t, hands, kept, lp, sc, lft, stature);
 }
@@ -236,7 +223,7 @@ static trk_p3 hand_centre(const cub_tracker *t, int32_t tip, int32_t reach_mm)
     int64_t sx = 0, sy = 0, sz = 0, n = 0;
     for (int32_t gy = gy0 - rc; gy <= gy0 + rc; gy++)
         for (int32_t gx = gx0 - rc; gx <= gx0 + rc; gx++) {
-            if (gx < 0 || gy < 0 || gx >= TRK_GW || gy >= TRK_GH) continue;
+            if (!on_grid(gx, gy)) continue;
             int32_t i = gy * TRK_GW + gx;
             if (!t->mask[i] || t->dist0[i] == TRK_INF || t->dist0[i] < t->dist0[tip] - reach_mm * 3 / 2) continue;
             if (dist3(cell_p(t, i), p0) > reach_mm) continue;
@@ -296,7 +283,7 @@ static trk_p3 middle_near(const cub_tracker *t, int32_t mid, trk_p3 a, int32_t l
     int32_t best = mid, best_e = INT32_MAX, step = 1 + rc / 10; /* a near body: every few cells will do */
     for (int32_t gy = gy0 - rc; gy <= gy0 + rc; gy += step)
         for (int32_t gx = gx0 - rc; gx <= gx0 + rc; gx += step) {
-            if (gx < 0 || gy < 0 || gx >= TRK_GW || gy >= TRK_GH) continue;
+            if (!on_grid(gx, gy)) continue;
             int32_t i = gy * TRK_GW + gx;
             if (!t->mask[i]) continue;
             trk_p3 p = inside(cell_p(t, i), r);
@@ -375,35 +362,38 @@ static bool seen_or_hidden(const cub_tracker *t, trk_p3 p)
     if (p.z <= 0) return false;
     int32_t gx, gy;
     grid_of(p, &gx, &gy);
-    if (gx < 0 || gy < 0 || gx >= TRK_GW || gy >= TRK_GH) return true;
+    if (!on_grid(gx, gy)) return true;
     int32_t i = gy * TRK_GW + gx;
     return t->mask[i] && t->z[i] <= p.z + GUESS_BEHIND;
 }
 
+/* how many of a chain's three joints (1..3) agree with the depth */
+static int32_t chain_agrees(const cub_tracker *t, const trk_p3 chain[4])
+{
+    int32_t n = 0;
+    for (int k = 1; k <= 3; k++) n += seen_or_hidden(t, chain[k]);
+    return n;
+}
+
 /* A limb without an extremity: where it was last frame relative to its
- * root joint, or hanging straight down along the torso, whichever has
- * more of its joints agreeing with the depth. Confidence 0. */
+ * root joint, or hanging straight down along the torso. A leg keeps last
+ * frame's pose; an arm takes whichever has more of its joints agreeing
+ * with the depth. Confidence 0. */
 static void guess_chain(const cub_tracker *t, cub_track_skeleton *s, int j0, cub_vec3 axis, int32_t st, bool leg)
 {
     static const int32_t arm[4] = {0, 190, 320, 365}, leg_[4] = {0, 267, 552, 560};
     trk_p3 base = got(s, j0), hang[4], kept[4];
-    int32_t n_hang = 0, n_kept = -1;
-    bool prev = t->have_prev && t->lost_frames < 15;
-    for (int k = 1; k <= 3; k++) {
-        hang[k] = add_s(base, axis, -pm(st, leg ? leg_[k] : arm[k]));
-        n_hang += seen_or_hidden(t, hang[k]);
-    }
-    if (prev) {
-        n_kept = 0;
+    for (int k = 1; k <= 3; k++) hang[k] = add_s(base, axis, -pm(st, leg ? leg_[k] : arm[k]));
+    const trk_p3 *chain = hang;
+    if (t->have_prev && t->lost_frames < 15) {
         trk_p3 pb = got(&t->prev, j0);
         for (int k = 1; k <= 3; k++) {
             trk_p3 pj = got(&t->prev, j0 + k);
             kept[k] = (trk_p3){base.x + pj.x - pb.x, base.y + pj.y - pb.y, base.z + pj.z - pb.z};
-            n_kept += seen_or_hidden(t, kept[k]);
         }
+        if (leg || chain_agrees(t, kept) > chain_agrees(t, hang)) chain = kept;
     }
-    bool use_kept = prev && (leg || n_kept > n_hang);
-    for (int k = 1; k <= 3; k++) put(s, j0 + k, use_kept ? kept[k] : hang[k], 0);
+    for (int k = 1; k <= 3; k++) put(s, j0 + k, chain[k], 0);
 }
 
 void trk_fit_skeleton(cub_tracker *t, int32_t root, int32_t *ext, int32_t next, cub_track_skeleton *s)

@@ -117,7 +117,7 @@ static void run_heap(cub_tracker *t, int32_t *dist, int32_t *parent, int32_t n)
         int32_t gx = i % TRK_GW, gy = i / TRK_GW;
         for (int k = 0; k < 8; k++) {
             int32_t nx = gx + dgx[k], ny = gy + dgy[k];
-            if (nx < 0 || ny < 0 || nx >= TRK_GW || ny >= TRK_GH) continue;
+            if (!on_grid(nx, ny)) continue;
             int32_t j = ny * TRK_GW + nx;
             if (!t->mask[j]) continue;
             int32_t dz = trk_abs(t->z[j] - t->z[i]);
@@ -222,7 +222,7 @@ static void bridge_gaps(cub_tracker *t, int32_t *dist, int32_t *parent)
         for (int32_t dy = -BRIDGE_CELLS; dy <= BRIDGE_CELLS; dy++)
             for (int32_t dx = -BRIDGE_CELLS; dx <= BRIDGE_CELLS; dx++) {
                 int32_t nx = gx + dx, ny = gy + dy;
-                if (nx < 0 || ny < 0 || nx >= TRK_GW || ny >= TRK_GH) continue;
+                if (!on_grid(nx, ny)) continue;
                 int32_t j = ny * TRK_GW + nx;
                 if (!t->mask[j] || dist[j] == TRK_INF) continue;
                 int32_t d = dist[j] + approx_len(t->x[j] - t->x[i], t->y[j] - t->y[i], t->z[j] - t->z[i]);

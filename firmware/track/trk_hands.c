@@ -37,7 +37,7 @@ enum {
     HF_LEGS = 130,  /* below the hips: within this of the middle */
     HF_CELLS = 4,   /* cells before the torso, fewer is noise */
     HF_UP = 60,     /* looked for up to this far above the shoulders */
-    HF_FOOT_PATH = 80,    /* a cell this near a foot's path is the leg's (a knee raised before the hip) */
+    HF_FOOT_PATH = 80,    /* a cell this near a foot's path is the leg's (a knee raised aside or before the hip) */
     HF_JOIN_BACK = 100,  /* or its own path, this far back from it... */
     HF_JOIN_NEAR = 40,   /* ...runs this near a foot's path... */
     HF_JOIN_FROM = 200,  /* ...this far from the root (beyond the hip)... */
@@ -65,7 +65,7 @@ static void from_shoulder(cub_tracker *t, trk_p3 sh, int32_t *dist)
     int32_t best = -1, best_d = INT32_MAX;
     for (int32_t gy = gy0 - 4; gy <= gy0 + 4; gy++)
         for (int32_t gx = gx0 - 4; gx <= gx0 + 4; gx++) {
-            if (gx < 0 || gy < 0 || gx >= TRK_GW || gy >= TRK_GH) continue;
+            if (!on_grid(gx, gy)) continue;
             int32_t i = gy * TRK_GW + gx;
             if (!t->mask[i] || t->dist0[i] == TRK_INF) continue;
             int32_t d = dist3(cell_p(t, i), sh);
@@ -176,20 +176,15 @@ static bool near_foot_path(const cub_tracker *t, trk_p3 p, const limb_pick *lp, 
     return false;
 }
 
-/* Cell c lies on a leg: within near_pm (per mille of stature, 0 not
- * looked at) of a named foot's path, or its own path from the root runs
- * along one away from the hips (the foot's path follows the raised
- * thigh's underside, the knee's tip sticks out above it, farther than
- * near_pm). A real hand's path runs along the arm. */
-bool trk_on_foot_path(const cub_tracker *t, int32_t c, const limb_pick *lp, int32_t near_pm,
-                      int32_t st)
+/* Cell c lies on a leg: near a named foot's path, or its own path from
+ * the root runs along one away from the hips (the foot's path follows the
+ * raised thigh's underside, the knee's tip sticks out above it, farther
+ * than HF_FOOT_PATH). A real hand's path runs along the arm. */
+bool trk_on_foot_path(const cub_tracker *t, int32_t c, const limb_pick *lp, int32_t st)
 {
-    int32_t near_mm = pm(st, near_pm);
-    if (near_pm > 0 && near_foot_path(t, cell_p(t, c), lp, t->dist0[c] - near_mm, near_mm))
-        return true;
-    int32_t m = c, back = t->dist0[c] - pm(st, HF_JOIN_BACK);
-    for (int32_t n = 0; t->parent0[m] >= 0 && t->dist0[m] > back && n < TRK_PATH_STEPS; n++)
-        m = t->parent0[m];
+    int32_t near_mm = pm(st, HF_FOOT_PATH);
+    if (near_foot_path(t, cell_p(t, c), lp, t->dist0[c] - near_mm, near_mm)) return true;
+    int32_t m = path_base(t, c, t->dist0[c] - pm(st, HF_JOIN_BACK));
     if (t->dist0[m] <= pm(st, HF_JOIN_FROM)) return false;
     return near_foot_path(t, cell_p(t, m), lp, t->dist0[m] - pm(st, HF_JOIN_BEHIND),
                           pm(st, HF_JOIN_NEAR));
@@ -226,7 +221,7 @@ int32_t trk_hand_in_front(const cub_tracker *t, int32_t root, const limb_pick *l
          * surface (depth steps cost extra there) */
         if (d <= pm(st, HF_MIN) || t->dist0[i] <= best_s) continue;
         /* a knee raised before the hip stands out in depth too */
-        if (!trk_on_foot_path(t, i, lp, HF_FOOT_PATH, st)) best_s = t->dist0[i], best = i;
+        if (!trk_on_foot_path(t, i, lp, st)) best_s = t->dist0[i], best = i;
     }
     return nfront >= HF_CELLS ? best : -1;
 }
@@ -250,7 +245,7 @@ int32_t trk_hand_beyond(const cub_tracker *t, const limb_pick *lp, trk_p3 hc, cu
     int32_t best = -1, best_z = INT32_MAX, n = 0;
     for (int32_t gy = gy0 - rc; gy <= gy0 + rc; gy++)
         for (int32_t gx = gx0 - rc; gx <= gx0 + rc; gx++) {
-            if (gx < 0 || gy < 0 || gx >= TRK_GW || gy >= TRK_GH) continue;
+            if (!on_grid(gx, gy)) continue;
             int32_t i = gy * TRK_GW + gx;
             if (!t->mask[i] || t->dist0[i] == TRK_INF || t->z[i] > pe.z - pm(st, HB_DZ)) continue;
             trk_p3 p = cell_p(t, i);

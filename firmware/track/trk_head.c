@@ -84,7 +84,7 @@ static int32_t disk_fill_pct(const cub_tracker *t, int32_t c, int32_t rho_mm)
             if (dx * dx + dy * dy > rc * rc) continue;
             all++;
             int32_t gx = gx0 + dx, gy = gy0 + dy;
-            if (gx < 0 || gy < 0 || gx >= TRK_GW || gy >= TRK_GH) continue;
+            if (!on_grid(gx, gy)) continue;
             int32_t i = gy * TRK_GW + gx;
             if (t->mask[i] && trk_abs(t->z[i] - z0) < 2 * rho_mm) in++;
         }

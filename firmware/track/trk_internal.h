@@ -20,6 +20,8 @@
 #define TRK_INF INT32_MAX
 #define TRK_PATH_STEPS 800 /* the most cells walked along a path (a guard, paths are shorter) */
 #define TRK_HEAP_CAP (TRK_CELLS * 4)
+/* grid cell (gx, gy) lies on the grid */
+static inline bool on_grid(int32_t gx, int32_t gy) { return gx >= 0 && gy >= 0 && gx < TRK_GW && gy < TRK_GH; }
 enum { TRK_WHO_PLAYER = 1, TRK_WHO_OTHER = 2 }; /* who_prev */
 #define TRK_PITCHES 21 /* floor search without gravity: -20..+20 degrees */
 #define TRK_CLOSE_MM 1000 /* the play range: the player's centre nearer is TOO_CLOSE, */
