@@ -114,6 +114,14 @@ static void to_dance(cub_coach *c, int64_t t_ms)
     assert_int_equal(c->state, CUB_COACH_DANCE);
 }
 
+/* A coach made from make_desc() and led into the dance at t_ms. */
+static void start_dancing(cub_coach *c, int64_t t_ms)
+{
+    cub_coach_desc d = make_desc();
+    assert_int_equal(cub_coach_init(c, &d, 0), CUB_OK);
+    to_dance(c, t_ms);
+}
+
 /* ---- bad input ----------------------------------------------------------- */
 
 static void test_bad_desc_is_refused(void **s)
@@ -252,9 +260,7 @@ static void test_clap_wakes_from_idle_attract_and_doze(void **s)
 static void test_wrong_verdict_corrects_in_the_same_call(void **s)
 {
     cub_coach c;
-    cub_coach_desc d = make_desc();
-    assert_int_equal(cub_coach_init(&c, &d, 0), CUB_OK);
-    to_dance(&c, 1000);
+    start_dancing(&c, 1000);
     send(&c, 3500, CUB_EV_VERDICT, 0, 0, 1500);
     assert_int_equal(c.state, CUB_COACH_CORRECT);
     const cub_coach_action *st = act(&c, CUB_COACH_ACT_STATE, 0);
@@ -277,9 +283,7 @@ static void test_wrong_verdict_corrects_in_the_same_call(void **s)
 static void test_last_repetition_wrong_after_the_next_move_began(void **s)
 {
     cub_coach c;
-    cub_coach_desc d = make_desc();
-    assert_int_equal(cub_coach_init(&c, &d, 0), CUB_OK);
-    to_dance(&c, 1000);
+    start_dancing(&c, 1000);
     send(&c, 1500, CUB_EV_PLAYER, 1, 0, 500);
     for (int i = 0; i < 4; i++) send(&c, 4000 + 2000 * i, CUB_EV_CLIP_DONE, C_CLAP, 0, 2000 + 2000 * i);
     expect_clip(&c, C_SWAY, 0, false, CUB_COACH_WHY_MOVE); /* sway rep 0 began at 8 s */
@@ -314,9 +318,7 @@ static void test_last_repetition_wrong_after_the_next_move_began(void **s)
 static void test_correction_repeats_until_right_then_resumes_same_move(void **s)
 {
     cub_coach c;
-    cub_coach_desc d = make_desc();
-    assert_int_equal(cub_coach_init(&c, &d, 0), CUB_OK);
-    to_dance(&c, 1000);
+    start_dancing(&c, 1000);
     send(&c, 2000, CUB_EV_VERDICT, 0, 0, 1000);
     send(&c, 3000, CUB_EV_CLIP_DONE, C_SHAKE, 0, 2000);
     const cub_q16 demo = 45875;   /* 0.7 */
@@ -414,9 +416,7 @@ static void test_camera_loss_pauses_the_song_and_resumes_it(void **s)
 static void test_correction_gives_way_when_the_music_moves_on(void **s)
 {
     cub_coach c;
-    cub_coach_desc d = make_desc();
-    assert_int_equal(cub_coach_init(&c, &d, 0), CUB_OK);
-    to_dance(&c, 1000);
+    start_dancing(&c, 1000);
     send(&c, 7000, CUB_EV_VERDICT, 0, 0, 6000);
     send(&c, 8000, CUB_EV_CLIP_DONE, C_SHAKE, 0, 7000); /* still in clap's span: demo */
     expect_clip(&c, C_CLAP, 45875, false, CUB_COACH_WHY_DEMO);
@@ -510,9 +510,7 @@ static void test_attract_then_doze_after_the_configured_quiet(void **s)
 static void test_worried_after_n_misses_then_back_to_correcting(void **s)
 {
     cub_coach c;
-    cub_coach_desc d = make_desc();
-    assert_int_equal(cub_coach_init(&c, &d, 0), CUB_OK);
-    to_dance(&c, 0);
+    start_dancing(&c, 0);
     send(&c, 2000, CUB_EV_VERDICT, 0, 0, 1000);
     expect_clip(&c, C_SHAKE, CUB_Q16_ONE, false, CUB_COACH_WHY_CORRECT);
     send(&c, 2500, CUB_EV_VERDICT, 0, 0, 1500); /* during the head shake: counted only */
@@ -548,9 +546,7 @@ static void test_worried_after_n_misses_then_back_to_correcting(void **s)
 static void test_song_end_cheers_then_idles(void **s)
 {
     cub_coach c;
-    cub_coach_desc d = make_desc();
-    assert_int_equal(cub_coach_init(&c, &d, 0), CUB_OK);
-    to_dance(&c, 0);
+    start_dancing(&c, 0);
     send(&c, 20000, CUB_EV_SONG_END, 0, 0, 19000);
     assert_int_equal(c.state, CUB_COACH_CHEER);
     expect_clip(&c, C_CHEER, CUB_Q16_ONE, false, CUB_COACH_WHY_CHEER);
@@ -618,9 +614,7 @@ static void test_stop_returns_to_idle_from_every_state(void **s)
 static void test_player_away_shows_come_closer(void **s)
 {
     cub_coach c;
-    cub_coach_desc d = make_desc();
-    assert_int_equal(cub_coach_init(&c, &d, 0), CUB_OK);
-    to_dance(&c, 0);
+    start_dancing(&c, 0);
     send(&c, 2000, CUB_EV_PLAYER, 0, 0, 1000);
     assert_int_equal(act(&c, CUB_COACH_ACT_HINT, 0)->hint, CUB_COACH_HINT_COME_CLOSER);
     assert_true(logged("t=2.000 coach hint show=come_closer reason=player"));
