@@ -179,6 +179,33 @@ static cub_err coach_world(cub_session *s, int64_t t_us)
     return err;
 }
 
+/* The bear's joint world rotations this tick (x y z w floats), for the
+ * renderer's skinning: forward kinematics once more on the pose
+ * cub_dance_pose just sampled, this time keeping the rotations. */
+static cub_err coach_rotations(cub_dance *d, float *xyzw)
+{
+    cub_quat rot[CUB_MOTION_MAX_JOINTS];
+    const cub_skeleton *skel = cub_dance_skeleton(d);
+    cub_err err = cub_motion_forward(skel, &d->pose, d->world_mm, rot);
+    for (int j = 0; !err && j < skel->joint_count; j++) {
+        const float one = (float)CUB_QUAT_ONE;
+        xyzw[4 * j + 0] = (float)rot[j].x / one;
+        xyzw[4 * j + 1] = (float)rot[j].y / one;
+        xyzw[4 * j + 2] = (float)rot[j].z / one;
+        xyzw[4 * j + 3] = (float)rot[j].w / one;
+    }
+    return err;
+}
+
+/* The bear's face from the coach's state: it dozes with its eyes shut and
+ * looks worried while it corrects; otherwise it is happy. */
+static cub_render_face coach_face(int32_t state)
+{
+    if (state == CUB_COACH_DOZE) return CUB_RENDER_FACE_SLEEPY;
+    if (state == CUB_COACH_CORRECT || state == CUB_COACH_WORRIED) return CUB_RENDER_FACE_WORRIED;
+    return CUB_RENDER_FACE_HAPPY;
+}
+
 static void write_frame(cub_session *s, uint64_t tick)
 {
     int w, h;
@@ -217,6 +244,12 @@ static void tick_work(cub_session *s, cub_loop *loop, int64_t t_us)
     cub_render_scene scene = {.skel = err ? NULL : skel,
                               .world_xyz_mm = s->world_xyz,
                               .depth_raw = s->depth_frames ? s->depth_copy : NULL};
+    float rot_xyzw[4 * CUB_MOTION_MAX_JOINTS];
+    if (!err && s->dance && coach_rotations(s->dance, rot_xyzw) == CUB_OK) {
+        scene.character = &s->dance->cl.bear;
+        scene.world_rot_xyzw = rot_xyzw;
+        scene.face = coach_face(s->dance->coach.state);
+    }
     cub_render_frame(s->render, &scene);
     if (s->opt->frames_dir && loop->tick_count % (uint64_t)s->opt->frame_every == 0)
         write_frame(s, loop->tick_count);

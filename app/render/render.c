@@ -1,6 +1,8 @@
-/* render — set-up and the frame: background, then the figure, then the
- * depth inset, into whatever framebuffer is current. Output depends only on
- * the scene (no clocks, no animation), so frames can be golden-tested. */
+/* render — set-up and the frame: background, then the coach (the lit
+ * character on the forest stage, or the stick figure), then the depth
+ * inset, into whatever framebuffer is current. Output depends only on the
+ * scene (no clocks, no animation), so frames can be golden-tested. */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -57,6 +59,10 @@ static cub_err make_gl_objects(cub_render *r)
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     glTexImage2D(GL_TEXTURE_2D, 0, GL_LUMINANCE, CUB_RENDER_DEPTH_W, CUB_RENDER_DEPTH_H, 0,
                  GL_LUMINANCE, GL_UNSIGNED_BYTE, NULL);
+    if (cub_render_lit_init(&r->lit))
+        return CUB_ERR_DEVICE;
+    if (cub_render_stage_init(r))
+        return CUB_ERR_DEVICE;
     GLenum e = glGetError();
     if (e != GL_NO_ERROR) {
         fprintf(stderr, "render: setting up GL objects failed: GL error 0x%04x\n", e);
@@ -102,16 +108,27 @@ void cub_render_destroy(cub_render *r)
     glDeleteProgram(r->tex_prog);
     glDeleteBuffers(1, &r->vbo);
     glDeleteTextures(1, &r->depth_tex);
+    cub_render_lit_free(&r->lit);
+    cub_render_bear_free(&r->bear);
+    glDeleteBuffers(1, &r->stage_vbo);
+    glDeleteBuffers(1, &r->stage_ibo);
     free(r->batch.v);
     free(r->depth_lum);
     free(r);
 }
 
-static void background(cub_render *r, const float rgb[3])
+/* The stage's sky: the level camera puts the horizon at mid-height. */
+static const float STAGE_SKY_TOP[3] = {0.30f, 0.58f, 0.93f};
+static const float STAGE_SKY_HORIZON[3] = {0.86f, 0.94f, 1.00f};
+
+static void background(cub_render *r, const float rgb[3], int stage)
 {
     float w = (float)r->w, h = (float)r->h;
     if (rgb[0] != 0.0f || rgb[1] != 0.0f || rgb[2] != 0.0f) {
         cub_render_batch_rect_px(r, 0, 0, w, h, rgb, rgb);
+    } else if (stage) {
+        cub_render_batch_rect_px(r, 0, 0.5f * h, w, h, STAGE_SKY_TOP, STAGE_SKY_HORIZON);
+        cub_render_batch_rect_px(r, 0, 0, w, 0.5f * h, STAGE_SKY_HORIZON, STAGE_SKY_HORIZON);
     } else {
         float floor_y = FLOOR_ROW_SHARE * h;
         cub_render_batch_rect_px(r, 0, floor_y, w, h, SKY_TOP, SKY_HORIZON);
@@ -120,11 +137,30 @@ static void background(cub_render *r, const float rgb[3])
     cub_render_batch_draw(r);
 }
 
+/* The camera and the stage follow the root, so the bear stays in the
+ * middle of a forest that stands still on screen. */
+static void coach_on_stage(cub_render *r, const cub_render_scene *scene)
+{
+    const float *root = scene->world_xyz_mm;
+    float at[3] = {0.0f, 0.0f, 0.0f};
+    if (isfinite(root[0]) && isfinite(root[2]))
+        at[0] = root[0], at[2] = root[2];
+    cub_render_lit_camera(r, at);
+    float *q = r->lit.rot, *t = r->lit.pos; /* slot 0: the stage */
+    q[0] = q[1] = q[2] = 0.0f, q[3] = 1.0f;
+    t[0] = at[0], t[1] = 0.0f, t[2] = at[2];
+    cub_render_bear_draw(r, scene);
+    cub_render_stage_draw(r);
+}
+
 cub_err cub_render_frame(cub_render *r, const cub_render_scene *scene)
 {
     if (!r || !scene)
         return CUB_ERR_ARG;
     cub_err e = cub_render_figure_check(scene);
+    int bear = 0;
+    if (!e)
+        e = cub_render_bear_prepare(r, scene, &bear);
     if (e)
         return e; /* before drawing anything: no half frame */
     glViewport(0, 0, r->w, r->h);
@@ -137,11 +173,14 @@ cub_err cub_render_frame(cub_render *r, const cub_render_scene *scene)
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
 
     glDisable(GL_DEPTH_TEST);
-    background(r, scene->background_rgb);
+    background(r, scene->background_rgb, bear);
 
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LEQUAL);
-    cub_render_figure(r, scene);
+    if (bear)
+        coach_on_stage(r, scene);
+    else
+        cub_render_figure(r, scene);
     cub_render_batch_draw(r);
     glDisable(GL_DEPTH_TEST);
 

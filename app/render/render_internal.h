@@ -8,6 +8,7 @@
 #include <stdint.h>
 
 #include "cub/render.h"
+#include "render_mesh.h"
 
 #define CUB_RENDER_DEPTH_W 640
 #define CUB_RENDER_DEPTH_H 480
@@ -27,6 +28,39 @@ typedef struct cub_render_batch {
     int count, cap;
 } cub_render_batch;
 
+/* Bone slots the lit shader holds (two vec4 uniforms each; GLES2 promises
+ * 128 vertex uniform vectors). Slot 0 is the stage; joint j is slot j + 1. */
+#define CUB_RENDER_MAX_SLOTS 48
+
+/* A mesh in GL buffers: indices [first, first + count) of one draw. */
+typedef struct cub_render_range {
+    int first, count;
+} cub_render_range;
+
+/* The lit, skinned shader and the per-frame bone transforms it reads. */
+typedef struct cub_render_lit {
+    GLuint prog;
+    GLint a_pos, a_nrm, a_col, a_skin;
+    GLint u_vp, u_rot, u_pos, u_eye;
+    float vp[16], eye[3];                 /* this frame's camera */
+    float rot[4 * CUB_RENDER_MAX_SLOTS];  /* x y z w per slot */
+    float pos[4 * CUB_RENDER_MAX_SLOTS];  /* translation per slot (w unused) */
+} cub_render_lit;
+
+/* The character's meshes, built once for the character shown, and how its
+ * joints map onto the scene skeleton's. */
+typedef struct cub_render_bear {
+    const cub_character *shown; /* NULL: none built */
+    GLuint vbo, ibo;
+    cub_render_range body;      /* every part but the eyes */
+    cub_render_range face[CUB_RENDER_FACE_COUNT];
+    float rest_mm[CUB_MOTION_MAX_JOINTS][3]; /* joint positions, rest pose */
+    const cub_skeleton *mapped_skel;
+    int mapped_count;           /* joint_count of mapped_skel when mapped */
+    int map[CUB_MOTION_MAX_JOINTS]; /* character joint -> scene joint or -1 */
+    int mapped_any;
+} cub_render_bear;
+
 struct cub_render {
     int w, h;
     float figure_height_mm;
@@ -38,6 +72,10 @@ struct cub_render {
     uint8_t depth_lut[2048];  /* raw 11-bit -> 8-bit shade */
     uint8_t *depth_lum;       /* CUB_RENDER_DEPTH_W * _H shades */
     cub_render_batch batch;
+    cub_render_lit lit;
+    cub_render_bear bear;
+    GLuint stage_vbo, stage_ibo;
+    cub_render_range stage;
 };
 
 /* render_gl.c */
@@ -53,6 +91,31 @@ void cub_render_batch_draw(cub_render *r);
  * parent after its child; then append the figure's triangles to r->batch. */
 cub_err cub_render_figure_check(const cub_render_scene *scene);
 void cub_render_figure(cub_render *r, const cub_render_scene *scene);
+
+/* render_lit.c: the lit shader, the camera that frames the character, and
+ * drawing an index range of a mesh with the bone slots as they are. */
+cub_err cub_render_lit_init(cub_render_lit *lit);
+void cub_render_lit_free(cub_render_lit *lit);
+/* The camera for this frame: perspective, level, framing a figure of
+ * figure_height_mm standing at root (x, z) whole at the viewport's aspect. */
+void cub_render_lit_camera(cub_render *r, const float root_mm[3]);
+/* Upload the slots' transforms once per frame, then draw ranges. */
+void cub_render_lit_begin(cub_render *r);
+void cub_render_lit_draw(cub_render *r, GLuint vbo, GLuint ibo, cub_render_range range);
+/* Fill GL buffers from a mesh; 0 on success. */
+int cub_render_lit_upload(const cub_render_mesh *m, GLuint *vbo, GLuint *ibo);
+
+/* render_bear.c: CUB_ERR_ARG when the scene's character cannot be shown
+ * (too many joints, or a part that does not fit); otherwise builds its
+ * meshes if they are not built yet. *drawn says whether the bear is drawn
+ * this frame (else the stick figure stands in). */
+cub_err cub_render_bear_prepare(cub_render *r, const cub_render_scene *scene, int *drawn);
+void cub_render_bear_draw(cub_render *r, const cub_render_scene *scene);
+void cub_render_bear_free(cub_render_bear *b);
+
+/* render_stage.c: the forest, built once at create. */
+cub_err cub_render_stage_init(cub_render *r);
+void cub_render_stage_draw(cub_render *r);
 
 /* render_inset.c */
 void cub_render_inset_init_lut(uint8_t lut[2048]);

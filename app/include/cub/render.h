@@ -1,13 +1,17 @@
 /* render — the OpenGL ES 2 renderer. It draws what the firmware decided this
  * tick and decides nothing itself. Needs a current GLES2 context (the
- * board's display). For now: a stick-figure coach and the depth image as a
- * small inset in the lower-right corner.
+ * board's display). The coach is either a lit, rounded character (its
+ * body parts from the character file, skinned to the pose in the vertex
+ * shader) standing on a cartoon forest stage, or, without a character, a
+ * stick figure on a flat sky; the depth image is a small inset in the
+ * lower-right corner.
  */
 #ifndef CUB_RENDER_H
 #define CUB_RENDER_H
 
 #include <stdint.h>
 
+#include "cub/character.h"
 #include "cub/err.h"
 #include "cub/motion.h"
 
@@ -18,19 +22,39 @@ typedef struct cub_render_desc {
     float figure_height_mm;   /* height the camera frames; default 1800 */
 } cub_render_desc;
 
+/* The character's face. Who picks it: the caller, from the coach's state
+ * (session.c: dozing -> sleepy, correcting or worried -> worried). */
+typedef enum cub_render_face {
+    CUB_RENDER_FACE_HAPPY = 0, /* open eyes with a sparkle, a smile */
+    CUB_RENDER_FACE_WORRIED,   /* brows raised in the middle, a small wobbly mouth */
+    CUB_RENDER_FACE_SLEEPY,    /* closed eyes, a small round mouth */
+    CUB_RENDER_FACE_COUNT
+} cub_render_face;
+
 typedef struct cub_render_scene {
     /* The coach: joint world positions (mm, y up), 3 floats each, and the
      * skeleton for the bone list. skel == NULL draws no figure. */
     const cub_skeleton *skel;
     const float *world_xyz_mm;
+    /* With a character and joint world rotations (unit quaternions x, y,
+     * z, w per joint of skel, as cub_motion_forward gives them) the coach
+     * is the character on the forest stage; its parts follow skel's joints
+     * of the same names. Without (or when no part's joint is in skel): the
+     * stick figure. The character's meshes are built on the first frame
+     * that shows it and kept while the same character is shown. */
+    const cub_character *character;
+    const float *world_rot_xyzw;
+    cub_render_face face;
     /* The depth inset: raw 11-bit Kinect values, 640x480; NULL = no inset. */
     const uint16_t *depth_raw;
-    float background_rgb[3];  /* all zero = the default sky colour */
+    float background_rgb[3];  /* all zero = the default sky (stick figure only) */
 } cub_render_scene;
 
 cub_err cub_render_create(const cub_render_desc *desc, cub_render **out);
 void cub_render_destroy(cub_render *r);
-/* Draw one frame into the current framebuffer. */
+/* Draw one frame into the current framebuffer. CUB_ERR_ARG for a scene
+ * whose skeleton or character does not hold together (nothing drawn);
+ * CUB_ERR_DEVICE when GL fails. */
 cub_err cub_render_frame(cub_render *r, const cub_render_scene *scene);
 
 #endif
