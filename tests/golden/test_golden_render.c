@@ -363,6 +363,61 @@ static void test_bear_correcting_worried_matches_golden(void **state)
     check_golden_within(f->rgba, "bear_correct_worried", 1, BEAR_MAX_SHARE);
 }
 
+/* Only the face changes between faces: the pixels that differ between the
+ * happy and the sleepy bear all lie in the head's box (the upper part of
+ * the bear, centre columns), and there are enough of them to see. */
+static void test_bear_faces_differ_only_on_the_head(void **state)
+{
+    fixture *f = *state;
+    static uint8_t happy[W * H * 4];
+    cub_render_scene scene = bear_pose(BENDS(DOZE), CUB_RENDER_FACE_HAPPY);
+    draw_with(f, f->bear_render, &scene);
+    memcpy(happy, f->rgba, sizeof happy);
+    scene.face = CUB_RENDER_FACE_SLEEPY;
+    draw_with(f, f->bear_render, &scene);
+    int differ = 0, outside = 0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            const uint8_t *a = happy + 4 * (y * W + x), *b = f->rgba + 4 * (y * W + x);
+            if (abs(a[0] - b[0]) + abs(a[1] - b[1]) + abs(a[2] - b[2]) <= 3 * CHANNEL_TOL)
+                continue;
+            differ++;
+            outside += x < W / 3 || x > 2 * W / 3 || y > 3 * H / 5; /* y from the top */
+        }
+    printf("golden: happy vs sleepy: %d pixels differ, %d outside the head's box\n", differ,
+           outside);
+    assert_true(differ >= 40);
+    assert_int_equal(outside, 0);
+}
+
+/* A character the renderer cannot show is refused with nothing drawn: an
+ * unknown face, too many joints to skin, a part on a joint that is not there. */
+static void test_bear_rejects_bad_character(void **state)
+{
+    fixture *f = *state;
+    cub_render_scene scene = bear_pose(BENDS(DANCE), CUB_RENDER_FACE_HAPPY);
+    scene.face = CUB_RENDER_FACE_COUNT;
+    assert_int_equal(cub_render_frame(f->bear_render, &scene), CUB_ERR_ARG);
+    static cub_character big;
+    big = g_bear;
+    big.skel.joint_count = CUB_MOTION_MAX_JOINTS;
+    for (int j = g_bear.skel.joint_count; j < big.skel.joint_count; j++) {
+        snprintf(big.skel.joints[j].name, sizeof big.skel.joints[j].name, "extra%d", j);
+        big.skel.joints[j].parent = 0;
+    }
+    scene = bear_pose(BENDS(DANCE), CUB_RENDER_FACE_HAPPY);
+    scene.character = &big;
+    assert_int_equal(cub_render_frame(f->bear_render, &scene), CUB_ERR_ARG);
+    static cub_character stray;
+    stray = g_bear;
+    stray.parts[0].joint = stray.skel.joint_count;
+    scene.character = &stray;
+    assert_int_equal(cub_render_frame(f->bear_render, &scene), CUB_ERR_ARG);
+    /* The renderer still draws the real bear afterwards. */
+    scene.character = &g_bear;
+    assert_int_equal(cub_render_frame(f->bear_render, &scene), CUB_OK);
+}
+
 /* The same scene drawn twice gives the same bytes: nothing in the renderer
  * depends on time or leftover state. */
 static void test_frames_are_deterministic(void **state)
@@ -468,6 +523,8 @@ int main(void)
         cmocka_unit_test(test_bear_dancing_happy_matches_golden),
         cmocka_unit_test(test_bear_doze_sleepy_matches_golden),
         cmocka_unit_test(test_bear_correcting_worried_matches_golden),
+        cmocka_unit_test(test_bear_faces_differ_only_on_the_head),
+        cmocka_unit_test(test_bear_rejects_bad_character),
         cmocka_unit_test(test_frames_are_deterministic),
         cmocka_unit_test(test_inset_maps_no_reading_to_black_and_near_brighter),
         cmocka_unit_test(test_render_rejects_bad_input),
