@@ -390,7 +390,7 @@ static cub_err open_player(cub_dance *d, char *err, size_t size)
 static cub_err open_music(cub_dance *d, const cub_app_options *o, char *err, size_t size)
 {
     cub_diag diag;
-    cub_music_desc md = {.rate = cub_board_audio_rate(d->board)};
+    cub_music_desc md = {.rate = cub_board_audio_rate(d->board), .soundfont = o->soundfont};
     if (cub_music_open(&md, &d->music, &diag)) return fail(err, size, &diag, "music");
     if (cub_music_load(d->music, d->song.midi_path, &diag)) return fail(err, size, &diag, "song");
 
@@ -447,6 +447,12 @@ void cub_dance_close(cub_dance *d)
 }
 
 const cub_skeleton *cub_dance_skeleton(const cub_dance *d) { return &d->cl.lib.skel; }
+
+int cub_dance_waiting(const cub_dance *d)
+{
+    int32_t st = d->coach.state;
+    return st == CUB_COACH_IDLE || st == CUB_COACH_ATTRACT || st == CUB_COACH_DOZE;
+}
 
 cub_err cub_dance_pose(cub_dance *d, float *xyz)
 {

@@ -68,6 +68,8 @@ void cub_dance_poll(cub_dance *d, cub_loop *loop, int64_t now_us);
 void cub_dance_tick(cub_dance *d, cub_loop *loop, int64_t t_us);
 /* The coach's skeleton and its pose now (world mm, 3 floats per joint). */
 const cub_skeleton *cub_dance_skeleton(const cub_dance *d);
+/* 1 while the coach waits for START (idle, attracting or dozing). */
+int cub_dance_waiting(const cub_dance *d);
 /* How tall the camera should frame the coach: its standing height and a
  * margin for raised paws and jumps (mm). */
 float cub_dance_figure_height_mm(const cub_dance *d);

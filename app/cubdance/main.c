@@ -6,8 +6,10 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include "cub/board.h"
+#include "cub/boxconf.h"
 #include "cub/io.h"
 #include "cub/loop.h"
 #include "cub/render.h"
@@ -45,8 +47,10 @@ static int make_dir(const char *dir)
 static cub_board *open_board(const cub_app_options *o)
 {
     cub_board_desc d = {.display = o->display, .width = o->width, .height = o->height,
-                        .depth = o->depth, .button_script = o->button_script,
-                        .gpio_config = o->gpio_config, .audio_driver = o->audio_driver,
+                        .fit_screen = o->fit_screen, .fullscreen = o->fullscreen,
+                        .video_driver = o->video_driver, .depth = o->depth,
+                        .button_script = o->button_script, .gpio = o->gpio,
+                        .audio_driver = o->audio_driver, .audio_volume = o->audio_volume,
                         .virtual_clock = o->virtual_clock};
     if (o->frames_dir && d.display == CUB_DISPLAY_AUTO) d.display = CUB_DISPLAY_HEADLESS;
     cub_board *b = NULL;
@@ -123,7 +127,8 @@ static int run(const cub_app_options *o, cub_board *board, FILE *log, const cub_
     }
     static cub_session s; /* large (it holds this tick's pose): not on the stack */
     s = (cub_session){.opt = o, .board = board, .clip = clip,
-                      .clip_name = file_name(o->clip_path), .loop = &loop};
+                      .clip_name = file_name(o->clip_path), .loop = &loop,
+                      .ready_shown = -1};
     int w = 0, h = 0, rc = -1;
     cub_board_display_size(board, &w, &h);
     /* Each buffer only when something will fill it: without --frames the
@@ -185,6 +190,28 @@ done:
     return rc;
 }
 
+/* --config FILE must exist; the default file may be missing (a PC, the
+ * simulator), and then the built-in defaults apply. */
+static int load_config(cub_app_options *o)
+{
+    static cub_boxconf c;
+    char err[768];
+    const char *path = o->config_path ? o->config_path : CUB_BOXCONF_DEFAULT_PATH;
+    int from_file = o->config_path || access(path, F_OK) == 0;
+    cub_boxconf_defaults(&c);
+    if (from_file && cub_boxconf_load(path, &c, err, sizeof err)) {
+        fprintf(stderr, "cubdance: %s\n", err);
+        return -1;
+    }
+    if (c.recording) {
+        /* Nothing records yet: refuse rather than pretend to. */
+        fprintf(stderr, "cubdance: %s: recording=1, but this cubdance cannot record yet "
+                        "(nothing would be stored); set recording=0\n", path);
+        return -1;
+    }
+    return cub_app_apply_config(o, &c, from_file, CUB_ASSETS_DIR, stderr);
+}
+
 int main(int argc, char **argv)
 {
     cub_app_options o;
@@ -193,6 +220,7 @@ int main(int argc, char **argv)
     case CUB_APP_EXIT_BAD: return 2;
     case CUB_APP_RUN: break;
     }
+    if (load_config(&o)) return 1;
     if (o.replay_dir && cub_replay_prepare(o.replay_dir, argv, stderr)) return 1;
     if (o.frames_dir && make_dir(o.frames_dir)) return 1;
 

@@ -38,7 +38,10 @@ static void usage(FILE *f, const char *prog)
 "Buttons, sound, content\n"
 "  --buttons FILE         press buttons from a timeline file instead of the\n"
 "                         keyboard / GPIO: lines `<seconds> <start|stop> [press|down|up]`\n"
-"  --gpio-config FILE     the box: which GPIO lines are START and STOP\n"
+"  --config FILE          the box's settings (default " CUB_BOXCONF_DEFAULT_PATH "\n"
+"                         if it exists): GPIO lines, display, volume, timings,\n"
+"                         asset paths, recording; options here win over it\n"
+"  --gpio-config FILE     the same as --config (its old name)\n"
 "  --audio-driver NAME    SDL audio driver (e.g. dummy, disk, alsa)\n"
 "  --clip FILE            the coach's clip, a BVH file\n"
 "                         (default " CUB_ASSETS_DIR "/clips/hello.bvh)\n"
@@ -141,7 +144,8 @@ static int apply_valued(cub_app_options *o, const char *opt, const char *val, FI
         const char **slot = !strcmp(opt, "--frames")         ? &o->frames_dir
                             : !strcmp(opt, "--replay")       ? &o->replay_dir
                             : !strcmp(opt, "--buttons")      ? &o->button_script
-                            : !strcmp(opt, "--gpio-config")  ? &o->gpio_config
+                            : !strcmp(opt, "--gpio-config")  ? &o->config_path
+                            : !strcmp(opt, "--config")       ? &o->config_path
                             : !strcmp(opt, "--audio-driver") ? &o->audio_driver
                             : !strcmp(opt, "--clip")         ? &o->clip_path
                             : !strcmp(opt, "--log")          ? &o->log_path
@@ -161,7 +165,7 @@ static int takes_value(const char *opt)
 {
     static const char *const valued[] = {"--size", "--frame-every", "--seconds", "--clock",
                                          "--depth", "--frames", "--replay", "--buttons",
-                                         "--gpio-config", "--audio-driver", "--clip", "--log",
+                                         "--gpio-config", "--config", "--audio-driver", "--clip", "--log",
                                          "--song", "--timeline", "--library", "--tags",
                                          "--character", "--attract-after", "--doze-after",
                                          "--music-clock-scale"};
@@ -175,10 +179,6 @@ cub_app_parse cub_app_parse_options(int argc, char **argv, cub_app_options *o, F
 {
     memset(o, 0, sizeof *o);
     o->frame_every = 30;
-    o->clip_path = CUB_ASSETS_DIR "/clips/hello.bvh";
-    o->library_path = CUB_ASSETS_DIR "/clips/bear.cubclips";
-    o->tags_path = CUB_ASSETS_DIR "/clips/bear.tags.xml";
-    o->character_path = CUB_ASSETS_DIR "/bear/bear.xml";
     o->music_clock_scale = 1.0;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
@@ -214,4 +214,62 @@ cub_app_parse cub_app_parse_options(int argc, char **argv, cub_app_options *o, F
         o->depth = CUB_DEPTH_FREENECT;
     }
     return CUB_APP_RUN;
+}
+
+/* dir + "/" + rel into buf (slot of o->path_buf); NULL if too long. */
+static const char *join(cub_app_options *o, int slot, const char *dir, const char *rel,
+                        const char *suffix)
+{
+    char *buf = o->path_buf[slot];
+    int n = snprintf(buf, sizeof o->path_buf[slot], "%s/%s%s", dir, rel, suffix);
+    return n < 0 || (size_t)n >= sizeof o->path_buf[slot] ? NULL : buf;
+}
+
+static int apply_assets(cub_app_options *o, const cub_boxconf *c, const char *builtin,
+                        FILE *err)
+{
+    const char *assets = c->assets_dir[0] ? c->assets_dir : builtin;
+    static const struct { const char *rel; } rel[4] = {
+        {"clips/hello.bvh"}, {"clips/bear.cubclips"}, {"clips/bear.tags.xml"}, {"bear/bear.xml"}};
+    const char **slot[4] = {&o->clip_path, &o->library_path, &o->tags_path, &o->character_path};
+    for (int i = 0; i < 4; i++) {
+        if (*slot[i]) continue; /* given on the command line */
+        if (!(*slot[i] = join(o, i, assets, rel[i].rel, ""))) {
+            fprintf(err, "cubdance: assets_dir %s: path too long\n", assets);
+            return -1;
+        }
+    }
+    if (!o->song_path && c->song[0]) {
+        char songs[CUB_BOXCONF_PATH_MAX + 16];
+        snprintf(songs, sizeof songs, "%s%s", c->songs_dir[0] ? c->songs_dir : assets,
+                 c->songs_dir[0] ? "" : "/songs");
+        if (!(o->song_path = join(o, 4, songs, c->song, ".song.xml"))) {
+            fprintf(err, "cubdance: songs_dir %s: path too long\n", songs);
+            return -1;
+        }
+    }
+    return 0;
+}
+
+int cub_app_apply_config(cub_app_options *o, const cub_boxconf *c, int from_file,
+                         const char *builtin_assets, FILE *err)
+{
+    if (apply_assets(o, c, builtin_assets, err)) return -1;
+    if (o->attract_after_s == 0) o->attract_after_s = c->attract_after_s;
+    if (o->doze_after_s == 0) o->doze_after_s = c->doze_after_s;
+    if (!o->audio_driver && strcmp(c->audio_driver, "auto") != 0) o->audio_driver = c->audio_driver;
+    o->audio_volume = c->volume == 0 ? CUB_BOARD_MUTE : c->volume;
+    o->soundfont = c->soundfont;
+    o->gpio = &c->gpio;
+    if (!from_file) return 0;
+    /* The display only from a file: with none, a PC keeps its window. */
+    if (o->width == 0) {
+        o->width = c->width;
+        o->height = c->height;
+        o->fit_screen = c->width == 0;
+    }
+    o->fullscreen = c->fullscreen ? 1 : -1;
+    if (!strcmp(c->video_driver, "kmsdrm")) o->video_driver = "KMSDRM";
+    else if (strcmp(c->video_driver, "auto") != 0) o->video_driver = c->video_driver;
+    return 0;
 }

@@ -5,6 +5,7 @@
 #include <stdio.h>
 
 #include "cub/board.h"
+#include "cub/boxconf.h"
 
 typedef struct cub_app_options {
     cub_display_mode display;
@@ -12,7 +13,7 @@ typedef struct cub_app_options {
     cub_depth_mode depth;
     const char *replay_dir;     /* a fakenect dump to replay, or NULL */
     const char *button_script;  /* a button timeline, or NULL */
-    const char *gpio_config;    /* pi: GPIO line names */
+    const char *config_path;    /* --config (alias --gpio-config); NULL = the default file */
     const char *audio_driver;
     const char *clip_path;      /* the coach's clip (BVH) */
     const char *log_path;       /* NULL or "-" = stderr */
@@ -30,6 +31,13 @@ typedef struct cub_app_options {
     double attract_after_s;     /* 0 = the coach's default */
     double doze_after_s;        /* 0 = the coach's default */
     double music_clock_scale;   /* 1 = true; 0.95 / 1.05 simulate a drifting audio clock */
+    /* From the config file only (cub_app_apply_config). */
+    int fit_screen, fullscreen; /* as in cub_board_desc */
+    const char *video_driver;   /* NULL = the board's choice */
+    int audio_volume;           /* as in cub_board_desc */
+    const char *soundfont;      /* NULL = the music module's default */
+    const cub_boxconf_gpio *gpio;
+    char path_buf[5][CUB_BOXCONF_PATH_MAX + 64]; /* joined asset paths */
 } cub_app_options;
 
 typedef enum cub_app_parse {
@@ -40,5 +48,11 @@ typedef enum cub_app_parse {
 
 cub_app_parse cub_app_parse_options(int argc, char **argv, cub_app_options *out, FILE *err,
                                     FILE *help_out);
+/* Fill what the command line left unset from the config c (which must
+ * outlive o); from_file = 0 when no file was read (the display then stays
+ * the board's way). Asset paths not given resolve against c's assets_dir,
+ * else builtin_assets. -1 with a message to err when a path is too long. */
+int cub_app_apply_config(cub_app_options *o, const cub_boxconf *c, int from_file,
+                         const char *builtin_assets, FILE *err);
 
 #endif

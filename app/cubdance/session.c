@@ -224,6 +224,17 @@ static void write_frame(cub_session *s, uint64_t tick)
     s->frames_written++;
 }
 
+/* The ready light follows whether the box waits for START; only changes
+ * reach the board (a GPIO write per tick would be wasted). */
+static void show_ready(cub_session *s)
+{
+    int ready = s->dance ? cub_dance_waiting(s->dance) : s->state == CUB_APP_WAITING;
+    if (ready != s->ready_shown) {
+        cub_board_set_ready(s->board, ready);
+        s->ready_shown = ready;
+    }
+}
+
 static void tick_work(cub_session *s, cub_loop *loop, int64_t t_us)
 {
     if (s->stop_at_us && t_us >= s->stop_at_us) {
@@ -233,6 +244,7 @@ static void tick_work(cub_session *s, cub_loop *loop, int64_t t_us)
     }
     if (s->watch) cub_watch_tick(s->watch, loop, t_us);
     if (s->dance) cub_dance_tick(s->dance, loop, t_us);
+    show_ready(s);
     if (!s->render) return;
     cub_err err = coach_world(s, t_us);
     if (err && !s->pose_error) {

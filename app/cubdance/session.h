@@ -36,6 +36,7 @@ typedef struct cub_session {
     const char *clip_name;   /* its file name, for the log */
     cub_loop *loop;
     cub_app_state state;
+    int ready_shown;         /* what the ready light shows: 1, 0, or -1 before the first tick */
     int64_t play_start_us;
     int64_t stop_at_us;      /* 0 = no limit */
     uint16_t *depth_copy;    /* the last depth frame, for the inset */

@@ -13,6 +13,7 @@ struct cub_audio_sdl {
     SDL_AudioDeviceID dev;
     cub_audio_fill fill;
     void *user;
+    int gain_q15; /* volume: 32768 = as filled */
     _Atomic uint64_t frames;
 };
 
@@ -23,6 +24,12 @@ static void on_audio(void *userdata, Uint8 *stream, int len)
     int frames = len / (int)(2 * sizeof(int16_t));
     memset(stream, 0, (size_t)len);
     a->fill(a->user, (int16_t *)stream, frames);
+    if (a->gain_q15 != 32768) {
+        int16_t *s = (int16_t *)stream;
+        for (int i = 0; i < frames * 2; i++) {
+            s[i] = (int16_t)(((int32_t)s[i] * a->gain_q15) >> 15);
+        }
+    }
     atomic_fetch_add(&a->frames, (uint64_t)frames);
 }
 
@@ -53,10 +60,11 @@ static int init_subsystem(const char *driver, const char *disk_file, char *err, 
     return 1;
 }
 
-cub_err cub_audio_sdl_open(const char *driver, const char *disk_file, int rate, cub_audio_fill fill,
-                           void *user, cub_audio_sdl **out, char *err, size_t err_size)
+cub_err cub_audio_sdl_open(const char *driver, const char *disk_file, int rate, int volume_pct,
+                           cub_audio_fill fill, void *user, cub_audio_sdl **out, char *err, size_t err_size)
 {
-    if (!out || !fill || rate <= 0 || !err || err_size == 0) {
+    if (!out || !fill || rate <= 0 || volume_pct < 0 || volume_pct > 100 || !err ||
+        err_size == 0) {
         return CUB_ERR_ARG;
     }
     *out = NULL;
@@ -67,6 +75,8 @@ cub_err cub_audio_sdl_open(const char *driver, const char *disk_file, int rate, 
     }
     a->fill = fill;
     a->user = user;
+    /* Linear in the sample value: volume=50 halves every sample. */
+    a->gain_q15 = volume_pct * 32768 / 100;
     atomic_init(&a->frames, 0);
     if (!init_subsystem(driver, disk_file, err, err_size)) {
         free(a);

@@ -52,8 +52,12 @@ cub_err cub_board_common_open(const cub_board_desc *desc, cub_board **out, char 
     /* The desc's strings belong to the caller: only copies are kept. */
     b->desc.storage_dir = b->storage_dir;
     b->desc.audio_driver = b->audio_driver[0] ? b->audio_driver : NULL;
+    if (b->desc.video_driver) {
+        snprintf(b->video_driver, sizeof b->video_driver, "%s", b->desc.video_driver);
+    }
+    b->desc.video_driver = b->video_driver[0] ? b->video_driver : NULL;
     b->desc.button_script = NULL;
-    b->desc.gpio_config = NULL;
+    b->desc.gpio = NULL;
     cub_err e = CUB_OK;
     if (desc && desc->button_script) {
         e = cub_button_script_load(desc->button_script, &b->script, err, err_size);
@@ -176,6 +180,13 @@ cub_err cub_board_display_read_rgba(cub_board *b, uint8_t *rgba, size_t size)
     return cub_display_read_rgba(b->display, rgba, size);
 }
 
+void cub_board_set_ready(cub_board *b, int ready)
+{
+    if (b && b->set_ready && !b->script) {
+        b->set_ready(b->buttons, ready);
+    }
+}
+
 /* ---- audio ------------------------------------------------------------- */
 
 cub_err cub_board_audio_start(cub_board *b, cub_audio_fill fill, void *user)
@@ -192,8 +203,11 @@ cub_err cub_board_audio_start(cub_board *b, cub_audio_fill fill, void *user)
         disk = disk_file;
     }
     char err[512];
-    cub_err e = cub_audio_sdl_open(b->desc.audio_driver, disk, b->desc.audio_rate, fill, user,
-                                   &b->audio, err, sizeof err);
+    int volume = b->desc.audio_volume == CUB_BOARD_MUTE ? 0
+                 : b->desc.audio_volume > 0          ? b->desc.audio_volume
+                                                     : 100;
+    cub_err e = cub_audio_sdl_open(b->desc.audio_driver, disk, b->desc.audio_rate, volume, fill,
+                                   user, &b->audio, err, sizeof err);
     if (e) {
         /* board.h has no message channel here; the app carries on silent. */
         fprintf(stderr, "cubdance: %s (running without sound)\n", err);
@@ -254,6 +268,15 @@ cub_err cub_board_storage_path(cub_board *b, const char *name, char *buf, size_t
 
 /* ---- opening a board of a kind ------------------------------------------ */
 
+/* The desc's driver, else the board's; its size, or 0x0 for the screen's. */
+static cub_err open_window(const cub_board_kind *kind, cub_board *b, char *err, size_t err_size)
+{
+    const cub_board_desc *d = &b->desc;
+    const char *driver = d->video_driver ? d->video_driver : kind->video_driver;
+    int w = d->fit_screen ? 0 : d->width, h = d->fit_screen ? 0 : d->height;
+    return cub_display_open_screen(w, h, driver, d->fullscreen, &b->display, err, err_size);
+}
+
 static cub_err open_display(const cub_board_kind *kind, cub_board *b, char *err,
                             size_t err_size)
 {
@@ -263,12 +286,10 @@ static cub_err open_display(const cub_board_kind *kind, cub_board *b, char *err,
     case CUB_DISPLAY_HEADLESS:
         return cub_display_open_headless(d->width, d->height, &b->display, err, err_size);
     case CUB_DISPLAY_WINDOW:
-        return cub_display_open_window(d->width, d->height, kind->video_driver, &b->display, err,
-                                       err_size);
+        return open_window(kind, b, err, err_size);
     case CUB_DISPLAY_AUTO:
         if ((!kind->probe_window || cub_display_window_available()) &&
-            cub_display_open_window(d->width, d->height, kind->video_driver, &b->display, err,
-                                    err_size) == CUB_OK)
+            open_window(kind, b, err, err_size) == CUB_OK)
             return CUB_OK;
         if (kind->say_fallback) fprintf(stderr, "cubdance: %s (drawing headless instead)\n", err);
         return cub_display_open_headless(d->width, d->height, &b->display, err, err_size);

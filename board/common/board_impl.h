@@ -23,6 +23,7 @@ struct cub_board {
     cub_board_desc desc;         /* with defaults filled in */
     char storage_dir[CUB_BOARD_PATH_MAX];
     char audio_driver[64];       /* "" = SDL's choice */
+    char video_driver[64];       /* "" = the board's choice */
     cub_board_clock clock;       /* board time */
     cub_depth *depth;            /* NULL when depth is off */
     cub_display *display;        /* NULL when display is NONE */
@@ -33,6 +34,7 @@ struct cub_board {
     void *buttons;
     void (*poll_buttons)(void *buttons, cub_loop *loop, int64_t now_us);
     void (*close_buttons)(void *buttons);
+    void (*set_ready)(void *buttons, int ready); /* NULL: nothing shows it */
 };
 
 /* desc with zero fields replaced by their defaults (desc NULL: all defaults). */

@@ -19,6 +19,11 @@ cub_err cub_display_open_headless(int w, int h, cub_display **out, char *err, si
 /* An SDL2 window. video_driver NULL = SDL's choice; "KMSDRM" on the box. */
 cub_err cub_display_open_window(int w, int h, const char *video_driver, cub_display **out,
                                 char *err, size_t err_size);
+/* The same, on the screen: w x h 0x0 = the screen's own mode; fullscreen
+ * 1 = full screen at w x h (the mode changes), 0 = full screen (desktop
+ * size) only on KMSDRM, -1 = a window. */
+cub_err cub_display_open_screen(int w, int h, const char *video_driver, int fullscreen,
+                                cub_display **out, char *err, size_t err_size);
 /* 1 if a window could open here (a display server or KMSDRM is present). */
 int cub_display_window_available(void);
 void cub_display_close(cub_display *d);

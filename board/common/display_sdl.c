@@ -88,12 +88,39 @@ static cub_err init_video(const char *video_driver, char *err, size_t err_size)
     return CUB_OK;
 }
 
-static cub_err make_window(cub_display *d, sdl_state *s, char *err, size_t err_size)
+/* Full screen at the asked size changes the screen's mode; the desktop
+ * kind keeps the mode the screen has (KMSDRM's default, and "auto"). */
+static Uint32 window_flags(const char *driver, int fullscreen, int fit)
+{
+    Uint32 flags = SDL_WINDOW_OPENGL | SDL_WINDOW_SHOWN;
+    if (fullscreen > 0)
+        flags |= fit ? SDL_WINDOW_FULLSCREEN_DESKTOP : SDL_WINDOW_FULLSCREEN;
+    else if (fullscreen == 0 && driver && strcmp(driver, "KMSDRM") == 0)
+        flags |= SDL_WINDOW_FULLSCREEN_DESKTOP;
+    return flags;
+}
+
+/* w x h 0x0: the size of the screen's current mode (1280x720 if unknown). */
+static void fit_size(cub_display *d)
+{
+    SDL_DisplayMode mode;
+    if (d->w > 0 && d->h > 0)
+        return;
+    if (SDL_GetDesktopDisplayMode(0, &mode) == 0 && mode.w > 0 && mode.h > 0) {
+        d->w = mode.w;
+        d->h = mode.h;
+    } else {
+        d->w = 1280;
+        d->h = 720;
+    }
+}
+
+static cub_err make_window(cub_display *d, sdl_state *s, int fullscreen, char *err,
+                           size_t err_size)
 {
     const char *driver = SDL_GetCurrentVideoDriver();
-    Uint32 flags = SDL_WINDOW_OPENGL | SDL_WINDOW_SHOWN;
-    if (driver && strcmp(driver, "KMSDRM") == 0)
-        flags |= SDL_WINDOW_FULLSCREEN_DESKTOP;
+    Uint32 flags = window_flags(driver, fullscreen, d->w <= 0);
+    fit_size(d);
     s->win = SDL_CreateWindow("cubdance", SDL_WINDOWPOS_CENTERED, SDL_WINDOWPOS_CENTERED, d->w,
                               d->h, flags);
     if (!s->win) {
@@ -123,7 +150,18 @@ static cub_err make_window(cub_display *d, sdl_state *s, char *err, size_t err_s
 cub_err cub_display_open_window(int w, int h, const char *video_driver, cub_display **out,
                                 char *err, size_t err_size)
 {
-    if (!out || w <= 0 || h <= 0 || w > 16384 || h > 16384) {
+    if (w <= 0 || h <= 0) {
+        cub_display_fail(err, err_size, "window display: bad arguments (%dx%d)", w, h);
+        return CUB_ERR_ARG;
+    }
+    return cub_display_open_screen(w, h, video_driver, 0, out, err, err_size);
+}
+
+cub_err cub_display_open_screen(int w, int h, const char *video_driver, int fullscreen,
+                                cub_display **out, char *err, size_t err_size)
+{
+    int fit = w == 0 && h == 0;
+    if (!out || (!fit && (w <= 0 || h <= 0)) || w > 16384 || h > 16384) {
         cub_display_fail(err, err_size, "window display: bad arguments (%dx%d)", w, h);
         return CUB_ERR_ARG;
     }
@@ -141,7 +179,7 @@ cub_err cub_display_open_window(int w, int h, const char *video_driver, cub_disp
         return CUB_ERR_NOMEM;
     }
     *d = (cub_display){.ops = &sdl_ops, .w = w, .h = h, .headless = 0, .impl = s};
-    e = make_window(d, s, err, err_size);
+    e = make_window(d, s, fullscreen, err, err_size);
     if (e) {
         sdl_close(d);
         return e;

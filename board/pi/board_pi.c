@@ -25,18 +25,19 @@ static void close_gpio(void *buttons)
     cub_gpio_buttons_close(buttons);
 }
 
-/* The GPIO buttons from desc->gpio_config; none named: the built-in
- * defaults (the same as cubdance.conf). */
+static void set_ready(void *buttons, int ready)
+{
+    cub_gpio_buttons_set_ready(buttons, ready);
+}
+
+/* The GPIO buttons and LED from desc->gpio (the config file's GPIO keys);
+ * none: the built-in defaults (the same as cubdance.conf). */
 static cub_err open_gpio(cub_board *b, const cub_board_desc *desc, char *err, size_t err_size)
 {
-    const char *gpio_config = desc ? desc->gpio_config : NULL;
     cub_gpio_config cfg;
     cub_gpio_config_defaults(&cfg);
-    if (gpio_config) {
-        cub_err e = cub_gpio_config_load(gpio_config, &cfg, err, err_size);
-        if (e) {
-            return e;
-        }
+    if (desc && desc->gpio) {
+        cfg = *desc->gpio;
     }
     cub_gpio_buttons *g;
     cub_err e = cub_gpio_buttons_open(&cfg, &cub_gpio_libgpiod, cub_board_now_us(b), &g, err,
@@ -47,6 +48,7 @@ static cub_err open_gpio(cub_board *b, const cub_board_desc *desc, char *err, si
     b->buttons = g;
     b->poll_buttons = poll_gpio;
     b->close_buttons = close_gpio;
+    b->set_ready = set_ready;
     return CUB_OK;
 }
 

@@ -9,6 +9,13 @@
 
 #define CONSUMER "cubdance"
 
+void cub_gpio_config_defaults(cub_gpio_config *cfg)
+{
+    cub_boxconf c;
+    cub_boxconf_defaults(&c);
+    *cfg = c.gpio;
+}
+
 /* A button's settled state and the change waiting to settle. */
 typedef struct debouncer {
     int pressed;       /* settled */
@@ -20,6 +27,8 @@ struct cub_gpio_buttons {
     cub_gpio_ops ops;
     void *chip;
     void *line[CUB_BUTTON_COUNT];
+    void *led;          /* the ready LED's line, or NULL */
+    int led_active_low;
     int active_low;
     int64_t hold_us;
     debouncer deb[CUB_BUTTON_COUNT];
@@ -35,22 +44,64 @@ static int read_pressed(const cub_gpio_buttons *b, int i, int *pressed)
     return 1;
 }
 
+static const char *const line_keys[CUB_BOXCONF_LINES] = {"start_line", "stop_line", "led_line"};
+
+/* "file:line" of the key naming line i, or just the file for a default. */
+static void where_of(const cub_gpio_config *cfg, int i, char *where, size_t size)
+{
+    if (cfg->line_at[i] > 0) {
+        snprintf(where, size, "%s:%d", cfg->file, cfg->line_at[i]);
+    } else {
+        snprintf(where, size, "%s", cfg->file);
+    }
+}
+
+static void *find_line(cub_gpio_buttons *b, const cub_gpio_config *cfg, int i, char *err,
+                       size_t err_size)
+{
+    char where[300];
+    void *line = b->ops.find_line(b->ops.ctx, b->chip, cfg->line[i]);
+    if (!line) {
+        where_of(cfg, i, where, sizeof where);
+        snprintf(err, err_size, "%s: %s: no GPIO line named \"%s\" on %s", where, line_keys[i],
+                 cfg->line[i], cfg->chip);
+    }
+    return line;
+}
+
+/* The LED starts dark: the app lights it when it waits for START. */
+static cub_err open_led(cub_gpio_buttons *b, const cub_gpio_config *cfg, char *err,
+                        size_t err_size)
+{
+    if (!cfg->line[CUB_BOXCONF_LINE_LED][0]) {
+        return CUB_OK;
+    }
+    void *line = find_line(b, cfg, CUB_BOXCONF_LINE_LED, err, err_size);
+    if (!line) {
+        return CUB_ERR_DEVICE;
+    }
+    b->led_active_low = cfg->led_active_low;
+    if (b->ops.request_output(b->ops.ctx, line, CONSUMER, b->led_active_low) < 0) {
+        char where[300];
+        where_of(cfg, CUB_BOXCONF_LINE_LED, where, sizeof where);
+        snprintf(err, err_size, "%s: led_line: cannot take GPIO line \"%s\" on %s as an output "
+                 "(in use by another program?)",
+                 where, cfg->line[CUB_BOXCONF_LINE_LED], cfg->chip);
+        return CUB_ERR_DEVICE;
+    }
+    b->led = line;
+    return CUB_OK;
+}
+
 static cub_err open_line(cub_gpio_buttons *b, const cub_gpio_config *cfg, int i, char *err,
                          size_t err_size)
 {
-    const char *key = i == CUB_BUTTON_START ? "start_line" : "stop_line";
+    const char *key = line_keys[i];
     const char *name = cfg->line[i];
-    /* "file:line" of the key, or just the file when the default applies. */
     char where[300];
-    if (cfg->line_at[i] > 0) {
-        snprintf(where, sizeof where, "%s:%d", cfg->file, cfg->line_at[i]);
-    } else {
-        snprintf(where, sizeof where, "%s", cfg->file);
-    }
-    void *line = b->ops.find_line(b->ops.ctx, b->chip, name);
+    where_of(cfg, i, where, sizeof where);
+    void *line = find_line(b, cfg, i, err, err_size);
     if (!line) {
-        snprintf(err, err_size, "%s: %s: no GPIO line named \"%s\" on %s", where, key, name,
-                 cfg->chip);
         return CUB_ERR_DEVICE;
     }
     cub_gpio_bias bias = cfg->active_low ? CUB_GPIO_BIAS_PULL_UP : CUB_GPIO_BIAS_PULL_DOWN;
@@ -99,6 +150,11 @@ cub_err cub_gpio_buttons_open(const cub_gpio_config *cfg, const cub_gpio_ops *op
         (void)read_pressed(b, i, &pressed);
         b->deb[i] = (debouncer){pressed, 0, now_us};
     }
+    cub_err e = open_led(b, cfg, err, err_size);
+    if (e) {
+        cub_gpio_buttons_close(b);
+        return e;
+    }
     *out = b;
     return CUB_OK;
 }
@@ -107,6 +163,12 @@ void cub_gpio_buttons_close(cub_gpio_buttons *b)
 {
     if (!b) {
         return;
+    }
+    /* A released output may keep its level: put the LED out first, so a
+     * box whose program ended does not claim to be ready. */
+    if (b->led) {
+        cub_gpio_buttons_set_ready(b, 0);
+        b->ops.release(b->ops.ctx, b->led);
     }
     for (int i = 0; i < CUB_BUTTON_COUNT; i++) {
         if (b->line[i]) {
@@ -167,6 +229,14 @@ void cub_gpio_buttons_poll(cub_gpio_buttons *b, cub_loop *loop, int64_t now_us)
     }
 }
 
+void cub_gpio_buttons_set_ready(cub_gpio_buttons *b, int ready)
+{
+    if (b && b->led) {
+        /* A failed write leaves the LED as it was; the buttons still work. */
+        (void)b->ops.set_value(b->ops.ctx, b->led, ready ? !b->led_active_low : b->led_active_low);
+    }
+}
+
 /* ---- libgpiod v1 ------------------------------------------------------- */
 
 static void *lg_open_chip(void *ctx, const char *name)
@@ -198,6 +268,16 @@ static int lg_get_value(void *ctx, void *line)
     return gpiod_line_get_value(line);
 }
 
+static int lg_request_output(void *ctx, void *line, const char *consumer, int value)
+{
+    return gpiod_line_request_output(line, consumer, value);
+}
+
+static int lg_set_value(void *ctx, void *line, int value)
+{
+    return gpiod_line_set_value(line, value);
+}
+
 static void lg_release(void *ctx, void *line)
 {
     gpiod_line_release(line);
@@ -214,6 +294,8 @@ const cub_gpio_ops cub_gpio_libgpiod = {
     .find_line = lg_find_line,
     .request_input = lg_request_input,
     .get_value = lg_get_value,
+    .request_output = lg_request_output,
+    .set_value = lg_set_value,
     .release = lg_release,
     .close_chip = lg_close_chip,
 };

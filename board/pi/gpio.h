@@ -1,14 +1,16 @@
 /* gpio — the box's START and STOP buttons on GPIO lines (board/pi only).
  *
  * Lines are found by NAME (e.g. "GPIO17" on a Raspberry Pi's gpiochip0),
- * as given in the config file (see cubdance.conf beside this file):
+ * as given in the box's config file (cub/boxconf.h, cubdance.conf beside
+ * this file):
  *
  *     chip=gpiochip0     start_line=GPIO17     stop_line=GPIO27
- *     active_low=1       debounce_ms=30
+ *     active_low=1       debounce_ms=30        led_line=GPIO22
  *
  * Lines are requested as inputs with a pull-up (active_low=1: the button
  * shorts the line to ground) or a pull-down, read every tick and debounced
  * in software: a new level must hold debounce_ms before its edge is posted.
+ * An optional LED line is an output, lit while the box is ready.
  *
  * GPIO access goes through cub_gpio_ops so the debounce and config logic can
  * be tested on machines with no GPIO kernel support (tests/board uses a fake
@@ -19,6 +21,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "cub/boxconf.h"
 #include "cub/err.h"
 #include "cub/loop.h"
 
@@ -37,6 +40,9 @@ typedef struct cub_gpio_ops {
     /* < 0 if the line cannot be taken as an input */
     int (*request_input)(void *ctx, void *line, const char *consumer, cub_gpio_bias bias);
     int (*get_value)(void *ctx, void *line); /* 0, 1, or < 0 on error */
+    /* < 0 if the line cannot be taken as an output; it starts at value */
+    int (*request_output)(void *ctx, void *line, const char *consumer, int value);
+    int (*set_value)(void *ctx, void *line, int value); /* < 0 on error */
     void (*release)(void *ctx, void *line);
     void (*close_chip)(void *ctx, void *chip);
 } cub_gpio_ops;
@@ -44,26 +50,13 @@ typedef struct cub_gpio_ops {
 /* libgpiod v1 (gpiod_chip_open_by_name, gpiod_chip_find_line, ...). */
 extern const cub_gpio_ops cub_gpio_libgpiod;
 
-/* ---- the config file --------------------------------------------------- */
+/* ---- the config ------------------------------------------------------- */
 
-#define CUB_GPIO_NAME_MAX 64
+/* The GPIO section of the box's config file (cub/boxconf.h parses it). */
+typedef cub_boxconf_gpio cub_gpio_config;
 
-typedef struct cub_gpio_config {
-    char file[256];                               /* for messages */
-    char chip[CUB_GPIO_NAME_MAX];                 /* default "gpiochip0" */
-    char line[CUB_BUTTON_COUNT][CUB_GPIO_NAME_MAX]; /* default GPIO17 (start), GPIO27 (stop) */
-    int line_at[CUB_BUTTON_COUNT];                /* config line naming it; 0 = default */
-    int active_low;                               /* default 1 */
-    int debounce_ms;                              /* default 30, 0..1000 */
-} cub_gpio_config;
-
+/* The built-in GPIO settings (those of cub_boxconf_defaults). */
 void cub_gpio_config_defaults(cub_gpio_config *cfg);
-/* Parse key=value text over the defaults. CUB_ERR_FORMAT with
- * "file:line: problem" in err on a bad line. */
-cub_err cub_gpio_config_parse(const char *text, size_t len, const char *file, cub_gpio_config *cfg,
-                              char *err, size_t err_size);
-/* Read a file and parse it (CUB_ERR_IO if it cannot be read). */
-cub_err cub_gpio_config_load(const char *path, cub_gpio_config *cfg, char *err, size_t err_size);
 
 /* ---- debounced buttons ------------------------------------------------- */
 
@@ -81,5 +74,8 @@ void cub_gpio_buttons_close(cub_gpio_buttons *b);
 int cub_gpio_buttons_update(cub_gpio_buttons *b, int64_t now_us, cub_event out[CUB_BUTTON_COUNT]);
 /* cub_gpio_buttons_update, posting the edges to the loop. */
 void cub_gpio_buttons_poll(cub_gpio_buttons *b, cub_loop *loop, int64_t now_us);
+/* Light the ready LED (ready = 1) or put it out; nothing without an LED.
+ * Close puts it out before releasing the line. */
+void cub_gpio_buttons_set_ready(cub_gpio_buttons *b, int ready);
 
 #endif

@@ -62,7 +62,7 @@ static void test_help_documents_every_option(void **s)
     cub_app_options o;
     assert_int_equal(parse(&o, (const char *[]){"--help", NULL}), CUB_APP_EXIT_OK);
     const char *opts[] = {"--window", "--headless", "--size", "--frames", "--frame-every",
-                          "--replay", "--depth", "--buttons", "--gpio-config", "--audio-driver",
+                          "--replay", "--depth", "--buttons", "--gpio-config", "--config", "--audio-driver",
                           "--clip", "--log", "--seconds", "--clock", "--song", "--timeline",
                           "--library", "--tags", "--character", "--attract-after",
                           "--doze-after", "--music-clock-scale", "--help", "--version"};
@@ -94,6 +94,15 @@ static void test_defaults(void **s)
 {
     cub_app_options o;
     assert_int_equal(parse(&o, (const char *[]){NULL}), CUB_APP_RUN);
+    assert_null(o.config_path);
+    assert_null(o.clip_path); /* until the config (or its absence) is applied */
+    static cub_boxconf none;
+    cub_boxconf_defaults(&none);
+    assert_int_equal(cub_app_apply_config(&o, &none, 0, "/assets", stderr), 0);
+    assert_int_equal(o.width, 0); /* no file: the board's own display */
+    assert_int_equal(o.fullscreen, 0);
+    assert_null(o.video_driver);
+    assert_int_equal(o.audio_volume, 80);
     assert_int_equal(o.display, CUB_DISPLAY_AUTO);
     assert_int_equal(o.depth, CUB_DEPTH_AUTO);
     assert_int_equal(o.frame_every, 30);
@@ -106,6 +115,53 @@ static void test_defaults(void **s)
     assert_true(o.music_clock_scale == 1.0);
 }
 
+/* The file fills what the command line left unset; the command line wins. */
+static void test_config_fills_unset_options_only(void **s)
+{
+    static cub_boxconf c;
+    const char *text = "assets_dir=/opt/a\nsong=twinkle\nvolume=0\nresolution=1920x1080\n"
+                       "fullscreen=0\nvideo_driver=kmsdrm\naudio_driver=dummy\n"
+                       "attract_after_s=7\ndoze_after_s=9\nsoundfont=/sf/x.sf2\nled_line=GPIO22\n";
+    char err[256];
+    assert_int_equal(cub_boxconf_parse(text, strlen(text), "c.conf", &c, err, sizeof err), CUB_OK);
+    cub_app_options o;
+    assert_int_equal(parse(&o, (const char *[]){"--config", "c.conf", "--library", "/my/lib",
+                                               "--doze-after", "30", NULL}),
+                     CUB_APP_RUN);
+    assert_string_equal(o.config_path, "c.conf");
+    assert_int_equal(cub_app_apply_config(&o, &c, 1, "/assets", stderr), 0);
+    assert_string_equal(o.clip_path, "/opt/a/clips/hello.bvh");
+    assert_string_equal(o.character_path, "/opt/a/bear/bear.xml");
+    assert_string_equal(o.library_path, "/my/lib");
+    assert_string_equal(o.song_path, "/opt/a/songs/twinkle.song.xml");
+    assert_int_equal(o.audio_volume, CUB_BOARD_MUTE);
+    assert_int_equal(o.width, 1920);
+    assert_int_equal(o.height, 1080);
+    assert_int_equal(o.fullscreen, -1);
+    assert_string_equal(o.video_driver, "KMSDRM");
+    assert_string_equal(o.audio_driver, "dummy");
+    assert_true(o.attract_after_s == 7);
+    assert_true(o.doze_after_s == 30);
+    assert_string_equal(o.soundfont, "/sf/x.sf2");
+    assert_string_equal(o.gpio->line[CUB_BOXCONF_LINE_LED], "GPIO22");
+    /* The old name still works; --size beats the file's resolution. */
+    assert_int_equal(parse(&o, (const char *[]){"--gpio-config", "g.conf", "--size", "640x480",
+                                               "--song", "/s.song.xml", NULL}),
+                     CUB_APP_RUN);
+    assert_string_equal(o.config_path, "g.conf");
+    assert_int_equal(cub_app_apply_config(&o, &c, 1, "/assets", stderr), 0);
+    assert_int_equal(o.width, 640);
+    assert_string_equal(o.song_path, "/s.song.xml");
+    /* songs_dir moves the songs only. */
+    text = "songs_dir=/songs\nsong=twinkle\n";
+    assert_int_equal(cub_boxconf_parse(text, strlen(text), "c.conf", &c, err, sizeof err), CUB_OK);
+    assert_int_equal(parse(&o, (const char *[]){NULL}), CUB_APP_RUN);
+    assert_int_equal(cub_app_apply_config(&o, &c, 1, "/assets", stderr), 0);
+    assert_string_equal(o.song_path, "/songs/twinkle.song.xml");
+    assert_string_equal(o.tags_path, "/assets/clips/bear.tags.xml");
+    assert_int_equal(o.fit_screen, 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -113,6 +169,7 @@ int main(void)
         cmocka_unit_test(test_help_documents_every_option),
         cmocka_unit_test(test_good_options_set_their_fields),
         cmocka_unit_test(test_defaults),
+        cmocka_unit_test(test_config_fills_unset_options_only),
     };
     return cmocka_run_group_tests_name("app_options", tests, NULL, NULL);
 }

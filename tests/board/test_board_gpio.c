@@ -19,15 +19,16 @@
 
 /* ---- the fake chip ----------------------------------------------------- */
 
-#define FAKE_LINES 3
+#define FAKE_LINES 4
 
 typedef struct fake_gpio {
     const char *chip_name;
     const char *names[FAKE_LINES];
     int level[FAKE_LINES];      /* what get_value returns */
     int requested[FAKE_LINES];
+    int output[FAKE_LINES];     /* requested as an output */
     cub_gpio_bias bias[FAKE_LINES];
-    int chip_open, fail_request, fail_reads;
+    int chip_open, fail_request, fail_output, fail_reads;
 } fake_gpio;
 
 static fake_gpio fake;
@@ -75,6 +76,26 @@ static int f_get_value(void *ctx, void *line)
     return f->fail_reads ? -1 : *(int *)line;
 }
 
+static int f_request_output(void *ctx, void *line, const char *consumer, int value)
+{
+    fake_gpio *f = ctx;
+    if (f->fail_output) {
+        return -1;
+    }
+    f->requested[index_of(f, line)]++;
+    f->output[index_of(f, line)] = 1;
+    *(int *)line = value;
+    return 0;
+}
+
+static int f_set_value(void *ctx, void *line, int value)
+{
+    fake_gpio *f = ctx;
+    assert_true(f->output[index_of(f, line)]); /* only outputs are driven */
+    *(int *)line = value;
+    return 0;
+}
+
 static void f_release(void *ctx, void *line)
 {
     fake_gpio *f = ctx;
@@ -88,14 +109,15 @@ static void f_close_chip(void *ctx, void *chip)
 }
 
 static const cub_gpio_ops fake_ops = {
-    &fake, f_open_chip, f_find_line, f_request_input, f_get_value, f_release, f_close_chip,
+    &fake,        f_open_chip,      f_find_line, f_request_input, f_get_value,
+    f_request_output, f_set_value, f_release,   f_close_chip,
 };
 
-enum { L17, L27, L22 };
+enum { L17, L27, L22, L23 };
 
 static int setup(void **state)
 {
-    fake = (fake_gpio){.chip_name = "gpiochip0", .names = {"GPIO17", "GPIO27", "GPIO22"}};
+    fake = (fake_gpio){.chip_name = "gpiochip0", .names = {"GPIO17", "GPIO27", "GPIO22", "GPIO23"}};
     /* Active low with pull-ups: released lines read 1. */
     for (int i = 0; i < FAKE_LINES; i++) {
         fake.level[i] = 1;
@@ -129,88 +151,17 @@ static int run(cub_gpio_buttons *b, int64_t t0, int64_t t1, int64_t step_us, cub
     return n;
 }
 
-/* ---- config ------------------------------------------------------------ */
-
-static void expect_config_error(const char *text, int line, const char *what)
-{
-    cub_gpio_config cfg;
-    char err[256], prefix[64];
-    assert_int_equal(cub_gpio_config_parse(text, strlen(text), "cubdance.conf", &cfg, err,
-                                           sizeof err),
-                     CUB_ERR_FORMAT);
-    snprintf(prefix, sizeof prefix, "cubdance.conf:%d: ", line);
-    printf("gpio config: rejected: %s\n", err);
-    assert_true(strncmp(err, prefix, strlen(prefix)) == 0);
-    assert_non_null(strstr(err, what));
-}
-
-static void test_config_errors_name_file_and_line(void **state)
-{
-    expect_config_error("chip=gpiochip0\nstart_lin=GPIO5\n", 2, "unknown key \"start_lin\"");
-    expect_config_error("# c\nstart_line GPIO5\n", 2, "expected key=value");
-    expect_config_error("active_low=2\n", 1, "active_low: \"2\" is not 0 or 1");
-    expect_config_error("debounce_ms=5000\n", 1, "0..1000");
-    expect_config_error("debounce_ms=-3\n", 1, "debounce_ms");
-    expect_config_error("debounce_ms=30\n\ndebounce_ms=40\n", 3, "set again (first set on line 1)");
-    expect_config_error("stop_line=\n", 1, "stop_line has no value");
-    expect_config_error("start_line=GPIO 17\n", 1, "not a GPIO name");
-    expect_config_error("start_line=GPIO5\nstop_line=GPIO5\n", 2, "both name GPIO5");
-}
-
-static void test_config_parses_values_over_defaults(void **state)
-{
-    const char *text = "# buttons\n"
-                       "  chip = gpiochip1   # the second chip\r\n"
-                       "\n"
-                       "stop_line=GPIO22\n"
-                       "active_low=0\n"
-                       "debounce_ms=5\n";
-    cub_gpio_config cfg;
-    char err[256];
-    assert_int_equal(cub_gpio_config_parse(text, strlen(text), "cubdance.conf", &cfg, err,
-                                           sizeof err),
-                     CUB_OK);
-    assert_string_equal(cfg.chip, "gpiochip1");
-    assert_string_equal(cfg.line[CUB_BUTTON_START], "GPIO17"); /* default kept */
-    assert_string_equal(cfg.line[CUB_BUTTON_STOP], "GPIO22");
-    assert_int_equal(cfg.line_at[CUB_BUTTON_STOP], 4);
-    assert_int_equal(cfg.active_low, 0);
-    assert_int_equal(cfg.debounce_ms, 5);
-}
-
-/* The shipped default config parses to the built-in defaults. */
-static void test_shipped_config_matches_defaults(void **state)
-{
-    const char *src = getenv("CUB_SOURCE_DIR");
-    if (!src) {
-        skip();
-    }
-    char path[1024];
-    snprintf(path, sizeof path, "%s/board/pi/cubdance.conf", src);
-    cub_gpio_config cfg, def;
-    char err[256];
-    assert_int_equal(cub_gpio_config_load(path, &cfg, err, sizeof err), CUB_OK);
-    cub_gpio_config_defaults(&def);
-    assert_string_equal(cfg.chip, def.chip);
-    assert_string_equal(cfg.line[0], def.line[0]);
-    assert_string_equal(cfg.line[1], def.line[1]);
-    assert_int_equal(cfg.active_low, def.active_low);
-    assert_int_equal(cfg.debounce_ms, def.debounce_ms);
-    assert_int_equal(cub_gpio_config_load("/nonexistent/cubdance.conf", &cfg, err, sizeof err),
-                     CUB_ERR_IO);
-    assert_non_null(strstr(err, "/nonexistent/cubdance.conf"));
-}
-
 /* ---- opening ----------------------------------------------------------- */
 
 static void test_missing_line_names_line_and_config_file(void **state)
 {
     const char *text = "start_line=GPIO17\nstop_line=GPIO99\n";
-    cub_gpio_config cfg;
+    cub_boxconf box;
     char err[256];
-    assert_int_equal(cub_gpio_config_parse(text, strlen(text), "/etc/cubdance/cubdance.conf", &cfg,
-                                           err, sizeof err),
+    assert_int_equal(cub_boxconf_parse(text, strlen(text), "/etc/cubdance/cubdance.conf", &box,
+                                       err, sizeof err),
                      CUB_OK);
+    cub_gpio_config cfg = box.gpio;
     cub_gpio_buttons *b = (cub_gpio_buttons *)1;
     assert_int_equal(cub_gpio_buttons_open(&cfg, &fake_ops, 0, &b, err, sizeof err),
                      CUB_ERR_DEVICE);
@@ -234,7 +185,7 @@ static void test_missing_chip_and_busy_line(void **state)
     assert_int_equal(cub_gpio_buttons_open(&cfg, &fake_ops, 0, &b, err, sizeof err),
                      CUB_ERR_DEVICE);
     assert_non_null(strstr(err, "\"gpiochip7\""));
-    assert_non_null(strstr(err, "built-in GPIO defaults"));
+    assert_non_null(strstr(err, "built-in defaults"));
     cub_gpio_config_defaults(&cfg);
     fake.fail_request = 1;
     assert_int_equal(cub_gpio_buttons_open(&cfg, &fake_ops, 0, &b, err, sizeof err),
@@ -256,6 +207,77 @@ static void test_lines_requested_with_pull_and_released(void **state)
     assert_int_equal(fake.chip_open, 0);
     assert_int_equal(fake.requested[L17], 0);
     assert_int_equal(fake.requested[L27], 0);
+}
+
+/* ---- the ready LED ---------------------------------------------------- */
+
+static cub_gpio_buttons *open_with_led(int led_active_low, char *err, size_t err_size,
+                                       cub_err want)
+{
+    cub_gpio_config cfg;
+    cub_gpio_config_defaults(&cfg);
+    snprintf(cfg.line[CUB_BOXCONF_LINE_LED], CUB_BOXCONF_NAME_MAX, "GPIO22");
+    cfg.led_active_low = led_active_low;
+    cub_gpio_buttons *b = NULL;
+    assert_int_equal(cub_gpio_buttons_open(&cfg, &fake_ops, 0, &b, err, err_size), want);
+    return b;
+}
+
+static void test_led_lit_only_while_ready(void **state)
+{
+    char err[256];
+    fake.level[L22] = 7; /* neither level: open must drive it */
+    cub_gpio_buttons *b = open_with_led(0, err, sizeof err, CUB_OK);
+    assert_true(fake.output[L22]);
+    assert_int_equal(fake.requested[L22], 1);
+    assert_int_equal(fake.level[L22], 0); /* dark until the app says ready */
+    cub_gpio_buttons_set_ready(b, 1);
+    assert_int_equal(fake.level[L22], 1);
+    cub_gpio_buttons_set_ready(b, 0); /* dancing */
+    assert_int_equal(fake.level[L22], 0);
+    cub_gpio_buttons_set_ready(b, 1);
+    /* Buttons still work with an LED beside them. */
+    fake.level[L17] = 0;
+    cub_event ev[CUB_BUTTON_COUNT];
+    assert_int_equal(cub_gpio_buttons_update(b, 40000, ev), 0);
+    assert_int_equal(cub_gpio_buttons_update(b, 80000, ev), 1);
+    assert_int_equal(ev[0].type, CUB_EV_BUTTON_DOWN);
+    cub_gpio_buttons_close(b); /* the program ends: dark, released */
+    assert_int_equal(fake.level[L22], 0);
+    assert_int_equal(fake.requested[L22], 0);
+    assert_int_equal(fake.chip_open, 0);
+    /* No LED configured: set_ready touches no line. */
+    b = open_default(0);
+    cub_gpio_buttons_set_ready(b, 1);
+    assert_false(fake.output[L23]);
+    cub_gpio_buttons_close(b);
+}
+
+static void test_led_active_low_and_errors(void **state)
+{
+    char err[256];
+    cub_gpio_buttons *b = open_with_led(1, err, sizeof err, CUB_OK);
+    assert_int_equal(fake.level[L22], 1); /* active low: high is dark */
+    cub_gpio_buttons_set_ready(b, 1);
+    assert_int_equal(fake.level[L22], 0);
+    cub_gpio_buttons_close(b);
+    assert_int_equal(fake.level[L22], 1);
+    fake.fail_output = 1;
+    assert_null(open_with_led(0, err, sizeof err, CUB_ERR_DEVICE));
+    printf("gpio led: %s\n", err);
+    assert_non_null(strstr(err, "led_line"));
+    assert_non_null(strstr(err, "as an output"));
+    assert_int_equal(fake.chip_open, 0);
+    assert_int_equal(fake.requested[L17], 0);
+    fake.fail_output = 0;
+    cub_gpio_config cfg;
+    cub_gpio_config_defaults(&cfg);
+    snprintf(cfg.line[CUB_BOXCONF_LINE_LED], CUB_BOXCONF_NAME_MAX, "GPIO99");
+    cfg.line_at[CUB_BOXCONF_LINE_LED] = 31;
+    snprintf(cfg.file, sizeof cfg.file, "box.conf");
+    assert_int_equal(cub_gpio_buttons_open(&cfg, &fake_ops, 0, &b, err, sizeof err),
+                     CUB_ERR_DEVICE);
+    assert_non_null(strstr(err, "box.conf:31: led_line: no GPIO line named \"GPIO99\""));
 }
 
 /* ---- debounce ---------------------------------------------------------- */
@@ -340,10 +362,11 @@ static void test_held_at_start_gives_no_edge_until_released(void **state)
 static void test_active_high_and_failed_reads(void **state)
 {
     const char *text = "active_low=0\ndebounce_ms=0\n";
-    cub_gpio_config cfg;
+    cub_boxconf box;
     char err[256];
-    assert_int_equal(cub_gpio_config_parse(text, strlen(text), "c.conf", &cfg, err, sizeof err),
+    assert_int_equal(cub_boxconf_parse(text, strlen(text), "c.conf", &box, err, sizeof err),
                      CUB_OK);
+    cub_gpio_config cfg = box.gpio;
     fake.level[L17] = fake.level[L27] = 0; /* released, pulled down */
     cub_gpio_buttons *b;
     assert_int_equal(cub_gpio_buttons_open(&cfg, &fake_ops, 0, &b, err, sizeof err), CUB_OK);
@@ -386,9 +409,8 @@ static void test_poll_posts_edges_to_the_loop(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test_setup(test_config_errors_name_file_and_line, setup),
-        cmocka_unit_test_setup(test_config_parses_values_over_defaults, setup),
-        cmocka_unit_test_setup(test_shipped_config_matches_defaults, setup),
+        cmocka_unit_test_setup(test_led_lit_only_while_ready, setup),
+        cmocka_unit_test_setup(test_led_active_low_and_errors, setup),
         cmocka_unit_test_setup(test_missing_line_names_line_and_config_file, setup),
         cmocka_unit_test_setup(test_missing_chip_and_busy_line, setup),
         cmocka_unit_test_setup(test_lines_requested_with_pull_and_released, setup),

@@ -24,7 +24,7 @@ static void test_script_replaces_gpio(void **state)
     assert_int_equal(write(fd, "0 start\n", 8), 8);
     close(fd);
     cub_board_desc desc = {.display = CUB_DISPLAY_NONE, .depth = CUB_DEPTH_EMPTY,
-                           .button_script = path, .gpio_config = "/nonexistent.conf"};
+                           .button_script = path};
     cub_board *b;
     char err[256];
     cub_err e = cub_board_open(&desc, &b, err, sizeof err);
@@ -49,21 +49,26 @@ static void test_script_replaces_gpio(void **state)
 
 static void test_gpio_errors_are_named(void **state)
 {
-    cub_board_desc desc = {.display = CUB_DISPLAY_NONE, .depth = CUB_DEPTH_OFF,
-                           .gpio_config = "/nonexistent/cubdance.conf"};
+    cub_board_desc desc = {.display = CUB_DISPLAY_NONE, .depth = CUB_DEPTH_OFF};
     cub_board *b = (cub_board *)1;
     char err[256];
-    assert_int_equal(cub_board_open(&desc, &b, err, sizeof err), CUB_ERR_IO);
-    assert_null(b);
-    assert_non_null(strstr(err, "/nonexistent/cubdance.conf"));
     if (access("/dev/gpiochip0", F_OK) == 0) {
         printf("pi: /dev/gpiochip0 exists here; not checking the missing-chip message\n");
         return;
     }
-    desc.gpio_config = NULL; /* built-in defaults: gpiochip0 */
+    /* built-in defaults: gpiochip0 */
     assert_int_equal(cub_board_open(&desc, &b, err, sizeof err), CUB_ERR_DEVICE);
     printf("pi: no GPIO here: %s\n", err);
     assert_non_null(strstr(err, "\"gpiochip0\""));
+    assert_null(b);
+    /* The config's chip reaches the board, named with the file. */
+    cub_boxconf box;
+    const char *text = "chip=gpiochip5\n";
+    assert_int_equal(cub_boxconf_parse(text, strlen(text), "my.conf", &box, err, sizeof err),
+                     CUB_OK);
+    desc.gpio = &box.gpio;
+    assert_int_equal(cub_board_open(&desc, &b, err, sizeof err), CUB_ERR_DEVICE);
+    assert_non_null(strstr(err, "my.conf: cannot open GPIO chip \"gpiochip5\""));
 }
 
 int main(void)

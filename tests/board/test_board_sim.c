@@ -312,6 +312,56 @@ static void test_audio_disk_driver_writes_storage_file(void **state)
     rmdir(dir);
 }
 
+/* Play the tone through the disk driver at a volume; the largest sample
+ * magnitude the file holds and how many frames were filled. */
+static int disk_peak_at_volume(int volume, uint64_t *frames)
+{
+    char dir[] = "/tmp/cub_volume_XXXXXX";
+    assert_non_null(mkdtemp(dir));
+    cub_board_desc desc = {.display = CUB_DISPLAY_NONE, .depth = CUB_DEPTH_OFF,
+                           .audio_driver = "disk", .audio_rate = 22050, .storage_dir = dir,
+                           .audio_volume = volume};
+    cub_board *b;
+    char err[128], path[128];
+    assert_int_equal(cub_board_open(&desc, &b, err, sizeof err), CUB_OK);
+    tone t = {0};
+    assert_int_equal(cub_board_audio_start(b, fill_tone, &t), CUB_OK);
+    int64_t until = cub_board_now_us(b) + 10000000;
+    while (cub_board_audio_frames(b) < 2048 && cub_board_now_us(b) < until) {
+        cub_board_sleep_until_us(b, cub_board_now_us(b) + 10000);
+    }
+    cub_board_audio_stop(b);
+    *frames = cub_board_audio_frames(b);
+    assert_int_equal(cub_board_storage_path(b, "audio.raw", path, sizeof path), CUB_OK);
+    cub_board_close(b);
+    FILE *f = fopen(path, "rb");
+    assert_non_null(f);
+    int16_t s;
+    int peak = 0;
+    while (fread(&s, sizeof s, 1, f) == 1) {
+        if (abs(s) > peak) peak = abs(s);
+    }
+    fclose(f);
+    unlink(path);
+    rmdir(dir);
+    return peak;
+}
+
+/* The config's volume reaches the samples the device plays. */
+static void test_audio_volume_scales_the_samples(void **state)
+{
+    uint64_t frames;
+    int full = disk_peak_at_volume(0, &frames); /* 0 = the default, full */
+    int half = disk_peak_at_volume(50, &frames);
+    int mute = disk_peak_at_volume(CUB_BOARD_MUTE, &frames);
+    printf("audio volume: peak %d at 100 %%, %d at 50 %%, %d muted (%llu frames)\n", full, half,
+           mute, (unsigned long long)frames);
+    assert_int_equal(full, 3000);
+    assert_int_equal(half, 1500);
+    assert_int_equal(mute, 0);
+    assert_true(frames >= 2048); /* muted, the music clock still runs */
+}
+
 static void test_audio_bad_driver_is_a_device_error(void **state)
 {
     cub_board_desc desc = {.display = CUB_DISPLAY_NONE, .depth = CUB_DEPTH_OFF,
@@ -338,6 +388,7 @@ int main(void)
         cmocka_unit_test(test_audio_dummy_driver_runs_the_music_clock),
         cmocka_unit_test(test_audio_disk_driver_writes_storage_file),
         cmocka_unit_test(test_audio_bad_driver_is_a_device_error),
+        cmocka_unit_test(test_audio_volume_scales_the_samples),
     };
     return cmocka_run_group_tests(tests, write_script, remove_script);
 }

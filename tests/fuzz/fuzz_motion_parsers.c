@@ -4,7 +4,7 @@
  *   'S': a song's choreography (cub/song.h), against a fixed library.
  *   'L': the scripted judge timeline (app/cubdance/timeline.h).
  *   'U': a button timeline (board/common/buttons_script.h).
- *   'G': the box's GPIO config (board/pi/gpio.h).
+ *   'G': the box's config file (cub/boxconf.h; also fuzz_boxconf on its own).
  *   'X': a character (XML, cub_character_parse).
  *   'P': a clip pack as is; 'Q': a clip pack whose last 4 bytes the harness
  *        replaces by the right CRC, so mutations get past the CRC check.
@@ -27,7 +27,7 @@
 #include "cub/song.h"
 #include "cub/tags.h"
 #include "buttons_script.h"
-#include "gpio.h"
+#include "cub/boxconf.h"
 #include "timeline.h"
 
 #define MARK "\n==AMC==\n"
@@ -60,16 +60,17 @@ static int fuzz_buttons(const char *text, size_t len)
     return 0;
 }
 
-/* A GPIO config that parses names its lines and a debounce in range. */
+/* A box config that parses has its values in their documented ranges. */
 static int fuzz_gpio(const char *text, size_t len)
 {
-    cub_gpio_config cfg;
+    static cub_boxconf cfg;
     char err[300];
-    if (cub_gpio_config_parse(text, len, "fuzz.conf", &cfg, err, sizeof err) != CUB_OK) {
+    if (cub_boxconf_parse(text, len, "fuzz.conf", &cfg, err, sizeof err) != CUB_OK) {
         if (!err[0]) abort();
         return 0;
     }
-    if (cfg.debounce_ms < 0 || cfg.debounce_ms > 1000) abort();
+    if (cfg.gpio.debounce_ms < 0 || cfg.gpio.debounce_ms > 1000) abort();
+    if (cfg.volume < 0 || cfg.volume > 100 || cfg.doze_after_s <= cfg.attract_after_s) abort();
     return 0;
 }
 

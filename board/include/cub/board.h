@@ -20,6 +20,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "cub/boxconf.h"
 #include "cub/err.h"
 #include "cub/loop.h"
 
@@ -44,10 +45,17 @@ typedef enum cub_depth_mode {
 typedef struct cub_board_desc {
     cub_display_mode display;   /* default AUTO */
     int width, height;          /* display size; default 1280x720 */
+    int fit_screen;             /* 1: a window takes the screen's own mode (headless:
+                                   width x height) */
+    int fullscreen;             /* 0 = the board's way (pi: full screen on KMSDRM;
+                                   sim: a window), 1 = full screen at width x height,
+                                   -1 = a window */
+    const char *video_driver;   /* SDL video driver for a window; NULL = the board's */
     cub_depth_mode depth;       /* default AUTO */
     const char *button_script;  /* sim: a timeline file of presses; NULL = keyboard */
-    const char *gpio_config;    /* pi: "key=value" file naming the GPIO lines */
+    const cub_boxconf_gpio *gpio; /* pi: the button and LED lines; NULL = built-in */
     const char *audio_driver;   /* SDL audio driver ("dummy", "disk"); NULL = default */
+    int audio_volume;           /* percent 1..100, CUB_BOARD_MUTE = silent; 0 = 100 */
     int audio_rate;             /* default 44100 */
     const char *storage_dir;    /* default "." */
     int virtual_clock;          /* 1: time moves only when the loop sleeps, by
@@ -55,6 +63,8 @@ typedef struct cub_board_desc {
                                    for replays, so that a recording gives the
                                    same event log on every machine */
 } cub_board_desc;
+
+#define CUB_BOARD_MUTE (-1)
 
 typedef struct cub_board cub_board; /* opaque */
 
@@ -82,6 +92,9 @@ void cub_board_sleep_until_us(cub_board *board, int64_t t_us);
 /* Push debounced button edges (and QUIT when the window closes) that are due
  * by now_us into the loop. */
 void cub_board_poll_buttons(cub_board *board, cub_loop *loop, int64_t now_us);
+/* Show whether the box is ready for START (pi: the LED of led_line; close
+ * puts it out). Nothing on boards without one. */
+void cub_board_set_ready(cub_board *board, int ready);
 
 /* ---- depth ------------------------------------------------------------- */
 /* The newest frame since the last call: CUB_OK and *out filled (valid until
