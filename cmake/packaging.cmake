@@ -7,8 +7,13 @@
 if(CUB_FUZZ)
   return()
 endif()
-include(GNUInstallDirs)
 option(CUB_PACKAGE "Build to be installed: the default asset paths point at <prefix>/share/cubdance" OFF)
+# A package installs under /usr (the unit runs /usr/bin/cubdance-pi), and the
+# binary's compiled-in asset paths come from the same prefix.
+if(CUB_PACKAGE AND CMAKE_INSTALL_PREFIX_INITIALIZED_TO_DEFAULT)
+  set(CMAKE_INSTALL_PREFIX "/usr" CACHE PATH "Install prefix" FORCE)
+endif()
+include(GNUInstallDirs)
 
 # Where the system files go. Debian 12 still ships units and udev rules
 # under /lib (merged /usr makes it the same place as /usr/lib, but dpkg
@@ -18,7 +23,10 @@ set(CUB_UDEV_RULES_DIR "/lib/udev/rules.d" CACHE PATH "Where the udev rules are 
 set(CUB_SYSUSERS_DIR "/usr/lib/sysusers.d" CACHE PATH "Where the sysusers.d file is installed")
 set(CUB_CONFIG_DIR "/etc/cubdance" CACHE PATH "Where the box's config file is installed")
 
-# The unit runs /usr/bin/cubdance-pi: a package installs under /usr.
+if(CUB_PACKAGE AND NOT CMAKE_INSTALL_PREFIX STREQUAL "/usr")
+  message(WARNING "CUB_PACKAGE with CMAKE_INSTALL_PREFIX=${CMAKE_INSTALL_PREFIX}: the package "
+                  "installs under /usr, the binary looks for its assets elsewhere")
+endif()
 set(CPACK_GENERATOR "DEB")
 set(CPACK_PACKAGING_INSTALL_PREFIX "/usr")
 set(CPACK_PACKAGE_NAME "cubdance")
