@@ -22,9 +22,13 @@ LIBS="libfreenect-dev libsdl2-dev libegl-dev libgles-dev libgpiod-dev
 
 # Tools: compiler and build, libFuzzer (clang), fakenect's replay library
 # (libfreenect-bin), the song SoundFont, pictures for golden-image checks,
-# python3 for the synthetic child's scripts (scripts/make_child.py).
+# python3 for the synthetic child's scripts (scripts/make_child.py);
+# packaging and its checks: dpkg-dev (dpkg-shlibdeps for cpack's Depends),
+# binutils (readelf: the arm64 binary's ELF header), systemd
+# (systemd-analyze verify on the unit).
 TOOLS="build-essential cmake ninja-build pkg-config git clang libclang-rt-14-dev
-       libfreenect-bin timgm6mb-soundfont ca-certificates python3"
+       libfreenect-bin timgm6mb-soundfont ca-certificates python3
+       dpkg-dev binutils systemd"
 
 CROSS="crossbuild-essential-arm64 qemu-user-static"
 

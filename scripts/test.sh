@@ -3,8 +3,11 @@
 #   1. install what is missing (scripts/setup.sh, idempotent)
 #   2. host build (x86-64, -Werror, ASan+UBSan) and its ctest
 #   3. aarch64 cross build and the same ctest under qemu-aarch64-static
-#   4. the parsers' libFuzzer targets, each for a bounded time
-# Options: --host-only skips 3 (and the cross packages); --no-fuzz skips 4.
+#   4. the .deb packages: amd64 and (unless --host-only) arm64, each from a
+#      Release tree built with -DCUB_PACKAGE=ON (a package must not carry a
+#      sanitizer build), checked by tests/package/check_deb.sh --release
+#   5. the parsers' libFuzzer targets, each for a bounded time
+# Options: --host-only skips 3 (and the arm64 package); --no-fuzz skips 5.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -45,6 +48,22 @@ if [ "$host_only" = 0 ]; then
     stage "pi: ctest under qemu-aarch64-static"
     CUB_QUICK=1 ctest --preset pi -j "$jobs"
     figures pi
+fi
+
+# Only the packaged programs are built in these trees (cpack does not build
+# "all" first: CMAKE_SKIP_INSTALL_ALL_DEPENDENCY), so this stays short.
+package() { # package <arch> [cmake options]
+    local dir="build/package-$1"
+    shift
+    cmake --no-warn-unused-cli -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCUB_PACKAGE=ON -DCUB_TESTS=OFF "$@" >/dev/null
+    cmake --build "$dir" -j "$jobs" --target cubdance-pi cubdance
+    tests/package/make_deb.sh "$dir" "$dir/deb" --release
+}
+stage "packages: amd64"
+package amd64
+if [ "$host_only" = 0 ]; then
+    stage "packages: arm64 (cross)"
+    package arm64 -DCMAKE_TOOLCHAIN_FILE=cmake/aarch64-linux-gnu.cmake
 fi
 
 if [ "$fuzz" = 1 ]; then
