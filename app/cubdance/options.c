@@ -28,6 +28,9 @@ static void usage(FILE *f, const char *prog)
 "  --size WxH             display size in pixels (default 1280x720)\n"
 "  --frames DIR           write rendered frames as PNG files into DIR\n"
 "  --frame-every N        write every Nth tick's frame (default 30 = 1 per second)\n"
+"  --draw-every N         headless: draw only every Nth tick (default 1); the\n"
+"                         event log is the same, the renderer decides nothing.\n"
+"                         For slow emulated GL; --frame-every must be a multiple\n"
 "\n"
 "Depth camera\n"
 "  --replay DIR           replay a fakenect dump (INDEX.txt + d-*.pgm) through\n"
@@ -116,6 +119,9 @@ static int apply_valued(cub_app_options *o, const char *opt, const char *val, FI
     } else if (!strcmp(opt, "--frame-every")) {
         if (parse_int(val, 1, 1000000, &o->frame_every) == 0) return 0;
         fprintf(err, "cubdance: --frame-every wants a whole number >= 1, got '%s'\n", val);
+    } else if (!strcmp(opt, "--draw-every")) {
+        if (parse_int(val, 1, 1000000, &o->draw_every) == 0) return 0;
+        fprintf(err, "cubdance: --draw-every wants a whole number >= 1, got '%s'\n", val);
     } else if (!strcmp(opt, "--seconds")) {
         o->seconds = strtod(val, &end);
         if (end != val && !*end && o->seconds > 0 && o->seconds < 1e7) return 0;
@@ -163,7 +169,7 @@ static int apply_valued(cub_app_options *o, const char *opt, const char *val, FI
 
 static int takes_value(const char *opt)
 {
-    static const char *const valued[] = {"--size", "--frame-every", "--seconds", "--clock",
+    static const char *const valued[] = {"--size", "--frame-every", "--draw-every", "--seconds", "--clock",
                                          "--depth", "--frames", "--replay", "--buttons",
                                          "--gpio-config", "--config", "--audio-driver", "--clip", "--log",
                                          "--song", "--timeline", "--library", "--tags",
@@ -179,6 +185,7 @@ cub_app_parse cub_app_parse_options(int argc, char **argv, cub_app_options *o, F
 {
     memset(o, 0, sizeof *o);
     o->frame_every = 30;
+    o->draw_every = 1;
     o->music_clock_scale = 1.0;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
@@ -204,6 +211,11 @@ cub_app_parse cub_app_parse_options(int argc, char **argv, cub_app_options *o, F
             fprintf(err, "cubdance: unknown option '%s' (see --help)\n", a);
             return CUB_APP_EXIT_BAD;
         }
+    }
+    if (o->frame_every % o->draw_every) {
+        fprintf(err, "cubdance: --frame-every %d must be a multiple of --draw-every %d\n",
+                o->frame_every, o->draw_every);
+        return CUB_APP_EXIT_BAD;
     }
     if (o->replay_dir) {
         if (o->depth == CUB_DEPTH_EMPTY || o->depth == CUB_DEPTH_OFF) {

@@ -19,6 +19,7 @@ typedef struct cub_app_options {
     const char *log_path;       /* NULL or "-" = stderr */
     const char *frames_dir;     /* headless PNG frames go here, or NULL */
     int frame_every;            /* write every Nth tick (default 30 = 1 per second) */
+    int draw_every;             /* headless: draw every Nth tick only (default 1) */
     double seconds;             /* stop after this long; 0 = run until quit */
     int virtual_clock;          /* --clock virtual */
     int stats;                  /* --stats: print tick CPU time and peak memory at the end */

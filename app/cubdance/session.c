@@ -245,7 +245,11 @@ static void tick_work(cub_session *s, cub_loop *loop, int64_t t_us)
     if (s->watch) cub_watch_tick(s->watch, loop, t_us);
     if (s->dance) cub_dance_tick(s->dance, loop, t_us);
     show_ready(s);
-    if (!s->render) return;
+    /* (--draw-every: the renderer decides nothing, so skipping ticks leaves
+     * the event log as it is; a window always draws every tick) */
+    if (!s->render || (cub_board_display_headless(s->board) &&
+                       loop->tick_count % (uint64_t)s->opt->draw_every))
+        return;
     cub_err err = coach_world(s, t_us);
     if (err && !s->pose_error) {
         cub_log_event(&loop->log, t_us, "app", "error", "what=pose error=\"%s\"",

@@ -46,6 +46,8 @@ static void test_bad_options_are_refused_with_the_option_named(void **s)
     expect_refused((const char *[]){"--size", "99999x720", NULL}, "--size");
     expect_refused((const char *[]){"--frame-every", "0", NULL}, "--frame-every");
     expect_refused((const char *[]){"--frame-every", "3x", NULL}, "--frame-every");
+    expect_refused((const char *[]){"--draw-every", "0", NULL}, "--draw-every");
+    expect_refused((const char *[]){"--draw-every", "4", NULL}, "multiple of --draw-every");
     expect_refused((const char *[]){"--seconds", "-1", NULL}, "--seconds");
     expect_refused((const char *[]){"--seconds", "soon", NULL}, "--seconds");
     expect_refused((const char *[]){"--depth", "lidar", NULL}, "--depth");
@@ -61,7 +63,7 @@ static void test_help_documents_every_option(void **s)
 {
     cub_app_options o;
     assert_int_equal(parse(&o, (const char *[]){"--help", NULL}), CUB_APP_EXIT_OK);
-    const char *opts[] = {"--window", "--headless", "--size", "--frames", "--frame-every",
+    const char *opts[] = {"--window", "--headless", "--size", "--frames", "--frame-every", "--draw-every",
                           "--replay", "--depth", "--buttons", "--gpio-config", "--config", "--audio-driver",
                           "--clip", "--log", "--seconds", "--clock", "--song", "--timeline",
                           "--library", "--tags", "--character", "--attract-after",
@@ -74,7 +76,7 @@ static void test_good_options_set_their_fields(void **s)
 {
     cub_app_options o;
     const char *args[] = {"--headless", "--size", "320x240", "--frames", "f", "--frame-every",
-                          "5", "--replay", "dump", "--buttons", "b.txt", "--log", "e.log",
+                          "5", "--draw-every", "5", "--replay", "dump", "--buttons", "b.txt", "--log", "e.log",
                           "--seconds", "2.5", "--clock", "virtual", NULL};
     assert_int_equal(parse(&o, args), CUB_APP_RUN);
     assert_int_equal(o.display, CUB_DISPLAY_HEADLESS);
@@ -82,6 +84,7 @@ static void test_good_options_set_their_fields(void **s)
     assert_int_equal(o.height, 240);
     assert_string_equal(o.frames_dir, "f");
     assert_int_equal(o.frame_every, 5);
+    assert_int_equal(o.draw_every, 5);
     assert_string_equal(o.replay_dir, "dump");
     assert_int_equal(o.depth, CUB_DEPTH_FREENECT); /* a replay reads through libfreenect */
     assert_string_equal(o.button_script, "b.txt");
@@ -106,6 +109,7 @@ static void test_defaults(void **s)
     assert_int_equal(o.display, CUB_DISPLAY_AUTO);
     assert_int_equal(o.depth, CUB_DEPTH_AUTO);
     assert_int_equal(o.frame_every, 30);
+    assert_int_equal(o.draw_every, 1);
     assert_string_equal(o.clip_path, "/assets/clips/hello.bvh");
     assert_null(o.log_path);
     assert_true(o.seconds == 0);
