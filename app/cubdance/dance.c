@@ -454,12 +454,22 @@ int cub_dance_waiting(const cub_dance *d)
     return st == CUB_COACH_IDLE || st == CUB_COACH_ATTRACT || st == CUB_COACH_DOZE;
 }
 
-cub_err cub_dance_pose(cub_dance *d, float *xyz)
+cub_err cub_dance_pose(cub_dance *d, float *xyz, float *rot_xyzw)
 {
+    cub_quat rot[CUB_MOTION_MAX_JOINTS];
+    const cub_skeleton *skel = &d->cl.lib.skel;
     cub_err e = cub_bridge_player_pose(&d->player, &d->pose);
-    if (!e) e = cub_motion_forward(&d->cl.lib.skel, &d->pose, d->world_mm, NULL);
-    if (!e) cub_motion_world_to_float(d->world_mm, d->cl.lib.skel.joint_count, xyz);
-    return e;
+    if (!e) e = cub_motion_forward(skel, &d->pose, d->world_mm, rot_xyzw ? rot : NULL);
+    if (e) return e;
+    cub_motion_world_to_float(d->world_mm, skel->joint_count, xyz);
+    for (int j = 0; rot_xyzw && j < skel->joint_count; j++) {
+        const float one = (float)CUB_QUAT_ONE;
+        rot_xyzw[4 * j + 0] = (float)rot[j].x / one;
+        rot_xyzw[4 * j + 1] = (float)rot[j].y / one;
+        rot_xyzw[4 * j + 2] = (float)rot[j].z / one;
+        rot_xyzw[4 * j + 3] = (float)rot[j].w / one;
+    }
+    return CUB_OK;
 }
 
 float cub_dance_figure_height_mm(const cub_dance *d)

@@ -73,6 +73,9 @@ int cub_dance_waiting(const cub_dance *d);
 /* How tall the camera should frame the coach: its standing height and a
  * margin for raised paws and jumps (mm). */
 float cub_dance_figure_height_mm(const cub_dance *d);
-cub_err cub_dance_pose(cub_dance *d, float *xyz);
+/* The coach's pose this tick: joint world positions (mm, 3 floats each)
+ * into xyz and, unless rot_xyzw is NULL, joint world rotations (x y z w
+ * floats each, for the renderer's skinning), from one forward pass. */
+cub_err cub_dance_pose(cub_dance *d, float *xyz, float *rot_xyzw);
 
 #endif

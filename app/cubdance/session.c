@@ -166,34 +166,17 @@ static void hook_handle(void *u, cub_loop *loop, const cub_event *ev)
     if (s->dance) cub_dance_handle(s->dance, loop, ev);
 }
 
-/* The coach's pose this tick into s->world_xyz: the clip, looping, while
- * playing; its first frame, standing still, while waiting. */
+/* The coach's pose this tick into s->world_xyz (and, for the bear, its
+ * joints' rotations into s->world_rot): the clip, looping, while playing;
+ * its first frame, standing still, while waiting. */
 static cub_err coach_world(cub_session *s, int64_t t_us)
 {
-    if (s->dance) return cub_dance_pose(s->dance, s->world_xyz);
+    if (s->dance) return cub_dance_pose(s->dance, s->world_xyz, s->world_rot);
     const cub_clip *clip = &s->clip->clip;
     int64_t t = s->state == CUB_APP_PLAYING ? t_us - s->play_start_us : 0;
     cub_err err = cub_motion_sample(clip, t, CUB_MOTION_LOOP, &s->pose);
     if (!err) err = cub_motion_forward(clip->skel, &s->pose, s->world_mm, NULL);
     if (!err) cub_motion_world_to_float(s->world_mm, clip->skel->joint_count, s->world_xyz);
-    return err;
-}
-
-/* The bear's joint world rotations this tick (x y z w floats), for the
- * renderer's skinning: forward kinematics once more on the pose
- * cub_dance_pose just sampled, this time keeping the rotations. */
-static cub_err coach_rotations(cub_dance *d, float *xyzw)
-{
-    cub_quat rot[CUB_MOTION_MAX_JOINTS];
-    const cub_skeleton *skel = cub_dance_skeleton(d);
-    cub_err err = cub_motion_forward(skel, &d->pose, d->world_mm, rot);
-    for (int j = 0; !err && j < skel->joint_count; j++) {
-        const float one = (float)CUB_QUAT_ONE;
-        xyzw[4 * j + 0] = (float)rot[j].x / one;
-        xyzw[4 * j + 1] = (float)rot[j].y / one;
-        xyzw[4 * j + 2] = (float)rot[j].z / one;
-        xyzw[4 * j + 3] = (float)rot[j].w / one;
-    }
     return err;
 }
 
@@ -260,10 +243,9 @@ static void tick_work(cub_session *s, cub_loop *loop, int64_t t_us)
     cub_render_scene scene = {.skel = err ? NULL : skel,
                               .world_xyz_mm = s->world_xyz,
                               .depth_raw = s->depth_frames ? s->depth_copy : NULL};
-    float rot_xyzw[4 * CUB_MOTION_MAX_JOINTS];
-    if (!err && s->dance && coach_rotations(s->dance, rot_xyzw) == CUB_OK) {
+    if (!err && s->dance) {
         scene.character = &s->dance->cl.bear;
-        scene.world_rot_xyzw = rot_xyzw;
+        scene.world_rot_xyzw = s->world_rot;
         scene.face = coach_face(s->dance->coach.state);
     }
     cub_render_frame(s->render, &scene);

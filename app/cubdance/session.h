@@ -49,6 +49,7 @@ typedef struct cub_session {
     cub_pose pose;
     cub_vec3 world_mm[CUB_MOTION_MAX_JOINTS];
     float world_xyz[CUB_MOTION_MAX_JOINTS * 3];
+    float world_rot[CUB_MOTION_MAX_JOINTS * 4]; /* the bear's, x y z w */
     int pose_error;          /* the clip could not be sampled: reported once */
     uint32_t frames_written;
     int frame_error;         /* a frame could not be written: reported once */
