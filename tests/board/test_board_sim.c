@@ -264,15 +264,16 @@ static void test_audio_dummy_driver_runs_the_music_clock(void **state)
     cub_board_close(b);
 }
 
-/* The "disk" driver writes the stream into the storage directory. */
-static void test_audio_disk_driver_writes_storage_file(void **state)
+/* Play the tone through the "disk" driver at a volume (0 = the default)
+ * into dir until 2048 frames (or 10 s) have played; the file's path into
+ * path, the frames the callback filled as the result. */
+static uint64_t play_tone_to_disk(const char *dir, int volume, char *path, size_t path_size)
 {
-    char dir[] = "/tmp/cub_audio_XXXXXX";
-    assert_non_null(mkdtemp(dir));
     cub_board_desc desc = {.display = CUB_DISPLAY_NONE, .depth = CUB_DEPTH_OFF,
-                           .audio_driver = "disk", .audio_rate = 22050, .storage_dir = dir};
+                           .audio_driver = "disk", .audio_rate = 22050, .storage_dir = dir,
+                           .audio_volume = volume};
     cub_board *b;
-    char err[128], path[128];
+    char err[128];
     assert_int_equal(cub_board_open(&desc, &b, err, sizeof err), CUB_OK);
     assert_int_equal(cub_board_audio_rate(b), 22050);
     tone t = {0};
@@ -283,8 +284,18 @@ static void test_audio_disk_driver_writes_storage_file(void **state)
     }
     cub_board_audio_stop(b);
     uint64_t frames = cub_board_audio_frames(b);
-    assert_int_equal(cub_board_storage_path(b, "audio.raw", path, sizeof path), CUB_OK);
+    assert_int_equal(cub_board_storage_path(b, "audio.raw", path, path_size), CUB_OK);
     cub_board_close(b);
+    return frames;
+}
+
+/* The "disk" driver writes the stream into the storage directory. */
+static void test_audio_disk_driver_writes_storage_file(void **state)
+{
+    char dir[] = "/tmp/cub_audio_XXXXXX";
+    assert_non_null(mkdtemp(dir));
+    char path[128];
+    uint64_t frames = play_tone_to_disk(dir, 0, path, sizeof path);
     FILE *f = fopen(path, "rb");
     assert_non_null(f);
     fseek(f, 0, SEEK_END);
@@ -318,22 +329,8 @@ static int disk_peak_at_volume(int volume, uint64_t *frames)
 {
     char dir[] = "/tmp/cub_volume_XXXXXX";
     assert_non_null(mkdtemp(dir));
-    cub_board_desc desc = {.display = CUB_DISPLAY_NONE, .depth = CUB_DEPTH_OFF,
-                           .audio_driver = "disk", .audio_rate = 22050, .storage_dir = dir,
-                           .audio_volume = volume};
-    cub_board *b;
-    char err[128], path[128];
-    assert_int_equal(cub_board_open(&desc, &b, err, sizeof err), CUB_OK);
-    tone t = {0};
-    assert_int_equal(cub_board_audio_start(b, fill_tone, &t), CUB_OK);
-    int64_t until = cub_board_now_us(b) + 10000000;
-    while (cub_board_audio_frames(b) < 2048 && cub_board_now_us(b) < until) {
-        cub_board_sleep_until_us(b, cub_board_now_us(b) + 10000);
-    }
-    cub_board_audio_stop(b);
-    *frames = cub_board_audio_frames(b);
-    assert_int_equal(cub_board_storage_path(b, "audio.raw", path, sizeof path), CUB_OK);
-    cub_board_close(b);
+    char path[128];
+    *frames = play_tone_to_disk(dir, volume, path, sizeof path);
     FILE *f = fopen(path, "rb");
     assert_non_null(f);
     int16_t s;
