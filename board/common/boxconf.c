@@ -4,7 +4,6 @@
 #include "cub/boxconf.h"
 #include "text_file.h"
 
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -56,11 +55,8 @@ static const key keys[] = {
 
 typedef struct parser {
     cub_boxconf *cfg;
-    const char *file;
-    int line;
+    cub_board_at at;     /* the file, the line, the message */
     int seen[KEY_COUNT]; /* per key: the line it was set on, to refuse repeats */
-    char *err;
-    size_t err_size;
 } parser;
 
 void cub_boxconf_defaults(cub_boxconf *c)
@@ -82,15 +78,6 @@ void cub_boxconf_defaults(cub_boxconf *c)
     c->doze_after_s = 60;
     snprintf(c->soundfont, sizeof c->soundfont, "/usr/share/sounds/sf2/TimGM6mb.sf2");
     snprintf(c->recording_dir, sizeof c->recording_dir, "/var/lib/cubdance/recordings");
-}
-
-static cub_err fail(const parser *p, const char *fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    cub_err e = cub_board_vfail_at(p->err, p->err_size, p->file, p->line, fmt, ap);
-    va_end(ap);
-    return e;
 }
 
 /* Digits only (no sign, no blanks), at most hi. */
@@ -165,13 +152,13 @@ static cub_err set_string(parser *p, const key *k, const char *value)
 {
     char *dst = (char *)p->cfg + k->off;
     if (strlen(value) >= k->cap) {
-        return fail(p, "%s: value longer than %zu characters", k->name, k->cap - 1);
+        return cub_board_fail_at(&p->at, "%s: value longer than %zu characters", k->name, k->cap - 1);
     }
     if (k->kind == K_NAME && strpbrk(value, " \t/")) {
-        return fail(p, "%s: \"%s\" is not a name (no blanks or slashes)", k->name, value);
+        return cub_board_fail_at(&p->at, "%s: \"%s\" is not a name (no blanks or slashes)", k->name, value);
     }
     if (k->kind == K_PATH && *value && *value != '/') {
-        return fail(p, "%s: \"%s\" is not an absolute path (it must start with /)", k->name,
+        return cub_board_fail_at(&p->at, "%s: \"%s\" is not an absolute path (it must start with /)", k->name,
                     value);
     }
     memcpy(dst, value, strlen(value) + 1);
@@ -189,16 +176,16 @@ static cub_err set_value(parser *p, const key *k, const char *value)
     case K_INT:
         return parse_int(value, k->lo, k->hi, num)
                    ? CUB_OK
-                   : fail(p, "%s: \"%s\" is not a whole number in %d..%d", k->name, value, k->lo,
+                   : cub_board_fail_at(&p->at, "%s: \"%s\" is not a whole number in %d..%d", k->name, value, k->lo,
                           k->hi);
     case K_BOOL:
         return parse_bool(value, num) ? CUB_OK
-                                       : fail(p, "%s: \"%s\" is not 0 or 1 (or off/on, no/yes)",
+                                       : cub_board_fail_at(&p->at, "%s: \"%s\" is not 0 or 1 (or off/on, no/yes)",
                                               k->name, value);
     case K_SIZE:
         return parse_size(value, &p->cfg->width, &p->cfg->height)
                    ? CUB_OK
-                   : fail(p, "%s: \"%s\" is not auto or WxH (320..7680 x 200..4320), e.g. "
+                   : cub_board_fail_at(&p->at, "%s: \"%s\" is not auto or WxH (320..7680 x 200..4320), e.g. "
                              "1280x720",
                           k->name, value);
     case K_WORD:
@@ -208,9 +195,9 @@ static cub_err set_value(parser *p, const key *k, const char *value)
             }
         }
         list_words(k->words, words, sizeof words);
-        return fail(p, "%s: \"%s\" is not one of %s", k->name, value, words);
+        return cub_board_fail_at(&p->at, "%s: \"%s\" is not one of %s", k->name, value, words);
     }
-    return fail(p, "%s: unhandled kind", k->name);
+    return cub_board_fail_at(&p->at, "%s: unhandled kind", k->name);
 }
 
 /* Edit distance of two short words (keys), for "did you mean". */
@@ -247,9 +234,9 @@ static cub_err unknown_key(parser *p, const char *name)
         }
     }
     if (best >= 0) {
-        return fail(p, "unknown key '%s' (did you mean '%s'?)", name, keys[best].name);
+        return cub_board_fail_at(&p->at, "unknown key '%s' (did you mean '%s'?)", name, keys[best].name);
     }
-    return fail(p, "unknown key '%s' (the keys are listed in cubdance.conf)", name);
+    return cub_board_fail_at(&p->at, "unknown key '%s' (the keys are listed in cubdance.conf)", name);
 }
 
 /* Keys whose empty value means something ("none", "the built-in place"). */
@@ -268,21 +255,21 @@ static cub_err parse_line(parser *p, char *text)
 {
     char *eq = strchr(text, '=');
     if (!eq) {
-        return fail(p, "expected key=value, got \"%s\"", text);
+        return cub_board_fail_at(&p->at, "expected key=value, got \"%s\"", text);
     }
     *eq = '\0';
     char *name = trim(text), *value = trim(eq + 1);
     for (int k = 0; k < KEY_COUNT; k++) {
         if (strcmp(name, keys[k].name) == 0) {
             if (p->seen[k]) {
-                return fail(p, "%s set again (first set on line %d)", name, p->seen[k]);
+                return cub_board_fail_at(&p->at, "%s set again (first set on line %d)", name, p->seen[k]);
             }
-            p->seen[k] = p->line;
+            p->seen[k] = p->at.line;
             if (keys[k].line >= 0) {
-                p->cfg->gpio.line_at[keys[k].line] = p->line;
+                p->cfg->gpio.line_at[keys[k].line] = p->at.line;
             }
             if (!*value && !may_be_empty(name)) {
-                return fail(p, "%s has no value", name);
+                return cub_board_fail_at(&p->at, "%s has no value", name);
             }
             return set_value(p, &keys[k], value);
         }
@@ -309,14 +296,14 @@ static cub_err check(parser *p)
     for (int i = 0; i < CUB_BOXCONF_LINES; i++) {
         for (int j = i + 1; j < CUB_BOXCONF_LINES; j++) {
             if (c->gpio.line[i][0] && !strcmp(c->gpio.line[i], c->gpio.line[j])) {
-                p->line = blame(p, names[i], names[j]);
-                return fail(p, "%s and %s both name %s", names[i], names[j], c->gpio.line[i]);
+                p->at.line = blame(p, names[i], names[j]);
+                return cub_board_fail_at(&p->at, "%s and %s both name %s", names[i], names[j], c->gpio.line[i]);
             }
         }
     }
     if (c->doze_after_s <= c->attract_after_s) {
-        p->line = blame(p, "attract_after_s", "doze_after_s");
-        return fail(p, "doze_after_s (%d) must be longer than attract_after_s (%d)",
+        p->at.line = blame(p, "attract_after_s", "doze_after_s");
+        return cub_board_fail_at(&p->at, "doze_after_s (%d) must be longer than attract_after_s (%d)",
                     c->doze_after_s, c->attract_after_s);
     }
     return CUB_OK;
@@ -326,14 +313,14 @@ static cub_err check(parser *p)
 static cub_err parse_one(parser *p, const char *c, size_t n)
 {
     if (memchr(c, '\0', n)) {
-        return fail(p, "contains a NUL byte (not a text file?)");
+        return cub_board_fail_at(&p->at, "contains a NUL byte (not a text file?)");
     }
     /* A comment may be as long as it likes: measure only what precedes it. */
     const char *hash = memchr(c, '#', n);
     size_t used = hash ? (size_t)(hash - c) : n;
     char buf[MAX_LINE];
     if (used >= MAX_LINE) {
-        return fail(p, "line longer than %d characters", MAX_LINE - 1);
+        return cub_board_fail_at(&p->at, "line longer than %d characters", MAX_LINE - 1);
     }
     memcpy(buf, c, used);
     buf[used] = '\0';
@@ -351,9 +338,9 @@ cub_err cub_boxconf_parse(const char *text, size_t len, const char *file, cub_bo
     err[0] = '\0';
     cub_boxconf_defaults(cfg);
     snprintf(cfg->gpio.file, sizeof cfg->gpio.file, "%s", file ? file : "(config)");
-    parser p = {.cfg = cfg, .file = cfg->gpio.file, .line = 1, .err = err, .err_size = err_size};
+    parser p = {.cfg = cfg, .at = {cfg->gpio.file, 1, err, err_size}};
     const char *end = text + len;
-    for (const char *c = text; c < end; p.line++) {
+    for (const char *c = text; c < end; p.at.line++) {
         const char *nl = memchr(c, '\n', (size_t)(end - c));
         cub_err e = parse_one(&p, c, (size_t)((nl ? nl : end) - c));
         if (e) {

@@ -2,7 +2,6 @@
 #include "buttons_script.h"
 #include "text_file.h"
 
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -23,21 +22,7 @@ struct cub_button_script {
     size_t next; /* first edge not handed out */
 };
 
-typedef struct parser {
-    const char *file;
-    int line;
-    char *err;
-    size_t err_size;
-} parser;
-
-static cub_err fail(const parser *p, const char *fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    cub_err e = cub_board_vfail_at(p->err, p->err_size, p->file, p->line, fmt, ap);
-    va_end(ap);
-    return e;
-}
+typedef cub_board_at parser; /* the file, the line, the message */
 
 static cub_err push_edge(cub_button_script *s, int64_t t_us, int button, int down, int line)
 {
@@ -114,18 +99,18 @@ static cub_err parse_entry(cub_button_script *s, parser *p, char *text, int64_t 
     char *tok[3] = {NULL, NULL, NULL};
     int n = split(text, tok, 3);
     if (n < 2) {
-        return fail(p, "expected \"<seconds> <start|stop> [down|up|press]\"");
+        return cub_board_fail_at(p, "expected \"<seconds> <start|stop> [down|up|press]\"");
     }
     if (n > 3) {
-        return fail(p, "too many fields (expected \"<seconds> <start|stop> [down|up|press]\")");
+        return cub_board_fail_at(p, "too many fields (expected \"<seconds> <start|stop> [down|up|press]\")");
     }
     int64_t t_us;
     if (!parse_seconds(tok[0], &t_us)) {
-        return fail(p, "bad time \"%s\" (want seconds >= 0, at most 6 decimals, e.g. 1.5)",
+        return cub_board_fail_at(p, "bad time \"%s\" (want seconds >= 0, at most 6 decimals, e.g. 1.5)",
                     tok[0]);
     }
     if (t_us < *prev_t_us) {
-        return fail(p,
+        return cub_board_fail_at(p,
                     "time %s is before the previous entry's %lld.%06lld (times must not decrease)",
                     tok[0], (long long)(*prev_t_us / 1000000), (long long)(*prev_t_us % 1000000));
     }
@@ -136,7 +121,7 @@ static cub_err parse_entry(cub_button_script *s, parser *p, char *text, int64_t 
     } else if (strcmp(tok[1], "stop") == 0) {
         button = CUB_BUTTON_STOP;
     } else {
-        return fail(p, "unknown button \"%s\" (want start or stop)", tok[1]);
+        return cub_board_fail_at(p, "unknown button \"%s\" (want start or stop)", tok[1]);
     }
     const char *action = n == 3 ? tok[2] : "press";
     cub_err e;
@@ -148,9 +133,9 @@ static cub_err parse_entry(cub_button_script *s, parser *p, char *text, int64_t 
             e = push_edge(s, t_us + CUB_BUTTON_SCRIPT_PRESS_US, button, 0, p->line);
         }
     } else {
-        return fail(p, "unknown action \"%s\" (want down, up or press)", action);
+        return cub_board_fail_at(p, "unknown action \"%s\" (want down, up or press)", action);
     }
-    return e == CUB_ERR_NOMEM ? fail(p, "out of memory") : e;
+    return e == CUB_ERR_NOMEM ? cub_board_fail_at(p, "out of memory") : e;
 }
 
 /* A press's release can land after later lines: a stable insertion sort puts
@@ -176,7 +161,7 @@ static cub_err check_alternation(const cub_button_script *s, parser *p)
         const char *name = e->button == CUB_BUTTON_START ? "start" : "stop";
         if (e->down == is_down[e->button]) {
             p->line = e->line;
-            return fail(p, "%s %s at %lld.%06lld while %s is already %s", name,
+            return cub_board_fail_at(p, "%s %s at %lld.%06lld while %s is already %s", name,
                         e->down ? "down" : "up", (long long)(e->t_us / 1000000),
                         (long long)(e->t_us % 1000000), name, e->down ? "down" : "up");
         }
@@ -193,14 +178,14 @@ static cub_err take_line(parser *p, const char *start, const char *end, char *bu
         n--;
     }
     if (memchr(start, '\0', n)) {
-        return fail(p, "contains a NUL byte (not a text file?)");
+        return cub_board_fail_at(p, "contains a NUL byte (not a text file?)");
     }
     const char *hash = memchr(start, '#', n);
     if (hash) {
         n = (size_t)(hash - start);
     }
     if (n >= MAX_LINE) {
-        return fail(p, "line longer than %d characters", MAX_LINE - 1);
+        return cub_board_fail_at(p, "line longer than %d characters", MAX_LINE - 1);
     }
     memcpy(buf, start, n);
     buf[n] = '\0';

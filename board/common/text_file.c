@@ -1,5 +1,6 @@
 #include "text_file.h"
 
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -38,10 +39,14 @@ cub_err cub_board_read_text(const char *path, const char *what, size_t max_bytes
     return CUB_OK;
 }
 
-cub_err cub_board_vfail_at(char *err, size_t err_size, const char *file, int line,
-                           const char *fmt, va_list ap)
+cub_err cub_board_fail_at(const cub_board_at *at, const char *fmt, ...)
 {
-    int n = snprintf(err, err_size, "%s:%d: ", file, line);
-    if (n >= 0 && (size_t)n < err_size) vsnprintf(err + n, err_size - (size_t)n, fmt, ap);
+    int n = snprintf(at->err, at->err_size, "%s:%d: ", at->file, at->line);
+    if (n >= 0 && (size_t)n < at->err_size) {
+        va_list ap;
+        va_start(ap, fmt);
+        vsnprintf(at->err + n, at->err_size - (size_t)n, fmt, ap);
+        va_end(ap);
+    }
     return CUB_ERR_FORMAT;
 }

@@ -4,7 +4,6 @@
 #ifndef CUB_BOARD_TEXT_FILE_H
 #define CUB_BOARD_TEXT_FILE_H
 
-#include <stdarg.h>
 #include <stddef.h>
 
 #include "cub/err.h"
@@ -15,9 +14,16 @@
 cub_err cub_board_read_text(const char *path, const char *what, size_t max_bytes, char **text,
                             size_t *len, char *err, size_t err_size);
 
-/* "<file>:<line>: <message>" into err (cut to err_size); returns
- * CUB_ERR_FORMAT, for the parsers' `return fail(...)`. */
-cub_err cub_board_vfail_at(char *err, size_t err_size, const char *file, int line,
-                           const char *fmt, va_list ap);
+/* Where a parser of such a file is, and where its message goes. */
+typedef struct cub_board_at {
+    const char *file; /* for messages */
+    int line;         /* 1-based */
+    char *err;
+    size_t err_size;
+} cub_board_at;
+
+/* "<file>:<line>: <message>" into at->err (cut to err_size); returns
+ * CUB_ERR_FORMAT, for the parsers' `return cub_board_fail_at(...)`. */
+cub_err cub_board_fail_at(const cub_board_at *at, const char *fmt, ...);
 
 #endif
