@@ -14,19 +14,23 @@
 #include "cub/loop.h"
 #include "cub/render.h"
 #include "options.h"
+#include "record.h"
 #include "replay.h"
 #include "session.h"
 
-static void log_to_file(void *user, const char *line, size_t len)
-{
-    FILE *f = user;
-    fwrite(line, 1, len, f);
-    fputc('\n', f);
-}
+/* The event log's file. Under systemd the box runs for weeks: at max_bytes
+ * the file is moved to <path>.1 (replacing the older one) and a new one
+ * begins, so the log never holds more than twice that. Done here rather
+ * than by logrotate: the app knows its line boundaries, needs no cron job
+ * or copytruncate race, and the cap is one key in the config. */
+typedef struct log_file {
+    FILE *f;
+    const char *path;
+    long max_bytes, bytes; /* max 0 = no cap */
+} log_file;
 
-static FILE *open_log(const char *path)
+static FILE *open_log_path(const char *path)
 {
-    if (!path || !strcmp(path, "-")) return stderr;
     FILE *f = fopen(path, "w");
     if (!f) {
         fprintf(stderr, "cubdance: cannot write the event log %s: %s\n", path, strerror(errno));
@@ -34,6 +38,35 @@ static FILE *open_log(const char *path)
     }
     setvbuf(f, NULL, _IOLBF, 0); /* a line reaches the file as it happens */
     return f;
+}
+
+static void rotate_log(log_file *lf)
+{
+    char old[4096];
+    snprintf(old, sizeof old, "%s.1", lf->path);
+    fclose(lf->f);
+    if (rename(lf->path, old) != 0)
+        fprintf(stderr, "cubdance: cannot move the event log to %s: %s\n", old, strerror(errno));
+    lf->f = open_log_path(lf->path);
+    lf->bytes = 0;
+}
+
+static void log_to_file(void *user, const char *line, size_t len)
+{
+    log_file *lf = user;
+    if (!lf->f) return; /* the log could not be reopened: the run goes on */
+    fwrite(line, 1, len, lf->f);
+    fputc('\n', lf->f);
+    lf->bytes += (long)len + 1;
+    if (lf->max_bytes > 0 && lf->bytes >= lf->max_bytes && lf->f != stderr) rotate_log(lf);
+}
+
+static int open_log(const cub_app_options *o, log_file *lf)
+{
+    *lf = (log_file){.f = stderr, .path = o->log_path, .max_bytes = o->log_max_kb * 1024L};
+    if (!o->log_path || !strcmp(o->log_path, "-")) return 0;
+    lf->f = open_log_path(o->log_path);
+    return lf->f ? 0 : -1;
 }
 
 static int make_dir(const char *dir)
@@ -54,8 +87,12 @@ static cub_board *open_board(const cub_app_options *o)
                         .virtual_clock = o->virtual_clock};
     if (o->frames_dir && d.display == CUB_DISPLAY_AUTO) d.display = CUB_DISPLAY_HEADLESS;
     cub_board *b = NULL;
-    char msg[512] = "";
+    char msg[768] = "";
     cub_err err = cub_board_open(&d, &b, msg, sizeof msg);
+    if (err && !strncmp(msg, "no display", 10)) {
+        fprintf(stderr, "cubdance: %s\n", msg); /* the board said it all */
+        return NULL;
+    }
     if (err) {
         fprintf(stderr, "cubdance: cannot open the %s board: %s\n", cub_board_name(),
                 *msg ? msg : cub_err_str(err));
@@ -116,7 +153,84 @@ static int open_extras(const cub_app_options *o, cub_board *board, cub_loop *loo
     return 0;
 }
 
-static int run(const cub_app_options *o, cub_board *board, FILE *log, const cub_io_motion *clip)
+/* What main adds around the session's hooks: the display's health and the
+ * opt-in recorder. */
+typedef struct app_watch {
+    cub_loop_hooks inner;
+    cub_session *s;
+    cub_record *rec;
+    int recording_on; /* the recorder was told to begin */
+    int display_lost; /* the loop was stopped for it */
+} app_watch;
+
+/* The box records only while a dance runs (config recording=1), or the
+ * whole run (--record). */
+static int dancing(const cub_session *s)
+{
+    return s->dance ? !cub_dance_waiting(s->dance) : s->state == CUB_APP_PLAYING;
+}
+
+static void follow_recording(app_watch *w, int64_t t_us)
+{
+    int want = !w->s->opt->record_each_dance || dancing(w->s);
+    if (want && !w->recording_on) cub_record_begin(w->rec, t_us);
+    else if (!want && w->recording_on) cub_record_end(w->rec, t_us, "idle");
+    w->recording_on = want;
+}
+
+static void watch_tick(void *u, cub_loop *loop, int64_t t_us)
+{
+    app_watch *w = u;
+    w->inner.tick(w->inner.user, loop, t_us);
+    const char *lost = cub_board_display_lost(w->s->board);
+    if (lost && !w->display_lost) {
+        cub_log_event(&loop->log, t_us, "app", "error", "what=display error=\"%s\"", lost);
+        w->display_lost = 1;
+        cub_loop_stop(loop);
+    }
+    if (w->rec) follow_recording(w, t_us);
+}
+
+static void watch_poll(void *u, cub_loop *loop, int64_t now_us)
+{
+    app_watch *w = u;
+    w->inner.poll(w->inner.user, loop, now_us);
+}
+
+static void watch_handle(void *u, cub_loop *loop, const cub_event *ev)
+{
+    app_watch *w = u;
+    w->inner.handle(w->inner.user, loop, ev);
+}
+
+static int64_t watch_now(void *u)
+{
+    app_watch *w = u;
+    return w->inner.now_us(w->inner.user);
+}
+
+static void watch_wait(void *u, int64_t t_us)
+{
+    app_watch *w = u;
+    w->inner.wait_until(w->inner.user, t_us);
+}
+
+static cub_record *open_recorder(const cub_app_options *o, cub_board *board, cub_log *log)
+{
+    cub_record_desc rd = {.dir = o->record_dir, .max_bytes = (int64_t)o->record_max_mb << 20,
+                          .log = log};
+    cub_record *rec = NULL;
+    char err[1200];
+    if (cub_record_open(&rd, &rec, err, sizeof err)) {
+        fprintf(stderr, "cubdance: %s\n", err);
+        return NULL;
+    }
+    cub_board_set_depth_tap(board, cub_record_frame, rec);
+    return rec;
+}
+
+static int run(const cub_app_options *o, cub_board *board, log_file *log,
+               const cub_io_motion *clip)
 {
     static cub_event slots[64];
     static cub_loop loop;
@@ -125,6 +239,7 @@ static int run(const cub_app_options *o, cub_board *board, FILE *log, const cub_
         fprintf(stderr, "cubdance: the event loop would not start\n");
         return -1;
     }
+    static app_watch aw; /* zero until the hooks are set up (see done:) */
     static cub_session s; /* large (it holds this tick's pose): not on the stack */
     s = (cub_session){.opt = o, .board = board, .clip = clip,
                       .clip_name = file_name(o->clip_path), .loop = &loop,
@@ -168,8 +283,13 @@ static int run(const cub_app_options *o, cub_board *board, FILE *log, const cub_
         }
     }
     if (o->stats) s.tick_hist = calloc(CUB_SESSION_TICK_BINS, sizeof *s.tick_hist);
-    cub_loop_hooks hooks = cub_session_hooks(&s);
+    aw = (app_watch){.inner = cub_session_hooks(&s), .s = &s};
+    if (o->record_dir && !(aw.rec = open_recorder(o, board, &loop.log))) goto done;
+    cub_loop_hooks hooks = {.user = &aw, .now_us = watch_now, .poll = watch_poll,
+                            .handle = watch_handle, .tick = watch_tick,
+                            .wait_until = watch_wait};
     cub_err err = cub_loop_run(&loop, &hooks, 0);
+    cub_record_end(aw.rec, cub_board_now_us(board), "exit");
     cub_log_event(&loop.log, cub_board_now_us(board), "app", "end",
                   "ticks=%llu depth_frames=%u frames_written=%u",
                   (unsigned long long)loop.tick_count, s.depth_frames, s.frames_written);
@@ -177,7 +297,14 @@ static int run(const cub_app_options *o, cub_board *board, FILE *log, const cub_
         printf("cubdance: %u frames written to %s\n", s.frames_written, o->frames_dir);
     cub_session_print_stats(&s, stdout);
     rc = err || s.frame_error ? -1 : 0;
+    if (aw.display_lost) {
+        fprintf(stderr, "cubdance: the display went away: %s\n", cub_board_display_lost(board));
+        rc = -1;
+    }
 done:
+    cub_board_set_depth_tap(board, NULL, NULL);
+    cub_record_close(aw.rec);
+    aw.rec = NULL;
     if (s.dance) cub_dance_close(s.dance);
     free(s.dance);
     if (s.watch) cub_watch_close(s.watch);
@@ -203,12 +330,6 @@ static int load_config(cub_app_options *o)
         fprintf(stderr, "cubdance: %s\n", err);
         return -1;
     }
-    if (c.recording) {
-        /* Nothing records yet: refuse rather than pretend to. */
-        fprintf(stderr, "cubdance: %s: recording=1, but this cubdance cannot record yet "
-                        "(nothing would be stored); set recording=0\n", path);
-        return -1;
-    }
     return cub_app_apply_config(o, &c, from_file, CUB_ASSETS_DIR, stderr);
 }
 
@@ -226,16 +347,16 @@ int main(int argc, char **argv)
 
     cub_io_motion clip;
     if (load_clip(o.clip_path, &clip)) return 1;
-    FILE *log = open_log(o.log_path);
-    if (!log) return 1;
+    static log_file log;
+    if (open_log(&o, &log)) return 1;
     cub_board *board = open_board(&o);
     int rc = 1;
     if (board) {
-        rc = run(&o, board, log, &clip) ? 1 : 0;
+        rc = run(&o, board, &log, &clip) ? 1 : 0;
         cub_board_close(board);
     }
-    if (log != stderr) {
-        fclose(log);
+    if (log.f != stderr) {
+        if (log.f) fclose(log.f);
         printf("cubdance: event log written to %s\n", o.log_path);
     }
     cub_io_motion_free(&clip);

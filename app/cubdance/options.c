@@ -63,7 +63,12 @@ static void usage(FILE *f, const char *prog)
 "                         fast; a real audio device only has its clock scaled\n"
 "\n"
 "Run\n"
-"  --log FILE             write the event log to FILE (default: stderr)\n"
+"  --log FILE             write the event log to FILE (default: stderr); moved to\n"
+"                         FILE.1 when it reaches the config's log_max_kb\n"
+"  --record DIR           record the Kinect's depth frames (and accelerometer) of\n"
+"                         this whole run as a fakenect dump into a new folder\n"
+"                         under DIR (the box never records without this or\n"
+"                         recording=1 in the config)\n"
 "  --seconds S            stop after S seconds (default: run until quit)\n"
 "  --clock MODE           real (default) or virtual: time moves by whole ticks\n"
 "                         as fast as the machine goes, so a replay gives the\n"
@@ -155,6 +160,7 @@ static int apply_valued(cub_app_options *o, const char *opt, const char *val, FI
                             : !strcmp(opt, "--audio-driver") ? &o->audio_driver
                             : !strcmp(opt, "--clip")         ? &o->clip_path
                             : !strcmp(opt, "--log")          ? &o->log_path
+                            : !strcmp(opt, "--record")       ? &o->record_dir
                             : !strcmp(opt, "--song")         ? &o->song_path
                             : !strcmp(opt, "--timeline")     ? &o->timeline_path
                             : !strcmp(opt, "--library")      ? &o->library_path
@@ -174,7 +180,8 @@ static int takes_value(const char *opt)
                                          "--gpio-config", "--config", "--audio-driver", "--clip", "--log",
                                          "--song", "--timeline", "--library", "--tags",
                                          "--character", "--attract-after", "--doze-after",
-                                         "--music-clock-scale"};
+                                         "--music-clock-scale",
+                                         "--record"};
     for (size_t i = 0; i < sizeof valued / sizeof *valued; i++)
         if (!strcmp(opt, valued[i])) return 1;
     return 0;
@@ -273,6 +280,12 @@ int cub_app_apply_config(cub_app_options *o, const cub_boxconf *c, int from_file
     o->audio_volume = c->volume == 0 ? CUB_BOARD_MUTE : c->volume;
     o->soundfont = c->soundfont;
     o->gpio = &c->gpio;
+    o->record_max_mb = c->recording_max_mb;
+    o->log_max_kb = c->log_max_kb;
+    if (!o->record_dir && c->recording) {
+        o->record_dir = c->recording_dir;
+        o->record_each_dance = 1;
+    }
     if (!from_file) return 0;
     /* The display only from a file: with none, a PC keeps its window. */
     if (o->width == 0) {

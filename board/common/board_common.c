@@ -131,7 +131,17 @@ void cub_board_poll_buttons(cub_board *b, cub_loop *loop, int64_t now_us)
 
 cub_err cub_board_depth_poll(cub_board *b, cub_depth_frame *out)
 {
-    return cub_depth_poll(b->depth, out);
+    cub_err e = cub_depth_poll(b->depth, out);
+    if (e == CUB_OK && b->depth_tap) {
+        b->depth_tap(b->depth_tap_user, out);
+    }
+    return e;
+}
+
+void cub_board_set_depth_tap(cub_board *b, cub_board_depth_tap tap, void *user)
+{
+    b->depth_tap = tap;
+    b->depth_tap_user = user;
 }
 
 const char *cub_board_depth_source(cub_board *b)
@@ -170,6 +180,11 @@ void cub_board_display_swap(cub_board *b)
     if (b->display) {
         cub_display_swap(b->display);
     }
+}
+
+const char *cub_board_display_lost(cub_board *b)
+{
+    return b->display ? cub_display_lost(b->display) : NULL;
 }
 
 cub_err cub_board_display_read_rgba(cub_board *b, uint8_t *rgba, size_t size)
@@ -268,13 +283,19 @@ cub_err cub_board_storage_path(cub_board *b, const char *name, char *buf, size_t
 
 /* ---- opening a board of a kind ------------------------------------------ */
 
-/* The desc's driver, else the board's; its size, or 0x0 for the screen's. */
+/* The desc's driver, else the board's; its size, or 0x0 for the screen's.
+ * A failure says "no display", the board's hint, and SDL's own words. */
 static cub_err open_window(const cub_board_kind *kind, cub_board *b, char *err, size_t err_size)
 {
     const cub_board_desc *d = &b->desc;
     const char *driver = d->video_driver ? d->video_driver : kind->video_driver;
     int w = d->fit_screen ? 0 : d->width, h = d->fit_screen ? 0 : d->height;
-    return cub_display_open_screen(w, h, driver, d->fullscreen, &b->display, err, err_size);
+    char why[400] = "";
+    cub_err e = cub_display_open_screen(w, h, driver, d->fullscreen, &b->display, why, sizeof why);
+    if (e)
+        snprintf(err, err_size, "no display: %s%s",
+                 kind->no_display_hint ? kind->no_display_hint : "", why);
+    return e;
 }
 
 static cub_err open_display(const cub_board_kind *kind, cub_board *b, char *err,
@@ -288,10 +309,10 @@ static cub_err open_display(const cub_board_kind *kind, cub_board *b, char *err,
     case CUB_DISPLAY_WINDOW:
         return open_window(kind, b, err, err_size);
     case CUB_DISPLAY_AUTO:
+        if (kind->window_required) return open_window(kind, b, err, err_size);
         if ((!kind->probe_window || cub_display_window_available()) &&
             open_window(kind, b, err, err_size) == CUB_OK)
             return CUB_OK;
-        if (kind->say_fallback) fprintf(stderr, "cubdance: %s (drawing headless instead)\n", err);
         return cub_display_open_headless(d->width, d->height, &b->display, err, err_size);
     }
     snprintf(err, err_size, "board: unknown display mode %d", (int)d->display);

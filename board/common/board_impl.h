@@ -30,6 +30,8 @@ struct cub_board {
     cub_audio_sdl *audio;        /* NULL until audio starts */
     uint64_t audio_frames_done;  /* the music clock where audio last stopped */
     cub_button_script *script;   /* NULL: the board's own buttons */
+    cub_board_depth_tap depth_tap; /* sees every frame handed out, or NULL */
+    void *depth_tap_user;
     /* The board's own buttons (pi: GPIO), used when there is no script. */
     void *buttons;
     void (*poll_buttons)(void *buttons, cub_loop *loop, int64_t now_us);
@@ -48,8 +50,9 @@ typedef struct cub_board_kind {
     const char *video_driver; /* SDL's video driver for a window; NULL = SDL's choice */
     int probe_window;         /* AUTO: open a window only if one can open here
                                  (a PC may have no display at all) */
-    int say_fallback;         /* AUTO: tell stderr when the window fails and it
-                                 draws headless (the box is meant to show on HDMI) */
+    int window_required;      /* AUTO: no window is an error, never headless (the
+                                 box is for the TV: drawing unseen helps nobody) */
+    const char *no_display_hint; /* said first when the window fails ("" = none) */
     /* The board's own buttons, opened last (after the clock starts) unless a
      * button script replaces them; NULL = none beyond the window's keys. */
     cub_err (*open_buttons)(cub_board *b, const cub_board_desc *desc, char *err,

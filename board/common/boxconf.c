@@ -50,6 +50,8 @@ static const key keys[] = {
     {"soundfont", K_PATH, AT(soundfont), 0, 0, NULL, -1},
     {"recording", K_BOOL, AT(recording), 0, 1, NULL, -1},
     {"recording_dir", K_PATH, AT(recording_dir), 0, 0, NULL, -1},
+    {"recording_max_mb", K_INT, AT(recording_max_mb), 1, 1048576, NULL, -1},
+    {"log_max_kb", K_INT, AT(log_max_kb), 0, 1048576, NULL, -1},
 };
 #define KEY_COUNT ((int)(sizeof keys / sizeof *keys))
 
@@ -78,6 +80,8 @@ void cub_boxconf_defaults(cub_boxconf *c)
     c->doze_after_s = 60;
     snprintf(c->soundfont, sizeof c->soundfont, "/usr/share/sounds/sf2/TimGM6mb.sf2");
     snprintf(c->recording_dir, sizeof c->recording_dir, "/var/lib/cubdance/recordings");
+    c->recording_max_mb = 2048;
+    c->log_max_kb = 10240;
 }
 
 /* Digits only (no sign, no blanks), at most hi. */

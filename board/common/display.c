@@ -32,6 +32,11 @@ void cub_display_swap(cub_display *d)
         d->ops->swap(d);
 }
 
+const char *cub_display_lost(const cub_display *d)
+{
+    return d && d->lost[0] ? d->lost : NULL;
+}
+
 cub_err cub_display_read_rgba(cub_display *d, uint8_t *rgba, size_t size)
 {
     if (!d || !rgba)

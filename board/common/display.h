@@ -30,6 +30,10 @@ void cub_display_close(cub_display *d);
 int cub_display_is_headless(const cub_display *d);
 void cub_display_size(const cub_display *d, int *w, int *h);
 void cub_display_swap(cub_display *d);
+/* NULL while the display works; once it is gone (the window's swap failed,
+ * SDL said the display was disconnected, or on KMSDRM no connector is
+ * connected any more) a message naming the driver and why. */
+const char *cub_display_lost(const cub_display *d);
 /* The frame just drawn, RGBA8, top row first; size must be >= w*h*4. */
 cub_err cub_display_read_rgba(cub_display *d, uint8_t *rgba, size_t size);
 

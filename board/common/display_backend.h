@@ -19,6 +19,7 @@ struct cub_display {
     int w, h;      /* drawable size in pixels */
     int headless;  /* 1: EGL surfaceless + FBO; 0: SDL window */
     void *impl;    /* the backend's own state */
+    char lost[256]; /* "" while it works; why it is gone (cub_display_lost) */
 };
 
 /* glReadPixels of the bound framebuffer (w x h at 0,0), flipped so the top

@@ -7,17 +7,48 @@
  * read_rgba reads the BACK buffer: call it after drawing and before
  * cub_display_swap, since after a swap the back buffer's content is
  * undefined (EGL_BUFFER_DESTROYED is the usual swap behaviour).
+ *
+ * The display going away (the TV's HDMI cable pulled) shows in one of three
+ * ways, and each marks the display lost (cub_display_lost) for the app to
+ * end on: swaps fail (SDL 2's SDL_GL_SwapWindow returns void; its KMSDRM
+ * swap reports a failed eglSwapBuffers, GBM lock or page flip only through
+ * SDL_LogError, which a log hook catches); SDL posts SDL_DISPLAYEVENT_DISCONNECTED
+ * (X11, Wayland; SDL 2.26's KMSDRM posts none); on KMSDRM no HDMI
+ * connector reports "connected" in sysfs any more. The last matters most:
+ * KMSDRM keeps the CRTC running after an unplug, so page flips go on
+ * succeeding and nothing else would tell.
+ *
+ * A seam for tests (no HDMI to pull here): CUB_DISPLAY_FAULT=swap@N makes
+ * swaps from the Nth on fail as SDL reports a failure (its log), disconnect@N posts SDL's
+ * disconnect event at the Nth swap, unplug@N reports the HDMI connectors
+ * disconnected from the Nth swap on. The paths after that are the real ones.
  */
 #include <SDL2/SDL.h>
+#include <dirent.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "display_backend.h"
 
+/* How often (in swaps, about once a second at 60 Hz) sysfs is read. */
+#define CONNECTOR_CHECK_EVERY 60
+/* Swaps in a row that SDL reported failing before the display counts as lost. */
+#define SWAP_FAILS_LOST 30
+
+typedef enum fault_kind { FAULT_NONE, FAULT_SWAP, FAULT_DISCONNECT, FAULT_UNPLUG } fault_kind;
+
 typedef struct sdl_state {
     SDL_Window *win;
     SDL_GLContext ctx;
+    cub_display *d;
+    char driver[32];       /* SDL's video driver in use */
+    int watch_connectors;  /* KMSDRM with an HDMI connector connected at open */
+    int watch_added;       /* on_event is registered with SDL */
+    unsigned long swaps;
+    int failed_swaps;      /* in a row */
+    fault_kind fault;      /* CUB_DISPLAY_FAULT, for tests */
+    unsigned long fault_at;
 } sdl_state;
 
 static int is_headless_driver(const char *name)
@@ -41,9 +72,84 @@ int cub_display_window_available(void)
     return ok;
 }
 
+static void mark_lost(sdl_state *s, const char *fmt, const char *what)
+{
+    if (!s->d->lost[0])
+        snprintf(s->d->lost, sizeof s->d->lost, fmt, s->driver, what);
+}
+
+/* SDL calls this for every event as it is queued, whoever drains the
+ * queue later (the board's key poll). */
+static int on_event(void *user, SDL_Event *e)
+{
+    sdl_state *s = user;
+    if (e->type == SDL_DISPLAYEVENT && e->display.event == SDL_DISPLAYEVENT_DISCONNECTED) {
+        char what[32];
+        snprintf(what, sizeof what, "%d", (int)e->display.display);
+        mark_lost(s, "%s: display %s disconnected", what);
+    }
+    return 1;
+}
+
+/* The HDMI connectors' state from sysfs (/sys/class/drm/cardN-HDMI-A-M):
+ * how many say "connected"; *name gets the first one seen. -1 if there is
+ * no HDMI connector at all (nothing to watch). */
+static int hdmi_connected(char *name, size_t size)
+{
+    DIR *dir = opendir("/sys/class/drm");
+    if (!dir)
+        return -1;
+    int seen = 0, connected = 0;
+    struct dirent *ent;
+    while ((ent = readdir(dir))) {
+        const char *dash = strchr(ent->d_name, '-');
+        if (strncmp(ent->d_name, "card", 4) != 0 || !dash || !strstr(dash, "HDMI"))
+            continue;
+        char path[512], status[32] = "";
+        snprintf(path, sizeof path, "/sys/class/drm/%s/status", ent->d_name);
+        FILE *f = fopen(path, "r");
+        if (!f)
+            continue;
+        if (!fgets(status, sizeof status, f))
+            status[0] = '\0';
+        fclose(f);
+        if (!seen++)
+            snprintf(name, size, "%s", dash + 1);
+        connected += strncmp(status, "connected", 9) == 0;
+    }
+    closedir(dir);
+    return seen ? connected : -1;
+}
+
+static void read_fault(sdl_state *s)
+{
+    static const struct { const char *name; fault_kind kind; } kinds[] = {
+        {"swap@", FAULT_SWAP}, {"disconnect@", FAULT_DISCONNECT}, {"unplug@", FAULT_UNPLUG}};
+    const char *f = getenv("CUB_DISPLAY_FAULT");
+    for (size_t i = 0; f && i < sizeof kinds / sizeof *kinds; i++) {
+        size_t n = strlen(kinds[i].name);
+        if (strncmp(f, kinds[i].name, n) == 0) {
+            s->fault = kinds[i].kind;
+            s->fault_at = strtoul(f + n, NULL, 10);
+        }
+    }
+}
+
+static void check_connectors(sdl_state *s)
+{
+    char name[64] = "HDMI";
+    int connected = hdmi_connected(name, sizeof name);
+    if (s->fault == FAULT_UNPLUG && s->swaps >= s->fault_at)
+        connected = 0;
+    if (connected == 0)
+        mark_lost(s, "%s: HDMI not connected any more (%s disconnected)", name);
+}
+
 static void sdl_close(cub_display *d)
 {
     sdl_state *s = d->impl;
+    if (s->watch_added)
+        SDL_DelEventWatch(on_event, s);
     if (s->ctx)
         SDL_GL_DeleteContext(s->ctx);
     if (s->win)
@@ -53,10 +159,51 @@ static void sdl_close(cub_display *d)
     free(d);
 }
 
+/* SDL 2's SDL_GL_SwapWindow returns nothing: a failing swap only shows as
+ * SDL_LogError(VIDEO, ...) from inside it (KMSDRM: "Could not queue
+ * pageflip", "eglSwapBuffers failed", ...). The log hook notes those made
+ * while one of ours swaps, and passes every message on as before. */
+static sdl_state *swapping;
+static char swap_error[160];
+static SDL_LogOutputFunction prev_log;
+static void *prev_log_user;
+
+static void on_log(void *user, int category, SDL_LogPriority priority, const char *message)
+{
+    if (swapping && category == SDL_LOG_CATEGORY_VIDEO && priority >= SDL_LOG_PRIORITY_ERROR &&
+        !swap_error[0])
+        snprintf(swap_error, sizeof swap_error, "%s", message);
+    if (prev_log)
+        prev_log(prev_log_user, category, priority, message);
+}
+
 static void sdl_swap(cub_display *d)
 {
     sdl_state *s = d->impl;
+    if (d->lost[0])
+        return; /* nothing shows any more; the app is ending */
+    s->swaps++;
+    if (s->fault == FAULT_DISCONNECT && s->swaps == s->fault_at) {
+        SDL_Event e = {.display = {.type = SDL_DISPLAYEVENT,
+                                   .event = SDL_DISPLAYEVENT_DISCONNECTED, .display = 0}};
+        SDL_PushEvent(&e);
+    }
+    swapping = s;
+    swap_error[0] = '\0';
     SDL_GL_SwapWindow(s->win);
+    if (s->fault == FAULT_SWAP && s->swaps >= s->fault_at)
+        SDL_LogError(SDL_LOG_CATEGORY_VIDEO, "Could not queue pageflip: -19 (CUB_DISPLAY_FAULT)");
+    swapping = NULL;
+    /* One failed flip can be a hiccup (EBUSY); half a second of them is a
+     * display that is gone. */
+    s->failed_swaps = swap_error[0] ? s->failed_swaps + 1 : 0;
+    if (s->failed_swaps >= SWAP_FAILS_LOST) {
+        mark_lost(s, "%s: every swap fails: %s", swap_error);
+        return;
+    }
+    if ((s->watch_connectors || s->fault == FAULT_UNPLUG) &&
+        s->swaps % CONNECTOR_CHECK_EVERY == 0)
+        check_connectors(s);
 }
 
 static const cub_display_ops sdl_ops = {sdl_close, sdl_swap};
@@ -144,6 +291,23 @@ static cub_err make_window(cub_display *d, sdl_state *s, int fullscreen, char *e
         fprintf(stderr, "window display: no vsync on %s: %s\n", driver ? driver : "?",
                 SDL_GetError());
     SDL_GL_GetDrawableSize(s->win, &d->w, &d->h);
+    snprintf(s->driver, sizeof s->driver, "%s", driver ? driver : "?");
+    char name[64];
+    s->watch_connectors = !strcmp(s->driver, "KMSDRM") && hdmi_connected(name, sizeof name) > 0;
+    read_fault(s);
+    SDL_AddEventWatch(on_event, s);
+    s->watch_added = 1;
+    SDL_LogOutputFunction out;
+    void *out_user;
+    SDL_LogGetOutputFunction(&out, &out_user);
+    /* SDL drops VIDEO errors below CRITICAL unless told otherwise. */
+    if (SDL_LogGetPriority(SDL_LOG_CATEGORY_VIDEO) > SDL_LOG_PRIORITY_ERROR)
+        SDL_LogSetPriority(SDL_LOG_CATEGORY_VIDEO, SDL_LOG_PRIORITY_ERROR);
+    if (out != on_log) {
+        prev_log = out;
+        prev_log_user = out_user;
+        SDL_LogSetOutputFunction(on_log, NULL);
+    }
     return CUB_OK;
 }
 
@@ -179,6 +343,7 @@ cub_err cub_display_open_screen(int w, int h, const char *video_driver, int full
         return CUB_ERR_NOMEM;
     }
     *d = (cub_display){.ops = &sdl_ops, .w = w, .h = h, .headless = 0, .impl = s};
+    s->d = d;
     e = make_window(d, s, fullscreen, err, err_size);
     if (e) {
         sdl_close(d);

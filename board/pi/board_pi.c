@@ -1,6 +1,6 @@
 /* board_pi — the box: libfreenect (live Kinect), START/STOP on GPIO lines
- * (libgpiod), an SDL2 window full screen through KMSDRM on HDMI (or headless
- * EGL if that fails), SDL audio on ALSA. A button script, if given, replaces
+ * (libgpiod), an SDL2 window full screen through KMSDRM on HDMI (no display:
+ * an error; --headless asks for EGL off-screen), SDL audio on ALSA. A button script, if given, replaces
  * the GPIO buttons (replays on the box, tests). Everything but open/close
  * lives in board/common. */
 #include "board_impl.h"
@@ -54,10 +54,11 @@ static cub_err open_gpio(cub_board *b, const cub_board_desc *desc, char *err, si
 
 cub_err cub_board_open(const cub_board_desc *desc, cub_board **out, char *err_msg, size_t err_size)
 {
-    /* The window goes full screen on HDMI; if that fails, it says so and
-     * draws headless. */
-    const cub_board_kind pi_kind = {.video_driver = video_driver(), .say_fallback = 1,
-                                    .open_buttons = open_gpio};
+    /* The window goes full screen on HDMI; if that fails the program ends
+     * with the reason (systemd tries again), rather than draw unseen. */
+    const cub_board_kind pi_kind = {
+        .video_driver = video_driver(), .window_required = 1,
+        .no_display_hint = "is the TV on and its HDMI cable in? - ", .open_buttons = open_gpio};
     return cub_board_open_kind(&pi_kind, desc, out, err_msg, err_size);
 }
 

@@ -104,6 +104,10 @@ cub_err cub_board_depth_poll(cub_board *board, cub_depth_frame *out);
 /* What the depth source is: "freenect" (a live Kinect), "fakenect" (a dump
  * replayed through libfreenect's replay library), "empty" or "off". */
 const char *cub_board_depth_source(cub_board *board);
+/* Hand every frame cub_board_depth_poll returns to tap as well (NULL: none).
+ * The board itself stores nothing; the app's recorder (opt-in) is the tap. */
+typedef void (*cub_board_depth_tap)(void *user, const cub_depth_frame *frame);
+void cub_board_set_depth_tap(cub_board *board, cub_board_depth_tap tap, void *user);
 
 /* ---- display ----------------------------------------------------------- */
 /* A current GLES2 context exists after open unless display == NONE. */
@@ -111,6 +115,10 @@ int cub_board_display_active(cub_board *board);
 int cub_board_display_headless(cub_board *board);
 void cub_board_display_size(cub_board *board, int *w, int *h);
 void cub_board_display_swap(cub_board *board);
+/* NULL while the display works; once it is gone (a failed swap, the
+ * driver's "display disconnected", the HDMI connector unplugged) why, e.g.
+ * "KMSDRM: HDMI-A-1 disconnected". It does not come back: the app ends. */
+const char *cub_board_display_lost(cub_board *board);
 /* Read the current frame as RGBA8, top row first (w*h*4 bytes). */
 cub_err cub_board_display_read_rgba(cub_board *board, uint8_t *rgba, size_t size);
 

@@ -58,6 +58,9 @@ typedef struct cub_boxconf {
     /* recording: the box stores camera data only when this is 1 */
     int recording;                            /* default 0 */
     char recording_dir[CUB_BOXCONF_PATH_MAX]; /* default /var/lib/cubdance/recordings */
+    int recording_max_mb;  /* what recording_dir may hold in all, MB; default 2048 */
+    /* the event log: rotated to <log>.1 when it reaches this; default 10240, 0 = never */
+    int log_max_kb;
 } cub_boxconf;
 
 void cub_boxconf_defaults(cub_boxconf *cfg);
