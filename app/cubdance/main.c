@@ -285,6 +285,7 @@ static int run(const cub_app_options *o, cub_board *board, log_file *log,
     if (o->stats) s.tick_hist = calloc(CUB_SESSION_TICK_BINS, sizeof *s.tick_hist);
     aw = (app_watch){.inner = cub_session_hooks(&s), .s = &s};
     if (o->record_dir && !(aw.rec = open_recorder(o, board, &loop.log))) goto done;
+    if (aw.rec) follow_recording(&aw, t0); /* --record: from the first frame on */
     cub_loop_hooks hooks = {.user = &aw, .now_us = watch_now, .poll = watch_poll,
                             .handle = watch_handle, .tick = watch_tick,
                             .wait_until = watch_wait};
@@ -328,6 +329,16 @@ static int load_config(cub_app_options *o)
     cub_boxconf_defaults(&c);
     if (from_file && cub_boxconf_load(path, &c, err, sizeof err)) {
         fprintf(stderr, "cubdance: %s\n", err);
+        return -1;
+    }
+    /* A wrong assets_dir is named as such, not as the first file missing from it. */
+    struct stat st;
+    const char *why = !c.assets_dir[0]                    ? NULL
+                      : stat(c.assets_dir, &st) != 0      ? strerror(errno)
+                      : !S_ISDIR(st.st_mode)              ? "not a directory"
+                                                          : NULL;
+    if (why) {
+        fprintf(stderr, "cubdance: %s: cannot use assets_dir %s: %s\n", path, c.assets_dir, why);
         return -1;
     }
     return cub_app_apply_config(o, &c, from_file, CUB_ASSETS_DIR, stderr);

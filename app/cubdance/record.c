@@ -23,6 +23,7 @@ struct cub_record {
     int64_t used_bytes; /* what dir holds, this run's frames included */
     int64_t t0_s;       /* wall clock (s) when the current recording began */
     uint32_t frames;
+    int16_t accel[3];   /* the last reading written (0 0 0: none yet) */
     int full;           /* the cap or the disk stopped recording for good */
     uint16_t row[CUB_DEPTH_W * CUB_DEPTH_H]; /* one frame, little-endian */
 };
@@ -117,6 +118,7 @@ void cub_record_begin(cub_record *r, int64_t t_us)
         return;
     }
     r->frames = 0;
+    memset(r->accel, 0, sizeof r->accel);
     const char *name = strrchr(r->folder, '/') + 1;
     log_line(r, t_us, "start", "dir=%s%s", name, "");
 }
@@ -167,10 +169,16 @@ static int write_frame(cub_record *r, const cub_depth_frame *f)
     freenect_raw_tilt_state tilt = {.accelerometer_x = f->accel[0],
                                     .accelerometer_y = f->accel[1],
                                     .accelerometer_z = f->accel[2]};
-    snprintf(name, sizeof name, "a-%s.dump", stamp);
-    snprintf(path, sizeof path, "%s/%s", r->folder, name);
-    if (write_file(path, &tilt, sizeof tilt, NULL, 0)) return -1;
-    fprintf(r->index, "%s\n", name);
+    /* fakenect takes one INDEX line per event poll, so an a- line costs the
+     * replay a poll: write one only when the reading changes (a camera
+     * without a motor, or a replay without a- files, never writes one). */
+    if (memcmp(f->accel, r->accel, sizeof r->accel) != 0) {
+        snprintf(name, sizeof name, "a-%s.dump", stamp);
+        snprintf(path, sizeof path, "%s/%s", r->folder, name);
+        if (write_file(path, &tilt, sizeof tilt, NULL, 0)) return -1;
+        fprintf(r->index, "%s\n", name);
+        memcpy(r->accel, f->accel, sizeof r->accel);
+    }
     for (int i = 0; i < CUB_DEPTH_W * CUB_DEPTH_H; i++) { /* little-endian on any CPU */
         uint8_t *b = (uint8_t *)&r->row[i];
         b[0] = (uint8_t)(f->raw[i] & 0xff);
