@@ -13,61 +13,11 @@
 #include "cub/io.h"
 #include "cub/loop.h"
 #include "cub/render.h"
+#include "event_log.h"
 #include "options.h"
 #include "record.h"
 #include "replay.h"
 #include "session.h"
-
-/* The event log's file. Under systemd the box runs for weeks: at max_bytes
- * the file is moved to <path>.1 (replacing the older one) and a new one
- * begins, so the log never holds more than twice that. Done here rather
- * than by logrotate: the app knows its line boundaries, needs no cron job
- * or copytruncate race, and the cap is one key in the config. */
-typedef struct log_file {
-    FILE *f;
-    const char *path;
-    long max_bytes, bytes; /* max 0 = no cap */
-} log_file;
-
-static FILE *open_log_path(const char *path)
-{
-    FILE *f = fopen(path, "w");
-    if (!f) {
-        fprintf(stderr, "cubdance: cannot write the event log %s: %s\n", path, strerror(errno));
-        return NULL;
-    }
-    setvbuf(f, NULL, _IOLBF, 0); /* a line reaches the file as it happens */
-    return f;
-}
-
-static void rotate_log(log_file *lf)
-{
-    char old[4096];
-    snprintf(old, sizeof old, "%s.1", lf->path);
-    fclose(lf->f);
-    if (rename(lf->path, old) != 0)
-        fprintf(stderr, "cubdance: cannot move the event log to %s: %s\n", old, strerror(errno));
-    lf->f = open_log_path(lf->path);
-    lf->bytes = 0;
-}
-
-static void log_to_file(void *user, const char *line, size_t len)
-{
-    log_file *lf = user;
-    if (!lf->f) return; /* the log could not be reopened: the run goes on */
-    fwrite(line, 1, len, lf->f);
-    fputc('\n', lf->f);
-    lf->bytes += (long)len + 1;
-    if (lf->max_bytes > 0 && lf->bytes >= lf->max_bytes && lf->f != stderr) rotate_log(lf);
-}
-
-static int open_log(const cub_app_options *o, log_file *lf)
-{
-    *lf = (log_file){.f = stderr, .path = o->log_path, .max_bytes = o->log_max_kb * 1024L};
-    if (!o->log_path || !strcmp(o->log_path, "-")) return 0;
-    lf->f = open_log_path(o->log_path);
-    return lf->f ? 0 : -1;
-}
 
 static int make_dir(const char *dir)
 {
@@ -229,12 +179,12 @@ static cub_record *open_recorder(const cub_app_options *o, cub_board *board, cub
     return rec;
 }
 
-static int run(const cub_app_options *o, cub_board *board, log_file *log,
+static int run(const cub_app_options *o, cub_board *board, cub_event_log_file *log,
                const cub_io_motion *clip)
 {
     static cub_event slots[64];
     static cub_loop loop;
-    cub_loop_desc ld = {.queue_capacity = 64, .log_sink = log_to_file, .log_user = log};
+    cub_loop_desc ld = {.queue_capacity = 64, .log_sink = cub_event_log_line, .log_user = log};
     if (cub_loop_init(&loop, &ld, slots, sizeof slots)) {
         fprintf(stderr, "cubdance: the event loop would not start\n");
         return -1;
@@ -358,18 +308,16 @@ int main(int argc, char **argv)
 
     cub_io_motion clip;
     if (load_clip(o.clip_path, &clip)) return 1;
-    static log_file log;
-    if (open_log(&o, &log)) return 1;
+    static cub_event_log_file log;
+    if (cub_event_log_open(&log, o.log_path, o.log_max_kb)) return 1;
     cub_board *board = open_board(&o);
     int rc = 1;
     if (board) {
         rc = run(&o, board, &log, &clip) ? 1 : 0;
         cub_board_close(board);
     }
-    if (log.f != stderr) {
-        if (log.f) fclose(log.f);
-        printf("cubdance: event log written to %s\n", o.log_path);
-    }
+    if (log.f != stderr) printf("cubdance: event log written to %s\n", o.log_path);
+    cub_event_log_close(&log);
     cub_io_motion_free(&clip);
     return rc;
 }

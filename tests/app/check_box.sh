@@ -154,6 +154,12 @@ log_cap)
     done
     tail -1 "$out/events.log" | grep -q ' app end ' || fail "the newest log lacks the end"
     echo "log: $(wc -l <"$out/events.log.1") + $(wc -l <"$out/events.log") lines"
+    # A restart (systemd) keeps the run before it: its last lines say why it ended.
+    last_end=$(tail -1 "$out/events.log")
+    run again "$sim" --config "$out/log.conf" --headless --depth off --size 320x240 \
+        --log "$out/events.log" --seconds 0.2 --clock virtual
+    [ "$rc" -eq 0 ] || fail "the second run failed"
+    [ "$(tail -1 "$out/events.log.1")" = "$last_end" ] || fail "the restart lost the last run's log"
     ;;
 *) fail "unknown case" ;;
 esac

@@ -1,0 +1,57 @@
+/* event_log — see event_log.h. */
+#include "event_log.h"
+
+#include <errno.h>
+#include <string.h>
+#include <sys/stat.h>
+
+static FILE *open_path(const char *path)
+{
+    FILE *f = fopen(path, "w");
+    if (!f) {
+        fprintf(stderr, "cubdance: cannot write the event log %s: %s\n", path, strerror(errno));
+        return NULL;
+    }
+    setvbuf(f, NULL, _IOLBF, 0); /* a line reaches the file as it happens */
+    return f;
+}
+
+static void keep_as_older(const char *path)
+{
+    char old[4096];
+    snprintf(old, sizeof old, "%s.1", path);
+    if (rename(path, old) != 0)
+        fprintf(stderr, "cubdance: cannot move the event log to %s: %s\n", old, strerror(errno));
+}
+
+int cub_event_log_open(cub_event_log_file *lf, const char *path, long max_kb)
+{
+    *lf = (cub_event_log_file){.f = stderr, .path = path, .max_bytes = max_kb * 1024L};
+    if (!path || !strcmp(path, "-")) return 0;
+    struct stat st;
+    if (lf->max_bytes > 0 && stat(path, &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0)
+        keep_as_older(path);
+    lf->f = open_path(path);
+    return lf->f ? 0 : -1;
+}
+
+void cub_event_log_line(void *user, const char *line, size_t len)
+{
+    cub_event_log_file *lf = user;
+    if (!lf->f) return; /* the log could not be reopened: the run goes on */
+    fwrite(line, 1, len, lf->f);
+    fputc('\n', lf->f);
+    lf->bytes += (long)len + 1;
+    if (lf->max_bytes > 0 && lf->bytes >= lf->max_bytes && lf->f != stderr) {
+        fclose(lf->f);
+        keep_as_older(lf->path);
+        lf->f = open_path(lf->path);
+        lf->bytes = 0;
+    }
+}
+
+void cub_event_log_close(cub_event_log_file *lf)
+{
+    if (lf->f && lf->f != stderr) fclose(lf->f);
+    lf->f = NULL;
+}
