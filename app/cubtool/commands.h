@@ -12,5 +12,7 @@ int cub_cmd_bench_bridge(int argc, char **argv); /* measure clip switching */
 int cub_cmd_eval_track(int argc, char **argv);  /* the tracker on a depth dump: accuracy */
 int cub_cmd_bench_track(int argc, char **argv); /* the tracker: ms per frame, memory */
 int cub_cmd_synth_depth(int argc, char **argv); /* a synthetic child as Kinect depth */
+int cub_cmd_bench_render(int argc, char **argv); /* the renderer: CPU per frame, ours vs GL */
+int cub_cmd_play(int argc, char **argv);         /* the content maker's viewer */
 
 #endif

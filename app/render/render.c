@@ -5,6 +5,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "render_internal.h"
 
@@ -81,6 +82,9 @@ cub_err cub_render_create(const cub_render_desc *desc, cub_render **out)
         return CUB_ERR_NOMEM;
     r->w = desc->width;
     r->h = desc->height;
+    r->x0 = desc->x;
+    r->y0 = desc->y;
+    cub_render_set_view(r, NULL);
     r->figure_height_mm = desc->figure_height_mm > 0.0f ? desc->figure_height_mm : 1800.0f;
     r->batch.cap = BATCH_CAP;
     r->batch.v = malloc(BATCH_CAP * sizeof r->batch.v[0]);
@@ -137,6 +141,85 @@ static void background(cub_render *r, const float rgb[3], int stage)
     cub_render_batch_draw(r);
 }
 
+void cub_render_set_view(cub_render *r, const cub_render_view *view)
+{
+    cub_render_view v = view ? *view : (cub_render_view){0};
+    if (!(v.zoom > 0.0f)) /* also NaN */
+        v.zoom = 1.0f;
+    v.zoom = fminf(fmaxf(v.zoom, 0.1f), 10.0f);
+    v.pitch_deg = isfinite(v.pitch_deg) ? fminf(fmaxf(v.pitch_deg, -80.0f), 80.0f) : 0.0f;
+    v.yaw_deg = isfinite(v.yaw_deg) ? fmodf(v.yaw_deg, 360.0f) : 0.0f;
+    r->view = v;
+}
+
+/* The view as a turn and a scale of the world about a pivot (column-major
+ * 3x3 m = zoom * Rx(pitch) * Ry(-yaw)): the same picture as orbiting and
+ * dollying the camera, and it leaves both cameras (the lit perspective one
+ * and the stick figure's orthographic one) untouched. */
+static void view_matrix(const cub_render_view *v, float m[9])
+{
+    const float rad = 3.14159265f / 180.0f;
+    float cy = cosf(v->yaw_deg * rad), sy = sinf(v->yaw_deg * rad);
+    float cp = cosf(v->pitch_deg * rad), sp = sinf(v->pitch_deg * rad), s = v->zoom;
+    const float rm[9] = {cy, -sp * sy, cp * sy, 0.0f, cp, sp, -sy, -sp * cy, cp * cy};
+    for (int i = 0; i < 9; i++)
+        m[i] = s * rm[i];
+}
+
+static void view_point(const float m[9], const float pivot[3], const float in[3], float out[3])
+{
+    float d[3] = {in[0] - pivot[0], in[1] - pivot[1], in[2] - pivot[2]};
+    for (int i = 0; i < 3; i++)
+        out[i] = pivot[i] + m[i] * d[0] + m[3 + i] * d[1] + m[6 + i] * d[2];
+}
+
+/* vp = vp * M with M = T(pivot) m T(-pivot); the eye (for the shading)
+ * moves by M's inverse, where it stands relative to the turned world. */
+static void view_on_lit(cub_render *r, const float pivot[3])
+{
+    float m[9], t[3], e[3], *vp = r->lit.vp, out[16];
+    view_matrix(&r->view, m);
+    view_point(m, pivot, (const float[3]){0.0f, 0.0f, 0.0f}, t);
+    const float mm[16] = {m[0], m[1], m[2], 0, m[3], m[4], m[5], 0,
+                          m[6], m[7], m[8], 0, t[0], t[1], t[2], 1};
+    for (int c = 0; c < 4; c++)
+        for (int row = 0; row < 4; row++)
+            out[4 * c + row] = vp[row] * mm[4 * c] + vp[4 + row] * mm[4 * c + 1] +
+                               vp[8 + row] * mm[4 * c + 2] + vp[12 + row] * mm[4 * c + 3];
+    memcpy(vp, out, sizeof out);
+    float s2 = r->view.zoom * r->view.zoom, *eye = r->lit.eye;
+    for (int i = 0; i < 3; i++) /* m^-1 = m^T / zoom^2 */
+        e[i] = (m[3 * i] * (eye[0] - pivot[0]) + m[3 * i + 1] * (eye[1] - pivot[1]) +
+                m[3 * i + 2] * (eye[2] - pivot[2])) / s2 + pivot[i];
+    memcpy(eye, e, sizeof e);
+}
+
+static int default_view(const cub_render *r)
+{
+    return r->view.yaw_deg == 0.0f && r->view.pitch_deg == 0.0f && r->view.zoom == 1.0f;
+}
+
+/* The stick figure's camera is fixed; the view turns a copy of the joints
+ * about the middle of the frame above the root instead. */
+static void figure_in_view(cub_render *r, const cub_render_scene *scene)
+{
+    const cub_skeleton *skel = scene->skel;
+    if (default_view(r) || !skel || skel->joint_count <= 0) {
+        cub_render_figure(r, scene);
+        return;
+    }
+    float xyz[3 * CUB_MOTION_MAX_JOINTS], m[9];
+    const float *root = scene->world_xyz_mm;
+    /* mid-height of the view: (1/2 - floor share) of fh / fill share */
+    float pivot[3] = {root[0], 0.43f * r->figure_height_mm / 0.8f, root[2]};
+    view_matrix(&r->view, m);
+    for (int j = 0; j < skel->joint_count; j++)
+        view_point(m, pivot, scene->world_xyz_mm + 3 * j, xyz + 3 * j);
+    cub_render_scene turned = *scene;
+    turned.world_xyz_mm = xyz;
+    cub_render_figure(r, &turned);
+}
+
 /* The camera and the stage follow the root, so the bear stays in the
  * middle of a forest that stands still on screen. */
 static void coach_on_stage(cub_render *r, const cub_render_scene *scene)
@@ -146,6 +229,8 @@ static void coach_on_stage(cub_render *r, const cub_render_scene *scene)
     if (isfinite(root[0]) && isfinite(root[2]))
         at[0] = root[0], at[2] = root[2];
     cub_render_lit_camera(r, at);
+    if (!default_view(r))
+        view_on_lit(r, (const float[3]){at[0], r->lit.eye[1], at[2]});
     float *q = r->lit.rot, *t = r->lit.pos; /* slot 0: the stage */
     q[0] = q[1] = q[2] = 0.0f, q[3] = 1.0f;
     t[0] = at[0], t[1] = 0.0f, t[2] = at[2];
@@ -163,10 +248,12 @@ cub_err cub_render_frame(cub_render *r, const cub_render_scene *scene)
         e = cub_render_bear_prepare(r, scene, &bear);
     if (e)
         return e; /* before drawing anything: no half frame */
-    glViewport(0, 0, r->w, r->h);
+    /* The scissor keeps the clear inside this renderer's viewport. */
+    glViewport(r->x0, r->y0, r->w, r->h);
+    glScissor(r->x0, r->y0, r->w, r->h);
+    glEnable(GL_SCISSOR_TEST);
     glDisable(GL_BLEND);
     glDisable(GL_CULL_FACE);
-    glDisable(GL_SCISSOR_TEST);
     glDepthMask(GL_TRUE);
     glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
     glClearDepthf(1.0f);
@@ -180,12 +267,13 @@ cub_err cub_render_frame(cub_render *r, const cub_render_scene *scene)
     if (bear)
         coach_on_stage(r, scene);
     else
-        cub_render_figure(r, scene);
+        figure_in_view(r, scene);
     cub_render_batch_draw(r);
     glDisable(GL_DEPTH_TEST);
 
     if (scene->depth_raw)
         cub_render_inset_draw(r, scene->depth_raw);
+    glDisable(GL_SCISSOR_TEST);
 
     GLenum gl_err = glGetError();
     if (gl_err != GL_NO_ERROR) {

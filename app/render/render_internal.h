@@ -64,6 +64,8 @@ typedef struct cub_render_bear {
 struct cub_render {
     int w, h;
     float figure_height_mm;
+    int x0, y0;            /* viewport origin (cub_render_desc x, y) */
+    cub_render_view view;  /* clamped; zoom 1 = the default camera */
     GLuint flat_prog, tex_prog;
     GLint flat_pos, flat_col;
     GLint tex_pos, tex_uv, tex_sampler;

@@ -20,7 +20,20 @@ typedef struct cub_render cub_render; /* opaque */
 typedef struct cub_render_desc {
     int width, height;        /* viewport in pixels; required */
     float figure_height_mm;   /* height the camera frames; default 1800 */
+    int x, y;                 /* viewport origin in the framebuffer, pixels from
+                                 the bottom-left; default 0, 0. A frame clears and
+                                 draws only its own viewport, so several renderers
+                                 can share one framebuffer (side by side). */
 } cub_render_desc;
+
+/* The camera around the framed figure, for viewers (cubtool play); the box
+ * keeps the default. Zero-initialised = the default front view. */
+typedef struct cub_render_view {
+    float yaw_deg;   /* orbit about the vertical through the figure; + = the
+                        camera moves to the figure's left (its left side shows) */
+    float pitch_deg; /* orbit up (+, looking down on it) or down; clamped to +-80 */
+    float zoom;      /* > 1 = closer; 0 = 1; clamped to 0.1..10 */
+} cub_render_view;
 
 /* The character's face. Who picks it: the caller, from the coach's state
  * (session.c: dozing -> sleepy, correcting or worried -> worried). */
@@ -56,5 +69,9 @@ void cub_render_destroy(cub_render *r);
  * whose skeleton or character does not hold together (nothing drawn);
  * CUB_ERR_DEVICE when GL fails. */
 cub_err cub_render_frame(cub_render *r, const cub_render_scene *scene);
+/* The camera for the following frames; NULL = the default view. It turns
+ * and scales the coach (and the stage) about a point at mid-height of the
+ * frame above the root; the background and the depth inset stay put. */
+void cub_render_set_view(cub_render *r, const cub_render_view *view);
 
 #endif
