@@ -37,6 +37,7 @@ typedef struct cub_app_options {
     const char *video_driver;   /* NULL = the board's choice */
     int audio_volume;           /* as in cub_board_desc */
     const char *soundfont;      /* NULL = the music module's default */
+    const char *font_path;      /* --font or the config's font; NULL = the renderer's default */
     const cub_boxconf_gpio *gpio;
     char path_buf[5][CUB_BOXCONF_PATH_MAX + 64]; /* joined asset paths */
 } cub_app_options;
