@@ -690,6 +690,68 @@ static void test_window_available_probe_is_clean(void **state)
     unsetenv("SDL_VIDEODRIVER");
 }
 
+/* ---- at TV size: the layout at 1280x720 ------------------------------------ */
+
+#define TV_W 1280
+#define TV_H 720
+
+typedef struct tv_fixture {
+    cub_display *disp;
+    cub_render *render;
+    uint8_t *rgba;
+} tv_fixture;
+
+static int setup_tv(void **state)
+{
+    static tv_fixture t;
+    char err[256] = "";
+    if (cub_display_open_headless(TV_W, TV_H, &t.disp, err, sizeof err)) {
+        fprintf(stderr, "golden: cannot open a %dx%d headless display: %s\n", TV_W, TV_H, err);
+        return -1;
+    }
+    cub_render_desc desc = {.width = TV_W, .height = TV_H, .figure_height_mm = 1215.0f};
+    t.rgba = malloc((size_t)TV_W * TV_H * 4);
+    if (!t.rgba || !load_bear() || cub_render_create(&desc, &t.render)) {
+        free(t.rgba);
+        cub_display_close(t.disp);
+        return -1;
+    }
+    build_depth();
+    *state = &t;
+    return 0;
+}
+
+static int teardown_tv(void **state)
+{
+    tv_fixture *t = *state;
+    cub_render_destroy(t->render);
+    cub_display_close(t->disp);
+    free(t->rgba);
+    return 0;
+}
+
+/* Dancing at TV size with everything on: bar, badge, hint, the child
+ * tracked well over the depth image (no cue). */
+static void test_tv_dance_layout_matches_golden(void **state)
+{
+    if (bear_golden_skipped())
+        skip();
+    tv_fixture *t = *state;
+    icon_from_dance();
+    child_at(2200.0f, CUB_TRACK_OK);
+    cub_render_scene scene = bear_pose(BENDS(DANCE), CUB_RENDER_FACE_HAPPY);
+    scene.hint = "Wave your paws up high!";
+    scene.icon_xyz_mm = g_icon_xyz;
+    scene.progress = 0.65f;
+    scene.has_progress = 1;
+    scene.depth_raw = g_depth;
+    scene.child = &g_child;
+    assert_int_equal(cub_render_frame(t->render, &scene), CUB_OK);
+    assert_int_equal(cub_display_read_rgba(t->disp, t->rgba, (size_t)TV_W * TV_H * 4), CUB_OK);
+    cub_display_swap(t->disp);
+    check_golden_sized(t->rgba, TV_W, TV_H, "tv_dance_1280x720", 1, BEAR_MAX_SHARE);
+}
+
 int main(void)
 {
     const struct CMUnitTest headless[] = {
@@ -713,7 +775,11 @@ int main(void)
     const struct CMUnitTest probe[] = {
         cmocka_unit_test(test_window_available_probe_is_clean),
     };
+    const struct CMUnitTest tv[] = {
+        cmocka_unit_test(test_tv_dance_layout_matches_golden),
+    };
     int failed = cmocka_run_group_tests_name("golden_headless", headless, setup, teardown);
+    failed += cmocka_run_group_tests_name("golden_tv", tv, setup_tv, teardown_tv);
     failed += cmocka_run_group_tests_name("golden_window", window, setup_window, teardown);
     failed += cmocka_run_group_tests_name("display_probe", probe, NULL, NULL);
     return failed;
