@@ -58,7 +58,7 @@ endif()
 # (CUB_MUSIC_SOUNDFONT), Mesa's EGL/GLES drivers (libegl1 only loads them),
 # and systemd (sysusers, the unit).
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
-set(CPACK_DEBIAN_PACKAGE_DEPENDS "timgm6mb-soundfont, libegl-mesa0, libgl1-mesa-dri, systemd")
+set(CPACK_DEBIAN_PACKAGE_DEPENDS "timgm6mb-soundfont, fonts-dejavu-core, libegl-mesa0, libgl1-mesa-dri, systemd")
 
 # The config is the admin's: dpkg keeps their edits over an upgrade.
 # postinst makes the service user (sysusers.d) and enables the unit.

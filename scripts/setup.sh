@@ -18,7 +18,11 @@ export DEBIAN_FRONTEND=noninteractive
 # and, for the `pi` preset, again for arm64 through multiarch.
 LIBS="libfreenect-dev libsdl2-dev libegl-dev libgles-dev libgpiod-dev
       libtinyxml2-dev libfluidsynth-dev libcmocka-dev libpng-dev zlib1g-dev
-      libegl-mesa0 libgl1-mesa-dri"
+      libegl-mesa0 libgl1-mesa-dri libstb-dev"
+
+# (libstb-dev: stb_truetype for the TV's text, linked from its libstb.so.)
+# The font the text is drawn with (the .deb depends on it too).
+FONTS="fonts-dejavu-core"
 
 # Tools: compiler and build, libFuzzer (clang), fakenect's replay library
 # (libfreenect-bin), the song SoundFont, pictures for golden-image checks,
@@ -35,7 +39,7 @@ CROSS="crossbuild-essential-arm64 qemu-user-static"
 apt_install() { $SUDO apt-get install -y --no-install-recommends "$@"; }
 
 # Everything this run wants, so a machine that has it all skips apt entirely.
-wanted="$TOOLS $LIBS"
+wanted="$TOOLS $LIBS $FONTS"
 if [ "$want_cross" = 1 ]; then
     wanted="$wanted $CROSS"
     for p in $LIBS; do wanted="$wanted $p:arm64"; done
@@ -56,7 +60,7 @@ if [ "$want_cross" = 1 ] && ! dpkg --print-foreign-architectures | grep -qx arm6
 fi
 $SUDO apt-get update -q
 # shellcheck disable=SC2086
-apt_install $TOOLS $LIBS
+apt_install $TOOLS $LIBS $FONTS
 if [ "$want_cross" = 1 ]; then
     arm_libs=""
     for p in $LIBS; do arm_libs="$arm_libs $p:arm64"; done

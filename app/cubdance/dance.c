@@ -156,6 +156,73 @@ static void pause_music(cub_dance *d, int paused, int64_t t_us)
                   music_ms(d));
 }
 
+/* ---- what the TV shows -------------------------------------------------- */
+
+/* A move's icon is the move's own pose, so every move a content maker adds
+ * has one and nobody draws icon images: the clip's most telling frame,
+ * taken as the one farthest from its first frame (sum of squared joint
+ * displacements with the root's travel taken out), since a move's clip
+ * starts from the neutral stance it returns to and peaks at the pose that
+ * names it (the clap with the paws together, the arms up of the stretch).
+ * Found once per hint change (a few hundred forward passes), not per frame. */
+static void telling_pose(cub_dance *d, const cub_clip *clip, float *out)
+{
+    const cub_skeleton *skel = clip->skel;
+    cub_vec3 first[CUB_MOTION_MAX_JOINTS];
+    double best = -1.0;
+    for (int k = 0; k < clip->frame_count; k++) {
+        int64_t t_us = (int64_t)k * clip->frame_ns / 1000;
+        if (cub_motion_sample(clip, t_us, CUB_MOTION_CLAMP, &d->pose) ||
+            cub_motion_forward(skel, &d->pose, d->world_mm, NULL))
+            return;
+        if (k == 0) memcpy(first, d->world_mm, sizeof(cub_vec3) * (size_t)skel->joint_count);
+        double dist = 0.0;
+        for (int j = 0; j < skel->joint_count; j++) {
+            double dx = (double)(d->world_mm[j].x - d->world_mm[0].x) - (first[j].x - first[0].x);
+            double dy = (double)(d->world_mm[j].y - d->world_mm[0].y) - (first[j].y - first[0].y);
+            double dz = (double)(d->world_mm[j].z - d->world_mm[0].z) - (first[j].z - first[0].z);
+            dist += dx * dx + dy * dy + dz * dz;
+        }
+        if (dist > best) {
+            best = dist;
+            cub_motion_world_to_float(d->world_mm, skel->joint_count, out);
+        }
+    }
+}
+
+static void show_hint(cub_dance *d, int32_t hint)
+{
+    d->hint = hint;
+    if (hint < 0 || hint >= d->song.move_count || hint == d->icon_move) return;
+    int clip = d->song.moves[hint].clip_index;
+    d->icon_move = -1;
+    if (clip < 0 || clip >= d->cl.lib.clip_count) return;
+    telling_pose(d, &d->cl.lib.clips[clip].clip, d->icon_xyz);
+    d->icon_move = hint;
+}
+
+const char *cub_dance_hint_text(const cub_dance *d)
+{
+    if (d->hint == CUB_COACH_HINT_COME_CLOSER) return "Come closer!";
+    if (d->hint == CUB_COACH_HINT_CANT_SEE) return "I can't see you!";
+    if (d->hint < 0 || d->hint >= d->song.move_count) return NULL;
+    return d->song.moves[d->hint].hint[0] ? d->song.moves[d->hint].hint : NULL;
+}
+
+const float *cub_dance_icon_xyz(const cub_dance *d)
+{
+    return d->hint >= 0 && d->hint == d->icon_move ? d->icon_xyz : NULL;
+}
+
+float cub_dance_progress(const cub_dance *d)
+{
+    int32_t ms = music_ms(d);
+    int64_t len_us = cub_song_length_us(&d->song);
+    if (ms == CUB_COACH_NO_MUSIC || ms < 0 || len_us <= 0) return -1.0f;
+    float p = (float)((double)ms * 1000.0 / (double)len_us);
+    return p > 1.0f ? 1.0f : p;
+}
+
 static void execute_actions(cub_dance *d, int64_t t_us)
 {
     for (int i = 0; i < d->coach.action_count; i++) {
@@ -171,7 +238,8 @@ static void execute_actions(cub_dance *d, int64_t t_us)
             break;
         case CUB_COACH_ACT_MUSIC_PAUSE: pause_music(d, 1, t_us); break;
         case CUB_COACH_ACT_MUSIC_RESUME: pause_music(d, 0, t_us); break;
-        default: break; /* hints and states: logged by the coach; drawn by the renderer later */
+        case CUB_COACH_ACT_HINT: show_hint(d, a->hint); break;
+        default: break; /* states: logged by the coach */
         }
     }
 }
@@ -433,6 +501,8 @@ cub_err cub_dance_open(cub_dance *d, const cub_app_options *o, cub_board *board,
         plan_move_leads(d); /* the coach reads the moves through its desc */
     }
     d->played_clip = d->requested_clip = -1;
+    d->hint = CUB_COACH_HINT_NONE;
+    d->icon_move = -1;
     return e;
 }
 

@@ -49,6 +49,11 @@ typedef struct cub_dance {
     cub_watch *watch;                /* the judge to tell what is taught, or NULL */
     cub_pose pose;
     cub_vec3 world_mm[CUB_MOTION_MAX_JOINTS];
+    /* What the TV shows besides the coach (the coach decided it; the
+     * renderer draws it): the last hint, and the icon of the move hinted. */
+    int32_t hint;     /* the coach's last ACT_HINT: a move or CUB_COACH_HINT_* */
+    int icon_move;    /* the move icon_xyz shows, or -1 */
+    float icon_xyz[3 * CUB_MOTION_MAX_JOINTS];
 } cub_dance;
 
 /* Load the coach's clips, the song and the music, and start the coach idle
@@ -77,5 +82,13 @@ float cub_dance_figure_height_mm(const cub_dance *d);
  * into xyz and, unless rot_xyzw is NULL, joint world rotations (x y z w
  * floats each, for the renderer's skinning), from one forward pass. */
 cub_err cub_dance_pose(cub_dance *d, float *xyz, float *rot_xyzw);
+/* The hint the coach shows now: the move's own text, "Come closer!", "I
+ * can't see you!", or NULL for none. */
+const char *cub_dance_hint_text(const cub_dance *d);
+/* The hinted move's icon pose (joint world positions of
+ * cub_dance_skeleton, mm), or NULL when the hint is not a move's. */
+const float *cub_dance_icon_xyz(const cub_dance *d);
+/* How far the song's music has played, 0..1; -1 while it is not playing. */
+float cub_dance_progress(const cub_dance *d);
 
 #endif

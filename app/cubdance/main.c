@@ -224,11 +224,15 @@ static int run(const cub_app_options *o, cub_board *board, cub_event_log_file *l
     if (open_extras(o, board, &loop, t0, &s)) goto done;
     if (cub_board_display_active(board)) {
         /* Frame the coach: the bear is a toy, about a metre tall. */
+        char why[600] = "";
         cub_render_desc rd = {.width = w, .height = h,
                               .figure_height_mm = s.dance ? cub_dance_figure_height_mm(s.dance)
-                                                          : 0};
+                                                          : 0,
+                              .font_path = o->font_path, .error = why, .error_size = sizeof why};
         if (cub_render_create(&rd, &s.render)) {
-            fprintf(stderr, "cubdance: the renderer could not start (GLES2)\n");
+            /* A missing font says which file and why; else it is GL. */
+            if (why[0]) fprintf(stderr, "cubdance: %s\n", why);
+            else fprintf(stderr, "cubdance: the renderer could not start (GLES2)\n");
             goto done;
         }
     }

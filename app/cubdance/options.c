@@ -31,6 +31,8 @@ static void usage(FILE *f, const char *prog)
 "  --draw-every N         headless: draw only every Nth tick (default 1); the\n"
 "                         event log is the same, the renderer decides nothing.\n"
 "                         For slow emulated GL; --frame-every must be a multiple\n"
+"  --font PATH            the TrueType font of the text on the TV (default the\n"
+"                         config's font, else DejaVu Sans Bold of fonts-dejavu-core)\n"
 "\n"
 "Depth camera\n"
 "  --replay DIR           replay a fakenect dump (INDEX.txt + d-*.pgm) through\n"
@@ -167,6 +169,7 @@ static int apply_valued(cub_app_options *o, const char *opt, const char *val, FI
                             : !strcmp(opt, "--library")      ? &o->library_path
                             : !strcmp(opt, "--tags")         ? &o->tags_path
                             : !strcmp(opt, "--character")    ? &o->character_path
+                            : !strcmp(opt, "--font")         ? &o->font_path
                                                              : NULL;
         if (slot) return *slot = val, 0;
         fprintf(err, "cubdance: unknown option '%s' (see --help)\n", opt);
@@ -180,9 +183,8 @@ static int takes_value(const char *opt)
                                          "--depth", "--frames", "--replay", "--buttons",
                                          "--gpio-config", "--config", "--audio-driver", "--clip", "--log",
                                          "--song", "--timeline", "--library", "--tags",
-                                         "--character", "--attract-after", "--doze-after",
-                                         "--music-clock-scale",
-                                         "--record"};
+                                         "--character", "--font", "--attract-after", "--doze-after",
+                                         "--music-clock-scale", "--record"};
     for (size_t i = 0; i < sizeof valued / sizeof *valued; i++)
         if (!strcmp(opt, valued[i])) return 1;
     return 0;
@@ -280,6 +282,7 @@ int cub_app_apply_config(cub_app_options *o, const cub_boxconf *c, int from_file
     if (!o->audio_driver && strcmp(c->audio_driver, "auto") != 0) o->audio_driver = c->audio_driver;
     o->audio_volume = c->volume == 0 ? CUB_BOARD_MUTE : c->volume;
     o->soundfont = c->soundfont;
+    if (!o->font_path && c->font[0]) o->font_path = c->font;
     o->gpio = &c->gpio;
     o->record_max_mb = c->recording_max_mb;
     o->log_max_kb = c->log_max_kb;

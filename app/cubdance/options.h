@@ -37,6 +37,7 @@ typedef struct cub_app_options {
     const char *video_driver;   /* NULL = the board's choice */
     int audio_volume;           /* as in cub_board_desc */
     const char *soundfont;      /* NULL = the music module's default */
+    const char *font_path;      /* --font or the config's font; NULL = the renderer's default */
     const cub_boxconf_gpio *gpio;
     /* Recording (record.h): --record DIR records the whole run into a new
      * folder under DIR; recording=1 in the config records each dance. */

@@ -189,6 +189,24 @@ static cub_render_face coach_face(int32_t state)
     return CUB_RENDER_FACE_HAPPY;
 }
 
+/* What the child reads, all from the tick's state: the coach's hint and
+ * the hinted move's icon, the song's progress, the "Press START!" screen
+ * while the coach waits, and the tracked child in the inset. */
+static void show_what_the_coach_says(cub_session *s, cub_render_scene *scene)
+{
+    if (s->dance) {
+        cub_dance *d = s->dance;
+        scene->idle = cub_dance_waiting(d);
+        scene->hint = cub_dance_hint_text(d);
+        scene->icon_xyz_mm = scene->skel ? cub_dance_icon_xyz(d) : NULL;
+        scene->progress = cub_dance_progress(d);
+        scene->has_progress = scene->progress >= 0.0f;
+    } else {
+        scene->idle = s->state == CUB_APP_WAITING;
+    }
+    if (s->watch) scene->child = cub_watch_skeleton(s->watch);
+}
+
 static void write_frame(cub_session *s, uint64_t tick)
 {
     int w, h;
@@ -248,6 +266,7 @@ static void tick_work(cub_session *s, cub_loop *loop, int64_t t_us)
         scene.world_rot_xyzw = s->world_rot;
         scene.face = coach_face(s->dance->coach.state);
     }
+    show_what_the_coach_says(s, &scene);
     cub_render_frame(s->render, &scene);
     if (s->opt->frames_dir && loop->tick_count % (uint64_t)s->opt->frame_every == 0)
         write_frame(s, loop->tick_count);

@@ -1,6 +1,8 @@
 /* render — set-up and the frame: background, then the coach (the lit
- * character on the forest stage, or the stick figure), then the depth
- * inset, into whatever framebuffer is current. Output depends only on the
+ * character on the forest stage, or the stick figure), then over it what
+ * the child reads (the idle screen, or progress, hint and icon), then the
+ * depth inset with the child's skeleton and cue, into whatever framebuffer
+ * is current. Output depends only on the
  * scene (no clocks, no animation), so frames can be golden-tested. */
 #include <math.h>
 #include <stdio.h>
@@ -94,7 +96,12 @@ cub_err cub_render_create(const cub_render_desc *desc, cub_render **out)
         return CUB_ERR_NOMEM;
     }
     cub_render_inset_init_lut(r->depth_lut);
+    if (desc->error && desc->error_size)
+        desc->error[0] = '\0';
     cub_err e = make_gl_objects(r);
+    if (!e)
+        e = cub_render_text_init(r, desc->font_path ? desc->font_path : CUB_RENDER_DEFAULT_FONT,
+                                 desc->error, desc->error_size);
     if (e) {
         cub_render_destroy(r);
         return e;
@@ -114,6 +121,7 @@ void cub_render_destroy(cub_render *r)
     glDeleteTextures(1, &r->depth_tex);
     cub_render_lit_free(&r->lit);
     cub_render_bear_free(&r->bear);
+    cub_render_text_free(&r->text);
     glDeleteBuffers(1, &r->stage_vbo);
     glDeleteBuffers(1, &r->stage_ibo);
     free(r->batch.v);
@@ -271,8 +279,17 @@ cub_err cub_render_frame(cub_render *r, const cub_render_scene *scene)
     cub_render_batch_draw(r);
     glDisable(GL_DEPTH_TEST);
 
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+    cub_render_hud_draw(r, scene);
+    glDisable(GL_BLEND);
     if (scene->depth_raw)
         cub_render_inset_draw(r, scene->depth_raw);
+    if (scene->child) {
+        glEnable(GL_BLEND);
+        cub_render_child_draw(r, scene->child, scene->depth_raw != NULL);
+        glDisable(GL_BLEND);
+    }
     glDisable(GL_SCISSOR_TEST);
 
     GLenum gl_err = glGetError();

@@ -5,6 +5,7 @@
 #define CUB_RENDER_INTERNAL_H
 
 #include <GLES2/gl2.h>
+#include <stb_truetype.h>
 #include <stdint.h>
 
 #include "cub/render.h"
@@ -61,6 +62,37 @@ typedef struct cub_render_bear {
     int mapped_any;
 } cub_render_bear;
 
+/* Text (render_text.c): the baked glyphs and this frame's quads. */
+#define CUB_RENDER_GLYPH_FIRST 32
+#define CUB_RENDER_GLYPH_COUNT 224 /* 32..255: ASCII and Latin-1 */
+#define CUB_RENDER_LABEL_LEN 128   /* glyphs a label holds */
+#define CUB_RENDER_TEXT_VERTS (9 * 6 * 4 * CUB_RENDER_LABEL_LEN) /* four labels a frame */
+
+typedef struct cub_render_text_vtx {
+    float x, y, u, v;
+    float rgba[4];
+} cub_render_text_vtx;
+
+typedef struct cub_render_text {
+    GLuint prog, tex;
+    GLint a_pos, a_uv, a_col, u_tex;
+    float px;                   /* baked glyph height in pixels */
+    float ascent_px, descent_px;
+    int atlas_side;
+    stbtt_bakedchar glyphs[CUB_RENDER_GLYPH_COUNT];
+    cub_render_text_vtx *v;
+    int count, cap;
+} cub_render_text;
+
+/* A string laid out once: glyph quads (x0 y0 x1 y1 in pixels from the pen
+ * at the baseline, y up; then u0 v0 u1 v1), at the atlas' size. */
+typedef struct cub_render_label {
+    char text[CUB_RENDER_LABEL_LEN * 2];
+    int laid_out, quads;
+    float width_px;
+    float q[CUB_RENDER_LABEL_LEN][8];
+} cub_render_label;
+
 struct cub_render {
     int w, h;
     float figure_height_mm;
@@ -78,6 +110,8 @@ struct cub_render {
     cub_render_bear bear;
     GLuint stage_vbo, stage_ibo;
     cub_render_range stage;
+    cub_render_text text;
+    cub_render_label hint_label, title_label, cue_label;
 };
 
 /* render_gl.c */
@@ -124,5 +158,32 @@ void cub_render_inset_init_lut(uint8_t lut[2048]);
 void cub_render_inset_draw(cub_render *r, const uint16_t *depth_raw);
 /* The inset's rectangle in pixels, origin bottom-left. */
 void cub_render_inset_rect(int w, int h, int *x0, int *y0, int *iw, int *ih);
+
+/* render_text.c: bake the font's atlas (CUB_ERR_IO / CUB_ERR_FORMAT with
+ * "cannot load font PATH: why" in err), lay out a label when its string
+ * changed, queue it at pen (x, y) px (baseline, origin bottom-left) times
+ * scale with its outline, and draw what is queued. */
+cub_err cub_render_text_init(cub_render *r, const char *path, char *err, size_t size);
+void cub_render_text_free(cub_render_text *t);
+void cub_render_text_layout(const cub_render *r, cub_render_label *l, const char *s);
+void cub_render_text_draw(cub_render *r, const cub_render_label *l, float x, float y,
+                          float scale, const float rgb[3]);
+void cub_render_text_flush(cub_render *r);
+
+/* render_shapes.c: translucent 2D shapes in pixels (origin bottom-left)
+ * into r->batch. */
+void cub_render_shape_rect(cub_render *r, float x0, float y0, float x1, float y1,
+                           const float rgba[4]);
+void cub_render_shape_disc(cub_render *r, float cx, float cy, float radius, const float rgba[4]);
+void cub_render_shape_round_rect(cub_render *r, float x0, float y0, float x1, float y1,
+                                 float radius, const float rgba[4]);
+/* A thick segment with round ends (half-width hw). */
+void cub_render_shape_limb(cub_render *r, float x0, float y0, float x1, float y1, float hw,
+                           const float rgba[4]);
+
+/* render_hud.c: hint and icon, progress, the idle screen. */
+void cub_render_hud_draw(cub_render *r, const cub_render_scene *scene);
+/* render_child.c: the child's skeleton over the inset and its cue. */
+void cub_render_child_draw(cub_render *r, const cub_track_skeleton *child, int have_depth);
 
 #endif

@@ -48,6 +48,7 @@ static const key keys[] = {
     {"songs_dir", K_PATH, AT(songs_dir), 0, 0, NULL, -1},
     {"song", K_NAME, AT(song), 0, 0, NULL, -1},
     {"soundfont", K_PATH, AT(soundfont), 0, 0, NULL, -1},
+    {"font", K_PATH, AT(font), 0, 0, NULL, -1},
     {"recording", K_BOOL, AT(recording), 0, 1, NULL, -1},
     {"recording_dir", K_PATH, AT(recording_dir), 0, 0, NULL, -1},
     {"recording_max_mb", K_INT, AT(recording_max_mb), 1, 1048576, NULL, -1},
@@ -79,6 +80,7 @@ void cub_boxconf_defaults(cub_boxconf *c)
     c->attract_after_s = 20;
     c->doze_after_s = 60;
     snprintf(c->soundfont, sizeof c->soundfont, "/usr/share/sounds/sf2/TimGM6mb.sf2");
+    snprintf(c->font, sizeof c->font, "/usr/share/fonts/truetype/dejavu/DejaVuSans-Bold.ttf");
     snprintf(c->recording_dir, sizeof c->recording_dir, "/var/lib/cubdance/recordings");
     c->recording_max_mb = 2048;
     c->log_max_kb = 10240;

@@ -7,6 +7,12 @@
  * x86-64 and aarch64 llvmpipe and between Mesa versions, while a moved
  * limb, a lost inset or a wrong colour fails.
  *
+ * The text, the badge, the progress bar and the child's inset are in the
+ * bear images (same tolerance as the bear: their outlined glyph edges are
+ * shaded edges too) and in child_step_back (stick figure, the stick
+ * tolerance plus the text's edges: 0.3%). tv_dance_1280x720 checks the
+ * layout at TV size with the bear's 0.3%.
+ *
  * To regenerate the stored image after an intended change (look at it!):
  *   CUB_GOLDEN_UPDATE=1 ctest --test-dir build/host -R test_golden_render
  * On a mismatch the test writes <name>_actual.png and <name>_diff.png into
@@ -269,14 +275,14 @@ static void path_in(char *out, size_t size, const char *dir, const char *name,
 
 /* Compare with expected/<name>.png, or write it when CUB_GOLDEN_UPDATE=1
  * and this frame is the reference one (the headless backend's). */
-static void check_golden_within(const uint8_t *rgba, const char *name, int is_reference,
-                                double max_share)
+static void check_golden_sized(const uint8_t *rgba, int w, int h, const char *name,
+                               int is_reference, double max_share)
 {
     char expected_path[1024], actual_path[1024], diff_path[1024];
     path_in(expected_path, sizeof expected_path, CUB_GOLDEN_EXPECTED_DIR, name, "");
     const char *update = getenv("CUB_GOLDEN_UPDATE");
     if (is_reference && update && strcmp(update, "1") == 0) {
-        assert_int_equal(cub_png_write(expected_path, rgba, W, H), CUB_OK);
+        assert_int_equal(cub_png_write(expected_path, rgba, w, h), CUB_OK);
         printf("golden: %s written to %s (CUB_GOLDEN_UPDATE=1)\n", name, expected_path);
         return;
     }
@@ -285,13 +291,14 @@ static void check_golden_within(const uint8_t *rgba, const char *name, int is_re
     if (cub_png_read(expected_path, &ref, &rw, &rh) != CUB_OK)
         fail_msg("golden: cannot read %s; to create it run with CUB_GOLDEN_UPDATE=1",
                  expected_path);
-    if (rw != W || rh != H) {
+    if (rw != w || rh != h) {
         free(ref);
-        fail_msg("golden: %s is %dx%d, the frame is %dx%d", expected_path, rw, rh, W, H);
+        fail_msg("golden: %s is %dx%d, the frame is %dx%d", expected_path, rw, rh, w, h);
     }
-    static uint8_t diff[W * H * 4];
+    uint8_t *diff = malloc((size_t)w * h * 4);
+    assert_non_null(diff);
     int max_diff = 0, over = 0;
-    for (int i = 0; i < W * H; i++) {
+    for (int i = 0; i < w * h; i++) {
         int worst = 0;
         for (int c = 0; c < 3; c++) {
             int d = abs((int)rgba[4 * i + c] - (int)ref[4 * i + c]);
@@ -307,25 +314,86 @@ static void check_golden_within(const uint8_t *rgba, const char *name, int is_re
         diff[4 * i + 3] = 255;
     }
     free(ref);
-    double share = (double)over / (W * H);
+    double share = (double)over / ((double)w * h);
     printf("golden: %s max_channel_diff=%d differing_pixels=%d (%.3f%%) of %d; "
            "tolerance: channel<=%d, share<=%.1f%%\n",
-           name, max_diff, over, 100.0 * share, W * H, CHANNEL_TOL, 100.0 * max_share);
+           name, max_diff, over, 100.0 * share, w * h, CHANNEL_TOL, 100.0 * max_share);
     if (share > max_share) {
         path_in(actual_path, sizeof actual_path, CUB_GOLDEN_OUT_DIR, name, "_actual");
         path_in(diff_path, sizeof diff_path, CUB_GOLDEN_OUT_DIR, name, "_diff");
-        cub_png_write(actual_path, rgba, W, H);
-        cub_png_write(diff_path, diff, W, H);
+        cub_png_write(actual_path, rgba, w, h);
+        cub_png_write(diff_path, diff, w, h);
+        free(diff);
         fail_msg("golden: %s differs from %s: %.3f%% of pixels over %d counts (max %.1f%%); "
                  "see %s and %s",
                  name, expected_path, 100.0 * share, CHANNEL_TOL, 100.0 * max_share,
                  actual_path, diff_path);
     }
+    free(diff);
+}
+
+static void check_golden_within(const uint8_t *rgba, const char *name, int is_reference,
+                                double max_share)
+{
+    check_golden_sized(rgba, W, H, name, is_reference, max_share);
 }
 
 static void check_golden(const uint8_t *rgba, const char *name, int is_reference)
 {
     check_golden_within(rgba, name, is_reference, MAX_SHARE);
+}
+
+static const uint8_t *px(const fixture *f, int x, int y_top)
+{
+    return f->rgba + 4 * ((size_t)y_top * W + (size_t)x);
+}
+
+/* The inset's layout as render_inset.c documents it, at 320 wide: 64x48
+ * pixels, 4 pixels from the right and bottom edges. */
+#define INSET_W 64
+#define INSET_H 48
+#define INSET_X0 (W - 4 - INSET_W)
+#define INSET_Y0 (H - 4 - INSET_H) /* top row, counted from the top */
+
+/* ---- what the child reads ------------------------------------------------ */
+
+/* A child about 1.2 m tall facing the camera at depth z_mm, arms out and
+ * up, in the tracker's camera space (mm, y up; the camera 0.8 m above the
+ * floor), with the tracker's verdict status. */
+static cub_track_skeleton g_child;
+
+static void child_at(float z_mm, int32_t status)
+{
+    static const float XY[CUB_TJ_COUNT][2] = {
+        [CUB_TJ_HIP_CENTRE] = {0, -150},     [CUB_TJ_SPINE] = {0, 0},
+        [CUB_TJ_SHOULDER_CENTRE] = {0, 200}, [CUB_TJ_HEAD] = {0, 360},
+        [CUB_TJ_SHOULDER_L] = {-150, 180},   [CUB_TJ_ELBOW_L] = {-330, 260},
+        [CUB_TJ_WRIST_L] = {-450, 380},      [CUB_TJ_HAND_L] = {-490, 430},
+        [CUB_TJ_SHOULDER_R] = {150, 180},    [CUB_TJ_ELBOW_R] = {320, 100},
+        [CUB_TJ_WRIST_R] = {430, -10},       [CUB_TJ_HAND_R] = {470, -50},
+        [CUB_TJ_HIP_L] = {-90, -190},        [CUB_TJ_KNEE_L] = {-120, -480},
+        [CUB_TJ_ANKLE_L] = {-130, -760},     [CUB_TJ_FOOT_L] = {-150, -790},
+        [CUB_TJ_HIP_R] = {90, -190},         [CUB_TJ_KNEE_R] = {110, -480},
+        [CUB_TJ_ANKLE_R] = {120, -760},      [CUB_TJ_FOOT_R] = {140, -790},
+    };
+    memset(&g_child, 0, sizeof g_child);
+    g_child.status = status;
+    for (int j = 0; j < CUB_TJ_COUNT; j++) {
+        g_child.joint_mm[j] = (cub_vec3){(cub_q16)(XY[j][0] * 65536.0f),
+                                         (cub_q16)(XY[j][1] * 65536.0f),
+                                         (cub_q16)(z_mm * 65536.0f)};
+        g_child.confidence[j] = 65536;
+    }
+}
+
+/* The icon's pose: the dancing bear's joints, kept apart from g_bs (which
+ * the scene's own pose reuses). */
+static float g_icon_xyz[3 * CUB_MOTION_MAX_JOINTS];
+
+static void icon_from_dance(void)
+{
+    bear_pose(BENDS(DANCE), CUB_RENDER_FACE_HAPPY);
+    memcpy(g_icon_xyz, g_bs.xyz, sizeof g_icon_xyz);
 }
 
 /* ---- tests ------------------------------------------------------------------ */
@@ -377,10 +445,94 @@ static void test_bear_correcting_worried_matches_golden(void **state)
     if (bear_golden_skipped())
         skip();
     fixture *f = *state;
+    icon_from_dance();
     cub_render_scene scene = bear_pose(BENDS(CORRECT), CUB_RENDER_FACE_WORRIED);
     scene.depth_raw = g_depth;
+    scene.hint = "Clap with me!";
+    scene.icon_xyz_mm = g_icon_xyz;
+    scene.progress = 0.4f;
+    scene.has_progress = 1;
     draw_with(f, f->bear_render, &scene);
     check_golden_within(f->rgba, "bear_correct_worried", 1, BEAR_MAX_SHARE);
+}
+
+/* While the box waits: the bear dimmed behind "Press START!" and a play
+ * button; no hint, badge or bar even when the scene has them. */
+static void test_idle_screen_matches_golden(void **state)
+{
+    if (bear_golden_skipped())
+        skip();
+    fixture *f = *state;
+    icon_from_dance();
+    cub_render_scene scene = bear_pose(BENDS(DOZE), CUB_RENDER_FACE_HAPPY);
+    scene.idle = 1;
+    scene.hint = "not shown while idle";
+    scene.icon_xyz_mm = g_icon_xyz;
+    scene.has_progress = 1;
+    draw_with(f, f->bear_render, &scene);
+    check_golden_within(f->rgba, "idle_press_start", 1, BEAR_MAX_SHARE);
+}
+
+/* The child too close: orange bones over the depth image, "Step back". */
+static void test_child_inset_cue_matches_golden(void **state)
+{
+    fixture *f = *state;
+    child_at(1300.0f, CUB_TRACK_TOO_CLOSE);
+    cub_render_scene scene = {.skel = &g_skel, .world_xyz_mm = g_xyz, .depth_raw = g_depth,
+                              .child = &g_child};
+    draw(f, &scene);
+    check_golden_within(f->rgba, "child_step_back", 1, BEAR_MAX_SHARE);
+}
+
+/* The cue is the status's: above the inset something is drawn for too
+ * far, too close and partly out, nothing for a child tracked well or for
+ * nobody; the three cues differ from each other. */
+static void test_child_cue_follows_status(void **state)
+{
+    fixture *f = *state;
+    static uint8_t plain[W * H * 4], cue[3][W * H * 4];
+    cub_render_scene scene = {.background_rgb = {0.5f, 0.5f, 0.5f}, .depth_raw = g_depth};
+    draw(f, &scene);
+    memcpy(plain, f->rgba, sizeof plain);
+    scene.child = &g_child;
+    const int32_t statuses[5] = {CUB_TRACK_TOO_FAR, CUB_TRACK_TOO_CLOSE, CUB_TRACK_PARTLY_OUT,
+                                 CUB_TRACK_OK, CUB_TRACK_NO_PLAYER};
+    for (int i = 0; i < 5; i++) {
+        child_at(2200.0f, statuses[i]);
+        draw(f, &scene);
+        /* Rows above the inset's top (counted from the top), whole width. */
+        int differ = 0;
+        for (int y = INSET_Y0 - 30; y < INSET_Y0 - 2; y++)
+            for (int x = 0; x < W; x++)
+                differ += abs(px(f, x, y)[0] - plain[4 * (y * W + x)]) > CHANNEL_TOL;
+        printf("golden: status %d: %d pixels above the inset differ\n", statuses[i], differ);
+        if (i < 3) {
+            assert_true(differ > 100);
+            memcpy(cue[i], f->rgba, sizeof cue[i]);
+        } else {
+            assert_int_equal(differ, 0);
+        }
+    }
+    assert_memory_not_equal(cue[0], cue[1], sizeof cue[0]);
+    assert_memory_not_equal(cue[1], cue[2], sizeof cue[0]);
+}
+
+/* A font that cannot be read: no renderer, an error naming the file and
+ * why; a file that is not TrueType likewise. */
+static void test_render_refuses_missing_font(void **state)
+{
+    (void)state;
+    char why[512] = "";
+    cub_render *r = NULL;
+    cub_render_desc desc = {.width = W, .height = H, .font_path = "/nonexistent/cub.ttf",
+                            .error = why, .error_size = sizeof why};
+    assert_int_equal(cub_render_create(&desc, &r), CUB_ERR_IO);
+    assert_null(r);
+    assert_string_equal(why, "cannot load font /nonexistent/cub.ttf: No such file or directory");
+    desc.font_path = CUB_GOLDEN_EXPECTED_DIR "/stick_pose.png";
+    assert_int_equal(cub_render_create(&desc, &r), CUB_ERR_FORMAT);
+    assert_null(r);
+    assert_non_null(strstr(why, "stick_pose.png: not a TrueType font"));
 }
 
 /* Only the face changes between faces: the pixels that differ between the
@@ -451,19 +603,21 @@ static void test_frames_are_deterministic(void **state)
     draw(f, &other);
     draw(f, &scene);
     assert_memory_equal(first, f->rgba, sizeof first);
+    /* A hint changed and changed back (laid out again each time) draws
+     * the same bytes; a different hint draws different ones. */
+    static uint8_t hinted[W * H * 4];
+    scene.hint = "Wave!";
+    draw(f, &scene);
+    memcpy(hinted, f->rgba, sizeof hinted);
+    assert_memory_not_equal(first, hinted, sizeof first);
+    scene.hint = "Jump!";
+    draw(f, &scene);
+    assert_memory_not_equal(hinted, f->rgba, sizeof hinted);
+    scene.hint = "Wave!";
+    draw(f, &scene);
+    assert_memory_equal(hinted, f->rgba, sizeof hinted);
 }
 
-static const uint8_t *px(const fixture *f, int x, int y_top)
-{
-    return f->rgba + 4 * ((size_t)y_top * W + (size_t)x);
-}
-
-/* The inset's layout as render_inset.c documents it, at 320 wide: 64x48
- * pixels, 4 pixels from the right and bottom edges. */
-#define INSET_W 64
-#define INSET_H 48
-#define INSET_X0 (W - 4 - INSET_W)
-#define INSET_Y0 (H - 4 - INSET_H) /* top row, counted from the top */
 
 static void test_inset_maps_no_reading_to_black_and_near_brighter(void **state)
 {
@@ -536,6 +690,68 @@ static void test_window_available_probe_is_clean(void **state)
     unsetenv("SDL_VIDEODRIVER");
 }
 
+/* ---- at TV size: the layout at 1280x720 ------------------------------------ */
+
+#define TV_W 1280
+#define TV_H 720
+
+typedef struct tv_fixture {
+    cub_display *disp;
+    cub_render *render;
+    uint8_t *rgba;
+} tv_fixture;
+
+static int setup_tv(void **state)
+{
+    static tv_fixture t;
+    char err[256] = "";
+    if (cub_display_open_headless(TV_W, TV_H, &t.disp, err, sizeof err)) {
+        fprintf(stderr, "golden: cannot open a %dx%d headless display: %s\n", TV_W, TV_H, err);
+        return -1;
+    }
+    cub_render_desc desc = {.width = TV_W, .height = TV_H, .figure_height_mm = 1215.0f};
+    t.rgba = malloc((size_t)TV_W * TV_H * 4);
+    if (!t.rgba || !load_bear() || cub_render_create(&desc, &t.render)) {
+        free(t.rgba);
+        cub_display_close(t.disp);
+        return -1;
+    }
+    build_depth();
+    *state = &t;
+    return 0;
+}
+
+static int teardown_tv(void **state)
+{
+    tv_fixture *t = *state;
+    cub_render_destroy(t->render);
+    cub_display_close(t->disp);
+    free(t->rgba);
+    return 0;
+}
+
+/* Dancing at TV size with everything on: bar, badge, hint, the child
+ * tracked well over the depth image (no cue). */
+static void test_tv_dance_layout_matches_golden(void **state)
+{
+    if (bear_golden_skipped())
+        skip();
+    tv_fixture *t = *state;
+    icon_from_dance();
+    child_at(2200.0f, CUB_TRACK_OK);
+    cub_render_scene scene = bear_pose(BENDS(DANCE), CUB_RENDER_FACE_HAPPY);
+    scene.hint = "Wave your paws up high!";
+    scene.icon_xyz_mm = g_icon_xyz;
+    scene.progress = 0.65f;
+    scene.has_progress = 1;
+    scene.depth_raw = g_depth;
+    scene.child = &g_child;
+    assert_int_equal(cub_render_frame(t->render, &scene), CUB_OK);
+    assert_int_equal(cub_display_read_rgba(t->disp, t->rgba, (size_t)TV_W * TV_H * 4), CUB_OK);
+    cub_display_swap(t->disp);
+    check_golden_sized(t->rgba, TV_W, TV_H, "tv_dance_1280x720", 1, BEAR_MAX_SHARE);
+}
+
 int main(void)
 {
     const struct CMUnitTest headless[] = {
@@ -543,6 +759,10 @@ int main(void)
         cmocka_unit_test(test_bear_dancing_happy_matches_golden),
         cmocka_unit_test(test_bear_doze_sleepy_matches_golden),
         cmocka_unit_test(test_bear_correcting_worried_matches_golden),
+        cmocka_unit_test(test_idle_screen_matches_golden),
+        cmocka_unit_test(test_child_inset_cue_matches_golden),
+        cmocka_unit_test(test_child_cue_follows_status),
+        cmocka_unit_test(test_render_refuses_missing_font),
         cmocka_unit_test(test_bear_faces_differ_only_on_the_head),
         cmocka_unit_test(test_bear_rejects_bad_character),
         cmocka_unit_test(test_frames_are_deterministic),
@@ -555,7 +775,11 @@ int main(void)
     const struct CMUnitTest probe[] = {
         cmocka_unit_test(test_window_available_probe_is_clean),
     };
+    const struct CMUnitTest tv[] = {
+        cmocka_unit_test(test_tv_dance_layout_matches_golden),
+    };
     int failed = cmocka_run_group_tests_name("golden_headless", headless, setup, teardown);
+    failed += cmocka_run_group_tests_name("golden_tv", tv, setup_tv, teardown_tv);
     failed += cmocka_run_group_tests_name("golden_window", window, setup_window, teardown);
     failed += cmocka_run_group_tests_name("display_probe", probe, NULL, NULL);
     return failed;

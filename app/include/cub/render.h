@@ -4,16 +4,23 @@
  * body parts from the character file, skinned to the pose in the vertex
  * shader) standing on a cartoon forest stage, or, without a character, a
  * stick figure on a flat sky; the depth image is a small inset in the
- * lower-right corner.
+ * lower-right corner with the child's own skeleton and a distance cue.
+ * Over it: the hint text with the move's icon, the song's progress, and
+ * the big "Press START!" screen while the box waits (render_hud.c).
  */
 #ifndef CUB_RENDER_H
 #define CUB_RENDER_H
 
+#include <stddef.h>
 #include <stdint.h>
 
 #include "cub/character.h"
 #include "cub/err.h"
 #include "cub/motion.h"
+#include "cub/track.h"
+
+/* Debian's fonts-dejavu-core; a bold face reads best from a sofa. */
+#define CUB_RENDER_DEFAULT_FONT "/usr/share/fonts/truetype/dejavu/DejaVuSans-Bold.ttf"
 
 typedef struct cub_render cub_render; /* opaque */
 
@@ -24,6 +31,13 @@ typedef struct cub_render_desc {
                                  the bottom-left; default 0, 0. A frame clears and
                                  draws only its own viewport, so several renderers
                                  can share one framebuffer (side by side). */
+    /* The TrueType font of every text; NULL = CUB_RENDER_DEFAULT_FONT. A
+     * font that cannot be read fails cub_render_create. */
+    const char *font_path;
+    /* Where cub_render_create puts a message for the user when it fails
+     * ("cannot load font PATH: why"); NULL = none. */
+    char *error;
+    size_t error_size;
 } cub_render_desc;
 
 /* The camera around the framed figure, for viewers (cubtool play); the box
@@ -61,8 +75,31 @@ typedef struct cub_render_scene {
     /* The depth inset: raw 11-bit Kinect values, 640x480; NULL = no inset. */
     const uint16_t *depth_raw;
     float background_rgb[3];  /* all zero = the default sky (stick figure only) */
+
+    /* What the child reads. The caller picks all of it from the tick's
+     * state; the renderer lays it out. Strings are UTF-8 (Latin-1 range
+     * drawn, other characters as '?'), laid out again only when changed. */
+    const char *hint;         /* under the coach; NULL or "" = none */
+    /* The current move's icon: the coach's skel in the move's most telling
+     * pose (joint world positions, mm, 3 floats each), drawn as a chunky
+     * silhouette on a round badge beside the hint. NULL = no badge. */
+    const float *icon_xyz_mm;
+    /* The song's progress 0..1 as a bar along the top when has_progress
+     * (a flag rather than "< 0 = none", so a zero scene, e.g. cubtool's
+     * viewer, draws no bar). */
+    float progress;
+    int has_progress;
+    int idle;                 /* 1: the big "Press START!" screen over the coach */
+    /* The child in the inset: the tracker's skeleton (camera mm), drawn
+     * over the depth image (or on a dark panel without one), and its
+     * status as a cue above it: too close "Step back", too far "Come
+     * closer", partly out "Step into the middle". NULL = none. */
+    const cub_track_skeleton *child;
 } cub_render_scene;
 
+/* CUB_ERR_ARG for a bad desc, CUB_ERR_IO / CUB_ERR_FORMAT for a font that
+ * cannot be read or is not TrueType (the message in desc->error),
+ * CUB_ERR_DEVICE when GL fails. */
 cub_err cub_render_create(const cub_render_desc *desc, cub_render **out);
 void cub_render_destroy(cub_render *r);
 /* Draw one frame into the current framebuffer. CUB_ERR_ARG for a scene

@@ -55,6 +55,8 @@ typedef struct cub_boxconf {
     char songs_dir[CUB_BOXCONF_PATH_MAX];  /* "" = <assets_dir>/songs */
     char song[CUB_BOXCONF_NAME_MAX];       /* lead <songs_dir>/<song>.song.xml; "" = none */
     char soundfont[CUB_BOXCONF_PATH_MAX];  /* default /usr/share/sounds/sf2/TimGM6mb.sf2 */
+    /* the TV's text; default /usr/share/fonts/truetype/dejavu/DejaVuSans-Bold.ttf */
+    char font[CUB_BOXCONF_PATH_MAX];
     /* recording: the box stores camera data only when this is 1 */
     int recording;                            /* default 0 */
     char recording_dir[CUB_BOXCONF_PATH_MAX]; /* default /var/lib/cubdance/recordings */

@@ -1,0 +1,122 @@
+/* render_child — the child's own skeleton in the lower-right inset, drawn
+ * over the depth image (projected with the Kinect's own camera model, so
+ * the bones sit on the child's silhouette; a parent sees both what the
+ * camera sees and what the tracker made of it), or on a dark panel when
+ * there is no depth image. Above the inset, a cue when the tracker says
+ * the child is not where the camera reads them well. Green bones: tracked
+ * whole; orange: tracked, but see the cue. */
+#include "cub/track.h"
+#include "render_internal.h"
+
+#define CUE_SCALE 0.42f
+
+/* Each joint's parent in the Kinect's 20-joint tree (-1: the root). */
+static const int8_t PARENT[CUB_TJ_COUNT] = {
+    [CUB_TJ_HIP_CENTRE] = -1,
+    [CUB_TJ_SPINE] = CUB_TJ_HIP_CENTRE,
+    [CUB_TJ_SHOULDER_CENTRE] = CUB_TJ_SPINE,
+    [CUB_TJ_HEAD] = CUB_TJ_SHOULDER_CENTRE,
+    [CUB_TJ_SHOULDER_L] = CUB_TJ_SHOULDER_CENTRE,
+    [CUB_TJ_ELBOW_L] = CUB_TJ_SHOULDER_L,
+    [CUB_TJ_WRIST_L] = CUB_TJ_ELBOW_L,
+    [CUB_TJ_HAND_L] = CUB_TJ_WRIST_L,
+    [CUB_TJ_SHOULDER_R] = CUB_TJ_SHOULDER_CENTRE,
+    [CUB_TJ_ELBOW_R] = CUB_TJ_SHOULDER_R,
+    [CUB_TJ_WRIST_R] = CUB_TJ_ELBOW_R,
+    [CUB_TJ_HAND_R] = CUB_TJ_WRIST_R,
+    [CUB_TJ_HIP_L] = CUB_TJ_HIP_CENTRE,
+    [CUB_TJ_KNEE_L] = CUB_TJ_HIP_L,
+    [CUB_TJ_ANKLE_L] = CUB_TJ_KNEE_L,
+    [CUB_TJ_FOOT_L] = CUB_TJ_ANKLE_L,
+    [CUB_TJ_HIP_R] = CUB_TJ_HIP_CENTRE,
+    [CUB_TJ_KNEE_R] = CUB_TJ_HIP_R,
+    [CUB_TJ_ANKLE_R] = CUB_TJ_KNEE_R,
+    [CUB_TJ_FOOT_R] = CUB_TJ_ANKLE_R,
+};
+
+static const char *cue_text(int32_t status)
+{
+    switch (status) {
+    case CUB_TRACK_TOO_CLOSE: return "Step back";
+    case CUB_TRACK_TOO_FAR: return "Come closer";
+    case CUB_TRACK_PARTLY_OUT: return "Step into the middle";
+    default: return NULL;
+    }
+}
+
+/* Camera mm -> inset pixel through the depth image's pixel (u, v);
+ * 0 for a joint at or behind the camera. */
+static int to_inset(const cub_vec3 *p, int x0, int y0, int iw, int ih, float out[2])
+{
+    float z = (float)p->z / 65536.0f;
+    if (!(z > 1.0f))
+        return 0;
+    float u = CUB_TRACK_CX + CUB_TRACK_FOCAL_PX * ((float)p->x / 65536.0f) / z;
+    float v = CUB_TRACK_CY - CUB_TRACK_FOCAL_PX * ((float)p->y / 65536.0f) / z;
+    out[0] = (float)x0 + u * (float)iw / CUB_TRACK_WIDTH;
+    out[1] = (float)(y0 + ih) - v * (float)ih / CUB_TRACK_HEIGHT;
+    return 1;
+}
+
+static void bones(cub_render *r, const cub_track_skeleton *c, int x0, int y0, int iw, int ih)
+{
+    static const float OK_RGBA[4] = {0.35f, 0.95f, 0.45f, 1.0f};
+    static const float CUE_RGBA[4] = {1.0f, 0.60f, 0.15f, 1.0f};
+    const float *rgba = c->status == CUB_TRACK_OK ? OK_RGBA : CUE_RGBA;
+    float hw = (float)iw / 60.0f;
+    hw = hw < 1.0f ? 1.0f : hw;
+    float a[2], b[2];
+    for (int j = 0; j < CUB_TJ_COUNT; j++) {
+        int p = PARENT[j];
+        if (p >= 0 && to_inset(&c->joint_mm[j], x0, y0, iw, ih, a) &&
+            to_inset(&c->joint_mm[p], x0, y0, iw, ih, b))
+            cub_render_shape_limb(r, a[0], a[1], b[0], b[1], hw, rgba);
+    }
+    if (to_inset(&c->joint_mm[CUB_TJ_HEAD], x0, y0, iw, ih, a))
+        cub_render_shape_disc(r, a[0], a[1], 3.0f * hw, rgba);
+}
+
+static void cue(cub_render *r, const char *text, int x0, int y0, int iw, int ih)
+{
+    static const float PANEL[4] = {0.12f, 0.10f, 0.22f, 0.70f};
+    static const float CUE_RGB[3] = {1.0f, 0.75f, 0.30f};
+    cub_render_text_layout(r, &r->cue_label, text);
+    const cub_render_label *l = &r->cue_label;
+    float scale = CUE_SCALE, px = r->text.px * scale;
+    float room = 0.30f * (float)r->w; /* may reach left past the inset, not the edge */
+    if (l->width_px * scale > room)
+        scale = room / l->width_px, px = r->text.px * scale;
+    float tw = l->width_px * scale;
+    float right = (float)(x0 + iw), x = right - tw - 0.4f * px;
+    if (x > (float)x0 + 0.5f * ((float)iw - tw)) /* short: centred over the inset */
+        x = (float)x0 + 0.5f * ((float)iw - tw);
+    float base = (float)(y0 + ih) + 0.55f * px;
+    cub_render_shape_round_rect(r, x - 0.4f * px, (float)(y0 + ih) + 0.15f * px,
+                                x + tw + 0.4f * px, base + r->text.ascent_px * scale + 0.2f * px,
+                                0.35f * px, PANEL);
+    cub_render_batch_draw(r);
+    cub_render_text_draw(r, l, x, base, scale, CUE_RGB);
+    cub_render_text_flush(r);
+}
+
+void cub_render_child_draw(cub_render *r, const cub_track_skeleton *child, int have_depth)
+{
+    int x0, y0, iw, ih;
+    cub_render_inset_rect(r->w, r->h, &x0, &y0, &iw, &ih);
+    if (iw < 4 || ih < 3)
+        return;
+    if (!have_depth) {
+        static const float FRAME[4] = {1.0f, 1.0f, 1.0f, 1.0f};
+        static const float DARK[4] = {0.10f, 0.12f, 0.20f, 1.0f};
+        float b = (float)(r->w / 320 > 1 ? r->w / 320 : 1);
+        cub_render_shape_rect(r, (float)x0 - b, (float)y0 - b, (float)(x0 + iw) + b,
+                              (float)(y0 + ih) + b, FRAME);
+        cub_render_shape_rect(r, (float)x0, (float)y0, (float)(x0 + iw), (float)(y0 + ih), DARK);
+    }
+    if (child->status != CUB_TRACK_NO_PLAYER)
+        bones(r, child, x0, y0, iw, ih);
+    cub_render_batch_draw(r);
+    const char *text = cue_text(child->status);
+    if (text)
+        cue(r, text, x0, y0, iw, ih);
+}
