@@ -7,7 +7,14 @@
  * Lighting is a cartoon one: a key light from the upper left front, cut
  * into three bands (lit, half, shade) instead of a smooth falloff, a fill
  * so the shade is never dark, and a warm rim where the surface turns away
- * from the viewer, which rounds the silhouettes. */
+ * from the viewer, which rounds the silhouettes.
+ *
+ * The direction to the eye is found per vertex, in the vertex shader's
+ * full precision. Done in the mediump fragment shader, normalize(u_eye -
+ * v_world) of a vector thousands of millimetres long gave a rim on every
+ * pixel under x86-64 llvmpipe and a right one under aarch64 llvmpipe; our
+ * guess, not proven: mediump run as 16-bit floats there, where the squared
+ * length overflows (a GPU such as the Pi's may do the same). */
 #include <math.h>
 #include <stddef.h>
 #include <stdio.h>
@@ -32,7 +39,8 @@ static const char LIT_VS[] =
     "attribute vec3 a_skin;\n" /* slot a, slot b, weight of b */
     "varying vec3 v_nrm;\n"
     "varying vec3 v_col;\n"
-    "varying vec3 v_world;\n"
+    "varying vec3 v_to_eye;\n"
+    "uniform vec3 u_eye;\n"
     "vec3 qrot(vec4 q, vec3 v) { return v + 2.0 * cross(q.xyz, cross(q.xyz, v) + q.w * v); }\n"
     "void main() {\n"
     "  int a = int(a_skin.x + 0.5), b = int(a_skin.y + 0.5);\n"
@@ -42,21 +50,20 @@ static const char LIT_VS[] =
     "  vec3 p = mix(pa, pb, a_skin.z);\n"
     "  v_nrm = mix(na, nb, a_skin.z);\n"
     "  v_col = a_col;\n"
-    "  v_world = p;\n"
+    "  v_to_eye = normalize(u_eye - p);\n"
     "  gl_Position = u_vp * vec4(p, 1.0);\n"
     "}\n";
 static const char LIT_FS[] =
     "precision mediump float;\n"
-    "uniform vec3 u_eye;\n"
     "varying vec3 v_nrm;\n"
     "varying vec3 v_col;\n"
-    "varying vec3 v_world;\n"
+    "varying vec3 v_to_eye;\n"
     "void main() {\n"
     "  vec3 n = normalize(v_nrm);\n"
     "  vec3 key = normalize(vec3(-0.45, 0.75, 0.5));\n"
     "  float d = dot(n, key);\n"
     "  float band = d > 0.5 ? 1.0 : d > 0.05 ? 0.84 : 0.68;\n"
-    "  vec3 to_eye = normalize(u_eye - v_world);\n"
+    "  vec3 to_eye = normalize(v_to_eye);\n"
     "  float rim = 1.0 - max(dot(n, to_eye), 0.0);\n"
     "  rim = rim * rim * rim;\n"
     "  vec3 c = v_col * (band * 0.92 + 0.08) + rim * 0.22 * vec3(1.0, 0.93, 0.8);\n"

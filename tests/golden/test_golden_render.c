@@ -406,24 +406,8 @@ static void test_stick_pose_matches_golden(void **state)
     check_golden(f->rgba, "stick_pose", 1);
 }
 
-/* The bear's stored images are x86-64 llvmpipe's. Under qemu-aarch64 the
- * arm64 Mesa lights the whole frame up to 63 counts darker (~75% of pixels;
- * cause not found yet), so there the comparison is skipped, loudly; the
- * other bear tests still run. */
-static int bear_golden_skipped(void)
-{
-#if defined(__aarch64__)
-    printf("golden: bear images are x86-64 llvmpipe's; skipped on aarch64 (see comment)\n");
-    return 1;
-#else
-    return 0;
-#endif
-}
-
 static void test_bear_dancing_happy_matches_golden(void **state)
 {
-    if (bear_golden_skipped())
-        skip();
     fixture *f = *state;
     cub_render_scene scene = bear_pose(BENDS(DANCE), CUB_RENDER_FACE_HAPPY);
     draw_with(f, f->bear_render, &scene);
@@ -432,8 +416,6 @@ static void test_bear_dancing_happy_matches_golden(void **state)
 
 static void test_bear_doze_sleepy_matches_golden(void **state)
 {
-    if (bear_golden_skipped())
-        skip();
     fixture *f = *state;
     cub_render_scene scene = bear_pose(BENDS(DOZE), CUB_RENDER_FACE_SLEEPY);
     draw_with(f, f->bear_render, &scene);
@@ -442,8 +424,6 @@ static void test_bear_doze_sleepy_matches_golden(void **state)
 
 static void test_bear_correcting_worried_matches_golden(void **state)
 {
-    if (bear_golden_skipped())
-        skip();
     fixture *f = *state;
     icon_from_dance();
     cub_render_scene scene = bear_pose(BENDS(CORRECT), CUB_RENDER_FACE_WORRIED);
