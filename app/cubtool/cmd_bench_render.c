@@ -30,6 +30,7 @@
 #include "cub/character.h"
 #include "cub/pack.h"
 #include "cub/render.h"
+#include "cub/track.h"
 
 #define OWN_TARGET_MS 2.0
 #define DEPTH_W 640
@@ -49,6 +50,8 @@ typedef struct bench_ctx {
     const char *clip_name;
     uint16_t *depth;
     float xyz[3 * CUB_MOTION_MAX_JOINTS], rot[4 * CUB_MOTION_MAX_JOINTS];
+    float icon_xyz[3 * CUB_MOTION_MAX_JOINTS]; /* the badge's pose: frame 0's */
+    cub_track_skeleton child;
 } bench_ctx;
 
 typedef struct frame_ns {
@@ -145,8 +148,24 @@ static int load(const bench_args *a, bench_ctx *c)
     return 0;
 }
 
-/* The scene of frame i: everything the renderer draws, in one place (the
- * box's overlays go here too when the renderer grows them). */
+/* The child in the inset: 20 of the coach's joints, 2.5 m in front of the
+ * camera (which joints does not matter: the inset's cost is the same), and
+ * a status that turns to "too close" now and then, so the cue's text comes
+ * and goes as it does on the box. */
+static void bench_child(bench_ctx *c, const cub_vec3 *world, int joints, int i)
+{
+    c->child.status = (i / 90) % 2 ? CUB_TRACK_TOO_CLOSE : CUB_TRACK_OK;
+    for (int j = 0; j < CUB_TJ_COUNT; j++) {
+        cub_vec3 p = world[j * joints / CUB_TJ_COUNT];
+        c->child.joint_mm[j] = (cub_vec3){p.x, p.y - 900 * 65536, p.z + 2500 * 65536};
+        c->child.confidence[j] = 65536;
+    }
+}
+
+/* The scene of frame i: everything the renderer draws on the box during a
+ * song, in one place: the bear on the forest, the hint (a new one every two
+ * seconds, so its layout is timed too), the move's badge, the progress bar
+ * and the child inset over the depth image with its cue. */
 static cub_err bench_scene(bench_ctx *c, int i, cub_render_scene *scene)
 {
     cub_pose pose;
@@ -157,6 +176,8 @@ static cub_err bench_scene(bench_ctx *c, int i, cub_render_scene *scene)
     if (!e) e = cub_motion_forward(skel, &pose, world, rot);
     if (e) return e;
     cub_motion_world_to_float(world, skel->joint_count, c->xyz);
+    if (i == 0) memcpy(c->icon_xyz, c->xyz, sizeof c->icon_xyz);
+    bench_child(c, world, skel->joint_count, i);
     for (int j = 0; j < skel->joint_count; j++) {
         const float one = (float)CUB_QUAT_ONE;
         c->rot[4 * j + 0] = (float)rot[j].x / one;
@@ -169,7 +190,12 @@ static cub_err bench_scene(bench_ctx *c, int i, cub_render_scene *scene)
                                 .character = &c->bear,
                                 .world_rot_xyzw = c->rot,
                                 .face = CUB_RENDER_FACE_HAPPY,
-                                .depth_raw = c->depth};
+                                .depth_raw = c->depth,
+                                .hint = (i / 60) % 2 ? "Clap with me!" : "Wave your paws up high!",
+                                .icon_xyz_mm = c->icon_xyz,
+                                .progress = (float)(i % 600) / 600.0f,
+                                .has_progress = 1,
+                                .child = &c->child};
     return CUB_OK;
 }
 
