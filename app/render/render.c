@@ -53,15 +53,7 @@ static cub_err make_gl_objects(cub_render *r)
     r->tex_uv = glGetAttribLocation(r->tex_prog, "a_uv");
     r->tex_sampler = glGetUniformLocation(r->tex_prog, "u_tex");
     glGenBuffers(1, &r->vbo);
-    glGenTextures(1, &r->depth_tex);
-    glBindTexture(GL_TEXTURE_2D, r->depth_tex);
-    /* NPOT textures in ES2 need clamp-to-edge and no mipmaps. */
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_LUMINANCE, CUB_RENDER_DEPTH_W, CUB_RENDER_DEPTH_H, 0,
-                 GL_LUMINANCE, GL_UNSIGNED_BYTE, NULL);
+    r->depth_tex = cub_render_gl_texture(GL_LUMINANCE, CUB_RENDER_DEPTH_W, CUB_RENDER_DEPTH_H, NULL);
     if (cub_render_lit_init(&r->lit))
         return CUB_ERR_DEVICE;
     if (cub_render_stage_init(r))

@@ -113,8 +113,16 @@ void cub_render_child_draw(cub_render *r, const cub_track_skeleton *child, int h
                               (float)(y0 + ih) + b, FRAME);
         cub_render_shape_rect(r, (float)x0, (float)y0, (float)(x0 + iw), (float)(y0 + ih), DARK);
     }
-    if (child->status != CUB_TRACK_NO_PLAYER)
+    if (child->status != CUB_TRACK_NO_PLAYER) {
+        /* A child too near the camera reaches past the image: its bones
+         * are cut at the inset's edge (the frame runs with the scissor on,
+         * set to the viewport). */
+        cub_render_batch_draw(r);
+        glScissor(r->x0 + x0, r->y0 + y0, iw, ih);
         bones(r, child, x0, y0, iw, ih);
+        cub_render_batch_draw(r);
+        glScissor(r->x0, r->y0, r->w, r->h);
+    }
     cub_render_batch_draw(r);
     const char *text = cue_text(child->status);
     if (text)

@@ -105,14 +105,16 @@ static void icon_badge(cub_render *r, const cub_skeleton *skel, const float *xyz
     }
 }
 
-/* Dim the scene, then the title and a round play button under it. */
+/* Dim the scene, then the title along the top and a round play button in
+ * the lower-left corner (where a move's badge goes while dancing): the bear
+ * between them stays in view, so a dozing bear still shows its sleepy face. */
 static void idle_screen(cub_render *r)
 {
     static const float DIM[4] = {0.05f, 0.08f, 0.20f, 0.45f};
     static const float BUTTON[4] = {0.20f, 0.72f, 0.30f, 1.0f};
     float w = (float)r->w, h = (float)r->h;
     cub_render_shape_rect(r, 0, 0, w, h, DIM);
-    float rad = 0.12f * h, cx = 0.5f * w, cy = 0.30f * h;
+    float rad = 0.12f * h, m = margin(r), cx = m + rad * 1.08f, cy = m + rad * 1.08f;
     cub_render_shape_disc(r, cx, cy, rad * 1.08f, WHITE);
     cub_render_shape_disc(r, cx, cy, rad, BUTTON);
     const float tri[3][2] = {{-0.35f, 0.45f}, {-0.35f, -0.45f}, {0.5f, 0.0f}};
@@ -127,7 +129,7 @@ static void idle_screen(cub_render *r)
     if (r->title_label.width_px * scale > 0.9f * w)
         scale = 0.9f * w / r->title_label.width_px;
     float x = 0.5f * (w - r->title_label.width_px * scale);
-    cub_render_text_draw(r, &r->title_label, x, 0.58f * h, scale, TITLE_RGB);
+    cub_render_text_draw(r, &r->title_label, x, 0.80f * h, scale, TITLE_RGB);
     cub_render_text_flush(r);
 }
 

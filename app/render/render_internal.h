@@ -116,6 +116,10 @@ struct cub_render {
 
 /* render_gl.c */
 GLuint cub_render_gl_program(const char *vs, const char *fs, const char *name);
+/* A w x h texture of one-byte texels (format: GL_ALPHA, GL_LUMINANCE),
+ * linear and clamped to its edge (what ES2 allows for any size without
+ * mipmaps), filled from px (NULL: left for glTexSubImage2D); it stays bound. */
+GLuint cub_render_gl_texture(GLenum format, int w, int h, const void *px);
 void cub_render_batch_tri(cub_render_batch *b, const cub_render_vtx v[3]);
 /* An axis-aligned rectangle in pixels (origin bottom-left), flat colours
  * at the top and the bottom edge (a vertical gradient). */

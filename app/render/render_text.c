@@ -95,15 +95,7 @@ static cub_err make_gl(cub_render_text *t, const unsigned char *px)
     t->a_uv = glGetAttribLocation(t->prog, "a_uv");
     t->a_col = glGetAttribLocation(t->prog, "a_col");
     t->u_tex = glGetUniformLocation(t->prog, "u_tex");
-    glGenTextures(1, &t->tex);
-    glBindTexture(GL_TEXTURE_2D, t->tex);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_ALPHA, t->atlas_side, t->atlas_side, 0, GL_ALPHA,
-                 GL_UNSIGNED_BYTE, px);
+    t->tex = cub_render_gl_texture(GL_ALPHA, t->atlas_side, t->atlas_side, px);
     return CUB_OK;
 }
 
