@@ -110,7 +110,11 @@ if [ "$arch" = "$host_arch" ] || [ ${#run[@]} -gt 0 ]; then
     done
     assets="$root/usr/share/cubdance"
     if [ "$release" = 1 ]; then
-        "${run[@]}" "$root/usr/bin/cubdance-pi" --help | grep -q "(default /usr/share/cubdance/clips/bear.cubclips)" ||
+        # (into a variable first: grep -q leaves at the first match, and a
+        # help text longer than one stdio buffer then dies of SIGPIPE,
+        # which pipefail would take for a failure)
+        help=$("${run[@]}" "$root/usr/bin/cubdance-pi" --help)
+        grep -q "(default /usr/share/cubdance/clips/bear.cubclips)" <<<"$help" ||
             fail "the binary's default assets are not /usr/share/cubdance"
     fi
     # The box program plays a song from the unpacked assets: START at 0.5 s,
