@@ -103,68 +103,6 @@ static int open_extras(const cub_app_options *o, cub_board *board, cub_loop *loo
     return 0;
 }
 
-/* What main adds around the session's hooks: the display's health and the
- * opt-in recorder. */
-typedef struct app_watch {
-    cub_loop_hooks inner;
-    cub_session *s;
-    cub_record *rec;
-    int recording_on; /* the recorder was told to begin */
-    int display_lost; /* the loop was stopped for it */
-} app_watch;
-
-/* The box records only while a dance runs (config recording=1), or the
- * whole run (--record). */
-static int dancing(const cub_session *s)
-{
-    return s->dance ? !cub_dance_waiting(s->dance) : s->state == CUB_APP_PLAYING;
-}
-
-static void follow_recording(app_watch *w, int64_t t_us)
-{
-    int want = !w->s->opt->record_each_dance || dancing(w->s);
-    if (want && !w->recording_on) cub_record_begin(w->rec, t_us);
-    else if (!want && w->recording_on) cub_record_end(w->rec, t_us, "idle");
-    w->recording_on = want;
-}
-
-static void watch_tick(void *u, cub_loop *loop, int64_t t_us)
-{
-    app_watch *w = u;
-    w->inner.tick(w->inner.user, loop, t_us);
-    const char *lost = cub_board_display_lost(w->s->board);
-    if (lost && !w->display_lost) {
-        cub_log_event(&loop->log, t_us, "app", "error", "what=display error=\"%s\"", lost);
-        w->display_lost = 1;
-        cub_loop_stop(loop);
-    }
-    if (w->rec) follow_recording(w, t_us);
-}
-
-static void watch_poll(void *u, cub_loop *loop, int64_t now_us)
-{
-    app_watch *w = u;
-    w->inner.poll(w->inner.user, loop, now_us);
-}
-
-static void watch_handle(void *u, cub_loop *loop, const cub_event *ev)
-{
-    app_watch *w = u;
-    w->inner.handle(w->inner.user, loop, ev);
-}
-
-static int64_t watch_now(void *u)
-{
-    app_watch *w = u;
-    return w->inner.now_us(w->inner.user);
-}
-
-static void watch_wait(void *u, int64_t t_us)
-{
-    app_watch *w = u;
-    w->inner.wait_until(w->inner.user, t_us);
-}
-
 static cub_record *open_recorder(const cub_app_options *o, cub_board *board, cub_log *log)
 {
     cub_record_desc rd = {.dir = o->record_dir, .max_bytes = (int64_t)o->record_max_mb << 20,
@@ -189,7 +127,6 @@ static int run(const cub_app_options *o, cub_board *board, cub_event_log_file *l
         fprintf(stderr, "cubdance: the event loop would not start\n");
         return -1;
     }
-    static app_watch aw; /* zero until the hooks are set up (see done:) */
     static cub_session s; /* large (it holds this tick's pose): not on the stack */
     s = (cub_session){.opt = o, .board = board, .clip = clip,
                       .clip_name = file_name(o->clip_path), .loop = &loop,
@@ -237,14 +174,11 @@ static int run(const cub_app_options *o, cub_board *board, cub_event_log_file *l
         }
     }
     if (o->stats) s.tick_hist = calloc(CUB_SESSION_TICK_BINS, sizeof *s.tick_hist);
-    aw = (app_watch){.inner = cub_session_hooks(&s), .s = &s};
-    if (o->record_dir && !(aw.rec = open_recorder(o, board, &loop.log))) goto done;
-    if (aw.rec) follow_recording(&aw, t0); /* --record: from the first frame on */
-    cub_loop_hooks hooks = {.user = &aw, .now_us = watch_now, .poll = watch_poll,
-                            .handle = watch_handle, .tick = watch_tick,
-                            .wait_until = watch_wait};
+    if (o->record_dir && !(s.rec = open_recorder(o, board, &loop.log))) goto done;
+    if (s.rec) cub_session_follow_recording(&s, t0); /* --record: from the first frame on */
+    cub_loop_hooks hooks = cub_session_hooks(&s);
     cub_err err = cub_loop_run(&loop, &hooks, 0);
-    cub_record_end(aw.rec, cub_board_now_us(board), "exit");
+    cub_record_end(s.rec, cub_board_now_us(board), "exit");
     cub_log_event(&loop.log, cub_board_now_us(board), "app", "end",
                   "ticks=%llu depth_frames=%u frames_written=%u",
                   (unsigned long long)loop.tick_count, s.depth_frames, s.frames_written);
@@ -252,14 +186,14 @@ static int run(const cub_app_options *o, cub_board *board, cub_event_log_file *l
         printf("cubdance: %u frames written to %s\n", s.frames_written, o->frames_dir);
     cub_session_print_stats(&s, stdout);
     rc = err || s.frame_error ? -1 : 0;
-    if (aw.display_lost) {
+    if (s.display_lost) {
         fprintf(stderr, "cubdance: the display went away: %s\n", cub_board_display_lost(board));
         rc = -1;
     }
 done:
     cub_board_set_depth_tap(board, NULL, NULL);
-    cub_record_close(aw.rec);
-    aw.rec = NULL;
+    cub_record_close(s.rec);
+    s.rec = NULL;
     if (s.dance) cub_dance_close(s.dance);
     free(s.dance);
     if (s.watch) cub_watch_close(s.watch);

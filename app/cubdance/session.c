@@ -273,11 +273,38 @@ static void tick_work(cub_session *s, cub_loop *loop, int64_t t_us)
     cub_board_display_swap(s->board);
 }
 
+/* The box records only while a dance runs (config recording=1), or the
+ * whole run (--record). */
+static int dancing(const cub_session *s)
+{
+    return s->dance ? !cub_dance_waiting(s->dance) : s->state == CUB_APP_PLAYING;
+}
+
+void cub_session_follow_recording(cub_session *s, int64_t t_us)
+{
+    int want = !s->opt->record_each_dance || dancing(s);
+    if (want && !s->recording_on) cub_record_begin(s->rec, t_us);
+    else if (!want && s->recording_on) cub_record_end(s->rec, t_us, "idle");
+    s->recording_on = want;
+}
+
+static void check_display(cub_session *s, cub_loop *loop, int64_t t_us)
+{
+    const char *lost = cub_board_display_lost(s->board);
+    if (lost && !s->display_lost) {
+        cub_log_event(&loop->log, t_us, "app", "error", "what=display error=\"%s\"", lost);
+        s->display_lost = 1;
+        cub_loop_stop(loop);
+    }
+}
+
 static void hook_tick(void *u, cub_loop *loop, int64_t t_us)
 {
     cub_session *s = u;
     tick_work(s, loop, t_us);
     count_tick(s);
+    check_display(s, loop, t_us);
+    if (s->rec) cub_session_follow_recording(s, t_us);
 }
 
 /* The tick's CPU time at quantile q (0..1), ms; from the bins (25 us). */

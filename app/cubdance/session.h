@@ -13,6 +13,7 @@
 #include "cub/render.h"
 #include "dance.h"
 #include "options.h"
+#include "record.h"
 #include "timeline.h"
 #include "watch.h"
 
@@ -57,13 +58,22 @@ typedef struct cub_session {
     uint32_t *tick_hist;
     uint32_t tick_count, tick_over; /* ticks counted; ... beyond the last bin */
     int64_t tick_cpu0_us, tick_max_us;
+    /* Opt-in recording (--record, config recording=1), or NULL */
+    cub_record *rec;
+    int recording_on;        /* the recorder was told to begin */
+    int display_lost;        /* the loop was stopped because the display went */
 } cub_session;
 
 #define CUB_SESSION_TICK_BIN_US 25
 #define CUB_SESSION_TICK_BINS 4000 /* up to 100 ms */
 
-/* The hooks that plug a session into cub_loop_run. */
+/* The hooks that plug a session into cub_loop_run. Each tick also checks
+ * that the display is still there (if not: an error line and the loop
+ * stops, with display_lost set) and starts or ends s->rec's recording. */
 cub_loop_hooks cub_session_hooks(cub_session *s);
+/* Begin or end s->rec's recording as the session now wants: the whole run
+ * (--record), or only while a dance runs (config recording=1). */
+void cub_session_follow_recording(cub_session *s, int64_t t_us);
 /* --stats: the ticks' CPU time and the peak resident memory, one line. */
 void cub_session_print_stats(const cub_session *s, FILE *out);
 
