@@ -62,9 +62,7 @@ static int load_file(play_src *s)
                 s->path);
         return 1;
     }
-    cub_err e = s->amc_path ? cub_io_load_asf_amc(s->path, s->amc_path, &(cub_io_desc){0}, &s->motion, &d)
-                            : cub_io_load_bvh(s->path, &(cub_io_desc){0}, &s->motion, &d);
-    if (e) return fail(&d);
+    if (cub_retarget_load_source(s->path, s->amc_path, &s->motion, &d)) return fail(&d);
     s->clip = &s->motion.clip;
     return 0;
 }
