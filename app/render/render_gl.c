@@ -56,17 +56,20 @@ void cub_render_batch_tri(cub_render_batch *b, const cub_render_vtx v[3])
         b->v[b->count++] = v[i];
 }
 
-static cub_render_vtx px_vtx(const cub_render *r, float x, float y, const float rgb[3])
+cub_render_vtx cub_render_px_vtx(const cub_render *r, float x, float y, const float rgb[3],
+                                 float alpha)
 {
     return (cub_render_vtx){2.0f * x / (float)r->w - 1.0f, 2.0f * y / (float)r->h - 1.0f, 0.0f,
-                            rgb[0], rgb[1], rgb[2], 1.0f};
+                            rgb[0], rgb[1], rgb[2], alpha};
 }
 
 void cub_render_batch_rect_px(cub_render *r, float x0, float y0, float x1, float y1,
                               const float top_rgb[3], const float bottom_rgb[3])
 {
-    cub_render_vtx a = px_vtx(r, x0, y0, bottom_rgb), b = px_vtx(r, x1, y0, bottom_rgb);
-    cub_render_vtx c = px_vtx(r, x1, y1, top_rgb), d = px_vtx(r, x0, y1, top_rgb);
+    cub_render_vtx a = cub_render_px_vtx(r, x0, y0, bottom_rgb, 1.0f);
+    cub_render_vtx b = cub_render_px_vtx(r, x1, y0, bottom_rgb, 1.0f);
+    cub_render_vtx c = cub_render_px_vtx(r, x1, y1, top_rgb, 1.0f);
+    cub_render_vtx d = cub_render_px_vtx(r, x0, y1, top_rgb, 1.0f);
     cub_render_batch_tri(&r->batch, (cub_render_vtx[3]){a, b, c});
     cub_render_batch_tri(&r->batch, (cub_render_vtx[3]){a, c, d});
 }

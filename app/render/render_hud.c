@@ -120,8 +120,7 @@ static void idle_screen(cub_render *r)
     const float tri[3][2] = {{-0.35f, 0.45f}, {-0.35f, -0.45f}, {0.5f, 0.0f}};
     cub_render_vtx v[3];
     for (int i = 0; i < 3; i++)
-        v[i] = (cub_render_vtx){2.0f * (cx + tri[i][0] * rad) / w - 1.0f,
-                                2.0f * (cy + tri[i][1] * rad) / h - 1.0f, 0.0f, 1, 1, 1, 1};
+        v[i] = cub_render_px_vtx(r, cx + tri[i][0] * rad, cy + tri[i][1] * rad, WHITE, 1.0f);
     cub_render_batch_tri(&r->batch, v);
     cub_render_batch_draw(r);
     cub_render_text_layout(r, &r->title_label, "Press START!");

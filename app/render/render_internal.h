@@ -121,6 +121,9 @@ GLuint cub_render_gl_program(const char *vs, const char *fs, const char *name);
  * mipmaps), filled from px (NULL: left for glTexSubImage2D); it stays bound. */
 GLuint cub_render_gl_texture(GLenum format, int w, int h, const void *px);
 void cub_render_batch_tri(cub_render_batch *b, const cub_render_vtx v[3]);
+/* A batch vertex at pixel (x, y) of the viewport (origin bottom-left). */
+cub_render_vtx cub_render_px_vtx(const cub_render *r, float x, float y, const float rgb[3],
+                                 float alpha);
 /* An axis-aligned rectangle in pixels (origin bottom-left), flat colours
  * at the top and the bottom edge (a vertical gradient). */
 void cub_render_batch_rect_px(cub_render *r, float x0, float y0, float x1, float y1,

@@ -10,8 +10,7 @@
 
 static cub_render_vtx v2(const cub_render *r, float x, float y, const float rgba[4])
 {
-    return (cub_render_vtx){2.0f * x / (float)r->w - 1.0f, 2.0f * y / (float)r->h - 1.0f, 0.0f,
-                            rgba[0], rgba[1], rgba[2], rgba[3]};
+    return cub_render_px_vtx(r, x, y, rgba, rgba[3]);
 }
 
 static void tri(cub_render *r, float ax, float ay, float bx, float by, float cx, float cy,
