@@ -2,7 +2,12 @@
 # The tracker's accuracy protocol (issue 5): share of joints within 10 cm on
 # synthetic Kinect depth of clips the tracker was NOT tuned on.
 #
-#   scripts/eval_tracker.sh BUILD_DIR [--tuning|--heldout2]
+#   scripts/eval_tracker.sh BUILD_DIR [--tuning|--heldout2] [--mirror]
+#
+# --mirror renders every clip of the set with left and right swapped (the
+# child does the mirror image; the truth still names the child's own left).
+# A tracker with no bias of its own gives the same figure with left and right
+# joints exchanged; on the tuning set it doubles what decisions rest on.
 #
 # Held-out set (default): Bandai Namco Research Motiondataset-1 clips
 # (CC BY-NC, ../shared/data/mocap/bandai: for tests and benchmarks only, never
@@ -27,16 +32,22 @@
 # per joint over the whole set.
 set -eu
 
-usage() { echo "usage: scripts/eval_tracker.sh BUILD_DIR [--tuning|--heldout2]" >&2; exit 2; }
+usage() { echo "usage: scripts/eval_tracker.sh BUILD_DIR [--tuning|--heldout2] [--mirror]" >&2; exit 2; }
 [ $# -ge 1 ] || usage
 BUILD=$1
+shift
 SET=heldout
-case ${2:-} in
-"") ;;
---tuning) SET=tuning ;;
---heldout2) SET=heldout2 ;;
-*) usage ;;
-esac
+MIRROR=0
+for arg in "$@"; do
+    case $arg in
+    --tuning) SET=tuning ;;
+    --heldout2) SET=heldout2 ;;
+    --mirror) MIRROR=1 ;;
+    *) usage ;;
+    esac
+done
+PREFIX=$SET
+[ "$MIRROR" = 0 ] || PREFIX=mirror-$SET
 TOOL=$BUILD/app/cubtool/cubtool
 [ -x "$TOOL" ] || { echo "eval_tracker: no cubtool at $TOOL (build the cubtool target)" >&2; exit 1; }
 HERE=$(cd "$(dirname "$0")" && pwd)
@@ -155,9 +166,9 @@ trap cleanup EXIT INT TERM
 COMMON="--seed 1 --frames 90 --fps 10"
 REPORT=$RESULTS/report
 : >"$REPORT"
-echo "eval_tracker: $SET set, $COMMON, data $DATA"
+echo "eval_tracker: $SET set$([ "$MIRROR" = 0 ] || echo ", mirrored"), $COMMON, data $DATA"
 ${SET}_set | while IFS='|' read -r name args; do
-    out=$DUMPS/$SET-$name
+    out=$DUMPS/$PREFIX-$name
     if [ ! -f "$out/truth.txt" ]; then
         case $args in
         --derived\ *)
@@ -170,6 +181,12 @@ ${SET}_set | while IFS='|' read -r name args; do
             printf '%s\n' "${args#--segments }" | tr ';' '\n' >"$out/sequence.txt"
             args="--sequence $out/sequence.txt" ;;
         esac
+        if [ "$MIRROR" = 1 ]; then
+            case $args in
+            --sequence\ *) sed -i 's/$/ mirror/' "$out/sequence.txt" ;;
+            *) args="$args --mirror" ;;
+            esac
+        fi
         echo "+ $TOOL synth-depth $args $COMMON --data $DATA --out $out"
         # shellcheck disable=SC2086
         "$TOOL" synth-depth $args $COMMON --data "$DATA" --out "$out" >/dev/null 2>&1 ||
