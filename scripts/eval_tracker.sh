@@ -2,7 +2,7 @@
 # The tracker's accuracy protocol (issue 5): share of joints within 10 cm on
 # synthetic Kinect depth of clips the tracker was NOT tuned on.
 #
-#   scripts/eval_tracker.sh BUILD_DIR [--tuning|--heldout2] [--mirror]
+#   scripts/eval_tracker.sh BUILD_DIR [--tuning|--heldout2|--heldout3] [--mirror]
 #
 # --mirror renders every clip of the set with left and right swapped (the
 # child does the mirror image; the truth still names the child's own left).
@@ -32,7 +32,7 @@
 # per joint over the whole set.
 set -eu
 
-usage() { echo "usage: scripts/eval_tracker.sh BUILD_DIR [--tuning|--heldout2] [--mirror]" >&2; exit 2; }
+usage() { echo "usage: scripts/eval_tracker.sh BUILD_DIR [--tuning|--heldout2|--heldout3] [--mirror]" >&2; exit 2; }
 [ $# -ge 1 ] || usage
 BUILD=$1
 shift
@@ -42,6 +42,7 @@ for arg in "$@"; do
     case $arg in
     --tuning) SET=tuning ;;
     --heldout2) SET=heldout2 ;;
+    --heldout3) SET=heldout3 ;;
     --mirror) MIRROR=1 ;;
     *) usage ;;
     esac
@@ -110,6 +111,23 @@ bye_masculinity_room_2nd|--clip dataset-1_bye_masculinity_001 --room --second-pe
 guide_chimpira_room_2nd|--clip dataset-1_guide_chimpira_001 --room --second-person 16_11
 EOF
 }
+# A third held-out set, drawn at random (Python's random.Random(15)) before
+# round 10 from the 29 bow/bye/byebye/guide style files no set used: ten
+# held out here, the other 19 joined the tuning set.
+heldout3_set() {
+    cat <<'EOF'
+bow_feminine|--clip dataset-1_bow_feminine_001
+bye_feminine_small_slim|--clip dataset-1_bye_feminine_001 --height 1000 --build slim
+bye_giant|--clip dataset-1_bye_giant_001
+bye_proud_loose|--clip dataset-1_bye_proud_001 --loose
+bye_tired|--clip dataset-1_bye_tired_001
+byebye_chimpira_sturdy|--clip dataset-1_byebye_chimpira_001 --build sturdy
+byebye_giant|--clip dataset-1_byebye_giant_001
+byebye_sad|--clip dataset-1_byebye_sad_001
+byebye_tired_room_2nd|--clip dataset-1_byebye_tired_001 --room --second-person 02_01
+guide_old|--clip dataset-1_guide_old_001
+EOF
+}
 tuning_set() {
     cat <<'EOF'
 13_29|--clip 13_29
@@ -147,6 +165,25 @@ byebye_musical|--clip dataset-1_byebye_musical_001
 guide_happy_loose|--clip dataset-1_guide_happy_001 --loose
 boxing_13_18|--clip 13_18 --from 5
 zombie_small|--clip zombie --height 1000
+bow_active|--clip dataset-1_bow_active_001
+bow_chimpira_loose|--clip dataset-1_bow_chimpira_001 --loose
+bow_masculinity|--clip dataset-1_bow_masculinity_001
+bow_musical_small_slim|--clip dataset-1_bow_musical_001 --height 1000 --build slim
+bow_not-confident|--clip dataset-1_bow_not-confident_001
+bow_proud|--clip dataset-1_bow_proud_001
+bye_angry_sturdy|--clip dataset-1_bye_angry_001 --build sturdy
+bye_not-confident|--clip dataset-1_bye_not-confident_001
+bye_old_room_2nd|--clip dataset-1_bye_old_001 --room --second-person 13_29
+byebye_masculinity|--clip dataset-1_byebye_masculinity_001
+byebye_normal_loose|--clip dataset-1_byebye_normal_001 --loose
+byebye_not-confident|--clip dataset-1_byebye_not-confident_001
+byebye_old|--clip dataset-1_byebye_old_001
+guide_angry|--clip dataset-1_guide_angry_001
+guide_feminine_sturdy|--clip dataset-1_guide_feminine_001 --build sturdy
+guide_masculinity|--clip dataset-1_guide_masculinity_001
+guide_not-confident_small_slim|--clip dataset-1_guide_not-confident_001 --height 1000 --build slim
+guide_proud|--clip dataset-1_guide_proud_001
+guide_sad_room_2nd|--clip dataset-1_guide_sad_001 --room --second-person 16_11
 EOF
 }
 
