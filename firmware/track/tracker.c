@@ -369,6 +369,20 @@
  * torso on the other shoulder's side, a notch cost between hand and
  * thigh in the geodesic.
  *
+ * Round 10 (bows): a body bent toward the camera brings its chest and
+ * shoulders 100-150 mm before the belly's root, so the before-the-torso
+ * search took the upper chest or the neck under the bowed head for a
+ * hand (bow chimpira, masculinity: hands hanging at the sides under
+ * loose clothes, tracked at the shoulders). When the head's centre is
+ * 70 per mille nearer the camera than the root (HF_BOW), a cell must now
+ * stand out before the torso's surface tilted along its axis, not the
+ * root's depth: 97967 -> 98033 (49018 -> 49057 normal, 48949 -> 48976
+ * mirrored), bow not-confident +29, chimpira +22, angry +16, masculinity
+ * +13, musical -7; real frames unchanged. Not helped: the tilted surface
+ * for every body (-118: dab, punch 2, guide feminine have the chest
+ * standing out too), with a dead zone on the tilt (250 per mille: +11,
+ * 120: -26), for the extremity's on-torso test (+3).
+ *
  * Tried in round 2 without effect on the tuning set: a third "leg" offered
  * to the hands' naming (a raised knee wins it); passing over extremities
  * just behind a nearer part; a heavier or longer memory of last frame's

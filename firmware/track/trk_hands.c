@@ -37,6 +37,7 @@ enum {
     HF_LEGS = 130,  /* below the hips: within this of the middle */
     HF_CELLS = 4,   /* cells before the torso, fewer is noise */
     HF_UP = 60,     /* looked for up to this far above the shoulders */
+    HF_BOW = 70,    /* the head's centre this much nearer the camera than the root's surface: a body bent toward it */
     HF_FOOT_PATH = 80,    /* a cell this near a foot's path is the leg's (a knee raised aside or before the hip) */
     HF_JOIN_BACK = 100,  /* or its own path, this far back from it... */
     HF_JOIN_NEAR = 40,   /* ...runs this near a foot's path... */
@@ -146,6 +147,17 @@ void trk_pick_hands(const cub_tracker *t, const int32_t *hands, int32_t nh, limb
         }
 }
 
+/* The torso's surface depth at p's height (mm): the root's, or, for a
+ * body bent toward the camera, farther up the axis the nearer (a bow
+ * brings the chest and shoulders before the belly; they are no hand
+ * before the torso). */
+static int32_t torso_z(const cub_tracker *t, int32_t root, trk_p3 p, cub_vec3 axis)
+{
+    if (axis.z >= 0) return t->z[root];
+    int32_t u = trk_along(p.x - t->x[root], p.y - t->y[root], p.z - t->z[root], axis);
+    return u > 0 ? t->z[root] + (int32_t)(((int64_t)u * axis.z) >> 16) : t->z[root];
+}
+
 /* An extremity on the torso's surface (not before it): a shoulder bump or
  * the elbow of an arm whose hand lies before the chest. */
 bool trk_on_torso(const cub_tracker *t, int32_t root, int32_t i, trk_p3 sc, trk_p3 hc, cub_vec3 axis, cub_vec3 lft,
@@ -202,9 +214,11 @@ int32_t trk_hand_in_front(const cub_tracker *t, int32_t root, const limb_pick *l
     int32_t other = lp->hand[1 - side];
     int32_t zf = t->z[root] - pm(st, HF_FRONT), reach = pm(st, P_UPPER_ARM + P_FOREARM + P_HAND_REACH);
     int32_t best = -1, best_s = INT32_MIN, nfront = 0, sgn = side ? -1 : 1;
+    bool bent = lp->head >= 0 && lp->head_c.z < t->z[root] - pm(st, HF_BOW);
     for (int32_t i = 0; i < TRK_CELLS; i++) {
         if (!t->mask[i] || t->dist0[i] == TRK_INF || t->z[i] > zf) continue;
         trk_p3 p = cell_p(t, i);
+        if (bent && p.z > torso_z(t, root, p, axis) - pm(st, HF_FRONT)) continue;
         /* between the hips and a little above the shoulders */
         int32_t up_sc = trk_along(p.x - sc.x, p.y - sc.y, p.z - sc.z, axis);
         int32_t up_hc = trk_along(p.x - hc.x, p.y - hc.y, p.z - hc.z, axis);
