@@ -382,6 +382,24 @@
  * for every body (-118: dab, punch 2, guide feminine have the chest
  * standing out too), with a dead zone on the tilt (250 per mille: +11,
  * 120: -26), for the extremity's on-torso test (+3).
+ * Round 10 (a hand hanging against the thigh, no extremity: the "no hand"
+ * class, 158 arm-frames): an arm with no hand and no hand before the
+ * torso now looks for itself in the silhouette: the player's cells more
+ * than 90 per mille of stature out to its side of the torso's axis (the
+ * axis's lean taken out), at least 250 below the shoulder, within the
+ * arm's reach and off the feet's paths; the farthest from the shoulder
+ * is the fingertip, and the arm hangs straight from the shoulder to it
+ * (confidence 1/4; last frame's pose or the torso's axis as before when
+ * fewer than 6 such cells). Tuning set, normal + mirrored: 97967 -> 98120
+ * of 107628 (91.02 -> 91.17 %; 49018 -> 49081, 48949 -> 49039); hands
+ * +48 (left) +55 (right), wrists +17/+33, elbows unchanged; bye chimpira
+ * +27/+34, guide masculinity +24/+28, bow childish -10/-4. Real frames and
+ * hash unchanged. Out 120 per mille: +136, 70: +148; the elbow 10 %
+ * nearer the shoulder: -2. Not helped: a crease cost in the geodesic (a
+ * step into a cell deeper than both cells two steps away across it pays
+ * per mm of that dip): -373 (dip > 12 mm, 4 a mm), -165 (25, 4), -410
+ * (25, 16); the dip is noisy on the torso, broken along the arm, and
+ * hanging hands stayed no extremity.
  *
  * Tried in round 2 without effect on the tuning set: a third "leg" offered
  * to the hands' naming (a raised knee wins it); passing over extremities

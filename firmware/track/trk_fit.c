@@ -396,6 +396,62 @@ static void guess_chain(const cub_tracker *t, cub_track_skeleton *s, int j0, cub
     for (int k = 1; k <= 3; k++) put(s, j0 + k, chain[k], 0);
 }
 
+/* an arm hanging against the thigh or the flank (no extremity: its hand
+ * is reached across the touching surfaces, a short cut), per mille of
+ * stature */
+enum {
+    HANG_OUT = 90,   /* out from the torso's axis by (the hip's side: 106; a hanging arm lies beside it) */
+    HANG_DROP = 250, /* the tip at least this far below the shoulder */
+    HANG_CELLS = 6,  /* such cells at least (fewer are the hip's bulge or noise) */
+};
+
+/* The hanging hand's tip on this side: among the player's cells out to
+ * the arm's side of the torso's axis beyond the hip, within the arm's
+ * reach below its shoulder and off the legs, the farthest from the
+ * shoulder (the silhouette's arm beside the thigh ends in the hand); -1
+ * when too few cells stand out there. */
+static int32_t hang_tip(const cub_tracker *t, const limb_pick *lp, trk_p3 sc, cub_vec3 axis, cub_vec3 lft, int side,
+                        int32_t st)
+{
+    trk_p3 sh = lp->shoulder[side];
+    int32_t sgn = side ? -1 : 1, tilt = trk_along(axis.x, axis.y, axis.z, lft);
+    int32_t reach = (t->reach_mm[side] ? t->reach_mm[side] : pm(st, P_UPPER_ARM + P_FOREARM)) + pm(st, P_HAND_REACH);
+    int32_t best = -1, best_d = 0, n = 0;
+    for (int32_t i = 0; i < TRK_CELLS; i++) {
+        if (!t->mask[i] || t->dist0[i] == TRK_INF) continue;
+        trk_p3 p = cell_p(t, i);
+        int32_t up = trk_along(p.x - sc.x, p.y - sc.y, p.z - sc.z, axis);
+        /* out from the axis (a leaning torso's axis slants sideways) */
+        int32_t l = sgn * (trk_along(p.x - sc.x, p.y - sc.y, p.z - sc.z, lft) - (int32_t)(((int64_t)tilt * up) >> 16));
+        if (l < pm(st, HANG_OUT) || up > -pm(st, HANG_DROP)) continue;
+        int32_t d = dist3(p, sh);
+        if (d > reach) continue;
+        n++;
+        if (d > best_d && !trk_on_foot_path(t, i, lp, st)) best_d = d, best = i;
+    }
+    return n >= HANG_CELLS ? best : -1;
+}
+
+/* A straight arm hanging from the shoulder joint j0 to the tip cell: the
+ * hand, wrist and elbow on the line between them (inside the limb). */
+static void hang_arm(const cub_tracker *t, cub_track_skeleton *s, int j0, int32_t tip, int side, int32_t st)
+{
+    int32_t r = radius(st, R_LIMB);
+    trk_p3 sh = got(s, j0), tp = inside(cell_p(t, tip), r);
+    int32_t l = dist3(sh, tp);
+    if (l <= 0) return;
+    int32_t reach = t->reach_mm[side] ? t->reach_mm[side] : pm(st, P_UPPER_ARM + P_FOREARM);
+    int32_t lu = reach * P_UPPER_ARM / (P_UPPER_ARM + P_FOREARM);
+    /* along the line: the upper arm's share of the reach, then the wrist
+     * and the palm's middle back from the fingertip */
+    int32_t a[4] = {0, lu < l ? lu : l, l - pm(st, P_WRIST_IN), l - pm(st, P_HAND_REACH / 2)};
+    for (int k = 1; k <= 3; k++) {
+        int32_t ak = a[k] > 0 ? a[k] : 0;
+        put(s, j0 + k, (trk_p3){sh.x + (tp.x - sh.x) * ak / l, sh.y + (tp.y - sh.y) * ak / l, sh.z + (tp.z - sh.z) * ak / l},
+            CUB_Q16_ONE / 4);
+    }
+}
+
 void trk_fit_skeleton(cub_tracker *t, int32_t root, int32_t *ext, int32_t next, cub_track_skeleton *s)
 {
     bool on_floor;
@@ -485,10 +541,16 @@ void trk_fit_skeleton(cub_tracker *t, int32_t root, int32_t *ext, int32_t next, 
     trk_p3 jr = onto_surface(t, add_s(sj, lft, -jhalf), radius(st, R_SHOULDER));
     put(s, CUB_TJ_SHOULDER_L, (trk_p3){jl.x, jl.y, jl.z - front}, CUB_Q16_ONE / 2);
     put(s, CUB_TJ_SHOULDER_R, (trk_p3){jr.x, jr.y, jr.z - front}, CUB_Q16_ONE / 2);
-    /* (an arm without a hand keeps last frame's pose about the shoulder as
-     * output then) */
-    for (int side = 0; side < 2; side++)
-        if (lp.hand[side] < 0) guess_chain(t, s, side ? CUB_TJ_SHOULDER_R : CUB_TJ_SHOULDER_L, axis, st, false);
+    /* an arm without a hand: hanging beside the thigh when the silhouette
+     * shows it there, else last frame's pose about the output's shoulder
+     * or down the torso */
+    for (int side = 0; side < 2; side++) {
+        if (lp.hand[side] >= 0) continue;
+        int j0 = side ? CUB_TJ_SHOULDER_R : CUB_TJ_SHOULDER_L;
+        int32_t h = hang_tip(t, &lp, sc, axis, lft, side, st);
+        if (h >= 0) hang_arm(t, s, j0, h, side, st);
+        else guess_chain(t, s, j0, axis, st, false);
+    }
 }
 
 /* Light smoothing that does not lag: small moves (sensor jitter) are
