@@ -400,6 +400,20 @@
  * per mm of that dip): -373 (dip > 12 mm, 4 a mm), -165 (25, 4), -410
  * (25, 16); the dip is noisy on the torso, broken along the arm, and
  * hanging hands stayed no extremity.
+ * Round 10 (a hand named on the other hand): in the naming, a candidate
+ * whose path from the root leaves the torso more than 80 per mille on the
+ * other shoulder's side of the axis pays 400 per mille (all but a veto;
+ * the linear entry weight alone is outbid by the surface from the
+ * shoulders, a forearm across the body ending nearer the other shoulder):
+ * 54 clips, normal + mirrored, 97967 -> 98113 of 107628 (+146; normal
+ * +21, mirrored +125): bye old room +141 (an arm's path from across the
+ * body held the left hand on the right arm for 32 frames), slash 2 +35,
+ * byebye normal loose mirrored -30, slash 1 -17; 40 or 120 per mille at
+ * 200, +66 / +30; 200 at 80, +139. Not helped: a depth-jump cost in
+ * the shoulders' coarse surface (+47, -56, +26 for 4, 2, 8 per mm).
+ * Most wrong "other hand" picks on the tuning set are the surface from
+ * the shoulders (a fist across the belly is nearer the other shoulder)
+ * or have no extremity near the true hand (93 of 185 left).
  *
  * Tried in round 2 without effect on the tuning set: a third "leg" offered
  * to the hands' naming (a raised knee wins it); passing over extremities

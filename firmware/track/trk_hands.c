@@ -22,6 +22,8 @@ enum {
     HC_NONE = -100,    /* the cost of seeing no hand on a side */
     HC_W_ENTRY = 6,    /* the side the arm's path leaves the torso... */
     HC_ENTRY = 180,    /* ...this far from the root along the surface */
+    HC_ACROSS = 80,    /* a path leaving the torso this far on the other shoulder's side... */
+    HC_ACROSS_COST = 400, /* ...is the other arm's: this much, all but a veto */
     HC_FORE = 220,     /* a "hand" this much nearer the camera than its shoulder: the arm points at it */
 };
 
@@ -111,7 +113,11 @@ static int32_t hand_cost(const cub_tracker *t, int32_t c, int side, const limb_p
     int32_t e = c;
     for (int32_t steps = 0; t->parent0[e] >= 0 && t->dist0[e] > pm(st, HC_ENTRY) && steps < 800; steps++)
         e = t->parent0[e];
-    cost -= HC_W_ENTRY * sgn * trk_along(t->x[e] - sc.x, t->y[e] - sc.y, t->z[e] - sc.z, lft) / 4;
+    int32_t le = sgn * trk_along(t->x[e] - sc.x, t->y[e] - sc.y, t->z[e] - sc.z, lft);
+    cost -= HC_W_ENTRY * le / 4;
+    /* well across the axis the weight alone is outbid by the surface from
+     * the shoulders (a forearm across the body ends nearer the other one) */
+    if (le < -pm(st, HC_ACROSS)) cost += pm(st, HC_ACROSS_COST);
     /* nearer its own shoulder than the other; the arm's length from it (a
      * bump on a shoulder is no hand) */
     cost += HC_W_GOWN * (gs - go) / 4 - HC_W_FAR * (gs < lp->reach_mm ? gs : lp->reach_mm) / 4;
