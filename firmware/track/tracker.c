@@ -414,6 +414,23 @@
  * Most wrong "other hand" picks on the tuning set are the surface from
  * the shoulders (a fist across the belly is nearer the other shoulder)
  * or have no extremity near the true hand (93 of 185 left).
+ * Round 10 (the arm's root in depth): of the elbows off with hand and
+ * wrist right (249 visible, unmirrored), no bias along the arm overall
+ * (+19 mm; folded arms' elbows 90 mm high, boxing's guard), but 237
+ * shoulder-frames (hidden ones counted) sat 100+ mm before the truth in
+ * depth: a forearm or fist held before the shoulder (zombie, boxing,
+ * waving at the camera) was the farthest surface around it, and the
+ * elbow's fit hung from it. A shoulder (the arms' roots, both of them,
+ * and the output joints) now takes no surface more than 60 mm nearer than
+ * expected from the neck (SH_NEAR; the other torso joints keep 200):
+ * 98340 -> 98442 of 107628 (49147 -> 49205 normal, 49193 -> 49237
+ * mirrored), shoulders +31, elbows +41, wrists +8, hands +18; zombie
+ * +16/+13, slash 2 +4/+9, 13_29 small slim +6/+9, boxing 13_18 -5/+3;
+ * real frames and hash unchanged. 100 mm: +58, 30: +75, the output and
+ * fit roots only (not the naming's): +79. Not helped: the elbow hidden
+ * behind the surface seen (up to 240 mm back along the ray: -304; hidden
+ * elbows are not scored), folded EL_W_UP 4 (-24), the hand point 15 mm
+ * back toward the wrist (-33).
  *
  * Tried in round 2 without effect on the tuning set: a third "leg" offered
  * to the hands' naming (a raised knee wins it); passing over extremities

@@ -52,6 +52,7 @@ enum {
  * down it */
 enum {
     SURF_NEAR = 200,
+    SH_NEAR = 60, /* a shoulder's surface no nearer than expected by more (a hand held before it) */
     AXIS_Z = 1,
 };
 
@@ -98,7 +99,7 @@ static int32_t run_half_mm(const cub_tracker *t, trk_p3 p)
  * plus r_mm: a torso axis tilted by the chest standing out before the neck
  * misplaces in depth what lies far along it (the hips). p when no cell is
  * near its depth. */
-static trk_p3 onto_surface(const cub_tracker *t, trk_p3 p, int32_t r_mm)
+static trk_p3 onto_surface_within(const cub_tracker *t, trk_p3 p, int32_t r_mm, int32_t near_mm)
 {
     if (p.z <= 0) return p;
     int32_t gx0, gy0, zmax = 0;
@@ -107,9 +108,21 @@ static trk_p3 onto_surface(const cub_tracker *t, trk_p3 p, int32_t r_mm)
         for (int32_t gx = gx0 - 1; gx <= gx0 + 1; gx++) {
             if (!on_grid(gx, gy)) continue;
             int32_t i = gy * TRK_GW + gx;
-            if (t->mask[i] && trk_abs(t->z[i] + r_mm - p.z) < SURF_NEAR && t->z[i] > zmax) zmax = t->z[i];
+            int32_t dz = t->z[i] + r_mm - p.z;
+            if (t->mask[i] && dz < SURF_NEAR && dz > -near_mm && t->z[i] > zmax) zmax = t->z[i];
         }
     return zmax ? (trk_p3){p.x, p.y, zmax + r_mm} : p;
+}
+
+static trk_p3 onto_surface(const cub_tracker *t, trk_p3 p, int32_t r_mm)
+{
+    return onto_surface_within(t, p, r_mm, SURF_NEAR);
+}
+
+/* A shoulder: a hand or forearm held before it is no shoulder surface. */
+static trk_p3 onto_shoulder(const cub_tracker *t, trk_p3 p, int32_t r_mm)
+{
+    return onto_surface_within(t, p, r_mm, SH_NEAR);
 }
 
 /* Legs and arms among the extremities (all but the head): a leg joins the
@@ -497,8 +510,8 @@ void trk_fit_skeleton(cub_tracker *t, int32_t root, int32_t *ext, int32_t next, 
      * thick, whatever the source: CMU's wide, Bandai's close to the neck
      * (the chest is as wide for both, and below the shoulders it or an arm
      * held out hides where the joint is) */
-    trk_p3 shl = onto_surface(t, add_s(sc, lft, half), radius(st, R_SHOULDER));
-    trk_p3 shr = onto_surface(t, add_s(sc, lft, -half), radius(st, R_SHOULDER));
+    trk_p3 shl = onto_shoulder(t, add_s(sc, lft, half), radius(st, R_SHOULDER));
+    trk_p3 shr = onto_shoulder(t, add_s(sc, lft, -half), radius(st, R_SHOULDER));
     put(s, CUB_TJ_SHOULDER_L, shl, CUB_Q16_ONE / 2);
     put(s, CUB_TJ_SHOULDER_R, shr, CUB_Q16_ONE / 2);
     put(s, CUB_TJ_HIP_L, onto_surface(t, add_s(hp, lft, pm(st, P_HIP_HALF)), radius(st, R_HIP)), CUB_Q16_ONE / 2);
@@ -527,8 +540,8 @@ void trk_fit_skeleton(cub_tracker *t, int32_t root, int32_t *ext, int32_t next, 
      * neck-based centre: a bent or leaning body measures its neck base
      * low, and a root 80 mm down the flank fits the elbow onto the torso;
      * the hands were named from the roots above */
-    put(s, CUB_TJ_SHOULDER_L, onto_surface(t, add_s(sj, lft, half), radius(st, R_SHOULDER)), CUB_Q16_ONE / 2);
-    put(s, CUB_TJ_SHOULDER_R, onto_surface(t, add_s(sj, lft, -half), radius(st, R_SHOULDER)), CUB_Q16_ONE / 2);
+    put(s, CUB_TJ_SHOULDER_L, onto_shoulder(t, add_s(sj, lft, half), radius(st, R_SHOULDER)), CUB_Q16_ONE / 2);
+    put(s, CUB_TJ_SHOULDER_R, onto_shoulder(t, add_s(sj, lft, -half), radius(st, R_SHOULDER)), CUB_Q16_ONE / 2);
     for (int side = 0; side < 2; side++) {
         int jh = side ? CUB_TJ_HIP_R : CUB_TJ_HIP_L;
         if (lp.hand[side] >= 0) fit_arm(t, s, side, lp.hand[side], lp.elbow[side], st);
@@ -537,8 +550,8 @@ void trk_fit_skeleton(cub_tracker *t, int32_t root, int32_t *ext, int32_t next, 
     }
     int32_t front = radius(st, R_SHOULDER) - pm(st, R_SHOULDER_JOINT);
     /* the output's shoulder joints (the arms were fitted from their roots above) */
-    trk_p3 jl = onto_surface(t, add_s(sj, lft, jhalf), radius(st, R_SHOULDER));
-    trk_p3 jr = onto_surface(t, add_s(sj, lft, -jhalf), radius(st, R_SHOULDER));
+    trk_p3 jl = onto_shoulder(t, add_s(sj, lft, jhalf), radius(st, R_SHOULDER));
+    trk_p3 jr = onto_shoulder(t, add_s(sj, lft, -jhalf), radius(st, R_SHOULDER));
     put(s, CUB_TJ_SHOULDER_L, (trk_p3){jl.x, jl.y, jl.z - front}, CUB_Q16_ONE / 2);
     put(s, CUB_TJ_SHOULDER_R, (trk_p3){jr.x, jr.y, jr.z - front}, CUB_Q16_ONE / 2);
     /* an arm without a hand: hanging beside the thigh when the silhouette
