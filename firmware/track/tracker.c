@@ -431,6 +431,18 @@
  * behind the surface seen (up to 240 mm back along the ray: -304; hidden
  * elbows are not scored), folded EL_W_UP 4 (-24), the hand point 15 mm
  * back toward the wrist (-33).
+ * Round 10 (the fist beyond an elbow): trk_hand_beyond refused a fist
+ * nearer the other shoulder than the extremity; hands clasped before the
+ * belly in a bow lie 10-80 mm nearer it, but on their own side of the
+ * body's middle, and are now taken; a fist beyond 2.1 m may show fewer
+ * than 14 cells (they fall with the square of the distance: 5-11 at 3 m):
+ * 98442 -> 98494 (bow normal small +15/+12, zombie +8/+2, tall loose
+ * -8/-2, dab -4/-4); real frames and hash unchanged. Of the 319
+ * arm-frames with the elbow taken for the hand, 137 have no fist cell
+ * nearer the camera: a guard's fist by the chin (punch 2, boxing) is
+ * neither nearer nor farther from the shoulder; it needs another cue.
+ * Not helped: the middle 40 mm across (-20), cells scaled with depth
+ * both ways (-46).
  *
  * Tried in round 2 without effect on the tuning set: a third "leg" offered
  * to the hands' naming (a raised knee wins it); passing over extremities

@@ -136,6 +136,7 @@ int32_t trk_hand_in_front(const cub_tracker *t, int32_t root, const limb_pick *l
                           cub_vec3 axis, cub_vec3 lft, int side, int32_t st);
 
 /* an elbow taken for the hand: the fist beyond it, -1 none */
-int32_t trk_hand_beyond(const cub_tracker *t, const limb_pick *lp, trk_p3 hc, cub_vec3 axis, int side, int32_t st);
+int32_t trk_hand_beyond(const cub_tracker *t, const limb_pick *lp, trk_p3 sc, trk_p3 hc, cub_vec3 axis, cub_vec3 lft,
+                        int side, int32_t st);
 
 #endif

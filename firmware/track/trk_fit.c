@@ -532,7 +532,7 @@ void trk_fit_skeleton(cub_tracker *t, int32_t root, int32_t *ext, int32_t next, 
      * its elbow as the arm's extremity: the fist lies beyond it */
     for (int side = 0; side < 2; side++) {
         if (lp.hand[side] < 0) continue;
-        int32_t f = trk_hand_beyond(t, &lp, hc, axis, side, st);
+        int32_t f = trk_hand_beyond(t, &lp, sc, hc, axis, lft, side, st);
         if (f >= 0) lp.elbow[side] = lp.hand[side], lp.hand[side] = f;
     }
     /* the elbows hang from the arms' roots level with the shoulder joints

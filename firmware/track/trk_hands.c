@@ -53,8 +53,9 @@ enum {
     HB_DZ = 40,     /* nearer the camera than it by */
     HB_MORE = 20,   /* farther from the shoulder than it by */
     HB_BELOW = 60,  /* no lower below the pelvis' middle (a thigh) */
-    HB_CELLS = 14,  /* such cells, at least (a few are a fold of the sleeve or chest) */
-    HB_ACROSS = 16, /* the fist no nearer the other shoulder than the extremity by */
+    HB_CELLS = 14,  /* such cells, at least (a few are a fold of the sleeve or chest)... */
+    HB_CELLS_MM = 2100, /* ...up to this depth; farther, fewer (a fist's cells fall with the square of its distance) */
+    HB_ACROSS = 16, /* the fist no nearer the other shoulder than the extremity by (across the middle) */
 };
 
 /* Distances along the surface from the shoulder joint sh (the player's
@@ -251,10 +252,12 @@ int32_t trk_hand_in_front(const cub_tracker *t, int32_t root, const limb_pick *l
  * across them from the chest and the elbow ends the arm's path. Then the
  * fist lies within a forearm of the extremity, nearer the camera and
  * farther from the shoulder: the nearest such cell, off the face and the
- * other hand. -1 when none, or when that cell lies across the body (nearer
- * the other shoulder than the extremity: the other arm's fist before a
- * real hand, the belly of a side bend). */
-int32_t trk_hand_beyond(const cub_tracker *t, const limb_pick *lp, trk_p3 hc, cub_vec3 axis, int side, int32_t st)
+ * other hand. -1 when none, or when that cell lies across the body (past
+ * its middle and nearer the other shoulder than the extremity: the other
+ * arm's fist before a real hand, the belly of a side bend); a fist at the
+ * back of the room shows fewer cells. */
+int32_t trk_hand_beyond(const cub_tracker *t, const limb_pick *lp, trk_p3 sc, trk_p3 hc, cub_vec3 axis, cub_vec3 lft,
+                        int side, int32_t st)
 {
     int32_t e = lp->hand[side], other = lp->hand[1 - side];
     trk_p3 pe = cell_p(t, e), sh = lp->shoulder[side], so = lp->shoulder[1 - side];
@@ -281,6 +284,11 @@ int32_t trk_hand_beyond(const cub_tracker *t, const limb_pick *lp, trk_p3 hc, cu
             if (t->z[i] < best_z) best_z = t->z[i], best = i;
         }
     /* a fist lies out along its own arm, not back across the body */
-    if (n < HB_CELLS || dist3(cell_p(t, best), so) < deo) return -1;
+    if (n < HB_CELLS && (pe.z <= HB_CELLS_MM || n * pe.z / HB_CELLS_MM * pe.z < HB_CELLS * HB_CELLS_MM)) return -1;
+    trk_p3 pb = cell_p(t, best);
+    int32_t l = (side ? -1 : 1) * trk_along(pb.x - sc.x, pb.y - sc.y, pb.z - sc.z, lft);
+    /* hands clasped before the belly in a bow lie a little nearer the
+     * other shoulder, but on their own side */
+    if (dist3(pb, so) < deo && l < 0) return -1;
     return best;
 }
