@@ -443,6 +443,24 @@
  * neither nearer nor farther from the shoulder; it needs another cue.
  * Not helped: the middle 40 mm across (-20), cells scaled with depth
  * both ways (-46).
+ * Round 10 (bows, a shoulder named a hand): a body bent toward the
+ * camera shows its shoulders' tops as extremities far from the root, but
+ * the surface from the arm's root (placed low and deep on a bent torso)
+ * runs 300-600 mm round to them, so the surface test (HC_NEAR) missed
+ * them and they won the naming with the hands hanging hidden or beside
+ * the thighs. On a bent body (HF_BOW, now lp->bent) a candidate above the
+ * shoulder centre, within 120 per mille of a shoulder across the line of
+ * sight and behind the head's centre (a hand called to the mouth stands
+ * before it) pays the shoulder bump's cost; the hanging or before-the-
+ * torso search then places the arm: 98340 -> 98430 of 107628 (+90;
+ * normal 49147 -> 49190, mirrored 49193 -> 49240), hands +38/+38
+ * (left/right), wrists +27/+24, elbows -18/-19; bow chimpira +24/+8,
+ * masculinity +13/+17, musical +4/+13, not-confident +10/+8, active
+ * -6/-4, normal small -6/+3; real frames and hash unchanged. Radius 150:
+ * +91, 100: +78. Not helped: the straight distance for every body (-83),
+ * bent bodies' 3D distance (+14), no depth condition (+4: call 2 -65),
+ * no nearer than the arm's root by 100/130 per mille instead of behind
+ * the head (+30/+29).
  *
  * Tried in round 2 without effect on the tuning set: a third "leg" offered
  * to the hands' naming (a raised knee wins it); passing over extremities

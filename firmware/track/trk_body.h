@@ -119,9 +119,12 @@ typedef struct limb_pick {
     int32_t head;
     trk_p3 shoulder[2], head_c;
     int32_t reach_mm; /* shoulder to fingertip, 0 unknown */
+    bool bent;        /* the body bent toward the camera (a bow) */
 } limb_pick;
 
-/* trk_hands.c: surface distances from both shoulders (lp->shoulder) */
+/* trk_hands.c: the body bent toward the camera (the head's centre well before the root) */
+bool trk_bent(const cub_tracker *t, int32_t root, const limb_pick *lp, int32_t st);
+/* surface distances from both shoulders (lp->shoulder) */
 void trk_from_shoulders(cub_tracker *t, limb_pick *lp);
 /* the hands among the candidate extremities: lp->hand (both -1 when none) */
 void trk_pick_hands(const cub_tracker *t, const int32_t *hands, int32_t nh, limb_pick *lp, trk_p3 sc, cub_vec3 lft,

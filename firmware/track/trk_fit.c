@@ -519,6 +519,7 @@ void trk_fit_skeleton(cub_tracker *t, int32_t root, int32_t *ext, int32_t next, 
 
     lp.shoulder[0] = got(s, CUB_TJ_SHOULDER_L), lp.shoulder[1] = got(s, CUB_TJ_SHOULDER_R), lp.head_c = hd;
     lp.reach_mm = pm(st, P_UPPER_ARM + P_FOREARM + P_HAND_REACH) * ARM_SLACK / 100;
+    lp.bent = trk_bent(t, root, &lp, st);
     trk_from_shoulders(t, &lp);
     pick_limbs(t, root, ext, next, st, sc, hc, axis, lat, &lp);
     if (on_floor) feet_on_floor(t, hc, lat, st, &lp);

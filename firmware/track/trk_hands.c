@@ -17,6 +17,7 @@ enum {
     HC_PREV_CAP = 300, /* ...counted up to this */
     HC_NEAR = 120,     /* a "hand" this near a shoulder is a bump on it... */
     HC_NEAR_COST = 800,
+    HC_BOW_NEAR = 120, /* ...and on a bowed body one this near a shoulder across the line of sight */
     HC_HEAD = 130,     /* ...and one this near the head's centre a bump on the skull */
     HC_HEAD_COST = 400,
     HC_NONE = -100,    /* the cost of seeing no hand on a side */
@@ -58,6 +59,13 @@ enum {
     HB_ACROSS = 16, /* the fist no nearer the other shoulder than the extremity by (across the middle) */
 };
 
+/* The head's centre well before the root's surface: a bow (its chest and
+ * shoulders stand out before the belly, the hands hang below). */
+bool trk_bent(const cub_tracker *t, int32_t root, const limb_pick *lp, int32_t st)
+{
+    return lp->head >= 0 && lp->head_c.z < t->z[root] - pm(st, HF_BOW);
+}
+
 /* Distances along the surface from the shoulder joint sh (the player's
  * cell nearest it) into dist, TRK_INF where unreachable. */
 static void from_shoulder(cub_tracker *t, trk_p3 sh, int32_t *dist)
@@ -82,6 +90,21 @@ void trk_from_shoulders(cub_tracker *t, limb_pick *lp)
 {
     from_shoulder(t, lp->shoulder[0], t->dist_sh[0]);
     from_shoulder(t, lp->shoulder[1], t->dist_sh[1]);
+}
+
+/* A bowed body's shoulder top: a body bent toward the camera shows its
+ * shoulders' tops as extremities far from the root, round the bent
+ * torso's depth from the arm's root (the surface test misses them), while
+ * the hands hang below, hidden or beside the thighs. Such a top lies above
+ * the shoulder centre, over a shoulder across the camera's line of sight,
+ * and behind the bowed head's centre (a hand called to the mouth stands
+ * before it). */
+static bool bow_shoulder(const cub_tracker *t, trk_p3 p, const limb_pick *lp, trk_p3 sc, int32_t st)
+{
+    if (!lp->bent || p.z <= lp->head_c.z || trk_along(p.x - sc.x, p.y - sc.y, p.z - sc.z, t->up) <= 0) return false;
+    for (int side = 0; side < 2; side++)
+        if (trk_len(p.x - lp->shoulder[side].x, p.y - lp->shoulder[side].y, 0) < pm(st, HC_BOW_NEAR)) return true;
+    return false;
 }
 
 /* The cost of naming candidate c side's hand (mm-like units; lower is
@@ -123,6 +146,7 @@ static int32_t hand_cost(const cub_tracker *t, int32_t c, int side, const limb_p
      * bump on a shoulder is no hand) */
     cost += HC_W_GOWN * (gs - go) / 4 - HC_W_FAR * (gs < lp->reach_mm ? gs : lp->reach_mm) / 4;
     if (gs < pm(st, HC_NEAR) || go < pm(st, HC_NEAR)) cost += pm(st, HC_NEAR_COST);
+    else if (bow_shoulder(t, p, lp, sc, st)) cost += pm(st, HC_NEAR_COST);
     /* on the head's surface: the skull's side, not a hand (a palm's centre
      * keeps off the head's) */
     if (lp->head >= 0 && dist3(p, lp->head_c) < pm(st, HC_HEAD)) cost += pm(st, HC_HEAD_COST);
@@ -221,7 +245,7 @@ int32_t trk_hand_in_front(const cub_tracker *t, int32_t root, const limb_pick *l
     int32_t other = lp->hand[1 - side];
     int32_t zf = t->z[root] - pm(st, HF_FRONT), reach = pm(st, P_UPPER_ARM + P_FOREARM + P_HAND_REACH);
     int32_t best = -1, best_s = INT32_MIN, nfront = 0, sgn = side ? -1 : 1;
-    bool bent = lp->head >= 0 && lp->head_c.z < t->z[root] - pm(st, HF_BOW);
+    bool bent = lp->bent;
     for (int32_t i = 0; i < TRK_CELLS; i++) {
         if (!t->mask[i] || t->dist0[i] == TRK_INF || t->z[i] > zf) continue;
         trk_p3 p = cell_p(t, i);
