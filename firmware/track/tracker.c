@@ -461,6 +461,16 @@
  * bent bodies' 3D distance (+14), no depth condition (+4: call 2 -65),
  * no nearer than the arm's root by 100/130 per mille instead of behind
  * the head (+30/+29).
+ * Round 10 (the torso's joints): their misses are mostly each source's
+ * convention along the torso (the hip centre 160 mm below the shoulder
+ * centre on CMU, 270 on Bandai, 285-330 on AnimatedDrawings: -60 and +30
+ * to +85 mm off per clip, all within the fitted offsets' compromise) and
+ * the hips' width: the hip joints stood 15 mm too wide on Bandai clips
+ * (CMU's shifted sideways, not wider). Half the hips' width 56 -> 47 per
+ * mille (P_HIP_HALF): 98565 -> 98625 of 107628 (normal 49266 -> 49300,
+ * mirrored 49299 -> 49325), hips +14/+10 and +15/+15 (left/right, normal/
+ * mirrored), spread thin (guide giant +5/+3, jesse +5/+6, byebye musical
+ * +8/+1, 02_01 +3/+3); 45 and 50: +59/+49. Not helped: 62 (-68).
  *
  * Tried in round 2 without effect on the tuning set: a third "leg" offered
  * to the hands' naming (a raised knee wins it); passing over extremities

@@ -31,7 +31,7 @@ enum {
     P_ARM_ROOT_RUN = 50,   /* shoulder centre to the row the arms' roots are measured on */
     P_ARM_ROOT_MIN = 75,   /* the narrowest arms' roots believed */
     R_ARM_ROOT_EDGE = 15,  /* arm's root to the silhouette's edge there (the deltoid) */
-    P_HIP_HALF = 56,
+    P_HIP_HALF = 47,       /* centre to a hip joint across the body (the renders: Bandai narrower, CMU 56) */
     P_HIP_DROP = 70,
     P_UPPER_ARM = 190,
     P_FOREARM = 130,
