@@ -471,6 +471,21 @@
  * mirrored 49299 -> 49325), hips +14/+10 and +15/+15 (left/right, normal/
  * mirrored), spread thin (guide giant +5/+3, jesse +5/+6, byebye musical
  * +8/+1, 02_01 +3/+3); 45 and 50: +59/+49. Not helped: 62 (-68).
+ * Round 10 (a knee named a hand): a bent knee's tip (raised aside,
+ * jesse; toward the camera, tall loose; a stance leg's bulge under a
+ * sword's grip, slash 1) stands a thigh's thickness off the foot's path,
+ * which runs round the knee's inner side, so HF_FOOT_PATH missed it, and
+ * the hanging fallback then took it as well. An extremity, or a hanging
+ * tip, within 120 per mille of a named leg's knee (the foot's path cell a
+ * shin's length from its tip in a straight line) is no hand (HF_KNEE):
+ * 98565 -> 98656 of 107628 (+91; normal 49266 -> 49303, mirrored 49299 ->
+ * 49353), hands +29/+12 (left/right), wrists +31/+12, elbows +6/+1;
+ * bow childish +13/+8, bye angry sturdy +10/+5, slash 1 +4/+9, bow
+ * chimpira +4/+13, boxing 13_18 +3/+8, jesse -11/-2 (the hands on its hips
+ * are no extremity: the freed arm takes the other hand). 100 per mille
+ * +76, 150 +76, 180 -34; on the extremities only (not the hanging tip)
+ * +23. Not helped: the cell a shin and ankle up (past a bent knee, at
+ * 150): -12 on the extremities, -363 also in the before-the-torso search.
  *
  * Tried in round 2 without effect on the tuning set: a third "leg" offered
  * to the hands' naming (a raised knee wins it); passing over extremities

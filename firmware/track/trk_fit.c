@@ -179,7 +179,8 @@ static void pick_limbs(const cub_tracker *t, int32_t root, const int32_t *ext, i
      * foot's path runs through it: it is no hand */
     int32_t kept = 0;
     for (int32_t k = 0; k < nh; k++)
-        if (!trk_on_foot_path(t, hands[k], lp, stature)) hands[kept++] = hands[k];
+        if (!trk_on_foot_path(t, hands[k], lp, stature) && !trk_near_knee(t, cell_p(t, hands[k]), lp, stature))
+            hands[kept++] = hands[k];
     cub_vec3 lft = {lat.x * TRK_LEFT_SIGN, lat.y * TRK_LEFT_SIGN, lat.z * TRK_LEFT_SIGN};
     trk_pick_hands(t, hands, kept, lp, sc, lft, stature);
 }
@@ -440,7 +441,7 @@ static int32_t hang_tip(const cub_tracker *t, const limb_pick *lp, trk_p3 sc, cu
         int32_t d = dist3(p, sh);
         if (d > reach) continue;
         n++;
-        if (d > best_d && !trk_on_foot_path(t, i, lp, st)) best_d = d, best = i;
+        if (d > best_d && !trk_on_foot_path(t, i, lp, st) && !trk_near_knee(t, p, lp, st)) best_d = d, best = i;
     }
     return n >= HANG_CELLS ? best : -1;
 }

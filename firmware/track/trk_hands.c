@@ -46,6 +46,7 @@ enum {
     HF_JOIN_NEAR = 40,   /* ...runs this near a foot's path... */
     HF_JOIN_FROM = 200,  /* ...this far from the root (beyond the hip)... */
     HF_JOIN_BEHIND = 80, /* ...along the foot path's cells from this nearer the root than it on */
+    HF_KNEE = 120,       /* or it lies this near a named leg's knee (a bent knee's tip stands out of its path) */
 };
 
 /* an elbow taken for the hand, per mille of stature: the fist beyond it */
@@ -215,6 +216,22 @@ static bool near_foot_path(const cub_tracker *t, trk_p3 p, const limb_pick *lp, 
         for (int32_t i = f, n = 0; i >= 0 && n < TRK_PATH_STEPS && t->dist0[i] >= from_mm;
              i = t->parent0[i], n++)
             if (dist3(p, cell_p(t, i)) < near_mm) return true;
+    }
+    return false;
+}
+
+/* Point p lies near a named leg's knee: the foot's path cell a shin's
+ * length from the foot's tip in a straight line (the path runs round a
+ * bent knee's inner side, and its outer tip, raised aside or toward the
+ * camera, stands a thigh's thickness off the path: HF_FOOT_PATH misses
+ * it, and a wider path distance everywhere takes hands beside the thigh). */
+bool trk_near_knee(const cub_tracker *t, trk_p3 p, const limb_pick *lp, int32_t st)
+{
+    for (int side = 0; side < 2; side++) {
+        int32_t f = lp->foot[side];
+        if (f < 0) continue;
+        int32_t k = path_at(t, f, pm(st, P_SHIN));
+        if (t->parent0[k] >= 0 && dist3(p, cell_p(t, k)) < pm(st, HF_KNEE)) return true;
     }
     return false;
 }
