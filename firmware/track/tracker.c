@@ -486,6 +486,19 @@
  * +76, 150 +76, 180 -34; on the extremities only (not the hanging tip)
  * +23. Not helped: the cell a shin and ankle up (past a bent knee, at
  * 150): -12 on the extremities, -363 also in the before-the-torso search.
+ * Round 10 (a guard's fist by the chin): the fist touches the face, so
+ * it is no extremity, and the elbow ends the arm's path, but the fist is
+ * neither nearer the camera nor farther from the shoulder than it. When
+ * the extremity hangs below its shoulder within 250 per mille of it (an
+ * elbow: a straight arm's hand is farther), on a body not bent, the fist
+ * is the highest of the cells at least 120 above it, within a forearm and
+ * hand (210) and 80 in depth of it, no more than 40 nearer the shoulder
+ * (the upper arm runs up to the shoulder) and off the face and the other
+ * hand (6 cells at least): 98565 -> 98629 of 107628 (49266 -> 49289
+ * normal, 49299 -> 49340 mirrored); hands +15, wrists +25, elbows -3;
+ * punch 2 +22/+31, byebye normal loose +0/+18, boxing 13_18 +1/+6, bow
+ * normal small -2/-15. Depth 50: +53 (on bent bodies too: -20, bow
+ * not-confident -63); rise 150: +33, 100: +29; 20 nearer: +57; 12 cells: +41.
  *
  * Tried in round 2 without effect on the tuning set: a third "leg" offered
  * to the hands' naming (a raised knee wins it); passing over extremities

@@ -60,6 +60,15 @@ enum {
     HB_ACROSS = 16, /* the fist no nearer the other shoulder than the extremity by (across the middle) */
 };
 
+/* a guard's fist by the chin above its elbow, per mille of stature */
+enum {
+    HG_ELBOW = 250, /* the extremity no farther from its shoulder (an elbow: a straight arm's hand is farther) */
+    HG_UP = 120,    /* the fist at least this far above it (the forearm upright)... */
+    HG_DZ = 80,     /* ...at its depth within this (the forearm before the chest, not the chest behind) */
+    HG_LESS = 40,   /* ...no nearer the shoulder than it by more (the upper arm runs up to the shoulder) */
+    HG_CELLS = 6,   /* such cells, at least */
+};
+
 /* The head's centre well before the root's surface: a bow (its chest and
  * shoulders stand out before the belly, the hands hang below). */
 bool trk_bent(const cub_tracker *t, int32_t root, const limb_pick *lp, int32_t st)
@@ -288,6 +297,34 @@ int32_t trk_hand_in_front(const cub_tracker *t, int32_t root, const limb_pick *l
     return nfront >= HF_CELLS ? best : -1;
 }
 
+/* A guard's fist by the chin: the forearm stands upright above the
+ * elbow, which ends the arm's path (the fist touches the face, so it is
+ * no extremity, and is neither nearer the camera nor farther from the
+ * shoulder than the elbow). The fist is the top of the cells above the
+ * elbow at its depth, about as far from the shoulder as it (the upper
+ * arm's cells run up to the shoulder), off the face; -1 when too few. */
+static int32_t fist_above(const cub_tracker *t, const limb_pick *lp, int side, int32_t de, int32_t gx0, int32_t gy0,
+                          int32_t rc, int32_t st)
+{
+    trk_p3 pe = cell_p(t, lp->hand[side]), sh = lp->shoulder[side];
+    int32_t other = lp->hand[1 - side], lim = pm(st, HB_NEAR);
+    int32_t best = -1, best_up = INT32_MIN, n = 0;
+    for (int32_t gy = gy0 - rc; gy <= gy0; gy++)
+        for (int32_t gx = gx0 - rc; gx <= gx0 + rc; gx++) {
+            if (!on_grid(gx, gy)) continue;
+            int32_t i = gy * TRK_GW + gx;
+            if (!t->mask[i] || t->dist0[i] == TRK_INF || trk_abs(t->z[i] - pe.z) > pm(st, HG_DZ)) continue;
+            trk_p3 p = cell_p(t, i);
+            int32_t up = trk_along(p.x - pe.x, p.y - pe.y, p.z - pe.z, t->up);
+            if (up < pm(st, HG_UP) || dist3(p, pe) > lim || dist3(p, sh) < de - pm(st, HG_LESS)) continue;
+            if (other >= 0 && dist3(p, cell_p(t, other)) < pm(st, HF_OTHER)) continue;
+            if (lp->head >= 0 && dist3(p, lp->head_c) < pm(st, HF_HEAD)) continue;
+            n++;
+            if (up > best_up) best_up = up, best = i;
+        }
+    return n >= HG_CELLS ? best : -1;
+}
+
 /* An elbow taken for the hand: a forearm pointing at the camera (or held
  * before the chest) foreshortens into depth steps, the fist is reached
  * across them from the chest and the elbow ends the arm's path. Then the
@@ -296,7 +333,8 @@ int32_t trk_hand_in_front(const cub_tracker *t, int32_t root, const limb_pick *l
  * other hand. -1 when none, or when that cell lies across the body (past
  * its middle and nearer the other shoulder than the extremity: the other
  * arm's fist before a real hand, the belly of a side bend); a fist at the
- * back of the room shows fewer cells. */
+ * back of the room shows fewer cells. A guard's fist by the chin is
+ * neither nearer nor farther: it is looked for above the elbow first. */
 int32_t trk_hand_beyond(const cub_tracker *t, const limb_pick *lp, trk_p3 sc, trk_p3 hc, cub_vec3 axis, cub_vec3 lft,
                         int side, int32_t st)
 {
@@ -307,6 +345,10 @@ int32_t trk_hand_beyond(const cub_tracker *t, const limb_pick *lp, trk_p3 sc, tr
     int32_t de = dist3(pe, sh), lim = pm(st, HB_NEAR), reach = pm(st, P_UPPER_ARM + P_FOREARM + P_HAND_REACH);
     int32_t rc = lim * CUB_TRACK_FOCAL_PX / (pe.z * TRK_CELL_PX) + 1, gx0 = e % TRK_GW, gy0 = e / TRK_GW;
     int32_t best = -1, best_z = INT32_MAX, n = 0;
+    if (!lp->bent && de <= pm(st, HG_ELBOW) && trk_along(pe.x - sh.x, pe.y - sh.y, pe.z - sh.z, t->up) < 0) {
+        int32_t f = fist_above(t, lp, side, de, gx0, gy0, rc, st);
+        if (f >= 0) return f;
+    }
     for (int32_t gy = gy0 - rc; gy <= gy0 + rc; gy++)
         for (int32_t gx = gx0 - rc; gx <= gx0 + rc; gx++) {
             if (!on_grid(gx, gy)) continue;
