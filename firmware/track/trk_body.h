@@ -132,10 +132,9 @@ void trk_pick_hands(const cub_tracker *t, const int32_t *hands, int32_t nh, limb
 /* extremity i lies on the torso's surface (a shoulder bump, an elbow) */
 bool trk_on_torso(const cub_tracker *t, int32_t root, int32_t i, trk_p3 sc, trk_p3 hc, cub_vec3 axis, cub_vec3 lft,
                   int32_t st);
-/* cell c lies on a named foot's path (a knee raised aside: no hand) */
-bool trk_on_foot_path(const cub_tracker *t, int32_t c, const limb_pick *lp, int32_t st);
-/* point p lies near a named leg's knee (a bent knee's tip: no hand) */
-bool trk_near_knee(const cub_tracker *t, trk_p3 p, const limb_pick *lp, int32_t st);
+/* cell c lies on a leg: on a named foot's path (a knee raised aside) or
+ * near its knee (a bent knee's tip): no hand */
+bool trk_on_leg(const cub_tracker *t, int32_t c, const limb_pick *lp, int32_t st);
 /* a hand before the torso on this side: a cell, -1 none */
 int32_t trk_hand_in_front(const cub_tracker *t, int32_t root, const limb_pick *lp, trk_p3 sc, trk_p3 hc,
                           cub_vec3 axis, cub_vec3 lft, int side, int32_t st);

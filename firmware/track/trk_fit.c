@@ -179,8 +179,7 @@ static void pick_limbs(const cub_tracker *t, int32_t root, const int32_t *ext, i
      * foot's path runs through it: it is no hand */
     int32_t kept = 0;
     for (int32_t k = 0; k < nh; k++)
-        if (!trk_on_foot_path(t, hands[k], lp, stature) && !trk_near_knee(t, cell_p(t, hands[k]), lp, stature))
-            hands[kept++] = hands[k];
+        if (!trk_on_leg(t, hands[k], lp, stature)) hands[kept++] = hands[k];
     cub_vec3 lft = {lat.x * TRK_LEFT_SIGN, lat.y * TRK_LEFT_SIGN, lat.z * TRK_LEFT_SIGN};
     trk_pick_hands(t, hands, kept, lp, sc, lft, stature);
 }
@@ -410,6 +409,13 @@ static void guess_chain(const cub_tracker *t, cub_track_skeleton *s, int j0, cub
     for (int k = 1; k <= 3; k++) put(s, j0 + k, chain[k], 0);
 }
 
+/* The arm's stretched length (shoulder to wrist) as learnt, the
+ * proportions' before it is. */
+static int32_t arm_reach_mm(const cub_tracker *t, int side, int32_t st)
+{
+    return t->reach_mm[side] ? t->reach_mm[side] : pm(st, P_UPPER_ARM + P_FOREARM);
+}
+
 /* an arm hanging against the thigh or the flank (no extremity: its hand
  * is reached across the touching surfaces, a short cut), per mille of
  * stature */
@@ -429,7 +435,7 @@ static int32_t hang_tip(const cub_tracker *t, const limb_pick *lp, trk_p3 sc, cu
 {
     trk_p3 sh = lp->shoulder[side];
     int32_t sgn = side ? -1 : 1, tilt = trk_along(axis.x, axis.y, axis.z, lft);
-    int32_t reach = (t->reach_mm[side] ? t->reach_mm[side] : pm(st, P_UPPER_ARM + P_FOREARM)) + pm(st, P_HAND_REACH);
+    int32_t reach = arm_reach_mm(t, side, st) + pm(st, P_HAND_REACH);
     int32_t best = -1, best_d = 0, n = 0;
     for (int32_t i = 0; i < TRK_CELLS; i++) {
         if (!t->mask[i] || t->dist0[i] == TRK_INF) continue;
@@ -441,7 +447,7 @@ static int32_t hang_tip(const cub_tracker *t, const limb_pick *lp, trk_p3 sc, cu
         int32_t d = dist3(p, sh);
         if (d > reach) continue;
         n++;
-        if (d > best_d && !trk_on_foot_path(t, i, lp, st) && !trk_near_knee(t, p, lp, st)) best_d = d, best = i;
+        if (d > best_d && !trk_on_leg(t, i, lp, st)) best_d = d, best = i;
     }
     return n >= HANG_CELLS ? best : -1;
 }
@@ -454,7 +460,7 @@ static void hang_arm(const cub_tracker *t, cub_track_skeleton *s, int j0, int32_
     trk_p3 sh = got(s, j0), tp = inside(cell_p(t, tip), r);
     int32_t l = dist3(sh, tp);
     if (l <= 0) return;
-    int32_t reach = t->reach_mm[side] ? t->reach_mm[side] : pm(st, P_UPPER_ARM + P_FOREARM);
+    int32_t reach = arm_reach_mm(t, side, st);
     int32_t lu = reach * P_UPPER_ARM / (P_UPPER_ARM + P_FOREARM);
     /* along the line: the upper arm's share of the reach, then the wrist
      * and the palm's middle back from the fingertip */

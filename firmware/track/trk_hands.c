@@ -15,9 +15,8 @@ enum {
     HC_LONG = 600,     /* ...up to this */
     HC_W_PREV = 3,     /* near last frame's hand... */
     HC_PREV_CAP = 300, /* ...counted up to this */
-    HC_NEAR = 120,     /* a "hand" this near a shoulder is a bump on it... */
+    HC_NEAR = 120,     /* a "hand" this near a shoulder is a bump on it (on a bowed body, across the line of sight)... */
     HC_NEAR_COST = 800,
-    HC_BOW_NEAR = 120, /* ...and on a bowed body one this near a shoulder across the line of sight */
     HC_HEAD = 130,     /* ...and one this near the head's centre a bump on the skull */
     HC_HEAD_COST = 400,
     HC_NONE = -100,    /* the cost of seeing no hand on a side */
@@ -113,7 +112,7 @@ static bool bow_shoulder(const cub_tracker *t, trk_p3 p, const limb_pick *lp, tr
 {
     if (!lp->bent || p.z <= lp->head_c.z || trk_along(p.x - sc.x, p.y - sc.y, p.z - sc.z, t->up) <= 0) return false;
     for (int side = 0; side < 2; side++)
-        if (trk_len(p.x - lp->shoulder[side].x, p.y - lp->shoulder[side].y, 0) < pm(st, HC_BOW_NEAR)) return true;
+        if (trk_len(p.x - lp->shoulder[side].x, p.y - lp->shoulder[side].y, 0) < pm(st, HC_NEAR)) return true;
     return false;
 }
 
@@ -229,13 +228,14 @@ static bool near_foot_path(const cub_tracker *t, trk_p3 p, const limb_pick *lp, 
     return false;
 }
 
-/* Point p lies near a named leg's knee: the foot's path cell a shin's
+/* Cell c lies near a named leg's knee: the foot's path cell a shin's
  * length from the foot's tip in a straight line (the path runs round a
  * bent knee's inner side, and its outer tip, raised aside or toward the
  * camera, stands a thigh's thickness off the path: HF_FOOT_PATH misses
  * it, and a wider path distance everywhere takes hands beside the thigh). */
-bool trk_near_knee(const cub_tracker *t, trk_p3 p, const limb_pick *lp, int32_t st)
+static bool near_knee(const cub_tracker *t, int32_t c, const limb_pick *lp, int32_t st)
 {
+    trk_p3 p = cell_p(t, c);
     for (int side = 0; side < 2; side++) {
         int32_t f = lp->foot[side];
         if (f < 0) continue;
@@ -249,7 +249,7 @@ bool trk_near_knee(const cub_tracker *t, trk_p3 p, const limb_pick *lp, int32_t 
  * the root runs along one away from the hips (the foot's path follows the
  * raised thigh's underside, the knee's tip sticks out above it, farther
  * than HF_FOOT_PATH). A real hand's path runs along the arm. */
-bool trk_on_foot_path(const cub_tracker *t, int32_t c, const limb_pick *lp, int32_t st)
+static bool on_foot_path(const cub_tracker *t, int32_t c, const limb_pick *lp, int32_t st)
 {
     int32_t near_mm = pm(st, HF_FOOT_PATH);
     if (near_foot_path(t, cell_p(t, c), lp, t->dist0[c] - near_mm, near_mm)) return true;
@@ -257,6 +257,11 @@ bool trk_on_foot_path(const cub_tracker *t, int32_t c, const limb_pick *lp, int3
     if (t->dist0[m] <= pm(st, HF_JOIN_FROM)) return false;
     return near_foot_path(t, cell_p(t, m), lp, t->dist0[m] - pm(st, HF_JOIN_BEHIND),
                           pm(st, HF_JOIN_NEAR));
+}
+
+bool trk_on_leg(const cub_tracker *t, int32_t c, const limb_pick *lp, int32_t st)
+{
+    return on_foot_path(t, c, lp, st) || near_knee(t, c, lp, st);
 }
 
 /* A hand held before the torso is no extremity (its path ends in the
@@ -271,11 +276,10 @@ int32_t trk_hand_in_front(const cub_tracker *t, int32_t root, const limb_pick *l
     int32_t other = lp->hand[1 - side];
     int32_t zf = t->z[root] - pm(st, HF_FRONT), reach = pm(st, P_UPPER_ARM + P_FOREARM + P_HAND_REACH);
     int32_t best = -1, best_s = INT32_MIN, nfront = 0, sgn = side ? -1 : 1;
-    bool bent = lp->bent;
     for (int32_t i = 0; i < TRK_CELLS; i++) {
         if (!t->mask[i] || t->dist0[i] == TRK_INF || t->z[i] > zf) continue;
         trk_p3 p = cell_p(t, i);
-        if (bent && p.z > torso_z(t, root, p, axis) - pm(st, HF_FRONT)) continue;
+        if (lp->bent && p.z > torso_z(t, root, p, axis) - pm(st, HF_FRONT)) continue;
         /* between the hips and a little above the shoulders */
         int32_t up_sc = trk_along(p.x - sc.x, p.y - sc.y, p.z - sc.z, axis);
         int32_t up_hc = trk_along(p.x - hc.x, p.y - hc.y, p.z - hc.z, axis);
@@ -292,7 +296,7 @@ int32_t trk_hand_in_front(const cub_tracker *t, int32_t root, const limb_pick *l
          * surface (depth steps cost extra there) */
         if (d <= pm(st, HF_MIN) || t->dist0[i] <= best_s) continue;
         /* a knee raised before the hip stands out in depth too */
-        if (!trk_on_foot_path(t, i, lp, st)) best_s = t->dist0[i], best = i;
+        if (!on_foot_path(t, i, lp, st)) best_s = t->dist0[i], best = i;
     }
     return nfront >= HF_CELLS ? best : -1;
 }
