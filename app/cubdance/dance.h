@@ -1,28 +1,26 @@
-/* dance — the box leading a song: the glue between the firmware's coach
- * (what to do), its bridge player (how to switch clips at once, unnoticed),
- * the song (the moves and their music times) and the music (FluidSynth; its
- * clock is the music clock).
+/* dance — the box leading a song: the assets (the coach's clips, the song,
+ * the bear), the music (FluidSynth; its clock is the music clock) and the
+ * firmware's director (cub/director.h), which decides everything else.
  *
- * Per event: the coach decides; its actions become player requests, speed
- * changes, music start/stop. Per tick: the music advances (from the audio
- * device, or under the virtual clock rendered right here so a replay is
- * exact), the player advances and reports switches (logged) and clip ends,
- * which go back to the coach as events, as do the music tags of the moves
- * the player enters. */
+ * Per event and per tick the director decides; what only the app can do
+ * comes back from it and is done here: the music started, paused, resumed
+ * or stopped, the hint shown (with its move's icon). Per loop step the
+ * music advances (from the audio device, or under the virtual clock
+ * rendered right here so a replay is exact), then the director's player. */
 #ifndef CUB_APP_DANCE_H
 #define CUB_APP_DANCE_H
 
 #include <stdint.h>
 
 #include "cub/board.h"
-#include "cub/bridge.h"
 #include "cub/coach.h"
 #include "cub/coachlib.h"
+#include "cub/director.h"
+#include "cub/judge.h"
 #include "cub/loop.h"
 #include "cub/music.h"
 #include "cub/song.h"
 #include "options.h"
-#include "watch.h"
 
 typedef struct cub_dance {
     cub_coachlib cl;
@@ -32,41 +30,37 @@ typedef struct cub_dance {
     int music_pull;          /* virtual clock: the tick renders the music */
     int music_started;       /* the song's music was started (and not stopped) */
     int song_end_sent;
-    int music_paused;        /* held by the coach (the camera is gone) */
+    int music_paused;        /* held by the director (the camera is gone) */
     int64_t paused_at_us;    /* ... since this loop time */
     int audio_open;          /* real clock: the board's audio device plays it */
     int64_t pull_origin_us;  /* loop time the pulled music started */
     uint32_t pull_scale_ppm; /* pulled frames per loop second, ppm of the rate */
     int16_t *pcm;            /* scratch for pulled rendering */
-    cub_coach coach;
-    cub_coach_move moves[CUB_SONG_MAX_MOVES];
-    const char *clip_names[256];
-    cub_bridge_player player;
-    void *player_mem;
+    cub_director dir;
+    void *dir_mem;
     cub_log *log;
-    int64_t last_tick_us;
-    int played_clip, requested_clip; /* a correction played in place of another */
-    cub_watch *watch;                /* the judge to tell what is taught, or NULL */
+    const char *clip_names[256];
+    cub_director_keys keys[CUB_SONG_MAX_MOVES]; /* each move's, for the judge */
     cub_pose pose;
     cub_vec3 world_mm[CUB_MOTION_MAX_JOINTS];
-    /* What the TV shows besides the coach (the coach decided it; the
+    /* What the TV shows besides the coach (the director decided it; the
      * renderer draws it): the last hint, and the icon of the move hinted. */
-    int32_t hint;     /* the coach's last ACT_HINT: a move or CUB_COACH_HINT_* */
+    int32_t hint;     /* the last hint: a move or CUB_COACH_HINT_* */
     int icon_move;    /* the move icon_xyz shows, or -1 */
     float icon_xyz[3 * CUB_MOTION_MAX_JOINTS];
 } cub_dance;
 
 /* Load the coach's clips, the song and the music, and start the coach idle
- * at now_us. On failure a message naming the file and problem is in err. */
+ * at now_us; judge (or NULL) is told what is taught. On failure a message
+ * naming the file and problem is in err. */
 cub_err cub_dance_open(cub_dance *d, const cub_app_options *o, cub_board *board, cub_log *log,
-                       int64_t now_us, char *err, size_t err_size);
+                       cub_judge *judge, int64_t now_us, char *err, size_t err_size);
 void cub_dance_close(cub_dance *d);
-/* An event from the loop (buttons, the judge's timeline, the player's own). */
+/* An event from the loop (buttons, the judge's, the player's own). */
 void cub_dance_handle(cub_dance *d, cub_loop *loop, const cub_event *ev);
 /* At the start of each loop step, before events are handled: the music and
- * the player move on to now_us, so a request made while handling an event
- * is carried out after it; the player's clip ends and music tags are posted
- * and handled in the same step. */
+ * the director's player move on to now_us (the song's end, the player's
+ * clip ends and music tags are posted and handled in the same step). */
 void cub_dance_poll(cub_dance *d, cub_loop *loop, int64_t now_us);
 /* Once per tick, after the events: the coach's deadlines (intro, attract,
  * doze). */

@@ -95,11 +95,11 @@ static int open_extras(const cub_app_options *o, cub_board *board, cub_loop *loo
     }
     if (!o->song_path) return 0;
     s->dance = calloc(1, sizeof *s->dance);
-    if (!s->dance || cub_dance_open(s->dance, o, board, &loop->log, t0, err, sizeof err)) {
+    cub_judge *judge = s->watch ? s->watch->judge : NULL;
+    if (!s->dance || cub_dance_open(s->dance, o, board, &loop->log, judge, t0, err, sizeof err)) {
         fprintf(stderr, "cubdance: %s\n", s->dance ? err : "out of memory");
         return -1;
     }
-    s->dance->watch = s->watch;
     return 0;
 }
 

@@ -82,10 +82,10 @@ static void poll_depth(cub_session *s, cub_loop *loop, int64_t now_us)
 
 /* The scripted judge's events (--timeline), logged as the real judge logs
  * its own: a verdict speaks of the move being taught now. */
-static void post_scripted(cub_session *s, cub_loop *loop, cub_event *ev)
+static void post_scripted(cub_session *s, cub_loop *loop, const cub_event *scripted)
 {
-    if (ev->type == CUB_EV_VERDICT && ev->a < 0)
-        ev->a = s->dance && s->dance->coach.move >= 0 ? s->dance->coach.move : 0;
+    const cub_event e = cub_director_scripted(s->dance ? &s->dance->dir : NULL, scripted);
+    const cub_event *ev = &e;
     if (ev->type == CUB_EV_VERDICT)
         cub_log_event(&loop->log, ev->t_us, "judge", "verdict", "move=%d result=%s", ev->a,
                       ev->b ? "right" : "wrong");
@@ -264,7 +264,7 @@ static void tick_work(cub_session *s, cub_loop *loop, int64_t t_us)
     if (!err && s->dance) {
         scene.character = &s->dance->cl.bear;
         scene.world_rot_xyzw = s->world_rot;
-        scene.face = coach_face(s->dance->coach.state);
+        scene.face = coach_face(s->dance->dir.coach.state);
     }
     show_what_the_coach_says(s, &scene);
     cub_render_frame(s->render, &scene);

@@ -116,16 +116,6 @@ void cub_watch_tick(cub_watch *w, cub_loop *loop, int64_t now_us)
     if (now_us - w->last_frame_us > limit) camera_gone(w, loop, now_us, "silent");
 }
 
-cub_err cub_watch_begin_rep(cub_watch *w, const cub_judge_rep *rep)
-{
-    return w->judge ? cub_judge_begin_rep(w->judge, rep) : CUB_ERR_ARG;
-}
-
-void cub_watch_cancel_reps(cub_watch *w)
-{
-    if (w->judge) cub_judge_cancel_reps(w->judge);
-}
-
 const cub_track_skeleton *cub_watch_skeleton(const cub_watch *w)
 {
     return &w->skel;

@@ -48,10 +48,6 @@ void cub_watch_source_gone(cub_watch *w, cub_loop *loop, int64_t t_us, const cha
 /* Every tick: frames stopped coming at their pace? */
 void cub_watch_tick(cub_watch *w, cub_loop *loop, int64_t now_us);
 
-/* What the coach teaches now: judge this repetition / drop the open ones. */
-cub_err cub_watch_begin_rep(cub_watch *w, const cub_judge_rep *rep);
-void cub_watch_cancel_reps(cub_watch *w);
-
 /* The player's skeleton in the last frame (status NO_PLAYER before any). */
 const cub_track_skeleton *cub_watch_skeleton(const cub_watch *w);
 

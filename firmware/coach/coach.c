@@ -183,8 +183,7 @@ static void begin_move(cub_coach *c, int32_t m, int32_t rep, int32_t reason)
 static bool time_to_begin(const cub_coach *c, int32_t m, int32_t music_ms)
 {
     const cub_coach_move *mv = &c->desc.moves[m];
-    int32_t lead = c->desc.entry_lead_ms ? c->desc.entry_lead_ms(c->desc.user, mv->clip) : 0;
-    return song_now_ms(c, music_ms) + bounded_lead_ms(mv, lead) >= mv->tag_ms;
+    return song_now_ms(c, music_ms) + bounded_lead_ms(mv, mv->entry_lead_ms) >= mv->tag_ms;
 }
 
 /* Move m starts now, or, when the song has an intro or a gap before it,

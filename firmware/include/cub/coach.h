@@ -129,6 +129,12 @@ typedef struct cub_coach_move {
     int32_t rep_lead_ms; /* optional: the same for the move's own next
                             repetition (from its last frame to its first
                             frames); 0 = none */
+    int32_t entry_lead_ms; /* optional: the same for the move begun from
+                              where the player is now, read while the coach
+                              waits for its tag after an intro or a gap, so
+                              that it begins that much early; whoever plays
+                              the coach keeps it up to date (the director,
+                              before each call); 0 = none */
 } cub_coach_move;
 
 /* The coach's own clips (indices in the clip library). No defaults: see
@@ -152,12 +158,6 @@ typedef struct cub_coach_desc {
     uint32_t worried_after;        /* default 3 wrong verdicts in a row */
     cub_q16 demo_speed_q16;        /* default 0.7: the slower demonstration */
     cub_q16 sync_bound_q16;        /* default 0.15: speed stays in 1 +- bound */
-    /* Optional: the lead of a move started from where the player is now
-     * (see cub_coach_move.lead_ms), asked every tick while the coach waits
-     * for a move's tag after an intro or a gap, so that the move begins
-     * that much early. NULL = 0. */
-    int32_t (*entry_lead_ms)(void *user, int32_t clip);
-    void *user;
 } cub_coach_desc;
 
 typedef struct cub_coach {

@@ -1,0 +1,276 @@
+/* How the director carries out the coach's clip requests: where a clip is
+ * entered, the correcting clip substituted when the other is sooner, the
+ * judge's window for a repetition, the leads of the routes into the moves,
+ * and the player's time with its switches, clip ends and music tags. */
+#include "director_internal.h"
+
+static cub_log *dlog(const cub_director *d)
+{
+    return d->desc.coach.log;
+}
+
+static const cub_clip *clip_of(const cub_director *d, int clip)
+{
+    return &d->desc.table->clips[clip].clip;
+}
+
+const char *director_clip_name(const cub_director *d, int clip)
+{
+    const cub_coach_desc *c = &d->desc.coach;
+    if (clip < 0 || clip >= c->clip_count || !c->clip_names || !c->clip_names[clip]) return "?";
+    return c->clip_names[clip];
+}
+
+/* ---- entering a clip ----------------------------------------------------- */
+
+/* A move (its start, a repetition, a resume, a slower demonstration) is
+ * entered at its first frames when a route gets there within 400 ms, so it
+ * keeps its music time; anything else, a correction above all, by the
+ * quickest switch. */
+static bool enters_at_start(int32_t reason)
+{
+    return reason == CUB_COACH_WHY_MOVE || reason == CUB_COACH_WHY_REP ||
+           reason == CUB_COACH_WHY_RESUME || reason == CUB_COACH_WHY_DEMO;
+}
+
+/* Where requests for this reason may enter their clip: a move at its first
+ * frames; a correction at any frame of its front half close enough (d <
+ * 0.4), not only at a tagged one: the quickest way in. */
+static int start_frames(const cub_director *d, const cub_coach_action *a)
+{
+    if (enters_at_start(a->reason)) return CUB_DIRECTOR_START_FRAMES;
+    if (a->reason == CUB_COACH_WHY_CORRECT) return clip_of(d, a->clip)->frame_count / 2;
+    return 0;
+}
+
+/* The two correcting clips do the same job: when the one the coach asked
+ * for is only reachable later than REACT_FRAMES and the other sooner, play
+ * the other (the coach hears of its end under the name it asked for). */
+static int other_correction(const cub_director *d, int clip)
+{
+    const cub_coach_roles *r = &d->desc.coach.roles;
+    return clip == r->head_shake ? r->watch_me : clip == r->watch_me ? r->head_shake : -1;
+}
+
+static cub_err plan_correction(cub_director *d, const cub_coach_action *a, cub_bridge_plan *plan,
+                               int64_t t_us)
+{
+    cub_bridge_player *p = &d->player;
+    cub_err err = cub_bridge_player_request(p, a->clip, a->speed_q16, a->loop, plan);
+    int other = other_correction(d, a->clip);
+    if (a->reason != CUB_COACH_WHY_CORRECT || other < 0 ||
+        (!err && plan->total_frames <= CUB_DIRECTOR_REACT_FRAMES))
+        return err;
+    cub_bridge_plan alt;
+    if (cub_bridge_player_request(p, other, a->speed_q16, a->loop, &alt) ||
+        (!err && alt.total_frames >= plan->total_frames))
+        return cub_bridge_player_request(p, a->clip, a->speed_q16, a->loop, plan);
+    cub_log_event(dlog(d), t_us, "bridge", "substitute", "requested=%s played=%s reason=sooner",
+                  director_clip_name(d, a->clip), director_clip_name(d, other));
+    d->played_clip = other;
+    d->requested_clip = a->clip;
+    *plan = alt;
+    return CUB_OK;
+}
+
+/* ---- the judge's windows ------------------------------------------------- */
+
+/* Tell the judge what the child should do now: a repetition of a move
+ * (danced, resumed or demonstrated) opens a window as long as the clip
+ * plays at its speed, plus a beat for a late child; anything else the
+ * coach asks for (a correction, the idle clip) closes what was open. */
+static void judge_clip(cub_director *d, const cub_coach_action *a, int64_t t_us)
+{
+    cub_judge *j = d->desc.judge;
+    if (!j) return;
+    const int m = a->move;
+    const bool is_rep = enters_at_start(a->reason) && m >= 0 && m < d->desc.coach.move_count &&
+                        d->moves[m].clip == a->clip;
+    const cub_director_keys *k = is_rep && d->desc.keys ? &d->desc.keys[m] : NULL;
+    if (!k || k->count <= 0) {
+        cub_judge_cancel_reps(j);
+        return;
+    }
+    const cub_clip *clip = clip_of(d, a->clip);
+    int64_t speed = a->speed_q16 > 0 ? a->speed_q16 : CUB_Q16_ONE;
+    int64_t clip_us = (int64_t)(clip->frame_count - 1) * clip->frame_ns / 1000;
+    int64_t play_us = clip_us * CUB_Q16_ONE / speed;
+    cub_judge_rep r = {.move = m, .rep = a->rep, .key_count = k->count,
+                       .start_us = t_us, .end_us = t_us + play_us,
+                       .beat_us = d->desc.bpm > 0 ? 60000000 / d->desc.bpm : 0};
+    for (int i = 0; i < k->count && i < CUB_JUDGE_MAX_KEYS; i++) r.keys[i] = k->key[i];
+    cub_err e = cub_judge_begin_rep(j, &r);
+    if (e == CUB_ERR_FULL) { /* frames stopped coming: nothing closed the old ones */
+        cub_judge_cancel_reps(j);
+        e = cub_judge_begin_rep(j, &r);
+    }
+    if (e)
+        cub_log_event(dlog(d), t_us, "judge", "error", "what=begin_rep move=%d rep=%d error=\"%s\"",
+                      m, a->rep, cub_err_str(e));
+}
+
+void director_request(cub_director *d, const cub_coach_action *a, int64_t t_us)
+{
+    judge_clip(d, a, t_us);
+    cub_bridge_player_set_start_frames(&d->player, start_frames(d, a));
+    d->played_clip = d->requested_clip = -1;
+    cub_bridge_plan plan;
+    cub_err err = plan_correction(d, a, &plan, t_us);
+    if (!err) {
+        cub_log_event(dlog(d), t_us, "bridge", "plan", "to=%s steps=%d wait_frames=%d via=%s",
+                      director_clip_name(d, a->clip), plan.step_count, plan.wait_frames,
+                      plan.step_count > 1 ? "tween" : "direct");
+        return;
+    }
+    /* No chain of bridge frames leads there: cut, and say so. */
+    cub_log_event(dlog(d), t_us, "bridge", "cut", "from=%s to=%s@0 reason=\"%s\"",
+                  director_clip_name(d, d->player.clip), director_clip_name(d, a->clip),
+                  cub_err_str(err));
+    cub_bridge_player_start(&d->player, a->clip, 0, a->speed_q16, a->loop);
+}
+
+/* ---- leads ---------------------------------------------------------------- */
+
+/* Song ms by which a move should be asked for before its tag: what the
+ * planned route takes, less the content it skips (a route may land past
+ * the clip's first frame). */
+static int32_t route_lead_ms(const cub_director *d, const cub_bridge_plan *plan, int move)
+{
+    const cub_coach_move *mv = &d->moves[move];
+    const cub_clip *clip = clip_of(d, mv->clip);
+    int64_t speed = mv->speed_q16 ? mv->speed_q16 : CUB_Q16_ONE;
+    int64_t route_ms = (int64_t)plan->total_frames * clip->frame_ns / 1000000 * CUB_Q16_ONE / speed;
+    int to_frame = plan->step_count > 0 ? plan->step[plan->step_count - 1].to_frame : 0;
+    int64_t skip_ms = (int64_t)mv->span_ms / mv->reps * to_frame / (clip->frame_count - 1);
+    return (int32_t)(route_ms - skip_ms);
+}
+
+/* The lead of a route into move `to` from `q` (its from-part), or 0 when
+ * there is none. */
+static int32_t lead_from(cub_director *d, cub_bridge_query q, int to)
+{
+    q.to_clip = d->moves[to].clip;
+    q.start_frames = CUB_DIRECTOR_START_FRAMES;
+    cub_bridge_plan plan;
+    return cub_bridge_player_preview(&d->player, &q, &plan) ? 0 : route_lead_ms(d, &plan, to);
+}
+
+/* From the last frame of clip `from` (where a repetition ends). */
+static int32_t lead_from_end(cub_director *d, int from, int to)
+{
+    int frames = clip_of(d, from)->frame_count;
+    cub_bridge_query q = {.from_clip = from, .pos_q16 = (int64_t)(frames - 1) << 16};
+    return lead_from(d, q, to);
+}
+
+/* A repetition, and a move that follows the one before at once, is asked
+ * for when the repetition before ends: plan those routes now, from its last
+ * frame, so the coach can end that repetition early (or late) by their
+ * length. */
+void director_plan_leads(cub_director *d)
+{
+    for (int i = 0; i < d->desc.coach.move_count; i++) {
+        cub_coach_move *mv = &d->moves[i];
+        mv->rep_lead_ms = lead_from_end(d, mv->clip, i);
+        mv->lead_ms = i > 0 ? lead_from_end(d, d->moves[i - 1].clip, i) : 0;
+        cub_log_event(dlog(d), d->now_us, "music", "lead",
+                      "move=%d clip=%s lead_ms=%d rep_lead_ms=%d", i,
+                      director_clip_name(d, mv->clip), mv->lead_ms, mv->rep_lead_ms);
+    }
+}
+
+/* A move the coach may wait for: after the intro, or after a gap. */
+static bool after_gap(const cub_director *d, int m)
+{
+    const cub_coach_move *prev = m > 0 ? &d->moves[m - 1] : NULL;
+    return d->moves[m].tag_ms > (prev ? prev->tag_ms + prev->span_ms : 0);
+}
+
+/* Only inside a song (or waking into one) may the coach begin a move. */
+static bool in_song(const cub_coach *c)
+{
+    return c->state == CUB_COACH_WAKE || c->state == CUB_COACH_DANCE ||
+           c->state == CUB_COACH_CORRECT || c->state == CUB_COACH_WORRIED ||
+           c->state == CUB_COACH_PAUSED;
+}
+
+/* The coach reads these while it waits for a move's tag: the route from
+ * where the player is now. The player stands still within a call, so one
+ * look per place it stands in is enough. */
+void director_entry_leads(cub_director *d)
+{
+    const cub_bridge_player *p = &d->player;
+    if (!in_song(&d->coach)) return;
+    if (p->clip == d->lead_clip && p->pos_q16 == d->lead_pos_q16 && p->loop == d->lead_loop)
+        return;
+    d->lead_clip = p->clip;
+    d->lead_pos_q16 = p->pos_q16;
+    d->lead_loop = p->loop;
+    cub_bridge_query here = {.from_clip = -1};
+    for (int m = 0; m < d->desc.coach.move_count; m++)
+        if (after_gap(d, m)) d->moves[m].entry_lead_ms = lead_from(d, here, m);
+}
+
+/* ---- the player's time ----------------------------------------------------- */
+
+static void post(cub_loop *loop, int64_t t_us, int32_t type, int32_t a, int32_t b)
+{
+    cub_event ev = {.t_us = t_us, .type = type, .a = a, .b = b};
+    cub_loop_post(loop, &ev);
+}
+
+/* Entering the clip of the move being danced: its music tag, the song time
+ * of the frame shown now (SEEDS.md § 000, "Music sync"). Now, not at the
+ * switch: the music clock was read at the end of this advance, and the
+ * coach compares the two. */
+static void post_music_tag(cub_director *d, cub_loop *loop, int64_t now_us, int32_t music_ms,
+                           const cub_bridge_step *s)
+{
+    const cub_coach *c = &d->coach;
+    int m = c->move;
+    if (c->state != CUB_COACH_DANCE || m < 0 || m >= d->desc.coach.move_count) return;
+    const cub_coach_move *mv = &d->moves[m];
+    if (s->to_clip != mv->clip || d->player.clip != mv->clip) return;
+    int64_t intervals_q16 = (int64_t)(clip_of(d, mv->clip)->frame_count - 1) << 16;
+    int64_t rep_ms = mv->span_ms / mv->reps;
+    int64_t in_rep_ms = rep_ms * d->player.pos_q16 / intervals_q16;
+    int32_t tag = mv->tag_ms + (int32_t)(rep_ms * c->rep + in_rep_ms);
+    cub_log_event(dlog(d), now_us, "music", "tag", "move=%d tag_ms=%d music_ms=%d", m, tag,
+                  music_ms);
+    post(loop, now_us, CUB_EV_MUSIC_TAG, m, tag);
+}
+
+static void on_switch(cub_director *d, cub_loop *loop, int64_t t_us, int64_t now_us,
+                      int32_t music_ms, const cub_bridge_step *s)
+{
+    cub_log_event(dlog(d), t_us, "bridge", "switch", "from=%s@%d to=%s@%d d=%q via=%s",
+                  director_clip_name(d, s->from_clip), s->from_frame,
+                  director_clip_name(d, s->to_clip), s->to_frame, s->d,
+                  s->via == CUB_BRIDGE_TWEEN ? "tween" : "direct");
+    post_music_tag(d, loop, now_us, music_ms, s);
+}
+
+static void on_done(cub_director *d, cub_loop *loop, int64_t t_us, int clip)
+{
+    int asked = clip == d->played_clip ? d->requested_clip : clip;
+    cub_log_event(dlog(d), t_us, "bridge", "done", "clip=%s", director_clip_name(d, clip));
+    post(loop, t_us, CUB_EV_CLIP_DONE, asked, 0);
+}
+
+cub_err cub_director_advance(cub_director *d, cub_loop *loop, int64_t now_us, int32_t music_ms)
+{
+    if (!d || !loop) return CUB_ERR_ARG;
+    cub_bridge_event ev[CUB_DIRECTOR_MAX_PLAYER_EVENTS];
+    int n = 0;
+    int64_t dt = now_us > d->now_us ? now_us - d->now_us : 0;
+    d->now_us += dt;
+    cub_err err = cub_bridge_player_advance(&d->player, dt, ev, CUB_DIRECTOR_MAX_PLAYER_EVENTS, &n);
+    for (int i = 0; !err && i < n; i++) {
+        int64_t t = now_us - dt + ev[i].t_us;
+        if (ev[i].type == CUB_BRIDGE_EV_SWITCH)
+            on_switch(d, loop, t, now_us, music_ms, &ev[i].step);
+        else if (ev[i].type == CUB_BRIDGE_EV_DONE && !ev[i].looped)
+            on_done(d, loop, t, ev[i].clip);
+    }
+    return err;
+}
