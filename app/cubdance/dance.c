@@ -5,52 +5,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define PCM_FRAMES 4096
-/* What the audio device holds before the speaker: the music clock counts
- * frames handed to SDL, which run about one buffer ahead (board.h). */
-#define AUDIO_LATENCY_FRAMES 1024
-
 /* The music clock in song milliseconds, or CUB_COACH_NO_MUSIC. */
 static int32_t music_ms(const cub_dance *d)
 {
-    if (!d->music_started) return CUB_COACH_NO_MUSIC;
-    int64_t us = cub_music_clock_us(d->music);
-    if (d->audio_open) {
-        us -= (int64_t)AUDIO_LATENCY_FRAMES * 1000000 / cub_music_rate(d->music);
-        if (us < 0) us = 0;
-    }
-    return (int32_t)(us / 1000);
-}
-
-/* ---- the music, as the director asks ------------------------------------ */
-
-static void start_music(cub_dance *d, int64_t t_us)
-{
-    if (cub_music_play(d->music) != CUB_OK) return;
-    d->music_started = 1;
-    d->music_paused = 0;
-    d->song_end_sent = 0;
-    d->pull_origin_us = t_us;
-}
-
-static void stop_music(cub_dance *d)
-{
-    cub_music_stop(d->music);
-    d->music_started = 0;
-    d->music_paused = 0;
-}
-
-/* Hold the music (its clock too) or go on; rendered music starts counting
- * its due frames again from where it held. */
-static void pause_music(cub_dance *d, int paused, int64_t t_us)
-{
-    if (!d->music_started || paused == d->music_paused) return;
-    cub_music_pause(d->music, paused);
-    d->music_paused = paused;
-    if (paused)
-        d->paused_at_us = t_us;
-    else
-        d->pull_origin_us += t_us - d->paused_at_us;
+    return cub_dance_music_ms(&d->music);
 }
 
 /* ---- what the TV shows -------------------------------------------------- */
@@ -125,10 +83,10 @@ static void carry_out(cub_dance *d, int64_t t_us)
     for (int i = 0; i < d->dir.out_count; i++) {
         const cub_director_out *o = &d->dir.out[i];
         switch (o->what) {
-        case CUB_DIRECTOR_MUSIC_START: start_music(d, t_us); break;
-        case CUB_DIRECTOR_MUSIC_STOP: stop_music(d); break;
-        case CUB_DIRECTOR_MUSIC_PAUSE: pause_music(d, 1, t_us); break;
-        case CUB_DIRECTOR_MUSIC_RESUME: pause_music(d, 0, t_us); break;
+        case CUB_DIRECTOR_MUSIC_START: cub_dance_music_start(&d->music, t_us); break;
+        case CUB_DIRECTOR_MUSIC_STOP: cub_dance_music_stop(&d->music); break;
+        case CUB_DIRECTOR_MUSIC_PAUSE: cub_dance_music_pause(&d->music, 1, t_us); break;
+        case CUB_DIRECTOR_MUSIC_RESUME: cub_dance_music_pause(&d->music, 0, t_us); break;
         case CUB_DIRECTOR_HINT: show_hint(d, o->hint); break;
         default: break;
         }
@@ -145,22 +103,6 @@ void cub_dance_handle(cub_dance *d, cub_loop *loop, const cub_event *ev)
 
 /* ---- the tick ----------------------------------------------------------- */
 
-/* Under the virtual clock the music is rendered here, exactly as much as
- * the loop's time says, so the music clock is as deterministic as the rest. */
-static void pull_music(cub_dance *d, int64_t t_us)
-{
-    if (!d->music_pull || !d->music_started || d->music_paused) return;
-    /* A sound card off its rate (--music-clock-scale) takes that many more
-     * or fewer frames a second; the music clock counts them, true to the
-     * music it played. */
-    uint64_t card_us = (uint64_t)(t_us - d->pull_origin_us) * d->pull_scale_ppm / 1000000u;
-    uint64_t due = card_us * (uint64_t)cub_music_rate(d->music) / 1000000u;
-    while (cub_music_frames(d->music) < due) {
-        uint64_t n = due - cub_music_frames(d->music);
-        cub_music_render(d->music, d->pcm, (int)(n > PCM_FRAMES ? PCM_FRAMES : n));
-    }
-}
-
 static void post(cub_loop *loop, int64_t t_us, int32_t type, int32_t a, int32_t b)
 {
     cub_event ev = {.t_us = t_us, .type = type, .a = a, .b = b};
@@ -169,9 +111,7 @@ static void post(cub_loop *loop, int64_t t_us, int32_t type, int32_t a, int32_t 
 
 void cub_dance_poll(cub_dance *d, cub_loop *loop, int64_t now_us)
 {
-    pull_music(d, now_us);
-    if (d->music_started && !d->song_end_sent && !cub_music_playing(d->music)) {
-        d->song_end_sent = 1;
+    if (cub_dance_music_poll(&d->music, now_us)) {
         cub_log_event(d->log, now_us, "music", "end", "music_ms=%d", music_ms(d));
         post(loop, now_us, CUB_EV_SONG_END, 0, 0);
     }
@@ -240,45 +180,17 @@ static cub_err open_director(cub_dance *d, const cub_app_options *o, cub_judge *
     return e;
 }
 
-static cub_err open_music(cub_dance *d, const cub_app_options *o, char *err, size_t size)
-{
-    cub_diag diag;
-    cub_music_desc md = {.rate = cub_board_audio_rate(d->board), .soundfont = o->soundfont};
-    if (cub_music_open(&md, &d->music, &diag)) return fail(err, size, &diag, "music");
-    if (cub_music_load(d->music, d->song.midi_path, &diag)) return fail(err, size, &diag, "song");
-
-    d->pcm = malloc(PCM_FRAMES * 2 * sizeof(int16_t));
-    if (!d->pcm) return CUB_ERR_NOMEM;
-    /* Real time: the audio device plays the music and clocks it. Virtual
-     * time, or no audio device: the tick renders it. */
-    d->music_pull = o->virtual_clock;
-    if (!d->music_pull) {
-        if (cub_board_audio_start(d->board, cub_music_fill, d->music) == CUB_OK)
-            d->audio_open = 1;
-        else
-            d->music_pull = 1;
-    }
-    /* --music-clock-scale: rendered here, the music itself runs off its
-     * rate; played by a device we cannot speed up, only its clock lies. */
-    d->pull_scale_ppm = (uint32_t)(o->music_clock_scale * 1000000 + 0.5);
-    if (d->audio_open && o->music_clock_scale != 1.0 &&
-        cub_music_set_clock_scale(d->music, o->music_clock_scale))
-        return snprintf(err, size, "--music-clock-scale out of range"), CUB_ERR_ARG;
-    return CUB_OK;
-}
-
 cub_err cub_dance_open(cub_dance *d, const cub_app_options *o, cub_board *board, cub_log *log,
                        cub_judge *judge, int64_t now_us, char *err, size_t err_size)
 {
     memset(d, 0, sizeof *d);
-    d->board = board;
     d->log = log;
     cub_diag diag;
     if (cub_coachlib_load(o->library_path, o->tags_path, o->character_path, &d->cl, &diag))
         return fail(err, err_size, &diag, "coach clips");
     if (cub_song_load(o->song_path, &d->cl.lib, &d->song, &diag))
         return fail(err, err_size, &diag, "song");
-    cub_err e = open_music(d, o, err, err_size);
+    cub_err e = cub_dance_music_open(&d->music, o, board, d->song.midi_path, err, err_size);
     if (!e) e = open_director(d, o, judge, now_us, err, err_size);
     d->hint = CUB_COACH_HINT_NONE;
     d->icon_move = -1;
@@ -287,9 +199,7 @@ cub_err cub_dance_open(cub_dance *d, const cub_app_options *o, cub_board *board,
 
 void cub_dance_close(cub_dance *d)
 {
-    if (d->audio_open) cub_board_audio_stop(d->board);
-    cub_music_close(d->music);
-    free(d->pcm);
+    cub_dance_music_close(&d->music);
     free(d->dir_mem);
     cub_coachlib_free(&d->cl);
     memset(d, 0, sizeof *d);

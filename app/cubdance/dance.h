@@ -1,12 +1,11 @@
 /* dance — the box leading a song: the assets (the coach's clips, the song,
- * the bear), the music (FluidSynth; its clock is the music clock) and the
- * firmware's director (cub/director.h), which decides everything else.
+ * the bear), the music (dance_music.h; its clock is the music clock) and
+ * the firmware's director (cub/director.h), which decides everything else.
  *
  * Per event and per tick the director decides; what only the app can do
  * comes back from it and is done here: the music started, paused, resumed
  * or stopped, the hint shown (with its move's icon). Per loop step the
- * music advances (from the audio device, or under the virtual clock
- * rendered right here so a replay is exact), then the director's player. */
+ * music advances, then the director's player. */
 #ifndef CUB_APP_DANCE_H
 #define CUB_APP_DANCE_H
 
@@ -18,24 +17,14 @@
 #include "cub/director.h"
 #include "cub/judge.h"
 #include "cub/loop.h"
-#include "cub/music.h"
 #include "cub/song.h"
+#include "dance_music.h"
 #include "options.h"
 
 typedef struct cub_dance {
     cub_coachlib cl;
     cub_song song;
-    cub_music *music;
-    cub_board *board;
-    int music_pull;          /* virtual clock: the tick renders the music */
-    int music_started;       /* the song's music was started (and not stopped) */
-    int song_end_sent;
-    int music_paused;        /* held by the director (the camera is gone) */
-    int64_t paused_at_us;    /* ... since this loop time */
-    int audio_open;          /* real clock: the board's audio device plays it */
-    int64_t pull_origin_us;  /* loop time the pulled music started */
-    uint32_t pull_scale_ppm; /* pulled frames per loop second, ppm of the rate */
-    int16_t *pcm;            /* scratch for pulled rendering */
+    cub_dance_music music;
     cub_director dir;
     void *dir_mem;
     cub_log *log;
