@@ -56,14 +56,6 @@ static void show_hint(cub_dance *d, int32_t hint)
     d->icon_move = hint;
 }
 
-const char *cub_dance_hint_text(const cub_dance *d)
-{
-    if (d->hint == CUB_COACH_HINT_COME_CLOSER) return "Come closer!";
-    if (d->hint == CUB_COACH_HINT_CANT_SEE) return "I can't see you!";
-    if (d->hint < 0 || d->hint >= d->song.move_count) return NULL;
-    return d->song.moves[d->hint].hint[0] ? d->song.moves[d->hint].hint : NULL;
-}
-
 const float *cub_dance_icon_xyz(const cub_dance *d)
 {
     return d->hint >= 0 && d->hint == d->icon_move ? d->icon_xyz : NULL;

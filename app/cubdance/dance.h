@@ -65,9 +65,6 @@ float cub_dance_figure_height_mm(const cub_dance *d);
  * into xyz and, unless rot_xyzw is NULL, joint world rotations (x y z w
  * floats each, for the renderer's skinning), from one forward pass. */
 cub_err cub_dance_pose(cub_dance *d, float *xyz, float *rot_xyzw);
-/* The hint the coach shows now: the move's own text, "Come closer!", "I
- * can't see you!", or NULL for none. */
-const char *cub_dance_hint_text(const cub_dance *d);
 /* The hinted move's icon pose (joint world positions of
  * cub_dance_skeleton, mm), or NULL when the hint is not a move's. */
 const float *cub_dance_icon_xyz(const cub_dance *d);

@@ -13,6 +13,7 @@
 
 #include "cub/png.h"
 #include "cub/track.h"
+#include "words.h"
 
 #define DEPTH_PIXELS (CUB_DEPTH_W * CUB_DEPTH_H)
 
@@ -189,22 +190,26 @@ static cub_render_face coach_face(int32_t state)
     return CUB_RENDER_FACE_HAPPY;
 }
 
-/* What the child reads, all from the tick's state: the coach's hint and
- * the hinted move's icon, the song's progress, the "Press START!" screen
- * while the coach waits, and the tracked child in the inset. */
+/* What the child reads, all from the tick's state, in words.c's words: the
+ * coach's hint and the hinted move's icon, the song's progress, the idle
+ * screen while the coach waits, and the tracked child and its cue. */
 static void show_what_the_coach_says(cub_session *s, cub_render_scene *scene)
 {
     if (s->dance) {
         cub_dance *d = s->dance;
         scene->idle = cub_dance_waiting(d);
-        scene->hint = cub_dance_hint_text(d);
+        scene->hint = cub_words_hint(&d->song, d->hint);
         scene->icon_xyz_mm = scene->skel ? cub_dance_icon_xyz(d) : NULL;
         scene->progress = cub_dance_progress(d);
         scene->has_progress = scene->progress >= 0.0f;
     } else {
         scene->idle = s->state == CUB_APP_WAITING;
     }
-    if (s->watch) scene->child = cub_watch_skeleton(s->watch);
+    scene->title = scene->idle ? cub_words_title() : NULL;
+    if (s->watch) {
+        scene->child = cub_watch_skeleton(s->watch);
+        scene->child_cue = cub_words_cue(scene->child->status);
+    }
 }
 
 static void write_frame(cub_session *s, uint64_t tick)

@@ -195,7 +195,8 @@ static cub_err bench_scene(bench_ctx *c, int i, cub_render_scene *scene)
                                 .icon_xyz_mm = c->icon_xyz,
                                 .progress = (float)(i % 600) / 600.0f,
                                 .has_progress = 1,
-                                .child = &c->child};
+                                .child = &c->child,
+                                .child_cue = c->child.status == CUB_TRACK_OK ? NULL : "Step back"};
     return CUB_OK;
 }
 

@@ -2,9 +2,9 @@
  * over the depth image (projected with the Kinect's own camera model, so
  * the bones sit on the child's silhouette; a parent sees both what the
  * camera sees and what the tracker made of it), or on a dark panel when
- * there is no depth image. Above the inset, a cue when the tracker says
- * the child is not where the camera reads them well. Green bones: tracked
- * whole; orange: tracked, but see the cue. */
+ * there is no depth image. Above the inset, the cue the scene gives (the
+ * words for a child the camera does not read well). Green bones: tracked
+ * whole; orange: tracked, but not well. */
 #include "cub/track.h"
 #include "render_internal.h"
 
@@ -33,16 +33,6 @@ static const int8_t PARENT[CUB_TJ_COUNT] = {
     [CUB_TJ_ANKLE_R] = CUB_TJ_KNEE_R,
     [CUB_TJ_FOOT_R] = CUB_TJ_ANKLE_R,
 };
-
-static const char *cue_text(int32_t status)
-{
-    switch (status) {
-    case CUB_TRACK_TOO_CLOSE: return "Step back";
-    case CUB_TRACK_TOO_FAR: return "Come closer";
-    case CUB_TRACK_PARTLY_OUT: return "Step into the middle";
-    default: return NULL;
-    }
-}
 
 /* Camera mm -> inset pixel through the depth image's pixel (u, v);
  * 0 for a joint at or behind the camera. */
@@ -99,7 +89,8 @@ static void cue(cub_render *r, const char *text, int x0, int y0, int iw, int ih)
     cub_render_text_flush(r);
 }
 
-void cub_render_child_draw(cub_render *r, const cub_track_skeleton *child, int have_depth)
+void cub_render_child_draw(cub_render *r, const cub_track_skeleton *child, const char *cue_text,
+                           int have_depth)
 {
     int x0, y0, iw, ih;
     cub_render_inset_rect(r->w, r->h, &x0, &y0, &iw, &ih);
@@ -124,7 +115,6 @@ void cub_render_child_draw(cub_render *r, const cub_track_skeleton *child, int h
         glScissor(r->x0, r->y0, r->w, r->h);
     }
     cub_render_batch_draw(r);
-    const char *text = cue_text(child->status);
-    if (text)
-        cue(r, text, x0, y0, iw, ih);
+    if (cue_text && cue_text[0])
+        cue(r, cue_text, x0, y0, iw, ih);
 }

@@ -2,7 +2,8 @@
  * a bar along the top, the hint in a banner at the bottom centre with the
  * move's icon on a round badge in the lower-left corner (the child's inset
  * has the lower-right), and while the box waits, the scene dimmed under a
- * big "Press START!" and a round play button for those who cannot read yet.
+ * big title (the scene's words) and a round play button for those who
+ * cannot read yet.
  * Sizes are shares of the viewport height, so 1280x720 and 1920x1080 look
  * the same from the sofa. */
 #include <ctype.h>
@@ -108,7 +109,7 @@ static void icon_badge(cub_render *r, const cub_skeleton *skel, const float *xyz
 /* Dim the scene, then the title along the top and a round play button in
  * the lower-left corner (where a move's badge goes while dancing): the bear
  * between them stays in view, so a dozing bear still shows its sleepy face. */
-static void idle_screen(cub_render *r)
+static void idle_screen(cub_render *r, const char *title)
 {
     static const float DIM[4] = {0.05f, 0.08f, 0.20f, 0.45f};
     static const float BUTTON[4] = {0.20f, 0.72f, 0.30f, 1.0f};
@@ -123,7 +124,8 @@ static void idle_screen(cub_render *r)
         v[i] = cub_render_px_vtx(r, cx + tri[i][0] * rad, cy + tri[i][1] * rad, WHITE, 1.0f);
     cub_render_batch_tri(&r->batch, v);
     cub_render_batch_draw(r);
-    cub_render_text_layout(r, &r->title_label, "Press START!");
+    if (!title || !title[0]) return;
+    cub_render_text_layout(r, &r->title_label, title);
     float scale = TITLE_SCALE;
     if (r->title_label.width_px * scale > 0.9f * w)
         scale = 0.9f * w / r->title_label.width_px;
@@ -135,7 +137,7 @@ static void idle_screen(cub_render *r)
 void cub_render_hud_draw(cub_render *r, const cub_render_scene *scene)
 {
     if (scene->idle) {
-        idle_screen(r);
+        idle_screen(r, scene->title);
         return; /* the hint, badge and bar belong to a song playing */
     }
     if (scene->has_progress && isfinite(scene->progress))

@@ -37,6 +37,7 @@
 #include "cub/png.h"
 #include "cub/render.h"
 #include "display.h"
+#include "words.h"
 
 #define W 320
 #define H 240
@@ -444,6 +445,7 @@ static void test_idle_screen_matches_golden(void **state)
     icon_from_dance();
     cub_render_scene scene = bear_pose(BENDS(DOZE), CUB_RENDER_FACE_HAPPY);
     scene.idle = 1;
+    scene.title = cub_words_title();
     scene.hint = "not shown while idle";
     scene.icon_xyz_mm = g_icon_xyz;
     scene.has_progress = 1;
@@ -457,14 +459,14 @@ static void test_child_inset_cue_matches_golden(void **state)
     fixture *f = *state;
     child_at(1300.0f, CUB_TRACK_TOO_CLOSE);
     cub_render_scene scene = {.skel = &g_skel, .world_xyz_mm = g_xyz, .depth_raw = g_depth,
-                              .child = &g_child};
+                              .child = &g_child, .child_cue = cub_words_cue(g_child.status)};
     draw(f, &scene);
     check_golden_within(f->rgba, "child_step_back", 1, BEAR_MAX_SHARE);
 }
 
-/* The cue is the status's: above the inset something is drawn for too
- * far, too close and partly out, nothing for a child tracked well or for
- * nobody; the three cues differ from each other. */
+/* The cue is the status's words (words.c): above the inset something is
+ * drawn for too far, too close and partly out, nothing for a child tracked
+ * well or for nobody; the three cues differ from each other. */
 static void test_child_cue_follows_status(void **state)
 {
     fixture *f = *state;
@@ -477,6 +479,7 @@ static void test_child_cue_follows_status(void **state)
                                  CUB_TRACK_OK, CUB_TRACK_NO_PLAYER};
     for (int i = 0; i < 5; i++) {
         child_at(2200.0f, statuses[i]);
+        scene.child_cue = cub_words_cue(statuses[i]);
         draw(f, &scene);
         /* Rows above the inset's top (counted from the top), whole width. */
         int differ = 0;
@@ -722,6 +725,7 @@ static void test_tv_dance_layout_matches_golden(void **state)
     scene.has_progress = 1;
     scene.depth_raw = g_depth;
     scene.child = &g_child;
+    scene.child_cue = cub_words_cue(g_child.status);
     assert_int_equal(cub_render_frame(t->render, &scene), CUB_OK);
     assert_int_equal(cub_display_read_rgba(t->disp, t->rgba, (size_t)TV_W * TV_H * 4), CUB_OK);
     cub_display_swap(t->disp);

@@ -6,7 +6,8 @@
  * stick figure on a flat sky; the depth image is a small inset in the
  * lower-right corner with the child's own skeleton and a distance cue.
  * Over it: the hint text with the move's icon, the song's progress, and
- * the big "Press START!" screen while the box waits (render_hud.c).
+ * the idle screen while the box waits (render_hud.c). Every word drawn is
+ * the scene's (app/cubdance/words.c chooses them).
  */
 #ifndef CUB_RENDER_H
 #define CUB_RENDER_H
@@ -76,9 +77,10 @@ typedef struct cub_render_scene {
     const uint16_t *depth_raw;
     float background_rgb[3];  /* all zero = the default sky (stick figure only) */
 
-    /* What the child reads. The caller picks all of it from the tick's
-     * state; the renderer lays it out. Strings are UTF-8 (Latin-1 range
-     * drawn, other characters as '?'), laid out again only when changed. */
+    /* What the child reads. The caller picks all of it, words included,
+     * from the tick's state; the renderer lays it out and never chooses a
+     * word. Strings are UTF-8 (Latin-1 range drawn, other characters as
+     * '?'), laid out again only when changed. */
     const char *hint;         /* under the coach; NULL or "" = none */
     /* The current move's icon: the coach's skel in the move's most telling
      * pose (joint world positions, mm, 3 floats each), drawn as a chunky
@@ -89,12 +91,14 @@ typedef struct cub_render_scene {
      * viewer, draws no bar). */
     float progress;
     int has_progress;
-    int idle;                 /* 1: the big "Press START!" screen over the coach */
+    int idle;                 /* 1: the idle screen over the coach: dimmed, a play
+                                 button and the title */
+    const char *title;        /* with idle: its words ("Press START!"); NULL = none */
     /* The child in the inset: the tracker's skeleton (camera mm), drawn
-     * over the depth image (or on a dark panel without one), and its
-     * status as a cue above it: too close "Step back", too far "Come
-     * closer", partly out "Step into the middle". NULL = none. */
+     * over the depth image (or on a dark panel without one), orange unless
+     * its status is OK. NULL = none. */
     const cub_track_skeleton *child;
+    const char *child_cue;    /* with child: words above the inset ("Step back"); NULL = none */
 } cub_render_scene;
 
 /* CUB_ERR_ARG for a bad desc, CUB_ERR_IO / CUB_ERR_FORMAT for a font that

@@ -1,0 +1,24 @@
+/* words — every word the child reads on the TV, chosen here and nowhere
+ * else: the coach's hint (a move's own words from the song, "Come closer!",
+ * "I can't see you!") and the cue over the child's inset from the tracker's
+ * status ("Step back", "Come closer", "Step into the middle"), and the idle
+ * screen's title ("Press START!"). The renderer
+ * is handed the strings and draws them; it never picks one. Strings are
+ * UTF-8 and live as long as the song. */
+#ifndef CUB_APP_WORDS_H
+#define CUB_APP_WORDS_H
+
+#include <stdint.h>
+
+#include "cub/song.h"
+
+/* The hint's words: hint is a move index of song or a CUB_COACH_HINT_*;
+ * NULL for none (CUB_COACH_HINT_NONE, a move without a hint, out of range). */
+const char *cub_words_hint(const cub_song *song, int32_t hint);
+/* The idle screen's title, while the box waits for START. */
+const char *cub_words_title(void);
+/* The cue for a tracker status (cub_track_status); NULL when the child is
+ * seen well or nobody is there. */
+const char *cub_words_cue(int32_t track_status);
+
+#endif
