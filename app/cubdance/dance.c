@@ -95,17 +95,11 @@ void cub_dance_handle(cub_dance *d, cub_loop *loop, const cub_event *ev)
 
 /* ---- the tick ----------------------------------------------------------- */
 
-static void post(cub_loop *loop, int64_t t_us, int32_t type, int32_t a, int32_t b)
-{
-    cub_event ev = {.t_us = t_us, .type = type, .a = a, .b = b};
-    cub_loop_post(loop, &ev);
-}
-
 void cub_dance_poll(cub_dance *d, cub_loop *loop, int64_t now_us)
 {
     if (cub_dance_music_poll(&d->music, now_us)) {
         cub_log_event(d->log, now_us, "music", "end", "music_ms=%d", music_ms(d));
-        post(loop, now_us, CUB_EV_SONG_END, 0, 0);
+        cub_loop_post(loop, &(cub_event){.t_us = now_us, .type = CUB_EV_SONG_END});
     }
     cub_director_advance(&d->dir, loop, now_us, music_ms(d));
 }

@@ -1,5 +1,6 @@
 /* The loop's hooks for the box program. poll() brings board events in and
- * logs each depth frame; handle() runs the waiting/playing states; tick()
+ * logs each depth frame as it arrives, before the tracker and the judge
+ * see it; handle() runs the waiting/playing states; tick()
  * samples the clip, renders, writes headless frames and enforces --seconds. */
 #include "session.h"
 
@@ -29,12 +30,17 @@ static void hook_wait(void *u, int64_t t_us)
     cub_board_sleep_until_us(s->board, t_us);
 }
 
+/* What the log says about one depth frame (see log_depth_frame). */
+typedef struct cub_depth_probe {
+    uint32_t seq, timestamp, valid;
+    int64_t t_us;
+    uint16_t near_raw, center_raw;
+} cub_depth_probe;
+
 /* One log line per depth frame: its sequence number and Kinect timestamp,
  * how many pixels have a reading, and two probes (the nearest reading and
  * the centre pixel) in raw units and in mm, so a replay can be checked
- * against the recording and against the raw->mm formula. The probe is taken
- * when the frame arrives; the line is written when its event is handled, so
- * the log stays in the order events were handled. */
+ * against the recording and against the raw->mm formula. */
 static cub_depth_probe probe_depth_frame(const cub_depth_frame *f)
 {
     cub_depth_probe p = {.seq = f->seq, .timestamp = f->timestamp, .t_us = f->t_us,
@@ -49,8 +55,9 @@ static cub_depth_probe probe_depth_frame(const cub_depth_frame *f)
     return p;
 }
 
-static void log_depth_frame(cub_session *s, const cub_depth_probe *p)
+static void log_depth_frame(cub_session *s, const cub_depth_frame *f)
 {
+    const cub_depth_probe probe = probe_depth_frame(f), *p = &probe;
     cub_log_event(&s->loop->log, p->t_us, "depth", "frame",
                   "seq=%u ts=%u valid=%u near_raw=%u near_mm=%q center_raw=%u center_mm=%q",
                   p->seq, p->timestamp, p->valid, p->near_raw, cub_track_raw_to_mm(p->near_raw),
@@ -64,10 +71,10 @@ static void poll_depth(cub_session *s, cub_loop *loop, int64_t now_us)
     if (err == CUB_OK) {
         memcpy(s->depth_copy, f.raw, DEPTH_PIXELS * sizeof(uint16_t));
         s->depth_frames++;
-        s->depth_probe = probe_depth_frame(&f);
-        cub_event ev = {.t_us = f.t_us, .type = CUB_EV_DEPTH_FRAME, .a = (int32_t)f.seq};
-        cub_loop_post(loop, &ev);
         s->depth_state = CUB_OK;
+        /* One way: the frame's line, then what the tracker and the judge
+         * make of it (their lines, and their events for the director). */
+        log_depth_frame(s, &f);
         if (s->watch) cub_watch_frame(s->watch, loop, f.t_us, f.raw, f.accel);
     } else if (err != CUB_ERR_EMPTY && err != s->depth_state) {
         /* The end of a replay, or a live camera failing: once per change. */
@@ -158,9 +165,6 @@ static void hook_handle(void *u, cub_loop *loop, const cub_event *ev)
         if (ev->type == CUB_EV_BUTTON_DOWN && !s->dance)
             set_state(s, ev->a == CUB_BUTTON_START ? CUB_APP_PLAYING : CUB_APP_WAITING, ev->t_us);
         break;
-    case CUB_EV_DEPTH_FRAME:
-        if ((uint32_t)ev->a == s->depth_probe.seq) log_depth_frame(s, &s->depth_probe);
-        return;
     case CUB_EV_QUIT: cub_log_event(&loop->log, ev->t_us, "app", "quit", "reason=user"); break;
     default: break;
     }

@@ -19,13 +19,6 @@
 
 typedef enum cub_app_state { CUB_APP_WAITING = 0, CUB_APP_PLAYING } cub_app_state;
 
-/* What the log says about one depth frame (see log_depth_frame). */
-typedef struct cub_depth_probe {
-    uint32_t seq, timestamp, valid;
-    int64_t t_us;
-    uint16_t near_raw, center_raw;
-} cub_depth_probe;
-
 typedef struct cub_session {
     const cub_app_options *opt;
     cub_board *board;
@@ -42,7 +35,6 @@ typedef struct cub_session {
     int64_t stop_at_us;      /* 0 = no limit */
     uint16_t *depth_copy;    /* the last depth frame, for the inset */
     uint32_t depth_frames;
-    cub_depth_probe depth_probe; /* of the frame whose event is queued */
     cub_err depth_state;     /* the last poll's answer other than OK/EMPTY, logged once */
     uint8_t *rgba;           /* read-back buffer for headless frames */
     /* This tick's coach pose, kept here rather than on the stack (the
