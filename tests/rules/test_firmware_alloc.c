@@ -13,6 +13,7 @@
 
 #include "cub/coach.h"
 #include "cub/bridge.h"
+#include "cub/director.h"
 #include "cub/fx.h"
 #include "cub/loop.h"
 #include "cub/motion.h"
@@ -177,6 +178,43 @@ static void run_coach_after_init(void)
     assert_int_equal(coach.state, CUB_COACH_IDLE);
 }
 
+/* ---- the director over a finished table ---------------------------------- */
+
+/* Every role played by clip 0, a song of clip 1: START, the dance, a wrong
+ * verdict, the player's time, STOP. */
+static void run_director_after_init(const cub_bridge_table *table)
+{
+    static const cub_coach_move moves[1] = {{.clip = 1, .reps = 2, .tag_ms = 0, .span_ms = 2000}};
+    static const cub_director_keys keys[1] = {{.count = 1, .key = {{.feature = 0, .set = 1}}}};
+    static uint8_t mem[1 << 15];
+    static cub_director dir;
+    static cub_event slots[64];
+    static cub_loop loop;
+    size_t logged = 0;
+    cub_log log = {.sink = sink, .user = &logged};
+    cub_director_desc d = {.table = table, .keys = keys, .bpm = 120,
+                           .coach = {.moves = moves, .move_count = 1, .clip_count = 2,
+                                     .log = &log}};
+    assert_true(cub_director_mem_size(&d) <= sizeof mem);
+    assert_int_equal(cub_director_init(&dir, &d, mem, sizeof mem, 0), CUB_OK);
+    cub_loop_desc ld = {.queue_capacity = 64};
+    assert_int_equal(cub_loop_init(&loop, &ld, slots, sizeof slots), CUB_OK);
+
+    counting = 1;
+    const cub_event script[] = {
+        {100000, CUB_EV_BUTTON_DOWN, CUB_BUTTON_START, 0}, {1000000, CUB_EV_CLIP_DONE, 0, 0},
+        {1500000, CUB_EV_VERDICT, -1, 0}, {3000000, CUB_EV_BUTTON_DOWN, CUB_BUTTON_STOP, 0},
+    };
+    for (size_t i = 0; i < sizeof script / sizeof script[0]; i++) {
+        cub_director_advance(&dir, &loop, script[i].t_us, (int32_t)(script[i].t_us / 1000));
+        cub_director_handle(&dir, &script[i], (int32_t)(script[i].t_us / 1000));
+        cub_director_tick(&dir, script[i].t_us, (int32_t)(script[i].t_us / 1000));
+    }
+    counting = 0;
+    assert_true(logged > 0);
+    assert_int_equal(dir.coach.state, CUB_COACH_IDLE);
+}
+
 /* ---- bridge: plan, play and smooth switches ----------------------------- */
 
 static void run_bridge_after_init(void)
@@ -241,6 +279,7 @@ static void run_bridge_after_init(void)
     }
     counting = 0;
     assert_true(switches > 0);
+    run_director_after_init(&table);
 }
 
 static void test_firmware_allocates_nothing_after_init(void **s)
