@@ -50,12 +50,12 @@ static int write_pgm(const char *path, const uint16_t *raw)
 {
     FILE *f = fopen(path, "wb");
     if (!f) return -1;
-    static unsigned char bytes[CUB_TRACK_WIDTH * CUB_TRACK_HEIGHT * 2];
-    for (int i = 0; i < CUB_TRACK_WIDTH * CUB_TRACK_HEIGHT; i++) {
+    static unsigned char bytes[CUB_KINECT_WIDTH * CUB_KINECT_HEIGHT * 2];
+    for (int i = 0; i < CUB_KINECT_WIDTH * CUB_KINECT_HEIGHT; i++) {
         bytes[2 * i] = (unsigned char)(raw[i] & 0xff);
         bytes[2 * i + 1] = (unsigned char)(raw[i] >> 8);
     }
-    int ok = fprintf(f, "P5 %d %d 65535\n", CUB_TRACK_WIDTH, CUB_TRACK_HEIGHT) > 0 &&
+    int ok = fprintf(f, "P5 %d %d 65535\n", CUB_KINECT_WIDTH, CUB_KINECT_HEIGHT) > 0 &&
              fwrite(bytes, 1, sizeof(bytes), f) == sizeof(bytes);
     return (fclose(f) == 0 && ok) ? 0 : -1;
 }
@@ -64,8 +64,8 @@ static void write_truth_head(FILE *f, const float g[3])
 {
     fprintf(f, "# cub-synth truth v1: line 2 'gravity gx gy gz' (down, camera space, length "
                "1000); then per frame: frame t_s ts, then 20 joints (");
-    for (int j = 0; j < CUB_TJ_COUNT; j++)
-        fprintf(f, "%s%s", j ? " " : "", cub_track_joint_name(j));
+    for (int j = 0; j < CUB_KJ_COUNT; j++)
+        fprintf(f, "%s%s", j ? " " : "", cub_kinect_joint_name(j));
     fprintf(f, ") as x y z v: mm, camera space (x right, y up, z away), v 1 = visible\n");
     fprintf(f, "gravity %.3f %.3f %.3f\n", g[0], g[1], g[2]);
 }
@@ -73,7 +73,7 @@ static void write_truth_head(FILE *f, const float g[3])
 static void write_truth_frame(FILE *f, const cub_synth_truth_frame *t)
 {
     fprintf(f, "%d %f %u", t->frame, t->t_s, t->ts);
-    for (int j = 0; j < CUB_TJ_COUNT; j++)
+    for (int j = 0; j < CUB_KJ_COUNT; j++)
         fprintf(f, " %.1f %.1f %.1f %d", t->joint_mm[j][0], t->joint_mm[j][1], t->joint_mm[j][2],
                 t->visible[j]);
     fputc('\n', f);
@@ -98,7 +98,7 @@ cub_err cub_synth_write_dump(cub_synth *s, const char *dir, int frames, int verb
     float g[3];
     cub_synth_gravity(s, g);
     write_truth_head(truth, g);
-    uint16_t *raw = malloc(CUB_TRACK_WIDTH * CUB_TRACK_HEIGHT * sizeof(uint16_t));
+    uint16_t *raw = malloc(CUB_KINECT_WIDTH * CUB_KINECT_HEIGHT * sizeof(uint16_t));
     cub_err err = raw ? CUB_OK : CUB_ERR_NOMEM;
     for (int i = 0; i < frames && !err; i++) {
         cub_synth_truth_frame t;

@@ -19,10 +19,11 @@
 
 #include <cmocka.h>
 
+#include "cub/kinect.h"
 #include "cub/synth.h"
 
-#define W CUB_TRACK_WIDTH
-#define H CUB_TRACK_HEIGHT
+#define W CUB_KINECT_WIDTH
+#define H CUB_KINECT_HEIGHT
 #define NPIX (W * H)
 
 static const char *data_dir(void)
@@ -269,14 +270,14 @@ static void test_visible_joints_sit_on_the_body(void **state)
         for (int f = 0; f < cub_synth_frame_count(s) && f < 240; f += step) {
             cub_synth_truth_frame t;
             assert_int_equal(cub_synth_render(s, f, raw, &t, NULL, NULL), CUB_OK);
-            for (int j = 0; j < CUB_TJ_COUNT; j++) {
+            for (int j = 0; j < CUB_KJ_COUNT; j++) {
                 if (!t.visible[j]) {
                     hidden++;
                     continue;
                 }
                 float *p = t.joint_mm[j];
-                int u = (int)lroundf(320 + 580 * p[0] / p[2]),
-                    v = (int)lroundf(240 - 580 * p[1] / p[2]);
+                int u = (int)lroundf(CUB_KINECT_CX + CUB_KINECT_FOCAL_PX * p[0] / p[2]),
+                    v = (int)lroundf(CUB_KINECT_CY - CUB_KINECT_FOCAL_PX * p[1] / p[2]);
                 seen++;
                 on_body += near_reading(raw, u, v, p[2], 150);
             }
@@ -301,7 +302,7 @@ static double image_height(cub_synth *s)
     double top = -1e9;
     for (int i = 0; i < NPIX; i++)
         if (own[i] == 1 && raw[i] < 2047) {
-            double y = (240 - i / W) * cub_synth_raw_to_mm(raw[i]) / 580.0 + 800;
+            double y = (CUB_KINECT_CY - i / W) * cub_synth_raw_to_mm(raw[i]) / CUB_KINECT_FOCAL_PX + 800.0;
             top = y > top ? y : top;
         }
     free(raw);
@@ -368,11 +369,11 @@ static void test_mirror_swaps_left_and_right(void **state)
     assert_int_equal(cub_synth_render(s, 10, raw, &a, NULL, NULL), CUB_OK);
     assert_int_equal(cub_synth_render(m, 10, raw, &b, NULL, NULL), CUB_OK);
     for (int k = 0; k < 4; k++) {
-        float *l = a.joint_mm[CUB_TJ_SHOULDER_L + k], *r = b.joint_mm[CUB_TJ_SHOULDER_R + k];
+        float *l = a.joint_mm[CUB_KJ_SHOULDER_L + k], *r = b.joint_mm[CUB_KJ_SHOULDER_R + k];
         assert_true(fabsf(l[0] + r[0]) < 1.0f && fabsf(l[1] - r[1]) < 1.0f);
     }
     /* facing the camera: the player's left shows on the image's left */
-    assert_true(a.joint_mm[CUB_TJ_SHOULDER_L][0] < a.joint_mm[CUB_TJ_SHOULDER_R][0]);
+    assert_true(a.joint_mm[CUB_KJ_SHOULDER_L][0] < a.joint_mm[CUB_KJ_SHOULDER_R][0]);
     free(raw);
     cub_synth_close(s);
     cub_synth_close(m);
@@ -393,13 +394,13 @@ static void test_families_stand_and_face_the_camera(void **state)
         assert_int_equal(cub_synth_render(s, 0, raw, &t, NULL, NULL), CUB_OK);
         float(*p)[3] = t.joint_mm;
         printf("synth: %-28s head y %.0f, hips y %.0f, ankles y %.0f, shoulders x %.0f..%.0f\n",
-               clips[c], p[CUB_TJ_HEAD][1], p[CUB_TJ_HIP_CENTRE][1], p[CUB_TJ_ANKLE_L][1],
-               p[CUB_TJ_SHOULDER_L][0], p[CUB_TJ_SHOULDER_R][0]);
-        assert_true(p[CUB_TJ_HEAD][1] > p[CUB_TJ_SHOULDER_CENTRE][1]);
-        assert_true(p[CUB_TJ_SHOULDER_CENTRE][1] > p[CUB_TJ_HIP_CENTRE][1]);
-        assert_true(p[CUB_TJ_HIP_CENTRE][1] > p[CUB_TJ_KNEE_L][1]);
-        assert_true(p[CUB_TJ_KNEE_R][1] > p[CUB_TJ_ANKLE_R][1]);
-        assert_true(p[CUB_TJ_SHOULDER_L][0] < p[CUB_TJ_SHOULDER_R][0]);
+               clips[c], p[CUB_KJ_HEAD][1], p[CUB_KJ_HIP_CENTRE][1], p[CUB_KJ_ANKLE_L][1],
+               p[CUB_KJ_SHOULDER_L][0], p[CUB_KJ_SHOULDER_R][0]);
+        assert_true(p[CUB_KJ_HEAD][1] > p[CUB_KJ_SHOULDER_CENTRE][1]);
+        assert_true(p[CUB_KJ_SHOULDER_CENTRE][1] > p[CUB_KJ_HIP_CENTRE][1]);
+        assert_true(p[CUB_KJ_HIP_CENTRE][1] > p[CUB_KJ_KNEE_L][1]);
+        assert_true(p[CUB_KJ_KNEE_R][1] > p[CUB_KJ_ANKLE_R][1]);
+        assert_true(p[CUB_KJ_SHOULDER_L][0] < p[CUB_KJ_SHOULDER_R][0]);
         cub_synth_close(s);
     }
     free(raw);
