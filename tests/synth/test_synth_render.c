@@ -80,6 +80,30 @@ static unsigned char *read_all(const char *path, size_t *len)
     return b;
 }
 
+/* An a- line: the frame's own name (stamp), 12 bytes of
+ * freenect_raw_tilt_state, little-endian counts of the push opposite to
+ * gravity (819 a g), motor angle and status 0. */
+static void check_accel_file(const char *dir, const char *name, const char *frame_stamp,
+                             const float gravity[3])
+{
+    char path[700];
+    assert_true(frame_stamp[0]);
+    snprintf(path, sizeof(path), "a-%s.dump", frame_stamp);
+    assert_string_equal(name, path);
+    snprintf(path, sizeof(path), "%s/%s", dir, name);
+    size_t len;
+    unsigned char *b = read_all(path, &len);
+    assert_non_null(b);
+    assert_int_equal(len, 12);
+    for (int i = 0; i < 3; i++) {
+        int counts = (int16_t)(b[2 * i] | b[2 * i + 1] << 8);
+        assert_int_equal(counts, (int)lround(-gravity[i] * CUB_KINECT_ACCEL_COUNTS_PER_G / 1000.0));
+    }
+    for (int i = 6; i < 12; i++) assert_int_equal(b[i], 0);
+    free(b);
+    unlink(path);
+}
+
 static void test_dump_reads_back(void **state)
 {
     (void)state;
@@ -107,10 +131,19 @@ static void test_dump_reads_back(void **state)
     int n = 0;
     double prev_t = 0;
     unsigned prev_ts = 0;
+    char last_stamp[64] = "";
     while (fgets(line, sizeof(line), index)) {
         double t;
         unsigned ts;
         char tail[8];
+        line[strcspn(line, "\n")] = 0;
+        if (line[0] == 'a') { /* after each frame, as fakenect-record writes */
+            check_accel_file(dir, line, last_stamp, truth.gravity);
+            last_stamp[0] = 0;
+            continue;
+        }
+        assert_int_equal(last_stamp[0], 0); /* the frame before had its a- line */
+        snprintf(last_stamp, sizeof last_stamp, "%.*s", (int)strlen(line) - 6, line + 2);
         assert_int_equal(sscanf(line, "d-%lf-%u.%3s", &t, &ts, tail), 3);
         assert_string_equal(tail, "pgm");
         assert_true(n < frames);
@@ -121,7 +154,6 @@ static void test_dump_reads_back(void **state)
         assert_true(fabs(truth.frames[n].t_s - t) < 1e-6);
         assert_int_equal(truth.frames[n].ts, ts);
         assert_int_equal(truth.frames[n].frame, n);
-        line[strcspn(line, "\n")] = 0;
         snprintf(path, sizeof(path), "%s/%s", dir, line);
         size_t len;
         unsigned char *b = read_all(path, &len);
@@ -145,6 +177,7 @@ static void test_dump_reads_back(void **state)
         prev_t = t, prev_ts = ts, n++;
     }
     fclose(index);
+    assert_int_equal(last_stamp[0], 0);
     assert_int_equal(n, frames);
     cub_synth_truth_free(&truth);
     snprintf(path, sizeof(path), "%s/INDEX.txt", dir);
