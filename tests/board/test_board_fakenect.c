@@ -278,6 +278,19 @@ static void test_dump_of_only_bad_frames_is_refused(void **state)
     assert_int_equal(left, 0);
 }
 
+/* The real dump FAKENECT_PATH names, its frames read into d; skips the
+ * test without it. */
+static const char *real_dump(dump *d)
+{
+    const char *real = dump_dir();
+    if (!real) {
+        printf("fakenect: skipped: no real dump (needs $CUB_DATA_DIR/depth/skeltrack)\n");
+        skip();
+    }
+    read_index(real, d);
+    return real;
+}
+
 /* The mended-dump test: the real frames with line BAD_SHORT + 1 cut short
  * and line BAD_MISSING + 1 gone. */
 #define BAD_SHORT 3
@@ -390,13 +403,8 @@ static int replay_mended(cub_depth *src, const char *real, const dump *d, const 
  * after them come back, and the private view is gone after close. */
 static void test_truncated_and_missing_frames_replay_without_readings(void **state)
 {
-    const char *real = dump_dir();
-    if (!real) {
-        printf("fakenect: skipped: no real dump (needs $CUB_DATA_DIR/depth/skeltrack)\n");
-        skip();
-    }
     dump d;
-    read_index(real, &d);
+    const char *real = real_dump(&d);
     assert_true(d.count > BAD_MISSING + 1);
     char dir[] = "/tmp/cub_dump_XXXXXX", tmp[] = "/tmp/cub_tmp_XXXXXX", log[64];
     assert_non_null(mkdtemp(dir));
@@ -473,13 +481,8 @@ static void make_accel_dump(const char *src, const dump *d, const char *dir)
  * the reading of the last a- line before it (none before the first). */
 static void test_accel_lines_between_frames_every_frame_arrives(void **state)
 {
-    const char *real = dump_dir();
-    if (!real) {
-        printf("fakenect: skipped: no real dump (needs $CUB_DATA_DIR/depth/skeltrack)\n");
-        skip();
-    }
     dump d;
-    read_index(real, &d);
+    const char *real = real_dump(&d);
     char dir[] = "/tmp/cub_dump_XXXXXX";
     assert_non_null(mkdtemp(dir));
     make_accel_dump(real, &d, dir);

@@ -17,7 +17,7 @@
 
 #include <cmocka.h>
 
-#include "logread.h"
+#include "replay_log.h"
 
 #define MAX_FRAMES 4096
 
@@ -25,7 +25,6 @@ static const char *out_dir, *dump_dir;
 static unsigned timestamps[MAX_FRAMES];
 static int frame_count = -1; /* depth lines in the dump's INDEX.txt; -1: no dump */
 static int accel_lines;
-static logread events;
 
 /* INDEX.txt: d-<seconds>-<timestamp>.pgm, a-...dump, r-...ppm lines. */
 static int read_index(void)
@@ -47,32 +46,13 @@ static int read_index(void)
 static int setup(void **s)
 {
     frame_count = read_index();
-    if (frame_count < 0) return 0;
-    char path[1024];
-    snprintf(path, sizeof path, "%s/events.log", out_dir);
-    return logread_load(path, &events);
-}
-
-static int teardown(void **s)
-{
-    logread_free(&events);
-    return 0;
+    if (frame_count < 0) return 0; /* the tests skip */
+    return replay_load_log(out_dir);
 }
 
 static void need_data(void)
 {
-    if (frame_count < 0) {
-        print_message("SKIP: no accelerometer dump at %s (../shared/data is absent)\n", dump_dir);
-        skip();
-    }
-}
-
-static double field(int line, const char *key)
-{
-    int ok;
-    double v = logread_number(&events.lines[line], key, &ok);
-    if (!ok) fail_msg("log line %d has no numeric %s=", line + 1, key);
-    return v;
+    replay_need_dump(frame_count >= 0, dump_dir);
 }
 
 /* Recorded time of frame i in ms since the first, as the log prints it:
@@ -155,5 +135,5 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_log_times_never_go_backwards),
         cmocka_unit_test(test_accelerometer_reaches_the_tracker),
     };
-    return cmocka_run_group_tests_name("replay_accel", tests, setup, teardown);
+    return cmocka_run_group_tests_name("replay_accel", tests, setup, replay_teardown);
 }
