@@ -22,7 +22,8 @@
  * the freenect_raw_tilt_state fakenect then reports) beside every depth
  * frame. One call per poll would fall behind the recording, so a replay is
  * drained: under the real clock by a reader thread, which sleeps in
- * fakenect to each line's recorded time while the loop runs on; under the
+ * fakenect to each line's recorded time while the loop runs on (a frame
+ * not yet taken holds the next one back); under the
  * virtual clock in the poll itself, line by line until the next depth frame
  * (a count of lines, not a time, so the same on every machine). Each
  * replayed frame carries the accelerometer reading of the lines before it.
@@ -59,7 +60,8 @@ struct cub_depth_freenect {
     freenect_device *dev;
     const cub_board_clock *clock;
     uint16_t bufs[3][FRAME_PIXELS];
-    pthread_mutex_t lock; /* the fields down to ended, when a reader thread runs */
+    pthread_mutex_t lock; /* the fields down to stop, when a reader thread runs */
+    pthread_cond_t taken; /* the poll took the newest frame */
     int held;            /* buffer the caller may be reading (-1: none yet) */
     int back;            /* buffer the newest frame was copied into (-1: none yet) */
     int fresh;           /* back holds a frame not handed out yet */
@@ -113,6 +115,10 @@ static void on_depth(freenect_device *dev, void *depth, uint32_t timestamp)
 {
     cub_depth_freenect *s = freenect_get_user(dev);
     pthread_mutex_lock(&s->lock);
+    /* A replay loses no frame to a slow loop: the frame before waits for
+     * the poll. (Only then: fakenect times each line from the end of the
+     * call before, so a wait between its calls would add up frame by frame.) */
+    while (s->threaded && s->fresh && !s->stop) pthread_cond_wait(&s->taken, &s->lock);
     int spare = spare_buffer(s);
     pthread_mutex_unlock(&s->lock);
     memcpy(s->bufs[spare], depth, FRAME_BYTES); /* the poll never touches the spare */
@@ -193,6 +199,7 @@ cub_err cub_depth_freenect_open(const cub_board_clock *clock, cub_depth_freenect
     s->clock = clock;
     s->held = s->back = -1;
     pthread_mutex_init(&s->lock, NULL);
+    pthread_cond_init(&s->taken, NULL);
     s->tilt_ok = 1;
     s->replay = fakenect_loaded();
     s->paced = s->replay && clock->is_virtual;
@@ -283,7 +290,10 @@ static cub_err pump(cub_depth_freenect *s)
     if (s->paced) return drain_to_depth(s);
     cub_err e = process_once(s);
     if (e || !s->replay || s->ended) return e;
-    s->threaded = pthread_create(&s->reader, NULL, read_replay, s) == 0;
+    pthread_mutex_lock(&s->lock); /* the reader's callback reads threaded */
+    s->threaded = 1;
+    pthread_mutex_unlock(&s->lock);
+    if (pthread_create(&s->reader, NULL, read_replay, s) != 0) s->threaded = 0;
     return CUB_OK;
 }
 
@@ -294,6 +304,7 @@ static cub_err hand_out(cub_depth_freenect *s, int64_t now_us, cub_depth_frame *
     if (s->paced && now_us < s->back_t_us) return CUB_ERR_EMPTY;
     s->held = s->back;
     s->fresh = 0;
+    pthread_cond_signal(&s->taken);
     out->raw = s->bufs[s->held];
     out->seq = s->back_seq;
     out->timestamp = s->back_timestamp;
@@ -331,6 +342,7 @@ void cub_depth_freenect_close(cub_depth_freenect *s)
     if (s->threaded) {
         pthread_mutex_lock(&s->lock);
         s->stop = 1;
+        pthread_cond_broadcast(&s->taken);
         pthread_mutex_unlock(&s->lock);
         pthread_join(s->reader, NULL); /* at most one line's recorded wait */
     }
@@ -342,6 +354,7 @@ void cub_depth_freenect_close(cub_depth_freenect *s)
         freenect_shutdown(s->ctx);
     }
     cub_fakenect_dump_release(&s->view);
+    pthread_cond_destroy(&s->taken);
     pthread_mutex_destroy(&s->lock);
     free(s);
 }
