@@ -23,7 +23,6 @@ struct cub_record {
     int64_t used_bytes; /* what dir holds, this run's frames included */
     int64_t t0_s;       /* wall clock (s) when the current recording began */
     uint32_t frames;
-    int16_t accel[3];   /* the last reading written (0 0 0: none yet) */
     int full;           /* the cap or the disk stopped recording for good */
     uint16_t row[CUB_DEPTH_W * CUB_DEPTH_H]; /* one frame, little-endian */
 };
@@ -118,7 +117,6 @@ void cub_record_begin(cub_record *r, int64_t t_us)
         return;
     }
     r->frames = 0;
-    memset(r->accel, 0, sizeof r->accel);
     const char *name = strrchr(r->folder, '/') + 1;
     log_line(r, t_us, "start", "dir=%s%s", name, "");
 }
@@ -159,26 +157,16 @@ static int write_file(const char *path, const void *head, size_t head_size, cons
 }
 
 /* fakenect's names: d-<seconds>-<timestamp>.pgm, a-... .dump. The seconds
- * pace the replay; the timestamp is the camera's own (60 MHz ticks). */
+ * pace the replay; the timestamp is the camera's own (60 MHz ticks). As
+ * fakenect-record does, the accelerometer is written after the frame, named
+ * with the frame's timestamp: fakenect hands the frame after it this
+ * reading. */
 static int write_frame(cub_record *r, const cub_depth_frame *f)
 {
     int64_t us = r->t0_s * 1000000 + (f->t_us > 0 ? f->t_us : 0);
     char stamp[64], name[96], path[1300];
     snprintf(stamp, sizeof stamp, "%lld.%06lld-%u", (long long)(us / 1000000),
              (long long)(us % 1000000), f->timestamp);
-    freenect_raw_tilt_state tilt = {.accelerometer_x = f->accel[0],
-                                    .accelerometer_y = f->accel[1],
-                                    .accelerometer_z = f->accel[2]};
-    /* fakenect takes one INDEX line per event poll, so an a- line costs the
-     * replay a poll: write one only when the reading changes (a camera
-     * without a motor, or a replay without a- files, never writes one). */
-    if (memcmp(f->accel, r->accel, sizeof r->accel) != 0) {
-        snprintf(name, sizeof name, "a-%s.dump", stamp);
-        snprintf(path, sizeof path, "%s/%s", r->folder, name);
-        if (write_file(path, &tilt, sizeof tilt, NULL, 0)) return -1;
-        fprintf(r->index, "%s\n", name);
-        memcpy(r->accel, f->accel, sizeof r->accel);
-    }
     for (int i = 0; i < CUB_DEPTH_W * CUB_DEPTH_H; i++) { /* little-endian on any CPU */
         uint8_t *b = (uint8_t *)&r->row[i];
         b[0] = (uint8_t)(f->raw[i] & 0xff);
@@ -187,6 +175,15 @@ static int write_frame(cub_record *r, const cub_depth_frame *f)
     snprintf(name, sizeof name, "d-%s.pgm", stamp);
     snprintf(path, sizeof path, "%s/%s", r->folder, name);
     if (write_file(path, PGM_HEADER, sizeof PGM_HEADER - 1, r->row, sizeof r->row)) return -1;
+    fprintf(r->index, "%s\n", name);
+    freenect_raw_tilt_state tilt;
+    memset(&tilt, 0, sizeof tilt); /* the pad byte too: the same file every run */
+    tilt.accelerometer_x = f->accel[0];
+    tilt.accelerometer_y = f->accel[1];
+    tilt.accelerometer_z = f->accel[2];
+    snprintf(name, sizeof name, "a-%s.dump", stamp);
+    snprintf(path, sizeof path, "%s/%s", r->folder, name);
+    if (write_file(path, &tilt, sizeof tilt, NULL, 0)) return -1;
     fprintf(r->index, "%s\n", name);
     return fflush(r->index) == 0 ? 0 : -1;
 }

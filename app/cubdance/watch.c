@@ -79,6 +79,15 @@ static void post_judged(cub_loop *loop, const cub_judge_out *out)
         if (out->events[i].ev.type != CUB_EV_NONE) cub_loop_post(loop, &out->events[i].ev);
 }
 
+/* Once when the accelerometer starts (or stops) giving the tracker its
+ * floor, not every frame: a real reading moves by a count or two. */
+static void log_gravity(cub_watch *w, int64_t t_us, const int16_t accel[3], int known)
+{
+    w->gravity_known = known;
+    cub_log_event(w->log, t_us, "watch", "gravity", "state=%s accel=%d,%d,%d",
+                  known ? "known" : "unknown", accel[0], accel[1], accel[2]);
+}
+
 void cub_watch_frame(cub_watch *w, cub_loop *loop, int64_t t_us, const uint16_t *raw,
                      const int16_t accel[3])
 {
@@ -93,6 +102,7 @@ void cub_watch_frame(cub_watch *w, cub_loop *loop, int64_t t_us, const uint16_t 
      * match camera space too: not checked on hardware.) */
     cub_vec3 gravity = {CUB_Q16_INT(-accel[0]), CUB_Q16_INT(-accel[1]), CUB_Q16_INT(-accel[2])};
     const int known = accel[0] || accel[1] || accel[2];
+    if (known != w->gravity_known) log_gravity(w, t_us, accel, known);
     cub_track_frame(w->tracker, raw, t_us, known ? &gravity : NULL, &w->skel);
     if (w->skel.status != w->status) {
         cub_log_event(w->log, t_us, "track", "status", "from=%s to=%s player=%d",

@@ -33,6 +33,7 @@ typedef struct cub_watch {
     uint32_t frames;
     int64_t last_frame_us, gap_us;
     int camera_lost;
+    int gravity_known; /* the last frame had an accelerometer reading */
 } cub_watch;
 
 /* Set up the tracker and the judge. CUB_ERR_NOMEM, or a tracker/judge error. */

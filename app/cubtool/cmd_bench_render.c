@@ -155,8 +155,8 @@ static int load(const bench_args *a, bench_ctx *c)
 static void bench_child(bench_ctx *c, const cub_vec3 *world, int joints, int i)
 {
     c->child.status = (i / 90) % 2 ? CUB_TRACK_TOO_CLOSE : CUB_TRACK_OK;
-    for (int j = 0; j < CUB_TJ_COUNT; j++) {
-        cub_vec3 p = world[j * joints / CUB_TJ_COUNT];
+    for (int j = 0; j < CUB_KJ_COUNT; j++) {
+        cub_vec3 p = world[j * joints / CUB_KJ_COUNT];
         c->child.joint_mm[j] = (cub_vec3){p.x, p.y - 900 * 65536, p.z + 2500 * 65536};
         c->child.confidence[j] = 65536;
     }

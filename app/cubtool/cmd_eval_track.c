@@ -56,11 +56,11 @@ static double now_s(void)
 static void print_frame(const char *name, const cub_track_skeleton *s)
 {
     printf("%s status=%d id=%d\n", name, (int)s->status, (int)s->player_id);
-    for (int j = 0; j < CUB_TJ_COUNT; j++) {
+    for (int j = 0; j < CUB_KJ_COUNT; j++) {
         double x = s->joint_mm[j].x / 65536.0, y = s->joint_mm[j].y / 65536.0, z = s->joint_mm[j].z / 65536.0;
-        double u = z > 0 ? CUB_TRACK_CX + x * CUB_TRACK_FOCAL_PX / z : 0;
-        double v = z > 0 ? CUB_TRACK_CY - y * CUB_TRACK_FOCAL_PX / z : 0;
-        printf("  %-15s u=%4.0f v=%4.0f  x=%6.0f y=%6.0f z=%6.0f conf=%.2f\n", cub_track_joint_name(j), u, v, x, y,
+        double u = z > 0 ? CUB_KINECT_CX + x * CUB_KINECT_FOCAL_PX / z : 0;
+        double v = z > 0 ? CUB_KINECT_CY - y * CUB_KINECT_FOCAL_PX / z : 0;
+        printf("  %-15s u=%4.0f v=%4.0f  x=%6.0f y=%6.0f z=%6.0f conf=%.2f\n", cub_kinect_joint_name(j), u, v, x, y,
                z, s->confidence[j] / 65536.0);
     }
 }
@@ -105,8 +105,8 @@ int cub_cmd_eval_track(int argc, char **argv)
     void *mem = NULL;
     cub_tracker *t = cub_tool_tracker_new(&mem, "eval-track");
     if (!t) return 1;
-    double err_sum[CUB_TJ_COUNT] = {0};
-    int within[CUB_TJ_COUNT] = {0}, count[CUB_TJ_COUNT] = {0}, status[5] = {0};
+    double err_sum[CUB_KJ_COUNT] = {0};
+    int within[CUB_KJ_COUNT] = {0}, count[CUB_KJ_COUNT] = {0}, status[5] = {0};
     double secs = 0;
     for (int f = 0; f < d.n; f++) {
         cub_track_skeleton s;
@@ -121,7 +121,7 @@ int cub_cmd_eval_track(int argc, char **argv)
         double f_sum = 0;
         int f_n = 0;
         char f_off[512] = "";
-        for (int j = 0; j < CUB_TJ_COUNT; j++) {
+        for (int j = 0; j < CUB_KJ_COUNT; j++) {
             if (!tr->visible[j]) continue;
             double dx = s.joint_mm[j].x / 65536.0 - tr->joint_mm[j][0],
                    dy = s.joint_mm[j].y / 65536.0 - tr->joint_mm[j][1],
@@ -131,7 +131,7 @@ int cub_cmd_eval_track(int argc, char **argv)
             err_sum[j] += e, count[j]++, within[j] += e <= 100.0;
             f_sum += e, f_n++;
             if (e > 100.0 && strlen(f_off) < sizeof f_off - 32)
-                snprintf(f_off + strlen(f_off), sizeof f_off - strlen(f_off), " %s=%.0f", cub_track_joint_name(j), e);
+                snprintf(f_off + strlen(f_off), sizeof f_off - strlen(f_off), " %s=%.0f", cub_kinect_joint_name(j), e);
         }
         if (per_frame)
             printf("frame %d status=%d mean=%.0fmm off:%s\n", f, (int)s.status, f_n ? f_sum / f_n : 0.0, f_off);
@@ -139,9 +139,9 @@ int cub_cmd_eval_track(int argc, char **argv)
     int all_n = 0, all_in = 0;
     if (have_truth) {
         printf("%-15s %8s %8s %6s\n", "joint", "mean_mm", "<=10cm", "n");
-        for (int j = 0; j < CUB_TJ_COUNT; j++) {
+        for (int j = 0; j < CUB_KJ_COUNT; j++) {
             if (!count[j]) continue;
-            printf("%-15s %8.0f %7.1f%% %6d\n", cub_track_joint_name(j), err_sum[j] / count[j],
+            printf("%-15s %8.0f %7.1f%% %6d\n", cub_kinect_joint_name(j), err_sum[j] / count[j],
                    100.0 * within[j] / count[j], count[j]);
             all_n += count[j], all_in += within[j];
         }

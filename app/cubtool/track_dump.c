@@ -18,7 +18,7 @@ static int read_pgm(const char *path, uint16_t *out, const char *who)
         return -1;
     }
     int w = 0, h = 0, maxv = 0;
-    if (fscanf(f, "P5 %d %d %d", &w, &h, &maxv) != 3 || w != CUB_TRACK_WIDTH || h != CUB_TRACK_HEIGHT ||
+    if (fscanf(f, "P5 %d %d %d", &w, &h, &maxv) != 3 || w != CUB_KINECT_WIDTH || h != CUB_KINECT_HEIGHT ||
         maxv != 65535 || fgetc(f) == EOF) {
         fprintf(stderr, "%s: %s: not a 640x480 16-bit P5 depth frame\n", who, path);
         fclose(f);

@@ -7,7 +7,7 @@
 
 #include "cub/track.h"
 
-#define CUB_TOOL_FRAME_PIXELS (CUB_TRACK_WIDTH * CUB_TRACK_HEIGHT)
+#define CUB_TOOL_FRAME_PIXELS (CUB_KINECT_WIDTH * CUB_KINECT_HEIGHT)
 
 /* One dump: its depth frames in INDEX order. */
 typedef struct cub_tool_dump {

@@ -5,34 +5,12 @@
  * there is no depth image. Above the inset, the cue the scene gives (the
  * words for a child the camera does not read well). Green bones: tracked
  * whole; orange: tracked, but not well. */
+#include "cub/kinect.h"
 #include "cub/track.h"
 #include "render_internal.h"
 
 #define CUE_SCALE 0.42f
 
-/* Each joint's parent in the Kinect's 20-joint tree (-1: the root). */
-static const int8_t PARENT[CUB_TJ_COUNT] = {
-    [CUB_TJ_HIP_CENTRE] = -1,
-    [CUB_TJ_SPINE] = CUB_TJ_HIP_CENTRE,
-    [CUB_TJ_SHOULDER_CENTRE] = CUB_TJ_SPINE,
-    [CUB_TJ_HEAD] = CUB_TJ_SHOULDER_CENTRE,
-    [CUB_TJ_SHOULDER_L] = CUB_TJ_SHOULDER_CENTRE,
-    [CUB_TJ_ELBOW_L] = CUB_TJ_SHOULDER_L,
-    [CUB_TJ_WRIST_L] = CUB_TJ_ELBOW_L,
-    [CUB_TJ_HAND_L] = CUB_TJ_WRIST_L,
-    [CUB_TJ_SHOULDER_R] = CUB_TJ_SHOULDER_CENTRE,
-    [CUB_TJ_ELBOW_R] = CUB_TJ_SHOULDER_R,
-    [CUB_TJ_WRIST_R] = CUB_TJ_ELBOW_R,
-    [CUB_TJ_HAND_R] = CUB_TJ_WRIST_R,
-    [CUB_TJ_HIP_L] = CUB_TJ_HIP_CENTRE,
-    [CUB_TJ_KNEE_L] = CUB_TJ_HIP_L,
-    [CUB_TJ_ANKLE_L] = CUB_TJ_KNEE_L,
-    [CUB_TJ_FOOT_L] = CUB_TJ_ANKLE_L,
-    [CUB_TJ_HIP_R] = CUB_TJ_HIP_CENTRE,
-    [CUB_TJ_KNEE_R] = CUB_TJ_HIP_R,
-    [CUB_TJ_ANKLE_R] = CUB_TJ_KNEE_R,
-    [CUB_TJ_FOOT_R] = CUB_TJ_ANKLE_R,
-};
 
 /* Camera mm -> inset pixel through the depth image's pixel (u, v);
  * 0 for a joint at or behind the camera. */
@@ -41,10 +19,10 @@ static int to_inset(const cub_vec3 *p, int x0, int y0, int iw, int ih, float out
     float z = (float)p->z / 65536.0f;
     if (!(z > 1.0f))
         return 0;
-    float u = CUB_TRACK_CX + CUB_TRACK_FOCAL_PX * ((float)p->x / 65536.0f) / z;
-    float v = CUB_TRACK_CY - CUB_TRACK_FOCAL_PX * ((float)p->y / 65536.0f) / z;
-    out[0] = (float)x0 + u * (float)iw / CUB_TRACK_WIDTH;
-    out[1] = (float)(y0 + ih) - v * (float)ih / CUB_TRACK_HEIGHT;
+    float u = CUB_KINECT_CX + CUB_KINECT_FOCAL_PX * ((float)p->x / 65536.0f) / z;
+    float v = CUB_KINECT_CY - CUB_KINECT_FOCAL_PX * ((float)p->y / 65536.0f) / z;
+    out[0] = (float)x0 + u * (float)iw / CUB_KINECT_WIDTH;
+    out[1] = (float)(y0 + ih) - v * (float)ih / CUB_KINECT_HEIGHT;
     return 1;
 }
 
@@ -56,13 +34,13 @@ static void bones(cub_render *r, const cub_track_skeleton *c, int x0, int y0, in
     float hw = (float)iw / 60.0f;
     hw = hw < 1.0f ? 1.0f : hw;
     float a[2], b[2];
-    for (int j = 0; j < CUB_TJ_COUNT; j++) {
-        int p = PARENT[j];
+    for (int j = 0; j < CUB_KJ_COUNT; j++) {
+        int p = cub_kinect_joint_parent(j);
         if (p >= 0 && to_inset(&c->joint_mm[j], x0, y0, iw, ih, a) &&
             to_inset(&c->joint_mm[p], x0, y0, iw, ih, b))
             cub_render_shape_limb(r, a[0], a[1], b[0], b[1], hw, rgba);
     }
-    if (to_inset(&c->joint_mm[CUB_TJ_HEAD], x0, y0, iw, ih, a))
+    if (to_inset(&c->joint_mm[CUB_KJ_HEAD], x0, y0, iw, ih, a))
         cub_render_shape_disc(r, a[0], a[1], 3.0f * hw, rgba);
 }
 

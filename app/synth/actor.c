@@ -18,7 +18,7 @@ typedef struct map_entry {
 typedef struct family {
     const char *name;
     const char *detect; /* a joint only this family has */
-    map_entry e[CUB_TJ_COUNT];
+    map_entry e[CUB_KJ_COUNT];
 } family;
 
 #define LEGS(h, k, a, f)                                                                           \
@@ -91,8 +91,8 @@ static const family families[] = {
 struct synth_actor {
     char name[256];
     cub_io_motion m;
-    int ia[CUB_TJ_COUNT], ib[CUB_TJ_COUNT];
-    float frac[CUB_TJ_COUNT];
+    int ia[CUB_KJ_COUNT], ib[CUB_KJ_COUNT];
+    float frac[CUB_KJ_COUNT];
     sv3 basis[3]; /* source axes giving the actor's x (left), y (up), z (forward) */
     float scale;
     float height_mm;
@@ -170,12 +170,12 @@ static cub_err map_joints(synth_actor *a, cub_diag *diag)
                     "unknown skeleton family%s%s (known: CMU BVH and ASF/AMC, AnimatedDrawings, "
                     "Rokoko, Bandai, DAZ)",
                     "", "");
-    for (int j = 0; j < CUB_TJ_COUNT; j++) {
+    for (int j = 0; j < CUB_KJ_COUNT; j++) {
         const map_entry *e = &fam->e[j];
         a->ia[j] = cub_motion_skeleton_find(sk, e->a);
         if (a->ia[j] < 0)
             return fail(diag, a->name, "joint '%s' (for %s) missing", e->a,
-                        cub_track_joint_name(j));
+                        cub_kinect_joint_name(j));
         a->ib[j] = -1;
         a->frac[j] = e->frac;
         if (!e->b) continue;
@@ -184,16 +184,16 @@ static cub_err map_joints(synth_actor *a, cub_diag *diag)
         if (a->ib[j] < 0)
             return fail(diag, a->name, "joint '%s' (for %s) missing",
                         strcmp(e->b, "+") == 0 ? "a child of the head" : e->b,
-                        cub_track_joint_name(j));
+                        cub_kinect_joint_name(j));
     }
     return CUB_OK;
 }
 
 /* The source points (no basis, no scale) of the pose in a->pose. */
-static void source_points(synth_actor *a, sv3 out[CUB_TJ_COUNT])
+static void source_points(synth_actor *a, sv3 out[CUB_KJ_COUNT])
 {
     cub_motion_forward(&a->m.skel, &a->pose, a->world, NULL);
-    for (int j = 0; j < CUB_TJ_COUNT; j++) {
+    for (int j = 0; j < CUB_KJ_COUNT; j++) {
         const cub_vec3 *pa = &a->world[a->ia[j]];
         sv3 p = v3(pa->x / 65536.0f, pa->y / 65536.0f, pa->z / 65536.0f);
         if (a->ib[j] >= 0) {
@@ -223,11 +223,11 @@ static float dist(sv3 a, sv3 b)
  * right hip -> left hip, each snapped to the nearest file axis. */
 static cub_err set_frame(synth_actor *a, cub_diag *diag)
 {
-    sv3 p[CUB_TJ_COUNT];
+    sv3 p[CUB_KJ_COUNT];
     cub_motion_sample(&a->m.clip, 0, CUB_MOTION_CLAMP, &a->pose);
     source_points(a, p);
-    sv3 up = snap_axis(v3_sub(p[CUB_TJ_SHOULDER_CENTRE], p[CUB_TJ_HIP_CENTRE]));
-    sv3 left = snap_axis(v3_sub(p[CUB_TJ_HIP_L], p[CUB_TJ_HIP_R]));
+    sv3 up = snap_axis(v3_sub(p[CUB_KJ_SHOULDER_CENTRE], p[CUB_KJ_HIP_CENTRE]));
+    sv3 left = snap_axis(v3_sub(p[CUB_KJ_HIP_L], p[CUB_KJ_HIP_R]));
     if (fabsf(v3_dot(up, left)) > 0.5f)
         return fail(diag, a->name, "first frame has no clear up and left directions%s%s", "", "");
     a->basis[0] = left;
@@ -237,15 +237,15 @@ static cub_err set_frame(synth_actor *a, cub_diag *diag)
      * not depend on the pose; CMU's rest legs splay 20 degrees) and the
      * first frame's small vertical offsets (hip joints, feet). */
     float leg = 0, drop = 0;
-    for (int k = CUB_TJ_HIP_L; k <= CUB_TJ_HIP_R; k += CUB_TJ_HIP_R - CUB_TJ_HIP_L) {
+    for (int k = CUB_KJ_HIP_L; k <= CUB_KJ_HIP_R; k += CUB_KJ_HIP_R - CUB_KJ_HIP_L) {
         sv3 heel, toe;
         synth_body_foot_ends(p[k + 2], p[k + 3], &heel, &toe);
         float sole = fminf(v3_dot(heel, up), v3_dot(toe, up));
         leg += 0.5f * (dist(p[k], p[k + 1]) + dist(p[k + 1], p[k + 2]));
-        drop += 0.5f * (v3_dot(v3_sub(p[CUB_TJ_HIP_CENTRE], p[k]), up) +
+        drop += 0.5f * (v3_dot(v3_sub(p[CUB_KJ_HIP_CENTRE], p[k]), up) +
                         fmaxf(0, v3_dot(p[k + 2], up) - sole));
     }
-    float shoulder = dist(p[CUB_TJ_SHOULDER_CENTRE], p[CUB_TJ_HIP_CENTRE]) + leg + drop;
+    float shoulder = dist(p[CUB_KJ_SHOULDER_CENTRE], p[CUB_KJ_HIP_CENTRE]) + leg + drop;
     if (!(shoulder > 1.0f))
         return fail(diag, a->name, "first frame: shoulders not above the feet%s%s", "", "");
     /* Everything above the shoulder centre is the child's own head (body.c). */
@@ -296,19 +296,19 @@ double synth_actor_duration_s(const synth_actor *a)
 void synth_actor_points(const synth_actor *a_const, double t_s, sv3 out[SP_COUNT])
 {
     synth_actor *a = (synth_actor *)a_const; /* scratch buffers only */
-    sv3 p[CUB_TJ_COUNT];
+    sv3 p[CUB_KJ_COUNT];
     cub_motion_sample(&a->m.clip, (int64_t)(t_s * 1e6), CUB_MOTION_CLAMP, &a->pose);
     source_points(a, p);
-    for (int j = 0; j < CUB_TJ_COUNT; j++)
+    for (int j = 0; j < CUB_KJ_COUNT; j++)
         out[j] = v3_mul(
             v3(v3_dot(p[j], a->basis[0]), v3_dot(p[j], a->basis[1]), v3_dot(p[j], a->basis[2])),
             a->scale);
     synth_body_shape shape = {.height_mm = a->height_mm, .build = 1};
-    synth_body_head(&shape, out[CUB_TJ_SHOULDER_CENTRE], out[CUB_TJ_HEAD], &out[CUB_TJ_HEAD],
+    synth_body_head(&shape, out[CUB_KJ_SHOULDER_CENTRE], out[CUB_KJ_HEAD], &out[CUB_KJ_HEAD],
                     &out[SP_HEAD_TOP]);
     /* Source hands range from a wrist marker to a fingertip: keep their
      * direction, give the child's palm centre a child's distance. */
-    for (int w = CUB_TJ_WRIST_L; w <= CUB_TJ_WRIST_R; w += CUB_TJ_WRIST_R - CUB_TJ_WRIST_L) {
+    for (int w = CUB_KJ_WRIST_L; w <= CUB_KJ_WRIST_R; w += CUB_KJ_WRIST_R - CUB_KJ_WRIST_L) {
         sv3 dir = v3_sub(out[w + 1], out[w]);
         if (v3_len(dir) < 1.0f) dir = v3_sub(out[w], out[w - 1]);
         out[w + 1] = v3_add(out[w], v3_mul(v3_norm(dir), synth_body_hand_mm(&shape)));

@@ -46,18 +46,18 @@ float synth_body_joint_radius(const synth_body_shape *s, int j)
 {
     float h = s->height_mm, b = s->build;
     switch (j) {
-    case CUB_TJ_HIP_CENTRE:
-    case CUB_TJ_SPINE:
-    case CUB_TJ_SHOULDER_CENTRE: return 0.06f * h * b + loose_add(s, 0.02f);
-    case CUB_TJ_HEAD: return 0.078f * h;
-    case CUB_TJ_HIP_L:
-    case CUB_TJ_HIP_R: return 0.05f * h * b + loose_add(s, 0.015f);
-    case CUB_TJ_KNEE_L:
-    case CUB_TJ_KNEE_R: return 0.036f * h * b;
-    case CUB_TJ_SHOULDER_L:
-    case CUB_TJ_SHOULDER_R: return 0.038f * h * b;
-    case CUB_TJ_ELBOW_L:
-    case CUB_TJ_ELBOW_R: return 0.028f * h * b;
+    case CUB_KJ_HIP_CENTRE:
+    case CUB_KJ_SPINE:
+    case CUB_KJ_SHOULDER_CENTRE: return 0.06f * h * b + loose_add(s, 0.02f);
+    case CUB_KJ_HEAD: return 0.078f * h;
+    case CUB_KJ_HIP_L:
+    case CUB_KJ_HIP_R: return 0.05f * h * b + loose_add(s, 0.015f);
+    case CUB_KJ_KNEE_L:
+    case CUB_KJ_KNEE_R: return 0.036f * h * b;
+    case CUB_KJ_SHOULDER_L:
+    case CUB_KJ_SHOULDER_R: return 0.038f * h * b;
+    case CUB_KJ_ELBOW_L:
+    case CUB_KJ_ELBOW_R: return 0.028f * h * b;
     default: return 0.025f * h;
     }
 }
@@ -94,27 +94,27 @@ int synth_body_prims(const synth_body_shape *s, const sv3 p[SP_COUNT], uint8_t o
     float h = s->height_mm, b = s->build;
     int n = 0;
     sv3 ax[3];
-    frame_of(v3_sub(p[CUB_TJ_HEAD], p[CUB_TJ_SHOULDER_CENTRE]),
-             v3_sub(p[CUB_TJ_SHOULDER_L], p[CUB_TJ_SHOULDER_R]), ax);
-    out[n++] = ellipsoid(p[CUB_TJ_HEAD], ax, 0.064f * h, HEAD_UP_F * h, 0.078f * h, owner);
-    out[n++] = capsule(p[CUB_TJ_SHOULDER_CENTRE], p[CUB_TJ_HEAD], 0.03f * h * b, owner);
+    frame_of(v3_sub(p[CUB_KJ_HEAD], p[CUB_KJ_SHOULDER_CENTRE]),
+             v3_sub(p[CUB_KJ_SHOULDER_L], p[CUB_KJ_SHOULDER_R]), ax);
+    out[n++] = ellipsoid(p[CUB_KJ_HEAD], ax, 0.064f * h, HEAD_UP_F * h, 0.078f * h, owner);
+    out[n++] = capsule(p[CUB_KJ_SHOULDER_CENTRE], p[CUB_KJ_HEAD], 0.03f * h * b, owner);
 
-    frame_of(v3_sub(p[CUB_TJ_SHOULDER_CENTRE], p[CUB_TJ_HIP_CENTRE]),
-             v3_sub(p[CUB_TJ_SHOULDER_L], p[CUB_TJ_SHOULDER_R]), ax);
+    frame_of(v3_sub(p[CUB_KJ_SHOULDER_CENTRE], p[CUB_KJ_HIP_CENTRE]),
+             v3_sub(p[CUB_KJ_SHOULDER_L], p[CUB_KJ_SHOULDER_R]), ax);
     float wide = loose_add(s, 0.02f);
-    out[n++] = ellipsoid(v3_lerp(p[CUB_TJ_SPINE], p[CUB_TJ_SHOULDER_CENTRE], 0.35f), ax,
+    out[n++] = ellipsoid(v3_lerp(p[CUB_KJ_SPINE], p[CUB_KJ_SHOULDER_CENTRE], 0.35f), ax,
                          0.095f * h * b + wide, 0.15f * h, 0.06f * h * b + wide, owner);
-    out[n++] = ellipsoid(v3_lerp(p[CUB_TJ_HIP_CENTRE], p[CUB_TJ_SPINE], 0.2f), ax,
+    out[n++] = ellipsoid(v3_lerp(p[CUB_KJ_HIP_CENTRE], p[CUB_KJ_SPINE], 0.2f), ax,
                          0.09f * h * b + wide, 0.12f * h, 0.058f * h * b + wide, owner);
-    out[n++] = capsule(p[CUB_TJ_SHOULDER_L], p[CUB_TJ_SHOULDER_R], 0.038f * h * b, owner);
-    out[n++] = capsule(p[CUB_TJ_HIP_L], p[CUB_TJ_HIP_R], 0.05f * h * b, owner);
+    out[n++] = capsule(p[CUB_KJ_SHOULDER_L], p[CUB_KJ_SHOULDER_R], 0.038f * h * b, owner);
+    out[n++] = capsule(p[CUB_KJ_HIP_L], p[CUB_KJ_HIP_R], 0.05f * h * b, owner);
     for (int side = 0; side < 2; side++) {
-        int sh = side ? CUB_TJ_SHOULDER_R : CUB_TJ_SHOULDER_L;
+        int sh = side ? CUB_KJ_SHOULDER_R : CUB_KJ_SHOULDER_L;
         out[n++] = capsule(p[sh], p[sh + 1], 0.03f * h * b, owner);
         out[n++] = capsule(p[sh + 1], p[sh + 2], 0.025f * h * b, owner);
         sv3 tip = v3_lerp(p[sh + 2], p[sh + 3], 2.0f);
         out[n++] = capsule(p[sh + 2], tip, 0.021f * h, owner);
-        int hip = side ? CUB_TJ_HIP_R : CUB_TJ_HIP_L;
+        int hip = side ? CUB_KJ_HIP_R : CUB_KJ_HIP_L;
         out[n++] = capsule(p[hip], p[hip + 1], 0.05f * h * b + loose_add(s, 0.015f), owner);
         out[n++] = capsule(p[hip + 1], p[hip + 2], 0.036f * h * b, owner);
         sv3 heel, toe;
@@ -122,11 +122,11 @@ int synth_body_prims(const synth_body_shape *s, const sv3 p[SP_COUNT], uint8_t o
         out[n++] = capsule(heel, toe, FOOT_R_F * h, owner);
     }
     if (s->loose) {
-        sv3 hips = v3_lerp(p[CUB_TJ_HIP_L], p[CUB_TJ_HIP_R], 0.5f);
-        sv3 knees = v3_lerp(p[CUB_TJ_KNEE_L], p[CUB_TJ_KNEE_R], 0.5f);
+        sv3 hips = v3_lerp(p[CUB_KJ_HIP_L], p[CUB_KJ_HIP_R], 0.5f);
+        sv3 knees = v3_lerp(p[CUB_KJ_KNEE_L], p[CUB_KJ_KNEE_R], 0.5f);
         synth_prim c = {.kind = PRIM_CYLINDER,
                         .owner = owner,
-                        .a = v3_lerp(p[CUB_TJ_HIP_CENTRE], p[CUB_TJ_SPINE], 0.3f),
+                        .a = v3_lerp(p[CUB_KJ_HIP_CENTRE], p[CUB_KJ_SPINE], 0.3f),
                         .b = v3_lerp(hips, knees, 0.55f),
                         .r = 0.115f * h * b};
         out[n++] = c;

@@ -1,13 +1,16 @@
 /* The fakenect dump: INDEX.txt plus one d-<time>-<timestamp>.pgm per frame
  * ("P5 640 480 65535\n", then little-endian uint16 raw values, as
- * fakenect-record writes and ../shared/data/depth/skeltrack holds), and
- * truth.txt beside them. */
+ * fakenect-record writes and ../shared/data/depth/skeltrack holds), each
+ * followed by the accelerometer as fakenect-record writes it
+ * (a-<time>-<timestamp>.dump, the scene's gravity), and truth.txt beside
+ * them. */
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 
+#include "cub/kinect.h"
 #include "synth_internal.h"
 
 #define T0_S 1300000000.0 /* the first frame's time, as in the real dump */
@@ -50,22 +53,55 @@ static int write_pgm(const char *path, const uint16_t *raw)
 {
     FILE *f = fopen(path, "wb");
     if (!f) return -1;
-    static unsigned char bytes[CUB_TRACK_WIDTH * CUB_TRACK_HEIGHT * 2];
-    for (int i = 0; i < CUB_TRACK_WIDTH * CUB_TRACK_HEIGHT; i++) {
+    static unsigned char bytes[CUB_KINECT_WIDTH * CUB_KINECT_HEIGHT * 2];
+    for (int i = 0; i < CUB_KINECT_WIDTH * CUB_KINECT_HEIGHT; i++) {
         bytes[2 * i] = (unsigned char)(raw[i] & 0xff);
         bytes[2 * i + 1] = (unsigned char)(raw[i] >> 8);
     }
-    int ok = fprintf(f, "P5 %d %d 65535\n", CUB_TRACK_WIDTH, CUB_TRACK_HEIGHT) > 0 &&
+    int ok = fprintf(f, "P5 %d %d 65535\n", CUB_KINECT_WIDTH, CUB_KINECT_HEIGHT) > 0 &&
              fwrite(bytes, 1, sizeof(bytes), f) == sizeof(bytes);
     return (fclose(f) == 0 && ok) ? 0 : -1;
+}
+
+/* libfreenect's freenect_raw_tilt_state as it lies in memory on the box
+ * (little-endian): int16 x y z in counts (819 a g), int8 motor angle, a pad
+ * byte, int32 motor status (0 stopped). The accelerometer reads the push
+ * that holds the camera up: the opposite of gravity (down, length 1000). */
+static int write_accel(const char *path, const float down[3])
+{
+    unsigned char st[12] = {0};
+    for (int i = 0; i < 3; i++) {
+        long counts = lround(-down[i] * CUB_KINECT_ACCEL_COUNTS_PER_G / 1000.0);
+        st[2 * i] = (unsigned char)(counts & 0xff);
+        st[2 * i + 1] = (unsigned char)((counts >> 8) & 0xff);
+    }
+    FILE *f = fopen(path, "wb");
+    if (!f) return -1;
+    int ok = fwrite(st, 1, sizeof st, f) == sizeof st;
+    return (fclose(f) == 0 && ok) ? 0 : -1;
+}
+
+/* One frame's two files and INDEX lines: the depth, then the accelerometer
+ * under the frame's name, as fakenect-record orders them. */
+static int write_frame(const char *dir, FILE *index, const char *name, const uint16_t *raw,
+                       const float down[3], char *path, size_t path_size)
+{
+    snprintf(path, path_size, "%s/%s", dir, name);
+    if (write_pgm(path, raw) != 0) return -1;
+    char accel[96];
+    snprintf(accel, sizeof accel, "a-%.*s.dump", (int)(strlen(name) - 6), name + 2);
+    snprintf(path, path_size, "%s/%s", dir, accel);
+    if (write_accel(path, down) != 0) return -1;
+    fprintf(index, "%s\n%s\n", name, accel);
+    return 0;
 }
 
 static void write_truth_head(FILE *f, const float g[3])
 {
     fprintf(f, "# cub-synth truth v1: line 2 'gravity gx gy gz' (down, camera space, length "
                "1000); then per frame: frame t_s ts, then 20 joints (");
-    for (int j = 0; j < CUB_TJ_COUNT; j++)
-        fprintf(f, "%s%s", j ? " " : "", cub_track_joint_name(j));
+    for (int j = 0; j < CUB_KJ_COUNT; j++)
+        fprintf(f, "%s%s", j ? " " : "", cub_kinect_joint_name(j));
     fprintf(f, ") as x y z v: mm, camera space (x right, y up, z away), v 1 = visible\n");
     fprintf(f, "gravity %.3f %.3f %.3f\n", g[0], g[1], g[2]);
 }
@@ -73,7 +109,7 @@ static void write_truth_head(FILE *f, const float g[3])
 static void write_truth_frame(FILE *f, const cub_synth_truth_frame *t)
 {
     fprintf(f, "%d %f %u", t->frame, t->t_s, t->ts);
-    for (int j = 0; j < CUB_TJ_COUNT; j++)
+    for (int j = 0; j < CUB_KJ_COUNT; j++)
         fprintf(f, " %.1f %.1f %.1f %d", t->joint_mm[j][0], t->joint_mm[j][1], t->joint_mm[j][2],
                 t->visible[j]);
     fputc('\n', f);
@@ -98,19 +134,17 @@ cub_err cub_synth_write_dump(cub_synth *s, const char *dir, int frames, int verb
     float g[3];
     cub_synth_gravity(s, g);
     write_truth_head(truth, g);
-    uint16_t *raw = malloc(CUB_TRACK_WIDTH * CUB_TRACK_HEIGHT * sizeof(uint16_t));
+    uint16_t *raw = malloc(CUB_KINECT_WIDTH * CUB_KINECT_HEIGHT * sizeof(uint16_t));
     cub_err err = raw ? CUB_OK : CUB_ERR_NOMEM;
     for (int i = 0; i < frames && !err; i++) {
         cub_synth_truth_frame t;
         err = cub_synth_render(s, i, raw, &t, NULL, NULL);
         if (err) break;
         cub_synth_frame_name(i, synth_fps(s), name, sizeof(name), NULL, NULL);
-        snprintf(path, sizeof(path), "%s/%s", dir, name);
-        if (write_pgm(path, raw) != 0) {
+        if (write_frame(dir, index, name, raw, g, path, sizeof(path)) != 0) {
             err = io_fail(diag, path, "cannot write");
             break;
         }
-        fprintf(index, "%s\n", name);
         write_truth_frame(truth, &t);
         if (verbose && (i % 30 == 29 || i + 1 == frames))
             fprintf(stderr, "\rsynth-depth: frame %d/%d", i + 1, frames);

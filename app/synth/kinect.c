@@ -6,8 +6,8 @@
  * spots. */
 #include "synth_internal.h"
 
-#define W CUB_TRACK_WIDTH
-#define H CUB_TRACK_HEIGHT
+#define W CUB_KINECT_WIDTH
+#define H CUB_KINECT_HEIGHT
 #define EDGE_DROP_P 0.35f    /* an edge pixel with no reading */
 #define EDGE_SMEAR_P 0.30f   /* an edge pixel taking a neighbour's depth */
 #define PIXEL_DROP_P 0.001f  /* scattered single-pixel holes */
@@ -43,8 +43,9 @@ float synth_rng_gauss(synth_rng *r)
  * noise never leaves the range the Kinect reports). */
 static uint16_t quantise(float mm, float noise_raw)
 {
-    if (!(mm >= CUB_SYNTH_MIN_MM && mm <= CUB_SYNTH_MAX_MM)) return CUB_TRACK_RAW_NO_READING;
-    long r = lround(2842.5 * (atan(mm / 123.6) - 1.1863) + noise_raw);
+    if (!(mm >= CUB_SYNTH_MIN_MM && mm <= CUB_SYNTH_MAX_MM)) return CUB_KINECT_NO_READING;
+    long r = lround(CUB_KINECT_RAW_PER_RAD * (atan(mm / CUB_KINECT_MM_SCALE) - CUB_KINECT_RAW_OFFSET_RAD) +
+                    noise_raw);
     return (uint16_t)(r < RAW_LO ? RAW_LO : r > RAW_HI ? RAW_HI : r);
 }
 
@@ -55,16 +56,16 @@ uint16_t cub_synth_mm_to_raw(double mm)
 
 double cub_synth_raw_to_mm(uint16_t raw)
 {
-    double a = raw / 2842.5 + 1.1863;
-    if (raw >= CUB_TRACK_RAW_NO_READING || a >= 1.5707963267948966) return 0;
-    return 123.6 * tan(a);
+    double a = raw / CUB_KINECT_RAW_PER_RAD + CUB_KINECT_RAW_OFFSET_RAD;
+    if (raw >= CUB_KINECT_NO_READING || a >= 1.5707963267948966) return 0;
+    return CUB_KINECT_MM_SCALE * tan(a);
 }
 
 /* Camera pixels whose surface the projector (75 mm to +x, same axes)
  * cannot light: the same row, shifted by the parallax 75 * F / z. */
 static int shadowed(const float *proj, int u, int v, float z)
 {
-    float up = u - CUB_SYNTH_PROJECTOR_X_MM * CUB_TRACK_FOCAL_PX / z;
+    float up = u - CUB_SYNTH_PROJECTOR_X_MM * CUB_KINECT_FOCAL_PX / z;
     int u0 = (int)floorf(up);
     if (u0 < 0 || u0 + 1 >= W) return 0;
     float a = proj[v * W + u0], b = proj[v * W + u0 + 1];
@@ -96,7 +97,7 @@ static void holes(synth_rng *rng, uint16_t *raw)
             for (int x = cu - r; x <= cu + r; x++)
                 if (x >= 0 && y >= 0 && x < W && y < H &&
                     (x - cu) * (x - cu) + (y - cv) * (y - cv) <= r * r)
-                    raw[y * W + x] = CUB_TRACK_RAW_NO_READING;
+                    raw[y * W + x] = CUB_KINECT_NO_READING;
     }
 }
 
@@ -108,7 +109,7 @@ void synth_kinect_apply(const float *depth, const float *proj, int clean, synth_
             int i = v * W + u;
             float z = depth[i];
             if (z <= 0) {
-                raw[i] = CUB_TRACK_RAW_NO_READING;
+                raw[i] = CUB_KINECT_NO_READING;
                 continue;
             }
             if (clean) {
@@ -116,13 +117,13 @@ void synth_kinect_apply(const float *depth, const float *proj, int clean, synth_
                 continue;
             }
             if (shadowed(proj, u, v, z) || synth_rng_unit(rng) < PIXEL_DROP_P) {
-                raw[i] = CUB_TRACK_RAW_NO_READING;
+                raw[i] = CUB_KINECT_NO_READING;
                 continue;
             }
             if (is_edge(depth, u, v)) {
                 float r = synth_rng_unit(rng);
                 if (r < EDGE_DROP_P) {
-                    raw[i] = CUB_TRACK_RAW_NO_READING;
+                    raw[i] = CUB_KINECT_NO_READING;
                     continue;
                 }
                 if (r < EDGE_DROP_P + EDGE_SMEAR_P) {
@@ -130,7 +131,7 @@ void synth_kinect_apply(const float *depth, const float *proj, int clean, synth_
                     int y = v + (int)(synth_rng_next(rng) % 5) - 2;
                     if (x >= 0 && y >= 0 && x < W && y < H) z = depth[y * W + x];
                     if (z <= 0) {
-                        raw[i] = CUB_TRACK_RAW_NO_READING;
+                        raw[i] = CUB_KINECT_NO_READING;
                         continue;
                     }
                 }

@@ -7,9 +7,9 @@
 #include "synth_internal.h"
 
 #define NEAR_MM 50.0f
-#define W CUB_TRACK_WIDTH
-#define H CUB_TRACK_HEIGHT
-#define F ((float)CUB_TRACK_FOCAL_PX)
+#define W CUB_KINECT_WIDTH
+#define H CUB_KINECT_HEIGHT
+#define F ((float)CUB_KINECT_FOCAL_PX)
 
 void synth_prim_bound(synth_prim *p)
 {
@@ -170,10 +170,10 @@ static int screen_rect(const synth_camera *cam, const synth_prim *p, int r[4])
     if (z + rad < NEAR_MM) return 0;
     if (z - rad < NEAR_MM) return 1;
     float zn = z - rad, zf = z + rad;
-    float u0 = CUB_TRACK_CX + F * fminf((x - rad) / zn, (x - rad) / zf);
-    float u1 = CUB_TRACK_CX + F * fmaxf((x + rad) / zn, (x + rad) / zf);
-    float v0 = CUB_TRACK_CY - F * fmaxf((y + rad) / zn, (y + rad) / zf);
-    float v1 = CUB_TRACK_CY - F * fminf((y - rad) / zn, (y - rad) / zf);
+    float u0 = CUB_KINECT_CX + F * fminf((x - rad) / zn, (x - rad) / zf);
+    float u1 = CUB_KINECT_CX + F * fmaxf((x + rad) / zn, (x + rad) / zf);
+    float v0 = CUB_KINECT_CY - F * fmaxf((y + rad) / zn, (y + rad) / zf);
+    float v1 = CUB_KINECT_CY - F * fminf((y - rad) / zn, (y - rad) / zf);
     if (u1 < 0 || u0 > W - 1 || v1 < 0 || v0 > H - 1) return 0;
     r[0] = clampi((int)floorf(u0), 0, W - 1);
     r[1] = clampi((int)floorf(v0), 0, H - 1);
@@ -194,9 +194,9 @@ void synth_raycast(const synth_camera *cam, const synth_prim *prims, int n, floa
         int r[4];
         if (!screen_rect(cam, p, r)) continue;
         for (int v = r[1]; v <= r[3]; v++) {
-            sv3 row = v3_add(cam->z, v3_mul(cam->y, (CUB_TRACK_CY - v) / F));
+            sv3 row = v3_add(cam->z, v3_mul(cam->y, (CUB_KINECT_CY - v) / F));
             for (int u = r[0]; u <= r[2]; u++) {
-                sv3 d = v3_add(row, v3_mul(cam->x, (u - CUB_TRACK_CX) / F));
+                sv3 d = v3_add(row, v3_mul(cam->x, (u - CUB_KINECT_CX) / F));
                 float t = hit(p, cam->origin, d, v3_dot(d, d));
                 float *z = &depth_mm[v * W + u];
                 if (t > NEAR_MM && (*z == 0 || t < *z)) {

@@ -9,7 +9,7 @@
 
 #define PI_F 3.14159265f
 #define MAX_PRIMS 96
-#define NPIX (CUB_TRACK_WIDTH * CUB_TRACK_HEIGHT)
+#define NPIX (CUB_KINECT_WIDTH * CUB_KINECT_HEIGHT)
 
 typedef struct seg {
     synth_actor *actor;
@@ -64,10 +64,10 @@ static void fit_segment(seg *s, float sole_mm)
     const int K = 24;
     for (int k = 0; k < K; k++) {
         synth_actor_points(s->actor, s->from_s + s->dur_s * k / (K - 1), p);
-        left = v3_add(left, v3_sub(p[CUB_TJ_HIP_L], p[CUB_TJ_HIP_R]));
-        left = v3_add(left, v3_sub(p[CUB_TJ_SHOULDER_L], p[CUB_TJ_SHOULDER_R]));
-        centre = v3_add(centre, v3_mul(p[CUB_TJ_HIP_CENTRE], 1.0f / K));
-        for (int a = CUB_TJ_ANKLE_L; a <= CUB_TJ_ANKLE_R; a += CUB_TJ_ANKLE_R - CUB_TJ_ANKLE_L) {
+        left = v3_add(left, v3_sub(p[CUB_KJ_HIP_L], p[CUB_KJ_HIP_R]));
+        left = v3_add(left, v3_sub(p[CUB_KJ_SHOULDER_L], p[CUB_KJ_SHOULDER_R]));
+        centre = v3_add(centre, v3_mul(p[CUB_KJ_HIP_CENTRE], 1.0f / K));
+        for (int a = CUB_KJ_ANKLE_L; a <= CUB_KJ_ANKLE_R; a += CUB_KJ_ANKLE_R - CUB_KJ_ANKLE_L) {
             sv3 heel, toe;
             synth_body_foot_ends(p[a], p[a + 1], &heel, &toe);
             low = fminf(low, fminf(heel.y, toe.y));
@@ -95,12 +95,12 @@ static void segment_points(const seg *s, double t_s, sv3 out[SP_COUNT])
     for (int j = 0; j < SP_COUNT; j++)
         out[j].x = -out[j].x;
     for (int k = 0; k < 4; k++) { /* shoulder..hand, hip..foot: L and R swap */
-        sv3 t = out[CUB_TJ_SHOULDER_L + k];
-        out[CUB_TJ_SHOULDER_L + k] = out[CUB_TJ_SHOULDER_R + k];
-        out[CUB_TJ_SHOULDER_R + k] = t;
-        t = out[CUB_TJ_HIP_L + k];
-        out[CUB_TJ_HIP_L + k] = out[CUB_TJ_HIP_R + k];
-        out[CUB_TJ_HIP_R + k] = t;
+        sv3 t = out[CUB_KJ_SHOULDER_L + k];
+        out[CUB_KJ_SHOULDER_L + k] = out[CUB_KJ_SHOULDER_R + k];
+        out[CUB_KJ_SHOULDER_R + k] = t;
+        t = out[CUB_KJ_HIP_L + k];
+        out[CUB_KJ_HIP_L + k] = out[CUB_KJ_HIP_R + k];
+        out[CUB_KJ_HIP_R + k] = t;
     }
 }
 
@@ -248,7 +248,7 @@ static sv3 to_world(sv3 p, float dx, float dz)
 
 static void truth_of(const cub_synth *s, const sv3 pts[SP_COUNT], cub_synth_truth_frame *t)
 {
-    for (int j = 0; j < CUB_TJ_COUNT; j++) {
+    for (int j = 0; j < CUB_KJ_COUNT; j++) {
         sv3 c = v3_sub(pts[j], s->cam.origin);
         float x = v3_dot(c, s->cam.x), y = v3_dot(c, s->cam.y), z = v3_dot(c, s->cam.z);
         t->joint_mm[j][0] = x;
@@ -256,13 +256,13 @@ static void truth_of(const cub_synth *s, const sv3 pts[SP_COUNT], cub_synth_trut
         t->joint_mm[j][2] = z;
         t->visible[j] = 0;
         if (z < 100) continue;
-        int u = (int)lroundf(CUB_TRACK_CX + CUB_TRACK_FOCAL_PX * x / z);
-        int v = (int)lroundf(CUB_TRACK_CY - CUB_TRACK_FOCAL_PX * y / z);
-        if (u < 0 || v < 0 || u >= CUB_TRACK_WIDTH || v >= CUB_TRACK_HEIGHT) continue;
+        int u = (int)lroundf(CUB_KINECT_CX + CUB_KINECT_FOCAL_PX * x / z);
+        int v = (int)lroundf(CUB_KINECT_CY - CUB_KINECT_FOCAL_PX * y / z);
+        if (u < 0 || v < 0 || u >= CUB_KINECT_WIDTH || v >= CUB_KINECT_HEIGHT) continue;
         /* Seen when the surface at its pixel is this body's, not something
          * in front of it (an arm across the chest). */
         float margin = synth_body_joint_radius(&s->shape, j) + 50.0f;
-        int i = v * CUB_TRACK_WIDTH + u;
+        int i = v * CUB_KINECT_WIDTH + u;
         t->visible[j] = s->owner[i] == OWNER_PLAYER && s->depth[i] >= z - margin;
     }
 }

@@ -50,8 +50,8 @@ static inline sv3 v3_norm(sv3 a)
     return l > 1e-6f ? v3_mul(a, 1.0f / l) : v3(0, 1, 0);
 }
 
-/* The 20 joints of track.h, then extra points the body needs. */
-enum { SP_HEAD_TOP = CUB_TJ_COUNT, SP_COUNT };
+/* The 20 joints of kinect.h, then extra points the body needs. */
+enum { SP_HEAD_TOP = CUB_KJ_COUNT, SP_COUNT };
 
 /* ---- actor: one loaded clip (actor.c) ---------------------------------- */
 typedef struct synth_actor synth_actor;

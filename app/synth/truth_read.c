@@ -6,7 +6,7 @@
 #include "synth_internal.h"
 
 #define TRUTH_MAGIC "# cub-synth truth v1"
-#define TRUTH_FIELDS (3 + 4 * CUB_TJ_COUNT)
+#define TRUTH_FIELDS (3 + 4 * CUB_KJ_COUNT)
 #define TRUTH_MAX_FRAMES 1000000
 #define COORD_LIMIT_MM 1e6
 
@@ -26,18 +26,18 @@ static cub_err parse_frame(const synth_fields *f, const char *name, int line,
     if (!synth_parse_num(f->f[2], 4294967295.0, &v) || v != (double)(uint32_t)v)
         return synth_fail(diag, name, line, "bad timestamp '%.40s'", f->f[2]);
     t->ts = (uint32_t)v;
-    for (int j = 0; j < CUB_TJ_COUNT; j++) {
+    for (int j = 0; j < CUB_KJ_COUNT; j++) {
         for (int k = 0; k < 3; k++) {
             const char *s = f->f[3 + 4 * j + k];
             if (!synth_parse_num(s, COORD_LIMIT_MM, &v))
                 return synth_fail(diag, name, line, "bad %c of %s: '%.40s'", "xyz"[k],
-                                  cub_track_joint_name(j), s);
+                                  cub_kinect_joint_name(j), s);
             t->joint_mm[j][k] = (float)v;
         }
         const char *s = f->f[3 + 4 * j + 3];
         if (strcmp(s, "0") != 0 && strcmp(s, "1") != 0)
             return synth_fail(diag, name, line, "visibility of %s must be 0 or 1, got '%.40s'",
-                              cub_track_joint_name(j), s);
+                              cub_kinect_joint_name(j), s);
         t->visible[j] = (uint8_t)(s[0] - '0');
     }
     return CUB_OK;

@@ -36,6 +36,7 @@ typedef enum file_fault {
     FILE_NOT_REGULAR, /* a directory or a device: fakenect would read nonsense */
     FILE_SHORT,       /* shorter than header + frame: fakenect would over-read */
     FILE_NO_HEADER,   /* no header line: fakenect would exit() */
+    FILE_EMPTY,       /* an empty a-* file: fakenect would end the replay there */
 } file_fault;
 
 typedef struct file_check {
@@ -53,6 +54,7 @@ typedef struct index_reader {
 /* What a scan of the index found. */
 typedef struct dump_scan {
     int good_frames, bad_frames;
+    int empty_accel; /* a-* files of no bytes, replayed as no reading */
     int first_bad_line;
     char first_bad[NAME_MAX_CHARS];
     file_check first_bad_check;
@@ -84,6 +86,9 @@ static file_check check_file(const char *dir, const char *name)
     size_t got = fread(head, 1, sizeof head, f);
     fclose(f);
     size_t frame = frame_bytes(name);
+    /* fakenect reads a whole a-* file in one fread, which fails on none. A
+     * reading of another size it only warns about. */
+    if (name[0] == 'a' && st.st_size == 0) c.fault = FILE_EMPTY;
     if (frame == 0) return c; /* a-* and others: fakenect only needs them to open */
     const char *nl = memchr(head, '\n', got);
     c.size_bytes = (long long)st.st_size;
@@ -106,6 +111,7 @@ static const char *describe(file_check c, char *buf, size_t size)
         snprintf(buf, size, "truncated: %lld of %zu bytes", c.size_bytes, c.need_bytes);
         break;
     case FILE_NO_HEADER: snprintf(buf, size, "no header line"); break;
+    case FILE_EMPTY: snprintf(buf, size, "empty"); break;
     }
     return buf;
 }
@@ -186,6 +192,8 @@ static cub_err scan_dump(const char *dir, dump_scan *scan, char *err, size_t err
         if (strchr(name, '/') && !scan->path_line) scan->path_line = r.line;
         if (name[0] == 'd') {
             note_depth(scan, &r, name, c);
+        } else if (c.fault == FILE_EMPTY) {
+            scan->empty_accel++;
         } else if (c.fault != FILE_GOOD) {
             e = refuse_other(&r, name, c, err, err_size);
         }
@@ -213,6 +221,13 @@ static cub_err judge_scan(const char *dir, const dump_scan *scan, char *err, siz
                  dir, scan->path_line, scan->first_bad, scan->first_bad_line);
         return CUB_ERR_FORMAT;
     }
+    if (scan->empty_accel > 0 && scan->path_line) {
+        snprintf(err, err_size,
+                 "fakenect dump %s: INDEX.txt:%d: a name with a directory in it; cannot replay "
+                 "the empty accelerometer files around it",
+                 dir, scan->path_line);
+        return CUB_ERR_FORMAT;
+    }
     return CUB_OK;
 }
 
@@ -229,6 +244,18 @@ static int write_none_frame(const char *path)
     }
     int ok = fputs(NONE_HEADER, f) >= 0;
     for (int y = 0; ok && y < CUB_DEPTH_H; y++) ok = fwrite(row, sizeof row, 1, f) == 1;
+    return fclose(f) == 0 && ok ? 0 : -1;
+}
+
+/* An accelerometer reading of zeros (libfreenect's freenect_raw_tilt_state:
+ * int16 x y z, int8 angle, a pad byte, int32 status), which the box takes
+ * for no reading. */
+static int write_no_accel(const char *path)
+{
+    FILE *f = fopen(path, "wbx");
+    if (!f) return errno == EEXIST ? 0 : -1;
+    static const unsigned char zeros[12];
+    int ok = fwrite(zeros, sizeof zeros, 1, f) == 1;
     return fclose(f) == 0 && ok ? 0 : -1;
 }
 
@@ -262,14 +289,22 @@ static cub_err view_failed(cub_fakenect_view *v, const char *what, const char *n
     return CUB_ERR_IO;
 }
 
-/* One file of the dump into the view: a link, or a frame without readings. */
+/* One file of the dump into the view: a link, a frame without readings,
+ * or an accelerometer without a reading. */
 static int add_to_view(cub_fakenect_view *v, const index_reader *r, const char *real_dir,
                        const char *name)
 {
-    file_check c = name[0] == 'd' ? check_file(r->dir, name) : (file_check){FILE_GOOD, 0, 0};
+    int mendable = name[0] == 'd' || name[0] == 'a';
+    file_check c = mendable ? check_file(r->dir, name) : (file_check){FILE_GOOD, 0, 0};
     if (c.fault == FILE_GOOD) return link_file(real_dir, v->dir, name);
     char path[2 * CUB_FAKENECT_PATH_MAX], why[96];
     snprintf(path, sizeof path, "%s/%s", v->dir, name);
+    if (name[0] == 'a') {
+        if (write_no_accel(path) != 0) return -1;
+        fprintf(stderr, "depth: fakenect dump %s: INDEX.txt:%d: %s: empty: replayed as no "
+                        "accelerometer reading\n", r->dir, r->line, name);
+        return 0;
+    }
     if (write_none_frame(path) != 0) return -1;
     v->bad_frames++;
     fprintf(stderr,
@@ -351,7 +386,7 @@ cub_err cub_fakenect_dump_prepare(cub_fakenect_view *v, char *err, size_t err_si
     dump_scan scan = {0};
     cub_err e = scan_dump(dir, &scan, err, err_size);
     if (!e) e = judge_scan(dir, &scan, err, err_size);
-    if (e || scan.bad_frames == 0) return e;
+    if (e || scan.bad_frames + scan.empty_accel == 0) return e;
     /* Copied: point_env replaces the environment string dir points into. */
     char dump_dir[CUB_FAKENECT_PATH_MAX];
     snprintf(dump_dir, sizeof dump_dir, "%s", dir);

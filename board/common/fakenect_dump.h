@@ -12,9 +12,12 @@
  * (mode 0700, under $TMPDIR or /tmp) with a copy of INDEX.txt, a symbolic
  * link to every good file, and for each bad depth frame a file of the same
  * name holding 640x480 raw 2047 (no reading). The bad file's bytes are never
- * copied: the box keeps no camera data. Every other fault (no FAKENECT_PATH
- * or INDEX.txt, a missing a-* file, a missing or short r-* file, no good
- * depth frame at all) refuses the dump with INDEX.txt:line. */
+ * copied: the box keeps no camera data. An empty a-* file (fakenect's read
+ * of it fails, and it ends the replay there) gets a file of the same name
+ * holding a reading of zeros, which the box takes for no reading. Every
+ * other fault (no FAKENECT_PATH or INDEX.txt, a missing a-* file, a missing
+ * or short r-* file, no good depth frame at all) refuses the dump with
+ * INDEX.txt:line. */
 #ifndef CUB_BOARD_FAKENECT_DUMP_H
 #define CUB_BOARD_FAKENECT_DUMP_H
 

@@ -5,21 +5,8 @@
 #include <string.h>
 
 #include "cub/judge.h"
+#include "cub/kinect.h"
 #include "judge_internal.h"
-
-/* The Kinect SDK's 20 joints as the fuzzy features read them. */
-static const cub_fuzzy_body kinect_body = {
-    .hip_centre = CUB_TJ_HIP_CENTRE,
-    .spine = CUB_TJ_SPINE,
-    .shoulder_centre = CUB_TJ_SHOULDER_CENTRE,
-    .head = CUB_TJ_HEAD,
-    .shoulder = {CUB_TJ_SHOULDER_L, CUB_TJ_SHOULDER_R},
-    .elbow = {CUB_TJ_ELBOW_L, CUB_TJ_ELBOW_R},
-    .wrist = {CUB_TJ_WRIST_L, CUB_TJ_WRIST_R},
-    .hip = {CUB_TJ_HIP_L, CUB_TJ_HIP_R},
-    .knee = {CUB_TJ_KNEE_L, CUB_TJ_KNEE_R},
-    .ankle = {CUB_TJ_ANKLE_L, CUB_TJ_ANKLE_R},
-};
 
 #define PCT(n) ((cub_q16)((n) * 65536 / 100)) /* n hundredths in Q16.16 */
 
@@ -74,7 +61,7 @@ cub_err cub_judge_init(const cub_judge_desc *desc, void *mem, size_t mem_size, c
     cub_judge *j = mem;
     memset(j, 0, sizeof *j);
     j->d = d;
-    j->body = kinect_body;
+    j->body = cub_kinect_fuzzy_body(0, 0);
     if (d.stand_cog_mm > 0) {
         j->body.floor_y_mm = d.floor_y_mm;
         j->body.stand_cog_mm = d.stand_cog_mm;
@@ -127,13 +114,13 @@ static void presence(cub_judge *j, int64_t t_us, int ok, cub_judge_out *out)
 static void calibrate(cub_judge *j, const cub_track_skeleton *s)
 {
     if (j->d.stand_cog_mm > 0) return;
-    cub_q16 fl = s->joint_mm[CUB_TJ_FOOT_L].y, fr = s->joint_mm[CUB_TJ_FOOT_R].y;
+    cub_q16 fl = s->joint_mm[CUB_KJ_FOOT_L].y, fr = s->joint_mm[CUB_KJ_FOOT_R].y;
     cub_q16 low = fl < fr ? fl : fr;
     if (!j->calibrated || low < j->body.floor_y_mm)
         j->body.floor_y_mm = low;
     else
         j->body.floor_y_mm += (cub_q16)(((int64_t)low - j->body.floor_y_mm) / 128);
-    cub_q16 cog = cub_fuzzy_cog_height_mm(&j->body, s->joint_mm, CUB_TJ_COUNT);
+    cub_q16 cog = cub_fuzzy_cog_height_mm(&j->body, s->joint_mm, CUB_KJ_COUNT);
     if (cog < CUB_Q16_INT(100)) cog = CUB_Q16_INT(100); /* a degenerate frame */
     if (!j->calibrated)
         j->body.stand_cog_mm = cog;
@@ -148,13 +135,13 @@ static void calibrate(cub_judge *j, const cub_track_skeleton *s)
  * put low), and an arm is raised as far as its wrist is, bent or not. */
 static cub_err arm_aware_features(cub_judge *j, const cub_track_skeleton *skel)
 {
-    cub_err e = cub_fuzzy_features(&j->body, skel->joint_mm, CUB_TJ_COUNT, &j->last);
+    cub_err e = cub_fuzzy_features(&j->body, skel->joint_mm, CUB_KJ_COUNT, &j->last);
     if (e) return e;
     cub_fuzzy_body whole_arm = j->body;
     whole_arm.elbow[0] = j->body.wrist[0];
     whole_arm.elbow[1] = j->body.wrist[1];
     cub_fuzzy_frame raise;
-    if (cub_fuzzy_features(&whole_arm, skel->joint_mm, CUB_TJ_COUNT, &raise) == CUB_OK) {
+    if (cub_fuzzy_features(&whole_arm, skel->joint_mm, CUB_KJ_COUNT, &raise) == CUB_OK) {
         memcpy(j->last.mu[CUB_FUZZY_RH], raise.mu[CUB_FUZZY_RH], sizeof raise.mu[0]);
         memcpy(j->last.mu[CUB_FUZZY_LH], raise.mu[CUB_FUZZY_LH], sizeof raise.mu[0]);
     }

@@ -59,16 +59,16 @@ static int32_t clap_widest_since(const clap_state *c, int64_t t_us)
 static int clap_pose(const cub_track_skeleton *s, int32_t width_mm)
 {
     const cub_vec3 *w = s->joint_mm;
-    int64_t hip = judge_mm(w[CUB_TJ_HIP_CENTRE].y);
-    int64_t h_mm = judge_mm(w[CUB_TJ_SHOULDER_CENTRE].y) - hip;
-    int64_t rel = ((int64_t)judge_mm(w[CUB_TJ_HAND_L].y) + judge_mm(w[CUB_TJ_HAND_R].y)) / 2 - hip;
-    int64_t mz = ((int64_t)judge_mm(w[CUB_TJ_HAND_L].z) + judge_mm(w[CUB_TJ_HAND_R].z)) / 2;
-    int64_t dy = (int64_t)judge_mm(w[CUB_TJ_HAND_L].y) - judge_mm(w[CUB_TJ_ELBOW_L].y) +
-                 judge_mm(w[CUB_TJ_HAND_R].y) - judge_mm(w[CUB_TJ_ELBOW_R].y);
-    int64_t reach = (int64_t)judge_mm(w[CUB_TJ_ELBOW_L].z) - judge_mm(w[CUB_TJ_HAND_L].z) +
-                    judge_mm(w[CUB_TJ_ELBOW_R].z) - judge_mm(w[CUB_TJ_HAND_R].z);
+    int64_t hip = judge_mm(w[CUB_KJ_HIP_CENTRE].y);
+    int64_t h_mm = judge_mm(w[CUB_KJ_SHOULDER_CENTRE].y) - hip;
+    int64_t rel = ((int64_t)judge_mm(w[CUB_KJ_HAND_L].y) + judge_mm(w[CUB_KJ_HAND_R].y)) / 2 - hip;
+    int64_t mz = ((int64_t)judge_mm(w[CUB_KJ_HAND_L].z) + judge_mm(w[CUB_KJ_HAND_R].z)) / 2;
+    int64_t dy = (int64_t)judge_mm(w[CUB_KJ_HAND_L].y) - judge_mm(w[CUB_KJ_ELBOW_L].y) +
+                 judge_mm(w[CUB_KJ_HAND_R].y) - judge_mm(w[CUB_KJ_ELBOW_R].y);
+    int64_t reach = (int64_t)judge_mm(w[CUB_KJ_ELBOW_L].z) - judge_mm(w[CUB_KJ_HAND_L].z) +
+                    judge_mm(w[CUB_KJ_ELBOW_R].z) - judge_mm(w[CUB_KJ_HAND_R].z);
     if (h_mm <= 0 || 8 * rel < -h_mm || 2 * rel > 3 * h_mm || reach <= 0) return 0;
-    if (mz > (int64_t)judge_mm(w[CUB_TJ_SHOULDER_CENTRE].z) + width_mm / 2) return 0;
+    if (mz > (int64_t)judge_mm(w[CUB_KJ_SHOULDER_CENTRE].z) + width_mm / 2) return 0;
     if (rel > h_mm && 2 * dy > reach) return 0;
     if (2 * dy < -reach) return 0;
     return 4 * rel >= h_mm || 3 * dy >= -reach;
@@ -79,7 +79,7 @@ static void clap_step(cub_judge *j, int64_t t_us, const cub_track_skeleton *s, i
 {
     clap_state *c = &j->clap;
     const cub_judge_desc *d = &j->d;
-    int32_t gap = judge_dist_mm(s->joint_mm[CUB_TJ_HAND_L], s->joint_mm[CUB_TJ_HAND_R]);
+    int32_t gap = judge_dist_mm(s->joint_mm[CUB_KJ_HAND_L], s->joint_mm[CUB_KJ_HAND_R]);
     if (c->met) {
         if (gap < c->min_gap_mm) c->min_gap_mm = gap;
         if (gap - c->min_gap_mm >= part_of(d->clap_part, width_mm)) {
@@ -145,9 +145,9 @@ static void wave_track(wave_state *w, int64_t t_us, int32_t x, int32_t swing)
 static void wave_step(cub_judge *j, int64_t t_us, const cub_track_skeleton *s, int side,
                       int32_t width_mm, cub_judge_out *out)
 {
-    static const int hand[2] = {CUB_TJ_HAND_L, CUB_TJ_HAND_R};
-    static const int elbow[2] = {CUB_TJ_ELBOW_L, CUB_TJ_ELBOW_R};
-    static const int shoulder[2] = {CUB_TJ_SHOULDER_L, CUB_TJ_SHOULDER_R};
+    static const int hand[2] = {CUB_KJ_HAND_L, CUB_KJ_HAND_R};
+    static const int elbow[2] = {CUB_KJ_ELBOW_L, CUB_KJ_ELBOW_R};
+    static const int shoulder[2] = {CUB_KJ_SHOULDER_L, CUB_KJ_SHOULDER_R};
     wave_state *w = &j->wave[side];
     const cub_vec3 *p = s->joint_mm;
     int raised = p[hand[side]].y > p[elbow[side]].y && p[hand[side]].y > p[shoulder[side]].y &&
@@ -173,7 +173,7 @@ static void wave_step(cub_judge *j, int64_t t_us, const cub_track_skeleton *s, i
  * the head, and such frames (under 0.6 of the width) are left out. */
 static int32_t shoulder_width(cub_judge *j, const cub_track_skeleton *s)
 {
-    int32_t w = judge_dist_mm(s->joint_mm[CUB_TJ_SHOULDER_L], s->joint_mm[CUB_TJ_SHOULDER_R]);
+    int32_t w = judge_dist_mm(s->joint_mm[CUB_KJ_SHOULDER_L], s->joint_mm[CUB_KJ_SHOULDER_R]);
     if (w < MIN_WIDTH_MM) w = MIN_WIDTH_MM;
     if (j->width_mm == 0)
         j->width_mm = w;
@@ -185,7 +185,7 @@ static int32_t shoulder_width(cub_judge *j, const cub_track_skeleton *s)
 void judge_gestures(cub_judge *j, int64_t t_us, const cub_track_skeleton *s, cub_judge_out *out)
 {
     int32_t width = shoulder_width(j, s);
-    if (s->confidence[CUB_TJ_HAND_L] > 0 && s->confidence[CUB_TJ_HAND_R] > 0)
+    if (s->confidence[CUB_KJ_HAND_L] > 0 && s->confidence[CUB_KJ_HAND_R] > 0)
         clap_step(j, t_us, s, width, out);
     else
         j->clap.met = 0;

@@ -581,7 +581,7 @@ static void no_player(cub_tracker *t, cub_track_skeleton *out)
     if (++t->lost_frames > TRK_LOST_RESET) t->tracked = false;
     if (t->have_prev) *out = t->prev;
     out->status = CUB_TRACK_NO_PLAYER;
-    for (int j = 0; j < CUB_TJ_COUNT; j++) out->confidence[j] = 0;
+    for (int j = 0; j < CUB_KJ_COUNT; j++) out->confidence[j] = 0;
 }
 
 cub_err cub_track_frame(cub_tracker *t, const uint16_t *raw, int64_t t_us, const cub_vec3 *gravity_mm,

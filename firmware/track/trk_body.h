@@ -64,8 +64,8 @@ static inline trk_p3 cell_p(const cub_tracker *t, int32_t i) { return (trk_p3){t
 /* The grid cell p (mm, camera space, p.z > 0) projects to; may lie off the grid. */
 static inline void grid_of(trk_p3 p, int32_t *gx, int32_t *gy)
 {
-    *gx = (CUB_TRACK_CX + p.x * CUB_TRACK_FOCAL_PX / p.z) / TRK_CELL_PX;
-    *gy = (CUB_TRACK_CY - p.y * CUB_TRACK_FOCAL_PX / p.z) / TRK_CELL_PX;
+    *gx = (CUB_KINECT_CX + p.x * CUB_KINECT_FOCAL_PX / p.z) / TRK_CELL_PX;
+    *gy = (CUB_KINECT_CY - p.y * CUB_KINECT_FOCAL_PX / p.z) / TRK_CELL_PX;
 }
 
 static inline int32_t dist3(trk_p3 a, trk_p3 b) { return trk_len(a.x - b.x, a.y - b.y, a.z - b.z); }

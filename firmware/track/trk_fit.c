@@ -232,7 +232,7 @@ static cub_vec3 torso_lateral(const cub_tracker *t, int32_t root, int32_t radius
 static trk_p3 hand_centre(const cub_tracker *t, int32_t tip, int32_t reach_mm)
 {
     trk_p3 p0 = cell_p(t, tip);
-    int32_t rc = reach_mm * CUB_TRACK_FOCAL_PX / (p0.z * TRK_CELL_PX) + 1, gx0 = tip % TRK_GW, gy0 = tip / TRK_GW;
+    int32_t rc = reach_mm * CUB_KINECT_FOCAL_PX / (p0.z * TRK_CELL_PX) + 1, gx0 = tip % TRK_GW, gy0 = tip / TRK_GW;
     int64_t sx = 0, sy = 0, sz = 0, n = 0;
     for (int32_t gy = gy0 - rc; gy <= gy0 + rc; gy++)
         for (int32_t gx = gx0 - rc; gx <= gx0 + rc; gx++) {
@@ -292,7 +292,7 @@ static trk_p3 middle_near(const cub_tracker *t, int32_t mid, trk_p3 a, int32_t l
     trk_p3 m = cell_p(t, mid), c = {(a.x + other.x) / 2, (a.y + other.y) / 2, (a.z + other.z) / 2};
     int32_t ox = a.x - other.x, oz = a.z - other.z, ol = trk_len(ox, 0, oz);
     if (ol == 0 || m.z <= 0) return inside(m, r);
-    int32_t rc = search_mm * CUB_TRACK_FOCAL_PX / (m.z * TRK_CELL_PX) + 1, gx0 = mid % TRK_GW, gy0 = mid / TRK_GW;
+    int32_t rc = search_mm * CUB_KINECT_FOCAL_PX / (m.z * TRK_CELL_PX) + 1, gx0 = mid % TRK_GW, gy0 = mid / TRK_GW;
     int32_t best = mid, best_e = INT32_MAX, step = 1 + rc / 10; /* a near body: every few cells will do */
     for (int32_t gy = gy0 - rc; gy <= gy0 + rc; gy += step)
         for (int32_t gx = gx0 - rc; gx <= gx0 + rc; gx += step) {
@@ -312,7 +312,7 @@ static trk_p3 middle_near(const cub_tracker *t, int32_t mid, trk_p3 a, int32_t l
  * elbow taken for the hand (trk_hand_beyond), -1 none. */
 static void fit_arm(cub_tracker *t, cub_track_skeleton *s, int side, int32_t tip, int32_t el, int32_t st)
 {
-    int js = side ? CUB_TJ_SHOULDER_R : CUB_TJ_SHOULDER_L;
+    int js = side ? CUB_KJ_SHOULDER_R : CUB_KJ_SHOULDER_L;
     trk_p3 sh = got(s, js);
     int32_t r = radius(st, R_LIMB);
     trk_p3 hand = inside(hand_centre(t, tip, pm(st, P_HAND_REACH)), r);
@@ -330,7 +330,7 @@ static void fit_arm(cub_tracker *t, cub_track_skeleton *s, int side, int32_t tip
     int32_t lu = pm(st, P_UPPER_ARM), lf = pm(st, P_FOREARM);
     int32_t reach = learn_reach(t, side, dist3(sh, wrist), lu + lf);
     lu = reach * lu / (lu + lf), lf = reach - lu;
-    trk_p3 other = got(s, side ? CUB_TJ_SHOULDER_L : CUB_TJ_SHOULDER_R);
+    trk_p3 other = got(s, side ? CUB_KJ_SHOULDER_L : CUB_KJ_SHOULDER_R);
     /* a folded arm: the elbow fitting both lengths lies on a wide circle
      * that the path need not cross (a forearm raised before the chest),
      * and mostly hangs below */
@@ -345,7 +345,7 @@ static void fit_arm(cub_tracker *t, cub_track_skeleton *s, int side, int32_t tip
 
 static void fit_leg(cub_tracker *t, cub_track_skeleton *s, int side, int32_t tip, int32_t st)
 {
-    int jh = side ? CUB_TJ_HIP_R : CUB_TJ_HIP_L;
+    int jh = side ? CUB_KJ_HIP_R : CUB_KJ_HIP_L;
     trk_p3 hip = got(s, jh);
     int32_t r = radius(st, R_LIMB);
     trk_p3 foot = inside(cell_p(t, path_at(t, tip, pm(st, P_FOOT_UP))), r);
@@ -354,7 +354,7 @@ static void fit_leg(cub_tracker *t, cub_track_skeleton *s, int side, int32_t tip
     int32_t reach = learn_reach(t, 2 + side, dist3(hip, ankle), lt + ls);
     lt = reach * lt / (lt + ls), ls = reach - lt;
     trk_p3 knee = inside(cell_p(t, path_middle(t, tip, hip, lt, ankle, ls)), r);
-    trk_p3 oh = got(s, side ? CUB_TJ_HIP_L : CUB_TJ_HIP_R);
+    trk_p3 oh = got(s, side ? CUB_KJ_HIP_L : CUB_KJ_HIP_R);
     knee = add_s(knee, unit(hip.x - oh.x, 0, hip.z - oh.z), KNEE_OUT);
     knee = add_s(knee, unit(ankle.x - hip.x, ankle.y - hip.y, ankle.z - hip.z), KNEE_DOWN);
     put(s, jh + 1, knee, CUB_Q16_ONE * 3 / 4);
@@ -499,10 +499,10 @@ void trk_fit_skeleton(cub_tracker *t, int32_t root, int32_t *ext, int32_t next, 
      * surface below) */
     cub_vec3 down = unit(axis.x, axis.y, axis.z * AXIS_Z / 4);
     trk_p3 hc = add_s(sc, axis, -pm(st, P_HIPC));
-    put(s, CUB_TJ_HEAD, hd, lp.head >= 0 ? CUB_Q16_ONE : 0);
-    put(s, CUB_TJ_SHOULDER_CENTRE, sj, CUB_Q16_ONE * 3 / 4);
-    put(s, CUB_TJ_SPINE, onto_surface(t, add_s(sc, down, -pm(st, P_SPINE)), radius(st, R_TORSO)), CUB_Q16_ONE / 2);
-    put(s, CUB_TJ_HIP_CENTRE, onto_surface(t, add_s(sc, down, -pm(st, P_HIPC_JOINT)), radius(st, R_TORSO)),
+    put(s, CUB_KJ_HEAD, hd, lp.head >= 0 ? CUB_Q16_ONE : 0);
+    put(s, CUB_KJ_SHOULDER_CENTRE, sj, CUB_Q16_ONE * 3 / 4);
+    put(s, CUB_KJ_SPINE, onto_surface(t, add_s(sc, down, -pm(st, P_SPINE)), radius(st, R_TORSO)), CUB_Q16_ONE / 2);
+    put(s, CUB_KJ_HIP_CENTRE, onto_surface(t, add_s(sc, down, -pm(st, P_HIPC_JOINT)), radius(st, R_TORSO)),
         CUB_Q16_ONE / 2);
     trk_p3 hp = add_s(sc, down, -pm(st, P_HIPC + P_HIP_DROP));
     int32_t half = run_half_mm(t, add_s(sc, axis, -pm(st, P_ARM_ROOT_RUN))) - pm(st, R_ARM_ROOT_EDGE);
@@ -519,12 +519,12 @@ void trk_fit_skeleton(cub_tracker *t, int32_t root, int32_t *ext, int32_t next, 
      * held out hides where the joint is) */
     trk_p3 shl = onto_shoulder(t, add_s(sc, lft, half), radius(st, R_SHOULDER));
     trk_p3 shr = onto_shoulder(t, add_s(sc, lft, -half), radius(st, R_SHOULDER));
-    put(s, CUB_TJ_SHOULDER_L, shl, CUB_Q16_ONE / 2);
-    put(s, CUB_TJ_SHOULDER_R, shr, CUB_Q16_ONE / 2);
-    put(s, CUB_TJ_HIP_L, onto_surface(t, add_s(hp, lft, pm(st, P_HIP_HALF)), radius(st, R_HIP)), CUB_Q16_ONE / 2);
-    put(s, CUB_TJ_HIP_R, onto_surface(t, add_s(hp, lft, -pm(st, P_HIP_HALF)), radius(st, R_HIP)), CUB_Q16_ONE / 2);
+    put(s, CUB_KJ_SHOULDER_L, shl, CUB_Q16_ONE / 2);
+    put(s, CUB_KJ_SHOULDER_R, shr, CUB_Q16_ONE / 2);
+    put(s, CUB_KJ_HIP_L, onto_surface(t, add_s(hp, lft, pm(st, P_HIP_HALF)), radius(st, R_HIP)), CUB_Q16_ONE / 2);
+    put(s, CUB_KJ_HIP_R, onto_surface(t, add_s(hp, lft, -pm(st, P_HIP_HALF)), radius(st, R_HIP)), CUB_Q16_ONE / 2);
 
-    lp.shoulder[0] = got(s, CUB_TJ_SHOULDER_L), lp.shoulder[1] = got(s, CUB_TJ_SHOULDER_R), lp.head_c = hd;
+    lp.shoulder[0] = got(s, CUB_KJ_SHOULDER_L), lp.shoulder[1] = got(s, CUB_KJ_SHOULDER_R), lp.head_c = hd;
     lp.reach_mm = pm(st, P_UPPER_ARM + P_FOREARM + P_HAND_REACH) * ARM_SLACK / 100;
     lp.bent = trk_bent(t, root, &lp, st);
     trk_from_shoulders(t, &lp);
@@ -548,10 +548,10 @@ void trk_fit_skeleton(cub_tracker *t, int32_t root, int32_t *ext, int32_t next, 
      * neck-based centre: a bent or leaning body measures its neck base
      * low, and a root 80 mm down the flank fits the elbow onto the torso;
      * the hands were named from the roots above */
-    put(s, CUB_TJ_SHOULDER_L, onto_shoulder(t, add_s(sj, lft, half), radius(st, R_SHOULDER)), CUB_Q16_ONE / 2);
-    put(s, CUB_TJ_SHOULDER_R, onto_shoulder(t, add_s(sj, lft, -half), radius(st, R_SHOULDER)), CUB_Q16_ONE / 2);
+    put(s, CUB_KJ_SHOULDER_L, onto_shoulder(t, add_s(sj, lft, half), radius(st, R_SHOULDER)), CUB_Q16_ONE / 2);
+    put(s, CUB_KJ_SHOULDER_R, onto_shoulder(t, add_s(sj, lft, -half), radius(st, R_SHOULDER)), CUB_Q16_ONE / 2);
     for (int side = 0; side < 2; side++) {
-        int jh = side ? CUB_TJ_HIP_R : CUB_TJ_HIP_L;
+        int jh = side ? CUB_KJ_HIP_R : CUB_KJ_HIP_L;
         if (lp.hand[side] >= 0) fit_arm(t, s, side, lp.hand[side], lp.elbow[side], st);
         if (lp.foot[side] >= 0) fit_leg(t, s, side, lp.foot[side], st);
         else guess_chain(t, s, jh, axis, st, true);
@@ -560,14 +560,14 @@ void trk_fit_skeleton(cub_tracker *t, int32_t root, int32_t *ext, int32_t next, 
     /* the output's shoulder joints (the arms were fitted from their roots above) */
     trk_p3 jl = onto_shoulder(t, add_s(sj, lft, jhalf), radius(st, R_SHOULDER));
     trk_p3 jr = onto_shoulder(t, add_s(sj, lft, -jhalf), radius(st, R_SHOULDER));
-    put(s, CUB_TJ_SHOULDER_L, (trk_p3){jl.x, jl.y, jl.z - front}, CUB_Q16_ONE / 2);
-    put(s, CUB_TJ_SHOULDER_R, (trk_p3){jr.x, jr.y, jr.z - front}, CUB_Q16_ONE / 2);
+    put(s, CUB_KJ_SHOULDER_L, (trk_p3){jl.x, jl.y, jl.z - front}, CUB_Q16_ONE / 2);
+    put(s, CUB_KJ_SHOULDER_R, (trk_p3){jr.x, jr.y, jr.z - front}, CUB_Q16_ONE / 2);
     /* an arm without a hand: hanging beside the thigh when the silhouette
      * shows it there, else last frame's pose about the output's shoulder
      * or down the torso */
     for (int side = 0; side < 2; side++) {
         if (lp.hand[side] >= 0) continue;
-        int j0 = side ? CUB_TJ_SHOULDER_R : CUB_TJ_SHOULDER_L;
+        int j0 = side ? CUB_KJ_SHOULDER_R : CUB_KJ_SHOULDER_L;
         int32_t h = hang_tip(t, &lp, sc, axis, lft, side, st);
         if (h >= 0) hang_arm(t, s, j0, h, side, st);
         else guess_chain(t, s, j0, axis, st, false);
@@ -586,7 +586,7 @@ void trk_smooth(cub_tracker *t, cub_track_skeleton *s)
     if (!t->have_prev || t->lost_frames > 0 || t->prev.player_id != s->player_id) return;
     int32_t dt = t->dt_us;
     int32_t l1 = SM_JITTER * dt / 100000, l2 = SM_SLOW * dt / 100000, l3 = SM_FAST * dt / 100000;
-    for (int j = 0; j < CUB_TJ_COUNT; j++) {
+    for (int j = 0; j < CUB_KJ_COUNT; j++) {
         trk_p3 a = got(&t->prev, j), b = got(s, j);
         int32_t d = dist3(a, b), w; /* weight of the new value, /4 */
         w = d < l1 ? 1 : d < l2 ? 2 : d < l3 ? 3 : 4;

@@ -19,13 +19,13 @@ void trk_grid_fill(cub_tracker *t, const uint16_t *raw)
             int32_t best = 0;
             for (int k = 0; k < 4; k++) {
                 int32_t u = gx * TRK_CELL_PX + off[k][0], v = gy * TRK_CELL_PX + off[k][1];
-                int32_t mm = cub_track_raw_to_mm_int(raw[v * CUB_TRACK_WIDTH + u]);
+                int32_t mm = cub_track_raw_to_mm_int(raw[v * CUB_KINECT_WIDTH + u]);
                 if (mm >= t->min_mm && mm <= t->max_mm && (best == 0 || mm < best)) best = mm;
             }
             int32_t i = gy * TRK_GW + gx;
             t->z[i] = (int16_t)best;
-            t->x[i] = (gx * TRK_CELL_PX + 2 - CUB_TRACK_CX) * best / CUB_TRACK_FOCAL_PX;
-            t->y[i] = (CUB_TRACK_CY - gy * TRK_CELL_PX - 2) * best / CUB_TRACK_FOCAL_PX;
+            t->x[i] = (gx * TRK_CELL_PX + 2 - CUB_KINECT_CX) * best / CUB_KINECT_FOCAL_PX;
+            t->y[i] = (CUB_KINECT_CY - gy * TRK_CELL_PX - 2) * best / CUB_KINECT_FOCAL_PX;
         }
     }
 }
@@ -136,7 +136,7 @@ static void comp_add(cub_tracker *t, trk_comp *c, int32_t i)
     int32_t h = trk_along(t->x[i], t->y[i], z, t->up);
     c->n++;
     c->sx += t->x[i], c->sy += t->y[i], c->sz += z;
-    c->area_mm2 += (int64_t)z * z * (TRK_CELL_PX * TRK_CELL_PX) / (CUB_TRACK_FOCAL_PX * CUB_TRACK_FOCAL_PX);
+    c->area_mm2 += (int64_t)z * z * (TRK_CELL_PX * TRK_CELL_PX) / (CUB_KINECT_FOCAL_PX * CUB_KINECT_FOCAL_PX);
     if (h < c->hmin) c->hmin = h;
     if (h > c->hmax) c->hmax = h;
     if (t->x[i] < c->xmin) c->xmin = t->x[i];

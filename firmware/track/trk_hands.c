@@ -81,8 +81,8 @@ static void from_shoulder(cub_tracker *t, trk_p3 sh, int32_t *dist)
 {
     for (int32_t b = 0; b < TRK_BLOCKS; b++) dist[b] = TRK_INF;
     if (sh.z <= 0) return;
-    int32_t gx0 = (CUB_TRACK_CX + sh.x * CUB_TRACK_FOCAL_PX / sh.z) / TRK_CELL_PX;
-    int32_t gy0 = (CUB_TRACK_CY - sh.y * CUB_TRACK_FOCAL_PX / sh.z) / TRK_CELL_PX;
+    int32_t gx0 = (CUB_KINECT_CX + sh.x * CUB_KINECT_FOCAL_PX / sh.z) / TRK_CELL_PX;
+    int32_t gy0 = (CUB_KINECT_CY - sh.y * CUB_KINECT_FOCAL_PX / sh.z) / TRK_CELL_PX;
     int32_t best = -1, best_d = INT32_MAX;
     for (int32_t gy = gy0 - 4; gy <= gy0 + 4; gy++)
         for (int32_t gx = gx0 - 4; gx <= gx0 + 4; gx++) {
@@ -160,7 +160,7 @@ static int32_t hand_cost(const cub_tracker *t, int32_t c, int side, const limb_p
      * keeps off the head's) */
     if (lp->head >= 0 && dist3(p, lp->head_c) < pm(st, HC_HEAD)) cost += pm(st, HC_HEAD_COST);
     if (t->have_prev && t->lost_frames == 0) {
-        int32_t dp = dist3(p, got(&t->prev, side ? CUB_TJ_HAND_R : CUB_TJ_HAND_L));
+        int32_t dp = dist3(p, got(&t->prev, side ? CUB_KJ_HAND_R : CUB_KJ_HAND_L));
         cost += HC_W_PREV * (dp < pm(st, HC_PREV_CAP) ? dp : pm(st, HC_PREV_CAP)) / 4;
     }
     return cost;
@@ -347,7 +347,7 @@ int32_t trk_hand_beyond(const cub_tracker *t, const limb_pick *lp, trk_p3 sc, tr
     if (pe.z <= 0) return -1;
     int32_t deo = dist3(pe, so) - pm(st, HB_ACROSS);
     int32_t de = dist3(pe, sh), lim = pm(st, HB_NEAR), reach = pm(st, P_UPPER_ARM + P_FOREARM + P_HAND_REACH);
-    int32_t rc = lim * CUB_TRACK_FOCAL_PX / (pe.z * TRK_CELL_PX) + 1, gx0 = e % TRK_GW, gy0 = e / TRK_GW;
+    int32_t rc = lim * CUB_KINECT_FOCAL_PX / (pe.z * TRK_CELL_PX) + 1, gx0 = e % TRK_GW, gy0 = e / TRK_GW;
     int32_t best = -1, best_z = INT32_MAX, n = 0;
     if (!lp->bent && de <= pm(st, HG_ELBOW) && trk_along(pe.x - sh.x, pe.y - sh.y, pe.z - sh.z, t->up) < 0) {
         int32_t f = fist_above(t, lp, side, de, gx0, gy0, rc, st);

@@ -17,7 +17,7 @@ static int32_t measure_stature(const cub_tracker *t, int32_t head, bool on_floor
         int32_t a = gx, b = gx;
         while (a > 0 && t->mask[i - (gx - a) - 1]) a--;
         while (b < TRK_GW - 1 && t->mask[i + (b - gx) + 1]) b++;
-        int32_t w = (b - a + 1) * TRK_CELL_PX * t->z[i] / CUB_TRACK_FOCAL_PX;
+        int32_t w = (b - a + 1) * TRK_CELL_PX * t->z[i] / CUB_KINECT_FOCAL_PX;
         int32_t drop = top.y - t->y[i];
         if (wmax > 0 && drop > 100 && w * 10 > wmax * 19) {
             *neck_drop_mm = drop;
@@ -57,7 +57,7 @@ enum {
 static int32_t below_middle(const cub_tracker *t, int32_t tip, int32_t mm, int32_t max_wide_mm)
 {
     int32_t z = t->z[tip] > 0 ? t->z[tip] : 1, gx = tip % TRK_GW;
-    int32_t gy = tip / TRK_GW + mm * CUB_TRACK_FOCAL_PX / (z * TRK_CELL_PX);
+    int32_t gy = tip / TRK_GW + mm * CUB_KINECT_FOCAL_PX / (z * TRK_CELL_PX);
     if (gy >= TRK_GH) return tip;
     int32_t row = gy * TRK_GW;
     if (!t->mask[row + gx]) return tip;
@@ -75,7 +75,7 @@ static int32_t below_middle(const cub_tracker *t, int32_t tip, int32_t mm, int32
  * disk, a raised forearm or hand crosses it as a strip. */
 static int32_t disk_fill_pct(const cub_tracker *t, int32_t c, int32_t rho_mm)
 {
-    int32_t z0 = t->z[c], rc = rho_mm * CUB_TRACK_FOCAL_PX / ((z0 ? z0 : 1) * TRK_CELL_PX);
+    int32_t z0 = t->z[c], rc = rho_mm * CUB_KINECT_FOCAL_PX / ((z0 ? z0 : 1) * TRK_CELL_PX);
     if (rc < 1) rc = 1;
     if (rc > 12) rc = 12;
     int32_t gx0 = c % TRK_GW, gy0 = c / TRK_GW, in = 0, all = 0;
@@ -131,7 +131,7 @@ static int32_t head_cost(const cub_tracker *t, trk_p3 r, int32_t c, int32_t midd
     if (!*round) cost += 600;
     /* last frame's head helps, but a wrong one must not hold on */
     if (t->have_prev && t->lost_frames == 0) {
-        int32_t d = dist3(p, got(&t->prev, CUB_TJ_HEAD));
+        int32_t d = dist3(p, got(&t->prev, CUB_KJ_HEAD));
         cost += d < 300 ? d : 300;
     }
     return cost;

@@ -10,8 +10,8 @@
 #include "cub/track.h"
 
 #define TRK_CELL_PX 4
-#define TRK_GW (CUB_TRACK_WIDTH / TRK_CELL_PX)
-#define TRK_GH (CUB_TRACK_HEIGHT / TRK_CELL_PX)
+#define TRK_GW (CUB_KINECT_WIDTH / TRK_CELL_PX)
+#define TRK_GH (CUB_KINECT_HEIGHT / TRK_CELL_PX)
 #define TRK_CELLS (TRK_GW * TRK_GH)
 #define TRK_BW (TRK_GW / 2) /* the coarse grid of 2x2 blocks */
 #define TRK_BH (TRK_GH / 2)

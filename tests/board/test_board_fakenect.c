@@ -6,7 +6,9 @@
  * Broken dumps: a missing accelerometer file, a short colour frame, or no
  * good depth frame are refused with INDEX.txt:line; truncated and missing
  * depth frames among real ones replay as frames without readings (run with
- * the argument "mended", in a process of its own). */
+ * the argument "mended", in a process of its own); with accelerometer lines
+ * between the frames, as fakenect-record writes them, every frame arrives
+ * with the reading before it (argument "accel"). */
 #define _GNU_SOURCE /* realpath, symlink, mkdtemp, popen */
 
 #include <fcntl.h>
@@ -23,6 +25,8 @@
 
 #include "clock.h"
 #include "depth.h"
+
+#include <libfreenect.h>
 
 #define MAX_FRAMES 64
 #define FRAME_PIXELS (CUB_DEPTH_W * CUB_DEPTH_H)
@@ -83,6 +87,20 @@ static void read_pgm(const char *dir, const char *name, uint16_t *px)
     free(bytes);
 }
 
+/* The next poll that is not CUB_ERR_EMPTY. Under the real clock a reader
+ * thread takes fakenect's sleeps, so a poll never waits: poll every 1 ms
+ * (a frame comes every 33) for up to 10 s. polls counts every poll. */
+static cub_err next_frame(cub_depth *src, cub_depth_frame *f, int *polls)
+{
+    int64_t give_up = cub_clock_mono_us() + 10000000;
+    for (;;) {
+        ++*polls;
+        cub_err e = cub_depth_poll(src, f);
+        if (e != CUB_ERR_EMPTY || cub_clock_mono_us() > give_up) return e;
+        cub_clock_sleep_until_mono_us(cub_clock_mono_us() + 1000);
+    }
+}
+
 static void test_replay_gives_every_frame_then_end(void **state)
 {
     const char *dir = dump_dir();
@@ -113,16 +131,7 @@ static void test_replay_gives_every_frame_then_end(void **state)
     int64_t t_prev = -1;
     uint32_t ts_prev = 0;
     cub_depth_frame f;
-    /* fakenect sleeps inside each poll until the next recorded frame time;
-     * the poll bound only keeps a broken replay from running forever. */
-    for (e = CUB_OK; polls < 10000; polls++) {
-        e = cub_depth_poll(src, &f);
-        if (e == CUB_ERR_EMPTY) {
-            continue;
-        }
-        if (e != CUB_OK) {
-            break;
-        }
+    while ((e = next_frame(src, &f, &polls)) == CUB_OK) {
         assert_true(got < d.count);
         assert_int_equal(f.seq, (uint32_t)got);
         assert_int_equal(f.timestamp, d.timestamp[got]);
@@ -144,7 +153,7 @@ static void test_replay_gives_every_frame_then_end(void **state)
     assert_int_equal(got, d.count);
     printf("fakenect: %d/%d frames in order, pixels exact, end after %d polls, %.3f s, "
            "accel=%d,%d,%d\n",
-           got, d.count, polls + 1, (cub_clock_mono_us() - origin) / 1e6, f.accel[0], f.accel[1],
+           got, d.count, polls, (cub_clock_mono_us() - origin) / 1e6, f.accel[0], f.accel[1],
            f.accel[2]);
     assert_int_equal(cub_depth_poll(src, &f), CUB_ERR_END); /* and stays ended */
     free(want);
@@ -269,6 +278,19 @@ static void test_dump_of_only_bad_frames_is_refused(void **state)
     assert_int_equal(left, 0);
 }
 
+/* The real dump FAKENECT_PATH names, its frames read into d; skips the
+ * test without it. */
+static const char *real_dump(dump *d)
+{
+    const char *real = dump_dir();
+    if (!real) {
+        printf("fakenect: skipped: no real dump (needs $CUB_DATA_DIR/depth/skeltrack)\n");
+        skip();
+    }
+    read_index(real, d);
+    return real;
+}
+
 /* The mended-dump test: the real frames with line BAD_SHORT + 1 cut short
  * and line BAD_MISSING + 1 gone. */
 #define BAD_SHORT 3
@@ -356,11 +378,8 @@ static int replay_mended(cub_depth *src, const char *real, const dump *d, const 
     uint16_t *want = malloc(FRAME_PIXELS * sizeof *want);
     cub_depth_frame f;
     cub_err e = CUB_OK;
-    int got = 0;
-    for (int polls = 0; polls < 10000; polls++) {
-        e = cub_depth_poll(src, &f);
-        if (e == CUB_ERR_EMPTY) continue;
-        if (e != CUB_OK) break;
+    int got = 0, polls = 0;
+    while ((e = next_frame(src, &f, &polls)) == CUB_OK) {
         /* fakenect has read FAKENECT_PATH: the caller's value is back. */
         assert_string_equal(getenv("FAKENECT_PATH"), dump_dir);
         assert_true(got < d->count);
@@ -384,13 +403,8 @@ static int replay_mended(cub_depth *src, const char *real, const dump *d, const 
  * after them come back, and the private view is gone after close. */
 static void test_truncated_and_missing_frames_replay_without_readings(void **state)
 {
-    const char *real = dump_dir();
-    if (!real) {
-        printf("fakenect: skipped: no real dump (needs $CUB_DATA_DIR/depth/skeltrack)\n");
-        skip();
-    }
     dump d;
-    read_index(real, &d);
+    const char *real = real_dump(&d);
     assert_true(d.count > BAD_MISSING + 1);
     char dir[] = "/tmp/cub_dump_XXXXXX", tmp[] = "/tmp/cub_tmp_XXXXXX", log[64];
     assert_non_null(mkdtemp(dir));
@@ -427,8 +441,98 @@ static void test_truncated_and_missing_frames_replay_without_readings(void **sta
     assert_int_equal(views_after, 0);
 }
 
-/* fakenect replays one dump per process: the mended-dump replay runs in a
- * process of its own (ctest test_board_fakenect_mended: argument "mended"). */
+/* The accelerometer test: fakenect-record's shape, ACCEL_LINES a- lines
+ * after every depth frame, the last one after frame k reading (k, 819, -k);
+ * the first after frame EMPTY_ACCEL_AFTER is empty (a recording cut off). */
+#define ACCEL_LINES 3
+#define EMPTY_ACCEL_AFTER 2
+
+static void truncate_file(const char *dir, const char *name)
+{
+    char path[2048];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    FILE *f = fopen(path, "wb");
+    assert_non_null(f);
+    fclose(f);
+}
+
+static void write_tilt(const char *dir, const char *name, int16_t x, int16_t y, int16_t z)
+{
+    char path[2048];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    freenect_raw_tilt_state st = {.accelerometer_x = x, .accelerometer_y = y, .accelerometer_z = z};
+    FILE *f = fopen(path, "wb");
+    assert_non_null(f);
+    assert_int_equal(fwrite(&st, sizeof st, 1, f), 1);
+    fclose(f);
+}
+
+static void make_accel_dump(const char *src, const dump *d, const char *dir)
+{
+    char real[1024], index[64 * 64 * (ACCEL_LINES + 1)] = "", from[2048], to[2048], name[128];
+    assert_non_null(realpath(src, real));
+    for (int k = 0; k < d->count; k++) {
+        snprintf(from, sizeof from, "%s/%s", real, d->name[k]);
+        snprintf(to, sizeof to, "%s/%s", dir, d->name[k]);
+        assert_int_equal(symlink(from, to), 0);
+        strcat(strcat(index, d->name[k]), "\n");
+        double t_s;
+        sscanf(d->name[k], "d-%lf", &t_s);
+        for (int i = 1; i <= ACCEL_LINES; i++) {
+            snprintf(name, sizeof name, "a-%f-%u.dump", t_s + 0.008 * i, d->timestamp[k]);
+            write_tilt(dir, name, (int16_t)(i == ACCEL_LINES ? k : 99), 819, (int16_t)-k);
+            if (k == EMPTY_ACCEL_AFTER && i == 1) truncate_file(dir, name);
+            strcat(strcat(index, name), "\n");
+        }
+    }
+    write_file(dir, "INDEX.txt", index);
+}
+
+/* Under the real clock (a reader thread drains fakenect), with several
+ * accelerometer lines between depth frames: every frame arrives, each with
+ * the reading of the last a- line before it (none before the first). An
+ * empty a- file, which would end fakenect's replay, is mended. */
+static void test_accel_lines_between_frames_every_frame_arrives(void **state)
+{
+    dump d;
+    const char *real = real_dump(&d);
+    char dir[] = "/tmp/cub_dump_XXXXXX";
+    assert_non_null(mkdtemp(dir));
+    make_accel_dump(real, &d, dir);
+    cub_depth *src = NULL;
+    char err[512];
+    int64_t t0 = cub_clock_mono_us();
+    /* Set until the end: fakenect reads it at its first event, in the
+     * first poll. */
+    setenv("FAKENECT_PATH", dir, 1);
+    cub_err e = cub_depth_open(CUB_DEPTH_FREENECT, &real_clock, &src, err, sizeof err);
+    if (e) fail_msg("accelerometer dump refused: %s: %s", cub_err_str(e), err);
+    cub_depth_frame f;
+    int got = 0, polls = 0;
+    while ((e = next_frame(src, &f, &polls)) == CUB_OK) {
+        assert_true(got < d.count);
+        assert_int_equal(f.seq, (uint32_t)got);
+        assert_int_equal(f.timestamp, d.timestamp[got]);
+        int16_t want_x = (int16_t)(got - 1), want_y = got ? 819 : 0, want_z = (int16_t)(1 - got);
+        if (!got) want_x = want_z = 0;
+        assert_int_equal(f.accel[0], want_x);
+        assert_int_equal(f.accel[1], want_y);
+        assert_int_equal(f.accel[2], want_z);
+        got++;
+    }
+    cub_depth_close(src);
+    remove_tree(dir);
+    assert_int_equal(e, CUB_ERR_END);
+    assert_int_equal(got, d.count);
+    printf("fakenect: %d/%d frames among %d accelerometer lines, each with the reading before "
+           "it, in %.3f s (recorded: %.3f s)\n",
+           got, d.count, d.count * ACCEL_LINES, (cub_clock_mono_us() - t0) / 1e6,
+           (uint32_t)(d.timestamp[d.count - 1] - d.timestamp[0]) / 60e6);
+}
+
+/* fakenect replays one dump per process: the mended-dump and accelerometer
+ * replays run in processes of their own (ctest test_board_fakenect_mended,
+ * _accel: argument "mended", "accel"). */
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
@@ -440,6 +544,10 @@ int main(int argc, char **argv)
     const struct CMUnitTest mended[] = {
         cmocka_unit_test(test_truncated_and_missing_frames_replay_without_readings),
     };
+    const struct CMUnitTest accel[] = {
+        cmocka_unit_test(test_accel_lines_between_frames_every_frame_arrives),
+    };
     if (argc > 1 && !strcmp(argv[1], "mended")) return cmocka_run_group_tests(mended, NULL, NULL);
+    if (argc > 1 && !strcmp(argv[1], "accel")) return cmocka_run_group_tests(accel, NULL, NULL);
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

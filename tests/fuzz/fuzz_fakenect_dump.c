@@ -1,7 +1,7 @@
 /* libFuzzer target: the fakenect dump check (board/common/fakenect_dump.c)
  * reading any INDEX.txt. The input is the index; the dump folder beside it
- * holds a good depth frame, a short one, an accelerometer file, a short
- * colour frame and a sub-folder, so the index can name good, bad, missing
+ * holds a good depth frame, a short one, accelerometer files (12 bytes,
+ * 16, and empty), a short colour frame and a sub-folder, so the index can name good, bad, missing
  * and odd files. Whatever the index, prepare + release must neither crash
  * nor leave a view behind, and FAKENECT_PATH must name the dump again. */
 #define _POSIX_C_SOURCE 200809L /* setenv, mkdir */
@@ -44,6 +44,8 @@ static void make_dump(void)
     write_file(dump_dir, "d-good.pgm", frame, n);
     write_file(dump_dir, "d-short.pgm", frame, 20);
     write_file(dump_dir, "a-1.dump", frame, 16);
+    write_file(dump_dir, "a-12.dump", frame + 20, 12); /* freenect_raw_tilt_state's size */
+    write_file(dump_dir, "a-empty.dump", frame, 0);
     write_file(dump_dir, "r-short.ppm", "P6 640 480 255\n", 15);
     free(frame);
     char sub[512];

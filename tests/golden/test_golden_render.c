@@ -365,21 +365,21 @@ static cub_track_skeleton g_child;
 
 static void child_at(float z_mm, int32_t status)
 {
-    static const float XY[CUB_TJ_COUNT][2] = {
-        [CUB_TJ_HIP_CENTRE] = {0, -150},     [CUB_TJ_SPINE] = {0, 0},
-        [CUB_TJ_SHOULDER_CENTRE] = {0, 200}, [CUB_TJ_HEAD] = {0, 360},
-        [CUB_TJ_SHOULDER_L] = {-150, 180},   [CUB_TJ_ELBOW_L] = {-330, 260},
-        [CUB_TJ_WRIST_L] = {-450, 380},      [CUB_TJ_HAND_L] = {-490, 430},
-        [CUB_TJ_SHOULDER_R] = {150, 180},    [CUB_TJ_ELBOW_R] = {320, 100},
-        [CUB_TJ_WRIST_R] = {430, -10},       [CUB_TJ_HAND_R] = {470, -50},
-        [CUB_TJ_HIP_L] = {-90, -190},        [CUB_TJ_KNEE_L] = {-120, -480},
-        [CUB_TJ_ANKLE_L] = {-130, -760},     [CUB_TJ_FOOT_L] = {-150, -790},
-        [CUB_TJ_HIP_R] = {90, -190},         [CUB_TJ_KNEE_R] = {110, -480},
-        [CUB_TJ_ANKLE_R] = {120, -760},      [CUB_TJ_FOOT_R] = {140, -790},
+    static const float XY[CUB_KJ_COUNT][2] = {
+        [CUB_KJ_HIP_CENTRE] = {0, -150},     [CUB_KJ_SPINE] = {0, 0},
+        [CUB_KJ_SHOULDER_CENTRE] = {0, 200}, [CUB_KJ_HEAD] = {0, 360},
+        [CUB_KJ_SHOULDER_L] = {-150, 180},   [CUB_KJ_ELBOW_L] = {-330, 260},
+        [CUB_KJ_WRIST_L] = {-450, 380},      [CUB_KJ_HAND_L] = {-490, 430},
+        [CUB_KJ_SHOULDER_R] = {150, 180},    [CUB_KJ_ELBOW_R] = {320, 100},
+        [CUB_KJ_WRIST_R] = {430, -10},       [CUB_KJ_HAND_R] = {470, -50},
+        [CUB_KJ_HIP_L] = {-90, -190},        [CUB_KJ_KNEE_L] = {-120, -480},
+        [CUB_KJ_ANKLE_L] = {-130, -760},     [CUB_KJ_FOOT_L] = {-150, -790},
+        [CUB_KJ_HIP_R] = {90, -190},         [CUB_KJ_KNEE_R] = {110, -480},
+        [CUB_KJ_ANKLE_R] = {120, -760},      [CUB_KJ_FOOT_R] = {140, -790},
     };
     memset(&g_child, 0, sizeof g_child);
     g_child.status = status;
-    for (int j = 0; j < CUB_TJ_COUNT; j++) {
+    for (int j = 0; j < CUB_KJ_COUNT; j++) {
         g_child.joint_mm[j] = (cub_vec3){(cub_q16)(XY[j][0] * 65536.0f),
                                          (cub_q16)(XY[j][1] * 65536.0f),
                                          (cub_q16)(z_mm * 65536.0f)};

@@ -2,7 +2,7 @@
  * expected events: bad input first, then verdicts (on time, late by a
  * beat, too late, wrong arm, standing still, no player, one run for one
  * repetition, the expected pose), claps, waves, presence, determinism.
- * A child of 1.3 m stands 2.5 m from the camera, facing it (track.h camera
+ * A child of 1.3 m stands 2.5 m from the camera, facing it (kinect.h camera
  * space: x right, y up, z away; the player's right at +x), 30 fps. */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -37,14 +37,14 @@ static cub_track_skeleton child(pose p)
     cub_track_skeleton s = {.status = p.status, .player_id = 1};
     cub_vec3 *j = s.joint_mm;
     const int z = 2500;
-    j[CUB_TJ_HIP_CENTRE] = mm(0, 800, z);
-    j[CUB_TJ_SPINE] = mm(0, 900, z);
-    j[CUB_TJ_SHOULDER_CENTRE] = mm(0, 1150, z);
-    j[CUB_TJ_HEAD] = mm(0, 1300, z);
+    j[CUB_KJ_HIP_CENTRE] = mm(0, 800, z);
+    j[CUB_KJ_SPINE] = mm(0, 900, z);
+    j[CUB_KJ_SHOULDER_CENTRE] = mm(0, 1150, z);
+    j[CUB_KJ_HEAD] = mm(0, 1300, z);
     for (int side = 0; side < 2; side++) {
         int sx = side ? 1 : -1; /* the right side at +x */
-        int sh = side ? CUB_TJ_SHOULDER_R : CUB_TJ_SHOULDER_L;
-        int hip = side ? CUB_TJ_HIP_R : CUB_TJ_HIP_L;
+        int sh = side ? CUB_KJ_SHOULDER_R : CUB_KJ_SHOULDER_L;
+        int hip = side ? CUB_KJ_HIP_R : CUB_KJ_HIP_L;
         j[sh] = mm(170 * sx, 1100, z);
         j[sh + 1] = mm(190 * sx, 850, z);       /* elbow: arm hanging */
         j[sh + 2] = mm(200 * sx, 620, z);       /* wrist */
@@ -74,7 +74,7 @@ static cub_track_skeleton child(pose p)
         j[hip + 2] = mm(85 * sx, 100, z);
         j[hip + 3] = mm(85 * sx, 30, z - 80);
     }
-    for (int k = 0; k < CUB_TJ_COUNT; k++)
+    for (int k = 0; k < CUB_KJ_COUNT; k++)
         s.confidence[k] = CUB_Q16_ONE;
     return s;
 }
@@ -447,10 +447,10 @@ static void test_expected_pose_must_be_near(void **state)
     for (int f = 5; f < 100; f++) {
         cub_track_skeleton s = child(f >= 20 && f < 50 ? p : STILL);
         if (f >= 20 && f < 50) { /* bend the raised right forearm forward */
-            s.joint_mm[CUB_TJ_WRIST_R] = mm(175, 1350, 2270);
-            s.joint_mm[CUB_TJ_HAND_R] = mm(175, 1350, 2210);
-            s.joint_mm[CUB_TJ_WRIST_L] = mm(-175, 1350, 2270);
-            s.joint_mm[CUB_TJ_HAND_L] = mm(-175, 1350, 2210);
+            s.joint_mm[CUB_KJ_WRIST_R] = mm(175, 1350, 2270);
+            s.joint_mm[CUB_KJ_HAND_R] = mm(175, 1350, 2210);
+            s.joint_mm[CUB_KJ_WRIST_L] = mm(-175, 1350, 2270);
+            s.joint_mm[CUB_KJ_HAND_L] = mm(-175, 1350, 2210);
         }
         cub_judge_out out;
         assert_int_equal(cub_judge_frame(r.j, (int64_t)f * FRAME_US, &s, &out), CUB_OK);

@@ -9,7 +9,7 @@
  *   "leg out" (RF or LF = outward) and a14 (forward kick) files not.
  * Axes: both sets hold metres in the Kinect SDK's skeleton space (x to the
  * sensor's left, y up, z away). The SDK maps +x to the right of its depth
- * image (that image is mirrored), which is track.h's x = (u - CX) z / F:
+ * image (that image is mirrored), which is kinect.h's x = (u - CX) z / F:
  * so camera space here is the files' axes in mm, unchanged. The test
  * checks the geometry (head above hips, z ahead, the player's right
  * shoulder at +x) and that negating x changes no event (the judge is
@@ -36,7 +36,7 @@
 static cub_track_skeleton skeleton_of(const kinect_seq *s, int i, int mirror)
 {
     cub_track_skeleton k = {.status = CUB_TRACK_OK, .player_id = 1};
-    for (int j = 0; j < CUB_TJ_COUNT; j++) {
+    for (int j = 0; j < CUB_KJ_COUNT; j++) {
         k.joint_mm[j] = s->joint[i][j];
         if (mirror) k.joint_mm[j].x = -k.joint_mm[j].x;
         k.confidence[j] = CUB_Q16_ONE;
@@ -108,7 +108,7 @@ static int count_kind(const found *f, int kind, int from, int to)
     return n;
 }
 
-/* The share of frames where the geometry reads as track.h's camera space
+/* The share of frames where the geometry reads as kinect.h's camera space
  * with the player facing the camera. */
 typedef struct axes {
     long frames, head_up, z_ahead, right_at_plus_x;
@@ -119,9 +119,9 @@ static void check_axes(axes *a, const kinect_seq *s)
     for (int i = 0; i < s->count; i++) {
         const cub_vec3 *w = s->joint[i];
         a->frames++;
-        a->head_up += w[CUB_TJ_HEAD].y > w[CUB_TJ_HIP_CENTRE].y;
-        a->z_ahead += w[CUB_TJ_HIP_CENTRE].z > CUB_Q16_INT(500);
-        a->right_at_plus_x += w[CUB_TJ_SHOULDER_R].x > w[CUB_TJ_SHOULDER_L].x;
+        a->head_up += w[CUB_KJ_HEAD].y > w[CUB_KJ_HIP_CENTRE].y;
+        a->z_ahead += w[CUB_KJ_HIP_CENTRE].z > CUB_Q16_INT(500);
+        a->right_at_plus_x += w[CUB_KJ_SHOULDER_R].x > w[CUB_KJ_SHOULDER_L].x;
     }
 }
 

@@ -20,7 +20,7 @@
 #include <cmocka.h>
 
 #include "cub/png.h"
-#include "logread.h"
+#include "replay_log.h"
 
 #define W 640
 #define H 480
@@ -87,41 +87,21 @@ static int read_pgm_stats(recorded *r)
     return 0;
 }
 
-static logread events;
 static recorded rec[FRAMES + 1];
 static int rec_count;
 
 static int setup(void **s)
 {
-    char path[1024];
-    snprintf(path, sizeof path, "%s/events.log", out_dir);
     rec_count = read_index(rec, FRAMES + 1);
     if (rec_count < 0) return 0; /* the tests skip */
     for (int i = 0; i < rec_count; i++)
         if (read_pgm_stats(&rec[i])) return -1;
-    return logread_load(path, &events);
-}
-
-static int teardown(void **s)
-{
-    logread_free(&events);
-    return 0;
+    return replay_load_log(out_dir);
 }
 
 static void need_data(void)
 {
-    if (rec_count < 0) {
-        print_message("SKIP: no Skeltrack dump at %s\n", dump_dir);
-        skip();
-    }
-}
-
-static double field(int line, const char *key)
-{
-    int ok;
-    double v = logread_number(&events.lines[line], key, &ok);
-    if (!ok) fail_msg("log line %d has no numeric %s=", line + 1, key);
-    return v;
+    replay_need_dump(rec_count >= 0, dump_dir);
 }
 
 static void test_all_eight_frames_arrive_in_order_with_timestamps(void **s)
@@ -269,5 +249,5 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_headless_frames_were_written),
         cmocka_unit_test(test_event_log_is_the_same_on_every_machine),
     };
-    return cmocka_run_group_tests_name("replay_skeltrack", tests, setup, teardown);
+    return cmocka_run_group_tests_name("replay_skeltrack", tests, setup, replay_teardown);
 }

@@ -82,7 +82,7 @@ int kinect_read_utkinect(const char *path, kinect_seq *out, char *err, size_t er
         ln++;
         if (blank(line)) continue;
         double v[61];
-        cub_vec3 j[FZ_KINECT_JOINTS];
+        cub_vec3 j[CUB_KJ_COUNT];
         int got = numbers(line, v, 61);
         if (got != 61) {
             fclose(f);
@@ -92,7 +92,7 @@ int kinect_read_utkinect(const char *path, kinect_seq *out, char *err, size_t er
                         "coordinates, got %d numbers",
                         got);
         }
-        for (int k = 0; k < FZ_KINECT_JOINTS; k++) {
+        for (int k = 0; k < CUB_KJ_COUNT; k++) {
             if (metres(v[1 + 3 * k], &j[k].x) || metres(v[2 + 3 * k], &j[k].y) ||
                 metres(v[3 + 3 * k], &j[k].z)) {
                 fclose(f);
@@ -120,19 +120,19 @@ int kinect_read_utkinect(const char *path, kinect_seq *out, char *err, size_t er
 static void msr_map(const double v[20][3], int side_b_right, cub_vec3 *j)
 {
     /* Kinect index -> MSR number, for side_b_right (second of pair = right). */
-    static const int msr_of[FZ_KINECT_JOINTS] = {
+    static const int msr_of[CUB_KJ_COUNT] = {
         7, 4,  3,  20, /* hip centre, spine, shoulder centre, head */
         1, 8,  10, 12, /* left shoulder, elbow, wrist, hand */
         2, 9,  11, 13, /* right ... */
         5, 14, 16, 18, /* left hip, knee, ankle, foot */
         6, 15, 17, 19, /* right ... */
     };
-    for (int k = 0; k < FZ_KINECT_JOINTS; k++) {
+    for (int k = 0; k < CUB_KJ_COUNT; k++) {
         int m = msr_of[k];
-        if (!side_b_right && k >= FZ_SHOULDER_L) {
+        if (!side_b_right && k >= CUB_KJ_SHOULDER_L) {
             /* swap the pair: left takes the second, right the first */
-            int is_left =
-                (k >= FZ_SHOULDER_L && k <= FZ_HAND_L) || (k >= FZ_HIP_L && k <= FZ_FOOT_L);
+            int is_left = (k >= CUB_KJ_SHOULDER_L && k <= CUB_KJ_HAND_L) ||
+                          (k >= CUB_KJ_HIP_L && k <= CUB_KJ_FOOT_L);
             m = is_left ? msr_of[k + 4] : msr_of[k - 4];
         }
         j[k] = fz_mm(v[m - 1][0] * 1000.0, v[m - 1][1] * 1000.0, v[m - 1][2] * 1000.0);
@@ -194,7 +194,7 @@ int kinect_read_msr(const char *path, kinect_seq *out, char *err, size_t err_siz
     int cap = 0;
     for (int i = 0; i < n / 20; i++) {
         if (all_zero(raw[i])) continue; /* the sensor lost the person */
-        cub_vec3 j[FZ_KINECT_JOINTS];
+        cub_vec3 j[CUB_KJ_COUNT];
         msr_map((const double(*)[3])raw[i], xb > xa, j);
         if (push_frame(out, &cap, i, j)) {
             free(raw);
@@ -264,7 +264,7 @@ cub_fuzzy_body kinect_body_for(const kinect_seq *s, int from, int to)
     double *v = malloc((size_t)s->count * sizeof *v);
     if (!v) return body;
     for (int i = 0; i < s->count; i++) {
-        cub_q16 l = s->joint[i][FZ_FOOT_L].y, r = s->joint[i][FZ_FOOT_R].y;
+        cub_q16 l = s->joint[i][CUB_KJ_FOOT_L].y, r = s->joint[i][CUB_KJ_FOOT_R].y;
         v[i] = (l < r ? l : r) / 65536.0;
     }
     body.floor_y_mm = fz_q16(quantile(v, s->count, 0.05));
@@ -274,7 +274,7 @@ cub_fuzzy_body kinect_body_for(const kinect_seq *s, int from, int to)
         to = s->count;
     }
     for (int i = from; i < to && i < s->count; i++)
-        v[n++] = cub_fuzzy_cog_height_mm(&body, s->joint[i], FZ_KINECT_JOINTS) / 65536.0;
+        v[n++] = cub_fuzzy_cog_height_mm(&body, s->joint[i], CUB_KJ_COUNT) / 65536.0;
     if (n > 0) body.stand_cog_mm = fz_q16(quantile(v, n, all ? 0.9 : 0.5));
     free(v);
     return body;

@@ -1,7 +1,7 @@
 /* kinect_read — real Kinect v1 skeleton sequences for the tests: UTKinect
  * (joints_sSS_eEE.txt + actionLabel.txt) and MSR Action3D
  * (aAA_sSS_eEE_skeleton3D.txt), read into the Kinect SDK's 20-joint order
- * (fuzzy_pose.h's FZ_* indices), Q16.16 millimetres, y up. Both files hold
+ * (kinect.h's CUB_KJ_* order), Q16.16 millimetres, y up. Both files hold
  * metres in the sensor's frame: x to the sensor's left (the right of a
  * person facing it), y up, z away from the sensor.
  * Test code: allocates, reports problems as "file:line: message". */
@@ -16,7 +16,7 @@
 typedef struct kinect_seq {
     int count;                           /* frames */
     int *frame_no;                       /* UTKinect's frame numbers; MSR: 0.. */
-    cub_vec3 (*joint)[FZ_KINECT_JOINTS]; /* [count] */
+    cub_vec3 (*joint)[CUB_KJ_COUNT]; /* [count] */
 } kinect_seq;
 
 /* UTKinect: one line per frame, "frame x y z ... (20 joints)". A frame

@@ -88,7 +88,7 @@ static void tally_span(tally *t, const kinect_seq *s, const cub_fuzzy_body *body
     const cub_fuzzy_feature legs[4] = {CUB_FUZZY_RFK, CUB_FUZZY_LFK, CUB_FUZZY_RF, CUB_FUZZY_LF};
     for (int i = 0; i < n; i++) {
         cub_fuzzy_frame f;
-        assert_int_equal(cub_fuzzy_features(body, s->joint[from + i], FZ_KINECT_JOINTS, &f),
+        assert_int_equal(cub_fuzzy_features(body, s->joint[from + i], CUB_KJ_COUNT, &f),
                          CUB_OK);
         count_frame(t, &f);
         for (int k = 0; k < 4; k++)
@@ -228,7 +228,7 @@ static void test_msr_postures(void **state)
                 if (a <= 12) tally_span(&still, &s, &body, 0, s.count); /* arm-only */
                 for (int i = 1; a == 1 && i < s.count; i++)
                     for (int side = 0; side < 2; side++) {
-                        int w = side ? FZ_WRIST_R : FZ_WRIST_L;
+                        int w = side ? CUB_KJ_WRIST_R : CUB_KJ_WRIST_L;
                         wrist_motion[side] += fabs(deg(s.joint[i][w].y - s.joint[i - 1][w].y));
                     }
                 kinect_free(&s);

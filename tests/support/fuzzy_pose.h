@@ -1,8 +1,9 @@
-/* fuzzy_pose — test helpers for the fuzzy features: the Kinect's 20-joint
- * layout as a cub_fuzzy_body, a standing adult template in that layout,
- * simple pose edits (bend, sit), a fixed random stream, and conversion to
- * the double reference's types (fuzzy_ref.h). Header-only (static inline),
- * so cub_test_support itself needs no firmware headers. Test code only. */
+/* fuzzy_pose — test helpers for the fuzzy features: the firmware's fuzzy
+ * body over the Kinect's 20 joints (kinect.h) with the floor and height in
+ * mm, a standing adult template in that layout, simple pose edits (bend,
+ * sit), a fixed random stream, and conversion to the double reference's
+ * types (fuzzy_ref.h). Header-only (static inline), so cub_test_support
+ * itself needs no firmware headers. Test code only. */
 #ifndef CUB_FUZZY_POSE_H
 #define CUB_FUZZY_POSE_H
 
@@ -10,59 +11,23 @@
 #include <stdint.h>
 
 #include "cub/fuzzy.h"
+#include "cub/kinect.h"
 #include "fuzzy_ref.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
 #endif
 
-/* Kinect SDK joint order (UTKinect's files use it as is). */
-enum {
-    FZ_HIP_CENTRE,
-    FZ_SPINE,
-    FZ_SHOULDER_CENTRE,
-    FZ_HEAD,
-    FZ_SHOULDER_L,
-    FZ_ELBOW_L,
-    FZ_WRIST_L,
-    FZ_HAND_L,
-    FZ_SHOULDER_R,
-    FZ_ELBOW_R,
-    FZ_WRIST_R,
-    FZ_HAND_R,
-    FZ_HIP_L,
-    FZ_KNEE_L,
-    FZ_ANKLE_L,
-    FZ_FOOT_L,
-    FZ_HIP_R,
-    FZ_KNEE_R,
-    FZ_ANKLE_R,
-    FZ_FOOT_R,
-    FZ_KINECT_JOINTS
-};
-
 static inline cub_q16 fz_q16(double v)
 {
     return (cub_q16)lround(v * 65536.0);
 }
 
+/* The firmware's fuzzy body over the Kinect's joints (kinect.h), floor and
+ * standing height in mm. */
 static inline cub_fuzzy_body fz_kinect_body(double floor_y_mm, double stand_cog_mm)
 {
-    cub_fuzzy_body b = {
-        .hip_centre = FZ_HIP_CENTRE,
-        .spine = FZ_SPINE,
-        .shoulder_centre = FZ_SHOULDER_CENTRE,
-        .head = FZ_HEAD,
-        .shoulder = {FZ_SHOULDER_L, FZ_SHOULDER_R},
-        .elbow = {FZ_ELBOW_L, FZ_ELBOW_R},
-        .wrist = {FZ_WRIST_L, FZ_WRIST_R},
-        .hip = {FZ_HIP_L, FZ_HIP_R},
-        .knee = {FZ_KNEE_L, FZ_KNEE_R},
-        .ankle = {FZ_ANKLE_L, FZ_ANKLE_R},
-        .floor_y_mm = fz_q16(floor_y_mm),
-        .stand_cog_mm = fz_q16(stand_cog_mm),
-    };
-    return b;
+    return cub_kinect_fuzzy_body(fz_q16(floor_y_mm), fz_q16(stand_cog_mm));
 }
 
 static inline cub_vec3 fz_mm(double x, double y, double z)
@@ -79,13 +44,13 @@ static inline cub_vec3 fz_add(cub_vec3 p, double dx, double dy, double dz)
  * the left side is +x. */
 static inline void fz_template(cub_vec3 *w)
 {
-    static const double t[FZ_KINECT_JOINTS][3] = {
+    static const double t[CUB_KJ_COUNT][3] = {
         {0, 1000, 0},   {0, 1100, 0},   {0, 1450, 0},   {0, 1650, 0},    {180, 1420, 0},
         {200, 1130, 0}, {210, 880, 0},  {215, 800, 0},  {-180, 1420, 0}, {-200, 1130, 0},
         {-210, 880, 0}, {-215, 800, 0}, {100, 950, 0},  {100, 520, 0},   {100, 80, 0},
         {100, 30, 80},  {-100, 950, 0}, {-100, 520, 0}, {-100, 80, 0},   {-100, 30, 80},
     };
-    for (int j = 0; j < FZ_KINECT_JOINTS; j++)
+    for (int j = 0; j < CUB_KJ_COUNT; j++)
         w[j] = fz_mm(t[j][0], t[j][1], t[j][2]);
 }
 
@@ -93,15 +58,16 @@ static inline void fz_template(cub_vec3 *w)
  * the hip centre. */
 static inline void fz_bend_forward(cub_vec3 *w, double deg)
 {
-    const int upper[] = {FZ_SPINE,   FZ_SHOULDER_CENTRE, FZ_HEAD,   FZ_SHOULDER_L,
-                         FZ_ELBOW_L, FZ_WRIST_L,         FZ_HAND_L, FZ_SHOULDER_R,
-                         FZ_ELBOW_R, FZ_WRIST_R,         FZ_HAND_R};
+    const int upper[] = {CUB_KJ_SPINE,   CUB_KJ_SHOULDER_CENTRE, CUB_KJ_HEAD,   CUB_KJ_SHOULDER_L,
+                         CUB_KJ_ELBOW_L, CUB_KJ_WRIST_L,         CUB_KJ_HAND_L, CUB_KJ_SHOULDER_R,
+                         CUB_KJ_ELBOW_R, CUB_KJ_WRIST_R,         CUB_KJ_HAND_R};
     double c = cos(deg * M_PI / 180), s = sin(deg * M_PI / 180);
     for (unsigned i = 0; i < sizeof upper / sizeof upper[0]; i++) {
         cub_vec3 *p = &w[upper[i]];
-        double y = (p->y - w[FZ_HIP_CENTRE].y) / 65536.0, z = (p->z - w[FZ_HIP_CENTRE].z) / 65536.0;
-        p->y = w[FZ_HIP_CENTRE].y + fz_q16(y * c - z * s);
-        p->z = w[FZ_HIP_CENTRE].z + fz_q16(y * s + z * c);
+        double y = (p->y - w[CUB_KJ_HIP_CENTRE].y) / 65536.0;
+        double z = (p->z - w[CUB_KJ_HIP_CENTRE].z) / 65536.0;
+        p->y = w[CUB_KJ_HIP_CENTRE].y + fz_q16(y * c - z * s);
+        p->z = w[CUB_KJ_HIP_CENTRE].z + fz_q16(y * s + z * c);
     }
 }
 
@@ -109,12 +75,12 @@ static inline void fz_bend_forward(cub_vec3 *w, double deg)
  * vertical. Starts from the template. */
 static inline void fz_sit(cub_vec3 *w)
 {
-    for (int j = FZ_HIP_CENTRE; j <= FZ_HAND_R; j++)
+    for (int j = CUB_KJ_HIP_CENTRE; j <= CUB_KJ_HAND_R; j++)
         w[j].y -= fz_q16(470);
-    w[FZ_HIP_L].y -= fz_q16(470);
-    w[FZ_HIP_R].y -= fz_q16(470);
+    w[CUB_KJ_HIP_L].y -= fz_q16(470);
+    w[CUB_KJ_HIP_R].y -= fz_q16(470);
     for (int side = 0; side < 2; side++) {
-        int k = side ? FZ_KNEE_R : FZ_KNEE_L;
+        int k = side ? CUB_KJ_KNEE_R : CUB_KJ_KNEE_L;
         w[k] = fz_mm(w[k].x / 65536.0, 480, 430);
         w[k + 1] = fz_mm(w[k].x / 65536.0, 80, 430);
         w[k + 2] = fz_mm(w[k].x / 65536.0, 30, 510);

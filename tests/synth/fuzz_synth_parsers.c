@@ -28,7 +28,7 @@ static void check_truth(const char *text, size_t len)
     }
     for (int i = 0; i < t.frame_count; i++) {
         if (i > 0 && t.frames[i].frame <= t.frames[i - 1].frame) abort();
-        for (int j = 0; j < CUB_TJ_COUNT; j++)
+        for (int j = 0; j < CUB_KJ_COUNT; j++)
             if (t.frames[i].visible[j] > 1 || !isfinite(t.frames[i].joint_mm[j][2])) abort();
     }
     cub_synth_truth_free(&t);

@@ -21,9 +21,9 @@ static void frame_line(char *buf, size_t size, int frame, const char *vis_of_las
 {
     int n = snprintf(buf, size, "%d 1300000000.%06d %u", frame, frame * 33333,
                      1000000u + 2000000u * (unsigned)frame);
-    for (int j = 0; j < CUB_TJ_COUNT; j++)
+    for (int j = 0; j < CUB_KJ_COUNT; j++)
         n += snprintf(buf + n, size - (size_t)n, " %d %d %d %s", j, 2 * j, 1000 + j,
-                      j + 1 == CUB_TJ_COUNT ? vis_of_last : "1");
+                      j + 1 == CUB_KJ_COUNT ? vis_of_last : "1");
     snprintf(buf + n, size - (size_t)n, "\n");
 }
 
@@ -94,9 +94,9 @@ static void test_truth_reads_frames_and_comments(void **state)
     assert_int_equal(t.frames[1].frame, 3);
     assert_int_equal(t.frames[1].ts, 7000000u);
     assert_true(t.frames[1].t_s > 1300000000.09 && t.frames[1].t_s < 1300000000.11);
-    assert_true(t.frames[1].joint_mm[CUB_TJ_FOOT_R][2] == 1019.0f);
-    assert_int_equal(t.frames[1].visible[CUB_TJ_FOOT_R], 0);
-    assert_int_equal(t.frames[1].visible[CUB_TJ_HEAD], 1);
+    assert_true(t.frames[1].joint_mm[CUB_KJ_FOOT_R][2] == 1019.0f);
+    assert_int_equal(t.frames[1].visible[CUB_KJ_FOOT_R], 0);
+    assert_int_equal(t.frames[1].visible[CUB_KJ_HEAD], 1);
     cub_synth_truth_free(&t);
     cub_synth_truth_free(&t); /* twice is harmless */
 }
@@ -157,8 +157,8 @@ static void test_sequence_reads_segments(void **state)
 static void test_raw_mapping_follows_the_formula(void **state)
 {
     (void)state;
-    assert_int_equal(cub_synth_mm_to_raw(499), CUB_TRACK_RAW_NO_READING);
-    assert_int_equal(cub_synth_mm_to_raw(4001), CUB_TRACK_RAW_NO_READING);
+    assert_int_equal(cub_synth_mm_to_raw(499), CUB_KINECT_NO_READING);
+    assert_int_equal(cub_synth_mm_to_raw(4001), CUB_KINECT_NO_READING);
     assert_int_equal(cub_synth_raw_to_mm(2047), 0.0);
     /* the ends of the range map to the first and last levels inside it */
     assert_true(cub_synth_raw_to_mm(cub_synth_mm_to_raw(500)) >= 500);

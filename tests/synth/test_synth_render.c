@@ -19,10 +19,11 @@
 
 #include <cmocka.h>
 
+#include "cub/kinect.h"
 #include "cub/synth.h"
 
-#define W CUB_TRACK_WIDTH
-#define H CUB_TRACK_HEIGHT
+#define W CUB_KINECT_WIDTH
+#define H CUB_KINECT_HEIGHT
 #define NPIX (W * H)
 
 static const char *data_dir(void)
@@ -79,6 +80,30 @@ static unsigned char *read_all(const char *path, size_t *len)
     return b;
 }
 
+/* An a- line: the frame's own name (stamp), 12 bytes of
+ * freenect_raw_tilt_state, little-endian counts of the push opposite to
+ * gravity (819 a g), motor angle and status 0. */
+static void check_accel_file(const char *dir, const char *name, const char *frame_stamp,
+                             const float gravity[3])
+{
+    char path[700];
+    assert_true(frame_stamp[0]);
+    snprintf(path, sizeof(path), "a-%s.dump", frame_stamp);
+    assert_string_equal(name, path);
+    snprintf(path, sizeof(path), "%s/%s", dir, name);
+    size_t len;
+    unsigned char *b = read_all(path, &len);
+    assert_non_null(b);
+    assert_int_equal(len, 12);
+    for (int i = 0; i < 3; i++) {
+        int counts = (int16_t)(b[2 * i] | b[2 * i + 1] << 8);
+        assert_int_equal(counts, (int)lround(-gravity[i] * CUB_KINECT_ACCEL_COUNTS_PER_G / 1000.0));
+    }
+    for (int i = 6; i < 12; i++) assert_int_equal(b[i], 0);
+    free(b);
+    unlink(path);
+}
+
 static void test_dump_reads_back(void **state)
 {
     (void)state;
@@ -106,10 +131,19 @@ static void test_dump_reads_back(void **state)
     int n = 0;
     double prev_t = 0;
     unsigned prev_ts = 0;
+    char last_stamp[64] = "";
     while (fgets(line, sizeof(line), index)) {
         double t;
         unsigned ts;
         char tail[8];
+        line[strcspn(line, "\n")] = 0;
+        if (line[0] == 'a') { /* after each frame, as fakenect-record writes */
+            check_accel_file(dir, line, last_stamp, truth.gravity);
+            last_stamp[0] = 0;
+            continue;
+        }
+        assert_int_equal(last_stamp[0], 0); /* the frame before had its a- line */
+        snprintf(last_stamp, sizeof last_stamp, "%.*s", (int)strlen(line) - 6, line + 2);
         assert_int_equal(sscanf(line, "d-%lf-%u.%3s", &t, &ts, tail), 3);
         assert_string_equal(tail, "pgm");
         assert_true(n < frames);
@@ -120,7 +154,6 @@ static void test_dump_reads_back(void **state)
         assert_true(fabs(truth.frames[n].t_s - t) < 1e-6);
         assert_int_equal(truth.frames[n].ts, ts);
         assert_int_equal(truth.frames[n].frame, n);
-        line[strcspn(line, "\n")] = 0;
         snprintf(path, sizeof(path), "%s/%s", dir, line);
         size_t len;
         unsigned char *b = read_all(path, &len);
@@ -144,6 +177,7 @@ static void test_dump_reads_back(void **state)
         prev_t = t, prev_ts = ts, n++;
     }
     fclose(index);
+    assert_int_equal(last_stamp[0], 0);
     assert_int_equal(n, frames);
     cub_synth_truth_free(&truth);
     snprintf(path, sizeof(path), "%s/INDEX.txt", dir);
@@ -269,14 +303,14 @@ static void test_visible_joints_sit_on_the_body(void **state)
         for (int f = 0; f < cub_synth_frame_count(s) && f < 240; f += step) {
             cub_synth_truth_frame t;
             assert_int_equal(cub_synth_render(s, f, raw, &t, NULL, NULL), CUB_OK);
-            for (int j = 0; j < CUB_TJ_COUNT; j++) {
+            for (int j = 0; j < CUB_KJ_COUNT; j++) {
                 if (!t.visible[j]) {
                     hidden++;
                     continue;
                 }
                 float *p = t.joint_mm[j];
-                int u = (int)lroundf(320 + 580 * p[0] / p[2]),
-                    v = (int)lroundf(240 - 580 * p[1] / p[2]);
+                int u = (int)lroundf(CUB_KINECT_CX + CUB_KINECT_FOCAL_PX * p[0] / p[2]),
+                    v = (int)lroundf(CUB_KINECT_CY - CUB_KINECT_FOCAL_PX * p[1] / p[2]);
                 seen++;
                 on_body += near_reading(raw, u, v, p[2], 150);
             }
@@ -301,7 +335,7 @@ static double image_height(cub_synth *s)
     double top = -1e9;
     for (int i = 0; i < NPIX; i++)
         if (own[i] == 1 && raw[i] < 2047) {
-            double y = (240 - i / W) * cub_synth_raw_to_mm(raw[i]) / 580.0 + 800;
+            double y = (CUB_KINECT_CY - i / W) * cub_synth_raw_to_mm(raw[i]) / CUB_KINECT_FOCAL_PX + 800.0;
             top = y > top ? y : top;
         }
     free(raw);
@@ -368,11 +402,11 @@ static void test_mirror_swaps_left_and_right(void **state)
     assert_int_equal(cub_synth_render(s, 10, raw, &a, NULL, NULL), CUB_OK);
     assert_int_equal(cub_synth_render(m, 10, raw, &b, NULL, NULL), CUB_OK);
     for (int k = 0; k < 4; k++) {
-        float *l = a.joint_mm[CUB_TJ_SHOULDER_L + k], *r = b.joint_mm[CUB_TJ_SHOULDER_R + k];
+        float *l = a.joint_mm[CUB_KJ_SHOULDER_L + k], *r = b.joint_mm[CUB_KJ_SHOULDER_R + k];
         assert_true(fabsf(l[0] + r[0]) < 1.0f && fabsf(l[1] - r[1]) < 1.0f);
     }
     /* facing the camera: the player's left shows on the image's left */
-    assert_true(a.joint_mm[CUB_TJ_SHOULDER_L][0] < a.joint_mm[CUB_TJ_SHOULDER_R][0]);
+    assert_true(a.joint_mm[CUB_KJ_SHOULDER_L][0] < a.joint_mm[CUB_KJ_SHOULDER_R][0]);
     free(raw);
     cub_synth_close(s);
     cub_synth_close(m);
@@ -393,13 +427,13 @@ static void test_families_stand_and_face_the_camera(void **state)
         assert_int_equal(cub_synth_render(s, 0, raw, &t, NULL, NULL), CUB_OK);
         float(*p)[3] = t.joint_mm;
         printf("synth: %-28s head y %.0f, hips y %.0f, ankles y %.0f, shoulders x %.0f..%.0f\n",
-               clips[c], p[CUB_TJ_HEAD][1], p[CUB_TJ_HIP_CENTRE][1], p[CUB_TJ_ANKLE_L][1],
-               p[CUB_TJ_SHOULDER_L][0], p[CUB_TJ_SHOULDER_R][0]);
-        assert_true(p[CUB_TJ_HEAD][1] > p[CUB_TJ_SHOULDER_CENTRE][1]);
-        assert_true(p[CUB_TJ_SHOULDER_CENTRE][1] > p[CUB_TJ_HIP_CENTRE][1]);
-        assert_true(p[CUB_TJ_HIP_CENTRE][1] > p[CUB_TJ_KNEE_L][1]);
-        assert_true(p[CUB_TJ_KNEE_R][1] > p[CUB_TJ_ANKLE_R][1]);
-        assert_true(p[CUB_TJ_SHOULDER_L][0] < p[CUB_TJ_SHOULDER_R][0]);
+               clips[c], p[CUB_KJ_HEAD][1], p[CUB_KJ_HIP_CENTRE][1], p[CUB_KJ_ANKLE_L][1],
+               p[CUB_KJ_SHOULDER_L][0], p[CUB_KJ_SHOULDER_R][0]);
+        assert_true(p[CUB_KJ_HEAD][1] > p[CUB_KJ_SHOULDER_CENTRE][1]);
+        assert_true(p[CUB_KJ_SHOULDER_CENTRE][1] > p[CUB_KJ_HIP_CENTRE][1]);
+        assert_true(p[CUB_KJ_HIP_CENTRE][1] > p[CUB_KJ_KNEE_L][1]);
+        assert_true(p[CUB_KJ_KNEE_R][1] > p[CUB_KJ_ANKLE_R][1]);
+        assert_true(p[CUB_KJ_SHOULDER_L][0] < p[CUB_KJ_SHOULDER_R][0]);
         cub_synth_close(s);
     }
     free(raw);

@@ -16,9 +16,9 @@
 
 #include "cub/track.h"
 
-#define W CUB_TRACK_WIDTH
-#define H CUB_TRACK_HEIGHT
-#define F CUB_TRACK_FOCAL_PX
+#define W CUB_KINECT_WIDTH
+#define H CUB_KINECT_HEIGHT
+#define F CUB_KINECT_FOCAL_PX
 
 static uint16_t frame[W * H];
 static int32_t zbuf[W * H];
@@ -48,19 +48,19 @@ static void clear_scene(int floor_y_mm)
         for (int u = 0; u < W; u++) {
             int32_t z = 0;
             /* a level floor floor_y_mm below the camera, up to 4 m */
-            if (floor_y_mm && v > CUB_TRACK_CY + 2) z = floor_y_mm * F / (v - CUB_TRACK_CY);
+            if (floor_y_mm && v > CUB_KINECT_CY + 2) z = floor_y_mm * F / (v - CUB_KINECT_CY);
             zbuf[v * W + u] = z > 0 && z < 4000 ? z : INT32_MAX;
         }
 }
 
 static void sphere(p3 c, int32_t r)
 {
-    int32_t uc = CUB_TRACK_CX + c.x * F / c.z, vc = CUB_TRACK_CY - c.y * F / c.z, rp = r * F / c.z + 1;
+    int32_t uc = CUB_KINECT_CX + c.x * F / c.z, vc = CUB_KINECT_CY - c.y * F / c.z, rp = r * F / c.z + 1;
     for (int v = vc - rp; v <= vc + rp; v++)
         for (int u = uc - rp; u <= uc + rp; u++) {
             if (u < 0 || v < 0 || u >= W || v >= H) continue;
             /* the ray's offset from the centre, at the centre's depth */
-            int32_t dx = (u - CUB_TRACK_CX) * c.z / F - c.x, dy = (CUB_TRACK_CY - v) * c.z / F - c.y;
+            int32_t dx = (u - CUB_KINECT_CX) * c.z / F - c.x, dy = (CUB_KINECT_CY - v) * c.z / F - c.y;
             int64_t d2 = (int64_t)dx * dx + (int64_t)dy * dy;
             if (d2 >= (int64_t)r * r) continue;
             int32_t z = c.z - (int32_t)cub_fx_isqrt64((uint64_t)((int64_t)r * r - d2));
@@ -83,7 +83,7 @@ static void to_raw(void)
     static int serial;
     for (int i = 0; i < W * H; i++) {
         int32_t z = zbuf[i];
-        frame[i] = z >= 500 && z < 4000 ? mm_to_raw_tab[z] : CUB_TRACK_RAW_NO_READING;
+        frame[i] = z >= 500 && z < 4000 ? mm_to_raw_tab[z] : CUB_KINECT_NO_READING;
     }
     const char *dir = getenv("TRACK_TEST_DUMP");
     if (!dir) return;
@@ -108,16 +108,16 @@ static void child_pose(int32_t x0, int32_t z0, int arm_up, int32_t s_pm, p3 *j)
 {
 #define S(v) ((v) * s_pm / 1000)
     int32_t fy = -800;
-    j[CUB_TJ_HIP_CENTRE] = (p3){x0, fy + S(761), z0};
-    j[CUB_TJ_SPINE] = (p3){x0, fy + S(842), z0};
-    j[CUB_TJ_SHOULDER_CENTRE] = (p3){x0, fy + S(923), z0};
-    j[CUB_TJ_HEAD] = (p3){x0, fy + S(1060), z0};
+    j[CUB_KJ_HIP_CENTRE] = (p3){x0, fy + S(761), z0};
+    j[CUB_KJ_SPINE] = (p3){x0, fy + S(842), z0};
+    j[CUB_KJ_SHOULDER_CENTRE] = (p3){x0, fy + S(923), z0};
+    j[CUB_KJ_HEAD] = (p3){x0, fy + S(1060), z0};
     static const int32_t el[3][2] = {{60, -210}, {218, 0}, {120, 180}}, wr[3][2] = {{60, -140}, {149, 0}, {80, 125}},
                          ha[3][2] = {{15, -50}, {52, 0}, {25, 45}};
     for (int side = 0; side < 2; side++) {
         /* the image is mirrored: the player's left at smaller x */
         int32_t sg = side == 0 ? -1 : 1;
-        int js = side ? CUB_TJ_SHOULDER_R : CUB_TJ_SHOULDER_L, jh = side ? CUB_TJ_HIP_R : CUB_TJ_HIP_L;
+        int js = side ? CUB_KJ_SHOULDER_R : CUB_KJ_SHOULDER_L, jh = side ? CUB_KJ_HIP_R : CUB_KJ_HIP_L;
         p3 sh = {x0 + sg * S(140), fy + S(971), z0};
         j[js] = sh;
         p3 e = {sh.x + sg * S(el[arm_up][0]), sh.y + S(el[arm_up][1]), z0 - 20};
@@ -137,14 +137,14 @@ static void child_pose(int32_t x0, int32_t z0, int arm_up, int32_t s_pm, p3 *j)
 static void draw_child(const p3 *j, int32_t s_pm)
 {
 #define S(v) ((v) * s_pm / 1000)
-    sphere((p3){j[CUB_TJ_HEAD].x, j[CUB_TJ_HEAD].y + S(10), j[CUB_TJ_HEAD].z}, S(90));
-    capsule(j[CUB_TJ_SHOULDER_CENTRE], j[CUB_TJ_HEAD], S(45));
-    capsule((p3){j[CUB_TJ_SHOULDER_L].x + S(50), j[CUB_TJ_SHOULDER_L].y - S(60), j[CUB_TJ_SHOULDER_L].z},
-            (p3){j[CUB_TJ_HIP_L].x, j[CUB_TJ_HIP_L].y, j[CUB_TJ_HIP_L].z}, S(95));
-    capsule((p3){j[CUB_TJ_SHOULDER_R].x - S(50), j[CUB_TJ_SHOULDER_R].y - S(60), j[CUB_TJ_SHOULDER_R].z},
-            (p3){j[CUB_TJ_HIP_R].x, j[CUB_TJ_HIP_R].y, j[CUB_TJ_HIP_R].z}, S(95));
+    sphere((p3){j[CUB_KJ_HEAD].x, j[CUB_KJ_HEAD].y + S(10), j[CUB_KJ_HEAD].z}, S(90));
+    capsule(j[CUB_KJ_SHOULDER_CENTRE], j[CUB_KJ_HEAD], S(45));
+    capsule((p3){j[CUB_KJ_SHOULDER_L].x + S(50), j[CUB_KJ_SHOULDER_L].y - S(60), j[CUB_KJ_SHOULDER_L].z},
+            (p3){j[CUB_KJ_HIP_L].x, j[CUB_KJ_HIP_L].y, j[CUB_KJ_HIP_L].z}, S(95));
+    capsule((p3){j[CUB_KJ_SHOULDER_R].x - S(50), j[CUB_KJ_SHOULDER_R].y - S(60), j[CUB_KJ_SHOULDER_R].z},
+            (p3){j[CUB_KJ_HIP_R].x, j[CUB_KJ_HIP_R].y, j[CUB_KJ_HIP_R].z}, S(95));
     for (int side = 0; side < 2; side++) {
-        int js = side ? CUB_TJ_SHOULDER_R : CUB_TJ_SHOULDER_L, jh = side ? CUB_TJ_HIP_R : CUB_TJ_HIP_L;
+        int js = side ? CUB_KJ_SHOULDER_R : CUB_KJ_SHOULDER_L, jh = side ? CUB_KJ_HIP_R : CUB_KJ_HIP_L;
         capsule(j[js], j[js + 1], S(38));
         capsule(j[js + 1], j[js + 3], S(32));
         capsule(j[jh], j[jh + 1], S(55));
@@ -185,7 +185,7 @@ static void test_bad_arguments_and_garbage_give_no_player(void **st)
     t = new_tracker();
     cub_track_skeleton s;
     assert_int_equal(cub_track_frame(t, NULL, 0, NULL, &s), CUB_ERR_ARG);
-    p3 j[CUB_TJ_COUNT];
+    p3 j[CUB_KJ_COUNT];
     child_pose(0, 2200, 1, 1000, j);
     for (int round = 0; round < 2; round++) {
         for (int kind = 0; kind < 3; kind++) {
@@ -203,7 +203,7 @@ static void test_bad_arguments_and_garbage_give_no_player(void **st)
         to_raw();
         assert_int_equal(cub_track_frame(t, frame, 10, NULL, &s), CUB_OK);
         assert_true(s.status == CUB_TRACK_OK);
-        assert_true(joint_err(&s, CUB_TJ_HEAD, j[CUB_TJ_HEAD]) < 150);
+        assert_true(joint_err(&s, CUB_KJ_HEAD, j[CUB_KJ_HEAD]) < 150);
     }
 }
 
@@ -212,14 +212,14 @@ static void test_capsule_child_joints_within_10cm(void **st)
     (void)st;
     static const char *groups = "";
     (void)groups;
-    double sum[CUB_TJ_COUNT] = {0};
-    int in[CUB_TJ_COUNT] = {0}, n = 0;
+    double sum[CUB_KJ_COUNT] = {0};
+    int in[CUB_KJ_COUNT] = {0}, n = 0;
     int quick = getenv("CUB_QUICK") != NULL;
     for (int grav = 0; grav < 2; grav++)
         for (int pose = 0; pose < 3; pose++)
             for (int dist = 0; dist < (quick ? 1 : 3); dist++) {
                 cub_tracker *t = new_tracker();
-                p3 j[CUB_TJ_COUNT];
+                p3 j[CUB_KJ_COUNT];
                 int32_t z0 = 2100 + 500 * dist, x0 = -150 + 150 * dist;
                 child_pose(x0, z0, pose, 1000, j);
                 clear_scene(800);
@@ -229,7 +229,7 @@ static void test_capsule_child_joints_within_10cm(void **st)
                 cub_track_skeleton s;
                 for (int k = 0; k < 3; k++) cub_track_frame(t, frame, k * 33333, grav ? &g : NULL, &s);
                 assert_int_equal(s.status, CUB_TRACK_OK);
-                for (int jj = 0; jj < CUB_TJ_COUNT; jj++) {
+                for (int jj = 0; jj < CUB_KJ_COUNT; jj++) {
                     double e = joint_err(&s, jj, j[jj]);
                     sum[jj] += e;
                     in[jj] += e <= 100;
@@ -238,16 +238,16 @@ static void test_capsule_child_joints_within_10cm(void **st)
             }
     int all = 0;
     printf("track capsule child (%d views):", n);
-    for (int jj = 0; jj < CUB_TJ_COUNT; jj++) {
-        printf(" %s=%.0fmm", cub_track_joint_name(jj), sum[jj] / n);
+    for (int jj = 0; jj < CUB_KJ_COUNT; jj++) {
+        printf(" %s=%.0fmm", cub_kinect_joint_name(jj), sum[jj] / n);
         all += in[jj];
     }
-    printf("\ntrack capsule child: %.1f%% of joints within 10 cm (%d of %d)\n", 100.0 * all / (n * CUB_TJ_COUNT),
-           all, n * CUB_TJ_COUNT);
+    printf("\ntrack capsule child: %.1f%% of joints within 10 cm (%d of %d)\n", 100.0 * all / (n * CUB_KJ_COUNT),
+           all, n * CUB_KJ_COUNT);
     /* head, hands, feet: the extremities the method is built on */
-    static const int ends[] = {CUB_TJ_HEAD, CUB_TJ_HAND_L, CUB_TJ_HAND_R, CUB_TJ_FOOT_L, CUB_TJ_FOOT_R};
+    static const int ends[] = {CUB_KJ_HEAD, CUB_KJ_HAND_L, CUB_KJ_HAND_R, CUB_KJ_FOOT_L, CUB_KJ_FOOT_R};
     for (size_t k = 0; k < sizeof ends / sizeof *ends; k++) assert_true(sum[ends[k]] / n < 100);
-    assert_true(all >= n * CUB_TJ_COUNT * 8 / 10);
+    assert_true(all >= n * CUB_KJ_COUNT * 8 / 10);
 }
 
 /* A nearer second person walking in beside the player never takes over. */
@@ -255,7 +255,7 @@ static void test_second_person_never_becomes_the_player(void **st)
 {
     (void)st;
     cub_tracker *t = new_tracker();
-    p3 a[CUB_TJ_COUNT], b[CUB_TJ_COUNT];
+    p3 a[CUB_KJ_COUNT], b[CUB_KJ_COUNT];
     child_pose(0, 2400, 1, 1000, a);
     cub_track_skeleton s;
     clear_scene(800);
@@ -267,14 +267,14 @@ static void test_second_person_never_becomes_the_player(void **st)
     for (int k = 0; k < 8; k++) {
         /* an adult-sized person, nearer, walking in from the right */
         child_pose(1400 - 80 * k, 1800, 0, 1400, b);
-        for (int jj = 0; jj < CUB_TJ_COUNT; jj++) b[jj].y += 800 * 400 / 1000 - 320;
+        for (int jj = 0; jj < CUB_KJ_COUNT; jj++) b[jj].y += 800 * 400 / 1000 - 320;
         clear_scene(800);
         draw_child(a, 1000);
         draw_child(b, 1400);
         to_raw();
         cub_track_frame(t, frame, (k + 1) * 33333, NULL, &s);
         assert_int_equal(s.player_id, id);
-        assert_true(joint_err(&s, CUB_TJ_SPINE, a[CUB_TJ_SPINE]) < 200);
+        assert_true(joint_err(&s, CUB_KJ_SPINE, a[CUB_KJ_SPINE]) < 200);
     }
     /* and a fresh tracker picks the nearer, central one */
     t = new_tracker();
@@ -301,8 +301,8 @@ static int load_real(const char *dir, const char *name, uint16_t *out)
 
 static int joint_by_name(const char *n)
 {
-    for (int j = 0; j < CUB_TJ_COUNT; j++)
-        if (!strcmp(cub_track_joint_name(j), n)) return j;
+    for (int j = 0; j < CUB_KJ_COUNT; j++)
+        if (!strcmp(cub_kinect_joint_name(j), n)) return j;
     return -1;
 }
 
@@ -324,7 +324,7 @@ static int label_point(const uint16_t *raw, int u, int v, double *p)
             zs[b] = zs[b - 1], zs[b - 1] = tmp;
         }
     double z = zs[n / 2] + 40;
-    p[0] = (u - CUB_TRACK_CX) * z / F, p[1] = (CUB_TRACK_CY - v) * z / F, p[2] = z;
+    p[0] = (u - CUB_KINECT_CX) * z / F, p[1] = (CUB_KINECT_CY - v) * z / F, p[2] = z;
     return 0;
 }
 
@@ -346,8 +346,8 @@ static void test_real_frames_against_hand_labels(void **st)
     char line[512], cur[256] = "";
     cub_track_skeleton s = {0};
     int first_id = -1, n = 0, in = 0, nkey = 0, inkey = 0;
-    double esum[CUB_TJ_COUNT] = {0};
-    int ecount[CUB_TJ_COUNT] = {0};
+    double esum[CUB_KJ_COUNT] = {0};
+    int ecount[CUB_KJ_COUNT] = {0};
     while (fgets(line, sizeof line, lf)) {
         char fname[256], jn[64], us[16], vs[16];
         if (line[0] == '#' || sscanf(line, "%255s %63s %15s %15s", fname, jn, us, vs) != 4) continue;
@@ -367,13 +367,13 @@ static void test_real_frames_against_hand_labels(void **st)
         double e = sqrt(dx * dx + dy * dy + dz * dz);
         esum[j] += e, ecount[j]++;
         n++, in += e <= 100;
-        if (j != CUB_TJ_ELBOW_L && j != CUB_TJ_ELBOW_R) nkey++, inkey += e <= 100;
+        if (j != CUB_KJ_ELBOW_L && j != CUB_KJ_ELBOW_R) nkey++, inkey += e <= 100;
         if (e > 100) printf("track real: %s %s off by %.0f mm\n", fname, jn, e);
     }
     fclose(lf);
     printf("track real:");
-    for (int j = 0; j < CUB_TJ_COUNT; j++)
-        if (ecount[j]) printf(" %s=%.0fmm", cub_track_joint_name(j), esum[j] / ecount[j]);
+    for (int j = 0; j < CUB_KJ_COUNT; j++)
+        if (ecount[j]) printf(" %s=%.0fmm", cub_kinect_joint_name(j), esum[j] / ecount[j]);
     printf("\ntrack real: %d of %d labelled joints within 10 cm; head/shoulders/hands %d of %d\n", in, n, inkey, nkey);
     assert_true(n > 0);
     assert_int_equal(inkey, nkey); /* head, shoulders and hands: every one within 10 cm */
@@ -395,7 +395,7 @@ static void test_output_hash_is_pinned(void **st)
     uint64_t h = 1469598103934665603ull;
     cub_vec3 g = {3 * 65536, -1000 * 65536, 100 * 65536};
     for (int k = 0; k < 6; k++) {
-        p3 j[CUB_TJ_COUNT];
+        p3 j[CUB_KJ_COUNT];
         child_pose(-100 + 40 * k, 2000 + 100 * k, k % 3, 1000, j);
         clear_scene(800);
         draw_child(j, 1000);

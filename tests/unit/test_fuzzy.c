@@ -30,13 +30,13 @@ static void test_features_reject_bad_input(void **state)
 {
     (void)state;
     cub_fuzzy_body body = fz_kinect_body(0, 900);
-    cub_vec3 w[FZ_KINECT_JOINTS];
+    cub_vec3 w[CUB_KJ_COUNT];
     cub_fuzzy_frame out;
     fz_template(w);
-    assert_int_equal(cub_fuzzy_features(&body, w, FZ_KINECT_JOINTS, &out), CUB_OK);
-    assert_int_equal(cub_fuzzy_features(NULL, w, FZ_KINECT_JOINTS, &out), CUB_ERR_ARG);
-    assert_int_equal(cub_fuzzy_features(&body, NULL, FZ_KINECT_JOINTS, &out), CUB_ERR_ARG);
-    assert_int_equal(cub_fuzzy_features(&body, w, FZ_KINECT_JOINTS, NULL), CUB_ERR_ARG);
+    assert_int_equal(cub_fuzzy_features(&body, w, CUB_KJ_COUNT, &out), CUB_OK);
+    assert_int_equal(cub_fuzzy_features(NULL, w, CUB_KJ_COUNT, &out), CUB_ERR_ARG);
+    assert_int_equal(cub_fuzzy_features(&body, NULL, CUB_KJ_COUNT, &out), CUB_ERR_ARG);
+    assert_int_equal(cub_fuzzy_features(&body, w, CUB_KJ_COUNT, NULL), CUB_ERR_ARG);
     assert_int_equal(cub_fuzzy_features(&body, w, 0, &out), CUB_ERR_ARG);
     assert_int_equal(cub_fuzzy_features(&body, w, -3, &out), CUB_ERR_ARG);
     /* Every required joint: missing (-1), and one past the end. */
@@ -48,31 +48,31 @@ static void test_features_reject_bad_input(void **state)
     for (size_t i = 0; i < sizeof required / sizeof required[0]; i++) {
         int16_t keep = *required[i];
         *required[i] = -1;
-        assert_int_equal(cub_fuzzy_features(&body, w, FZ_KINECT_JOINTS, &out), CUB_ERR_ARG);
-        assert_int_equal(cub_fuzzy_cog_height_mm(&body, w, FZ_KINECT_JOINTS), 0);
-        *required[i] = FZ_KINECT_JOINTS;
-        assert_int_equal(cub_fuzzy_features(&body, w, FZ_KINECT_JOINTS, &out), CUB_ERR_ARG);
+        assert_int_equal(cub_fuzzy_features(&body, w, CUB_KJ_COUNT, &out), CUB_ERR_ARG);
+        assert_int_equal(cub_fuzzy_cog_height_mm(&body, w, CUB_KJ_COUNT), 0);
+        *required[i] = CUB_KJ_COUNT;
+        assert_int_equal(cub_fuzzy_features(&body, w, CUB_KJ_COUNT, &out), CUB_ERR_ARG);
         *required[i] = keep;
     }
     /* Spine and head may be absent, but not out of range. */
     body.spine = -1;
     body.head = -1;
-    assert_int_equal(cub_fuzzy_features(&body, w, FZ_KINECT_JOINTS, &out), CUB_OK);
-    body.spine = FZ_KINECT_JOINTS;
-    assert_int_equal(cub_fuzzy_features(&body, w, FZ_KINECT_JOINTS, &out), CUB_ERR_ARG);
+    assert_int_equal(cub_fuzzy_features(&body, w, CUB_KJ_COUNT, &out), CUB_OK);
+    body.spine = CUB_KJ_COUNT;
+    assert_int_equal(cub_fuzzy_features(&body, w, CUB_KJ_COUNT, &out), CUB_ERR_ARG);
     body.spine = -1;
     body.head = -2;
-    assert_int_equal(cub_fuzzy_features(&body, w, FZ_KINECT_JOINTS, &out), CUB_ERR_ARG);
+    assert_int_equal(cub_fuzzy_features(&body, w, CUB_KJ_COUNT, &out), CUB_ERR_ARG);
     body.head = 3;
     body.stand_cog_mm = 0;
-    assert_int_equal(cub_fuzzy_features(&body, w, FZ_KINECT_JOINTS, &out), CUB_ERR_ARG);
+    assert_int_equal(cub_fuzzy_features(&body, w, CUB_KJ_COUNT, &out), CUB_ERR_ARG);
     body.stand_cog_mm = -Q16(900);
-    assert_int_equal(cub_fuzzy_features(&body, w, FZ_KINECT_JOINTS, &out), CUB_ERR_ARG);
+    assert_int_equal(cub_fuzzy_features(&body, w, CUB_KJ_COUNT, &out), CUB_ERR_ARG);
     /* A failed call leaves a zeroed frame, never garbage. */
     for (int k = 0; k < CUB_FUZZY_FEATURE_COUNT; k++)
         assert_int_equal(out.input[k], 0);
-    assert_int_equal(cub_fuzzy_cog_height_mm(NULL, w, FZ_KINECT_JOINTS), 0);
-    assert_int_equal(cub_fuzzy_cog_height_mm(&body, NULL, FZ_KINECT_JOINTS), 0);
+    assert_int_equal(cub_fuzzy_cog_height_mm(NULL, w, CUB_KJ_COUNT), 0);
+    assert_int_equal(cub_fuzzy_cog_height_mm(&body, NULL, CUB_KJ_COUNT), 0);
 }
 
 static void test_names_and_sets_reject_bad_input(void **state)
@@ -209,11 +209,11 @@ static double in_deg(const cub_fuzzy_frame *f, cub_fuzzy_feature k)
 static void features_of(cub_vec3 *w, cub_fuzzy_frame *f)
 {
     cub_fuzzy_body body = fz_kinect_body(0, 0);
-    cub_vec3 rest[FZ_KINECT_JOINTS];
+    cub_vec3 rest[CUB_KJ_COUNT];
     fz_template(rest);
-    body.stand_cog_mm = cub_fuzzy_cog_height_mm(&body, rest, FZ_KINECT_JOINTS);
+    body.stand_cog_mm = cub_fuzzy_cog_height_mm(&body, rest, CUB_KJ_COUNT);
     assert_true(body.stand_cog_mm > Q16(800) && body.stand_cog_mm < Q16(1100));
-    assert_int_equal(cub_fuzzy_features(&body, w, FZ_KINECT_JOINTS, f), CUB_OK);
+    assert_int_equal(cub_fuzzy_features(&body, w, CUB_KJ_COUNT, f), CUB_OK);
 }
 
 #define NEAR_DEG(f, k, want) assert_true(fabs(in_deg(f, k) - (want)) < 0.02)
@@ -221,7 +221,7 @@ static void features_of(cub_vec3 *w, cub_fuzzy_frame *f)
 static void test_standing_template_reads_standing(void **state)
 {
     (void)state;
-    cub_vec3 w[FZ_KINECT_JOINTS];
+    cub_vec3 w[CUB_KJ_COUNT];
     cub_fuzzy_frame f;
     fz_template(w);
     features_of(w, &f);
@@ -239,20 +239,20 @@ static void test_standing_template_reads_standing(void **state)
 static void test_each_feature_measures_its_angle(void **state)
 {
     (void)state;
-    cub_vec3 w[FZ_KINECT_JOINTS];
+    cub_vec3 w[CUB_KJ_COUNT];
     cub_fuzzy_frame f;
     fz_template(w);
     /* Right arm straight out sideways, then forearm straight up: RH 90,
      * RHE 90. Left arm straight up: LH 180, LHE 0. */
-    w[FZ_ELBOW_R] = fz_add(w[FZ_SHOULDER_R], -300, 0, 0); /* right is -x */
-    w[FZ_WRIST_R] = fz_add(w[FZ_ELBOW_R], 0, 250, 0);
-    w[FZ_ELBOW_L] = fz_add(w[FZ_SHOULDER_L], 0, 300, 0);
-    w[FZ_WRIST_L] = fz_add(w[FZ_ELBOW_L], 0, 250, 0);
+    w[CUB_KJ_ELBOW_R] = fz_add(w[CUB_KJ_SHOULDER_R], -300, 0, 0); /* right is -x */
+    w[CUB_KJ_WRIST_R] = fz_add(w[CUB_KJ_ELBOW_R], 0, 250, 0);
+    w[CUB_KJ_ELBOW_L] = fz_add(w[CUB_KJ_SHOULDER_L], 0, 300, 0);
+    w[CUB_KJ_WRIST_L] = fz_add(w[CUB_KJ_ELBOW_L], 0, 250, 0);
     /* Right leg stepped out 30 degrees in the frontal plane; left knee
      * bent to 90 with the shank pointing back. */
-    w[FZ_KNEE_R] = fz_add(w[FZ_HIP_R], -430 * sin(M_PI / 6), -430 * cos(M_PI / 6), 0);
-    w[FZ_ANKLE_R] = fz_add(w[FZ_KNEE_R], -440 * sin(M_PI / 6), -440 * cos(M_PI / 6), 0);
-    w[FZ_ANKLE_L] = fz_add(w[FZ_KNEE_L], 0, 0, -440);
+    w[CUB_KJ_KNEE_R] = fz_add(w[CUB_KJ_HIP_R], -430 * sin(M_PI / 6), -430 * cos(M_PI / 6), 0);
+    w[CUB_KJ_ANKLE_R] = fz_add(w[CUB_KJ_KNEE_R], -440 * sin(M_PI / 6), -440 * cos(M_PI / 6), 0);
+    w[CUB_KJ_ANKLE_L] = fz_add(w[CUB_KJ_KNEE_L], 0, 0, -440);
     features_of(w, &f);
     NEAR_DEG(&f, CUB_FUZZY_RH, 90);
     NEAR_DEG(&f, CUB_FUZZY_RHE, 90);
@@ -268,11 +268,11 @@ static void test_each_feature_measures_its_angle(void **state)
 
     /* A forward kick is not a side step: the thigh forward reads ~0. */
     fz_template(w);
-    w[FZ_KNEE_R] = fz_add(w[FZ_HIP_R], 0, 0, 430);
+    w[CUB_KJ_KNEE_R] = fz_add(w[CUB_KJ_HIP_R], 0, 0, 430);
     features_of(w, &f);
     NEAR_DEG(&f, CUB_FUZZY_RF, 0);
     /* A crossed leg reads negative (inward). */
-    w[FZ_KNEE_R] = fz_add(w[FZ_HIP_R], 430 * sin(M_PI / 9), -430 * cos(M_PI / 9), 0);
+    w[CUB_KJ_KNEE_R] = fz_add(w[CUB_KJ_HIP_R], 430 * sin(M_PI / 9), -430 * cos(M_PI / 9), 0);
     features_of(w, &f);
     NEAR_DEG(&f, CUB_FUZZY_RF, -20);
     assert_int_equal(f.mu[CUB_FUZZY_RF][0], CUB_FUZZY_ONE);
@@ -281,7 +281,7 @@ static void test_each_feature_measures_its_angle(void **state)
     fz_template(w);
     fz_bend_forward(w, 90);
     for (int side = 0; side < 2; side++) { /* arms hang straight down */
-        int sh = side ? FZ_SHOULDER_R : FZ_SHOULDER_L;
+        int sh = side ? CUB_KJ_SHOULDER_R : CUB_KJ_SHOULDER_L;
         w[sh + 1] = fz_add(w[sh], 0, -290, 0);
         w[sh + 2] = fz_add(w[sh + 1], 0, -250, 0);
     }
@@ -295,13 +295,13 @@ static void test_each_feature_measures_its_angle(void **state)
 static void test_posture_follows_cog_height(void **state)
 {
     (void)state;
-    cub_vec3 w[FZ_KINECT_JOINTS];
+    cub_vec3 w[CUB_KJ_COUNT];
     cub_fuzzy_frame f;
     fz_template(w);
     cub_fuzzy_body body = fz_kinect_body(0, 0);
-    cub_q16 stand = cub_fuzzy_cog_height_mm(&body, w, FZ_KINECT_JOINTS);
+    cub_q16 stand = cub_fuzzy_cog_height_mm(&body, w, CUB_KJ_COUNT);
     /* Lift everything by half the CoG height: x = 120, jump. */
-    for (int j = 0; j < FZ_KINECT_JOINTS; j++)
+    for (int j = 0; j < CUB_KJ_COUNT; j++)
         w[j].y += stand / 2;
     features_of(w, &f);
     NEAR_DEG(&f, CUB_FUZZY_POSTURE, 120);
@@ -317,7 +317,7 @@ static void test_posture_follows_cog_height(void **state)
     assert_true(f.mu[CUB_FUZZY_RFK][0] > f.mu[CUB_FUZZY_RFK][1]);
     /* Lying on the floor. */
     fz_template(w);
-    for (int j = 0; j < FZ_KINECT_JOINTS; j++) {
+    for (int j = 0; j < CUB_KJ_COUNT; j++) {
         cub_q16 y = w[j].y;
         w[j].y = Q16(10) + w[j].z / 8;
         w[j].z = y;
@@ -341,7 +341,7 @@ static int quick(void)
 static void random_pose(uint64_t *rng, double r, cub_vec3 *w)
 {
     fz_template(w);
-    for (int j = 0; j < FZ_KINECT_JOINTS; j++)
+    for (int j = 0; j < CUB_KJ_COUNT; j++)
         w[j] = fz_add(w[j], fz_uniform(rng, -r, r), fz_uniform(rng, -r, r), fz_uniform(rng, -r, r));
 }
 
@@ -350,10 +350,10 @@ static void random_pose(uint64_t *rng, double r, cub_vec3 *w)
 static void test_mirrored_pose_swaps_sides(void **state)
 {
     (void)state;
-    const int pairs[][2] = {{FZ_SHOULDER_L, FZ_SHOULDER_R}, {FZ_ELBOW_L, FZ_ELBOW_R},
-                            {FZ_WRIST_L, FZ_WRIST_R},       {FZ_HAND_L, FZ_HAND_R},
-                            {FZ_HIP_L, FZ_HIP_R},           {FZ_KNEE_L, FZ_KNEE_R},
-                            {FZ_ANKLE_L, FZ_ANKLE_R},       {FZ_FOOT_L, FZ_FOOT_R}};
+    const int pairs[][2] = {{CUB_KJ_SHOULDER_L, CUB_KJ_SHOULDER_R}, {CUB_KJ_ELBOW_L, CUB_KJ_ELBOW_R},
+                            {CUB_KJ_WRIST_L, CUB_KJ_WRIST_R},       {CUB_KJ_HAND_L, CUB_KJ_HAND_R},
+                            {CUB_KJ_HIP_L, CUB_KJ_HIP_R},           {CUB_KJ_KNEE_L, CUB_KJ_KNEE_R},
+                            {CUB_KJ_ANKLE_L, CUB_KJ_ANKLE_R},       {CUB_KJ_FOOT_L, CUB_KJ_FOOT_R}};
     const int twin[CUB_FUZZY_FEATURE_COUNT] = {
         CUB_FUZZY_LH,    CUB_FUZZY_LHE, CUB_FUZZY_RH,  CUB_FUZZY_RHE, CUB_FUZZY_POSTURE,
         CUB_FUZZY_TRUNK, CUB_FUZZY_LF,  CUB_FUZZY_LFK, CUB_FUZZY_RF,  CUB_FUZZY_RFK};
@@ -361,18 +361,18 @@ static void test_mirrored_pose_swaps_sides(void **state)
     uint64_t rng = 7;
     double max_err = 0;
     for (int i = 0; i < 500; i++) {
-        cub_vec3 w[FZ_KINECT_JOINTS], m[FZ_KINECT_JOINTS];
+        cub_vec3 w[CUB_KJ_COUNT], m[CUB_KJ_COUNT];
         cub_fuzzy_frame a, b;
         random_pose(&rng, 300, w);
-        for (int j = 0; j < FZ_KINECT_JOINTS; j++)
+        for (int j = 0; j < CUB_KJ_COUNT; j++)
             m[j] = (cub_vec3){-w[j].x, w[j].y, w[j].z};
         for (int p = 0; p < 8; p++) {
             cub_vec3 t = m[pairs[p][0]];
             m[pairs[p][0]] = m[pairs[p][1]];
             m[pairs[p][1]] = t;
         }
-        assert_int_equal(cub_fuzzy_features(&body, w, FZ_KINECT_JOINTS, &a), CUB_OK);
-        assert_int_equal(cub_fuzzy_features(&body, m, FZ_KINECT_JOINTS, &b), CUB_OK);
+        assert_int_equal(cub_fuzzy_features(&body, w, CUB_KJ_COUNT, &a), CUB_OK);
+        assert_int_equal(cub_fuzzy_features(&body, m, CUB_KJ_COUNT, &b), CUB_OK);
         for (int k = 0; k < CUB_FUZZY_FEATURE_COUNT; k++) {
             double e = fabs((a.input[k] - b.input[twin[k]]) / 65536.0);
             if (e > max_err) max_err = e;
@@ -488,17 +488,17 @@ static void test_fixed_matches_float_on_random_poses(void **state)
     cub_fuzzy_frame prev = {0};
     cub_fuzzy_ref_frame prev_ref = {0};
     for (int i = 0; i < n; i++) {
-        cub_vec3 w[FZ_KINECT_JOINTS];
-        double xyz[3 * FZ_KINECT_JOINTS];
+        cub_vec3 w[CUB_KJ_COUNT];
+        double xyz[3 * CUB_KJ_COUNT];
         random_pose(&rng, i % 2 ? 350 : 1000, w);
         cub_fuzzy_body body =
             fz_kinect_body(fz_uniform(&rng, -100, 100), fz_uniform(&rng, 500, 1100));
         cub_fuzzy_ref_body rb = fz_ref_body(&body);
         cub_fuzzy_frame f;
         cub_fuzzy_ref_frame r;
-        fz_to_double(w, FZ_KINECT_JOINTS, xyz);
-        assert_int_equal(cub_fuzzy_features(&body, w, FZ_KINECT_JOINTS, &f), CUB_OK);
-        assert_int_equal(cub_fuzzy_ref_features(&rb, xyz, FZ_KINECT_JOINTS, &r), 0);
+        fz_to_double(w, CUB_KJ_COUNT, xyz);
+        assert_int_equal(cub_fuzzy_features(&body, w, CUB_KJ_COUNT, &f), CUB_OK);
+        assert_int_equal(cub_fuzzy_ref_features(&rb, xyz, CUB_KJ_COUNT, &r), 0);
         for (int k = 0; k < CUB_FUZZY_FEATURE_COUNT; k++)
             max_in = fmax(max_in, fabs(f.input[k] / 65536.0 - r.input[k]));
         max_mu = fmax(max_mu, fz_max_mu_err(&f, &r));

@@ -1,7 +1,7 @@
 /* synth — a synthetic Kinect v1: a child-sized body driven by mocap clips,
  * rendered to raw 11-bit depth, with the true joints per frame.
  *
- * Camera: exactly the conventions of cub/track.h (640x480, focal 580 px,
+ * Camera: exactly the conventions of cub/kinect.h (640x480, focal 580 px,
  * centre 320,240; x right in the image, y up, z away; mm). The camera sits
  * camera_height_mm above a floor, level or pitched by tilt_deg (positive
  * = looking up, as the Kinect's motor). The player stands distance_mm in
@@ -73,8 +73,8 @@ typedef struct cub_synth_truth_frame {
     int frame;
     double t_s;                      /* the time in the dump's file name */
     uint32_t ts;                     /* the timestamp in the dump's file name */
-    float joint_mm[CUB_TJ_COUNT][3]; /* camera space */
-    uint8_t visible[CUB_TJ_COUNT];   /* 1: the joint's spot is seen by the camera */
+    float joint_mm[CUB_KJ_COUNT][3]; /* camera space */
+    uint8_t visible[CUB_KJ_COUNT];   /* 1: the joint's spot is seen by the camera */
 } cub_synth_truth_frame;
 
 /* Load the clips and build the scene. segments may be empty (n = 0: an
@@ -114,7 +114,7 @@ cub_err cub_synth_sequence_parse(const char *text, size_t len, const char *name,
  * Line 1: "# cub-synth truth v1: ..." (a description of the format).
  * Line 2: "gravity gx gy gz" (camera space, down, length 1000).
  * Then one line per frame: "frame t_s ts" then for each of the 20 joints
- * in track.h order "x y z v" (mm, camera space; v 1 visible, 0 not).
+ * in kinect.h order "x y z v" (mm, camera space; v 1 visible, 0 not).
  * Other lines starting with '#' are comments. */
 typedef struct cub_synth_truth {
     float gravity[3];

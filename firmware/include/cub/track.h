@@ -1,11 +1,9 @@
-/* track — from Kinect depth to the player's skeleton (seed card): the
- * depth units, the camera and skeleton conventions every module shares,
- * and the tracker.
+/* track — from Kinect depth to the player's skeleton (seed card). The
+ * image, the camera space and the 20 joints are the Kinect's (kinect.h).
  *
- * The Kinect v1 reports raw 11-bit disparity; 2047 means no reading. Depth
- * in millimetres is mm = 123.6 * tan(raw / 2842.5 + 1.1863) (the data
- * README), looked up in a table computed offline, so no libm is needed and
- * every CPU gets the same numbers.
+ * Raw depth to millimetres is looked up in a table computed offline from
+ * the Kinect's formula, so no libm is needed and every CPU gets the same
+ * numbers.
  */
 #ifndef CUB_TRACK_H
 #define CUB_TRACK_H
@@ -15,48 +13,7 @@
 
 #include "cub/err.h"
 #include "cub/fx.h"
-
-#define CUB_TRACK_RAW_NO_READING 2047
-#define CUB_TRACK_WIDTH 640
-#define CUB_TRACK_HEIGHT 480
-
-/* ---- the camera and the skeleton (shared by the tracker, the judge, the
- * depth synthesizer and the evaluation tools) ---------------------------- */
-
-/* Camera space, millimetres: x to the right in the depth image, y up, z
- * away from the camera (the reading's depth). A pixel (u, v) of the 640x480
- * image at depth z sits at x = (u - CX) * z / F, y = (CY - v) * z / F.
- * F is the Kinect v1 depth camera's focal length in pixels; the principal
- * point is the image centre. */
-#define CUB_TRACK_FOCAL_PX 580
-#define CUB_TRACK_CX 320
-#define CUB_TRACK_CY 240
-
-/* The 20 joints in the Kinect SDK order (UTKinect files use it; see
- * ../shared/data/README.md). Left and right are the player's own. */
-typedef enum cub_track_joint {
-    CUB_TJ_HIP_CENTRE = 0,
-    CUB_TJ_SPINE,
-    CUB_TJ_SHOULDER_CENTRE,
-    CUB_TJ_HEAD,
-    CUB_TJ_SHOULDER_L,
-    CUB_TJ_ELBOW_L,
-    CUB_TJ_WRIST_L,
-    CUB_TJ_HAND_L,
-    CUB_TJ_SHOULDER_R,
-    CUB_TJ_ELBOW_R,
-    CUB_TJ_WRIST_R,
-    CUB_TJ_HAND_R,
-    CUB_TJ_HIP_L,
-    CUB_TJ_KNEE_L,
-    CUB_TJ_ANKLE_L,
-    CUB_TJ_FOOT_L,
-    CUB_TJ_HIP_R,
-    CUB_TJ_KNEE_R,
-    CUB_TJ_ANKLE_R,
-    CUB_TJ_FOOT_R,
-    CUB_TJ_COUNT
-} cub_track_joint;
+#include "cub/kinect.h"
 
 /* What the tracker can say about the player in a frame. */
 typedef enum cub_track_status {
@@ -67,19 +24,14 @@ typedef enum cub_track_status {
     CUB_TRACK_PARTLY_OUT,    /* part of the body leaves the image */
 } cub_track_status;
 
-/* One frame's player. joint_mm in camera space (above); confidence in
+/* One frame's player. joint_mm in camera space (kinect.h); confidence in
  * [0, 1] Q16.16 per joint, 0 = not seen (its position is a guess). */
 typedef struct cub_track_skeleton {
     int32_t status; /* cub_track_status */
     int32_t player_id; /* stays the same while the same person is tracked */
-    cub_vec3 joint_mm[CUB_TJ_COUNT];
-    cub_q16 confidence[CUB_TJ_COUNT];
+    cub_vec3 joint_mm[CUB_KJ_COUNT];
+    cub_q16 confidence[CUB_KJ_COUNT];
 } cub_track_skeleton;
-
-/* "hip_centre", "spine", ..., "foot_r"; "?" out of range. */
-const char *cub_track_joint_name(int32_t joint);
-
-/* ---- the tracker --------------------------------------------------------- */
 
 /* Zero-initialised fields take defaults (the implementation documents
  * them). */
