@@ -250,7 +250,7 @@ static cub_err store_frame(bvh_state *st, cub_io_motion *m, int f, const double 
             char code = jt->seq[c];
             if (code >= 'X' && code <= 'Z') {
                 axes[nrot] = code - 'X';
-                ang[nrot++] = *v * (IO_PI / 180.0);
+                ang[nrot++] = *v * (CUB_VEC_PI / 180.0);
                 continue;
             }
             double mm = *v * m->unit_mm;
@@ -259,7 +259,7 @@ static cub_err store_frame(bvh_state *st, cub_io_motion *m, int f, const double 
                                f + 1, jt->name, code - 'x' + 'X', *v, mm);
             *pos_k[code - 'x'] = io_mm_to_q16(mm);
         }
-        clip->rot[(size_t)f * jn + i] = io_quat_to_fx(io_dquat_euler(axes, ang, nrot));
+        clip->rot[(size_t)f * jn + i] = io_quat_to_fx(cub_dq_euler(axes, ang, nrot));
         if (i == 0)
             clip->root_mm[f] = pos;
         if (clip->trans_mm)

@@ -315,9 +315,9 @@ static void set_frame(keys_parse *p, int f, const double *v)
     cub_clip *clip = &p->out->clip;
     const int axes[3] = {2, 1, 0}; /* q = Rz * Ry * Rx: x acts first */
     for (int j = 0; j < jn; j++) {
-        const double deg = IO_PI / 180.0;
+        const double deg = CUB_VEC_PI / 180.0;
         double a[3] = {v[3 * j + 2] * deg, v[3 * j + 1] * deg, v[3 * j] * deg};
-        clip->rot[(size_t)f * (size_t)jn + (size_t)j] = io_quat_to_fx(io_dquat_euler(axes, a, 3));
+        clip->rot[(size_t)f * (size_t)jn + (size_t)j] = io_quat_to_fx(cub_dq_euler(axes, a, 3));
     }
     const double *r = v + 3 * jn;
     cub_vec3 rest = skel->joints[0].offset_mm;
