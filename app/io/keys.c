@@ -386,15 +386,15 @@ cub_err cub_keys_parse(const char *text, size_t len, const char *name, const cub
     return err;
 }
 
+static cub_err parse_text(const cub_text *t, const void *skel, void *out)
+{
+    return cub_keys_parse(t->s, t->len, t->name, skel, out, t->diag);
+}
+
 cub_err cub_keys_load(const char *path, const cub_skeleton *skel, cub_keys_clip *out,
                       cub_diag *diag)
 {
-    char *text = NULL;
-    size_t len = 0;
-    cub_err err = cub_io_read_file(path, &text, &len, diag);
-    if (!err) err = cub_keys_parse(text, len, path, skel, out, diag);
-    free(text);
-    return err;
+    return cub_text_load(&(cub_text_src){path, "keyframe file", 0}, parse_text, skel, out, diag);
 }
 
 void cub_keys_free(cub_keys_clip *k)

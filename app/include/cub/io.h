@@ -61,7 +61,4 @@ cub_err cub_io_parse_asf_amc(const char *asf, size_t asf_len, const char *amc,
 cub_err cub_io_save_bvh(const char *path, const cub_io_motion *m, cub_diag *diag);
 void cub_io_motion_free(cub_io_motion *m);
 
-/* Read a whole file into a NUL-terminated heap buffer (free with free()). */
-cub_err cub_io_read_file(const char *path, char **out, size_t *out_len, cub_diag *diag);
-
 #endif
