@@ -25,18 +25,18 @@ typedef struct amc_state {
     io_lex lx;
     cub_io_motion *m;
     int joint_of[ASF_MAX_BONES];
-    io_dquat c[ASF_MAX_BONES], c_inv[ASF_MAX_BONES];
+    cub_dq c[ASF_MAX_BONES], c_inv[ASF_MAX_BONES];
     double val[ASF_MAX_BONES][6];
     unsigned char seen[ASF_MAX_BONES];
     double rad_per_unit;
 } amc_state;
 
 /* Euler angles applied in the listed order: R = R[n-1] * ... * R[0]. */
-static io_dquat asf_euler(const int *axes, const double *ang_rad, int n)
+static cub_dq asf_euler(const int *axes, const double *ang_rad, int n)
 {
-    io_dquat q = {1, 0, 0, 0};
+    cub_dq q = {1, 0, 0, 0};
     for (int i = 0; i < n; i++)
-        q = io_dquat_mul(io_dquat_axis(axes[i], ang_rad[i]), q);
+        q = cub_dq_mul(cub_dq_about(axes[i], ang_rad[i]), q);
     return q;
 }
 
@@ -112,7 +112,7 @@ static cub_err build_skeleton(amc_state *a, cub_diag *diag)
         for (int k = 0; k < 3; k++)
             ax[k] = s->bone[b].axis[s->bone[b].axis_order[k]] * a->rad_per_unit;
         a->c[b] = asf_euler(s->bone[b].axis_order, ax, 3);
-        a->c_inv[b] = io_dquat_conj(a->c[b]);
+        a->c_inv[b] = cub_dq_conj(a->c[b]);
         a->joint_of[b] = -1;
     }
     cub_motion_skeleton_reset(&a->m->skel);
@@ -131,7 +131,7 @@ static cub_err finish_frame(amc_state *a, int f, int line)
     cub_clip *clip = &a->m->clip;
     int jn = a->m->skel.joint_count;
     for (int j = 0; j < jn; j++)
-        clip->rot[(size_t)f * jn + j] = io_quat_to_fx((io_dquat){1, 0, 0, 0});
+        clip->rot[(size_t)f * jn + j] = io_quat_to_fx((cub_dq){1, 0, 0, 0});
     for (int b = 0; b < a->asf.count; b++) {
         const asf_bone *bone = &a->asf.bone[b];
         int axes[3], n = 0;
@@ -146,7 +146,7 @@ static cub_err finish_frame(amc_state *a, int f, int line)
                 t[bone->dof[d] - 3] = v;
             }
         }
-        io_dquat q = io_dquat_mul(io_dquat_mul(a->c[b], asf_euler(axes, ang, n)), a->c_inv[b]);
+        cub_dq q = cub_dq_mul(cub_dq_mul(a->c[b], asf_euler(axes, ang, n)), a->c_inv[b]);
         clip->rot[(size_t)f * jn + a->joint_of[b]] = io_quat_to_fx(q);
         if (b != 0)
             continue;
@@ -226,7 +226,7 @@ static cub_err parse_amc(amc_state *a)
             if (io_tok_is_nocase(&t, ":RADIANS"))
                 a->rad_per_unit = 1.0;
             else if (io_tok_is_nocase(&t, ":DEGREES"))
-                a->rad_per_unit = IO_PI / 180.0;
+                a->rad_per_unit = CUB_VEC_PI / 180.0;
             io_lex_skip_line(lx);
         } else if (all_digits(&t)) {
             if ((err = io_tok_long(lx, &t, "the frame number", &num)))
@@ -255,7 +255,7 @@ static cub_err parse_both(amc_state *a, const char *asf, size_t asf_len, const c
     cub_err err = asf_parse(&a->asf, asf ? asf : "", asf_len, asf_name, diag);
     if (err)
         return err;
-    a->rad_per_unit = a->asf.angle_deg ? IO_PI / 180.0 : 1.0;
+    a->rad_per_unit = a->asf.angle_deg ? CUB_VEC_PI / 180.0 : 1.0;
     a->m->unit_mm = (desc && desc->unit_mm > 0) ? desc->unit_mm : 25.4 / a->asf.length_unit;
     if (!isfinite(a->m->unit_mm))
         return cub_diag_fail(diag, CUB_ERR_ARG, asf_name, 0, "unit_mm is not finite");
@@ -310,9 +310,10 @@ cub_err cub_io_load_asf_amc(const char *asf_path, const char *amc_path, const cu
     if (!diag)
         diag = &scratch;
     memset(diag, 0, sizeof(*diag));
-    cub_err err = cub_io_read_file(asf_path, &asf, &asf_len, diag);
+    cub_text_src asf_src = {asf_path, "ASF file", 0}, amc_src = {amc_path, "AMC file", 0};
+    cub_err err = cub_text_read(&asf_src, &asf, &asf_len, diag);
     if (!err)
-        err = cub_io_read_file(amc_path, &amc, &amc_len, diag);
+        err = cub_text_read(&amc_src, &amc, &amc_len, diag);
     if (!err)
         err = asf_amc(asf, asf_len, asf_path, amc, amc_len, amc_path, desc, out, diag);
     free(asf);

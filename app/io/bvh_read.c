@@ -250,7 +250,7 @@ static cub_err store_frame(bvh_state *st, cub_io_motion *m, int f, const double 
             char code = jt->seq[c];
             if (code >= 'X' && code <= 'Z') {
                 axes[nrot] = code - 'X';
-                ang[nrot++] = *v * (IO_PI / 180.0);
+                ang[nrot++] = *v * (CUB_VEC_PI / 180.0);
                 continue;
             }
             double mm = *v * m->unit_mm;
@@ -259,7 +259,7 @@ static cub_err store_frame(bvh_state *st, cub_io_motion *m, int f, const double 
                                f + 1, jt->name, code - 'x' + 'X', *v, mm);
             *pos_k[code - 'x'] = io_mm_to_q16(mm);
         }
-        clip->rot[(size_t)f * jn + i] = io_quat_to_fx(io_dquat_euler(axes, ang, nrot));
+        clip->rot[(size_t)f * jn + i] = io_quat_to_fx(cub_dq_euler(axes, ang, nrot));
         if (i == 0)
             clip->root_mm[f] = pos;
         if (clip->trans_mm)
@@ -386,6 +386,24 @@ static cub_err parse_bvh(bvh_state *st, const cub_io_desc *desc, cub_io_motion *
     return err;
 }
 
+static cub_err parse_text(const cub_text *t, const void *desc, void *out)
+{
+    cub_io_motion *m = out;
+    memset(m, 0, sizeof(*m));
+    bvh_state *st = calloc(1, sizeof(*st));
+    if (!st)
+        return cub_diag_fail(t->diag, CUB_ERR_NOMEM, t->name, 0, "out of memory");
+    io_lex_init(&st->lx, t->s ? t->s : "", t->len, t->name, t->diag);
+    st->lx.split_braces = 1;
+    cub_err err = parse_bvh(st, desc, m);
+    free(st);
+    if (err) {
+        cub_io_motion_free(m);
+        memset(m, 0, sizeof(*m));
+    }
+    return err;
+}
+
 cub_err cub_io_parse_bvh(const char *text, size_t len, const char *name, const cub_io_desc *desc,
                          cub_io_motion *out, cub_diag *diag)
 {
@@ -393,32 +411,12 @@ cub_err cub_io_parse_bvh(const char *text, size_t len, const char *name, const c
     if (!diag)
         diag = &scratch;
     memset(diag, 0, sizeof(*diag));
-    if (!out || (!text && len))
-        return cub_diag_fail(diag, CUB_ERR_ARG, name ? name : "(memory)", 0, "no text or output");
-    memset(out, 0, sizeof(*out));
-    bvh_state *st = calloc(1, sizeof(*st));
-    if (!st)
-        return cub_diag_fail(diag, CUB_ERR_NOMEM, name ? name : "(memory)", 0, "out of memory");
-    io_lex_init(&st->lx, text ? text : "", len, name, diag);
-    st->lx.split_braces = 1;
-    cub_err err = parse_bvh(st, desc, out);
-    free(st);
-    if (err) {
-        cub_io_motion_free(out);
-        memset(out, 0, sizeof(*out));
-    }
-    return err;
+    cub_text t = {text, len, name ? name : "(memory)", diag};
+    return cub_text_parse(&t, parse_text, desc, out);
 }
 
 cub_err cub_io_load_bvh(const char *path, const cub_io_desc *desc, cub_io_motion *out,
                         cub_diag *diag)
 {
-    char *text = NULL;
-    size_t len = 0;
-    cub_err err = cub_io_read_file(path, &text, &len, diag);
-    if (err)
-        return err;
-    err = cub_io_parse_bvh(text, len, path, desc, out, diag);
-    free(text);
-    return err;
+    return cub_text_load(&(cub_text_src){path, "BVH file", 0}, parse_text, desc, out, diag);
 }

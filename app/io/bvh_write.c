@@ -80,10 +80,10 @@ static void write_frame(FILE *f, const cub_io_motion *m, int frame)
             axes[n++] = axis_of(*r);
         if (n == 0)
             continue;
-        io_dquat q = io_quat_from_fx(clip->rot[(size_t)frame * jn + j]);
-        io_dquat_to_euler(q, axes, n, ang);
+        cub_dq q = cub_dq_from_fx(clip->rot[(size_t)frame * jn + j]);
+        cub_dq_to_euler(q, axes, n, ang);
         for (int k = 0; k < n; k++) {
-            fprintf(f, "%s%.6f", sep, ang[k] * (180.0 / IO_PI));
+            fprintf(f, "%s%.6f", sep, ang[k] * (180.0 / CUB_VEC_PI));
             sep = " ";
         }
     }

@@ -392,35 +392,33 @@ static cub_err read_character(char_ctx *c, const cub_xml_el *root)
     return CUB_OK;
 }
 
-cub_err cub_character_parse(const char *xml, size_t len, const char *name, cub_character *out,
-                            cub_diag *diag)
+static cub_err parse_text(const cub_text *t, const void *in, void *out)
 {
-    const char *file = name ? name : "(memory)";
-    if (!out || (!xml && len))
-        return cub_diag_fail(diag, CUB_ERR_ARG, file, 0, "no text or no output");
-    memset(out, 0, sizeof(*out));
+    memset(out, 0, sizeof(cub_character));
     cub_xml_doc *doc = NULL;
-    cub_err err = cub_xml_parse(xml, len, file, &doc, diag);
+    cub_err err = cub_xml_parse(t->s, t->len, t->name, &doc, t->diag);
     if (err) return err;
     char_ctx *c = calloc(1, sizeof(*c));
     if (!c) {
         cub_xml_free(doc);
-        return cub_diag_fail(diag, CUB_ERR_NOMEM, file, 0, "out of memory");
+        return cub_diag_fail(t->diag, CUB_ERR_NOMEM, t->name, 0, "out of memory");
     }
     c->out = out;
-    c->diag = diag;
+    c->diag = t->diag;
     err = read_character(c, cub_xml_root(doc));
     free(c);
     cub_xml_free(doc);
     return err;
 }
 
+cub_err cub_character_parse(const char *xml, size_t len, const char *name, cub_character *out,
+                            cub_diag *diag)
+{
+    cub_text t = {xml, len, name ? name : "(memory)", diag};
+    return cub_text_parse(&t, parse_text, NULL, out);
+}
+
 cub_err cub_character_load(const char *path, cub_character *out, cub_diag *diag)
 {
-    char *text = NULL;
-    size_t len = 0;
-    cub_err err = cub_io_read_file(path, &text, &len, diag);
-    if (!err) err = cub_character_parse(text, len, path, out, diag);
-    free(text);
-    return err;
+    return cub_text_load(&(cub_text_src){path, "character file", 0}, parse_text, NULL, out, diag);
 }

@@ -1,19 +1,19 @@
 /* io internals shared by the BVH and ASF/AMC parsers: a tokenizer that
- * tracks line numbers, diagnostics, Euler <-> quaternion maths in doubles,
- * and the conversions to the firmware's fixed-point types. Not public. */
+ * tracks line numbers, diagnostics, and the conversions to the firmware's
+ * fixed-point types (the rotation maths are cub/vec.h). Not public. */
 #ifndef CUB_IO_INTERNAL_H
 #define CUB_IO_INTERNAL_H
 
 #include <stddef.h>
 
 #include "cub/io.h"
+#include "cub/vec.h"
 
 /* Frame data larger than this is refused as absurd (a clip of 128 joints
  * at 120 fps for 10 minutes needs about 150 MB). */
 #define IO_MEM_CAP_BYTES ((size_t)512 << 20)
 /* Largest |value| a Q16.16 millimetre can hold, with a little margin. */
 #define IO_MM_LIMIT 32767.0
-#define IO_PI 3.14159265358979323846
 
 /* ---- tokens ------------------------------------------------------------ */
 
@@ -65,28 +65,11 @@ cub_err io_fail(io_lex *lx, int line, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));
 /* With an explicit error code and file name (no lexer): cub_diag_fail. */
 
-/* ---- rotations (doubles) ----------------------------------------------- */
-
-typedef struct io_dquat {
-    double w, x, y, z;
-} io_dquat;
-
-io_dquat io_dquat_mul(io_dquat a, io_dquat b);
-io_dquat io_dquat_conj(io_dquat q);
-/* Rotation by angle_rad about axis 0 (x), 1 (y) or 2 (z). */
-io_dquat io_dquat_axis(int axis, double angle_rad);
-/* Euler angles (radians) in the order given by axes (each 0..2), applied as
- * the matrix product R[axes[0]] * R[axes[1]] * ... (column vectors: the
- * last listed acts first, as BVH channel lists are read). */
-io_dquat io_dquat_euler(const int *axes, const double *angle_rad, int count);
-/* Inverse of io_dquat_euler for count distinct axes (1..3): angles such
- * that the product reproduces q as closely as those axes can. */
-void io_dquat_to_euler(io_dquat q, const int *axes, int count, double *angle_rad);
-
 /* ---- fixed point ------------------------------------------------------- */
 
-cub_quat io_quat_to_fx(io_dquat q);
-io_dquat io_quat_from_fx(cub_quat q);
+/* Q2.30 with w >= 0, rounded to nearest (the identity for a zero or
+ * non-finite q): the one sign for q and -q that clips are stored with. */
+cub_quat io_quat_to_fx(cub_dq q);
 /* Millimetres to Q16.16; the caller checks the range first. */
 int32_t io_mm_to_q16(double mm);
 double io_q16_to_mm(int32_t q);

@@ -1,4 +1,4 @@
-/* The tokenizer under the motion parsers, diagnostics and file reading.
+/* The tokenizer under the motion parsers and its failure messages.
  * Tokens are runs of non-blank bytes; the input need not be NUL-terminated
  * and may hold anything (CR, NUL, binary): nothing reads past `end`. */
 #include <errno.h>
@@ -191,17 +191,6 @@ cub_err io_tok_long(io_lex *lx, const io_tok *t, const char *what, long *out)
     return CUB_OK;
 }
 
-cub_err cub_diag_vfail(cub_diag *diag, cub_err err, const char *file, int line, const char *fmt,
-                       va_list ap)
-{
-    if (!diag)
-        return err;
-    snprintf(diag->file, sizeof(diag->file), "%s", file ? file : "");
-    diag->line = line;
-    vsnprintf(diag->msg, sizeof(diag->msg), fmt, ap);
-    return err;
-}
-
 cub_err io_fail(io_lex *lx, int line, const char *fmt, ...)
 {
     va_list ap;
@@ -209,64 +198,4 @@ cub_err io_fail(io_lex *lx, int line, const char *fmt, ...)
     cub_err e = cub_diag_vfail(lx->diag, CUB_ERR_FORMAT, lx->name, line, fmt, ap);
     va_end(ap);
     return e;
-}
-
-cub_err cub_diag_fail(cub_diag *diag, cub_err err, const char *file, int line, const char *fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    cub_err e = cub_diag_vfail(diag, err, file, line, fmt, ap);
-    va_end(ap);
-    return e;
-}
-
-const char *cub_diag_str(const cub_diag *d, char *buf, size_t size)
-{
-    if (!buf || size == 0)
-        return "";
-    if (!d)
-        snprintf(buf, size, "(no diagnostic)");
-    else if (d->line > 0)
-        snprintf(buf, size, "%s:%d: %s", d->file, d->line, d->msg);
-    else
-        snprintf(buf, size, "%s: %s", d->file, d->msg);
-    return buf;
-}
-
-cub_err cub_io_read_file(const char *path, char **out, size_t *out_len, cub_diag *diag)
-{
-    if (!path || !out || !out_len)
-        return cub_diag_fail(diag, CUB_ERR_ARG, path ? path : "(null)", 0, "no path or output");
-    *out = NULL;
-    *out_len = 0;
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return cub_diag_fail(diag, CUB_ERR_IO, path, 0, "cannot open: %s", strerror(errno));
-    size_t cap = 1 << 16, len = 0;
-    char *buf = malloc(cap);
-    while (buf) {
-        len += fread(buf + len, 1, cap - 1 - len, f);
-        if (len < cap - 1)
-            break;
-        char *bigger = (cap <= IO_MEM_CAP_BYTES) ? realloc(buf, cap * 2) : NULL;
-        if (!bigger) {
-            free(buf);
-            fclose(f);
-            return cub_diag_fail(diag, CUB_ERR_NOMEM, path, 0, "file too large (over %zu MB)",
-                              IO_MEM_CAP_BYTES >> 20);
-        }
-        buf = bigger;
-        cap *= 2;
-    }
-    int failed = !buf || ferror(f);
-    fclose(f);
-    if (failed) {
-        cub_err e = buf ? CUB_ERR_IO : CUB_ERR_NOMEM;
-        free(buf);
-        return cub_diag_fail(diag, e, path, 0, "read failed");
-    }
-    buf[len] = '\0';
-    *out = buf;
-    *out_len = len;
-    return CUB_OK;
 }

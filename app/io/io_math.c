@@ -1,99 +1,12 @@
-/* Rotations in doubles (Euler <-> quaternion), the conversions to the
- * firmware's Q2.30 / Q16.16 types, clip allocation and the unit guess. */
+/* The importers' conversions to the firmware's Q2.30 / Q16.16 types, clip
+ * allocation and the unit guess. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "io_internal.h"
 
-io_dquat io_dquat_mul(io_dquat a, io_dquat b)
-{
-    io_dquat r = {
-        a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z,
-        a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y,
-        a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x,
-        a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w,
-    };
-    return r;
-}
-
-io_dquat io_dquat_conj(io_dquat q)
-{
-    io_dquat r = {q.w, -q.x, -q.y, -q.z};
-    return r;
-}
-
-io_dquat io_dquat_axis(int axis, double angle_rad)
-{
-    double s = sin(angle_rad * 0.5);
-    io_dquat r = {cos(angle_rad * 0.5), 0, 0, 0};
-    if (axis == 0)
-        r.x = s;
-    else if (axis == 1)
-        r.y = s;
-    else
-        r.z = s;
-    return r;
-}
-
-io_dquat io_dquat_euler(const int *axes, const double *angle_rad, int count)
-{
-    io_dquat q = {1, 0, 0, 0};
-    for (int i = 0; i < count; i++)
-        q = io_dquat_mul(q, io_dquat_axis(axes[i], angle_rad[i]));
-    return q;
-}
-
-static void dquat_to_matrix(io_dquat q, double m[3][3])
-{
-    double n = q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z;
-    double s = n > 0 ? 2.0 / n : 0;
-    double xx = q.x * q.x * s, yy = q.y * q.y * s, zz = q.z * q.z * s;
-    double xy = q.x * q.y * s, xz = q.x * q.z * s, yz = q.y * q.z * s;
-    double wx = q.w * q.x * s, wy = q.w * q.y * s, wz = q.w * q.z * s;
-    m[0][0] = 1 - yy - zz, m[0][1] = xy - wz, m[0][2] = xz + wy;
-    m[1][0] = xy + wz, m[1][1] = 1 - xx - zz, m[1][2] = yz - wx;
-    m[2][0] = xz - wy, m[2][1] = yz + wx, m[2][2] = 1 - xx - yy;
-}
-
-/* Tait-Bryan angles of R = Ra(al) Rb(be) Rc(ga) for distinct a, b, c;
- * s is +1 when (a, b, c) is a cyclic order of (x, y, z), else -1. */
-static void matrix_to_abc(double m[3][3], int a, int b, int c, double out[3])
-{
-    double s = ((b - a + 3) % 3 == 1) ? 1.0 : -1.0;
-    double sb = s * m[a][c];
-    double cb = sqrt(m[a][a] * m[a][a] + m[a][b] * m[a][b]);
-    out[1] = atan2(sb, cb);
-    if (cb > 1e-9) {
-        out[0] = atan2(-s * m[b][c], m[c][c]);
-        out[2] = atan2(-s * m[a][b], m[a][a]);
-    } else { /* gimbal lock: put the whole twist in the last angle */
-        out[0] = 0;
-        out[2] = atan2(s * m[b][a], m[b][b]);
-    }
-}
-
-void io_dquat_to_euler(io_dquat q, const int *axes, int count, double *angle_rad)
-{
-    int full[3];
-    double m[3][3], abc[3];
-    int used[3] = {0, 0, 0}, n = 0;
-    for (int i = 0; i < count && i < 3; i++) {
-        full[n++] = axes[i];
-        used[axes[i]] = 1;
-    }
-    /* Fewer than three axes: complete the order with the missing ones
-     * (their angles come out near zero for rotations those axes made). */
-    for (int k = 0; k < 3 && n < 3; k++)
-        if (!used[k])
-            full[n++] = k;
-    dquat_to_matrix(q, m);
-    matrix_to_abc(m, full[0], full[1], full[2], abc);
-    for (int i = 0; i < count && i < 3; i++)
-        angle_rad[i] = abc[i];
-}
-
-cub_quat io_quat_to_fx(io_dquat q)
+cub_quat io_quat_to_fx(cub_dq q)
 {
     double n = sqrt(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z);
     if (!(n > 0) || !isfinite(n)) {
@@ -104,13 +17,6 @@ cub_quat io_quat_to_fx(io_dquat q)
     double k = (q.w < 0 ? -1.0 : 1.0) * (double)CUB_QUAT_ONE / n;
     cub_quat r = {(int32_t)lrint(q.w * k), (int32_t)lrint(q.x * k), (int32_t)lrint(q.y * k),
                   (int32_t)lrint(q.z * k)};
-    return r;
-}
-
-io_dquat io_quat_from_fx(cub_quat q)
-{
-    const double k = 1.0 / (double)CUB_QUAT_ONE;
-    io_dquat r = {q.w * k, q.x * k, q.y * k, q.z * k};
     return r;
 }
 

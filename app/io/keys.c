@@ -315,9 +315,9 @@ static void set_frame(keys_parse *p, int f, const double *v)
     cub_clip *clip = &p->out->clip;
     const int axes[3] = {2, 1, 0}; /* q = Rz * Ry * Rx: x acts first */
     for (int j = 0; j < jn; j++) {
-        const double deg = IO_PI / 180.0;
+        const double deg = CUB_VEC_PI / 180.0;
         double a[3] = {v[3 * j + 2] * deg, v[3 * j + 1] * deg, v[3 * j] * deg};
-        clip->rot[(size_t)f * (size_t)jn + (size_t)j] = io_quat_to_fx(io_dquat_euler(axes, a, 3));
+        clip->rot[(size_t)f * (size_t)jn + (size_t)j] = io_quat_to_fx(cub_dq_euler(axes, a, 3));
     }
     const double *r = v + 3 * jn;
     cub_vec3 rest = skel->joints[0].offset_mm;
@@ -386,15 +386,15 @@ cub_err cub_keys_parse(const char *text, size_t len, const char *name, const cub
     return err;
 }
 
+static cub_err parse_text(const cub_text *t, const void *skel, void *out)
+{
+    return cub_keys_parse(t->s, t->len, t->name, skel, out, t->diag);
+}
+
 cub_err cub_keys_load(const char *path, const cub_skeleton *skel, cub_keys_clip *out,
                       cub_diag *diag)
 {
-    char *text = NULL;
-    size_t len = 0;
-    cub_err err = cub_io_read_file(path, &text, &len, diag);
-    if (!err) err = cub_keys_parse(text, len, path, skel, out, diag);
-    free(text);
-    return err;
+    return cub_text_load(&(cub_text_src){path, "keyframe file", 0}, parse_text, skel, out, diag);
 }
 
 void cub_keys_free(cub_keys_clip *k)

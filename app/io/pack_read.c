@@ -223,13 +223,13 @@ cub_err cub_pack_parse(const void *data, size_t len, const char *name, cub_libra
     return err;
 }
 
+static cub_err parse_bytes(const cub_text *t, const void *in, void *out)
+{
+    return cub_pack_parse(t->s, t->len, t->name, out, t->diag);
+}
+
 cub_err cub_pack_read(const char *path, cub_library *out, cub_diag *diag)
 {
-    char *bytes = NULL;
-    size_t len = 0;
     if (out) memset(out, 0, sizeof(*out));
-    cub_err err = cub_io_read_file(path, &bytes, &len, diag);
-    if (!err) err = cub_pack_parse(bytes, len, path, out, diag);
-    free(bytes);
-    return err;
+    return cub_text_load(&(cub_text_src){path, "clip pack", 0}, parse_bytes, NULL, out, diag);
 }

@@ -252,17 +252,16 @@ cub_err cub_song_parse(const char *text, size_t len, const char *name, const cub
     return e;
 }
 
+static cub_err parse_text(const cub_text *t, const void *lib, void *out)
+{
+    return cub_song_parse(t->s, t->len, t->name, lib, out, t->diag);
+}
+
 cub_err cub_song_load(const char *path, const cub_library *lib, cub_song *out, cub_diag *diag)
 {
-    char *text = NULL;
-    size_t len = 0;
-    cub_diag scratch;
-    if (!diag) diag = &scratch;
-    cub_err e = cub_io_read_file(path, &text, &len, diag);
-    if (e) return e;
-    e = cub_song_parse(text, len, path, lib, out, diag);
-    free(text);
-    return e;
+    cub_diag scratch; /* cub_song_parse wants one */
+    cub_text_src src = {path, "song", 0};
+    return cub_text_load(&src, parse_text, lib, out, diag ? diag : &scratch);
 }
 
 int64_t cub_song_bar_us(const cub_song *song, int bar)

@@ -336,14 +336,13 @@ cub_err cub_tags_parse(const char *text, size_t len, const char *name, const cub
     return e;
 }
 
+static cub_err parse_text(const cub_text *t, const void *lib, void *out)
+{
+    return cub_tags_parse(t->s, t->len, t->name, lib, out, t->diag);
+}
+
 cub_err cub_tags_read(const char *path, const cub_library *lib, cub_tags *out, cub_diag *diag)
 {
-    char *text = NULL;
-    size_t len = 0;
     if (!path || !lib || !out) return CUB_ERR_ARG;
-    cub_err e = cub_io_read_file(path, &text, &len, diag);
-    if (e) return e;
-    e = cub_tags_parse(text, len, path, lib, out, diag);
-    free(text);
-    return e;
+    return cub_text_load(&(cub_text_src){path, "tag file", 0}, parse_text, lib, out, diag);
 }

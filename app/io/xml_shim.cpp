@@ -175,15 +175,16 @@ cub_err cub_xml_parse(const char *text, size_t len, const char *name, cub_xml_do
     return CUB_OK;
 }
 
+static cub_err parse_text(const cub_text *t, const void *, void *out)
+{
+    return cub_xml_parse(t->s, t->len, t->name, static_cast<cub_xml_doc **>(out), t->diag);
+}
+
 cub_err cub_xml_load(const char *path, cub_xml_doc **out, cub_diag *diag)
 {
     if (out) *out = nullptr;
-    char *text = nullptr;
-    size_t len = 0;
-    cub_err err = cub_io_read_file(path, &text, &len, diag);
-    if (!err) err = cub_xml_parse(text, len, path, out, diag);
-    std::free(text);
-    return err;
+    cub_text_src src = {path, "XML file", 0};
+    return cub_text_load(&src, parse_text, NULL, out, diag);
 }
 
 cub_xml_doc *cub_xml_new(const char *root_name)

@@ -14,7 +14,7 @@
 #define MIN_CONTACT_FRAMES 3 /* shorter "contacts" are a foot passing low */
 #define BLEND_FRAMES 4       /* IK eases in/out over this many frames */
 
-void rt_target_world(const rt_ctx *c, int f, rt_v3 *pos, rt_q *rot)
+void rt_target_world(const rt_ctx *c, int f, cub_dv3 *pos, cub_dq *rot)
 {
     rt_forward(c->tgt, c->root[f], c->local + (size_t)f * c->tj, NULL, pos, rot);
 }
@@ -22,8 +22,8 @@ void rt_target_world(const rt_ctx *c, int f, rt_v3 *pos, rt_q *rot)
 /* Lowest foot joint over the clip. */
 static double lowest_foot(const rt_ctx *c)
 {
-    rt_v3 pos[CUB_MOTION_MAX_JOINTS];
-    rt_q rot[CUB_MOTION_MAX_JOINTS];
+    cub_dv3 pos[CUB_MOTION_MAX_JOINTS];
+    cub_dq rot[CUB_MOTION_MAX_JOINTS];
     double low = INFINITY;
     for (int f = 0; f < c->frames; f++) {
         rt_target_world(c, f, pos, rot);
@@ -34,10 +34,10 @@ static double lowest_foot(const rt_ctx *c)
     return low;
 }
 
-static void shift_root(rt_ctx *c, rt_v3 by)
+static void shift_root(rt_ctx *c, cub_dv3 by)
 {
     for (int f = 0; f < c->frames; f++)
-        c->root[f] = rt_v3_add(c->root[f], by);
+        c->root[f] = cub_dv3_add(c->root[f], by);
 }
 
 /* Contacts of one foot from the source ankle (scaled): low and slow, runs
@@ -51,8 +51,8 @@ static void find_contacts(rt_ctx *c, int side)
         low = fmin(low, c->lpos[(size_t)f * c->links + l].y * c->k);
     for (int f = 0; f < c->frames; f++) {
         int a = f > 0 ? f - 1 : f, b = f + 1 < c->frames ? f + 1 : f;
-        rt_v3 pa = c->lpos[(size_t)a * c->links + l], pb = c->lpos[(size_t)b * c->links + l];
-        double v = b > a ? rt_v3_len(rt_v3_sub(pb, pa)) * c->k / ((b - a) * c->dt_s) : 0;
+        cub_dv3 pa = c->lpos[(size_t)a * c->links + l], pb = c->lpos[(size_t)b * c->links + l];
+        double v = b > a ? cub_dv3_len(cub_dv3_sub(pb, pa)) * c->k / ((b - a) * c->dt_s) : 0;
         double h = c->lpos[(size_t)f * c->links + l].y * c->k - low;
         ct[f] = h < c->d.contact_height_mm && v < c->d.contact_speed_mm_s;
     }
@@ -69,48 +69,49 @@ static void find_contacts(rt_ctx *c, int side)
 /* Move the leg of `side` in frame f so its ankle reaches target; the knee
  * stays in its current bend plane (forward when straight) and the foot
  * turns to the world rotation foot_w. */
-static void leg_ik(rt_ctx *c, int f, int side, rt_v3 target, rt_q foot_w)
+static void leg_ik(rt_ctx *c, int f, int side, cub_dv3 target, cub_dq foot_w)
 {
-    rt_v3 pos[CUB_MOTION_MAX_JOINTS];
-    rt_q rot[CUB_MOTION_MAX_JOINTS];
+    cub_dv3 pos[CUB_MOTION_MAX_JOINTS];
+    cub_dq rot[CUB_MOTION_MAX_JOINTS];
     rt_target_world(c, f, pos, rot);
     int hj = c->up_leg[side], kj = c->leg[side], aj = c->foot[side];
-    rt_v3 H = pos[hj], K = pos[kj], A = pos[aj];
-    double l1 = rt_v3_len(rt_v3_sub(K, H)), l2 = rt_v3_len(rt_v3_sub(A, K));
-    rt_v3 ht = rt_v3_sub(target, H);
-    double d = rt_v3_len(ht);
-    rt_v3 u = rt_v3_norm(ht, rt_v3_make(0, -1, 0));
+    cub_dv3 H = pos[hj], K = pos[kj], A = pos[aj];
+    double l1 = cub_dv3_len(cub_dv3_sub(K, H)), l2 = cub_dv3_len(cub_dv3_sub(A, K));
+    cub_dv3 ht = cub_dv3_sub(target, H);
+    double d = cub_dv3_len(ht);
+    cub_dv3 u = cub_dv3_norm(ht, cub_dv3_make(0, -1, 0));
     d = fmax(fabs(l1 - l2) + 1e-3, fmin(d, (l1 + l2) * 0.9999));
-    rt_v3 hk = rt_v3_sub(K, H);
+    cub_dv3 hk = cub_dv3_sub(K, H);
     /* The knee's bend direction: where it bends now, plus a little of the
      * hips' forward so a nearly straight leg does not pick a plane from
      * noise (and flip from frame to frame). */
-    rt_v3 fw = rt_q_rotate(rot[c->hips], rt_v3_make(0, 0, 1));
-    rt_v3 b = rt_v3_add(hk, rt_v3_scale(fw, 0.1 * l1));
-    b = rt_v3_sub(b, rt_v3_scale(u, rt_v3_dot(b, u)));
-    b = rt_v3_norm(b, rt_v3_make(0, 0, 1));
+    cub_dv3 fw = cub_dq_rotate(rot[c->hips], cub_dv3_make(0, 0, 1));
+    cub_dv3 b = cub_dv3_add(hk, cub_dv3_scale(fw, 0.1 * l1));
+    b = cub_dv3_sub(b, cub_dv3_scale(u, cub_dv3_dot(b, u)));
+    b = cub_dv3_norm(b, cub_dv3_make(0, 0, 1));
     double ca = (l1 * l1 + d * d - l2 * l2) / (2 * l1 * d);
     ca = fmax(-1, fmin(1, ca));
-    rt_v3 K2 = rt_v3_add(H, rt_v3_add(rt_v3_scale(u, l1 * ca), rt_v3_scale(b, l1 * sqrt(1 - ca * ca))));
-    rt_v3 A2 = rt_v3_add(H, rt_v3_scale(u, d));
+    cub_dv3 K2 = cub_dv3_add(
+        H, cub_dv3_add(cub_dv3_scale(u, l1 * ca), cub_dv3_scale(b, l1 * sqrt(1 - ca * ca))));
+    cub_dv3 A2 = cub_dv3_add(H, cub_dv3_scale(u, d));
 
-    rt_q wu = rt_q_mul(rt_q_arc(hk, rt_v3_sub(K2, H)), rot[hj]);
-    rt_q *local = c->local + (size_t)f * c->tj;
-    rt_q wl = rt_q_mul(wu, local[kj]);
-    rt_v3 shin = rt_q_rotate(wl, rt_v3_from_fx(c->tgt->joints[aj].offset_mm));
-    wl = rt_q_mul(rt_q_arc(shin, rt_v3_sub(A2, K2)), wl);
+    cub_dq wu = cub_dq_mul(cub_dq_arc(hk, cub_dv3_sub(K2, H)), rot[hj]);
+    cub_dq *local = c->local + (size_t)f * c->tj;
+    cub_dq wl = cub_dq_mul(wu, local[kj]);
+    cub_dv3 shin = cub_dq_rotate(wl, cub_dv3_from_fx(c->tgt->joints[aj].offset_mm));
+    wl = cub_dq_mul(cub_dq_arc(shin, cub_dv3_sub(A2, K2)), wl);
     int hp = c->tgt->joints[hj].parent;
-    rt_q parent = hp >= 0 ? rot[hp] : rt_q_identity();
-    local[hj] = rt_q_norm(rt_q_mul(rt_q_conj(parent), wu));
-    local[kj] = rt_q_norm(rt_q_mul(rt_q_conj(wu), wl));
-    local[aj] = rt_q_norm(rt_q_mul(rt_q_conj(wl), foot_w));
+    cub_dq parent = hp >= 0 ? rot[hp] : cub_dq_identity();
+    local[hj] = cub_dq_norm(cub_dq_mul(cub_dq_conj(parent), wu));
+    local[kj] = cub_dq_norm(cub_dq_mul(cub_dq_conj(wu), wl));
+    local[aj] = cub_dq_norm(cub_dq_mul(cub_dq_conj(wl), foot_w));
 }
 
 /* The foot's world rotation in frame f. */
-static rt_q foot_rot_at(const rt_ctx *c, int f, int side)
+static cub_dq foot_rot_at(const rt_ctx *c, int f, int side)
 {
-    rt_v3 pos[CUB_MOTION_MAX_JOINTS];
-    rt_q rot[CUB_MOTION_MAX_JOINTS];
+    cub_dv3 pos[CUB_MOTION_MAX_JOINTS];
+    cub_dq rot[CUB_MOTION_MAX_JOINTS];
     rt_target_world(c, f, pos, rot);
     return rot[c->foot[side]];
 }
@@ -118,16 +119,16 @@ static rt_q foot_rot_at(const rt_ctx *c, int f, int side)
 /* The foot flat on the floor: only the heading of rot is kept (the rest
  * foot is flat, toe along +z). A foot pointing straight down or up has no
  * heading of its own; the hips give it. */
-static rt_q flat_foot(const rt_ctx *c, int f, rt_q rot)
+static cub_dq flat_foot(const rt_ctx *c, int f, cub_dq rot)
 {
-    rt_v3 fw = rt_q_rotate(rot, rt_v3_make(0, 0, 1));
+    cub_dv3 fw = cub_dq_rotate(rot, cub_dv3_make(0, 0, 1));
     if (hypot(fw.x, fw.z) < 0.1) {
-        rt_v3 pos[CUB_MOTION_MAX_JOINTS];
-        rt_q wr[CUB_MOTION_MAX_JOINTS];
+        cub_dv3 pos[CUB_MOTION_MAX_JOINTS];
+        cub_dq wr[CUB_MOTION_MAX_JOINTS];
         rt_target_world(c, f, pos, wr);
-        fw = rt_q_rotate(wr[c->hips], rt_v3_make(0, 0, 1));
+        fw = cub_dq_rotate(wr[c->hips], cub_dv3_make(0, 0, 1));
     }
-    return rt_q_axis_angle(rt_v3_make(0, 1, 0), atan2(fw.x, fw.z));
+    return cub_dq_axis_angle(cub_dv3_make(0, 1, 0), atan2(fw.x, fw.z));
 }
 
 /* Height of the ankle above the floor when the foot stands flat. */
@@ -140,10 +141,10 @@ static double rest_ankle_mm(const rt_ctx *c, int side)
     return c->tgt_rest_pos[c->foot[side]].y - low;
 }
 
-static rt_v3 ankle_at(const rt_ctx *c, int f, int side)
+static cub_dv3 ankle_at(const rt_ctx *c, int f, int side)
 {
-    rt_v3 pos[CUB_MOTION_MAX_JOINTS];
-    rt_q rot[CUB_MOTION_MAX_JOINTS];
+    cub_dv3 pos[CUB_MOTION_MAX_JOINTS];
+    cub_dq rot[CUB_MOTION_MAX_JOINTS];
     rt_target_world(c, f, pos, rot);
     return pos[c->foot[side]];
 }
@@ -151,7 +152,7 @@ static rt_v3 ankle_at(const rt_ctx *c, int f, int side)
 /* Where each contact run of `side` is pinned: the mean ground position of
  * the ankle over the run, at the rest ankle height, the foot flat with its
  * mean heading. Stored per contact frame in pin[] and flat[]. */
-static void find_pins(const rt_ctx *c, int side, rt_v3 *pin, rt_q *flat)
+static void find_pins(const rt_ctx *c, int side, cub_dv3 *pin, cub_dq *flat)
 {
     const unsigned char *ct = c->contact[side];
     for (int f = 0; f < c->frames;) {
@@ -160,16 +161,16 @@ static void find_pins(const rt_ctx *c, int side, rt_v3 *pin, rt_q *flat)
             continue;
         }
         int e = f;
-        rt_v3 p = {0, 0, 0}, fw = {0, 0, 0};
+        cub_dv3 p = {0, 0, 0}, fw = {0, 0, 0};
         for (; e < c->frames && ct[e]; e++) {
-            p = rt_v3_add(p, ankle_at(c, e, side));
-            rt_q fl = flat_foot(c, e, foot_rot_at(c, e, side));
-            fw = rt_v3_add(fw, rt_q_rotate(fl, rt_v3_make(0, 0, 1)));
+            p = cub_dv3_add(p, ankle_at(c, e, side));
+            cub_dq fl = flat_foot(c, e, foot_rot_at(c, e, side));
+            fw = cub_dv3_add(fw, cub_dq_rotate(fl, cub_dv3_make(0, 0, 1)));
         }
-        p = rt_v3_scale(p, 1.0 / (e - f));
+        p = cub_dv3_scale(p, 1.0 / (e - f));
         p.y = rest_ankle_mm(c, side);
         for (int g = f; g < e; g++)
-            pin[g] = p, flat[g] = rt_q_axis_angle(rt_v3_make(0, 1, 0), atan2(fw.x, fw.z));
+            pin[g] = p, flat[g] = cub_dq_axis_angle(cub_dv3_make(0, 1, 0), atan2(fw.x, fw.z));
         f = e;
     }
 }
@@ -180,10 +181,10 @@ static void find_pins(const rt_ctx *c, int side, rt_v3 *pin, rt_q *flat)
  * smoothed by a max filter then a box filter of the same width, so it is
  * never less than what a frame needs. */
 #define REACH 0.995
-static void drop_for_reach(rt_ctx *c, rt_v3 *const pin[2], double *need, double *tmp)
+static void drop_for_reach(rt_ctx *c, cub_dv3 *const pin[2], double *need, double *tmp)
 {
-    rt_v3 pos[CUB_MOTION_MAX_JOINTS];
-    rt_q rot[CUB_MOTION_MAX_JOINTS];
+    cub_dv3 pos[CUB_MOTION_MAX_JOINTS];
+    cub_dq rot[CUB_MOTION_MAX_JOINTS];
     for (int f = 0; f < c->frames; f++) {
         need[f] = 0;
         rt_target_world(c, f, pos, rot);
@@ -193,7 +194,7 @@ static void drop_for_reach(rt_ctx *c, rt_v3 *const pin[2], double *need, double 
             double l = REACH * (c->tgt_rest_pos[c->leg[s]].y - c->tgt_rest_pos[c->up_leg[s]].y +
                                 c->tgt_rest_pos[c->foot[s]].y - c->tgt_rest_pos[c->leg[s]].y);
             l = fabs(l);
-            rt_v3 h = rt_v3_sub(pos[c->up_leg[s]], pin[s][f]);
+            cub_dv3 h = cub_dv3_sub(pos[c->up_leg[s]], pin[s][f]);
             double flat2 = h.x * h.x + h.z * h.z;
             double v = l * l > flat2 ? sqrt(l * l - flat2) : 0;
             need[f] = fmax(need[f], h.y - v);
@@ -216,7 +217,7 @@ static void drop_for_reach(rt_ctx *c, rt_v3 *const pin[2], double *need, double 
 
 /* Pin each contact run, easing the IK in and out over BLEND_FRAMES outside
  * the run (never into another contact). */
-static void pin_foot(rt_ctx *c, int side, const rt_v3 *pin, const rt_q *flat)
+static void pin_foot(rt_ctx *c, int side, const cub_dv3 *pin, const cub_dq *flat)
 {
     const unsigned char *ct = c->contact[side];
     for (int f = 0; f < c->frames;) {
@@ -233,9 +234,9 @@ static void pin_foot(rt_ctx *c, int side, const rt_v3 *pin, const rt_q *flat)
             int dist = g < f ? f - g : g >= e ? g - e + 1 : 0;
             int k = g < f ? f : g >= e ? e - 1 : g; /* the run's pin */
             double w = 1.0 - (double)dist / (BLEND_FRAMES + 1);
-            rt_v3 free_a = ankle_at(c, g, side);
-            rt_q foot_w = rt_q_slerp(foot_rot_at(c, g, side), flat[k], w);
-            leg_ik(c, g, side, rt_v3_add(free_a, rt_v3_scale(rt_v3_sub(pin[k], free_a), w)),
+            cub_dv3 free_a = ankle_at(c, g, side);
+            cub_dq foot_w = cub_dq_slerp(foot_rot_at(c, g, side), flat[k], w);
+            leg_ik(c, g, side, cub_dv3_add(free_a, cub_dv3_scale(cub_dv3_sub(pin[k], free_a), w)),
                    foot_w);
         }
         f = e;
@@ -252,10 +253,10 @@ static void measure(const rt_ctx *c, cub_retarget_report *rep)
             if (!c->contact[s][f])
                 continue;
             rep->contact_frames[s]++;
-            rt_v3 a = ankle_at(c, f, s);
+            cub_dv3 a = ankle_at(c, f, s);
             ankle_sum += a.y, ankle_n++;
             if (f > 0 && c->contact[s][f - 1]) {
-                double d = rt_v3_len(rt_v3_sub(a, ankle_at(c, f - 1, s)));
+                double d = cub_dv3_len(cub_dv3_sub(a, ankle_at(c, f - 1, s)));
                 slide_sum += d, slide_n++;
                 rep->slide_max_mm = fmax(rep->slide_max_mm, d);
             }
@@ -264,17 +265,17 @@ static void measure(const rt_ctx *c, cub_retarget_report *rep)
     rep->contact_ankle_mm = ankle_n ? ankle_sum / ankle_n : 0;
     for (int f = 1; f < c->frames; f++)
         for (int j = 0; j < c->tj; j++) {
-            double a = rt_q_angle_between(c->local[(size_t)f * c->tj + j],
+            double a = cub_dq_angle_between(c->local[(size_t)f * c->tj + j],
                                           c->local[(size_t)(f - 1) * c->tj + j]);
-            rep->max_ang_deg = fmax(rep->max_ang_deg, a * 180.0 / RT_PI);
+            rep->max_ang_deg = fmax(rep->max_ang_deg, a * 180.0 / CUB_VEC_PI);
         }
 }
 
 /* Lowest point of one foot (its joints) in frame f. */
 static double foot_low_at(const rt_ctx *c, int f, int side)
 {
-    rt_v3 pos[CUB_MOTION_MAX_JOINTS];
-    rt_q rot[CUB_MOTION_MAX_JOINTS];
+    cub_dv3 pos[CUB_MOTION_MAX_JOINTS];
+    cub_dq rot[CUB_MOTION_MAX_JOINTS];
     rt_target_world(c, f, pos, rot);
     double low = INFINITY;
     for (int j = 0; j < c->tj; j++) {
@@ -297,7 +298,7 @@ static void lift_swing_feet(rt_ctx *c)
             double low = foot_low_at(c, f, s);
             if (c->contact[s][f] || low >= 0)
                 continue;
-            rt_v3 a = ankle_at(c, f, s);
+            cub_dv3 a = ankle_at(c, f, s);
             a.y -= low;
             leg_ik(c, f, s, a, foot_rot_at(c, f, s));
         }
@@ -314,7 +315,7 @@ static void floor_on_contacts(rt_ctx *c, double *dy)
             if (c->contact[s][f])
                 sum += ankle_at(c, f, s).y - rest_ankle_mm(c, s), n++;
     if (n) {
-        shift_root(c, rt_v3_make(0, -sum / n, 0));
+        shift_root(c, cub_dv3_make(0, -sum / n, 0));
         *dy -= sum / n;
     }
 }
@@ -322,13 +323,13 @@ static void floor_on_contacts(rt_ctx *c, double *dy)
 void rt_feet(rt_ctx *c, cub_retarget_report *rep)
 {
     /* Centre the clip on its mean ground position, feet on the floor. */
-    rt_v3 mean = {0, 0, 0};
+    cub_dv3 mean = {0, 0, 0};
     for (int f = 0; f < c->frames; f++)
-        mean = rt_v3_add(mean, c->root[f]);
-    mean = rt_v3_scale(mean, 1.0 / c->frames);
-    shift_root(c, rt_v3_make(-mean.x, 0, -mean.z));
+        mean = cub_dv3_add(mean, c->root[f]);
+    mean = cub_dv3_scale(mean, 1.0 / c->frames);
+    shift_root(c, cub_dv3_make(-mean.x, 0, -mean.z));
     double low = lowest_foot(c);
-    shift_root(c, rt_v3_make(0, -low, 0));
+    shift_root(c, cub_dv3_make(0, -low, 0));
     double dy = -low;
     int contacts = 0;
     if (!c->d.no_contacts)
@@ -337,10 +338,10 @@ void rt_feet(rt_ctx *c, cub_retarget_report *rep)
             for (int f = 0; f < c->frames; f++)
                 contacts += c->contact[s][f];
         }
-    rt_v3 *pin[2] = {calloc((size_t)c->frames, sizeof(rt_v3)),
-                     calloc((size_t)c->frames, sizeof(rt_v3))};
-    rt_q *flat[2] = {calloc((size_t)c->frames, sizeof(rt_q)),
-                     calloc((size_t)c->frames, sizeof(rt_q))};
+    cub_dv3 *pin[2] = {calloc((size_t)c->frames, sizeof(cub_dv3)),
+                     calloc((size_t)c->frames, sizeof(cub_dv3))};
+    cub_dq *flat[2] = {calloc((size_t)c->frames, sizeof(cub_dq)),
+                     calloc((size_t)c->frames, sizeof(cub_dq))};
     double *need = calloc((size_t)c->frames * 2, sizeof(double));
     if (contacts && pin[0] && pin[1] && flat[0] && flat[1] && need) {
         floor_on_contacts(c, &dy);

@@ -11,36 +11,12 @@
 
 #define MAP_MAX_WORDS 8
 
-/* Split one line into words (blank separated, '#' ends the line). Returns
- * the word count, or -1 when there are too many or one is too long. */
-static int split_words(const char *s, const char *end, char words[][CUB_MOTION_NAME_LEN + 16])
-{
-    int n = 0;
-    while (s < end) {
-        while (s < end && (*s == ' ' || *s == '\t' || *s == '\r'))
-            s++;
-        if (s >= end || *s == '#')
-            break;
-        const char *w = s;
-        while (s < end && *s != ' ' && *s != '\t' && *s != '\r' && *s != '#')
-            s++;
-        size_t len = (size_t)(s - w);
-        if (n >= MAP_MAX_WORDS || len >= CUB_MOTION_NAME_LEN + 16)
-            return -1;
-        memcpy(words[n], w, len);
-        words[n][len] = '\0';
-        n++;
-    }
-    return n;
-}
-
-static cub_err parse_source(const char *word, cub_retarget_source *src, const char *file,
-                            int line, cub_diag *diag)
+static cub_err parse_source(const char *word, cub_retarget_source *src, const cub_text_at *at)
 {
     const char *colon = strchr(word, ':');
     size_t len = colon ? (size_t)(colon - word) : strlen(word);
     if (len == 0 || len >= CUB_MOTION_NAME_LEN)
-        return cub_diag_fail(diag, CUB_ERR_FORMAT, file, line, "bad source joint name \"%s\"", word);
+        return cub_text_fail(at, "bad source joint name \"%s\"", word);
     memcpy(src->name, word, len);
     src->name[len] = '\0';
     src->joint = -1;
@@ -50,46 +26,42 @@ static cub_err parse_source(const char *word, cub_retarget_source *src, const ch
         errno = 0;
         src->weight = strtod(colon + 1, &e);
         if (e == colon + 1 || *e || errno || !isfinite(src->weight) || src->weight <= 0)
-            return cub_diag_fail(diag, CUB_ERR_FORMAT, file, line,
-                           "bad weight \"%s\" for \"%s\" (a number > 0)", colon + 1, src->name);
+            return cub_text_fail(at, "bad weight \"%s\" for \"%s\" (a number > 0)", colon + 1,
+                                 src->name);
     }
     return CUB_OK;
 }
 
-static cub_err parse_line(cub_retarget_map *map, char words[][CUB_MOTION_NAME_LEN + 16], int n,
-                          const char *file, int line, cub_diag *diag)
+static cub_err parse_line(cub_retarget_map *map, char **words, int n, const cub_text_at *at)
 {
     if (n < 2)
-        return cub_diag_fail(diag, CUB_ERR_FORMAT, file, line,
-                       "expected `TargetJoint SourceJoint [aim|rot]`, got one word \"%s\"",
-                       words[0]);
+        return cub_text_fail(
+            at, "expected `TargetJoint SourceJoint [aim|rot]`, got one word \"%s\"", words[0]);
     if (map->link_count >= CUB_MOTION_MAX_JOINTS)
-        return cub_diag_fail(diag, CUB_ERR_FORMAT, file, line, "more than %d links",
-                       CUB_MOTION_MAX_JOINTS);
+        return cub_text_fail(at, "more than %d links", CUB_MOTION_MAX_JOINTS);
     if (strlen(words[0]) >= CUB_MOTION_NAME_LEN)
-        return cub_diag_fail(diag, CUB_ERR_FORMAT, file, line, "target name \"%s\" too long", words[0]);
+        return cub_text_fail(at, "target name \"%s\" too long", words[0]);
     for (int i = 0; i < map->link_count; i++)
         if (!strcmp(map->link[i].target_name, words[0]))
-            return cub_diag_fail(diag, CUB_ERR_FORMAT, file, line,
-                           "target joint \"%s\" already linked on line %d", words[0],
-                           map->link[i].line);
+            return cub_text_fail(at, "target joint \"%s\" already linked on line %d", words[0],
+                                 map->link[i].line);
     cub_retarget_link *lk = &map->link[map->link_count];
     memset(lk, 0, sizeof(*lk));
     snprintf(lk->target_name, sizeof(lk->target_name), "%s", words[0]);
     lk->target = -1;
-    lk->line = line;
+    lk->line = at->line;
     if (!strcmp(words[n - 1], "aim") || !strcmp(words[n - 1], "rot")) {
         lk->policy = words[n - 1][0] == 'a' ? CUB_RETARGET_AIM : CUB_RETARGET_ROT;
         n--;
     }
     if (n < 2)
-        return cub_diag_fail(diag, CUB_ERR_FORMAT, file, line, "\"%s\" has no source joint", words[0]);
+        return cub_text_fail(at, "\"%s\" has no source joint", words[0]);
     if (n - 1 > CUB_RETARGET_MAX_SOURCES)
-        return cub_diag_fail(diag, CUB_ERR_FORMAT, file, line, "more than %d sources for \"%s\"",
-                       CUB_RETARGET_MAX_SOURCES, words[0]);
+        return cub_text_fail(at, "more than %d sources for \"%s\"", CUB_RETARGET_MAX_SOURCES,
+                             words[0]);
     double sum = 0;
     for (int i = 1; i < n; i++) {
-        cub_err err = parse_source(words[i], &lk->source[i - 1], file, line, diag);
+        cub_err err = parse_source(words[i], &lk->source[i - 1], at);
         if (err)
             return err;
         sum += lk->source[i - 1].weight;
@@ -101,49 +73,36 @@ static cub_err parse_line(cub_retarget_map *map, char words[][CUB_MOTION_NAME_LE
     return CUB_OK;
 }
 
+static cub_err map_line(void *ctx, cub_text_line *ln)
+{
+    char *words[MAP_MAX_WORDS];
+    int n = cub_text_words(ln->s, words, MAP_MAX_WORDS);
+    if (n > MAP_MAX_WORDS)
+        return cub_text_fail(&ln->at, "more than %d words", MAP_MAX_WORDS);
+    return parse_line(ctx, words, n, &ln->at);
+}
+
+static cub_err parse_text(const cub_text *t, const void *in, void *out)
+{
+    cub_retarget_map *map = out;
+    memset(map, 0, sizeof(*map));
+    snprintf(map->file, sizeof(map->file), "%s", t->name);
+    cub_err err = cub_text_lines(t, map_line, map);
+    if (!err && map->link_count == 0)
+        err = cub_diag_fail(t->diag, CUB_ERR_FORMAT, t->name, 0, "no links in the table");
+    return err;
+}
+
 cub_err cub_retarget_map_parse(const char *text, size_t len, const char *name,
                                cub_retarget_map *out, cub_diag *diag)
 {
-    const char *file = name ? name : "(map)";
-    if (!out || (!text && len))
-        return cub_diag_fail(diag, CUB_ERR_ARG, file, 0, "no text or output");
-    memset(out, 0, sizeof(*out));
-    snprintf(out->file, sizeof(out->file), "%s", file);
-    const char *p = text, *end = text + len;
-    char words[MAP_MAX_WORDS][CUB_MOTION_NAME_LEN + 16];
-    for (int line = 1; p < end; line++) {
-        const char *eol = memchr(p, '\n', (size_t)(end - p));
-        if (!eol)
-            eol = end;
-        if (memchr(p, '\0', (size_t)(eol - p)))
-            return cub_diag_fail(diag, CUB_ERR_FORMAT, file, line, "NUL byte in the table");
-        int n = split_words(p, eol, words);
-        if (n < 0)
-            return cub_diag_fail(diag, CUB_ERR_FORMAT, file, line,
-                           "too many words or a name over %d characters",
-                           CUB_MOTION_NAME_LEN - 1);
-        if (n > 0) {
-            cub_err err = parse_line(out, words, n, file, line, diag);
-            if (err)
-                return err;
-        }
-        p = eol + 1;
-    }
-    if (out->link_count == 0)
-        return cub_diag_fail(diag, CUB_ERR_FORMAT, file, 0, "no links in the table");
-    return CUB_OK;
+    cub_text t = {text, len, name ? name : "(map)", diag};
+    return cub_text_parse(&t, parse_text, NULL, out);
 }
 
 cub_err cub_retarget_map_load(const char *path, cub_retarget_map *out, cub_diag *diag)
 {
-    char *text = NULL;
-    size_t len = 0;
-    cub_err err = cub_io_read_file(path, &text, &len, diag);
-    if (err)
-        return err;
-    err = cub_retarget_map_parse(text, len, path, out, diag);
-    free(text);
-    return err;
+    return cub_text_load(&(cub_text_src){path, "retarget map", 0}, parse_text, NULL, out, diag);
 }
 
 cub_err cub_retarget_map_bind(cub_retarget_map *map, const cub_skeleton *target,

@@ -13,29 +13,6 @@
 #define RECIPE_MAX_WORDS 12
 #define RECIPE_WORD_LEN 256
 
-typedef char recipe_word[RECIPE_WORD_LEN];
-
-static int split(const char *s, const char *end, recipe_word *w)
-{
-    int n = 0;
-    while (s < end) {
-        while (s < end && (*s == ' ' || *s == '\t' || *s == '\r'))
-            s++;
-        if (s >= end || *s == '#')
-            break;
-        const char *b = s;
-        while (s < end && *s != ' ' && *s != '\t' && *s != '\r' && *s != '#')
-            s++;
-        size_t len = (size_t)(s - b);
-        if (n >= RECIPE_MAX_WORDS || len >= RECIPE_WORD_LEN)
-            return -1;
-        memcpy(w[n], b, len);
-        w[n][len] = '\0';
-        n++;
-    }
-    return n;
-}
-
 /* A time in seconds, or "-" (0: the start / the end of the source). */
 static int parse_num(const char *s, double *out)
 {
@@ -49,8 +26,7 @@ static int parse_num(const char *s, double *out)
     return e != s && !*e && !errno && isfinite(*out);
 }
 
-static cub_err parse_option(cub_recipe_clip *c, const char *w, const char *file, int line,
-                            cub_diag *diag)
+static cub_err parse_option(cub_recipe_clip *c, const char *w, const cub_text_at *at)
 {
     if (!strcmp(w, "mirror")) {
         c->mirror = 1;
@@ -61,44 +37,38 @@ static cub_err parse_option(cub_recipe_clip *c, const char *w, const char *file,
         return CUB_OK;
     if (!strncmp(w, "turn=", 5) && parse_num(w + 5, &c->turn_deg) && fabs(c->turn_deg) <= 360)
         return CUB_OK;
-    return cub_diag_fail(diag, CUB_ERR_FORMAT, file, line,
-                   "bad option \"%s\" (speed=0.1..10, turn=-360..360, mirror)", w);
+    return cub_text_fail(at, "bad option \"%s\" (speed=0.1..10, turn=-360..360, mirror)", w);
 }
 
-static cub_err parse_clip(cub_recipe *r, recipe_word *w, int n, const char *file, int line,
-                          cub_diag *diag)
+static cub_err parse_clip(cub_recipe *r, char **w, int n, const cub_text_at *at)
 {
     if (n < 6)
-        return cub_diag_fail(diag, CUB_ERR_FORMAT, file, line,
-                       "expected `name kind source map start_s end_s [options]`, got %d words",
-                       n);
+        return cub_text_fail(
+            at, "expected `name kind source map start_s end_s [options]`, got %d words", n);
     if (r->clip_count >= CUB_RECIPE_MAX_CLIPS)
-        return cub_diag_fail(diag, CUB_ERR_FORMAT, file, line, "more than %d clips",
-                       CUB_RECIPE_MAX_CLIPS);
+        return cub_text_fail(at, "more than %d clips", CUB_RECIPE_MAX_CLIPS);
     cub_recipe_clip *c = &r->clip[r->clip_count];
     memset(c, 0, sizeof(*c));
-    c->line = line;
+    c->line = at->line;
     c->speed = 1;
     if (strlen(w[0]) >= sizeof(c->name))
-        return cub_diag_fail(diag, CUB_ERR_FORMAT, file, line, "clip name \"%s\" over %zu characters",
-                       w[0], sizeof(c->name) - 1);
+        return cub_text_fail(at, "clip name \"%s\" over %zu characters", w[0],
+                             sizeof(c->name) - 1);
     for (int i = 0; i < r->clip_count; i++)
         if (!strcmp(r->clip[i].name, w[0]))
-            return cub_diag_fail(diag, CUB_ERR_FORMAT, file, line, "clip \"%s\" already on line %d",
-                           w[0], r->clip[i].line);
+            return cub_text_fail(at, "clip \"%s\" already on line %d", w[0], r->clip[i].line);
     if (strcmp(w[1], "dance") && strcmp(w[1], "coach"))
-        return cub_diag_fail(diag, CUB_ERR_FORMAT, file, line,
-                       "kind \"%s\" is neither dance nor coach", w[1]);
+        return cub_text_fail(at, "kind \"%s\" is neither dance nor coach", w[1]);
     snprintf(c->name, sizeof(c->name), "%s", w[0]);
     snprintf(c->kind, sizeof(c->kind), "%s", w[1]);
     snprintf(c->source, sizeof(c->source), "%s", w[2]);
     snprintf(c->map, sizeof(c->map), "%s", w[3]);
     if (!parse_num(w[4], &c->start_s) || !parse_num(w[5], &c->end_s) || c->start_s < 0 ||
         (c->end_s > 0 && c->end_s <= c->start_s))
-        return cub_diag_fail(diag, CUB_ERR_FORMAT, file, line,
-                       "bad time range \"%s\" .. \"%s\" (seconds, start < end, or -)", w[4], w[5]);
+        return cub_text_fail(at, "bad time range \"%s\" .. \"%s\" (seconds, start < end, or -)",
+                             w[4], w[5]);
     for (int i = 6; i < n; i++) {
-        cub_err err = parse_option(c, w[i], file, line, diag);
+        cub_err err = parse_option(c, w[i], at);
         if (err)
             return err;
     }
@@ -106,45 +76,36 @@ static cub_err parse_clip(cub_recipe *r, recipe_word *w, int n, const char *file
     return CUB_OK;
 }
 
+static cub_err recipe_line(void *ctx, cub_text_line *ln)
+{
+    char *w[RECIPE_MAX_WORDS];
+    int n = cub_text_words(ln->s, w, RECIPE_MAX_WORDS);
+    if (n > RECIPE_MAX_WORDS)
+        return cub_text_fail(&ln->at, "more than %d words", RECIPE_MAX_WORDS);
+    for (int i = 0; i < n; i++)
+        if (strlen(w[i]) >= RECIPE_WORD_LEN)
+            return cub_text_fail(&ln->at, "a word over %d characters", RECIPE_WORD_LEN - 1);
+    return parse_clip(ctx, w, n, &ln->at);
+}
+
+static cub_err parse_text(const cub_text *t, const void *in, void *out)
+{
+    cub_recipe *r = out;
+    memset(r, 0, sizeof(*r));
+    cub_err err = cub_text_lines(t, recipe_line, r);
+    if (!err && r->clip_count == 0)
+        err = cub_diag_fail(t->diag, CUB_ERR_FORMAT, t->name, 0, "no clips in the recipe");
+    return err;
+}
+
 cub_err cub_recipe_parse(const char *text, size_t len, const char *name, cub_recipe *out,
                          cub_diag *diag)
 {
-    const char *file = name ? name : "(recipe)";
-    if (!out || (!text && len))
-        return cub_diag_fail(diag, CUB_ERR_ARG, file, 0, "no text or output");
-    memset(out, 0, sizeof(*out));
-    recipe_word *w = malloc(sizeof(recipe_word) * RECIPE_MAX_WORDS);
-    if (!w)
-        return cub_diag_fail(diag, CUB_ERR_NOMEM, file, 0, "out of memory");
-    cub_err err = CUB_OK;
-    const char *p = text, *end = text + len;
-    for (int line = 1; p < end && !err; line++) {
-        const char *eol = memchr(p, '\n', (size_t)(end - p));
-        if (!eol)
-            eol = end;
-        int n = memchr(p, '\0', (size_t)(eol - p)) ? -2 : split(p, eol, w);
-        if (n == -2)
-            err = cub_diag_fail(diag, CUB_ERR_FORMAT, file, line, "NUL byte in the recipe");
-        else if (n < 0)
-            err = cub_diag_fail(diag, CUB_ERR_FORMAT, file, line, "too many words or a word too long");
-        else if (n > 0)
-            err = parse_clip(out, w, n, file, line, diag);
-        p = eol + 1;
-    }
-    free(w);
-    if (!err && out->clip_count == 0)
-        err = cub_diag_fail(diag, CUB_ERR_FORMAT, file, 0, "no clips in the recipe");
-    return err;
+    cub_text t = {text, len, name ? name : "(recipe)", diag};
+    return cub_text_parse(&t, parse_text, NULL, out);
 }
 
 cub_err cub_recipe_load(const char *path, cub_recipe *out, cub_diag *diag)
 {
-    char *text = NULL;
-    size_t len = 0;
-    cub_err err = cub_io_read_file(path, &text, &len, diag);
-    if (err)
-        return err;
-    err = cub_recipe_parse(text, len, path, out, diag);
-    free(text);
-    return err;
+    return cub_text_load(&(cub_text_src){path, "recipe", 0}, parse_text, NULL, out, diag);
 }

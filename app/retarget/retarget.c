@@ -63,16 +63,16 @@ static cub_err setup_links(rt_ctx *c)
 static cub_err alloc_work(rt_ctx *c)
 {
     size_t fl = (size_t)c->frames * (size_t)c->links, ft = (size_t)c->frames * (size_t)c->tj;
-    c->lpos = malloc(fl * sizeof(rt_v3));
-    c->lrot = malloc(fl * sizeof(rt_q));
-    c->root = malloc((size_t)c->frames * sizeof(rt_v3));
-    c->local = malloc(ft * sizeof(rt_q));
+    c->lpos = malloc(fl * sizeof(cub_dv3));
+    c->lrot = malloc(fl * sizeof(cub_dq));
+    c->root = malloc((size_t)c->frames * sizeof(cub_dv3));
+    c->local = malloc(ft * sizeof(cub_dq));
     c->contact[0] = calloc((size_t)c->frames, 1);
     c->contact[1] = calloc((size_t)c->frames, 1);
-    c->s_rot = malloc((size_t)c->sj * sizeof(rt_q));
-    c->s_wrot = malloc((size_t)c->sj * sizeof(rt_q));
-    c->s_trans = malloc((size_t)c->sj * sizeof(rt_v3));
-    c->s_wpos = malloc((size_t)c->sj * sizeof(rt_v3));
+    c->s_rot = malloc((size_t)c->sj * sizeof(cub_dq));
+    c->s_wrot = malloc((size_t)c->sj * sizeof(cub_dq));
+    c->s_trans = malloc((size_t)c->sj * sizeof(cub_dv3));
+    c->s_wpos = malloc((size_t)c->sj * sizeof(cub_dv3));
     if (!c->lpos || !c->lrot || !c->root || !c->local || !c->contact[0] || !c->contact[1] ||
         !c->s_rot || !c->s_wrot || !c->s_trans || !c->s_wpos)
         return cub_diag_fail(c->diag, CUB_ERR_NOMEM, c->name, 0, "out of memory for %d frames",
@@ -98,50 +98,50 @@ static void sample_links(rt_ctx *c)
 {
     double fx = 0, fz = 0;
     for (int f = 0; f < c->frames; f++) {
-        rt_v3 *pos = c->lpos + (size_t)f * c->links;
-        rt_q *rot = c->lrot + (size_t)f * c->links;
+        cub_dv3 *pos = c->lpos + (size_t)f * c->links;
+        cub_dq *rot = c->lrot + (size_t)f * c->links;
         rt_source_links_at(c, src_time(c, f), pos, rot);
         if (c->d.mirror)
             rt_mirror_links(c, pos, rot);
-        rt_v3 fw = rt_q_rotate(rot[c->link_of[c->hips]], rt_v3_make(0, 0, 1));
+        cub_dv3 fw = cub_dq_rotate(rot[c->link_of[c->hips]], cub_dv3_make(0, 0, 1));
         double n = hypot(fw.x, fw.z);
         if (n > 1e-6)
             fx += fw.x / n, fz += fw.z / n;
     }
-    double turn = c->d.turn_deg * RT_PI / 180.0;
+    double turn = c->d.turn_deg * CUB_VEC_PI / 180.0;
     if (!c->d.keep_facing && hypot(fx, fz) > 1e-6)
         turn -= atan2(fx, fz);
-    c->yaw = rt_q_axis_angle(rt_v3_make(0, 1, 0), turn);
+    c->yaw = cub_dq_axis_angle(cub_dv3_make(0, 1, 0), turn);
     for (size_t i = 0; i < (size_t)c->frames * c->links; i++) {
-        c->lpos[i] = rt_q_rotate(c->yaw, c->lpos[i]);
-        c->lrot[i] = rt_q_norm(rt_q_mul(c->yaw, c->lrot[i]));
+        c->lpos[i] = cub_dq_rotate(c->yaw, c->lpos[i]);
+        c->lrot[i] = cub_dq_norm(cub_dq_mul(c->yaw, c->lrot[i]));
     }
 }
 
 /* One frame: world rotations of the target, parents first, then locals. */
 static void transfer_frame(rt_ctx *c, int f)
 {
-    const rt_v3 *pos = c->lpos + (size_t)f * c->links;
-    const rt_q *rot = c->lrot + (size_t)f * c->links;
-    rt_q world[CUB_MOTION_MAX_JOINTS];
-    rt_q *local = c->local + (size_t)f * c->tj;
+    const cub_dv3 *pos = c->lpos + (size_t)f * c->links;
+    const cub_dq *rot = c->lrot + (size_t)f * c->links;
+    cub_dq world[CUB_MOTION_MAX_JOINTS];
+    cub_dq *local = c->local + (size_t)f * c->tj;
     for (int j = 0; j < c->tj; j++) {
         int p = c->tgt->joints[j].parent, l = c->link_of[j];
-        rt_q parent = p >= 0 ? world[p] : rt_q_identity();
+        cub_dq parent = p >= 0 ? world[p] : cub_dq_identity();
         if (l < 0) {
             world[j] = parent;
         } else if (c->aim_of[j] < 0) {
             world[j] = rot[l];
         } else {
             int ch = c->aim_of[j];
-            rt_q r1 = rt_q_mul(rot[l], c->align_inv[j]);
-            rt_v3 rest_dir = rt_v3_sub(c->tgt_rest_pos[ch], c->tgt_rest_pos[j]);
-            rt_v3 want = rt_v3_sub(pos[c->link_of[ch]], pos[l]);
-            world[j] = rt_q_norm(rt_q_mul(rt_q_arc(rt_q_rotate(r1, rest_dir), want), r1));
+            cub_dq r1 = cub_dq_mul(rot[l], c->align_inv[j]);
+            cub_dv3 rest_dir = cub_dv3_sub(c->tgt_rest_pos[ch], c->tgt_rest_pos[j]);
+            cub_dv3 want = cub_dv3_sub(pos[c->link_of[ch]], pos[l]);
+            world[j] = cub_dq_norm(cub_dq_mul(cub_dq_arc(cub_dq_rotate(r1, rest_dir), want), r1));
         }
-        local[j] = rt_q_norm(rt_q_mul(rt_q_conj(parent), world[j]));
+        local[j] = cub_dq_norm(cub_dq_mul(cub_dq_conj(parent), world[j]));
     }
-    c->root[f] = rt_v3_scale(pos[c->link_of[c->hips]], c->k);
+    c->root[f] = cub_dv3_scale(pos[c->link_of[c->hips]], c->k);
 }
 
 /* Keep each joint's quaternion in the hemisphere of the previous frame's. */
@@ -149,9 +149,9 @@ static void hemisphere(rt_ctx *c)
 {
     for (int f = 1; f < c->frames; f++)
         for (int j = 0; j < c->tj; j++) {
-            rt_q *q = &c->local[(size_t)f * c->tj + j];
-            if (rt_q_dot(*q, c->local[(size_t)(f - 1) * c->tj + j]) < 0)
-                *q = (rt_q){-q->w, -q->x, -q->y, -q->z};
+            cub_dq *q = &c->local[(size_t)f * c->tj + j];
+            if (cub_dq_dot(*q, c->local[(size_t)(f - 1) * c->tj + j]) < 0)
+                *q = (cub_dq){-q->w, -q->x, -q->y, -q->z};
         }
 }
 
@@ -172,9 +172,9 @@ static cub_err write_out(const rt_ctx *c, const cub_skeleton *target, cub_io_mot
     }
     out->frame_mem = mem;
     for (int f = 0; f < c->frames; f++) {
-        out->clip.root_mm[f] = rt_v3_to_fx(c->root[f]);
+        out->clip.root_mm[f] = cub_dv3_to_fx(c->root[f]);
         for (int j = 0; j < c->tj; j++)
-            out->clip.rot[(size_t)f * c->tj + j] = rt_q_to_fx(c->local[(size_t)f * c->tj + j]);
+            out->clip.rot[(size_t)f * c->tj + j] = cub_dq_to_fx(c->local[(size_t)f * c->tj + j]);
     }
     for (int j = 0; j < c->tj; j++) {
         cub_io_channels *ch = &out->channels[j];
@@ -248,7 +248,7 @@ cub_err cub_retarget_clip(const cub_retarget_map *map, const cub_skeleton *targe
         hemisphere(c);
         rep.leg_ratio = c->k;
         rep.frames = c->frames;
-        rep.yaw_deg = 2 * atan2(c->yaw.y, c->yaw.w) * 180.0 / RT_PI;
+        rep.yaw_deg = 2 * atan2(c->yaw.y, c->yaw.w) * 180.0 / CUB_VEC_PI;
         err = write_out(c, target, out);
     }
     if (!err && report)

@@ -25,37 +25,37 @@ typedef struct rt_ctx {
     int link_of[CUB_MOTION_MAX_JOINTS];   /* target joint -> link, or -1 */
     int aim_of[CUB_MOTION_MAX_JOINTS];    /* target joint -> linked child joint, or -1 */
     int partner[CUB_MOTION_MAX_JOINTS];   /* link -> its mirror link (itself if none) */
-    rt_q align_inv[CUB_MOTION_MAX_JOINTS];/* A_j^-1 per target joint */
-    rt_v3 tgt_rest_pos[CUB_MOTION_MAX_JOINTS];
+    cub_dq align_inv[CUB_MOTION_MAX_JOINTS];/* A_j^-1 per target joint */
+    cub_dv3 tgt_rest_pos[CUB_MOTION_MAX_JOINTS];
     int is_foot[CUB_MOTION_MAX_JOINTS];   /* the feet and their descendants */
 
-    rt_q q0;         /* source rest frame -> target frame */
-    rt_q yaw;        /* turn about y after q0 (and mirroring) */
+    cub_dq q0;         /* source rest frame -> target frame */
+    cub_dq yaw;        /* turn about y after q0 (and mirroring) */
     double k;        /* leg ratio */
 
     /* per output frame, per link: source position (target axes, source
      * scale) and rotation G = Yaw * W * Q0^-1 */
-    rt_v3 *lpos;
-    rt_q *lrot;
+    cub_dv3 *lpos;
+    cub_dq *lrot;
     /* the result, per frame: root and local rotations */
-    rt_v3 *root;
-    rt_q *local;
+    cub_dv3 *root;
+    cub_dq *local;
     /* contacts per frame and foot */
     unsigned char *contact[2];
 
     /* scratch */
-    rt_q *s_rot, *s_wrot;
-    rt_v3 *s_trans, *s_wpos;
+    cub_dq *s_rot, *s_wrot;
+    cub_dv3 *s_trans, *s_wpos;
 } rt_ctx;
 
 /* source.c */
 /* Sample the source at output frame f into per-link data (stage A: target
  * axes, no yaw, no mirror): pos[link], rot[link]. */
-void rt_source_links_at(rt_ctx *c, double t_s, rt_v3 *pos, rt_q *rot);
+void rt_source_links_at(rt_ctx *c, double t_s, cub_dv3 *pos, cub_dq *rot);
 /* The source rest pose as per-link data (stage A). */
-void rt_source_links_rest(rt_ctx *c, rt_v3 *pos, rt_q *rot);
+void rt_source_links_rest(rt_ctx *c, cub_dv3 *pos, cub_dq *rot);
 /* Apply mirroring (swap partners, reflect x) to per-link data in place. */
-void rt_mirror_links(const rt_ctx *c, rt_v3 *pos, rt_q *rot);
+void rt_mirror_links(const rt_ctx *c, cub_dv3 *pos, cub_dq *rot);
 /* Q0 and k from the rest poses; fails when the source is degenerate. */
 cub_err rt_setup_frames(rt_ctx *c);
 
@@ -63,6 +63,6 @@ cub_err rt_setup_frames(rt_ctx *c);
 /* Place the floor, find contacts, pin the feet, fill the report. */
 void rt_feet(rt_ctx *c, cub_retarget_report *rep);
 /* Target world positions and rotations of frame f. */
-void rt_target_world(const rt_ctx *c, int f, rt_v3 *pos, rt_q *rot);
+void rt_target_world(const rt_ctx *c, int f, cub_dv3 *pos, cub_dq *rot);
 
 #endif

@@ -50,7 +50,7 @@ static const uint8_t *bone_colour(const cub_skeleton *s, int j)
 
 /* One figure in a cell: view 0 = front (x to the viewer's right is the
  * bear's left, +x), view 1 = side (from the bear's left: +z to the right). */
-static void draw_figure(canvas *c, int cx, int cy, const cub_skeleton *s, const rt_v3 *pos,
+static void draw_figure(canvas *c, int cx, int cy, const cub_skeleton *s, const cub_dv3 *pos,
                         int view, double mm_per_px)
 {
     static const uint8_t floor_rgb[3] = {120, 160, 90};
@@ -75,14 +75,14 @@ cub_err cub_retarget_sheet_png(const char *path, const cub_clip *clip, int colum
     for (size_t i = 0; i < (size_t)c.w * c.h; i++)
         memcpy(c.px + i * 4, (const uint8_t[4]){235, 238, 242, 255}, 4);
     const cub_skeleton *s = clip->skel;
-    rt_v3 pos[CUB_MOTION_MAX_JOINTS];
-    rt_q rot[CUB_MOTION_MAX_JOINTS], wrot[CUB_MOTION_MAX_JOINTS];
+    cub_dv3 pos[CUB_MOTION_MAX_JOINTS];
+    cub_dq rot[CUB_MOTION_MAX_JOINTS], wrot[CUB_MOTION_MAX_JOINTS];
     double mm_per_px = 5.5; /* the 0.93 m bear plus a jump fits a 240 px cell */
     for (int col = 0; col < columns; col++) {
         int f = columns > 1 ? (int)((long)col * (clip->frame_count - 1) / (columns - 1)) : 0;
         for (int j = 0; j < s->joint_count; j++)
-            rot[j] = rt_q_from_fx(clip->rot[(size_t)f * s->joint_count + j]);
-        rt_forward(s, rt_v3_from_fx(clip->root_mm[f]), rot, NULL, pos, wrot);
+            rot[j] = cub_dq_norm(cub_dq_from_fx(clip->rot[(size_t)f * s->joint_count + j]));
+        rt_forward(s, cub_dv3_from_fx(clip->root_mm[f]), rot, NULL, pos, wrot);
         for (int view = 0; view < 2; view++)
             draw_figure(&c, col * CELL_W, view * CELL_H, s, pos, view, mm_per_px);
     }

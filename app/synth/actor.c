@@ -93,7 +93,7 @@ struct synth_actor {
     cub_io_motion m;
     int ia[CUB_KJ_COUNT], ib[CUB_KJ_COUNT];
     float frac[CUB_KJ_COUNT];
-    sv3 basis[3]; /* source axes giving the actor's x (left), y (up), z (forward) */
+    cub_fv3 basis[3]; /* source axes giving the actor's x (left), y (up), z (forward) */
     float scale;
     float height_mm;
     cub_pose pose;                         /* scratch */
@@ -190,32 +190,33 @@ static cub_err map_joints(synth_actor *a, cub_diag *diag)
 }
 
 /* The source points (no basis, no scale) of the pose in a->pose. */
-static void source_points(synth_actor *a, sv3 out[CUB_KJ_COUNT])
+static void source_points(synth_actor *a, cub_fv3 out[CUB_KJ_COUNT])
 {
     cub_motion_forward(&a->m.skel, &a->pose, a->world, NULL);
     for (int j = 0; j < CUB_KJ_COUNT; j++) {
         const cub_vec3 *pa = &a->world[a->ia[j]];
-        sv3 p = v3(pa->x / 65536.0f, pa->y / 65536.0f, pa->z / 65536.0f);
+        cub_fv3 p = cub_fv3_make(pa->x / 65536.0f, pa->y / 65536.0f, pa->z / 65536.0f);
         if (a->ib[j] >= 0) {
             const cub_vec3 *pb = &a->world[a->ib[j]];
-            p = v3_lerp(p, v3(pb->x / 65536.0f, pb->y / 65536.0f, pb->z / 65536.0f), a->frac[j]);
+            cub_fv3 q = cub_fv3_make(pb->x / 65536.0f, pb->y / 65536.0f, pb->z / 65536.0f);
+            p = cub_fv3_lerp(p, q, a->frac[j]);
         }
         out[j] = p;
     }
 }
 
 /* The nearest file axis (+-x, +-y, +-z) to v. */
-static sv3 snap_axis(sv3 v)
+static cub_fv3 snap_axis(cub_fv3 v)
 {
     float ax = fabsf(v.x), ay = fabsf(v.y), az = fabsf(v.z);
-    if (ax >= ay && ax >= az) return v3(v.x > 0 ? 1.0f : -1.0f, 0, 0);
-    if (ay >= az) return v3(0, v.y > 0 ? 1.0f : -1.0f, 0);
-    return v3(0, 0, v.z > 0 ? 1.0f : -1.0f);
+    if (ax >= ay && ax >= az) return cub_fv3_make(v.x > 0 ? 1.0f : -1.0f, 0, 0);
+    if (ay >= az) return cub_fv3_make(0, v.y > 0 ? 1.0f : -1.0f, 0);
+    return cub_fv3_make(0, 0, v.z > 0 ? 1.0f : -1.0f);
 }
 
-static float dist(sv3 a, sv3 b)
+static float dist(cub_fv3 a, cub_fv3 b)
 {
-    return v3_len(v3_sub(a, b));
+    return cub_fv3_len(cub_fv3_sub(a, b));
 }
 
 /* Axes and scale from the first frame: some files (Rokoko) have a rest
@@ -223,27 +224,27 @@ static float dist(sv3 a, sv3 b)
  * right hip -> left hip, each snapped to the nearest file axis. */
 static cub_err set_frame(synth_actor *a, cub_diag *diag)
 {
-    sv3 p[CUB_KJ_COUNT];
+    cub_fv3 p[CUB_KJ_COUNT];
     cub_motion_sample(&a->m.clip, 0, CUB_MOTION_CLAMP, &a->pose);
     source_points(a, p);
-    sv3 up = snap_axis(v3_sub(p[CUB_KJ_SHOULDER_CENTRE], p[CUB_KJ_HIP_CENTRE]));
-    sv3 left = snap_axis(v3_sub(p[CUB_KJ_HIP_L], p[CUB_KJ_HIP_R]));
-    if (fabsf(v3_dot(up, left)) > 0.5f)
+    cub_fv3 up = snap_axis(cub_fv3_sub(p[CUB_KJ_SHOULDER_CENTRE], p[CUB_KJ_HIP_CENTRE]));
+    cub_fv3 left = snap_axis(cub_fv3_sub(p[CUB_KJ_HIP_L], p[CUB_KJ_HIP_R]));
+    if (fabsf(cub_fv3_dot(up, left)) > 0.5f)
         return fail(diag, a->name, "first frame has no clear up and left directions%s%s", "", "");
     a->basis[0] = left;
     a->basis[1] = up;
-    a->basis[2] = v3_cross(left, up); /* forward, right-handed */
+    a->basis[2] = cub_fv3_cross(left, up); /* forward, right-handed */
     /* Shoulder height when standing straight, from bone lengths (they do
      * not depend on the pose; CMU's rest legs splay 20 degrees) and the
      * first frame's small vertical offsets (hip joints, feet). */
     float leg = 0, drop = 0;
     for (int k = CUB_KJ_HIP_L; k <= CUB_KJ_HIP_R; k += CUB_KJ_HIP_R - CUB_KJ_HIP_L) {
-        sv3 heel, toe;
+        cub_fv3 heel, toe;
         synth_body_foot_ends(p[k + 2], p[k + 3], &heel, &toe);
-        float sole = fminf(v3_dot(heel, up), v3_dot(toe, up));
+        float sole = fminf(cub_fv3_dot(heel, up), cub_fv3_dot(toe, up));
         leg += 0.5f * (dist(p[k], p[k + 1]) + dist(p[k + 1], p[k + 2]));
-        drop += 0.5f * (v3_dot(v3_sub(p[CUB_KJ_HIP_CENTRE], p[k]), up) +
-                        fmaxf(0, v3_dot(p[k + 2], up) - sole));
+        drop += 0.5f * (cub_fv3_dot(cub_fv3_sub(p[CUB_KJ_HIP_CENTRE], p[k]), up) +
+                        fmaxf(0, cub_fv3_dot(p[k + 2], up) - sole));
     }
     float shoulder = dist(p[CUB_KJ_SHOULDER_CENTRE], p[CUB_KJ_HIP_CENTRE]) + leg + drop;
     if (!(shoulder > 1.0f))
@@ -293,15 +294,16 @@ double synth_actor_duration_s(const synth_actor *a)
     return (double)cub_motion_clip_duration_us(&a->m.clip) / 1e6;
 }
 
-void synth_actor_points(const synth_actor *a_const, double t_s, sv3 out[SP_COUNT])
+void synth_actor_points(const synth_actor *a_const, double t_s, cub_fv3 out[SP_COUNT])
 {
     synth_actor *a = (synth_actor *)a_const; /* scratch buffers only */
-    sv3 p[CUB_KJ_COUNT];
+    cub_fv3 p[CUB_KJ_COUNT];
     cub_motion_sample(&a->m.clip, (int64_t)(t_s * 1e6), CUB_MOTION_CLAMP, &a->pose);
     source_points(a, p);
     for (int j = 0; j < CUB_KJ_COUNT; j++)
-        out[j] = v3_mul(
-            v3(v3_dot(p[j], a->basis[0]), v3_dot(p[j], a->basis[1]), v3_dot(p[j], a->basis[2])),
+        out[j] = cub_fv3_scale(
+            cub_fv3_make(cub_fv3_dot(p[j], a->basis[0]), cub_fv3_dot(p[j], a->basis[1]),
+                         cub_fv3_dot(p[j], a->basis[2])),
             a->scale);
     synth_body_shape shape = {.height_mm = a->height_mm, .build = 1};
     synth_body_head(&shape, out[CUB_KJ_SHOULDER_CENTRE], out[CUB_KJ_HEAD], &out[CUB_KJ_HEAD],
@@ -309,8 +311,9 @@ void synth_actor_points(const synth_actor *a_const, double t_s, sv3 out[SP_COUNT
     /* Source hands range from a wrist marker to a fingertip: keep their
      * direction, give the child's palm centre a child's distance. */
     for (int w = CUB_KJ_WRIST_L; w <= CUB_KJ_WRIST_R; w += CUB_KJ_WRIST_R - CUB_KJ_WRIST_L) {
-        sv3 dir = v3_sub(out[w + 1], out[w]);
-        if (v3_len(dir) < 1.0f) dir = v3_sub(out[w], out[w - 1]);
-        out[w + 1] = v3_add(out[w], v3_mul(v3_norm(dir), synth_body_hand_mm(&shape)));
+        cub_fv3 dir = cub_fv3_sub(out[w + 1], out[w]);
+        if (cub_fv3_len(dir) < 1.0f) dir = cub_fv3_sub(out[w], out[w - 1]);
+        cub_fv3 u = cub_fv3_norm(dir, cub_fv3_make(0, 1, 0));
+        out[w + 1] = cub_fv3_add(out[w], cub_fv3_scale(u, synth_body_hand_mm(&shape)));
     }
 }

@@ -18,10 +18,10 @@ float synth_body_hand_mm(const synth_body_shape *s)
     return s->height_mm * 0.045f;
 }
 
-void synth_body_foot_ends(sv3 ankle, sv3 foot, sv3 *heel, sv3 *toe)
+void synth_body_foot_ends(cub_fv3 ankle, cub_fv3 foot, cub_fv3 *heel, cub_fv3 *toe)
 {
-    *heel = v3_lerp(ankle, foot, -0.25f);
-    *toe = v3_lerp(ankle, foot, 1.25f);
+    *heel = cub_fv3_lerp(ankle, foot, -0.25f);
+    *toe = cub_fv3_lerp(ankle, foot, 1.25f);
 }
 
 float synth_body_sole_mm(const synth_body_shape *s)
@@ -29,12 +29,13 @@ float synth_body_sole_mm(const synth_body_shape *s)
     return s->height_mm * FOOT_R_F;
 }
 
-void synth_body_head(const synth_body_shape *s, sv3 sc, sv3 head_dir_point, sv3 *centre, sv3 *top)
+void synth_body_head(const synth_body_shape *s, cub_fv3 sc, cub_fv3 head_dir_point, cub_fv3 *centre,
+                     cub_fv3 *top)
 {
-    sv3 u = v3_norm(v3_sub(head_dir_point, sc));
+    cub_fv3 u = cub_fv3_norm(cub_fv3_sub(head_dir_point, sc), cub_fv3_make(0, 1, 0));
     float h = s->height_mm;
-    *centre = v3_add(sc, v3_mul(u, h * (NECK_F + HEAD_UP_F)));
-    *top = v3_add(*centre, v3_mul(u, h * HEAD_UP_F));
+    *centre = cub_fv3_add(sc, cub_fv3_scale(u, h * (NECK_F + HEAD_UP_F)));
+    *top = cub_fv3_add(*centre, cub_fv3_scale(u, h * HEAD_UP_F));
 }
 
 static float loose_add(const synth_body_shape *s, float f)
@@ -62,13 +63,14 @@ float synth_body_joint_radius(const synth_body_shape *s, int j)
     }
 }
 
-static synth_prim capsule(sv3 a, sv3 b, float r, uint8_t owner)
+static synth_prim capsule(cub_fv3 a, cub_fv3 b, float r, uint8_t owner)
 {
     synth_prim p = {.kind = PRIM_CAPSULE, .owner = owner, .a = a, .b = b, .r = r};
     return p;
 }
 
-static synth_prim ellipsoid(sv3 c, const sv3 axis[3], float rx, float ry, float rz, uint8_t owner)
+static synth_prim ellipsoid(cub_fv3 c, const cub_fv3 axis[3], float rx, float ry, float rz,
+                            uint8_t owner)
 {
     synth_prim p = {.kind = PRIM_ELLIPSOID, .owner = owner, .a = c};
     for (int i = 0; i < 3; i++)
@@ -81,30 +83,31 @@ static synth_prim ellipsoid(sv3 c, const sv3 axis[3], float rx, float ry, float 
 
 /* side (x), up (y), forward (z): an orthonormal frame from up and a rough
  * side direction. */
-static void frame_of(sv3 up, sv3 side, sv3 axis[3])
+static void frame_of(cub_fv3 up, cub_fv3 side, cub_fv3 axis[3])
 {
-    axis[1] = v3_norm(up);
-    axis[0] = v3_norm(v3_sub(side, v3_mul(axis[1], v3_dot(side, axis[1]))));
-    axis[2] = v3_cross(axis[0], axis[1]);
+    axis[1] = cub_fv3_norm(up, cub_fv3_make(0, 1, 0));
+    cub_fv3 across = cub_fv3_sub(side, cub_fv3_scale(axis[1], cub_fv3_dot(side, axis[1])));
+    axis[0] = cub_fv3_norm(across, cub_fv3_make(0, 1, 0));
+    axis[2] = cub_fv3_cross(axis[0], axis[1]);
 }
 
-int synth_body_prims(const synth_body_shape *s, const sv3 p[SP_COUNT], uint8_t owner,
+int synth_body_prims(const synth_body_shape *s, const cub_fv3 p[SP_COUNT], uint8_t owner,
                      synth_prim *out)
 {
     float h = s->height_mm, b = s->build;
     int n = 0;
-    sv3 ax[3];
-    frame_of(v3_sub(p[CUB_KJ_HEAD], p[CUB_KJ_SHOULDER_CENTRE]),
-             v3_sub(p[CUB_KJ_SHOULDER_L], p[CUB_KJ_SHOULDER_R]), ax);
+    cub_fv3 ax[3];
+    frame_of(cub_fv3_sub(p[CUB_KJ_HEAD], p[CUB_KJ_SHOULDER_CENTRE]),
+             cub_fv3_sub(p[CUB_KJ_SHOULDER_L], p[CUB_KJ_SHOULDER_R]), ax);
     out[n++] = ellipsoid(p[CUB_KJ_HEAD], ax, 0.064f * h, HEAD_UP_F * h, 0.078f * h, owner);
     out[n++] = capsule(p[CUB_KJ_SHOULDER_CENTRE], p[CUB_KJ_HEAD], 0.03f * h * b, owner);
 
-    frame_of(v3_sub(p[CUB_KJ_SHOULDER_CENTRE], p[CUB_KJ_HIP_CENTRE]),
-             v3_sub(p[CUB_KJ_SHOULDER_L], p[CUB_KJ_SHOULDER_R]), ax);
+    frame_of(cub_fv3_sub(p[CUB_KJ_SHOULDER_CENTRE], p[CUB_KJ_HIP_CENTRE]),
+             cub_fv3_sub(p[CUB_KJ_SHOULDER_L], p[CUB_KJ_SHOULDER_R]), ax);
     float wide = loose_add(s, 0.02f);
-    out[n++] = ellipsoid(v3_lerp(p[CUB_KJ_SPINE], p[CUB_KJ_SHOULDER_CENTRE], 0.35f), ax,
+    out[n++] = ellipsoid(cub_fv3_lerp(p[CUB_KJ_SPINE], p[CUB_KJ_SHOULDER_CENTRE], 0.35f), ax,
                          0.095f * h * b + wide, 0.15f * h, 0.06f * h * b + wide, owner);
-    out[n++] = ellipsoid(v3_lerp(p[CUB_KJ_HIP_CENTRE], p[CUB_KJ_SPINE], 0.2f), ax,
+    out[n++] = ellipsoid(cub_fv3_lerp(p[CUB_KJ_HIP_CENTRE], p[CUB_KJ_SPINE], 0.2f), ax,
                          0.09f * h * b + wide, 0.12f * h, 0.058f * h * b + wide, owner);
     out[n++] = capsule(p[CUB_KJ_SHOULDER_L], p[CUB_KJ_SHOULDER_R], 0.038f * h * b, owner);
     out[n++] = capsule(p[CUB_KJ_HIP_L], p[CUB_KJ_HIP_R], 0.05f * h * b, owner);
@@ -112,22 +115,22 @@ int synth_body_prims(const synth_body_shape *s, const sv3 p[SP_COUNT], uint8_t o
         int sh = side ? CUB_KJ_SHOULDER_R : CUB_KJ_SHOULDER_L;
         out[n++] = capsule(p[sh], p[sh + 1], 0.03f * h * b, owner);
         out[n++] = capsule(p[sh + 1], p[sh + 2], 0.025f * h * b, owner);
-        sv3 tip = v3_lerp(p[sh + 2], p[sh + 3], 2.0f);
+        cub_fv3 tip = cub_fv3_lerp(p[sh + 2], p[sh + 3], 2.0f);
         out[n++] = capsule(p[sh + 2], tip, 0.021f * h, owner);
         int hip = side ? CUB_KJ_HIP_R : CUB_KJ_HIP_L;
         out[n++] = capsule(p[hip], p[hip + 1], 0.05f * h * b + loose_add(s, 0.015f), owner);
         out[n++] = capsule(p[hip + 1], p[hip + 2], 0.036f * h * b, owner);
-        sv3 heel, toe;
+        cub_fv3 heel, toe;
         synth_body_foot_ends(p[hip + 2], p[hip + 3], &heel, &toe);
         out[n++] = capsule(heel, toe, FOOT_R_F * h, owner);
     }
     if (s->loose) {
-        sv3 hips = v3_lerp(p[CUB_KJ_HIP_L], p[CUB_KJ_HIP_R], 0.5f);
-        sv3 knees = v3_lerp(p[CUB_KJ_KNEE_L], p[CUB_KJ_KNEE_R], 0.5f);
+        cub_fv3 hips = cub_fv3_lerp(p[CUB_KJ_HIP_L], p[CUB_KJ_HIP_R], 0.5f);
+        cub_fv3 knees = cub_fv3_lerp(p[CUB_KJ_KNEE_L], p[CUB_KJ_KNEE_R], 0.5f);
         synth_prim c = {.kind = PRIM_CYLINDER,
                         .owner = owner,
-                        .a = v3_lerp(p[CUB_KJ_HIP_CENTRE], p[CUB_KJ_SPINE], 0.3f),
-                        .b = v3_lerp(hips, knees, 0.55f),
+                        .a = cub_fv3_lerp(p[CUB_KJ_HIP_CENTRE], p[CUB_KJ_SPINE], 0.3f),
+                        .b = cub_fv3_lerp(hips, knees, 0.55f),
                         .r = 0.115f * h * b};
         out[n++] = c;
     }

@@ -16,16 +16,16 @@ void synth_prim_bound(synth_prim *p)
     switch (p->kind) {
     case PRIM_CAPSULE:
     case PRIM_CYLINDER:
-        p->bs_c = v3_lerp(p->a, p->b, 0.5f);
-        p->bs_r = v3_len(v3_sub(p->b, p->a)) * 0.5f + p->r;
+        p->bs_c = cub_fv3_lerp(p->a, p->b, 0.5f);
+        p->bs_r = cub_fv3_len(cub_fv3_sub(p->b, p->a)) * 0.5f + p->r;
         break;
     case PRIM_ELLIPSOID:
         p->bs_c = p->a;
         p->bs_r = fmaxf(p->radii[0], fmaxf(p->radii[1], p->radii[2]));
         break;
     case PRIM_BOX:
-        p->bs_c = v3_lerp(p->a, p->b, 0.5f);
-        p->bs_r = v3_len(v3_sub(p->b, p->a)) * 0.5f;
+        p->bs_c = cub_fv3_lerp(p->a, p->b, 0.5f);
+        p->bs_r = cub_fv3_len(cub_fv3_sub(p->b, p->a)) * 0.5f;
         break;
     default: p->bs_r = -1.0f; break;
     }
@@ -39,10 +39,10 @@ static float near_root(float A, float B, float C)
     return (-B - sqrtf(h)) / A;
 }
 
-static float hit_sphere(sv3 o, sv3 d, float dd, sv3 c, float r)
+static float hit_sphere(cub_fv3 o, cub_fv3 d, float dd, cub_fv3 c, float r)
 {
-    sv3 oc = v3_sub(o, c);
-    return near_root(dd, v3_dot(oc, d), v3_dot(oc, oc) - r * r);
+    cub_fv3 oc = cub_fv3_sub(o, c);
+    return near_root(dd, cub_fv3_dot(oc, d), cub_fv3_dot(oc, oc) - r * r);
 }
 
 /* A ray o + t d against the infinite cylinder of radius r around the line
@@ -52,20 +52,20 @@ typedef struct axis_quad {
     float baba, bard, baoa, A, B, C;
 } axis_quad;
 
-static axis_quad axis_quadratic(const synth_prim *p, sv3 o, sv3 d, float dd)
+static axis_quad axis_quadratic(const synth_prim *p, cub_fv3 o, cub_fv3 d, float dd)
 {
-    sv3 ba = v3_sub(p->b, p->a), oa = v3_sub(o, p->a);
+    cub_fv3 ba = cub_fv3_sub(p->b, p->a), oa = cub_fv3_sub(o, p->a);
     axis_quad q;
-    q.baba = v3_dot(ba, ba);
-    q.bard = v3_dot(ba, d);
-    q.baoa = v3_dot(ba, oa);
+    q.baba = cub_fv3_dot(ba, ba);
+    q.bard = cub_fv3_dot(ba, d);
+    q.baoa = cub_fv3_dot(ba, oa);
     q.A = q.baba * dd - q.bard * q.bard;
-    q.B = q.baba * v3_dot(oa, d) - q.baoa * q.bard;
-    q.C = q.baba * v3_dot(oa, oa) - q.baoa * q.baoa - p->r * p->r * q.baba;
+    q.B = q.baba * cub_fv3_dot(oa, d) - q.baoa * q.bard;
+    q.C = q.baba * cub_fv3_dot(oa, oa) - q.baoa * q.baoa - p->r * p->r * q.baba;
     return q;
 }
 
-static float hit_capsule(const synth_prim *p, sv3 o, sv3 d, float dd)
+static float hit_capsule(const synth_prim *p, cub_fv3 o, cub_fv3 d, float dd)
 {
     axis_quad q = axis_quadratic(p, o, d, dd);
     if (q.A > 0 && q.B * q.B - q.A * q.C < 0)
@@ -82,7 +82,7 @@ static float hit_capsule(const synth_prim *p, sv3 o, sv3 d, float dd)
     return (tb > 0 && tb < ta) ? tb : ta;
 }
 
-static float hit_cylinder(const synth_prim *p, sv3 o, sv3 d, float dd)
+static float hit_cylinder(const synth_prim *p, cub_fv3 o, cub_fv3 d, float dd)
 {
     axis_quad q = axis_quadratic(p, o, d, dd);
     float h = q.B * q.B - q.A * q.C;
@@ -96,13 +96,13 @@ static float hit_cylinder(const synth_prim *p, sv3 o, sv3 d, float dd)
     return fabsf(q.B + q.A * t) < h ? t : -1.0f;
 }
 
-static float hit_ellipsoid(const synth_prim *p, sv3 o, sv3 d)
+static float hit_ellipsoid(const synth_prim *p, cub_fv3 o, cub_fv3 d)
 {
-    sv3 oc = v3_sub(o, p->a);
+    cub_fv3 oc = cub_fv3_sub(o, p->a);
     float lo[3], ld[3];
     for (int i = 0; i < 3; i++) {
-        lo[i] = v3_dot(oc, p->axis[i]) / p->radii[i];
-        ld[i] = v3_dot(d, p->axis[i]) / p->radii[i];
+        lo[i] = cub_fv3_dot(oc, p->axis[i]) / p->radii[i];
+        ld[i] = cub_fv3_dot(d, p->axis[i]) / p->radii[i];
     }
     float A = ld[0] * ld[0] + ld[1] * ld[1] + ld[2] * ld[2];
     float B = lo[0] * ld[0] + lo[1] * ld[1] + lo[2] * ld[2];
@@ -124,7 +124,7 @@ static float slab(float o, float d, float lo, float hi, float *tmin, float *tmax
     return 1.0f;
 }
 
-static float hit_box(const synth_prim *p, sv3 o, sv3 d)
+static float hit_box(const synth_prim *p, cub_fv3 o, cub_fv3 d)
 {
     float tmin = -FLT_MAX, tmax = FLT_MAX;
     if (slab(o.x, d.x, p->a.x, p->b.x, &tmin, &tmax) < 0 ||
@@ -135,7 +135,7 @@ static float hit_box(const synth_prim *p, sv3 o, sv3 d)
 }
 
 /* The floor: y = 0 within the x and z ranges of a and b. */
-static float hit_floor(const synth_prim *p, sv3 o, sv3 d)
+static float hit_floor(const synth_prim *p, cub_fv3 o, cub_fv3 d)
 {
     if (d.y >= -1e-9f || o.y <= 0) return -1.0f;
     float t = -o.y / d.y;
@@ -143,7 +143,7 @@ static float hit_floor(const synth_prim *p, sv3 o, sv3 d)
     return (x >= p->a.x && x <= p->b.x && z >= p->a.z && z <= p->b.z) ? t : -1.0f;
 }
 
-static float hit(const synth_prim *p, sv3 o, sv3 d, float dd)
+static float hit(const synth_prim *p, cub_fv3 o, cub_fv3 d, float dd)
 {
     switch (p->kind) {
     case PRIM_CAPSULE: return hit_capsule(p, o, d, dd);
@@ -164,8 +164,8 @@ static int screen_rect(const synth_camera *cam, const synth_prim *p, int r[4])
 {
     r[0] = 0, r[1] = 0, r[2] = W - 1, r[3] = H - 1;
     if (p->bs_r < 0) return 1;
-    sv3 c = v3_sub(p->bs_c, cam->origin);
-    float x = v3_dot(c, cam->x), y = v3_dot(c, cam->y), z = v3_dot(c, cam->z);
+    cub_fv3 c = cub_fv3_sub(p->bs_c, cam->origin);
+    float x = cub_fv3_dot(c, cam->x), y = cub_fv3_dot(c, cam->y), z = cub_fv3_dot(c, cam->z);
     float rad = p->bs_r;
     if (z + rad < NEAR_MM) return 0;
     if (z - rad < NEAR_MM) return 1;
@@ -194,10 +194,10 @@ void synth_raycast(const synth_camera *cam, const synth_prim *prims, int n, floa
         int r[4];
         if (!screen_rect(cam, p, r)) continue;
         for (int v = r[1]; v <= r[3]; v++) {
-            sv3 row = v3_add(cam->z, v3_mul(cam->y, (CUB_KINECT_CY - v) / F));
+            cub_fv3 row = cub_fv3_add(cam->z, cub_fv3_scale(cam->y, (CUB_KINECT_CY - v) / F));
             for (int u = r[0]; u <= r[2]; u++) {
-                sv3 d = v3_add(row, v3_mul(cam->x, (u - CUB_KINECT_CX) / F));
-                float t = hit(p, cam->origin, d, v3_dot(d, d));
+                cub_fv3 d = cub_fv3_add(row, cub_fv3_scale(cam->x, (u - CUB_KINECT_CX) / F));
+                float t = hit(p, cam->origin, d, cub_fv3_dot(d, d));
                 float *z = &depth_mm[v * W + u];
                 if (t > NEAR_MM && (*z == 0 || t < *z)) {
                     *z = t;

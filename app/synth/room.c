@@ -7,7 +7,10 @@
 static synth_prim box(float x0, float y0, float z0, float x1, float y1, float z1)
 {
     synth_prim p = {
-        .kind = PRIM_BOX, .owner = OWNER_ROOM, .a = v3(x0, y0, z0), .b = v3(x1, y1, z1)};
+        .kind = PRIM_BOX,
+        .owner = OWNER_ROOM,
+        .a = cub_fv3_make(x0, y0, z0),
+        .b = cub_fv3_make(x1, y1, z1)};
     synth_prim_bound(&p);
     return p;
 }
@@ -15,7 +18,11 @@ static synth_prim box(float x0, float y0, float z0, float x1, float y1, float z1
 static synth_prim cylinder(float x, float y0, float y1, float z, float r)
 {
     synth_prim p = {
-        .kind = PRIM_CYLINDER, .owner = OWNER_ROOM, .a = v3(x, y0, z), .b = v3(x, y1, z), .r = r};
+        .kind = PRIM_CYLINDER,
+        .owner = OWNER_ROOM,
+        .a = cub_fv3_make(x, y0, z),
+        .b = cub_fv3_make(x, y1, z),
+        .r = r};
     synth_prim_bound(&p);
     return p;
 }
@@ -25,8 +32,8 @@ void synth_room_build(float d, int furnished, synth_prim *out, int *n)
     int k = 0;
     float wall = d + 1600.0f;
     synth_prim floor = {.kind = PRIM_FLOOR, .owner = OWNER_ROOM};
-    floor.a = v3(-5000, 0, 0);
-    floor.b = v3(5000, 0, furnished ? wall : 20000.0f);
+    floor.a = cub_fv3_make(-5000, 0, 0);
+    floor.b = cub_fv3_make(5000, 0, furnished ? wall : 20000.0f);
     synth_prim_bound(&floor);
     out[k++] = floor;
     if (furnished) {
@@ -45,10 +52,10 @@ void synth_room_build(float d, int furnished, synth_prim *out, int *n)
         /* plant: pot and foliage */
         out[k++] = cylinder(-950, 0, 320, d + 300, 150);
         synth_prim leaves = {
-            .kind = PRIM_ELLIPSOID, .owner = OWNER_ROOM, .a = v3(-950, 650, d + 300)};
-        leaves.axis[0] = v3(1, 0, 0);
-        leaves.axis[1] = v3(0, 1, 0);
-        leaves.axis[2] = v3(0, 0, 1);
+            .kind = PRIM_ELLIPSOID, .owner = OWNER_ROOM, .a = cub_fv3_make(-950, 650, d + 300)};
+        leaves.axis[0] = cub_fv3_make(1, 0, 0);
+        leaves.axis[1] = cub_fv3_make(0, 1, 0);
+        leaves.axis[2] = cub_fv3_make(0, 0, 1);
         leaves.radii[0] = 260;
         leaves.radii[1] = 360;
         leaves.radii[2] = 260;

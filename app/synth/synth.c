@@ -16,7 +16,7 @@ typedef struct seg {
     double from_s, dur_s, start_s; /* clip time, length, start in the performance */
     int mirror;
     float cos_b, sin_b; /* yaw that turns the clip's mean facing to the camera */
-    sv3 centre;         /* the clip's mean ground position (actor frame) */
+    cub_fv3 centre;         /* the clip's mean ground position (actor frame) */
     float floor_y;      /* the lowest sole over the segment (actor frame) */
 } seg;
 
@@ -59,16 +59,16 @@ static float build_factor(int build)
 /* Mean facing, mean ground position and lowest sole over the segment. */
 static void fit_segment(seg *s, float sole_mm)
 {
-    sv3 p[SP_COUNT], left = v3(0, 0, 0), centre = v3(0, 0, 0);
+    cub_fv3 p[SP_COUNT], left = cub_fv3_make(0, 0, 0), centre = cub_fv3_make(0, 0, 0);
     float low = 1e30f;
     const int K = 24;
     for (int k = 0; k < K; k++) {
         synth_actor_points(s->actor, s->from_s + s->dur_s * k / (K - 1), p);
-        left = v3_add(left, v3_sub(p[CUB_KJ_HIP_L], p[CUB_KJ_HIP_R]));
-        left = v3_add(left, v3_sub(p[CUB_KJ_SHOULDER_L], p[CUB_KJ_SHOULDER_R]));
-        centre = v3_add(centre, v3_mul(p[CUB_KJ_HIP_CENTRE], 1.0f / K));
+        left = cub_fv3_add(left, cub_fv3_sub(p[CUB_KJ_HIP_L], p[CUB_KJ_HIP_R]));
+        left = cub_fv3_add(left, cub_fv3_sub(p[CUB_KJ_SHOULDER_L], p[CUB_KJ_SHOULDER_R]));
+        centre = cub_fv3_add(centre, cub_fv3_scale(p[CUB_KJ_HIP_CENTRE], 1.0f / K));
         for (int a = CUB_KJ_ANKLE_L; a <= CUB_KJ_ANKLE_R; a += CUB_KJ_ANKLE_R - CUB_KJ_ANKLE_L) {
-            sv3 heel, toe;
+            cub_fv3 heel, toe;
             synth_body_foot_ends(p[a], p[a + 1], &heel, &toe);
             low = fminf(low, fminf(heel.y, toe.y));
         }
@@ -83,19 +83,20 @@ static void fit_segment(seg *s, float sole_mm)
 
 /* The segment's points at clip time t, in the player frame (floor y = 0,
  * facing -z, centred on x = z = 0). */
-static void segment_points(const seg *s, double t_s, sv3 out[SP_COUNT])
+static void segment_points(const seg *s, double t_s, cub_fv3 out[SP_COUNT])
 {
-    sv3 p[SP_COUNT];
+    cub_fv3 p[SP_COUNT];
     synth_actor_points(s->actor, t_s, p);
     for (int j = 0; j < SP_COUNT; j++) {
         float x = p[j].x - s->centre.x, z = p[j].z - s->centre.z;
-        out[j] = v3(x * s->cos_b - z * s->sin_b, p[j].y - s->floor_y, x * s->sin_b + z * s->cos_b);
+        out[j] = cub_fv3_make(x * s->cos_b - z * s->sin_b, p[j].y - s->floor_y,
+                              x * s->sin_b + z * s->cos_b);
     }
     if (!s->mirror) return;
     for (int j = 0; j < SP_COUNT; j++)
         out[j].x = -out[j].x;
     for (int k = 0; k < 4; k++) { /* shoulder..hand, hip..foot: L and R swap */
-        sv3 t = out[CUB_KJ_SHOULDER_L + k];
+        cub_fv3 t = out[CUB_KJ_SHOULDER_L + k];
         out[CUB_KJ_SHOULDER_L + k] = out[CUB_KJ_SHOULDER_R + k];
         out[CUB_KJ_SHOULDER_R + k] = t;
         t = out[CUB_KJ_HIP_L + k];
@@ -104,7 +105,7 @@ static void segment_points(const seg *s, double t_s, sv3 out[SP_COUNT])
     }
 }
 
-static void player_points(const cub_synth *s, double t_s, sv3 out[SP_COUNT])
+static void player_points(const cub_synth *s, double t_s, cub_fv3 out[SP_COUNT])
 {
     int k = 0;
     while (k + 1 < s->nseg && t_s >= s->segs[k + 1].start_s)
@@ -114,33 +115,33 @@ static void player_points(const cub_synth *s, double t_s, sv3 out[SP_COUNT])
     if (local > g->dur_s) local = g->dur_s;
     segment_points(g, g->from_s + local, out);
     if (k > 0 && local < s->d.blend_s) {
-        sv3 prev[SP_COUNT];
+        cub_fv3 prev[SP_COUNT];
         const seg *q = &s->segs[k - 1];
         segment_points(q, q->from_s + q->dur_s, prev);
         float w = (float)(local / s->d.blend_s);
         w = w * w * (3 - 2 * w);
         for (int j = 0; j < SP_COUNT; j++)
-            out[j] = v3_lerp(prev[j], out[j], w);
+            out[j] = cub_fv3_lerp(prev[j], out[j], w);
     }
 }
 
 static void set_cameras(cub_synth *s)
 {
     float th = s->d.tilt_deg * PI_F / 180.0f, c = cosf(th), n = sinf(th);
-    s->cam.origin = v3(0, s->d.camera_height_mm, 0);
-    s->cam.x = v3(1, 0, 0);
-    s->cam.y = v3(0, c, -n);
-    s->cam.z = v3(0, n, c);
+    s->cam.origin = cub_fv3_make(0, s->d.camera_height_mm, 0);
+    s->cam.x = cub_fv3_make(1, 0, 0);
+    s->cam.y = cub_fv3_make(0, c, -n);
+    s->cam.z = cub_fv3_make(0, n, c);
     s->proj = s->cam;
-    s->proj.origin = v3_add(s->cam.origin, v3_mul(s->cam.x, CUB_SYNTH_PROJECTOR_X_MM));
+    s->proj.origin = cub_fv3_add(s->cam.origin, cub_fv3_scale(s->cam.x, CUB_SYNTH_PROJECTOR_X_MM));
 }
 
 void cub_synth_gravity(const cub_synth *s, float g[3])
 {
-    sv3 down = v3(0, -1000.0f, 0);
-    g[0] = v3_dot(down, s->cam.x);
-    g[1] = v3_dot(down, s->cam.y);
-    g[2] = v3_dot(down, s->cam.z);
+    cub_fv3 down = cub_fv3_make(0, -1000.0f, 0);
+    g[0] = cub_fv3_dot(down, s->cam.x);
+    g[1] = cub_fv3_dot(down, s->cam.y);
+    g[2] = cub_fv3_dot(down, s->cam.z);
 }
 
 static cub_err load_segment(cub_synth *s, seg *g, const char *clip, float height_mm, double from_s,
@@ -241,16 +242,17 @@ int cub_synth_frame_count(const cub_synth *s)
     return (int)(s->total_s * s->d.fps + 1e-6);
 }
 
-static sv3 to_world(sv3 p, float dx, float dz)
+static cub_fv3 to_world(cub_fv3 p, float dx, float dz)
 {
-    return v3(p.x + dx, p.y, p.z + dz);
+    return cub_fv3_make(p.x + dx, p.y, p.z + dz);
 }
 
-static void truth_of(const cub_synth *s, const sv3 pts[SP_COUNT], cub_synth_truth_frame *t)
+static void truth_of(const cub_synth *s, const cub_fv3 pts[SP_COUNT], cub_synth_truth_frame *t)
 {
     for (int j = 0; j < CUB_KJ_COUNT; j++) {
-        sv3 c = v3_sub(pts[j], s->cam.origin);
-        float x = v3_dot(c, s->cam.x), y = v3_dot(c, s->cam.y), z = v3_dot(c, s->cam.z);
+        cub_fv3 c = cub_fv3_sub(pts[j], s->cam.origin);
+        float x = cub_fv3_dot(c, s->cam.x), y = cub_fv3_dot(c, s->cam.y);
+        float z = cub_fv3_dot(c, s->cam.z);
         t->joint_mm[j][0] = x;
         t->joint_mm[j][1] = y;
         t->joint_mm[j][2] = z;
@@ -274,7 +276,7 @@ cub_err cub_synth_render(cub_synth *s, int frame, uint16_t *raw, cub_synth_truth
     synth_prim prims[MAX_PRIMS];
     int n = 0;
     double t_s = frame / (double)s->d.fps;
-    sv3 pts[SP_COUNT];
+    cub_fv3 pts[SP_COUNT];
     if (s->nseg > 0) {
         player_points(s, t_s, pts);
         for (int j = 0; j < SP_COUNT; j++)
@@ -282,7 +284,7 @@ cub_err cub_synth_render(cub_synth *s, int frame, uint16_t *raw, cub_synth_truth
         n += synth_body_prims(&s->shape, pts, OWNER_PLAYER, prims + n);
     }
     if (s->has_second) {
-        sv3 q[SP_COUNT];
+        cub_fv3 q[SP_COUNT];
         const seg *g = &s->second;
         segment_points(g, g->from_s + fmod(t_s, g->dur_s), q);
         for (int j = 0; j < SP_COUNT; j++)

@@ -1,5 +1,5 @@
-/* synth internals: small float vector maths, the actor (a clip mapped to
- * the 20 Kinect joints), the body's primitives and the ray caster. */
+/* synth internals: the actor (a clip mapped to the 20 Kinect joints), the
+ * body's primitives and the ray caster (vectors: cub_fv3 of cub/vec.h). */
 #ifndef CUB_SYNTH_INTERNAL_H
 #define CUB_SYNTH_INTERNAL_H
 
@@ -7,48 +7,7 @@
 #include <stdint.h>
 
 #include "cub/synth.h"
-
-typedef struct sv3 {
-    float x, y, z;
-} sv3;
-
-static inline sv3 v3(float x, float y, float z)
-{
-    return (sv3){x, y, z};
-}
-static inline sv3 v3_add(sv3 a, sv3 b)
-{
-    return v3(a.x + b.x, a.y + b.y, a.z + b.z);
-}
-static inline sv3 v3_sub(sv3 a, sv3 b)
-{
-    return v3(a.x - b.x, a.y - b.y, a.z - b.z);
-}
-static inline sv3 v3_mul(sv3 a, float k)
-{
-    return v3(a.x * k, a.y * k, a.z * k);
-}
-static inline float v3_dot(sv3 a, sv3 b)
-{
-    return a.x * b.x + a.y * b.y + a.z * b.z;
-}
-static inline sv3 v3_cross(sv3 a, sv3 b)
-{
-    return v3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
-}
-static inline float v3_len(sv3 a)
-{
-    return sqrtf(v3_dot(a, a));
-}
-static inline sv3 v3_lerp(sv3 a, sv3 b, float t)
-{
-    return v3_add(a, v3_mul(v3_sub(b, a), t));
-}
-static inline sv3 v3_norm(sv3 a)
-{
-    float l = v3_len(a);
-    return l > 1e-6f ? v3_mul(a, 1.0f / l) : v3(0, 1, 0);
-}
+#include "cub/vec.h"
 
 /* The 20 joints of kinect.h, then extra points the body needs. */
 enum { SP_HEAD_TOP = CUB_KJ_COUNT, SP_COUNT };
@@ -63,7 +22,7 @@ void synth_actor_free(synth_actor *a);
 double synth_actor_duration_s(const synth_actor *a);
 /* Points at t_s in the actor's frame: y up, scaled, left +x, facing +z
  * (not yet placed). */
-void synth_actor_points(const synth_actor *a, double t_s, sv3 out[SP_COUNT]);
+void synth_actor_points(const synth_actor *a, double t_s, cub_fv3 out[SP_COUNT]);
 
 /* ---- primitives and the ray caster (raycast.c) -------------------------- */
 enum { PRIM_CAPSULE, PRIM_ELLIPSOID, PRIM_BOX, PRIM_CYLINDER, PRIM_FLOOR };
@@ -71,16 +30,16 @@ enum { OWNER_NONE = 0, OWNER_PLAYER = 1, OWNER_SECOND = 2, OWNER_ROOM = 3 };
 
 typedef struct synth_prim {
     uint8_t kind, owner;
-    sv3 a, b;       /* capsule/cylinder ends; ellipsoid centre (a); box min/max */
+    cub_fv3 a, b;       /* capsule/cylinder ends; ellipsoid centre (a); box min/max */
     float r;        /* capsule/cylinder radius */
-    sv3 axis[3];    /* ellipsoid: unit axes */
+    cub_fv3 axis[3];    /* ellipsoid: unit axes */
     float radii[3]; /* ellipsoid: radius along each axis */
-    sv3 bs_c;       /* bounding sphere (culling) */
+    cub_fv3 bs_c;       /* bounding sphere (culling) */
     float bs_r;     /* < 0: covers the whole image */
 } synth_prim;
 
 typedef struct synth_camera {
-    sv3 origin, x, y, z; /* world position and unit axes */
+    cub_fv3 origin, x, y, z; /* world position and unit axes */
 } synth_camera;
 
 /* Nearest hit of every pixel's ray with the primitives: depth_mm (camera
@@ -99,7 +58,7 @@ typedef struct synth_body_shape {
 
 #define SYNTH_BODY_MAX_PRIMS 24
 /* Primitives of a body posed by its points (world space); returns count. */
-int synth_body_prims(const synth_body_shape *shape, const sv3 pts[SP_COUNT], uint8_t owner,
+int synth_body_prims(const synth_body_shape *shape, const cub_fv3 pts[SP_COUNT], uint8_t owner,
                      synth_prim *out);
 /* Radius of the body around joint j (for visibility margins). */
 float synth_body_joint_radius(const synth_body_shape *shape, int j);
@@ -107,13 +66,13 @@ float synth_body_joint_radius(const synth_body_shape *shape, int j);
 float synth_body_above_shoulders_mm(const synth_body_shape *shape);
 float synth_body_sole_mm(const synth_body_shape *shape);
 /* The foot capsule's ends (its axis; the sole is its radius below). */
-void synth_body_foot_ends(sv3 ankle, sv3 foot, sv3 *heel, sv3 *toe);
+void synth_body_foot_ends(cub_fv3 ankle, cub_fv3 foot, cub_fv3 *heel, cub_fv3 *toe);
 /* Wrist to the palm's centre (the hand joint). */
 float synth_body_hand_mm(const synth_body_shape *shape);
 /* Head centre and head top from the shoulder centre and the source's head
  * direction (child proportions, see body.c). */
-void synth_body_head(const synth_body_shape *shape, sv3 shoulder_centre, sv3 head_dir_point,
-                     sv3 *centre, sv3 *top);
+void synth_body_head(const synth_body_shape *shape, cub_fv3 shoulder_centre, cub_fv3 head_dir_point,
+                     cub_fv3 *centre, cub_fv3 *top);
 
 /* The frame rate of a synth (synth.c). */
 float synth_fps(const cub_synth *s);

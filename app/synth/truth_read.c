@@ -113,16 +113,15 @@ cub_err cub_synth_truth_parse(const char *text, size_t len, const char *name, cu
     return err;
 }
 
+static cub_err parse_text(const cub_text *t, const void *in, void *out)
+{
+    return cub_synth_truth_parse(t->s, t->len, t->name, out, t->diag);
+}
+
 cub_err cub_synth_truth_read(const char *path, cub_synth_truth *out, cub_diag *diag)
 {
-    char *text;
-    size_t len;
     if (!path || !out) return CUB_ERR_ARG;
-    cub_err err = cub_io_read_file(path, &text, &len, diag);
-    if (err) return err;
-    err = cub_synth_truth_parse(text, len, path, out, diag);
-    free(text);
-    return err;
+    return cub_text_load(&(cub_text_src){path, "truth file", 0}, parse_text, NULL, out, diag);
 }
 
 void cub_synth_truth_free(cub_synth_truth *t)

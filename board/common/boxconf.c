@@ -2,7 +2,7 @@
  * its place in cub_boxconf and its allowed values, so that parsing,
  * messages and the documentation check all walk the same list. */
 #include "cub/boxconf.h"
-#include "text_file.h"
+#include "cub/text.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -58,7 +58,7 @@ static const key keys[] = {
 
 typedef struct parser {
     cub_boxconf *cfg;
-    cub_board_at at;     /* the file, the line, the message */
+    cub_text_at at;      /* the file, the line, the message */
     int seen[KEY_COUNT]; /* per key: the line it was set on, to refuse repeats */
 } parser;
 
@@ -158,13 +158,13 @@ static cub_err set_string(parser *p, const key *k, const char *value)
 {
     char *dst = (char *)p->cfg + k->off;
     if (strlen(value) >= k->cap) {
-        return cub_board_fail_at(&p->at, "%s: value longer than %zu characters", k->name, k->cap - 1);
+        return cub_text_fail(&p->at, "%s: value longer than %zu characters", k->name, k->cap - 1);
     }
     if (k->kind == K_NAME && strpbrk(value, " \t/")) {
-        return cub_board_fail_at(&p->at, "%s: \"%s\" is not a name (no blanks or slashes)", k->name, value);
+        return cub_text_fail(&p->at, "%s: \"%s\" is not a name (no blanks or slashes)", k->name, value);
     }
     if (k->kind == K_PATH && *value && *value != '/') {
-        return cub_board_fail_at(&p->at, "%s: \"%s\" is not an absolute path (it must start with /)", k->name,
+        return cub_text_fail(&p->at, "%s: \"%s\" is not an absolute path (it must start with /)", k->name,
                     value);
     }
     memcpy(dst, value, strlen(value) + 1);
@@ -182,16 +182,16 @@ static cub_err set_value(parser *p, const key *k, const char *value)
     case K_INT:
         return parse_int(value, k->lo, k->hi, num)
                    ? CUB_OK
-                   : cub_board_fail_at(&p->at, "%s: \"%s\" is not a whole number in %d..%d", k->name, value, k->lo,
+                   : cub_text_fail(&p->at, "%s: \"%s\" is not a whole number in %d..%d", k->name, value, k->lo,
                           k->hi);
     case K_BOOL:
         return parse_bool(value, num) ? CUB_OK
-                                       : cub_board_fail_at(&p->at, "%s: \"%s\" is not 0 or 1 (or off/on, no/yes)",
+                                       : cub_text_fail(&p->at, "%s: \"%s\" is not 0 or 1 (or off/on, no/yes)",
                                               k->name, value);
     case K_SIZE:
         return parse_size(value, &p->cfg->width, &p->cfg->height)
                    ? CUB_OK
-                   : cub_board_fail_at(&p->at, "%s: \"%s\" is not auto or WxH (320..7680 x 200..4320), e.g. "
+                   : cub_text_fail(&p->at, "%s: \"%s\" is not auto or WxH (320..7680 x 200..4320), e.g. "
                              "1280x720",
                           k->name, value);
     case K_WORD:
@@ -201,9 +201,9 @@ static cub_err set_value(parser *p, const key *k, const char *value)
             }
         }
         list_words(k->words, words, sizeof words);
-        return cub_board_fail_at(&p->at, "%s: \"%s\" is not one of %s", k->name, value, words);
+        return cub_text_fail(&p->at, "%s: \"%s\" is not one of %s", k->name, value, words);
     }
-    return cub_board_fail_at(&p->at, "%s: unhandled kind", k->name);
+    return cub_text_fail(&p->at, "%s: unhandled kind", k->name);
 }
 
 /* Edit distance of two short words (keys), for "did you mean". */
@@ -240,9 +240,9 @@ static cub_err unknown_key(parser *p, const char *name)
         }
     }
     if (best >= 0) {
-        return cub_board_fail_at(&p->at, "unknown key '%s' (did you mean '%s'?)", name, keys[best].name);
+        return cub_text_fail(&p->at, "unknown key '%s' (did you mean '%s'?)", name, keys[best].name);
     }
-    return cub_board_fail_at(&p->at, "unknown key '%s' (the keys are listed in cubdance.conf)", name);
+    return cub_text_fail(&p->at, "unknown key '%s' (the keys are listed in cubdance.conf)", name);
 }
 
 /* Keys whose empty value means something ("none", "the built-in place"). */
@@ -261,21 +261,21 @@ static cub_err parse_line(parser *p, char *text)
 {
     char *eq = strchr(text, '=');
     if (!eq) {
-        return cub_board_fail_at(&p->at, "expected key=value, got \"%s\"", text);
+        return cub_text_fail(&p->at, "expected key=value, got \"%s\"", text);
     }
     *eq = '\0';
     char *name = trim(text), *value = trim(eq + 1);
     for (int k = 0; k < KEY_COUNT; k++) {
         if (strcmp(name, keys[k].name) == 0) {
             if (p->seen[k]) {
-                return cub_board_fail_at(&p->at, "%s set again (first set on line %d)", name, p->seen[k]);
+                return cub_text_fail(&p->at, "%s set again (first set on line %d)", name, p->seen[k]);
             }
             p->seen[k] = p->at.line;
             if (keys[k].line >= 0) {
                 p->cfg->gpio.line_at[keys[k].line] = p->at.line;
             }
             if (!*value && !may_be_empty(name)) {
-                return cub_board_fail_at(&p->at, "%s has no value", name);
+                return cub_text_fail(&p->at, "%s has no value", name);
             }
             return set_value(p, &keys[k], value);
         }
@@ -303,36 +303,36 @@ static cub_err check(parser *p)
         for (int j = i + 1; j < CUB_BOXCONF_LINES; j++) {
             if (c->gpio.line[i][0] && !strcmp(c->gpio.line[i], c->gpio.line[j])) {
                 p->at.line = blame(p, names[i], names[j]);
-                return cub_board_fail_at(&p->at, "%s and %s both name %s", names[i], names[j], c->gpio.line[i]);
+                return cub_text_fail(&p->at, "%s and %s both name %s", names[i], names[j], c->gpio.line[i]);
             }
         }
     }
     if (c->doze_after_s <= c->attract_after_s) {
         p->at.line = blame(p, "attract_after_s", "doze_after_s");
-        return cub_board_fail_at(&p->at, "doze_after_s (%d) must be longer than attract_after_s (%d)",
+        return cub_text_fail(&p->at, "doze_after_s (%d) must be longer than attract_after_s (%d)",
                     c->doze_after_s, c->attract_after_s);
     }
     return CUB_OK;
 }
 
-/* One line of text (without its newline) into p. */
-static cub_err parse_one(parser *p, const char *c, size_t n)
+/* One line (comment cut) into p. */
+static cub_err parse_one(void *ctx, cub_text_line *ln)
 {
-    if (memchr(c, '\0', n)) {
-        return cub_board_fail_at(&p->at, "contains a NUL byte (not a text file?)");
+    parser *p = ctx;
+    p->at.line = ln->at.line;
+    if (strlen(ln->s) >= MAX_LINE) {
+        return cub_text_fail(&p->at, "line longer than %d characters", MAX_LINE - 1);
     }
-    /* A comment may be as long as it likes: measure only what precedes it. */
-    const char *hash = memchr(c, '#', n);
-    size_t used = hash ? (size_t)(hash - c) : n;
-    char buf[MAX_LINE];
-    if (used >= MAX_LINE) {
-        return cub_board_fail_at(&p->at, "line longer than %d characters", MAX_LINE - 1);
-    }
-    memcpy(buf, c, used);
-    buf[used] = '\0';
-    buf[strcspn(buf, "\r")] = '\0';
-    char *line = trim(buf);
+    ln->s[strcspn(ln->s, "\r")] = '\0';
+    char *line = trim(ln->s);
     return *line ? parse_line(p, line) : CUB_OK;
+}
+
+static cub_err parse_text(const cub_text *t, void *cfg)
+{
+    parser p = {.cfg = cfg, .at = {t->name, 0, t->diag}};
+    cub_err e = cub_text_lines(t, parse_one, &p);
+    return e ? e : check(&p);
 }
 
 cub_err cub_boxconf_parse(const char *text, size_t len, const char *file, cub_boxconf *cfg,
@@ -344,17 +344,17 @@ cub_err cub_boxconf_parse(const char *text, size_t len, const char *file, cub_bo
     err[0] = '\0';
     cub_boxconf_defaults(cfg);
     snprintf(cfg->gpio.file, sizeof cfg->gpio.file, "%s", file ? file : "(config)");
-    parser p = {.cfg = cfg, .at = {cfg->gpio.file, 1, err, err_size}};
-    const char *end = text + len;
-    for (const char *c = text; c < end; p.at.line++) {
-        const char *nl = memchr(c, '\n', (size_t)(end - c));
-        cub_err e = parse_one(&p, c, (size_t)((nl ? nl : end) - c));
-        if (e) {
-            return e;
-        }
-        c = nl ? nl + 1 : end; /* never point past the end */
-    }
-    return check(&p);
+    cub_diag d = {0};
+    cub_text t = {text, len, cfg->gpio.file, &d};
+    return cub_diag_report(parse_text(&t, cfg), &d, err, err_size);
+}
+
+static cub_err load_text(const cub_text *t, const void *in, void *cfg)
+{
+    cub_boxconf *c = cfg;
+    cub_boxconf_defaults(c);
+    snprintf(c->gpio.file, sizeof c->gpio.file, "%s", t->name);
+    return parse_text(t, c);
 }
 
 cub_err cub_boxconf_load(const char *path, cub_boxconf *cfg, char *err, size_t err_size)
@@ -362,14 +362,10 @@ cub_err cub_boxconf_load(const char *path, cub_boxconf *cfg, char *err, size_t e
     if (!path || !cfg || !err || err_size == 0) {
         return CUB_ERR_ARG;
     }
-    char *text;
-    size_t len;
-    cub_err e = cub_board_read_text(path, "config file", MAX_BYTES, &text, &len, err, err_size);
-    if (!e) {
-        e = cub_boxconf_parse(text, len, path, cfg, err, err_size);
-    }
-    free(text);
-    return e;
+    err[0] = '\0';
+    cub_diag d = {0};
+    cub_text_src src = {path, "config file", MAX_BYTES};
+    return cub_diag_report(cub_text_load(&src, load_text, NULL, cfg, &d), &d, err, err_size);
 }
 
 int cub_boxconf_key_count(void)

@@ -1,6 +1,6 @@
 /* buttons_script — parse a button timeline and hand out its due edges. */
 #include "buttons_script.h"
-#include "text_file.h"
+#include "cub/text.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -22,7 +22,11 @@ struct cub_button_script {
     size_t next; /* first edge not handed out */
 };
 
-typedef cub_board_at parser; /* the file, the line, the message */
+/* What a line parser carries from line to line. */
+typedef struct parser {
+    cub_button_script *s;
+    int64_t prev_t_us; /* times may not decrease */
+} parser;
 
 static cub_err push_edge(cub_button_script *s, int64_t t_us, int button, int down, int line)
 {
@@ -73,55 +77,41 @@ static int parse_seconds(const char *tok, int64_t *t_us)
     return 1;
 }
 
-/* Split s in place on blanks; returns the field count (max + 1 if more). */
-static int split(char *s, char **tok, int max)
-{
-    int n = 0;
-    for (;;) {
-        s += strspn(s, " \t");
-        if (*s == '\0') {
-            return n;
-        }
-        if (n == max) {
-            return max + 1;
-        }
-        tok[n++] = s;
-        s += strcspn(s, " \t");
-        if (*s != '\0') {
-            *s++ = '\0';
-        }
-    }
-}
-
 /* One non-blank line, comment already cut. */
-static cub_err parse_entry(cub_button_script *s, parser *p, char *text, int64_t *prev_t_us)
+static cub_err parse_entry(void *ctx, cub_text_line *ln)
 {
+    parser *ps = ctx;
+    cub_button_script *s = ps->s;
+    const cub_text_at *p = &ln->at;
+    if (strlen(ln->s) >= MAX_LINE) {
+        return cub_text_fail(p, "line longer than %d characters", MAX_LINE - 1);
+    }
     char *tok[3] = {NULL, NULL, NULL};
-    int n = split(text, tok, 3);
+    int n = cub_text_words(ln->s, tok, 3);
     if (n < 2) {
-        return cub_board_fail_at(p, "expected \"<seconds> <start|stop> [down|up|press]\"");
+        return cub_text_fail(p, "expected \"<seconds> <start|stop> [down|up|press]\"");
     }
     if (n > 3) {
-        return cub_board_fail_at(p, "too many fields (expected \"<seconds> <start|stop> [down|up|press]\")");
+        return cub_text_fail(p, "too many fields (expected \"<seconds> <start|stop> [down|up|press]\")");
     }
     int64_t t_us;
     if (!parse_seconds(tok[0], &t_us)) {
-        return cub_board_fail_at(p, "bad time \"%s\" (want seconds >= 0, at most 6 decimals, e.g. 1.5)",
+        return cub_text_fail(p, "bad time \"%s\" (want seconds >= 0, at most 6 decimals, e.g. 1.5)",
                     tok[0]);
     }
-    if (t_us < *prev_t_us) {
-        return cub_board_fail_at(p,
+    if (t_us < ps->prev_t_us) {
+        return cub_text_fail(p,
                     "time %s is before the previous entry's %lld.%06lld (times must not decrease)",
-                    tok[0], (long long)(*prev_t_us / 1000000), (long long)(*prev_t_us % 1000000));
+                    tok[0], (long long)(ps->prev_t_us / 1000000), (long long)(ps->prev_t_us % 1000000));
     }
-    *prev_t_us = t_us;
+    ps->prev_t_us = t_us;
     int button;
     if (strcmp(tok[1], "start") == 0) {
         button = CUB_BUTTON_START;
     } else if (strcmp(tok[1], "stop") == 0) {
         button = CUB_BUTTON_STOP;
     } else {
-        return cub_board_fail_at(p, "unknown button \"%s\" (want start or stop)", tok[1]);
+        return cub_text_fail(p, "unknown button \"%s\" (want start or stop)", tok[1]);
     }
     const char *action = n == 3 ? tok[2] : "press";
     cub_err e;
@@ -133,9 +123,9 @@ static cub_err parse_entry(cub_button_script *s, parser *p, char *text, int64_t 
             e = push_edge(s, t_us + CUB_BUTTON_SCRIPT_PRESS_US, button, 0, p->line);
         }
     } else {
-        return cub_board_fail_at(p, "unknown action \"%s\" (want down, up or press)", action);
+        return cub_text_fail(p, "unknown action \"%s\" (want down, up or press)", action);
     }
-    return e == CUB_ERR_NOMEM ? cub_board_fail_at(p, "out of memory") : e;
+    return e ? cub_diag_fail(p->diag, e, p->name, p->line, "out of memory") : CUB_OK;
 }
 
 /* A press's release can land after later lines: a stable insertion sort puts
@@ -153,15 +143,16 @@ static void sort_edges(cub_button_script *s)
 }
 
 /* Each button must alternate down, up, down ... */
-static cub_err check_alternation(const cub_button_script *s, parser *p)
+static cub_err check_alternation(const cub_button_script *s, const cub_text *t)
 {
+    cub_text_at at = {t->name, 0, t->diag}, *p = &at;
     int is_down[CUB_BUTTON_COUNT] = {0};
     for (size_t i = 0; i < s->count; i++) {
         const edge *e = &s->edges[i];
         const char *name = e->button == CUB_BUTTON_START ? "start" : "stop";
         if (e->down == is_down[e->button]) {
             p->line = e->line;
-            return cub_board_fail_at(p, "%s %s at %lld.%06lld while %s is already %s", name,
+            return cub_text_fail(p, "%s %s at %lld.%06lld while %s is already %s", name,
                         e->down ? "down" : "up", (long long)(e->t_us / 1000000),
                         (long long)(e->t_us % 1000000), name, e->down ? "down" : "up");
         }
@@ -170,50 +161,25 @@ static cub_err check_alternation(const cub_button_script *s, parser *p)
     return CUB_OK;
 }
 
-/* Copy line `start..end` into buf without its comment, CR or NUL trouble. */
-static cub_err take_line(parser *p, const char *start, const char *end, char *buf)
+/* The whole timeline into *out (a cub_button_script **). */
+static cub_err parse_text(const cub_text *t, const void *in, void *out)
 {
-    size_t n = (size_t)(end - start);
-    if (n > 0 && start[n - 1] == '\r') {
-        n--;
+    cub_button_script *s = calloc(1, sizeof *s);
+    if (!s) {
+        return cub_diag_fail(t->diag, CUB_ERR_NOMEM, t->name, 0, "out of memory");
     }
-    if (memchr(start, '\0', n)) {
-        return cub_board_fail_at(p, "contains a NUL byte (not a text file?)");
+    parser p = {s, 0};
+    cub_err e = cub_text_lines(t, parse_entry, &p);
+    if (!e) {
+        sort_edges(s);
+        e = check_alternation(s, t);
     }
-    const char *hash = memchr(start, '#', n);
-    if (hash) {
-        n = (size_t)(hash - start);
+    if (e) {
+        cub_button_script_free(s);
+        return e;
     }
-    if (n >= MAX_LINE) {
-        return cub_board_fail_at(p, "line longer than %d characters", MAX_LINE - 1);
-    }
-    memcpy(buf, start, n);
-    buf[n] = '\0';
+    *(cub_button_script **)out = s;
     return CUB_OK;
-}
-
-static cub_err parse_all(cub_button_script *s, parser *p, const char *text, size_t len)
-{
-    int64_t prev_t_us = 0;
-    const char *end = text + len;
-    for (const char *c = text; c < end; p->line++) {
-        const char *nl = memchr(c, '\n', (size_t)(end - c));
-        const char *stop = nl ? nl : end;
-        char buf[MAX_LINE];
-        cub_err e = take_line(p, c, stop, buf);
-        if (e) {
-            return e;
-        }
-        if (buf[strspn(buf, " \t")] != '\0') {
-            e = parse_entry(s, p, buf, &prev_t_us);
-            if (e) {
-                return e;
-            }
-        }
-        c = nl ? nl + 1 : end; /* never point past the end */
-    }
-    sort_edges(s);
-    return check_alternation(s, p);
 }
 
 cub_err cub_button_script_parse(const char *text, size_t len, const char *file,
@@ -224,18 +190,9 @@ cub_err cub_button_script_parse(const char *text, size_t len, const char *file,
     }
     *out = NULL;
     err[0] = '\0';
-    cub_button_script *s = calloc(1, sizeof *s);
-    if (!s) {
-        return CUB_ERR_NOMEM;
-    }
-    parser p = {file ? file : "(script)", 1, err, err_size};
-    cub_err e = parse_all(s, &p, text, len);
-    if (e) {
-        cub_button_script_free(s);
-        return e;
-    }
-    *out = s;
-    return CUB_OK;
+    cub_diag d = {0};
+    cub_text t = {text, len, file ? file : "(script)", &d};
+    return cub_diag_report(parse_text(&t, NULL, out), &d, err, err_size);
 }
 
 cub_err cub_button_script_load(const char *path, cub_button_script **out, char *err,
@@ -244,15 +201,11 @@ cub_err cub_button_script_load(const char *path, cub_button_script **out, char *
     if (!path || !out || !err || err_size == 0) {
         return CUB_ERR_ARG;
     }
-    char *text;
-    size_t len;
-    cub_err e = cub_board_read_text(path, "button script", CUB_BUTTON_SCRIPT_MAX_BYTES, &text,
-                                    &len, err, err_size);
-    if (!e) {
-        e = cub_button_script_parse(text, len, path, out, err, err_size);
-    }
-    free(text);
-    return e;
+    *out = NULL;
+    err[0] = '\0';
+    cub_diag d = {0};
+    cub_text_src src = {path, "button script", CUB_BUTTON_SCRIPT_MAX_BYTES};
+    return cub_diag_report(cub_text_load(&src, parse_text, NULL, out, &d), &d, err, err_size);
 }
 
 void cub_button_script_free(cub_button_script *s)

@@ -66,7 +66,7 @@ int main(int argc, char **argv)
     char *text = NULL;
     size_t len = 0;
     cub_diag d;
-    if (cub_io_read_file(path, &text, &len, &d)) {
+    if (cub_text_read(&(cub_text_src){path, NULL, 0}, &text, &len, &d)) {
         fprintf(stderr, "bench_bvh: %s\n", cub_diag_str(&d, msg, sizeof(msg)));
         return 1;
     }

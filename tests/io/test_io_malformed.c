@@ -296,7 +296,8 @@ static void test_missing_file_is_an_io_error(void **state)
     assert_string_equal(d.file, "/nonexistent/x.bvh");
     assert_int_equal(d.line, 0);
     assert_non_null(strstr(cub_diag_str(&d, full, sizeof(full)), "/nonexistent/x.bvh: cannot open"));
-    assert_int_equal(cub_io_read_file("/nonexistent/y", &text, &len, &d), CUB_ERR_IO);
+    cub_text_src src = {"/nonexistent/y", NULL, 0};
+    assert_int_equal(cub_text_read(&src, &text, &len, &d), CUB_ERR_IO);
     assert_null(text);
 }
 

@@ -40,8 +40,8 @@ static void test_build_reproduces_committed_library(void **state)
     char *a = NULL, *b = NULL;
     size_t na = 0, nb = 0;
     cub_diag d;
-    assert_int_equal(cub_io_read_file(out, &a, &na, &d), CUB_OK);
-    assert_int_equal(cub_io_read_file(committed, &b, &nb, &d), CUB_OK);
+    assert_int_equal(cub_text_read(&(cub_text_src){out, NULL, 0}, &a, &na, &d), CUB_OK);
+    assert_int_equal(cub_text_read(&(cub_text_src){committed, NULL, 0}, &b, &nb, &d), CUB_OK);
     size_t first = 0;
     while (first < na && first < nb && a[first] == b[first])
         first++;

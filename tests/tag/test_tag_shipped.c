@@ -112,7 +112,8 @@ static void test_committed_tags_match_a_fresh_run(void **state)
     char *fresh = NULL, *file = NULL;
     size_t fresh_len = 0, file_len = 0;
     assert_int_equal(cub_tags_print(&f->tags, &fresh, &fresh_len), CUB_OK);
-    assert_int_equal(cub_io_read_file(f->tags_path, &file, &file_len, &d), CUB_OK);
+    cub_text_src src = {f->tags_path, NULL, 0};
+    assert_int_equal(cub_text_read(&src, &file, &file_len, &d), CUB_OK);
     size_t at = 0;
     while (at < fresh_len && at < file_len && fresh[at] == file[at])
         at++;

@@ -17,22 +17,7 @@
 
 #include "cub/err.h"
 #include "cub/motion.h"
-
-typedef struct cub_diag {
-    char file[256];
-    int line;       /* 1-based; 0 when the problem is not tied to a line */
-    char msg[256];
-} cub_diag;
-
-/* Format "file:line: msg" (or "file: msg") into buf. */
-const char *cub_diag_str(const cub_diag *d, char *buf, size_t size);
-
-/* Fill diag (when not NULL) with file (NULL: ""), line and the printf-style
- * message, and return err: how every reader in app/ reports a failure. */
-cub_err cub_diag_fail(cub_diag *diag, cub_err err, const char *file, int line, const char *fmt, ...)
-    __attribute__((format(printf, 5, 6)));
-cub_err cub_diag_vfail(cub_diag *diag, cub_err err, const char *file, int line, const char *fmt,
-                       va_list ap) __attribute__((format(printf, 5, 0)));
+#include "cub/text.h" /* cub_diag */
 
 /* How one joint's channels were stored in the source file, kept so that
  * export writes the same layout back. */
@@ -75,8 +60,5 @@ cub_err cub_io_parse_asf_amc(const char *asf, size_t asf_len, const char *amc,
 /* Write a BVH in the channel layout of m->channels, in the source unit. */
 cub_err cub_io_save_bvh(const char *path, const cub_io_motion *m, cub_diag *diag);
 void cub_io_motion_free(cub_io_motion *m);
-
-/* Read a whole file into a NUL-terminated heap buffer (free with free()). */
-cub_err cub_io_read_file(const char *path, char **out, size_t *out_len, cub_diag *diag);
 
 #endif
