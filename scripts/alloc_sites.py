@@ -15,11 +15,11 @@ import re
 import subprocess
 import sys
 
-WRAPPERS = ("libc.so", "libstdc++", "libglib", "libgcc_s", "ld-linux")
+WRAPPERS = ("libcub_alloc_count", "libc.so", "libstdc++", "libglib", "libgcc_s", "ld-linux")
 OWNERS = (("libfluidsynth", "FluidSynth"), ("libglib", "FluidSynth (glib)"),
           ("swrast_dri", "GL driver (Mesa)"), ("libgallium", "GL driver (Mesa)"),
           ("_dri.so", "GL driver (Mesa)"), ("libLLVM", "GL driver (LLVM)"),
-          ("libEGL", "GL driver (EGL)"), ("libGLES", "GL driver (GLES)"),
+          ("libgomp", "FluidSynth (OpenMP)"), ("libEGL", "GL driver (EGL)"), ("libGLES", "GL driver (GLES)"),
           ("libGLdispatch", "GL driver (glvnd)"), ("libglapi", "GL driver (glapi)"),
           ("fakenect", "fakenect (the replay)"), ("libfreenect", "libfreenect"),
           ("libSDL2", "SDL2"), ("libpng", "libpng"), ("libtinyxml2", "tinyxml2"))
@@ -36,19 +36,22 @@ def owner_of(dso, exe):
 
 
 def read_traces(path):
-    traces, cur = [], None
+    """{phase: [trace]}, a trace being [(dso, where)], innermost first."""
+    phases, phase, cur = {}, "start", None
     for line in open(path, errors="replace"):
         line = line.rstrip("\n")
-        if line.startswith("alloc-trace:"):
+        if line.startswith("alloc-phase:"):
+            phase, cur = line.split()[1], None
+        elif line.startswith("alloc-trace:"):
             cur = []
-            traces.append(cur)
+            phases.setdefault(phase, []).append(cur)
         elif cur is not None:
             m = FRAME.match(line)
             if m:
                 cur.append((m.group(1), m.group(2)))
             else:
                 cur = None
-    return traces
+    return phases
 
 
 def exe_of(traces):
@@ -89,7 +92,11 @@ def main():
         del args[i:i + 2]
     if len(args) != 1:
         sys.exit(__doc__)
-    traces = read_traces(args[0])
+    for phase, traces in read_traces(args[0]).items():
+        report(phase, traces, top)
+
+
+def report(phase, traces, top):
     exe = exe_of(traces)
     rows = []
     for t in traces:
@@ -99,8 +106,8 @@ def main():
         rows.append((owner, ours))
     names = symbolize(exe, sorted({o for _, o in rows if o})) if exe else {}
     by_owner = collections.Counter(o for o, _ in rows)
-    print("alloc-sites: %d traced allocations; by owner: %s" % (
-        len(rows), ", ".join("%s %d" % kv for kv in by_owner.most_common())))
+    print("alloc-sites: %s: %d traced allocations; by owner: %s" % (
+        phase, len(rows), ", ".join("%s %d" % kv for kv in by_owner.most_common())))
     sites = collections.Counter((o, names.get(s, "(no frame of ours)")) for o, s in rows)
     for (owner, site), n in sites.most_common(top):
         print("%6d  %-24s from %s" % (n, owner, site))

@@ -40,6 +40,7 @@ PERIOD_S=90        # one song: London Bridge is 69 s of music, the box waits aga
 MID_STOP_S=40      # an even song's STOP, mid-dance
 RSS_SLACK_KB=1024  # resident pages may come and go by this much (docs/memory.md)
 
+build=$(realpath "$build")
 exe="$build/app/cubdance/cubdance"
 counter="$build/app/alloc_count/libcub_alloc_count.so"
 nosleep="$build/tests/soak/libcub_fakenect_nosleep.so"
@@ -74,7 +75,7 @@ fakenect=$(ls -d /usr/lib/*/fakenect 2>/dev/null | head -n 1)
 echo "soak: $seconds s of box time, $(grep -c start "$out/soak.buttons") songs of $song, replaying $dump in a loop"
 real0=$(date +%s)
 FAKENECT_PATH="$out/dump" LD_LIBRARY_PATH="$fakenect${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" \
-LD_PRELOAD="$PWD/$counter $PWD/$nosleep" EGL_PLATFORM=surfaceless SDL_AUDIODRIVER=dummy \
+LD_PRELOAD="$counter $nosleep" EGL_PLATFORM=surfaceless SDL_AUDIODRIVER=dummy \
     "$exe" --headless --size 320x240 --draw-every 30 --frame-every 30 --clock virtual \
     --replay "$out/dump" --song "assets/songs/$song.song.xml" --buttons "$out/soak.buttons" \
     --seconds "$seconds" --log "$out/events.log" --stats > "$out/stats.txt"

@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 #include "cub/alloc_count.h"
+#include "owners.h"
 
 #define EXPORT __attribute__((visibility("default")))
 #define TRACE_FRAMES 24
@@ -48,10 +49,11 @@ static void trace(size_t n)
     void *frames[TRACE_FRAMES];
     int depth = backtrace(frames, TRACE_FRAMES);
     char head[64];
-    int len = snprintf(head, sizeof head, "alloc-trace: size=%zu frames=%d\n", n, depth - 2);
+    int len = snprintf(head, sizeof head, "alloc-trace: size=%zu frames=%d\n", n, depth);
     if (write(2, head, (size_t)len) < 0) (void)0;
-    /* Frames 0 and 1 are trace() and the wrapper: start at the caller. */
-    if (depth > 2) backtrace_symbols_fd(frames + 2, depth - 2, 2);
+    /* All of them: which of the first are this library's depends on what
+     * the compiler inlined (scripts/alloc_sites.py skips them by name). */
+    backtrace_symbols_fd(frames, depth, 2);
     tracing = 0;
 }
 
@@ -61,6 +63,7 @@ static void *counted(void *p, size_t asked)
     atomic_fetch_add_explicit(&allocs, 1, memory_order_relaxed);
     int64_t n = (int64_t)malloc_usable_size(p);
     raise_peak(atomic_fetch_add_explicit(&live_bytes, n, memory_order_relaxed) + n);
+    cub_owners_add(p, n);
     trace(asked);
     return p;
 }
@@ -69,7 +72,9 @@ static void uncounted(void *p)
 {
     if (!p) return;
     atomic_fetch_add_explicit(&frees, 1, memory_order_relaxed);
-    atomic_fetch_sub_explicit(&live_bytes, (int64_t)malloc_usable_size(p), memory_order_relaxed);
+    int64_t n = (int64_t)malloc_usable_size(p);
+    atomic_fetch_sub_explicit(&live_bytes, n, memory_order_relaxed);
+    cub_owners_remove(p, n);
 }
 
 EXPORT void *malloc(size_t n)
@@ -99,9 +104,11 @@ EXPORT void *realloc(void *p, size_t n)
     }
     int64_t old = (int64_t)malloc_usable_size(p);
     atomic_fetch_sub_explicit(&live_bytes, old, memory_order_relaxed);
+    cub_owners_remove(p, old);
     void *q = __libc_realloc(p, n);
     if (!q) {
         atomic_fetch_add_explicit(&live_bytes, old, memory_order_relaxed);
+        cub_owners_add(p, old);
         return NULL;
     }
     return counted(q, n);
@@ -143,6 +150,16 @@ EXPORT void cub_alloc_count_read(cub_alloc_stats *out)
     out->frees = atomic_load(&frees);
     out->live_bytes = atomic_load(&live_bytes);
     out->peak_bytes = atomic_load(&peak_bytes);
+}
+
+EXPORT int cub_alloc_count_owners(cub_alloc_owners *out)
+{
+    return cub_owners_read(out);
+}
+
+__attribute__((constructor)) static void start(void)
+{
+    cub_owners_start();
 }
 
 EXPORT void cub_alloc_count_trace(int n)

@@ -31,7 +31,9 @@ void cub_mem_stats_open(cub_mem_stats *m)
 #else
     m->read = (cub_alloc_count_read_fn *)dlsym(RTLD_DEFAULT, CUB_ALLOC_COUNT_READ);
     m->trace = (cub_alloc_count_trace_fn *)dlsym(RTLD_DEFAULT, CUB_ALLOC_COUNT_TRACE);
+    m->owners = (cub_alloc_count_owners_fn *)dlsym(RTLD_DEFAULT, CUB_ALLOC_COUNT_OWNERS);
     if (m->read) m->read(&m->last);
+    m->owners_on = m->owners && m->owners(&m->last_owners);
 #endif
     const char *n = getenv("CUB_ALLOC_TRACE");
     m->trace_n = n ? atoi(n) : 0;
@@ -70,6 +72,11 @@ static void count_tick(cub_mem_stats *m)
     if (allocs) p->ticks_allocating++;
     if (allocs > p->max_tick_allocs) p->max_tick_allocs = (uint32_t)allocs;
     m->last = now;
+    cub_alloc_owners o;
+    if (!m->owners_on || !m->owners(&o)) return;
+    for (int i = 0; i < CUB_ALLOC_OWNER_COUNT; i++)
+        p->owner_allocs[i] += o.allocs[i] - m->last_owners.allocs[i];
+    m->last_owners = o;
 }
 
 /* One line per song start, for a soak to compare song by song. */
@@ -94,7 +101,12 @@ static void song_line(cub_mem_stats *m, int64_t t_us)
 static void enter_phase(cub_mem_stats *m, cub_mem_phase_id phase)
 {
     m->phase = phase;
-    if (m->trace && m->trace_n > 0) m->trace(m->trace_n);
+    if (!m->trace || m->trace_n <= 0) return;
+    /* The traces that follow are this phase's (scripts/alloc_sites.py). */
+    char line[64];
+    int n = snprintf(line, sizeof line, "alloc-phase: %s\n", phase_names[phase]);
+    if (write(2, line, (size_t)n) < 0) return;
+    m->trace(m->trace_n);
 }
 
 void cub_mem_stats_tick(cub_mem_stats *m, int64_t t_us, int dancing)
@@ -112,6 +124,9 @@ void cub_mem_stats_tick(cub_mem_stats *m, int64_t t_us, int dancing)
     m->dancing = dancing;
 }
 
+static const char *const owner_names[CUB_ALLOC_OWNER_COUNT] = {
+    "ours", "gl_driver", "fluidsynth", "camera", "sdl", "other", "untracked"};
+
 static double mb(long kb)
 {
     return kb / 1024.0;
@@ -128,11 +143,30 @@ static void print_phases(const cub_mem_stats *m, FILE *out)
     fprintf(out, "stats: allocations per tick (malloc family, the whole process):");
     for (int i = 0; i < CUB_MEM_PHASE_COUNT; i++) {
         const cub_mem_phase *p = &m->phases[i];
-        fprintf(out, " %s=%.3f (%llu in %u of %u ticks, max %u)", phase_names[i],
+        fprintf(out, " %s=%.3f (%llu in %u of %u ticks, max %u", phase_names[i],
                 p->ticks ? (double)p->allocs / p->ticks : 0.0, (unsigned long long)p->allocs,
                 p->ticks_allocating, p->ticks, p->max_tick_allocs);
+        for (int k = 0; m->owners_on && k < CUB_ALLOC_OWNER_COUNT; k++)
+            fprintf(out, "%s%s=%llu", k ? " " : "; by owner: ", owner_names[k],
+                    (unsigned long long)p->owner_allocs[k]);
+        fputc(')', out);
     }
     fputc('\n', out);
+}
+
+/* The heap by owner, each at its own high-water; 0 when not tracked. */
+static int print_owners(const cub_mem_stats *m, FILE *out, cub_alloc_owners *o)
+{
+    if (!m->owners || !m->owners(o)) return 0;
+    fprintf(out, "stats: memory heap by owner, each at its high-water (MB):");
+    for (int i = 0; i < CUB_ALLOC_OWNER_COUNT; i++)
+        fprintf(out, " %s=%.1f", owner_names[i], o->peak_bytes[i] / 1048576.0);
+    fprintf(out, "; all but the GL driver's together: %.1f; in use now:",
+            o->not_gl_peak_bytes / 1048576.0);
+    for (int i = 0; i < CUB_ALLOC_OWNER_COUNT; i++)
+        fprintf(out, " %s=%.1f", owner_names[i], o->live_bytes[i] / 1048576.0);
+    fputc('\n', out);
+    return 1;
 }
 
 void cub_mem_stats_print(const cub_mem_stats *m, FILE *out)
@@ -143,29 +177,34 @@ void cub_mem_stats_print(const cub_mem_stats *m, FILE *out)
         print_phases(m, out);
         return;
     }
-    long heap_kb = (long)(m->heap_peak_bytes / 1024);
+    cub_alloc_owners o;
+    int by_owner = !m->heap_missing && print_owners(m, out, &o);
+    /* With owners, our heap is every block but the GL driver's (FluidSynth's
+     * SoundFont samples are ours: we load them); without, the whole heap. */
+    long heap_kb = (long)((by_owner ? o.not_gl_peak_bytes : m->heap_peak_bytes) / 1024);
     long ours_kb = (m->heap_missing ? 0 : heap_kb) + c.static_kb + c.stack_kb;
     fprintf(out, "stats: memory ours=%.1fMB", mb(ours_kb));
     if (m->heap_missing) fprintf(out, " (without the heap: %s)", m->heap_missing);
     else
         fprintf(out, " goal<=%dMB %s", CUB_MEM_GOAL_KB / 1024,
                 ours_kb <= CUB_MEM_GOAL_KB ? "met" : "MISSED");
-    fprintf(out, " = heap_peak=%.1fMB%s + static=%.1fMB (of %.1fMB .data+.bss) + stacks=%.1fMB\n",
-            mb(heap_kb), m->read ? "" : " (sampled per tick)", mb(c.static_kb),
-            mb(c.static_size_kb), mb(c.stack_kb));
+    fprintf(out, " = heap_peak=%.1fMB (%s) + static=%.1fMB (resident, of %.1fMB .data+.bss) + "
+                 "stacks=%.1fMB\n",
+            mb(heap_kb),
+            by_owner  ? "every block but the GL driver's"
+            : m->read ? "every block, the GL driver's too: CUB_ALLOC_OWNERS=1 splits it"
+                      : "every block, sampled per tick",
+            mb(c.static_kb), mb(c.static_size_kb), mb(c.stack_kb));
     fprintf(out,
-            "stats: memory gl_driver=%.1fMB resident, not ours (llvm=%.1f mesa=%.1f "
-            "egl_gles_dispatch=%.1f jit_code=%.1f stacks=%.1f MB, %d of %d threads)\n",
+            "stats: memory gl_driver=%.1fMB resident mappings, not ours (llvm=%.1f mesa=%.1f "
+            "egl_gles_dispatch=%.1f jit_code=%.1f stacks=%.1f MB, %d of %d threads)%s\n",
             mb(c.gl_kb), mb(c.gl_llvm_kb), mb(c.gl_mesa_kb), mb(c.gl_api_kb), mb(c.gl_jit_kb),
-            mb(c.gl_stack_kb), c.gl_threads, c.threads);
+            mb(c.gl_stack_kb), c.gl_threads, c.threads,
+            by_owner ? "" : "; its heap blocks are in the heap above");
     fprintf(out,
-            "stats: memory rss=%.1fMB = ours' resident part + gl_driver + exe_code=%.1fMB + "
-            "other_libs=%.1fMB (libc, SDL2, FluidSynth ...: shared file pages) + anon=%.1fMB "
-            "(malloc's arenas and mapped blocks: the heap's resident pages)\n",
+            "stats: memory rss=%.1fMB: static+stacks, gl_driver, exe_code=%.1fMB, "
+            "other_libs=%.1fMB (libc, SDL2, FluidSynth ... code: shared file pages), "
+            "anon=%.1fMB (the heap's resident pages, everyone's)\n",
             mb(c.rss_kb), mb(c.exe_code_kb), mb(c.libs_kb), mb(c.anon_kb));
-    if (!m->heap_missing)
-        fprintf(out, "stats: memory the heap counts every malloc in the process: ours, "
-                     "FluidSynth's (the SoundFont's samples: we load them), libfreenect's and "
-                     "the GL driver's own\n");
     print_phases(m, out);
 }

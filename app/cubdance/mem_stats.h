@@ -8,7 +8,9 @@
  * Allocations are counted by libcub_alloc_count.so (cub/alloc_count.h)
  * when it is preloaded; without it the heap is sampled once a tick from
  * malloc's own totals and allocations are not counted; a sanitizer build
- * says both are unavailable. CUB_ALLOC_TRACE=N in the environment prints
+ * says both are unavailable. With CUB_ALLOC_OWNERS=1 as well, the counter
+ * tells whose each block is, and ours leaves the GL driver's heap out.
+ * CUB_ALLOC_TRACE=N in the environment prints
  * the call stacks of the first N allocations of the first song and of the
  * steady state (stderr, `alloc-trace:`). */
 #ifndef CUB_APP_MEM_STATS_H
@@ -29,17 +31,21 @@ typedef enum cub_mem_phase_id {
 typedef struct cub_mem_phase {
     uint32_t ticks, ticks_allocating, max_tick_allocs;
     uint64_t allocs, frees;
+    uint64_t owner_allocs[CUB_ALLOC_OWNER_COUNT]; /* with CUB_ALLOC_OWNERS=1 */
 } cub_mem_phase;
 
 typedef struct cub_mem_stats {
     cub_alloc_count_read_fn *read;   /* the counter, or NULL */
     cub_alloc_count_trace_fn *trace;
+    cub_alloc_count_owners_fn *owners; /* the heap by owner, or NULL */
     const char *heap_missing;        /* why there is no heap figure, or NULL */
     int trace_n;                     /* CUB_ALLOC_TRACE */
     cub_mem_phase_id phase;
     int dancing;                     /* as of the last tick */
     uint32_t songs;                  /* song starts seen */
     cub_alloc_stats last;            /* the counter at the end of the last tick */
+    cub_alloc_owners last_owners;    /* ... by owner, when tracked */
+    int owners_on;
     int64_t heap_bytes, heap_peak_bytes;
     cub_mem_phase phases[CUB_MEM_PHASE_COUNT];
 } cub_mem_stats;
