@@ -9,7 +9,7 @@
 #
 #   scripts/soak.sh HOURS [--build DIR] [--out DIR] [--song NAME] [--dump DIR]
 #
-# HOURS may be fractional (0.1 = 6 min of box time, 4 songs: what CI runs).
+# HOURS may be fractional (0.08 = 288 s of box time, 4 songs: what CI runs).
 # The recording (default the real Skeltrack frames under ../shared/data)
 # is looped by scripts/soak_dump.py as long as the soak lasts. Songs
 # alternate: the first and every odd one is danced to its end and STOP is
