@@ -304,10 +304,17 @@ int cub_mem_fd_count(void)
     return n < 0 ? -1 : n - 1;
 }
 
-long cub_mem_rss_kb(void)
+long cub_mem_status_kb(const char *field)
 {
     static char buf[4096];
+    char key[32];
     if (read_small("/proc/self/status", buf, sizeof buf) <= 0) return -1;
-    const char *p = strstr(buf, "\nVmRSS:");
-    return p ? strtol(p + 7, NULL, 10) : -1;
+    snprintf(key, sizeof key, "\n%s:", field);
+    const char *p = strstr(buf, key);
+    return p ? strtol(p + strlen(key), NULL, 10) : -1;
+}
+
+long cub_mem_rss_kb(void)
+{
+    return cub_mem_status_kb("VmRSS");
 }

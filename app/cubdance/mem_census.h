@@ -35,5 +35,7 @@ int cub_mem_census_take(cub_mem_census *out);
 int cub_mem_fd_count(void);
 /* VmRSS in kB, or -1. */
 long cub_mem_rss_kb(void);
+/* A field of /proc/self/status in kB ("RssAnon", "RssFile"), or -1. */
+long cub_mem_status_kb(const char *field);
 
 #endif
