@@ -7,9 +7,11 @@
 # open descriptors grow at all, or resident memory grows by more than
 # RSS_SLACK_KB (see docs/memory.md for why a little slack is allowed).
 #
-#   scripts/soak.sh HOURS [--build DIR] [--out DIR] [--song NAME] [--dump DIR]
+#   scripts/soak.sh HOURS [--build DIR] [--out DIR] [--song NAME] [--dump DIR] [--period S]
 #
-# HOURS may be fractional (0.08 = 288 s of box time, 4 songs: what CI runs).
+# HOURS may be fractional. --period S (default 90) is the time from one
+# START to the next; below 80 every song is stopped mid-song, which is what
+# CI runs to keep it short: `soak.sh 0.034 --period 30`, four songs.
 # The recording (default the real Skeltrack frames under ../shared/data)
 # is looped by scripts/soak_dump.py as long as the soak lasts. Songs
 # alternate: the first and every odd one is danced to its end and STOP is
@@ -20,11 +22,12 @@
 # --build --preset release` makes both.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-usage() { echo "usage: scripts/soak.sh HOURS [--build DIR] [--out DIR] [--song NAME] [--dump DIR]" >&2; exit 2; }
+usage() { echo "usage: scripts/soak.sh HOURS [--build DIR] [--out DIR] [--song NAME] [--dump DIR] [--period S]" >&2; exit 2; }
 [ $# -ge 1 ] || usage
 hours=$1
 shift
 build=build/release out=out/soak song=london_bridge
+PERIOD_S=90  # one song: London Bridge is 69 s of music, the box waits again at ~74 s
 data="${CUB_DATA_DIR:-$PWD/../shared/data}"
 dump="$data/depth/skeltrack"
 while [ $# -gt 0 ]; do
@@ -33,11 +36,10 @@ while [ $# -gt 0 ]; do
         --out) out=$2; shift 2 ;;
         --song) song=$2; shift 2 ;;
         --dump) dump=$2; shift 2 ;;
+        --period) PERIOD_S=$2; shift 2 ;;
         *) usage ;;
     esac
 done
-PERIOD_S=90        # one song: London Bridge is 69 s of music, the box waits again at ~74 s
-MID_STOP_S=40      # an even song's STOP, mid-dance
 RSS_SLACK_KB=1024  # resident pages may come and go by this much (docs/memory.md)
 
 build=$(realpath "$build")
@@ -58,10 +60,12 @@ seconds=$(python3 -c "print(round($hours * 3600, 3))")
 mkdir -p "$out"
 rm -rf "$out/dump"
 python3 scripts/soak_dump.py "$dump" "$out/dump" "$(python3 -c "print($seconds + 10)")"
-python3 - "$seconds" "$PERIOD_S" "$MID_STOP_S" > "$out/soak.buttons" <<'PY'
+python3 - "$seconds" "$PERIOD_S" > "$out/soak.buttons" <<'PY'
 import sys
-seconds, period, mid = float(sys.argv[1]), float(sys.argv[2]), float(sys.argv[3])
-print("# scripts/soak.sh: START every %g s; odd songs to their end, even ones stopped mid-song" % period)
+seconds, period = float(sys.argv[1]), float(sys.argv[2])
+mid = min(40.0, period / 2)  # an even song's STOP, mid-dance
+print("# scripts/soak.sh: START every %g s; odd songs stopped %g s after START, even ones %g s" %
+      (period, period - 10, mid))
 k, t = 0, 1.0
 while t < seconds:
     stop = t + (mid if k % 2 else period - 10)
