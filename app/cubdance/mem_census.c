@@ -251,8 +251,7 @@ static void count(cub_mem_census *c, const mapping *m, long kb, const char *exe)
         else if (who == OWN_GLAPI) add_gl(c, &c->gl_api_kb, kb);
         else c->libs_kb += kb;
     } else if (!m->path[0] && m->perms[2] == 'x') add_gl(c, &c->gl_jit_kb, kb);
-    else if (!m->path[0] || m->path[0] == '[') c->anon_kb += kb; /* [heap], [vdso] ... */
-    else c->anon_kb += kb;
+    else c->anon_kb += kb; /* [heap], anonymous mappings, [vdso], memfd: ... */
 }
 
 static long static_size_kb(void)
