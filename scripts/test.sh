@@ -7,6 +7,8 @@
 #      Release tree built with -DCUB_PACKAGE=ON (a package must not carry a
 #      sanitizer build), checked by tests/package/check_deb.sh --release
 #   5. the parsers' libFuzzer targets, each for a bounded time
+#   6. a short soak (scripts/soak.sh: four songs, two minutes of box time) on a Release
+#      tree: the heap's high-water and the open descriptors must not grow
 # Options: --host-only skips 3 (and the arm64 package); --no-fuzz skips 5.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -72,4 +74,9 @@ if [ "$fuzz" = 1 ]; then
     cmake --build --preset fuzz -j "$jobs"
     ctest --preset fuzz
 fi
+# The allocation counter the soak reads cannot load into a sanitizer build.
+stage "soak: four songs on the Release box (scripts/soak.sh 0.034 --period 30)"
+cmake --preset release >/dev/null
+cmake --build --preset release -j "$jobs" --target cubdance cub_alloc_count cub_fakenect_nosleep
+scripts/soak.sh 0.034 --period 30 --build build/release --out build/release/soak-short || [ $? = 77 ] # 77: no data
 stage "all tests passed"

@@ -5,14 +5,19 @@
 #include <string.h>
 #include <sys/stat.h>
 
-static FILE *open_path(const char *path)
+/* The stream's buffer is ours, and a new file after a move reuses the
+ * stream (freopen): moving the log allocates nothing in a running box. */
+static char line_buf[BUFSIZ];
+
+/* A new file at path; into `reuse` when there is one. */
+static FILE *open_path(const char *path, FILE *reuse)
 {
-    FILE *f = fopen(path, "w");
+    FILE *f = reuse ? freopen(path, "w", reuse) : fopen(path, "w");
     if (!f) {
         fprintf(stderr, "cubdance: cannot write the event log %s: %s\n", path, strerror(errno));
         return NULL;
     }
-    setvbuf(f, NULL, _IOLBF, 0); /* a line reaches the file as it happens */
+    setvbuf(f, line_buf, _IOLBF, sizeof line_buf); /* a line reaches the file as it happens */
     return f;
 }
 
@@ -31,7 +36,7 @@ int cub_event_log_open(cub_event_log_file *lf, const char *path, long max_kb)
     struct stat st;
     if (lf->max_bytes > 0 && stat(path, &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0)
         keep_as_older(path);
-    lf->f = open_path(path);
+    lf->f = open_path(path, NULL);
     return lf->f ? 0 : -1;
 }
 
@@ -43,9 +48,9 @@ void cub_event_log_line(void *user, const char *line, size_t len)
     fputc('\n', lf->f);
     lf->bytes += (long)len + 1;
     if (lf->max_bytes > 0 && lf->bytes >= lf->max_bytes && lf->f != stderr) {
-        fclose(lf->f);
-        keep_as_older(lf->path);
-        lf->f = open_path(lf->path);
+        fflush(lf->f);
+        keep_as_older(lf->path); /* the open stream follows the file to its new name */
+        lf->f = open_path(lf->path, lf->f);
         lf->bytes = 0;
     }
 }

@@ -174,6 +174,8 @@ static int run(const cub_app_options *o, cub_board *board, cub_event_log_file *l
         }
     }
     if (o->stats) s.tick_hist = calloc(CUB_SESSION_TICK_BINS, sizeof *s.tick_hist);
+    static cub_mem_stats mem;
+    if (o->stats) cub_mem_stats_open(s.mem = &mem);
     if (o->record_dir && !(s.rec = open_recorder(o, board, &loop.log))) goto done;
     if (s.rec) cub_session_follow_recording(&s, t0); /* --record: from the first frame on */
     cub_loop_hooks hooks = cub_session_hooks(&s);

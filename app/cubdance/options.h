@@ -22,7 +22,7 @@ typedef struct cub_app_options {
     int draw_every;             /* headless: draw every Nth tick only (default 1) */
     double seconds;             /* stop after this long; 0 = run until quit */
     int virtual_clock;          /* --clock virtual */
-    int stats;                  /* --stats: print tick CPU time and peak memory at the end */
+    int stats;                  /* --stats: tick CPU time, memory, allocations (mem_stats.h) */
     /* The dance (issue 4): with a song the coach leads it. */
     const char *song_path;      /* a choreography (a .song.xml in assets/songs), or NULL */
     const char *timeline_path;  /* scripted verdicts / presence / claps, or NULL */

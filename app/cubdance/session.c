@@ -314,6 +314,7 @@ static void hook_tick(void *u, cub_loop *loop, int64_t t_us)
     count_tick(s);
     check_display(s, loop, t_us);
     if (s->rec) cub_session_follow_recording(s, t_us);
+    if (s->mem) cub_mem_stats_tick(s->mem, t_us, dancing(s));
 }
 
 /* The tick's CPU time at quantile q (0..1), ms; from the bins (25 us). */
@@ -371,6 +372,7 @@ void cub_session_print_stats(const cub_session *s, FILE *out)
             tick_quantile_ms(s, 0.5), tick_quantile_ms(s, 0.95), s->tick_max_us / 1000.0,
             s->tick_count, ru.ru_maxrss / 1024.0);
     print_memory(out, ru.ru_maxrss);
+    if (s->mem) cub_mem_stats_print(s->mem, out);
 }
 
 cub_loop_hooks cub_session_hooks(cub_session *s)

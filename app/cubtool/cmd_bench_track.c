@@ -30,19 +30,37 @@ static int cmp_double(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-/* The whole tick, measured by the box itself on the same dump. */
-static void whole_tick(const char *dir, int frames)
+/* The whole tick, measured by the box itself on the same dump: `env`
+ * goes before the command, `lines` picks what to show of --stats. */
+static int run_box(const char *dir, int frames, const char *env, const char *lines)
 {
     char cmd[20000];
     snprintf(cmd, sizeof cmd,
-             "FAKENECT_PATH='%s' LD_LIBRARY_PATH='%s' EGL_PLATFORM=surfaceless SDL_AUDIODRIVER=dummy "
+             "FAKENECT_PATH='%s' LD_LIBRARY_PATH='%s' EGL_PLATFORM=surfaceless SDL_AUDIODRIVER=dummy %s "
              "'%s' --headless --replay '%s' --clock virtual --song '%s' --buttons '%s' "
-             "--seconds %.1f --log /dev/null --stats 2>/dev/null | grep 'tick CPU'",
-             dir, CUB_FAKENECT_DIR, CUB_CUBDANCE_EXE, dir, CUB_ASSETS_DIR "/songs/twinkle.song.xml",
-             CUB_ASSETS_DIR "/../scripts/demo.buttons", frames / 30.0 + 1.0);
+             "--seconds %.1f --log /dev/null --stats 2>/dev/null | grep -E '%s'",
+             dir, CUB_FAKENECT_DIR, env, CUB_CUBDANCE_EXE, dir, CUB_ASSETS_DIR "/songs/twinkle.song.xml",
+             CUB_ASSETS_DIR "/../scripts/demo.buttons", frames / 30.0 + 1.0, lines);
+    return system(cmd);
+}
+
+static void whole_tick(const char *dir, int frames)
+{
     printf("bench-track: the whole tick, cubdance leading Twinkle at 1280x720 on this dump:\n");
     fflush(stdout);
-    if (system(cmd) != 0) printf("bench-track: (the box did not run: see `%s --help`)\n", CUB_CUBDANCE_EXE);
+    if (run_box(dir, frames, "", "tick CPU") != 0)
+        printf("bench-track: (the box did not run: see `%s --help`)\n", CUB_CUBDANCE_EXE);
+#ifdef CUB_ALLOC_COUNT_LIB
+    /* Again with the counter, which tells whose each heap block is (its
+     * stack walks would distort the tick's CPU time, hence a second run). */
+    printf("bench-track: the box's memory, ours apart from the GL driver's (docs/memory.md):\n");
+    fflush(stdout);
+    run_box(dir, frames, "LD_PRELOAD='" CUB_ALLOC_COUNT_LIB "' CUB_ALLOC_OWNERS=1",
+            "^stats: memory (ours|gl_driver|heap by owner)");
+#else
+    printf("bench-track: (no allocation counter in a sanitizer build: the box's own memory is "
+           "measured in a Release build)\n");
+#endif
 }
 
 int cub_cmd_bench_track(int argc, char **argv)

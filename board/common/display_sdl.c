@@ -25,14 +25,18 @@
  */
 #include <SDL2/SDL.h>
 #include <dirent.h>
+#include <fcntl.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "display_backend.h"
 
 /* How often (in swaps, about once a second at 60 Hz) sysfs is read. */
 #define CONNECTOR_CHECK_EVERY 60
+/* HDMI connectors watched (a Pi 4 has two). */
+#define MAX_HDMI 4
 /* Swaps in a row that SDL reported failing before the display counts as lost. */
 #define SWAP_FAILS_LOST 30
 
@@ -47,6 +51,9 @@ typedef struct sdl_state {
     int watch_added;       /* on_event is registered with SDL */
     unsigned long swaps;
     int failed_swaps;      /* in a row */
+    char hdmi_status[MAX_HDMI][128]; /* the connectors' sysfs status files */
+    char hdmi_name[MAX_HDMI][32];    /* ... and names, e.g. HDMI-A-1 */
+    int hdmi_count;
     fault_kind fault;      /* CUB_DISPLAY_FAULT, for tests */
     unsigned long fault_at;
 } sdl_state;
@@ -91,33 +98,47 @@ static int on_event(void *user, SDL_Event *e)
     return 1;
 }
 
-/* The HDMI connectors' state from sysfs (/sys/class/drm/cardN-HDMI-A-M):
- * how many say "connected"; *name gets the first one seen. -1 if there is
- * no HDMI connector at all (nothing to watch). */
-static int hdmi_connected(char *name, size_t size)
+/* The HDMI connectors (/sys/class/drm/cardN-HDMI-A-M), found once at open:
+ * a board's connectors come with its DRM driver and do not change while it
+ * runs, and a check that only reads their status files with read(2)
+ * allocates nothing in a running box (opendir and fopen would). */
+static void find_hdmi(sdl_state *s)
 {
     DIR *dir = opendir("/sys/class/drm");
     if (!dir)
-        return -1;
-    int seen = 0, connected = 0;
+        return;
     struct dirent *ent;
-    while ((ent = readdir(dir))) {
+    while ((ent = readdir(dir)) && s->hdmi_count < MAX_HDMI) {
         const char *dash = strchr(ent->d_name, '-');
         if (strncmp(ent->d_name, "card", 4) != 0 || !dash || !strstr(dash, "HDMI"))
             continue;
-        char path[512], status[32] = "";
-        snprintf(path, sizeof path, "/sys/class/drm/%s/status", ent->d_name);
-        FILE *f = fopen(path, "r");
-        if (!f)
+        int n = snprintf(s->hdmi_status[s->hdmi_count], sizeof s->hdmi_status[0],
+                         "/sys/class/drm/%s/status", ent->d_name);
+        if (n <= 0 || (size_t)n >= sizeof s->hdmi_status[0])
             continue;
-        if (!fgets(status, sizeof status, f))
-            status[0] = '\0';
-        fclose(f);
-        if (!seen++)
-            snprintf(name, size, "%s", dash + 1);
-        connected += strncmp(status, "connected", 9) == 0;
+        snprintf(s->hdmi_name[s->hdmi_count], sizeof s->hdmi_name[0], "%s", dash + 1);
+        s->hdmi_count++;
     }
     closedir(dir);
+}
+
+/* How many of the HDMI connectors say "connected"; *name gets the first
+ * one's. -1 if there is no HDMI connector at all (nothing to watch). */
+static int hdmi_connected(const sdl_state *s, char *name, size_t size)
+{
+    int seen = 0, connected = 0;
+    for (int i = 0; i < s->hdmi_count; i++) {
+        char status[32];
+        int fd = open(s->hdmi_status[i], O_RDONLY);
+        if (fd < 0)
+            continue;
+        ssize_t got = read(fd, status, sizeof status - 1);
+        close(fd);
+        status[got > 0 ? got : 0] = '\0';
+        if (!seen++)
+            snprintf(name, size, "%s", s->hdmi_name[i]);
+        connected += strncmp(status, "connected", 9) == 0;
+    }
     return seen ? connected : -1;
 }
 
@@ -138,7 +159,7 @@ static void read_fault(sdl_state *s)
 static void check_connectors(sdl_state *s)
 {
     char name[64] = "HDMI";
-    int connected = hdmi_connected(name, sizeof name);
+    int connected = hdmi_connected(s, name, sizeof name);
     if (s->fault == FAULT_UNPLUG && s->swaps >= s->fault_at)
         connected = 0;
     if (connected == 0)
@@ -293,7 +314,8 @@ static cub_err make_window(cub_display *d, sdl_state *s, int fullscreen, char *e
     SDL_GL_GetDrawableSize(s->win, &d->w, &d->h);
     snprintf(s->driver, sizeof s->driver, "%s", driver ? driver : "?");
     char name[64];
-    s->watch_connectors = !strcmp(s->driver, "KMSDRM") && hdmi_connected(name, sizeof name) > 0;
+    find_hdmi(s);
+    s->watch_connectors = !strcmp(s->driver, "KMSDRM") && hdmi_connected(s, name, sizeof name) > 0;
     read_fault(s);
     SDL_AddEventWatch(on_event, s);
     s->watch_added = 1;
