@@ -42,8 +42,8 @@ static void say(char *err, size_t size, const char *fmt, const char *path, const
         snprintf(err, size, fmt, path, why);
 }
 
-/* The whole font file, or NULL with the reason in err. */
-static unsigned char *read_font(const char *path, char *err, size_t size)
+/* The whole font file, or NULL with the reason in err; *len its size. */
+static unsigned char *read_font(const char *path, size_t *len, char *err, size_t size)
 {
     FILE *f = fopen(path, "rb");
     if (!f) {
@@ -65,6 +65,7 @@ static unsigned char *read_font(const char *path, char *err, size_t size)
         data = NULL;
     }
     fclose(f);
+    *len = data ? (size_t)n : 0;
     return data;
 }
 
@@ -102,13 +103,21 @@ static cub_err make_gl(cub_render_text *t, const unsigned char *px)
 cub_err cub_render_text_init(cub_render *r, const char *path, char *err, size_t size)
 {
     cub_render_text *t = &r->text;
-    unsigned char *font = read_font(path, err, size);
+    size_t len = 0;
+    unsigned char *font = read_font(path, &len, err, size);
     if (!font)
         return CUB_ERR_IO;
+    /* stb_truetype checks no offset: a damaged font must be refused here. */
+    char why[160];
+    int usable = cub_render_font_check(font, len, why, sizeof why);
     stbtt_fontinfo info;
-    int offset = stbtt_GetFontOffsetForIndex(font, 0);
-    if (offset < 0 || !stbtt_InitFont(&info, font, offset)) {
-        say(err, size, "cannot load font %s: %s", path, "not a TrueType font");
+    int offset = usable > 0 ? stbtt_GetFontOffsetForIndex(font, 0) : -1;
+    if (usable > 0 && (offset < 0 || !stbtt_InitFont(&info, font, offset)))
+        usable = -1;
+    if (usable <= 0) {
+        char msg[200];
+        snprintf(msg, sizeof msg, "not a usable TrueType font (%s)", why);
+        say(err, size, "cannot load font %s: %s", path, usable < 0 ? "not a TrueType font" : msg);
         free(font);
         return CUB_ERR_FORMAT;
     }
