@@ -17,10 +17,11 @@
 
 #include <stb_truetype.h>
 
+#include "cub/text.h"
 #include "render_internal.h"
 
 #define ATLAS_SHARE 8  /* glyph pixel height = viewport height / this */
-#define MAX_FONT_BYTES (64L << 20)
+#define MAX_FONT_BYTES ((size_t)64 << 20)
 
 static const char TEXT_VS[] =
     "attribute vec2 a_pos;\n"
@@ -45,27 +46,28 @@ static void say(char *err, size_t size, const char *fmt, const char *path, const
 /* The whole font file, or NULL with the reason in err; *len its size. */
 static unsigned char *read_font(const char *path, size_t *len, char *err, size_t size)
 {
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        say(err, size, "cannot load font %s: %s", path, strerror(errno));
+    FILE *f = NULL;
+    size_t n = 0;
+    cub_diag d = {0};
+    cub_text_src src = {path, "font", MAX_FONT_BYTES};
+    if (cub_text_fopen(&src, &f, &n, &d)) {
+        /* "cannot read the font: why" -> "cannot load font PATH: why" */
+        const char *why = strstr(d.msg, "font: ");
+        say(err, size, "cannot load font %s: %s", path, why ? why + 6 : d.msg);
         return NULL;
     }
-    long n = -1;
-    if (fseek(f, 0, SEEK_END) == 0)
-        n = ftell(f);
     unsigned char *data = NULL;
-    if (n <= 0 || n > MAX_FONT_BYTES || fseek(f, 0, SEEK_SET) != 0) {
-        say(err, size, "cannot load font %s: %s", path,
-            n == 0 ? "the file is empty" : "not a regular file of a sensible size");
-    } else if (!(data = malloc((size_t)n))) {
+    if (n == 0) {
+        say(err, size, "cannot load font %s: %s", path, "the file is empty");
+    } else if (!(data = malloc(n))) {
         say(err, size, "cannot load font %s: %s", path, "out of memory");
-    } else if (fread(data, 1, (size_t)n, f) != (size_t)n) {
+    } else if (fread(data, 1, n, f) != n) {
         say(err, size, "cannot load font %s: %s", path, "read error");
         free(data);
         data = NULL;
     }
     fclose(f);
-    *len = data ? (size_t)n : 0;
+    *len = data ? n : 0;
     return data;
 }
 

@@ -10,6 +10,7 @@
 #include "fakenect_dump.h"
 
 #include "cub/board.h"
+#include "cub/text.h"
 
 #include <dirent.h>
 #include <errno.h>
@@ -23,6 +24,8 @@
 #define HEADER_MAX 64 /* fakenect-record's header lines are ~17 bytes */
 #define NONE_HEADER "P5 640 480 65535\n" /* as fakenect-record writes it */
 #define NAME_MAX_CHARS 1024
+#define INDEX_MAX_BYTES ((size_t)64 << 20) /* a name a line: hours of frames */
+#define SMALL_FILE_MAX_BYTES ((size_t)1 << 20) /* a-* readings are ~20 bytes */
 
 /* fakenect keeps the pointer getenv gave it and builds every file path from
  * it while it replays, even after we put the caller's value back: the
@@ -33,7 +36,8 @@ static char view_env[sizeof "FAKENECT_PATH=" + CUB_FAKENECT_PATH_MAX];
 typedef enum file_fault {
     FILE_GOOD,
     FILE_MISSING,     /* will not open: fakenect would exit() */
-    FILE_NOT_REGULAR, /* a directory or a device: fakenect would read nonsense */
+    FILE_NOT_REGULAR, /* a directory, FIFO or device: fakenect would hang or read nonsense */
+    FILE_TOO_BIG,     /* far larger than a frame: fakenect reads a file whole */
     FILE_SHORT,       /* shorter than header + frame: fakenect would over-read */
     FILE_NO_HEADER,   /* no header line: fakenect would exit() */
     FILE_EMPTY,       /* an empty a-* file: fakenect would end the replay there */
@@ -43,6 +47,7 @@ typedef struct file_check {
     file_fault fault;
     long long size_bytes;
     size_t need_bytes; /* header line + frame */
+    char why[256];     /* FILE_NOT_REGULAR, FILE_TOO_BIG: what cub_text_open said */
 } file_check;
 
 typedef struct index_reader {
@@ -68,24 +73,33 @@ static size_t frame_bytes(const char *name)
 
 static file_check check_file(const char *dir, const char *name)
 {
-    file_check c = {FILE_GOOD, 0, 0};
+    file_check c = {FILE_GOOD, 0, 0, ""};
     char path[2 * CUB_FAKENECT_PATH_MAX];
     snprintf(path, sizeof path, "%s/%s", dir, name);
-    FILE *f = fopen(path, "rb");
+    size_t frame = frame_bytes(name);
+    /* Twice a frame: a frame file is its header line and the frame. */
+    cub_text_src src = {path, name[0] == 'd'   ? "depth frame"
+                              : name[0] == 'r' ? "colour frame"
+                                               : "dump file",
+                        frame ? 2 * frame : SMALL_FILE_MAX_BYTES};
+    FILE *f = NULL;
+    size_t bytes = 0;
+    cub_diag d = {0};
+    cub_err e = cub_text_fopen(&src, &f, &bytes, &d);
     struct stat st;
-    if (!f) {
-        c.fault = FILE_MISSING;
+    if (e) {
+        /* a name that is not there (or a dangling link) is "missing" */
+        c.fault = e == CUB_ERR_FORMAT ? FILE_TOO_BIG
+                  : stat(path, &st) != 0 && errno == ENOENT ? FILE_MISSING
+                                                            : FILE_NOT_REGULAR;
+        const char *why = strstr(d.msg, ": ");
+        snprintf(c.why, sizeof c.why, "%.250s", e == CUB_ERR_FORMAT || !why ? d.msg : why + 2);
         return c;
     }
-    if (fstat(fileno(f), &st) != 0 || !S_ISREG(st.st_mode)) {
-        fclose(f);
-        c.fault = FILE_NOT_REGULAR;
-        return c;
-    }
+    st.st_size = (off_t)bytes;
     char head[HEADER_MAX];
     size_t got = fread(head, 1, sizeof head, f);
     fclose(f);
-    size_t frame = frame_bytes(name);
     /* fakenect reads a whole a-* file in one fread, which fails on none. A
      * reading of another size it only warns about. */
     if (name[0] == 'a' && st.st_size == 0) c.fault = FILE_EMPTY;
@@ -106,7 +120,8 @@ static const char *describe(file_check c, char *buf, size_t size)
     switch (c.fault) {
     case FILE_GOOD: snprintf(buf, size, "good"); break;
     case FILE_MISSING: snprintf(buf, size, "missing"); break;
-    case FILE_NOT_REGULAR: snprintf(buf, size, "not a regular file"); break;
+    case FILE_NOT_REGULAR: snprintf(buf, size, "not a regular file (%s)", c.why); break;
+    case FILE_TOO_BIG: snprintf(buf, size, "%s", c.why); break;
     case FILE_SHORT:
         snprintf(buf, size, "truncated: %lld of %zu bytes", c.size_bytes, c.need_bytes);
         break;
@@ -122,10 +137,15 @@ static cub_err open_index(index_reader *r, const char *dir, char *err, size_t er
     snprintf(path, sizeof path, "%s/INDEX.txt", dir);
     r->dir = dir;
     r->line = 0;
-    r->f = fopen(path, "rb");
-    if (!r->f) {
-        snprintf(err, err_size, "fakenect dump %s: cannot open INDEX.txt", dir);
-        return CUB_ERR_IO;
+    cub_text_src src = {path, "INDEX.txt", INDEX_MAX_BYTES};
+    size_t bytes = 0;
+    cub_diag d = {0};
+    cub_err e = cub_text_fopen(&src, &r->f, &bytes, &d);
+    if (e) {
+        const char *why = strstr(d.msg, ": ");
+        snprintf(err, err_size, "fakenect dump %s: cannot open INDEX.txt: %s", dir,
+                 e == CUB_ERR_FORMAT || !why ? d.msg : why + 2);
+        return e;
     }
     return CUB_OK;
 }
@@ -151,7 +171,7 @@ static int next_name(index_reader *r, char *name, char *err, size_t err_size)
 static cub_err refuse_other(const index_reader *r, const char *name, file_check c, char *err,
                             size_t err_size)
 {
-    char why[96];
+    char why[320];
     if (c.fault == FILE_MISSING) {
         snprintf(err, err_size, "fakenect dump %s: INDEX.txt:%d: cannot open %s", r->dir, r->line,
                  name);
@@ -205,7 +225,7 @@ static cub_err scan_dump(const char *dir, dump_scan *scan, char *err, size_t err
 /* Bad frames are replayed only when there is something real around them. */
 static cub_err judge_scan(const char *dir, const dump_scan *scan, char *err, size_t err_size)
 {
-    char why[96];
+    char why[320];
     if (scan->bad_frames > 0 && scan->good_frames == 0) {
         snprintf(err, err_size,
                  "fakenect dump %s: INDEX.txt:%d: %s: %s; no good depth frame in the dump: "
@@ -295,9 +315,9 @@ static int add_to_view(cub_fakenect_view *v, const index_reader *r, const char *
                        const char *name)
 {
     int mendable = name[0] == 'd' || name[0] == 'a';
-    file_check c = mendable ? check_file(r->dir, name) : (file_check){FILE_GOOD, 0, 0};
+    file_check c = mendable ? check_file(r->dir, name) : (file_check){FILE_GOOD, 0, 0, ""};
     if (c.fault == FILE_GOOD) return link_file(real_dir, v->dir, name);
-    char path[2 * CUB_FAKENECT_PATH_MAX], why[96];
+    char path[2 * CUB_FAKENECT_PATH_MAX], why[320];
     snprintf(path, sizeof path, "%s/%s", v->dir, name);
     if (name[0] == 'a') {
         if (write_no_accel(path) != 0) return -1;
