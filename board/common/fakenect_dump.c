@@ -4,7 +4,9 @@
  * Two passes over INDEX.txt: the first only looks (so a refused dump leaves
  * nothing behind), the second builds the view. Names are read the way
  * fakenect reads them: one per line, the first letter is the kind (d depth,
- * r colour, a accelerometer), and the first empty line ends the dump. */
+ * r colour, a accelerometer). Every line is looked at: fakenect reads on
+ * past an empty line, so the view drops empty lines rather than stopping
+ * the check at the first. */
 #define _GNU_SOURCE /* mkdtemp, symlink, setenv, putenv, realpath */
 
 #include "fakenect_dump.h"
@@ -64,6 +66,9 @@ typedef struct dump_scan {
     char first_bad[NAME_MAX_CHARS];
     file_check first_bad_check;
     int path_line; /* first name with a '/' (a view cannot hold it); 0: none */
+    int names;       /* lines naming a file */
+    int blank_lines; /* empty lines, dropped in the view */
+    int first_blank_line;
 } dump_scan;
 
 static size_t frame_bytes(const char *name)
@@ -150,8 +155,8 @@ static cub_err open_index(index_reader *r, const char *dir, char *err, size_t er
     return CUB_OK;
 }
 
-/* The next name: 1; 0 at the end (end of file, or an empty line: fakenect
- * stops there); -1 with err on a line too long to be a file name. */
+/* The next line: 1 a name; 2 an empty line; 0 at the end of the file; -1
+ * with err on a line too long to be a file name. */
 static int next_name(index_reader *r, char *name, char *err, size_t err_size)
 {
     if (!fgets(name, NAME_MAX_CHARS, r->f)) return 0;
@@ -164,7 +169,7 @@ static int next_name(index_reader *r, char *name, char *err, size_t err_size)
                  r->dir, r->line, NAME_MAX_CHARS - 2);
         return -1;
     }
-    return name[0] ? 1 : 0;
+    return name[0] ? 1 : 2;
 }
 
 /* A fault in a file that is not a depth frame refuses the dump, as before. */
@@ -208,6 +213,11 @@ static cub_err scan_dump(const char *dir, dump_scan *scan, char *err, size_t err
     char name[NAME_MAX_CHARS];
     int more = 0;
     while (!e && (more = next_name(&r, name, err, err_size)) > 0) {
+        if (more == 2) {
+            if (scan->blank_lines++ == 0) scan->first_blank_line = r.line;
+            continue;
+        }
+        scan->names++;
         file_check c = check_file(dir, name);
         if (strchr(name, '/') && !scan->path_line) scan->path_line = r.line;
         if (name[0] == 'd') {
@@ -226,6 +236,18 @@ static cub_err scan_dump(const char *dir, dump_scan *scan, char *err, size_t err
 static cub_err judge_scan(const char *dir, const dump_scan *scan, char *err, size_t err_size)
 {
     char why[320];
+    if (scan->names == 0) {
+        snprintf(err, err_size, "fakenect dump %s: INDEX.txt lists no files: nothing to replay",
+                 dir);
+        return CUB_ERR_FORMAT;
+    }
+    if (scan->blank_lines > 0 && scan->path_line) {
+        snprintf(err, err_size,
+                 "fakenect dump %s: INDEX.txt:%d: a name with a directory in it; cannot drop "
+                 "the empty line at INDEX.txt:%d around it",
+                 dir, scan->path_line, scan->first_blank_line);
+        return CUB_ERR_FORMAT;
+    }
     if (scan->bad_frames > 0 && scan->good_frames == 0) {
         snprintf(err, err_size,
                  "fakenect dump %s: INDEX.txt:%d: %s: %s; no good depth frame in the dump: "
@@ -349,7 +371,8 @@ static cub_err make_view_dir(cub_fakenect_view *v, char *err, size_t err_size)
 }
 
 /* Pass two: the view (links are absolute, FAKENECT_PATH may be relative). */
-static cub_err build_view(cub_fakenect_view *v, const char *dir, char *err, size_t err_size)
+static cub_err build_view(cub_fakenect_view *v, const char *dir, int drop_blanks, char *err,
+                          size_t err_size)
 {
     char real_dir[CUB_FAKENECT_PATH_MAX], from[CUB_FAKENECT_PATH_MAX + 16];
     char to[CUB_FAKENECT_PATH_MAX + 16], name[NAME_MAX_CHARS];
@@ -358,17 +381,32 @@ static cub_err build_view(cub_fakenect_view *v, const char *dir, char *err, size
     if (e) return e;
     snprintf(from, sizeof from, "%s/INDEX.txt", dir);
     snprintf(to, sizeof to, "%s/INDEX.txt", v->dir);
-    if (copy_file(from, to) != 0) return view_failed(v, "copying", from, err, err_size);
+    /* Copied as it is when it has no empty line, so that a mended replay
+     * reads the very same index. */
+    FILE *index = NULL;
+    if (!drop_blanks && copy_file(from, to) != 0)
+        return view_failed(v, "copying", from, err, err_size);
+    if (drop_blanks && !(index = fopen(to, "wx")))
+        return view_failed(v, "writing", to, err, err_size);
     index_reader r;
     if ((e = open_index(&r, dir, err, err_size))) {
+        if (index) fclose(index);
         cub_fakenect_dump_release(v);
         return e;
     }
-    int more;
-    while ((more = next_name(&r, name, err, err_size)) > 0 &&
-           (!strcmp(name, "INDEX.txt") || add_to_view(v, &r, real_dir, name) == 0)) {
+    int more, written = 1;
+    while ((more = next_name(&r, name, err, err_size)) > 0) {
+        if (more == 2) {
+            fprintf(stderr, "depth: fakenect dump %s: INDEX.txt:%d: an empty line: dropped\n",
+                    dir, r.line);
+            continue;
+        }
+        if (index) written = written && fprintf(index, "%s\n", name) > 0;
+        if (strcmp(name, "INDEX.txt") && add_to_view(v, &r, real_dir, name) != 0) break;
     }
     fclose(r.f);
+    if (index && fclose(index) != 0) written = 0;
+    if (!written) return view_failed(v, "writing", to, err, err_size);
     if (more != 0) return view_failed(v, "adding", name, err, err_size);
     snprintf(from, sizeof from, "%s/device.json", dir); /* newer fakenects read it */
     if (access(from, F_OK) == 0 && link_file(real_dir, v->dir, "device.json") != 0) {
@@ -406,11 +444,11 @@ cub_err cub_fakenect_dump_prepare(cub_fakenect_view *v, char *err, size_t err_si
     dump_scan scan = {0};
     cub_err e = scan_dump(dir, &scan, err, err_size);
     if (!e) e = judge_scan(dir, &scan, err, err_size);
-    if (e || scan.bad_frames + scan.empty_accel == 0) return e;
+    if (e || scan.bad_frames + scan.empty_accel + scan.blank_lines == 0) return e;
     /* Copied: point_env replaces the environment string dir points into. */
     char dump_dir[CUB_FAKENECT_PATH_MAX];
     snprintf(dump_dir, sizeof dump_dir, "%s", dir);
-    e = build_view(v, dump_dir, err, err_size);
+    e = build_view(v, dump_dir, scan.blank_lines > 0, err, err_size);
     return e ? e : point_env(v, dump_dir, err, err_size);
 }
 
