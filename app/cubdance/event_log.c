@@ -40,12 +40,30 @@ int cub_event_log_open(cub_event_log_file *lf, const char *path, long max_kb)
     return lf->f ? 0 : -1;
 }
 
+/* The first lost line says so at once: the box's memory is going. */
+static void lost(cub_event_log_file *lf, int err)
+{
+    if (lf->lost_lines++ == 0) {
+        lf->write_errno = err ? err : EIO;
+        fprintf(stderr, "cubdance: cannot write the event log %s: %s; lines are being lost\n",
+                lf->path ? lf->path : "(stderr)", strerror(lf->write_errno));
+    }
+}
+
 void cub_event_log_line(void *user, const char *line, size_t len)
 {
     cub_event_log_file *lf = user;
-    if (!lf->f) return; /* the log could not be reopened: the run goes on */
-    fwrite(line, 1, len, lf->f);
-    fputc('\n', lf->f);
+    if (!lf->f) { /* the log could not be reopened: the run goes on */
+        lost(lf, errno);
+        return;
+    }
+    /* Line-buffered: the newline writes the line, and fails if it cannot. */
+    errno = 0;
+    if (fwrite(line, 1, len, lf->f) != len || fputc('\n', lf->f) == EOF || ferror(lf->f)) {
+        lost(lf, errno);
+        clearerr(lf->f);
+        return;
+    }
     lf->bytes += (long)len + 1;
     if (lf->max_bytes > 0 && lf->bytes >= lf->max_bytes && lf->f != stderr) {
         fflush(lf->f);
@@ -55,8 +73,14 @@ void cub_event_log_line(void *user, const char *line, size_t len)
     }
 }
 
-void cub_event_log_close(cub_event_log_file *lf)
+int cub_event_log_close(cub_event_log_file *lf)
 {
-    if (lf->f && lf->f != stderr) fclose(lf->f);
+    errno = 0;
+    if (lf->f && lf->f != stderr && fclose(lf->f) != 0) lost(lf, errno);
     lf->f = NULL;
+    if (lf->lost_lines == 0) return 0;
+    fprintf(stderr, "cubdance: the event log %s is incomplete: %ld line%s lost (%s)\n",
+            lf->path ? lf->path : "(stderr)", lf->lost_lines, lf->lost_lines == 1 ? "" : "s",
+            strerror(lf->write_errno));
+    return -1;
 }

@@ -17,13 +17,19 @@ typedef struct cub_event_log_file {
     FILE *f;              /* stderr for no path or "-"; NULL if a reopen failed */
     const char *path;
     long max_bytes, bytes; /* max 0 = no cap */
+    long lost_lines;       /* lines that could not be written (a full disk) */
+    int write_errno;       /* the first failed write's errno; 0: none failed */
 } cub_event_log_file;
 
 /* Open path ("-" or NULL = stderr) with a cap of max_kb (0 = none). -1 with
  * a message on stderr when the file cannot be written. */
 int cub_event_log_open(cub_event_log_file *lf, const char *path, long max_kb);
-/* A cub_loop log sink: user is the cub_event_log_file. */
+/* A cub_loop log sink: user is the cub_event_log_file. A line that cannot
+ * be written is counted in lost_lines; the first such says so on stderr
+ * (the lines before it stay in the file). */
 void cub_event_log_line(void *user, const char *line, size_t len);
-void cub_event_log_close(cub_event_log_file *lf);
+/* Close the file; 0, or -1 when a line was lost or the close failed, with
+ * what was lost on stderr. */
+int cub_event_log_close(cub_event_log_file *lf);
 
 #endif

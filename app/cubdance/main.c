@@ -249,15 +249,21 @@ int main(int argc, char **argv)
     cub_io_motion clip;
     if (load_clip(o.clip_path, &clip)) return 1;
     static cub_event_log_file log;
-    if (cub_event_log_open(&log, o.log_path, o.log_max_kb)) return 1;
+    if (cub_event_log_open(&log, o.log_path, o.log_max_kb)) {
+        cub_io_motion_free(&clip);
+        return 1;
+    }
     cub_board *board = open_board(&o);
     int rc = 1;
     if (board) {
         rc = run(&o, board, &log, &clip) ? 1 : 0;
         cub_board_close(board);
     }
-    if (log.f != stderr) printf("cubdance: event log written to %s\n", o.log_path);
-    cub_event_log_close(&log);
+    int to_file = log.f != stderr;
+    if (cub_event_log_close(&log))
+        rc = 1; /* a lost event log is a failed run, whatever else went well */
+    else if (to_file)
+        printf("cubdance: event log written to %s\n", o.log_path);
     cub_io_motion_free(&clip);
     return rc;
 }

@@ -13,6 +13,7 @@
 #include "sf2_trim.h"
 
 #define PPM 1000000
+#define SOUNDFONT_MAX_BYTES ((size_t)1 << 30) /* FluidR3_GM is 141 MB */
 #define CUB_MUSIC_POLYPHONY 64 /* voices sounding at once (see cub_music_open) */
 
 struct cub_music {
@@ -154,7 +155,9 @@ static cub_err load_for_song(cub_music *m, const uint8_t *midi, size_t len, cub_
     uint8_t *img = NULL;
     size_t img_len = 0;
     FILE *f = NULL;
-    if (cub_midi_presets(midi, len, &want) != CUB_OK || !(f = fopen(m->soundfont, "rb")) ||
+    size_t bytes = 0;
+    cub_text_src src = {m->soundfont, "SoundFont", SOUNDFONT_MAX_BYTES};
+    if (cub_midi_presets(midi, len, &want) != CUB_OK || cub_text_fopen(&src, &f, &bytes, NULL) ||
         cub_sf2_trim(f, m->soundfont, &want, &img, &img_len, NULL) != CUB_OK) {
         if (f) fclose(f);
         return load_whole(m, diag);
@@ -178,8 +181,15 @@ static cub_err load_for_song(cub_music *m, const uint8_t *midi, size_t len, cub_
  * the song is known (load_for_song), or now when it cannot be cut. */
 static cub_err open_soundfont(cub_music *m, const char *path, cub_diag *diag)
 {
-    FILE *f = fopen(path, "rb");
-    if (!f) return fail(diag, CUB_ERR_IO, path, "cannot read the SoundFont", strerror(errno));
+    FILE *f = NULL;
+    size_t bytes = 0;
+    cub_diag why = {0};
+    cub_text_src src = {path, "SoundFont", SOUNDFONT_MAX_BYTES};
+    cub_err opened = cub_text_fopen(&src, &f, &bytes, &why);
+    /* "cannot open the SoundFont: why" -> "cannot read the SoundFont: why" */
+    const char *reason = strstr(why.msg, "SoundFont: ");
+    if (opened)
+        return fail(diag, opened, path, "cannot read the SoundFont", reason ? reason + 11 : why.msg);
     char head[12] = {0};
     size_t got = fread(head, 1, sizeof(head), f);
     /* FluidSynth would hand other files to its DLS loader, which complains

@@ -166,6 +166,11 @@ void cub_render_inset_draw(cub_render *r, const uint16_t *depth_raw);
 /* The inset's rectangle in pixels, origin bottom-left. */
 void cub_render_inset_rect(int w, int h, int *x0, int *y0, int *iw, int *ih);
 
+/* render_font_check.c: whether n bytes of a font file are safe for
+ * stb_truetype's atlas bake: 1 yes; 0 no, with the reason in why; -1 not
+ * a TrueType file at all. */
+int cub_render_font_check(const unsigned char *data, size_t n, char *why, size_t size);
+
 /* render_text.c: bake the font's atlas (CUB_ERR_IO / CUB_ERR_FORMAT with
  * "cannot load font PATH: why" in err), lay out a label when its string
  * changed, queue it at pen (x, y) px (baseline, origin bottom-left) times

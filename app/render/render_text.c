@@ -17,10 +17,11 @@
 
 #include <stb_truetype.h>
 
+#include "cub/text.h"
 #include "render_internal.h"
 
 #define ATLAS_SHARE 8  /* glyph pixel height = viewport height / this */
-#define MAX_FONT_BYTES (64L << 20)
+#define MAX_FONT_BYTES ((size_t)64 << 20)
 
 static const char TEXT_VS[] =
     "attribute vec2 a_pos;\n"
@@ -42,29 +43,31 @@ static void say(char *err, size_t size, const char *fmt, const char *path, const
         snprintf(err, size, fmt, path, why);
 }
 
-/* The whole font file, or NULL with the reason in err. */
-static unsigned char *read_font(const char *path, char *err, size_t size)
+/* The whole font file, or NULL with the reason in err; *len its size. */
+static unsigned char *read_font(const char *path, size_t *len, char *err, size_t size)
 {
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        say(err, size, "cannot load font %s: %s", path, strerror(errno));
+    FILE *f = NULL;
+    size_t n = 0;
+    cub_diag d = {0};
+    cub_text_src src = {path, "font", MAX_FONT_BYTES};
+    if (cub_text_fopen(&src, &f, &n, &d)) {
+        /* "cannot read the font: why" -> "cannot load font PATH: why" */
+        const char *why = strstr(d.msg, "font: ");
+        say(err, size, "cannot load font %s: %s", path, why ? why + 6 : d.msg);
         return NULL;
     }
-    long n = -1;
-    if (fseek(f, 0, SEEK_END) == 0)
-        n = ftell(f);
     unsigned char *data = NULL;
-    if (n <= 0 || n > MAX_FONT_BYTES || fseek(f, 0, SEEK_SET) != 0) {
-        say(err, size, "cannot load font %s: %s", path,
-            n == 0 ? "the file is empty" : "not a regular file of a sensible size");
-    } else if (!(data = malloc((size_t)n))) {
+    if (n == 0) {
+        say(err, size, "cannot load font %s: %s", path, "the file is empty");
+    } else if (!(data = malloc(n))) {
         say(err, size, "cannot load font %s: %s", path, "out of memory");
-    } else if (fread(data, 1, (size_t)n, f) != (size_t)n) {
+    } else if (fread(data, 1, n, f) != n) {
         say(err, size, "cannot load font %s: %s", path, "read error");
         free(data);
         data = NULL;
     }
     fclose(f);
+    *len = data ? n : 0;
     return data;
 }
 
@@ -102,13 +105,21 @@ static cub_err make_gl(cub_render_text *t, const unsigned char *px)
 cub_err cub_render_text_init(cub_render *r, const char *path, char *err, size_t size)
 {
     cub_render_text *t = &r->text;
-    unsigned char *font = read_font(path, err, size);
+    size_t len = 0;
+    unsigned char *font = read_font(path, &len, err, size);
     if (!font)
         return CUB_ERR_IO;
+    /* stb_truetype checks no offset: a damaged font must be refused here. */
+    char why[160];
+    int usable = cub_render_font_check(font, len, why, sizeof why);
     stbtt_fontinfo info;
-    int offset = stbtt_GetFontOffsetForIndex(font, 0);
-    if (offset < 0 || !stbtt_InitFont(&info, font, offset)) {
-        say(err, size, "cannot load font %s: %s", path, "not a TrueType font");
+    int offset = usable > 0 ? stbtt_GetFontOffsetForIndex(font, 0) : -1;
+    if (usable > 0 && (offset < 0 || !stbtt_InitFont(&info, font, offset)))
+        usable = -1;
+    if (usable <= 0) {
+        char msg[200];
+        snprintf(msg, sizeof msg, "not a usable TrueType font (%s)", why);
+        say(err, size, "cannot load font %s: %s", path, usable < 0 ? "not a TrueType font" : msg);
         free(font);
         return CUB_ERR_FORMAT;
     }

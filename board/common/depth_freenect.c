@@ -80,16 +80,33 @@ struct cub_depth_freenect {
     int have_first;
     uint32_t last_timestamp;
     uint64_t ticks;      /* 60 MHz ticks since the first frame, past the counter's wraps */
+    int warned_step;     /* a step back or a jump was reported */
     int64_t first_t_us;
     cub_fakenect_view view; /* the mended dump fakenect replays, if any */
 };
 
 /* When a replayed frame is due on the virtual clock. The Kinect's 60 MHz
  * counter is 32 bits and wraps every 71.6 s: the ticks are summed frame to
- * frame (each step taken modulo 2^32), so any length of recording works. */
+ * frame (each step taken modulo 2^32), so any length of recording works.
+ * A step back (a timestamp smaller than the one before, or an unparsable
+ * name, which fakenect reads as 0) would be taken modulo 2^32 as a
+ * 71.5 s wait, and a jump past MAX_STEP_TICKS is no camera pause a
+ * recording holds: both are taken as one frame's step, said once. */
+#define FRAME_TICKS 2000000u          /* 60 MHz / 30 fps */
+#define MAX_STEP_TICKS (60000000u * 10) /* 10 s: a recorded gap longer is a jump */
 static int64_t due_us(cub_depth_freenect *s, uint32_t timestamp)
 {
-    s->ticks += (uint32_t)(timestamp - s->last_timestamp);
+    uint32_t step = (uint32_t)(timestamp - s->last_timestamp);
+    if (step > MAX_STEP_TICKS) {
+        if (!s->warned_step++)
+            fprintf(stderr,
+                    "depth: replay: the frame timestamp %s (%u after %u): taken as one frame's "
+                    "step\n",
+                    step >= 0x80000000u ? "steps back" : "jumps more than 10 s", timestamp,
+                    s->last_timestamp);
+        step = FRAME_TICKS;
+    }
+    s->ticks += step;
     s->last_timestamp = timestamp;
     return s->first_t_us + (int64_t)(s->ticks / 60);
 }

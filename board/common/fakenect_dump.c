@@ -4,12 +4,15 @@
  * Two passes over INDEX.txt: the first only looks (so a refused dump leaves
  * nothing behind), the second builds the view. Names are read the way
  * fakenect reads them: one per line, the first letter is the kind (d depth,
- * r colour, a accelerometer), and the first empty line ends the dump. */
+ * r colour, a accelerometer). Every line is looked at: fakenect reads on
+ * past an empty line, so the view drops empty lines rather than stopping
+ * the check at the first. */
 #define _GNU_SOURCE /* mkdtemp, symlink, setenv, putenv, realpath */
 
 #include "fakenect_dump.h"
 
 #include "cub/board.h"
+#include "cub/text.h"
 
 #include <dirent.h>
 #include <errno.h>
@@ -23,6 +26,8 @@
 #define HEADER_MAX 64 /* fakenect-record's header lines are ~17 bytes */
 #define NONE_HEADER "P5 640 480 65535\n" /* as fakenect-record writes it */
 #define NAME_MAX_CHARS 1024
+#define INDEX_MAX_BYTES ((size_t)64 << 20) /* a name a line: hours of frames */
+#define SMALL_FILE_MAX_BYTES ((size_t)1 << 20) /* a-* readings are ~20 bytes */
 
 /* fakenect keeps the pointer getenv gave it and builds every file path from
  * it while it replays, even after we put the caller's value back: the
@@ -33,7 +38,8 @@ static char view_env[sizeof "FAKENECT_PATH=" + CUB_FAKENECT_PATH_MAX];
 typedef enum file_fault {
     FILE_GOOD,
     FILE_MISSING,     /* will not open: fakenect would exit() */
-    FILE_NOT_REGULAR, /* a directory or a device: fakenect would read nonsense */
+    FILE_NOT_REGULAR, /* a directory, FIFO or device: fakenect would hang or read nonsense */
+    FILE_TOO_BIG,     /* far larger than a frame: fakenect reads a file whole */
     FILE_SHORT,       /* shorter than header + frame: fakenect would over-read */
     FILE_NO_HEADER,   /* no header line: fakenect would exit() */
     FILE_EMPTY,       /* an empty a-* file: fakenect would end the replay there */
@@ -43,6 +49,7 @@ typedef struct file_check {
     file_fault fault;
     long long size_bytes;
     size_t need_bytes; /* header line + frame */
+    char why[256];     /* FILE_NOT_REGULAR, FILE_TOO_BIG: what cub_text_open said */
 } file_check;
 
 typedef struct index_reader {
@@ -59,6 +66,9 @@ typedef struct dump_scan {
     char first_bad[NAME_MAX_CHARS];
     file_check first_bad_check;
     int path_line; /* first name with a '/' (a view cannot hold it); 0: none */
+    int names;       /* lines naming a file */
+    int blank_lines; /* empty lines, dropped in the view */
+    int first_blank_line;
 } dump_scan;
 
 static size_t frame_bytes(const char *name)
@@ -68,24 +78,33 @@ static size_t frame_bytes(const char *name)
 
 static file_check check_file(const char *dir, const char *name)
 {
-    file_check c = {FILE_GOOD, 0, 0};
+    file_check c = {FILE_GOOD, 0, 0, ""};
     char path[2 * CUB_FAKENECT_PATH_MAX];
     snprintf(path, sizeof path, "%s/%s", dir, name);
-    FILE *f = fopen(path, "rb");
+    size_t frame = frame_bytes(name);
+    /* Twice a frame: a frame file is its header line and the frame. */
+    cub_text_src src = {path, name[0] == 'd'   ? "depth frame"
+                              : name[0] == 'r' ? "colour frame"
+                                               : "dump file",
+                        frame ? 2 * frame : SMALL_FILE_MAX_BYTES};
+    FILE *f = NULL;
+    size_t bytes = 0;
+    cub_diag d = {0};
+    cub_err e = cub_text_fopen(&src, &f, &bytes, &d);
     struct stat st;
-    if (!f) {
-        c.fault = FILE_MISSING;
+    if (e) {
+        /* a name that is not there (or a dangling link) is "missing" */
+        c.fault = e == CUB_ERR_FORMAT ? FILE_TOO_BIG
+                  : stat(path, &st) != 0 && errno == ENOENT ? FILE_MISSING
+                                                            : FILE_NOT_REGULAR;
+        const char *why = strstr(d.msg, ": ");
+        snprintf(c.why, sizeof c.why, "%.250s", e == CUB_ERR_FORMAT || !why ? d.msg : why + 2);
         return c;
     }
-    if (fstat(fileno(f), &st) != 0 || !S_ISREG(st.st_mode)) {
-        fclose(f);
-        c.fault = FILE_NOT_REGULAR;
-        return c;
-    }
+    st.st_size = (off_t)bytes;
     char head[HEADER_MAX];
     size_t got = fread(head, 1, sizeof head, f);
     fclose(f);
-    size_t frame = frame_bytes(name);
     /* fakenect reads a whole a-* file in one fread, which fails on none. A
      * reading of another size it only warns about. */
     if (name[0] == 'a' && st.st_size == 0) c.fault = FILE_EMPTY;
@@ -106,7 +125,8 @@ static const char *describe(file_check c, char *buf, size_t size)
     switch (c.fault) {
     case FILE_GOOD: snprintf(buf, size, "good"); break;
     case FILE_MISSING: snprintf(buf, size, "missing"); break;
-    case FILE_NOT_REGULAR: snprintf(buf, size, "not a regular file"); break;
+    case FILE_NOT_REGULAR: snprintf(buf, size, "not a regular file (%s)", c.why); break;
+    case FILE_TOO_BIG: snprintf(buf, size, "%s", c.why); break;
     case FILE_SHORT:
         snprintf(buf, size, "truncated: %lld of %zu bytes", c.size_bytes, c.need_bytes);
         break;
@@ -122,16 +142,21 @@ static cub_err open_index(index_reader *r, const char *dir, char *err, size_t er
     snprintf(path, sizeof path, "%s/INDEX.txt", dir);
     r->dir = dir;
     r->line = 0;
-    r->f = fopen(path, "rb");
-    if (!r->f) {
-        snprintf(err, err_size, "fakenect dump %s: cannot open INDEX.txt", dir);
-        return CUB_ERR_IO;
+    cub_text_src src = {path, "INDEX.txt", INDEX_MAX_BYTES};
+    size_t bytes = 0;
+    cub_diag d = {0};
+    cub_err e = cub_text_fopen(&src, &r->f, &bytes, &d);
+    if (e) {
+        const char *why = strstr(d.msg, ": ");
+        snprintf(err, err_size, "fakenect dump %s: cannot open INDEX.txt: %s", dir,
+                 e == CUB_ERR_FORMAT || !why ? d.msg : why + 2);
+        return e;
     }
     return CUB_OK;
 }
 
-/* The next name: 1; 0 at the end (end of file, or an empty line: fakenect
- * stops there); -1 with err on a line too long to be a file name. */
+/* The next line: 1 a name; 2 an empty line; 0 at the end of the file; -1
+ * with err on a line too long to be a file name. */
 static int next_name(index_reader *r, char *name, char *err, size_t err_size)
 {
     if (!fgets(name, NAME_MAX_CHARS, r->f)) return 0;
@@ -144,14 +169,14 @@ static int next_name(index_reader *r, char *name, char *err, size_t err_size)
                  r->dir, r->line, NAME_MAX_CHARS - 2);
         return -1;
     }
-    return name[0] ? 1 : 0;
+    return name[0] ? 1 : 2;
 }
 
 /* A fault in a file that is not a depth frame refuses the dump, as before. */
 static cub_err refuse_other(const index_reader *r, const char *name, file_check c, char *err,
                             size_t err_size)
 {
-    char why[96];
+    char why[320];
     if (c.fault == FILE_MISSING) {
         snprintf(err, err_size, "fakenect dump %s: INDEX.txt:%d: cannot open %s", r->dir, r->line,
                  name);
@@ -188,6 +213,11 @@ static cub_err scan_dump(const char *dir, dump_scan *scan, char *err, size_t err
     char name[NAME_MAX_CHARS];
     int more = 0;
     while (!e && (more = next_name(&r, name, err, err_size)) > 0) {
+        if (more == 2) {
+            if (scan->blank_lines++ == 0) scan->first_blank_line = r.line;
+            continue;
+        }
+        scan->names++;
         file_check c = check_file(dir, name);
         if (strchr(name, '/') && !scan->path_line) scan->path_line = r.line;
         if (name[0] == 'd') {
@@ -205,7 +235,19 @@ static cub_err scan_dump(const char *dir, dump_scan *scan, char *err, size_t err
 /* Bad frames are replayed only when there is something real around them. */
 static cub_err judge_scan(const char *dir, const dump_scan *scan, char *err, size_t err_size)
 {
-    char why[96];
+    char why[320];
+    if (scan->names == 0) {
+        snprintf(err, err_size, "fakenect dump %s: INDEX.txt lists no files: nothing to replay",
+                 dir);
+        return CUB_ERR_FORMAT;
+    }
+    if (scan->blank_lines > 0 && scan->path_line) {
+        snprintf(err, err_size,
+                 "fakenect dump %s: INDEX.txt:%d: a name with a directory in it; cannot drop "
+                 "the empty line at INDEX.txt:%d around it",
+                 dir, scan->path_line, scan->first_blank_line);
+        return CUB_ERR_FORMAT;
+    }
     if (scan->bad_frames > 0 && scan->good_frames == 0) {
         snprintf(err, err_size,
                  "fakenect dump %s: INDEX.txt:%d: %s: %s; no good depth frame in the dump: "
@@ -295,9 +337,9 @@ static int add_to_view(cub_fakenect_view *v, const index_reader *r, const char *
                        const char *name)
 {
     int mendable = name[0] == 'd' || name[0] == 'a';
-    file_check c = mendable ? check_file(r->dir, name) : (file_check){FILE_GOOD, 0, 0};
+    file_check c = mendable ? check_file(r->dir, name) : (file_check){FILE_GOOD, 0, 0, ""};
     if (c.fault == FILE_GOOD) return link_file(real_dir, v->dir, name);
-    char path[2 * CUB_FAKENECT_PATH_MAX], why[96];
+    char path[2 * CUB_FAKENECT_PATH_MAX], why[320];
     snprintf(path, sizeof path, "%s/%s", v->dir, name);
     if (name[0] == 'a') {
         if (write_no_accel(path) != 0) return -1;
@@ -329,7 +371,8 @@ static cub_err make_view_dir(cub_fakenect_view *v, char *err, size_t err_size)
 }
 
 /* Pass two: the view (links are absolute, FAKENECT_PATH may be relative). */
-static cub_err build_view(cub_fakenect_view *v, const char *dir, char *err, size_t err_size)
+static cub_err build_view(cub_fakenect_view *v, const char *dir, int drop_blanks, char *err,
+                          size_t err_size)
 {
     char real_dir[CUB_FAKENECT_PATH_MAX], from[CUB_FAKENECT_PATH_MAX + 16];
     char to[CUB_FAKENECT_PATH_MAX + 16], name[NAME_MAX_CHARS];
@@ -338,17 +381,32 @@ static cub_err build_view(cub_fakenect_view *v, const char *dir, char *err, size
     if (e) return e;
     snprintf(from, sizeof from, "%s/INDEX.txt", dir);
     snprintf(to, sizeof to, "%s/INDEX.txt", v->dir);
-    if (copy_file(from, to) != 0) return view_failed(v, "copying", from, err, err_size);
+    /* Copied as it is when it has no empty line, so that a mended replay
+     * reads the very same index. */
+    FILE *index = NULL;
+    if (!drop_blanks && copy_file(from, to) != 0)
+        return view_failed(v, "copying", from, err, err_size);
+    if (drop_blanks && !(index = fopen(to, "wx")))
+        return view_failed(v, "writing", to, err, err_size);
     index_reader r;
     if ((e = open_index(&r, dir, err, err_size))) {
+        if (index) fclose(index);
         cub_fakenect_dump_release(v);
         return e;
     }
-    int more;
-    while ((more = next_name(&r, name, err, err_size)) > 0 &&
-           (!strcmp(name, "INDEX.txt") || add_to_view(v, &r, real_dir, name) == 0)) {
+    int more, written = 1;
+    while ((more = next_name(&r, name, err, err_size)) > 0) {
+        if (more == 2) {
+            fprintf(stderr, "depth: fakenect dump %s: INDEX.txt:%d: an empty line: dropped\n",
+                    dir, r.line);
+            continue;
+        }
+        if (index) written = written && fprintf(index, "%s\n", name) > 0;
+        if (strcmp(name, "INDEX.txt") && add_to_view(v, &r, real_dir, name) != 0) break;
     }
     fclose(r.f);
+    if (index && fclose(index) != 0) written = 0;
+    if (!written) return view_failed(v, "writing", to, err, err_size);
     if (more != 0) return view_failed(v, "adding", name, err, err_size);
     snprintf(from, sizeof from, "%s/device.json", dir); /* newer fakenects read it */
     if (access(from, F_OK) == 0 && link_file(real_dir, v->dir, "device.json") != 0) {
@@ -386,11 +444,11 @@ cub_err cub_fakenect_dump_prepare(cub_fakenect_view *v, char *err, size_t err_si
     dump_scan scan = {0};
     cub_err e = scan_dump(dir, &scan, err, err_size);
     if (!e) e = judge_scan(dir, &scan, err, err_size);
-    if (e || scan.bad_frames + scan.empty_accel == 0) return e;
+    if (e || scan.bad_frames + scan.empty_accel + scan.blank_lines == 0) return e;
     /* Copied: point_env replaces the environment string dir points into. */
     char dump_dir[CUB_FAKENECT_PATH_MAX];
     snprintf(dump_dir, sizeof dump_dir, "%s", dir);
-    e = build_view(v, dump_dir, err, err_size);
+    e = build_view(v, dump_dir, scan.blank_lines > 0, err, err_size);
     return e ? e : point_env(v, dump_dir, err, err_size);
 }
 

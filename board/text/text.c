@@ -1,10 +1,14 @@
 /* Reading hand-written text files and walking their lines (cub/text.h). */
+#define _POSIX_C_SOURCE 200809L /* open flags, fdopen */
 #include "cub/text.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #define BLANKS " \t\r\v\f"
 
@@ -57,12 +61,13 @@ cub_err cub_text_fail(const cub_text_at *at, const char *fmt, ...)
     return e;
 }
 
-/* The whole of f, at most cap bytes: grown as it comes, so that a large
- * cap costs nothing for a small file. One byte more than the cap is read
- * to tell "exactly full" from "too big"; *len > cap means too big. */
-static char *read_all(FILE *f, size_t cap, size_t *len)
+/* The whole of f, at most cap bytes: grown as it comes from its stated
+ * size, so that a large cap costs nothing for a small file. One byte more
+ * than the cap is read to tell "exactly full" from "too big" (a file that
+ * grew since it was opened); *len > cap means too big. */
+static char *read_all(FILE *f, size_t hint, size_t cap, size_t *len)
 {
-    size_t size = 1 << 16, got = 0;
+    size_t size = hint + 2 > 64 ? hint + 2 : 64, got = 0;
     char *buf = NULL;
     for (;;) {
         if (size > cap + 2)
@@ -83,6 +88,77 @@ static char *read_all(FILE *f, size_t cap, size_t *len)
     return buf;
 }
 
+static const char *kind_of(mode_t m)
+{
+    return S_ISDIR(m)    ? "a directory"
+           : S_ISFIFO(m) ? "a FIFO"
+           : S_ISCHR(m)  ? "a character device"
+           : S_ISBLK(m)  ? "a block device"
+           : S_ISSOCK(m) ? "a socket"
+                         : "not a regular file";
+}
+
+cub_err cub_text_open(const cub_text_src *src, int *fd_out, size_t *size, cub_diag *diag)
+{
+    const char *path = src && src->path ? src->path : "(null)";
+    if (!src || !src->path || !fd_out || !size)
+        return cub_diag_fail(diag, CUB_ERR_ARG, path, 0, "no path or output");
+    const char *what = src->what ? src->what : "file";
+    size_t cap = src->max_bytes ? src->max_bytes : CUB_TEXT_MAX_BYTES;
+    *fd_out = -1;
+    *size = 0;
+    /* O_NONBLOCK: opening a FIFO would wait for a writer before fstat
+     * could tell what it is. */
+    int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY);
+    if (fd < 0)
+        return cub_diag_fail(diag, CUB_ERR_IO, path, 0, "cannot open the %s: %s", what,
+                             strerror(errno));
+    struct stat st;
+    cub_err e = CUB_OK;
+    if (fstat(fd, &st) != 0)
+        e = cub_diag_fail(diag, CUB_ERR_IO, path, 0, "cannot read the %s: %s", what,
+                          strerror(errno));
+    else if (!S_ISREG(st.st_mode))
+        e = cub_diag_fail(diag, CUB_ERR_IO, path, 0, "cannot read the %s: it is %s, not a file",
+                          what, kind_of(st.st_mode));
+    else if ((unsigned long long)st.st_size > cap)
+        e = cub_diag_fail(diag, CUB_ERR_FORMAT, path, 0,
+                          "the %s is %lld bytes, more than the %zu a %s may have", what,
+                          (long long)st.st_size, cap, what);
+    else if (fcntl(fd, F_SETFL, fcntl(fd, F_GETFL) & ~O_NONBLOCK) != 0)
+        e = cub_diag_fail(diag, CUB_ERR_IO, path, 0, "cannot read the %s: %s", what,
+                          strerror(errno));
+    if (e) {
+        close(fd);
+        return e;
+    }
+    *fd_out = fd;
+    *size = (size_t)st.st_size;
+    return CUB_OK;
+}
+
+cub_err cub_text_fopen(const cub_text_src *src, FILE **f, size_t *size, cub_diag *diag)
+{
+    int fd = -1;
+    if (f)
+        *f = NULL;
+    cub_err e = cub_text_open(src, &fd, size, diag);
+    if (e)
+        return e;
+    if (!f) {
+        close(fd);
+        return CUB_OK;
+    }
+    *f = fdopen(fd, "rb");
+    if (!*f) {
+        int er = errno;
+        close(fd);
+        return cub_diag_fail(diag, CUB_ERR_NOMEM, src->path, 0, "cannot read the %s: %s",
+                             src->what ? src->what : "file", strerror(er));
+    }
+    return CUB_OK;
+}
+
 cub_err cub_text_read(const cub_text_src *src, char **out, size_t *len, cub_diag *diag)
 {
     const char *path = src && src->path ? src->path : "(null)";
@@ -92,22 +168,23 @@ cub_err cub_text_read(const cub_text_src *src, char **out, size_t *len, cub_diag
     size_t cap = src->max_bytes ? src->max_bytes : CUB_TEXT_MAX_BYTES;
     *out = NULL;
     *len = 0;
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return cub_diag_fail(diag, CUB_ERR_IO, path, 0, "cannot open the %s: %s", what,
-                             strerror(errno));
+    FILE *f = NULL;
+    size_t stated = 0;
+    cub_err e = cub_text_fopen(src, &f, &stated, diag);
+    if (e)
+        return e;
     size_t got = 0;
-    char *buf = read_all(f, cap, &got);
-    int failed = ferror(f);
+    char *buf = read_all(f, stated, cap, &got);
+    int failed = ferror(f) ? errno : 0;
     fclose(f);
-    cub_err e = CUB_OK;
     if (!buf)
         e = cub_diag_fail(diag, CUB_ERR_NOMEM, path, 0, "out of memory reading the %s", what);
     else if (failed)
-        e = cub_diag_fail(diag, CUB_ERR_IO, path, 0, "cannot read the %s", what);
+        e = cub_diag_fail(diag, CUB_ERR_IO, path, 0, "cannot read the %s: %s", what,
+                          strerror(failed));
     else if (got > cap)
-        e = cub_diag_fail(diag, CUB_ERR_FORMAT, path, 0, "larger than %zu bytes (not a %s?)", cap,
-                          what);
+        e = cub_diag_fail(diag, CUB_ERR_FORMAT, path, 0, "the %s grew past the %zu bytes a %s may have",
+                          what, cap, what);
     if (e) {
         free(buf);
         return e;

@@ -12,6 +12,7 @@
 
 #include <stdarg.h>
 #include <stddef.h>
+#include <stdio.h>
 
 #include "cub/err.h"
 
@@ -71,6 +72,15 @@ typedef struct cub_text_line {
 typedef cub_err (*cub_text_whole_fn)(const cub_text *t, const void *in, void *out);
 typedef cub_err (*cub_text_line_fn)(void *ctx, cub_text_line *ln);
 
+/* The one way the box opens a file it is given: refuse, without blocking,
+ * what is not a regular file (a FIFO would hang the open, a device never
+ * ends, a directory reads nothing) or is larger than src's cap, saying
+ * which, with errno in words and the file's name in diag. The fd (close
+ * it) in *fd, the file's size in *size. CUB_ERR_IO when it cannot be read,
+ * CUB_ERR_FORMAT when too large. */
+cub_err cub_text_open(const cub_text_src *src, int *fd, size_t *size, cub_diag *diag);
+/* cub_text_open as a stdio stream "rb" (fclose it); f NULL only checks. */
+cub_err cub_text_fopen(const cub_text_src *src, FILE **f, size_t *size, cub_diag *diag);
 /* Read src->path whole into *out (malloc'ed, NUL-terminated, *len bytes
  * before the NUL; free() it). CUB_ERR_IO when it cannot be read,
  * CUB_ERR_FORMAT when it is larger than the cap, CUB_ERR_NOMEM. */

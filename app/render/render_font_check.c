@@ -1,0 +1,324 @@
+/* render_font_check — is a font file safe to hand to stb_truetype?
+ *
+ * stb_truetype trusts every offset in the file ("no range checking" in its
+ * own header), so a half-copied or corrupted font makes it read outside
+ * the buffer (a SEGV, issue 18). This walks exactly what the atlas bake
+ * reads — the table directory, head, hhea, hmtx, maxp, the cmap subtable
+ * stb picks (the last Unicode one), loca, and the outline of every glyph
+ * the atlas's codepoints map to, composites included — and checks each
+ * offset and length against the file size. CFF outlines (.otf) are
+ * refused: stb's CFF reader bounds itself by 512 MB, not by the file. */
+#include <stdint.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "render_internal.h"
+
+#define MAX_COMPOSITE_DEPTH 8 /* stb recurses on components: a cycle would never end */
+
+typedef struct font {
+    const unsigned char *d;
+    uint64_t n;
+    uint64_t loca, loca_len, glyf, glyf_len;
+    unsigned num_glyphs, loc_format;
+    char *why;
+    size_t size;
+} font;
+
+static int bad(font *f, const char *fmt, unsigned a, unsigned b)
+{
+    if (f->why && f->size)
+        snprintf(f->why, f->size, fmt, a, b);
+    return 0;
+}
+
+/* Reads that fail (return 0 and clear *ok) past the end of the file. */
+static unsigned u16(const font *f, uint64_t at, int *ok)
+{
+    if (at + 2 > f->n) {
+        *ok = 0;
+        return 0;
+    }
+    return (unsigned)f->d[at] << 8 | f->d[at + 1];
+}
+
+static uint32_t u32(const font *f, uint64_t at, int *ok)
+{
+    if (at + 4 > f->n) {
+        *ok = 0;
+        return 0;
+    }
+    return (uint32_t)f->d[at] << 24 | (uint32_t)f->d[at + 1] << 16 | (uint32_t)f->d[at + 2] << 8 |
+           f->d[at + 3];
+}
+
+/* The table's offset (0 when absent, as stbtt__find_table) and its length. */
+static uint64_t table(const font *f, uint64_t start, const char *tag, uint64_t *len)
+{
+    int ok = 1;
+    unsigned count = u16(f, start + 4, &ok);
+    for (unsigned i = 0; i < count; i++) {
+        uint64_t rec = start + 12 + 16 * (uint64_t)i;
+        if (memcmp(f->d + rec, tag, 4) == 0) {
+            *len = u32(f, rec + 12, &ok);
+            return u32(f, rec + 8, &ok);
+        }
+    }
+    *len = 0;
+    return 0;
+}
+
+static int need(font *f, uint64_t start, const char *tag, uint64_t min_len, uint64_t *at,
+                uint64_t *len)
+{
+    *at = table(f, start, tag, len);
+    const char *why = !*at                 ? "no %s table"
+                      : *at + *len > f->n ? "the %s table runs past the end of the file"
+                      : *len < min_len     ? "the %s table is too short"
+                                           : NULL;
+    if (why && f->why && f->size)
+        snprintf(f->why, f->size, why, tag);
+    return !why;
+}
+
+/* stbtt_FindGlyphIndex for one codepoint, every read bounded. */
+static int glyph_of(font *f, uint64_t map, unsigned cp, unsigned *gi)
+{
+    int ok = 1;
+    unsigned format = u16(f, map, &ok);
+    *gi = 0;
+    if (format == 0) {
+        unsigned bytes = u16(f, map + 2, &ok);
+        if (cp + 6 < bytes) {
+            ok = ok && map + 6 + cp < f->n;
+            *gi = ok ? f->d[map + 6 + cp] : 0;
+        }
+    } else if (format == 6) {
+        unsigned first = u16(f, map + 6, &ok), count = u16(f, map + 8, &ok);
+        if (cp >= first && cp < first + count)
+            *gi = u16(f, map + 10 + (uint64_t)(cp - first) * 2, &ok);
+    } else if (format == 4) {
+        /* uint32_t arithmetic as stb does it, so a garbage search lands
+         * where stb's would, and is then refused. */
+        unsigned segcount = u16(f, map + 6, &ok) >> 1;
+        unsigned range = u16(f, map + 8, &ok) >> 1;
+        unsigned selector = u16(f, map + 10, &ok);
+        unsigned shift = u16(f, map + 12, &ok) >> 1;
+        uint32_t end_count = (uint32_t)map + 14, search = end_count;
+        if (cp >= u16(f, search + shift * 2, &ok))
+            search += shift * 2;
+        search -= 2;
+        while (selector && ok) {
+            range >>= 1;
+            if (cp > u16(f, (uint32_t)(search + range * 2), &ok))
+                search += range * 2;
+            --selector;
+        }
+        search += 2;
+        unsigned item = (uint16_t)((search - end_count) >> 1);
+        unsigned start = u16(f, (uint32_t)(map + 14 + segcount * 2 + 2 + 2 * item), &ok);
+        unsigned last = u16(f, (uint32_t)(end_count + 2 * item), &ok);
+        if (ok && cp >= start && cp <= last) {
+            uint32_t at = (uint32_t)(map + 14 + segcount * 6 + 2 + 2 * item);
+            unsigned offset = u16(f, at, &ok);
+            if (offset == 0)
+                *gi = (uint16_t)(cp + u16(f, (uint32_t)(map + 14 + segcount * 4 + 2 + 2 * item), &ok));
+            else
+                *gi = u16(f, (uint32_t)(offset + (cp - start) * 2 + at), &ok);
+        }
+    } else if (format == 12 || format == 13) {
+        uint32_t groups = u32(f, map + 12, &ok);
+        if (!ok || map + 16 + (uint64_t)groups * 12 > f->n)
+            return bad(f, "the cmap's groups run past the end of the file", 0, 0);
+        for (uint32_t lo = 0, hi = groups; lo < hi;) {
+            uint32_t mid = lo + ((hi - lo) >> 1);
+            uint32_t first = u32(f, map + 16 + (uint64_t)mid * 12, &ok);
+            uint32_t last = u32(f, map + 20 + (uint64_t)mid * 12, &ok);
+            if (cp < first) {
+                hi = mid;
+            } else if (cp > last) {
+                lo = mid + 1;
+            } else {
+                uint32_t g = u32(f, map + 24 + (uint64_t)mid * 12, &ok);
+                g = format == 12 ? g + (cp - first) : g;
+                *gi = g > 0xffff ? 0xffffffu : g;
+                break;
+            }
+        }
+    } else {
+        return bad(f, "cmap subtable format %u is not supported", format, 0);
+    }
+    if (!ok)
+        return bad(f, "the cmap lookup of U+%04X runs past the end of the file", cp, 0);
+    if (*gi >= f->num_glyphs)
+        return bad(f, "the cmap maps U+%04X to a glyph past the last (%u)", cp, f->num_glyphs);
+    return 1;
+}
+
+/* The glyph's bytes [*at, *at + *len) inside glyf; *len 0 for an empty one. */
+static int glyph_bytes(font *f, unsigned gi, uint64_t *at, uint64_t *len)
+{
+    int ok = 1;
+    uint64_t a, b;
+    if (f->loc_format == 0) {
+        a = 2 * (uint64_t)u16(f, f->loca + gi * 2ull, &ok);
+        b = 2 * (uint64_t)u16(f, f->loca + gi * 2ull + 2, &ok);
+    } else {
+        a = u32(f, f->loca + gi * 4ull, &ok);
+        b = u32(f, f->loca + gi * 4ull + 4, &ok);
+    }
+    if (!ok || a > b || b > f->glyf_len)
+        return bad(f, "glyph %u lies outside the glyf table", gi, 0);
+    *at = f->glyf + a;
+    *len = b - a;
+    return 1;
+}
+
+static int check_glyph(font *f, unsigned gi, int depth)
+{
+    uint64_t g, len;
+    if (!glyph_bytes(f, gi, &g, &len))
+        return 0;
+    if (len == 0)
+        return 1;
+    font in = *f; /* reads bounded by this glyph's own bytes */
+    in.n = g + len;
+    int ok = 1;
+    if (len < 10)
+        return bad(f, "glyph %u is shorter than its header", gi, 0);
+    int contours = (int16_t)u16(&in, g, &ok);
+    if (contours > 0) {
+        uint64_t ends = g + 10;
+        unsigned prev = 0;
+        for (int c = 0; c < contours && ok; c++) {
+            unsigned e = u16(&in, ends + 2 * (uint64_t)c, &ok);
+            if (c && e < prev)
+                return bad(f, "glyph %u has its contours out of order", gi, 0);
+            prev = e;
+        }
+        unsigned ins = u16(&in, ends + 2 * (uint64_t)contours, &ok);
+        uint64_t p = ends + 2 * (uint64_t)contours + 2 + ins;
+        unsigned points = prev + 1, xy = 0;
+        unsigned char flags = 0, repeat = 0;
+        for (unsigned i = 0; i < points && ok; i++) {
+            if (repeat == 0) {
+                ok = p < in.n;
+                flags = ok ? in.d[p++] : 0;
+                if (flags & 8) {
+                    ok = ok && p < in.n;
+                    repeat = ok ? in.d[p++] : 0;
+                }
+            } else {
+                --repeat;
+            }
+            xy += (flags & 2) ? 1 : (flags & 16) ? 0 : 2;
+            xy += (flags & 4) ? 1 : (flags & 32) ? 0 : 2;
+        }
+        if (!ok || p + xy > in.n)
+            return bad(f, "the outline of glyph %u runs past its end", gi, 0);
+    } else if (contours < 0) {
+        if (depth >= MAX_COMPOSITE_DEPTH)
+            return bad(f, "glyph %u nests its components too deep (a cycle?)", gi, 0);
+        uint64_t p = g + 10;
+        unsigned flags;
+        do {
+            flags = u16(&in, p, &ok);
+            unsigned part = u16(&in, p + 2, &ok);
+            if (!ok)
+                break;
+            if (!(flags & 2))
+                return bad(f, "glyph %u places a component by points (unsupported)", gi, 0);
+            p += 4 + ((flags & 1) ? 4 : 2);
+            p += (flags & 8) ? 2 : (flags & 0x40) ? 4 : (flags & 0x80) ? 8 : 0;
+            if (p > in.n)
+                ok = 0;
+            else if (part >= f->num_glyphs)
+                return bad(f, "glyph %u uses glyph %u, past the last", gi, part);
+            else if (!check_glyph(f, part, depth + 1))
+                return 0;
+        } while (ok && (flags & 0x20));
+        if (!ok)
+            return bad(f, "the components of glyph %u run past its end", gi, 0);
+    }
+    return 1;
+}
+
+int cub_render_font_check(const unsigned char *data, size_t n, char *why, size_t size)
+{
+    font f = {.d = data, .n = n, .why = why, .size = size};
+    int ok = 1;
+    uint64_t start = 0;
+    if (n >= 4 && memcmp(data, "ttcf", 4) == 0) {
+        start = u32(&f, 12, &ok);
+        if (!ok || start + 4 > n)
+            return bad(&f, "the collection's first font lies past the end of the file", 0, 0);
+    }
+    if (start + 4 > n)
+        return -1;
+    const unsigned char *tag = data + start;
+    if (memcmp(tag, "OTTO", 4) == 0)
+        return bad(&f, "CFF outlines (.otf) are not supported", 0, 0);
+    if (memcmp(tag, "\0\1\0\0", 4) != 0 && memcmp(tag, "true", 4) != 0 && memcmp(tag, "1\0\0\0", 4) != 0 &&
+        memcmp(tag, "typ1", 4) != 0)
+        return -1;
+    unsigned tables = u16(&f, start + 4, &ok);
+    if (!ok || start + 12 + 16 * (uint64_t)tables > n)
+        return bad(&f, "its table directory (%u tables) runs past the end of the file", tables, 0);
+
+    /* A table cut off is a half-copied file, even one the bake never reads. */
+    for (unsigned i = 0; i < tables; i++) {
+        uint64_t rec = start + 12 + 16 * (uint64_t)i;
+        if ((uint64_t)u32(&f, rec + 8, &ok) + u32(&f, rec + 12, &ok) > n) {
+            char name[5] = {0};
+            for (int k = 0; k < 4; k++)
+                name[k] = data[rec + k] >= 0x20 && data[rec + k] < 0x7f ? (char)data[rec + k] : '?';
+            if (why && size)
+                snprintf(why, size, "the %s table runs past the end of the file", name);
+            return 0;
+        }
+    }
+    uint64_t head, hhea, hmtx, maxp, cmap, at_len, hmtx_len, cmap_len;
+    if (!need(&f, start, "head", 54, &head, &at_len) || !need(&f, start, "hhea", 36, &hhea, &at_len) ||
+        !need(&f, start, "maxp", 6, &maxp, &at_len) || !need(&f, start, "hmtx", 0, &hmtx, &hmtx_len) ||
+        !need(&f, start, "cmap", 4, &cmap, &cmap_len) ||
+        !need(&f, start, "loca", 0, &f.loca, &f.loca_len) ||
+        !need(&f, start, "glyf", 0, &f.glyf, &f.glyf_len))
+        return 0;
+    f.num_glyphs = u16(&f, maxp + 4, &ok);
+    f.loc_format = u16(&f, head + 50, &ok);
+    if (f.loc_format > 1)
+        return bad(&f, "unknown loca format %u", f.loc_format, 0);
+    if (f.loca_len < ((uint64_t)f.num_glyphs + 1) * (f.loc_format ? 4 : 2))
+        return bad(&f, "the loca table is too short for %u glyphs", f.num_glyphs, 0);
+    unsigned long_metrics = u16(&f, hhea + 34, &ok);
+    uint64_t metrics_len = 4 * (uint64_t)long_metrics +
+                           (f.num_glyphs > long_metrics ? 2 * (uint64_t)(f.num_glyphs - long_metrics) : 0);
+    if (long_metrics == 0 || hmtx_len < metrics_len)
+        return bad(&f, "the hmtx table is too short for %u metrics", long_metrics, 0);
+    int ascent = (int16_t)u16(&f, hhea + 4, &ok), descent = (int16_t)u16(&f, hhea + 6, &ok);
+    if (ascent - descent <= 0)
+        return bad(&f, "the hhea table gives no line height", 0, 0);
+
+    /* The subtable stb picks: the last Microsoft Unicode or Unicode one. */
+    unsigned subtables = u16(&f, cmap + 2, &ok);
+    if (4 + 8 * (uint64_t)subtables > cmap_len)
+        return bad(&f, "the cmap lists %u subtables it does not hold", subtables, 0);
+    uint64_t map = 0;
+    for (unsigned i = 0; i < subtables; i++) {
+        uint64_t rec = cmap + 4 + 8 * (uint64_t)i;
+        unsigned platform = u16(&f, rec, &ok), encoding = u16(&f, rec + 2, &ok);
+        if (platform == 0 || (platform == 3 && (encoding == 1 || encoding == 10)))
+            map = cmap + u32(&f, rec + 4, &ok);
+    }
+    if (!map)
+        return bad(&f, "no Unicode cmap", 0, 0);
+    if (map + 14 > n)
+        return bad(&f, "the cmap subtable lies past the end of the file", 0, 0);
+
+    for (unsigned cp = CUB_RENDER_GLYPH_FIRST; cp < CUB_RENDER_GLYPH_FIRST + CUB_RENDER_GLYPH_COUNT; cp++) {
+        unsigned gi;
+        if (!glyph_of(&f, map, cp, &gi) || !check_glyph(&f, gi, 0))
+            return 0;
+    }
+    return 1;
+}
