@@ -12,6 +12,9 @@
 
 #include "director_internal.h"
 
+#define DEFAULT_START_FRAMES 4
+#define DEFAULT_REACT_FRAMES 5
+
 static void push_out(cub_director *d, int32_t what, int32_t hint)
 {
     if (d->out_count >= CUB_DIRECTOR_MAX_OUT) return; /* the coach gives at most as many */
@@ -97,9 +100,12 @@ static cub_err start_coach(cub_director *d, const cub_director_desc *desc, int64
 cub_err cub_director_init(cub_director *d, const cub_director_desc *desc, void *mem,
                           size_t mem_size, int64_t now_us)
 {
-    if (!d || !desc || !desc->table) return CUB_ERR_ARG;
+    if (!d || !desc || !desc->table || desc->start_frames < 0 || desc->react_frames < 0)
+        return CUB_ERR_ARG;
     memset(d, 0, sizeof *d);
     d->desc = *desc;
+    if (!d->desc.start_frames) d->desc.start_frames = DEFAULT_START_FRAMES;
+    if (!d->desc.react_frames) d->desc.react_frames = DEFAULT_REACT_FRAMES;
     cub_bridge_player_desc pd = {.table = desc->table};
     cub_err e = cub_bridge_player_init(&d->player, &pd, mem, mem_size);
     if (!e) e = start_coach(d, desc, now_us);

@@ -38,13 +38,13 @@ static bool enters_at_start(int32_t reason)
  * 0.4), not only at a tagged one: the quickest way in. */
 static int start_frames(const cub_director *d, const cub_coach_action *a)
 {
-    if (enters_at_start(a->reason)) return CUB_DIRECTOR_START_FRAMES;
+    if (enters_at_start(a->reason)) return d->desc.start_frames;
     if (a->reason == CUB_COACH_WHY_CORRECT) return clip_of(d, a->clip)->frame_count / 2;
     return 0;
 }
 
 /* The two correcting clips do the same job: when the one the coach asked
- * for is only reachable later than REACT_FRAMES and the other sooner, play
+ * for is only reachable later than react_frames and the other sooner, play
  * the other (the coach hears of its end under the name it asked for). */
 static int other_correction(const cub_director *d, int clip)
 {
@@ -59,7 +59,7 @@ static cub_err plan_correction(cub_director *d, const cub_coach_action *a, cub_b
     cub_err err = cub_bridge_player_request(p, a->clip, a->speed_q16, a->loop, plan);
     int other = other_correction(d, a->clip);
     if (a->reason != CUB_COACH_WHY_CORRECT || other < 0 ||
-        (!err && plan->total_frames <= CUB_DIRECTOR_REACT_FRAMES))
+        (!err && plan->total_frames <= d->desc.react_frames))
         return err;
     cub_bridge_plan alt;
     if (cub_bridge_player_request(p, other, a->speed_q16, a->loop, &alt) ||
@@ -150,7 +150,7 @@ static int32_t route_lead_ms(const cub_director *d, const cub_bridge_plan *plan,
 static int32_t lead_from(cub_director *d, cub_bridge_query q, int to)
 {
     q.to_clip = d->moves[to].clip;
-    q.start_frames = CUB_DIRECTOR_START_FRAMES;
+    q.start_frames = d->desc.start_frames;
     cub_bridge_plan plan;
     return cub_bridge_player_preview(&d->player, &q, &plan) ? 0 : route_lead_ms(d, &plan, to);
 }

@@ -191,6 +191,21 @@ static int has_out(int32_t what)
 
 /* ---- bad input ------------------------------------------------------------ */
 
+/* Zero tunables take the defaults; given ones are kept. */
+static void test_tunables_default(void **s)
+{
+    (void)s;
+    start(v_high, NULL);
+    assert_int_equal(dir.desc.start_frames, 4);
+    assert_int_equal(dir.desc.react_frames, 5);
+    cub_director_desc d = make_desc(NULL);
+    d.start_frames = 2;
+    d.react_frames = 9;
+    assert_int_equal(cub_director_init(&dir, &d, F.mem, sizeof F.mem, 0), CUB_OK);
+    assert_int_equal(dir.desc.start_frames, 2);
+    assert_int_equal(dir.desc.react_frames, 9);
+}
+
 static void test_bad_desc_is_refused(void **s)
 {
     (void)s;
@@ -208,6 +223,12 @@ static void test_bad_desc_is_refused(void **s)
     assert_int_equal(cub_director_init(&dir, &e, F.mem, sizeof F.mem, 0), CUB_ERR_ARG);
     e = d;
     e.coach.move_count = 0; /* the coach refuses a song without moves */
+    assert_int_equal(cub_director_init(&dir, &e, F.mem, sizeof F.mem, 0), CUB_ERR_ARG);
+    e = d;
+    e.start_frames = -1;
+    assert_int_equal(cub_director_init(&dir, &e, F.mem, sizeof F.mem, 0), CUB_ERR_ARG);
+    e = d;
+    e.react_frames = -1;
     assert_int_equal(cub_director_init(&dir, &e, F.mem, sizeof F.mem, 0), CUB_ERR_ARG);
     assert_int_equal(cub_director_init(&dir, &d, F.mem, 8, 0), CUB_ERR_NOMEM);
     assert_int_equal(cub_director_handle(NULL, &(cub_event){0}, 0), CUB_ERR_ARG);
@@ -237,7 +258,7 @@ static void test_move_is_entered_at_its_first_frames(void **s)
     assert_true(logged("bridge plan to=clap"));
     const cub_bridge_step *in = planned_entry();
     assert_int_equal(in->to_clip, C_CLAP);
-    assert_true(in->to_frame < CUB_DIRECTOR_START_FRAMES);
+    assert_true(in->to_frame < dir.desc.start_frames);
     /* Left to the planner alone, the exact bridge frame 10 would win. */
     cub_bridge_query q = {.from_clip = -1, .to_clip = C_CLAP};
     cub_bridge_plan plan;
@@ -257,12 +278,12 @@ static void test_correction_substitutes_the_sooner_clip(void **s)
     assert_int_equal(dir.coach.clip, C_SHAKE);
     assert_true(logged("bridge substitute requested=head_shake played=watch_me reason=sooner"));
     assert_int_equal(planned_entry()->to_clip, C_WATCH);
-    assert_true(dir.player.plan.total_frames <= CUB_DIRECTOR_REACT_FRAMES);
+    assert_true(dir.player.plan.total_frames <= dir.desc.react_frames);
     /* The asked clip alone would have taken longer than the reaction allows. */
     cub_bridge_query q = {.from_clip = -1, .to_clip = C_SHAKE, .start_frames = FRAMES / 2};
     cub_bridge_plan plan;
     assert_int_equal(cub_bridge_player_preview(&dir.player, &q, &plan), CUB_OK);
-    assert_true(plan.total_frames > CUB_DIRECTOR_REACT_FRAMES);
+    assert_true(plan.total_frames > dir.desc.react_frames);
 }
 
 /* The coach hears of the substitute's end under the name it asked for. */
@@ -315,7 +336,7 @@ static void test_correction_enters_anywhere_in_the_front_half(void **s)
 static int32_t expected_lead(cub_bridge_query q, int m)
 {
     q.to_clip = song[m].clip;
-    q.start_frames = CUB_DIRECTOR_START_FRAMES;
+    q.start_frames = dir.desc.start_frames;
     cub_bridge_plan plan;
     if (cub_bridge_player_preview(&dir.player, &q, &plan)) return 0;
     int64_t speed = song[m].speed_q16 ? song[m].speed_q16 : CUB_Q16_ONE;
@@ -472,6 +493,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_bad_desc_is_refused),
+        cmocka_unit_test(test_tunables_default),
         cmocka_unit_test(test_init_plays_the_idle_clip),
         cmocka_unit_test(test_move_is_entered_at_its_first_frames),
         cmocka_unit_test(test_correction_substitutes_the_sooner_clip),

@@ -18,11 +18,11 @@
  *
  * The policy:
  * - A move (its start, a repetition, a resume, a slower demonstration) is
- *   entered at one of its first CUB_DIRECTOR_START_FRAMES frames, so it
+ *   entered at one of its first start_frames frames (desc), so it
  *   keeps its music time; a correction at any frame of its clip's front
  *   half that is close enough (the quickest way in), and by the other
  *   correcting clip when the one asked for is not on screen within
- *   CUB_DIRECTOR_REACT_FRAMES and the other is sooner; anything else by the
+ *   react_frames (desc) and the other is sooner; anything else by the
  *   quickest switch. No route at all: a cut, logged.
  * - Leads: the song ms by which a move is asked for before its tag so that
  *   the route into it (bridge frames, a tween, less the content it skips)
@@ -53,10 +53,6 @@
 #include "cub/judge.h"
 #include "cub/loop.h"
 
-#define CUB_DIRECTOR_START_FRAMES 4 /* a move's "beginning": its first frames */
-/* A correction must be on screen within 6 ticks (200 ms); a plan counts
- * whole frames from the next one, so keep a tick for the frame under way. */
-#define CUB_DIRECTOR_REACT_FRAMES 5
 #define CUB_DIRECTOR_MAX_MOVES 64
 #define CUB_DIRECTOR_MAX_OUT CUB_COACH_MAX_ACTIONS
 #define CUB_DIRECTOR_MAX_PLAYER_EVENTS 16 /* per advance; more are dropped */
@@ -77,6 +73,12 @@ typedef struct cub_director_desc {
     const char *song_name;         /* for the log; NULL = "" */
     int32_t song_length_ms;        /* for the log */
     cub_judge *judge;              /* optional: told what is taught */
+    /* Zero-initialised tunables take the defaults shown. */
+    int32_t start_frames; /* default 4: a move's "beginning", its first frames */
+    /* default 5: a correction must be on screen within 6 ticks (200 ms); a
+     * plan counts whole frames from the next one, so keep a tick for the
+     * frame under way. */
+    int32_t react_frames;
 } cub_director_desc;
 
 typedef enum cub_director_do {
@@ -109,7 +111,8 @@ typedef struct cub_director {
 /* Bytes of scratch memory the director needs (its player's); 0 without a table. */
 size_t cub_director_mem_size(const cub_director_desc *desc);
 /* Start the coach idle at now_us, its idle clip playing, and plan every
- * move's leads (a `music lead` line each). CUB_ERR_ARG for NULL, no table,
+ * move's leads (a `music lead` line each); desc's tunables get their
+ * defaults in d->desc. CUB_ERR_ARG for NULL, no table, a negative tunable,
  * more than CUB_DIRECTOR_MAX_MOVES moves, or what cub_coach_init refuses;
  * CUB_ERR_NOMEM for too little memory. */
 cub_err cub_director_init(cub_director *d, const cub_director_desc *desc, void *mem,
