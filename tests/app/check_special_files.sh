@@ -11,14 +11,20 @@ export SDL_AUDIODRIVER=dummy EGL_PLATFORM=surfaceless LIBGL_ALWAYS_SOFTWARE=1
 export ASAN_OPTIONS=detect_leaks=0
 rm -rf "$out" && mkdir -p "$out"
 fail() { echo "FAIL: $*"; exit 1; }
+# fakenect's environment, set the way the `fakenect` wrapper sets it: given
+# a replay, cubdance would re-exec itself into it, which qemu-user cannot.
+fakenect_libs="${CUB_FAKENECT_DIR:?}${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
 
 # refused NAME PATTERN ARGS...: exit 1..127 within 20 s, PATTERN on stderr.
 refused() {
     local name=$1 pattern=$2; shift 2
     # shellcheck disable=SC2086
-    local depth=(--depth off)
-    [[ " $* " == *" --replay "* ]] && depth=()
-    timeout 20 $emu "$bin" --headless "${depth[@]}" --clock virtual --seconds 0.5 \
+    local depth=(--depth off) envs=() prev="" a
+    for a in "$@"; do
+        [ "$prev" = --replay ] && depth=() envs=(FAKENECT_PATH="$a" LD_LIBRARY_PATH="$fakenect_libs")
+        prev=$a
+    done
+    timeout 20 env "${envs[@]}" $emu "$bin" --headless "${depth[@]}" --clock virtual --seconds 0.5 \
         --audio-driver dummy --log "$out/$name.log" "$@" >"$out/$name.out" 2>"$out/$name.err"
     local rc=$?
     [ "$rc" != 124 ] || fail "$name: hung (killed after 20 s)"
