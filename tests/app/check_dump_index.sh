@@ -7,14 +7,8 @@
 #   check_dump_index.sh EMULATOR|"" BUILD_DIR OUT_DIR
 set -uo pipefail
 emu=$1 build=$2 out=$3
-bin="$build/app/cubdance/cubdance"
-export SDL_AUDIODRIVER=dummy EGL_PLATFORM=surfaceless LIBGL_ALWAYS_SOFTWARE=1
-export ASAN_OPTIONS=detect_leaks=0
-rm -rf "$out" && mkdir -p "$out"
-fail() { echo "FAIL: $*"; exit 1; }
-# fakenect's environment, set the way the `fakenect` wrapper sets it: given
-# a replay, cubdance would re-exec itself into it, which qemu-user cannot.
-fakenect_libs="${CUB_FAKENECT_DIR:?}${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
+# shellcheck source=box_check_common.sh
+. "$(dirname "$0")/box_check_common.sh"
 
 name() { printf 'd-%d.%06d-%d.pgm' $((1300000000 + $1 / 30)) $((($1 % 30) * 1000000 / 30)) \
     $((1000000 + 2000000 * $1)); }
@@ -23,7 +17,7 @@ frame() { { printf 'P5 640 480 65535\n'; head -c 614400 /dev/zero; } > "$1"; }
 # run NAME DUMP: 30 s at most, no crash; exit code in $rc.
 run() {
     FAKENECT_PATH="$2" LD_LIBRARY_PATH="$fakenect_libs" \
-        timeout 30 $emu "$bin" --headless --clock virtual --seconds 1 --replay "$2" \
+        timeout $((30 * slow)) $emu "$bin" --headless --clock virtual --seconds 1 --replay "$2" \
         --log "$out/$1.log" >"$out/$1.out" 2>"$out/$1.err"
     rc=$?
     [ "$rc" != 124 ] || fail "$1: hung"

@@ -7,17 +7,8 @@
 #   check_dump_time.sh EMULATOR|"" BUILD_DIR OUT_DIR
 set -uo pipefail
 emu=$1 build=$2 out=$3
-bin="$build/app/cubdance/cubdance"
-export SDL_AUDIODRIVER=dummy EGL_PLATFORM=surfaceless LIBGL_ALWAYS_SOFTWARE=1
-export ASAN_OPTIONS=detect_leaks=0
-rm -rf "$out" && mkdir -p "$out"
-fail() { echo "FAIL: $*"; exit 1; }
-# fakenect's environment, set the way the `fakenect` wrapper sets it: given
-# a replay, cubdance would re-exec itself into it, which qemu-user cannot.
-fakenect_libs="${CUB_FAKENECT_DIR:?}${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
-# A hang is a run past this; under qemu every frame costs many times more.
-limit_s=60
-[ -n "$emu" ] && limit_s=300
+# shellcheck source=box_check_common.sh
+. "$(dirname "$0")/box_check_common.sh"
 
 # make_dump DIR KIND: 90 frames at 30 fps by their names; the Kinect
 # timestamps step back to the start (back) or jump 30 s ahead (jump) at 1 s.
@@ -40,7 +31,7 @@ make_dump() {
 for kind in back jump; do
     make_dump "$out/$kind" "$kind"
     FAKENECT_PATH="$out/$kind" LD_LIBRARY_PATH="$fakenect_libs" \
-        timeout "$limit_s" $emu "$bin" --headless --clock virtual --seconds 2.5 \
+        timeout $((60 * slow)) $emu "$bin" --headless --clock virtual --seconds 2.5 \
         --replay "$out/$kind" \
         --log "$out/$kind.log" >"$out/$kind.out" 2>"$out/$kind.err"
     rc=$?

@@ -6,14 +6,8 @@
 #   check_special_files.sh EMULATOR|"" BUILD_DIR SOURCE_DIR OUT_DIR
 set -uo pipefail
 emu=$1 build=$2 src=$3 out=$4
-bin="$build/app/cubdance/cubdance"
-export SDL_AUDIODRIVER=dummy EGL_PLATFORM=surfaceless LIBGL_ALWAYS_SOFTWARE=1
-export ASAN_OPTIONS=detect_leaks=0
-rm -rf "$out" && mkdir -p "$out"
-fail() { echo "FAIL: $*"; exit 1; }
-# fakenect's environment, set the way the `fakenect` wrapper sets it: given
-# a replay, cubdance would re-exec itself into it, which qemu-user cannot.
-fakenect_libs="${CUB_FAKENECT_DIR:?}${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
+# shellcheck source=box_check_common.sh
+. "$(dirname "$0")/box_check_common.sh"
 
 # refused NAME PATTERN ARGS...: exit 1..127 within 20 s, PATTERN on stderr.
 refused() {
@@ -24,10 +18,11 @@ refused() {
         [ "$prev" = --replay ] && depth=() envs=(FAKENECT_PATH="$a" LD_LIBRARY_PATH="$fakenect_libs")
         prev=$a
     done
-    timeout 20 env "${envs[@]}" $emu "$bin" --headless "${depth[@]}" --clock virtual --seconds 0.5 \
+    timeout $((20 * slow)) env "${envs[@]}" $emu "$bin" --headless "${depth[@]}" \
+        --clock virtual --seconds 0.5 \
         --audio-driver dummy --log "$out/$name.log" "$@" >"$out/$name.out" 2>"$out/$name.err"
     local rc=$?
-    [ "$rc" != 124 ] || fail "$name: hung (killed after 20 s)"
+    [ "$rc" != 124 ] || fail "$name: hung (killed after $((20 * slow)) s)"
     if [ "$rc" -ge 128 ] || grep -qE "AddressSanitizer|runtime error" "$out/$name.err"; then
         cat "$out/$name.err"; fail "$name crashed (exit $rc)"
     fi
