@@ -50,8 +50,10 @@ static cub_err fail(cub_diag *diag, cub_err e, const char *file, const char *wha
     if (!diag) return e;
     memset(diag, 0, sizeof(*diag));
     snprintf(diag->file, sizeof(diag->file), "%s", file ? file : "music");
-    snprintf(diag->msg, sizeof(diag->msg), "%s%s%s", what, detail && detail[0] ? ": " : "",
-             detail ? detail : "");
+    /* A detail too long for the message is cut: what comes first says enough. */
+    if (snprintf(diag->msg, sizeof(diag->msg), "%s%s%s", what, detail && detail[0] ? ": " : "",
+                 detail ? detail : "") < 0)
+        diag->msg[0] = '\0';
     return e;
 }
 
