@@ -1,13 +1,12 @@
 /* libFuzzer target for the depth synthesizer's text parsers (app/synth).
  * Input: byte 0 picks the parser, the rest is the text (not NUL-terminated:
  * the parsers must stay inside it).
- *   odd byte (e.g. 'T'): truth.txt (cub_synth_truth_parse)
- *   even byte (e.g. 'S'): a sequence file (cub_synth_sequence_parse)
+ *   'T': truth.txt (cub_synth_truth_parse)
+ *   anything else (e.g. 'S'): a sequence file (cub_synth_sequence_parse)
  * Whatever the input: no crash, hang or overread; a failure names the
  * file and says why; a success holds what the format promises. Built by
  * tests/fuzz with -DCUB_FUZZ=ON (see the report of the change for the
- * CMake lines). Seeds: any truth.txt written by `cubtool synth-depth`,
- * prefixed with 'T'. */
+ * CMake lines). Seeds: seeds_synth/ (tests/fuzz/make_seeds.py). */
 #include <math.h>
 #include <stddef.h>
 #include <stdint.h>
@@ -15,6 +14,7 @@
 #include <string.h>
 
 #include "cub/synth.h"
+#include "../fuzz/fuzz_tally.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
@@ -22,7 +22,9 @@ static void check_truth(const char *text, size_t len)
 {
     cub_synth_truth t;
     cub_diag d;
-    if (cub_synth_truth_parse(text, len, "fuzz.txt", &t, &d) != CUB_OK) {
+    int ok = cub_synth_truth_parse(text, len, "fuzz.txt", &t, &d) == CUB_OK;
+    cub_fuzz_tally("fuzz_synth_parsers", ok);
+    if (!ok) {
         if (!d.msg[0] || strcmp(d.file, "fuzz.txt") != 0) abort();
         return;
     }
@@ -39,7 +41,9 @@ static void check_sequence(const char *text, size_t len)
     cub_synth_segment *s;
     int n;
     cub_diag d;
-    if (cub_synth_sequence_parse(text, len, "fuzz.seq", &s, &n, &d) != CUB_OK) {
+    int ok = cub_synth_sequence_parse(text, len, "fuzz.seq", &s, &n, &d) == CUB_OK;
+    cub_fuzz_tally("fuzz_synth_parsers", ok);
+    if (!ok) {
         if (!d.msg[0] || s || n) abort();
         return;
     }
@@ -57,7 +61,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     char *text = malloc(size - 1 ? size - 1 : 1);
     if (!text) return 0;
     memcpy(text, data + 1, size - 1);
-    if (data[0] & 1)
+    if (data[0] == 'T')
         check_truth(text, size - 1);
     else
         check_sequence(text, size - 1);

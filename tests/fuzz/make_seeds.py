@@ -1,0 +1,145 @@
+#!/usr/bin/env python3
+"""Write the fuzz targets' small seed inputs (issue 18) into tests/fuzz/:
+seeds_dump/ (fuzz_fakenect_dump, fuzz_track_dump), seeds_synth/,
+seeds_cli/, seeds_font/, seeds_map/. Everything is made here from the formats' rules,
+nothing copied from the shared data; run it again after changing a format:
+
+  tests/fuzz/make_seeds.py          # rewrite the seed folders
+"""
+import os
+import struct
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+
+
+def put(folder, name, data):
+    os.makedirs(os.path.join(HERE, folder), exist_ok=True)
+    with open(os.path.join(HERE, folder, name), "wb") as f:
+        f.write(data)
+
+
+# ---- dumps: 2 bytes of INDEX.txt length, INDEX.txt, a control byte a file
+def frame_name(letter, k):
+    t = 1300000000 + k / 30
+    return "%s-%.6f-%d.%s" % (letter, t, 1000000 + 2000000 * k,
+                              {"d": "pgm", "r": "ppm", "a": "dump"}[letter])
+
+
+def dump(lines, controls=b""):
+    index = "".join(ln + "\n" for ln in lines).encode()
+    return struct.pack("<H", len(index)) + index + controls
+
+
+def dump_seeds():
+    three = [frame_name(x, k) for k in range(3) for x in "da"]
+    put("seeds_dump", "three_frames", dump(three))
+    put("seeds_dump", "colour_too", dump([frame_name(x, k) for k in range(2) for x in "rda"]))
+    # A truncated (2: 1000 bytes), a missing (1) and a 0-byte (4) depth frame: mended.
+    bad = [frame_name("d", k) for k in range(5)]
+    put("seeds_dump", "mended_frames", dump(bad, b"\x00\x02\xe8\x03\x01\x04\x00"))
+    put("seeds_dump", "blank_first", dump([""] + three))
+    put("seeds_dump", "depth_only", dump([frame_name("d", k) for k in range(4)]))
+
+
+# ---- the synthesizer's texts: 'T' truth.txt, 'S' a sequence file
+JOINTS = 20
+
+
+def truth_seed():
+    head = ("# cub-synth truth v1: line 2 'gravity gx gy gz' (down, camera space, length 1000); "
+            "then per frame: frame t_s ts, then 20 joints as x y z visible\n"
+            "gravity 0.000 -1000.000 0.000\n")
+    rows = []
+    for f in range(3):
+        joints = " ".join("%.1f %.1f %.1f %d" % (10.0 * j - 100, 50.0 * f + j, 2200.0 + j, j % 2)
+                          for j in range(JOINTS))
+        rows.append("%d %.6f %d %s\n" % (f, 1300000000 + f / 30, 1000000 + 2000000 * f, joints))
+    return ("T" + head + "".join(rows)).encode()
+
+
+def synth_seeds():
+    put("seeds_synth", "truth", truth_seed())
+    put("seeds_synth", "sequence", b"S# a warm-up then a wave\n13_29 0 2.5\njumping_jacks 1 end mirror\n")
+
+
+# ---- command lines: arguments separated by NUL; byte 0 picks the program
+def cli_seeds():
+    box = [b"--headless", b"--size", b"640x360", b"--seconds", b"1.5", b"--clock", b"virtual",
+           b"--song", b"twinkle.song.xml", b"--depth", b"off", b"--attract-after", b"20"]
+    put("seeds_cli", "cubdance", b"d" + b"\0".join(box))
+    put("seeds_cli", "cubdance_config", b"c" + b"volume=40\nresolution=800x600\nfont=/x.ttf\n")
+    put("seeds_cli", "retarget", b"r" + b"\0".join([b"src.bvh", b"--map", b"m.map", b"--from", b"1",
+                                                      b"--to", b"2.5", b"--speed", b"1.2", b"--mirror"]))
+    put("seeds_cli", "build", b"b" + b"\0".join([b"--recipe", b"r.txt", b"--out", b"o.cubclips",
+                                                   b"--root", b"/src", b"--data", b"/data"]))
+    put("seeds_cli", "synth", b"s" + b"\0".join([b"--clip", b"13_29", b"--from", b"0", b"--to", b"5",
+                                                   b"--out", b"/tmp/x", b"--fps", b"30", b"--frames", b"4"]))
+
+
+# ---- a tiny TrueType font: glyphs for ' ' .. '~' of one square outline
+def table_checksum(data):
+    data += b"\0" * (-len(data) % 4)
+    return sum(struct.unpack(">%dI" % (len(data) // 4), data)) & 0xFFFFFFFF
+
+
+def font_seed():
+    first, last = 32, 126
+    n = last - first + 2  # .notdef + the printable ASCII range
+    square = struct.pack(">hhhhh", 1, 0, 0, 500, 700)  # one contour, its box
+    square += struct.pack(">H", 3)                      # end point of the contour
+    square += struct.pack(">H", 0)                      # no instructions
+    square += bytes([0x01] * 4)                          # 4 on-curve points, long coords
+    square += struct.pack(">hhhh", 0, 500, 0, -500)      # x deltas
+    square += struct.pack(">hhhh", 0, 0, 700, 0)         # y deltas
+    square += b"\0" * (-len(square) % 4)
+    glyf = square * n
+    loca = struct.pack(">%dI" % (n + 1), *[len(square) * i for i in range(n + 1)])
+    head = struct.pack(">IIIIHHQQhhhhHHhhh", 0x10000, 0x10000, 0, 0x5F0F3CF5, 0, 1000, 0, 0,
+                       0, 0, 500, 700, 0, 8, 2, 1, 0)
+    hhea = struct.pack(">IhhhHhhhhhhhhhhhH", 0x10000, 800, -200, 0, 600, 0, 0, 500, 1, 1, 0,
+                       0, 0, 0, 0, 0, n)
+    maxp = struct.pack(">IHHHHHHHHHHHHHH", 0x10000, n, 4, 1, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0, 0)
+    hmtx = struct.pack(">%dH" % (2 * n), *([600, 0] * n))
+    # cmap format 4: one segment first..last -> glyphs 1.., and the 0xFFFF end.
+    seg = struct.pack(">HHHHHHH", 4, 0, 0, 4, 4, 1, 0)  # fields patched below
+    ends, starts = [last, 0xFFFF], [first, 0xFFFF]
+    deltas, ranges = [(1 - first) & 0xFFFF, 1], [0, 0]
+    body = struct.pack(">2H", *ends) + b"\0\0" + struct.pack(">2H", *starts)
+    body += struct.pack(">2H", *deltas) + struct.pack(">2H", *ranges)
+    seg = struct.pack(">HHHHHHH", 4, 14 + len(body), 0, 4, 4, 1, 0) + body
+    cmap = struct.pack(">HHHHI", 0, 1, 3, 1, 12) + seg
+    tables = {b"cmap": cmap, b"glyf": glyf, b"head": head, b"hhea": hhea, b"hmtx": hmtx,
+              b"loca": loca, b"maxp": maxp}
+    out = struct.pack(">IHHHH", 0x10000, len(tables), 64, 2, 48)
+    offset = 12 + 16 * len(tables)
+    blobs = b""
+    for tag in sorted(tables):
+        data = tables[tag]
+        out += tag + struct.pack(">III", table_checksum(data), offset + len(blobs), len(data))
+        blobs += data + b"\0" * (-len(data) % 4)
+    return out + blobs
+
+
+def map_seeds():
+    """The bear's joints linked one to one (hello.bvh is a bear BVH), and
+    with weights: the maps the fuzz target binds both sides of."""
+    import re
+    with open(os.path.join(HERE, "..", "..", "assets", "clips", "hello.bvh"), "rb") as f:
+        joints = re.findall(rb"(?:ROOT|JOINT)\s+(\S+)", f.read())
+    put("seeds_map", "bear_identity.map", b"".join(j + b" " + j + b"\n" for j in joints))
+    weighted = [b"%s %s:0.5 %s:0.5 rot" % (j, j, joints[0]) if i % 3 == 1 else b"%s %s" % (j, j)
+                for i, j in enumerate(joints)]
+    put("seeds_map", "bear_weighted.map", b"# weights\n" + b"\n".join(weighted) + b"\n")
+
+
+def main():
+    map_seeds()
+    dump_seeds()
+    synth_seeds()
+    cli_seeds()
+    put("seeds_font", "squares.ttf", b"\x10" + font_seed())  # byte 0: the pixel height
+    print("seeds written under", HERE)
+
+
+if __name__ == "__main__":
+    main()
