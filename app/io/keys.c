@@ -394,7 +394,7 @@ static cub_err parse_text(const cub_text *t, const void *skel, void *out)
 cub_err cub_keys_load(const char *path, const cub_skeleton *skel, cub_keys_clip *out,
                       cub_diag *diag)
 {
-    return cub_text_load(&(cub_text_src){path, "keyframe file", 0}, parse_text, skel, out, diag);
+    return cub_text_load(&(cub_text_src){path, "keyframe file", CUB_TEXT_MAX_SMALL}, parse_text, skel, out, diag);
 }
 
 void cub_keys_free(cub_keys_clip *k)

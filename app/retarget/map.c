@@ -102,7 +102,7 @@ cub_err cub_retarget_map_parse(const char *text, size_t len, const char *name,
 
 cub_err cub_retarget_map_load(const char *path, cub_retarget_map *out, cub_diag *diag)
 {
-    return cub_text_load(&(cub_text_src){path, "retarget map", 0}, parse_text, NULL, out, diag);
+    return cub_text_load(&(cub_text_src){path, "retarget map", CUB_TEXT_MAX_SMALL}, parse_text, NULL, out, diag);
 }
 
 cub_err cub_retarget_map_bind(cub_retarget_map *map, const cub_skeleton *target,
