@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <sys/stat.h>
 
 #include "commands.h"
 #include "cub/synth.h"
@@ -23,9 +24,8 @@
 static int load_truth(const char *path, cub_synth_truth *t, int *have)
 {
     *have = 0;
-    FILE *f = fopen(path, "r");
-    if (!f) return 0; /* no truth: statuses and speed only */
-    fclose(f);
+    struct stat st;
+    if (stat(path, &st) != 0 && errno == ENOENT) return 0; /* no truth: statuses and speed only */
     cub_diag diag = {0};
     char msg[600];
     if (cub_synth_truth_read(path, t, &diag)) {
@@ -88,14 +88,16 @@ int cub_cmd_eval_track(int argc, char **argv)
         fprintf(stderr, "usage: cubtool eval-track DUMP_DIR [TRUTH] [--print]\n");
         return 2;
     }
-    cub_tool_dump d;
-    if (cub_tool_dump_load(dir, &d, EVAL_MAX_FRAMES, "eval-track")) return 1;
+    /* The truth first: a bad one is refused before the frames (600 kB each)
+     * are read. */
     char tpath[4096];
     if (!truth) snprintf(tpath, sizeof tpath, "%s/truth.txt", dir), truth = tpath;
     cub_synth_truth tt = {0};
     int have_truth = 0;
-    if (load_truth(truth, &tt, &have_truth)) {
-        cub_tool_dump_free(&d);
+    if (load_truth(truth, &tt, &have_truth)) return 1;
+    cub_tool_dump d;
+    if (cub_tool_dump_load(dir, &d, EVAL_MAX_FRAMES, "eval-track")) {
+        cub_synth_truth_free(&tt);
         return 1;
     }
     cub_vec3 grav = {(cub_q16)(tt.gravity[0] * 65536), (cub_q16)(tt.gravity[1] * 65536),

@@ -148,7 +148,7 @@ static int load_sequence(const char *path, cub_synth_segment **segs, int *n)
     char *text, buf[600];
     size_t len;
     cub_diag diag;
-    cub_text_src src = {path, "sequence", 0};
+    cub_text_src src = {path, "sequence", CUB_TEXT_MAX_TIMELINE};
     cub_err err = cub_text_read(&src, &text, &len, &diag);
     if (!err) {
         err = cub_synth_sequence_parse(text, len, path, segs, n, &diag);

@@ -1,22 +1,38 @@
 /* track_dump — see track_dump.h. */
 #include "track_dump.h"
 
-#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "cub/text.h"
+
 #define FRAME_PIXELS CUB_TOOL_FRAME_PIXELS
+#define HEADER_MAX_BYTES 64 /* "P5 640 480 65535\n" and room for a comment */
+#define INDEX_MAX_BYTES ((size_t)64 << 20)
 
 /* A PGM of the dump: "P5 640 480 65535\n" then little-endian uint16.
  * Malformed or truncated files are refused with a message. */
+/* The bounded open (cub/text.h): a file that is not one, or far larger
+ * than max, is refused before it is read. */
+static FILE *open_file(const char *path, const char *what, size_t max, const char *who)
+{
+    FILE *f = NULL;
+    size_t bytes = 0;
+    cub_diag d = {0};
+    char msg[600];
+    cub_text_src src = {path, what, max};
+    if (cub_text_fopen(&src, &f, &bytes, &d)) {
+        fprintf(stderr, "%s: %s\n", who, cub_diag_str(&d, msg, sizeof msg));
+        return NULL;
+    }
+    return f;
+}
+
 static int read_pgm(const char *path, uint16_t *out, const char *who)
 {
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        fprintf(stderr, "%s: %s: %s\n", who, path, strerror(errno));
-        return -1;
-    }
+    FILE *f = open_file(path, "depth frame", FRAME_PIXELS * 2 + HEADER_MAX_BYTES, who);
+    if (!f) return -1;
     int w = 0, h = 0, maxv = 0;
     if (fscanf(f, "P5 %d %d %d", &w, &h, &maxv) != 3 || w != CUB_KINECT_WIDTH || h != CUB_KINECT_HEIGHT ||
         maxv != 65535 || fgetc(f) == EOF) {
@@ -48,11 +64,8 @@ int cub_tool_dump_load(const char *dir, cub_tool_dump *d, int max_frames, const 
     memset(d, 0, sizeof *d);
     char path[4096];
     snprintf(path, sizeof path, "%s/INDEX.txt", dir);
-    FILE *f = fopen(path, "r");
-    if (!f) {
-        fprintf(stderr, "%s: %s: %s\n", who, path, strerror(errno));
-        return -1;
-    }
+    FILE *f = open_file(path, "INDEX.txt", INDEX_MAX_BYTES, who);
+    if (!f) return -1;
     char line[512];
     int cap = 0;
     while (fgets(line, sizeof line, f) && d->n < max_frames) {

@@ -310,7 +310,8 @@ cub_err cub_io_load_asf_amc(const char *asf_path, const char *amc_path, const cu
     if (!diag)
         diag = &scratch;
     memset(diag, 0, sizeof(*diag));
-    cub_text_src asf_src = {asf_path, "ASF file", 0}, amc_src = {amc_path, "AMC file", 0};
+    cub_text_src asf_src = {asf_path, "ASF file", CUB_TEXT_MAX_MOCAP},
+                amc_src = {amc_path, "AMC file", CUB_TEXT_MAX_MOCAP};
     cub_err err = cub_text_read(&asf_src, &asf, &asf_len, diag);
     if (!err)
         err = cub_text_read(&amc_src, &amc, &amc_len, diag);

@@ -418,5 +418,5 @@ cub_err cub_io_parse_bvh(const char *text, size_t len, const char *name, const c
 cub_err cub_io_load_bvh(const char *path, const cub_io_desc *desc, cub_io_motion *out,
                         cub_diag *diag)
 {
-    return cub_text_load(&(cub_text_src){path, "BVH file", 0}, parse_text, desc, out, diag);
+    return cub_text_load(&(cub_text_src){path, "BVH file", CUB_TEXT_MAX_MOCAP}, parse_text, desc, out, diag);
 }

@@ -420,5 +420,5 @@ cub_err cub_character_parse(const char *xml, size_t len, const char *name, cub_c
 
 cub_err cub_character_load(const char *path, cub_character *out, cub_diag *diag)
 {
-    return cub_text_load(&(cub_text_src){path, "character file", 0}, parse_text, NULL, out, diag);
+    return cub_text_load(&(cub_text_src){path, "character file", CUB_TEXT_MAX_SMALL}, parse_text, NULL, out, diag);
 }

@@ -202,6 +202,14 @@ static cub_err read_loop_line(keys_parse *p, const io_tok *kw)
     if (io_lex_next_same_line(&p->lx, &t)) {
         cub_err err = io_tok_double(&p->lx, &t, "the loop time (seconds)", &p->loop_s);
         if (err) return err;
+        /* Checked here: a time <= 0 would read as a bare loop, a huge one
+         * overflows the period in frames. */
+        if (!(p->loop_s > 0 && p->loop_s <= CUB_KEYS_MAX_SECONDS)) {
+            char shown[40];
+            return io_fail(&p->lx, t.line,
+                           "the loop time %s must be a number of seconds above 0 and at most %g",
+                           io_tok_show(&t, shown, sizeof(shown)), (double)CUB_KEYS_MAX_SECONDS);
+        }
         if (io_lex_next_same_line(&p->lx, &t))
             return io_fail(&p->lx, t.line, "loop takes at most one time");
     }
@@ -394,7 +402,7 @@ static cub_err parse_text(const cub_text *t, const void *skel, void *out)
 cub_err cub_keys_load(const char *path, const cub_skeleton *skel, cub_keys_clip *out,
                       cub_diag *diag)
 {
-    return cub_text_load(&(cub_text_src){path, "keyframe file", 0}, parse_text, skel, out, diag);
+    return cub_text_load(&(cub_text_src){path, "keyframe file", CUB_TEXT_MAX_SMALL}, parse_text, skel, out, diag);
 }
 
 void cub_keys_free(cub_keys_clip *k)

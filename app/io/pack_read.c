@@ -231,5 +231,5 @@ static cub_err parse_bytes(const cub_text *t, const void *in, void *out)
 cub_err cub_pack_read(const char *path, cub_library *out, cub_diag *diag)
 {
     if (out) memset(out, 0, sizeof(*out));
-    return cub_text_load(&(cub_text_src){path, "clip pack", 0}, parse_bytes, NULL, out, diag);
+    return cub_text_load(&(cub_text_src){path, "clip pack", CUB_TEXT_MAX_CLIPS}, parse_bytes, NULL, out, diag);
 }

@@ -260,7 +260,7 @@ static cub_err parse_text(const cub_text *t, const void *lib, void *out)
 cub_err cub_song_load(const char *path, const cub_library *lib, cub_song *out, cub_diag *diag)
 {
     cub_diag scratch; /* cub_song_parse wants one */
-    cub_text_src src = {path, "song", 0};
+    cub_text_src src = {path, "song", CUB_TEXT_MAX_SONG};
     return cub_text_load(&src, parse_text, lib, out, diag ? diag : &scratch);
 }
 

@@ -344,5 +344,5 @@ static cub_err parse_text(const cub_text *t, const void *lib, void *out)
 cub_err cub_tags_read(const char *path, const cub_library *lib, cub_tags *out, cub_diag *diag)
 {
     if (!path || !lib || !out) return CUB_ERR_ARG;
-    return cub_text_load(&(cub_text_src){path, "tag file", 0}, parse_text, lib, out, diag);
+    return cub_text_load(&(cub_text_src){path, "tag file", CUB_TEXT_MAX_TAGS}, parse_text, lib, out, diag);
 }

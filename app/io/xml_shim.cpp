@@ -183,7 +183,7 @@ static cub_err parse_text(const cub_text *t, const void *, void *out)
 cub_err cub_xml_load(const char *path, cub_xml_doc **out, cub_diag *diag)
 {
     if (out) *out = nullptr;
-    cub_text_src src = {path, "XML file", 0};
+    cub_text_src src = {path, "XML file", CUB_TEXT_MAX_TAGS};
     return cub_text_load(&src, parse_text, NULL, out, diag);
 }
 

@@ -304,7 +304,7 @@ cub_err cub_music_load(cub_music *m, const char *midi_path, cub_diag *diag)
     char *data = NULL;
     size_t len = 0;
     cub_diag scratch;
-    cub_text_src src = {midi_path, "MIDI file", 0};
+    cub_text_src src = {midi_path, "MIDI file", CUB_TEXT_MAX_MIDI};
     cub_err e = cub_text_read(&src, &data, &len, diag ? diag : &scratch);
     if (e) return e;
     cub_midi_info info;

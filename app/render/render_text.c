@@ -21,7 +21,7 @@
 #include "render_internal.h"
 
 #define ATLAS_SHARE 8  /* glyph pixel height = viewport height / this */
-#define MAX_FONT_BYTES ((size_t)64 << 20)
+#define MAX_FONT_BYTES CUB_TEXT_MAX_FONT
 
 static const char TEXT_VS[] =
     "attribute vec2 a_pos;\n"

@@ -32,6 +32,20 @@ static cub_err parse_source(const char *word, cub_retarget_source *src, const cu
     return CUB_OK;
 }
 
+/* Weights that sum to 1. Each is first divided by the largest, so that the
+ * sum is at most the source count: 1e308 + 1e308 would be inf, and every
+ * weight 0 (a joint that never moves). */
+static void normalise(cub_retarget_link *lk, double top)
+{
+    double sum = 0;
+    for (int i = 0; i < lk->source_count; i++) {
+        lk->source[i].weight /= top;
+        sum += lk->source[i].weight;
+    }
+    for (int i = 0; i < lk->source_count; i++)
+        lk->source[i].weight /= sum;
+}
+
 static cub_err parse_line(cub_retarget_map *map, char **words, int n, const cub_text_at *at)
 {
     if (n < 2)
@@ -59,16 +73,15 @@ static cub_err parse_line(cub_retarget_map *map, char **words, int n, const cub_
     if (n - 1 > CUB_RETARGET_MAX_SOURCES)
         return cub_text_fail(at, "more than %d sources for \"%s\"", CUB_RETARGET_MAX_SOURCES,
                              words[0]);
-    double sum = 0;
+    double top = 0;
     for (int i = 1; i < n; i++) {
         cub_err err = parse_source(words[i], &lk->source[i - 1], at);
         if (err)
             return err;
-        sum += lk->source[i - 1].weight;
+        top = fmax(top, lk->source[i - 1].weight);
     }
     lk->source_count = n - 1;
-    for (int i = 0; i < lk->source_count; i++)
-        lk->source[i].weight /= sum;
+    normalise(lk, top);
     map->link_count++;
     return CUB_OK;
 }
@@ -102,7 +115,7 @@ cub_err cub_retarget_map_parse(const char *text, size_t len, const char *name,
 
 cub_err cub_retarget_map_load(const char *path, cub_retarget_map *out, cub_diag *diag)
 {
-    return cub_text_load(&(cub_text_src){path, "retarget map", 0}, parse_text, NULL, out, diag);
+    return cub_text_load(&(cub_text_src){path, "retarget map", CUB_TEXT_MAX_SMALL}, parse_text, NULL, out, diag);
 }
 
 cub_err cub_retarget_map_bind(cub_retarget_map *map, const cub_skeleton *target,

@@ -107,5 +107,5 @@ cub_err cub_recipe_parse(const char *text, size_t len, const char *name, cub_rec
 
 cub_err cub_recipe_load(const char *path, cub_recipe *out, cub_diag *diag)
 {
-    return cub_text_load(&(cub_text_src){path, "recipe", 0}, parse_text, NULL, out, diag);
+    return cub_text_load(&(cub_text_src){path, "recipe", CUB_TEXT_MAX_SMALL}, parse_text, NULL, out, diag);
 }

@@ -121,7 +121,7 @@ static cub_err parse_text(const cub_text *t, const void *in, void *out)
 cub_err cub_synth_truth_read(const char *path, cub_synth_truth *out, cub_diag *diag)
 {
     if (!path || !out) return CUB_ERR_ARG;
-    return cub_text_load(&(cub_text_src){path, "truth file", 0}, parse_text, NULL, out, diag);
+    return cub_text_load(&(cub_text_src){path, "truth file", CUB_TEXT_MAX_MOCAP}, parse_text, NULL, out, diag);
 }
 
 void cub_synth_truth_free(cub_synth_truth *t)

@@ -28,6 +28,12 @@
 #define NAME_MAX_CHARS 1024
 #define INDEX_MAX_BYTES ((size_t)64 << 20) /* a name a line: hours of frames */
 #define SMALL_FILE_MAX_BYTES ((size_t)1 << 20) /* a-* readings are ~20 bytes */
+/* fakenect sleeps between two lines for the difference of their recorded
+ * seconds, whatever it is, where no --seconds can end it. A step longer
+ * than this is no camera pause a recording holds (the same bound as the
+ * Kinect timestamps' in depth_freenect.c): it is replayed as one frame's. */
+#define MAX_GAP_S 10.0
+#define FRAME_S (1.0 / 30)
 
 /* fakenect keeps the pointer getenv gave it and builds every file path from
  * it while it replays, even after we put the caller's value back: the
@@ -69,7 +75,50 @@ typedef struct dump_scan {
     int names;       /* lines naming a file */
     int blank_lines; /* empty lines, dropped in the view */
     int first_blank_line;
+    int jumps;       /* lines whose recorded seconds jump past MAX_GAP_S */
 } dump_scan;
+
+/* The recorded seconds as the view replays them: every jump forward past
+ * MAX_GAP_S taken out, so that fakenect's sleep between two lines is
+ * bounded. Steps back fakenect does not sleep on: they stay. */
+typedef struct gap_clock {
+    int have_last;
+    double last_s; /* the previous parsed line's recorded seconds */
+    double cut_s;  /* seconds taken out so far */
+} gap_clock;
+
+/* The seconds line name replays at in *view_s (the recorded ones when not
+ * parsable: fakenect reads them the same way, "<kind>-<seconds>-..."), and
+ * the jump taken out at it (0: none). */
+static double gap_step(gap_clock *g, const char *name, double *view_s)
+{
+    double s = 0;
+    char kind;
+    int parsed = sscanf(name, "%c-%lf-", &kind, &s) == 2 && s == s;
+    double jump = 0;
+    if (parsed && g->have_last && s - g->last_s > MAX_GAP_S) {
+        jump = s - g->last_s;
+        g->cut_s += jump - FRAME_S;
+    }
+    if (parsed) {
+        g->have_last = 1;
+        g->last_s = s;
+    }
+    *view_s = s - g->cut_s;
+    return parsed ? jump : 0;
+}
+
+/* name as the view lists it: its recorded seconds replaced by view_s when a
+ * jump was taken out before it, else as it is. */
+static void view_name(const char *name, const gap_clock *g, double view_s, char *out,
+                      size_t size)
+{
+    const char *rest = strchr(name + 2, '-');
+    if (g->cut_s == 0 || !rest)
+        snprintf(out, size, "%s", name);
+    else
+        snprintf(out, size, "%c-%.6f%s", name[0], view_s, rest);
+}
 
 static size_t frame_bytes(const char *name)
 {
@@ -212,12 +261,15 @@ static cub_err scan_dump(const char *dir, dump_scan *scan, char *err, size_t err
     cub_err e = open_index(&r, dir, err, err_size);
     char name[NAME_MAX_CHARS];
     int more = 0;
+    gap_clock g = {0};
+    double view_s;
     while (!e && (more = next_name(&r, name, err, err_size)) > 0) {
         if (more == 2) {
             if (scan->blank_lines++ == 0) scan->first_blank_line = r.line;
             continue;
         }
         scan->names++;
+        if (gap_step(&g, name, &view_s) > 0) scan->jumps++;
         file_check c = check_file(dir, name);
         if (strchr(name, '/') && !scan->path_line) scan->path_line = r.line;
         if (name[0] == 'd') {
@@ -261,6 +313,13 @@ static cub_err judge_scan(const char *dir, const dump_scan *scan, char *err, siz
                  "fakenect dump %s: INDEX.txt:%d: a name with a directory in it; cannot replay "
                  "the bad frame %s (INDEX.txt:%d) around it",
                  dir, scan->path_line, scan->first_bad, scan->first_bad_line);
+        return CUB_ERR_FORMAT;
+    }
+    if (scan->jumps > 0 && scan->path_line) {
+        snprintf(err, err_size,
+                 "fakenect dump %s: INDEX.txt:%d: a name with a directory in it; cannot replay "
+                 "the jumps of its recorded seconds around it",
+                 dir, scan->path_line);
         return CUB_ERR_FORMAT;
     }
     if (scan->empty_accel > 0 && scan->path_line) {
@@ -314,12 +373,24 @@ static int copy_file(const char *from, const char *to)
     return ok ? 0 : -1;
 }
 
-static int link_file(const char *real_dir, const char *view, const char *name)
+/* view/as, a link to real_dir/name. A name listed twice is linked once; a
+ * renamed line whose new name is taken by another file fails. */
+static int link_as(const char *real_dir, const char *view, const char *name, const char *as)
 {
     char target[2 * CUB_FAKENECT_PATH_MAX], path[2 * CUB_FAKENECT_PATH_MAX];
+    char there[2 * CUB_FAKENECT_PATH_MAX];
     snprintf(target, sizeof target, "%s/%s", real_dir, name);
-    snprintf(path, sizeof path, "%s/%s", view, name);
-    return symlink(target, path) == 0 || errno == EEXIST ? 0 : -1;
+    snprintf(path, sizeof path, "%s/%s", view, as);
+    if (symlink(target, path) == 0) return 0;
+    if (errno != EEXIST) return -1;
+    ssize_t n = readlink(path, there, sizeof there - 1);
+    if (n >= 0) there[n] = '\0';
+    return n >= 0 && strcmp(there, target) == 0 ? 0 : (errno = EEXIST, -1);
+}
+
+static int link_file(const char *real_dir, const char *view, const char *name)
+{
+    return link_as(real_dir, view, name, name);
 }
 
 static cub_err view_failed(cub_fakenect_view *v, const char *what, const char *name, char *err,
@@ -334,13 +405,13 @@ static cub_err view_failed(cub_fakenect_view *v, const char *what, const char *n
 /* One file of the dump into the view: a link, a frame without readings,
  * or an accelerometer without a reading. */
 static int add_to_view(cub_fakenect_view *v, const index_reader *r, const char *real_dir,
-                       const char *name)
+                       const char *name, const char *as)
 {
     int mendable = name[0] == 'd' || name[0] == 'a';
     file_check c = mendable ? check_file(r->dir, name) : (file_check){FILE_GOOD, 0, 0, ""};
-    if (c.fault == FILE_GOOD) return link_file(real_dir, v->dir, name);
+    if (c.fault == FILE_GOOD) return link_as(real_dir, v->dir, name, as);
     char path[2 * CUB_FAKENECT_PATH_MAX], why[320];
-    snprintf(path, sizeof path, "%s/%s", v->dir, name);
+    snprintf(path, sizeof path, "%s/%s", v->dir, as);
     if (name[0] == 'a') {
         if (write_no_accel(path) != 0) return -1;
         fprintf(stderr, "depth: fakenect dump %s: INDEX.txt:%d: %s: empty: replayed as no "
@@ -370,23 +441,33 @@ static cub_err make_view_dir(cub_fakenect_view *v, char *err, size_t err_size)
     return CUB_OK; /* mkdtemp makes it 0700 */
 }
 
-/* Pass two: the view (links are absolute, FAKENECT_PATH may be relative). */
-static cub_err build_view(cub_fakenect_view *v, const char *dir, int drop_blanks, char *err,
+/* A line whose recorded seconds jump: said, and what the view lists. */
+static void note_jump(const index_reader *r, const char *name, double jump, const char *as)
+{
+    fprintf(stderr,
+            "depth: fakenect dump %s: INDEX.txt:%d: %s: the recorded time jumps %.1f s ahead "
+            "(more than %.0f s): replayed one frame later, as %s\n",
+            r->dir, r->line, name, jump, MAX_GAP_S, as);
+}
+
+/* Pass two: the view (links are absolute, FAKENECT_PATH may be relative).
+ * rewrite: INDEX.txt is written anew (no empty lines, jumps taken out). */
+static cub_err build_view(cub_fakenect_view *v, const char *dir, int rewrite, char *err,
                           size_t err_size)
 {
     char real_dir[CUB_FAKENECT_PATH_MAX], from[CUB_FAKENECT_PATH_MAX + 16];
-    char to[CUB_FAKENECT_PATH_MAX + 16], name[NAME_MAX_CHARS];
+    char to[CUB_FAKENECT_PATH_MAX + 16], name[NAME_MAX_CHARS], as[NAME_MAX_CHARS + 32];
     if (!realpath(dir, real_dir)) return view_failed(v, "resolving", dir, err, err_size);
     cub_err e = make_view_dir(v, err, err_size);
     if (e) return e;
     snprintf(from, sizeof from, "%s/INDEX.txt", dir);
     snprintf(to, sizeof to, "%s/INDEX.txt", v->dir);
-    /* Copied as it is when it has no empty line, so that a mended replay
+    /* Copied as it is when nothing in it is mended, so that a mended replay
      * reads the very same index. */
     FILE *index = NULL;
-    if (!drop_blanks && copy_file(from, to) != 0)
+    if (!rewrite && copy_file(from, to) != 0)
         return view_failed(v, "copying", from, err, err_size);
-    if (drop_blanks && !(index = fopen(to, "wx")))
+    if (rewrite && !(index = fopen(to, "wx")))
         return view_failed(v, "writing", to, err, err_size);
     index_reader r;
     if ((e = open_index(&r, dir, err, err_size))) {
@@ -395,14 +476,19 @@ static cub_err build_view(cub_fakenect_view *v, const char *dir, int drop_blanks
         return e;
     }
     int more, written = 1;
+    gap_clock g = {0};
+    double view_s;
     while ((more = next_name(&r, name, err, err_size)) > 0) {
         if (more == 2) {
             fprintf(stderr, "depth: fakenect dump %s: INDEX.txt:%d: an empty line: dropped\n",
                     dir, r.line);
             continue;
         }
-        if (index) written = written && fprintf(index, "%s\n", name) > 0;
-        if (strcmp(name, "INDEX.txt") && add_to_view(v, &r, real_dir, name) != 0) break;
+        double jump = gap_step(&g, name, &view_s);
+        view_name(name, &g, view_s, as, sizeof as);
+        if (jump > 0) note_jump(&r, name, jump, as);
+        if (index) written = written && fprintf(index, "%s\n", as) > 0;
+        if (strcmp(name, "INDEX.txt") && add_to_view(v, &r, real_dir, name, as) != 0) break;
     }
     fclose(r.f);
     if (index && fclose(index) != 0) written = 0;
@@ -444,11 +530,11 @@ cub_err cub_fakenect_dump_prepare(cub_fakenect_view *v, char *err, size_t err_si
     dump_scan scan = {0};
     cub_err e = scan_dump(dir, &scan, err, err_size);
     if (!e) e = judge_scan(dir, &scan, err, err_size);
-    if (e || scan.bad_frames + scan.empty_accel + scan.blank_lines == 0) return e;
+    if (e || scan.bad_frames + scan.empty_accel + scan.blank_lines + scan.jumps == 0) return e;
     /* Copied: point_env replaces the environment string dir points into. */
     char dump_dir[CUB_FAKENECT_PATH_MAX];
     snprintf(dump_dir, sizeof dump_dir, "%s", dir);
-    e = build_view(v, dump_dir, scan.blank_lines > 0, err, err_size);
+    e = build_view(v, dump_dir, scan.blank_lines + scan.jumps > 0, err, err_size);
     return e ? e : point_env(v, dump_dir, err, err_size);
 }
 

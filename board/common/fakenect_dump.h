@@ -14,7 +14,12 @@
  * name holding 640x480 raw 2047 (no reading). The bad file's bytes are never
  * copied: the box keeps no camera data. An empty a-* file (fakenect's read
  * of it fails, and it ends the replay there) gets a file of the same name
- * holding a reading of zeros, which the box takes for no reading. Every
+ * holding a reading of zeros, which the box takes for no reading. fakenect
+ * sleeps between two lines for the difference of their recorded seconds,
+ * inside freenect_process_events where no --seconds can end it: a line
+ * whose seconds jump more than 10 s past the line before is listed under a
+ * name with the jump taken out (one frame's step instead), linked to its
+ * file, and so is every line after it. Every
  * other fault (no FAKENECT_PATH or INDEX.txt, a missing a-* file, a missing
  * or short r-* file, no good depth frame at all) refuses the dump with
  * INDEX.txt:line. */

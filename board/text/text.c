@@ -88,6 +88,17 @@ static char *read_all(FILE *f, size_t hint, size_t cap, size_t *len)
     return buf;
 }
 
+const char *cub_text_size_str(size_t n, char *buf, size_t size)
+{
+    if (n >= CUB_TEXT_MB && n % CUB_TEXT_MB == 0)
+        snprintf(buf, size, "%zu MB", n / CUB_TEXT_MB);
+    else if (n >= CUB_TEXT_KB && n % CUB_TEXT_KB == 0)
+        snprintf(buf, size, "%zu kB", n / CUB_TEXT_KB);
+    else
+        snprintf(buf, size, "%zu bytes", n);
+    return buf;
+}
+
 static const char *kind_of(mode_t m)
 {
     return S_ISDIR(m)    ? "a directory"
@@ -114,6 +125,7 @@ cub_err cub_text_open(const cub_text_src *src, int *fd_out, size_t *size, cub_di
         return cub_diag_fail(diag, CUB_ERR_IO, path, 0, "cannot open the %s: %s", what,
                              strerror(errno));
     struct stat st;
+    char words[32];
     cub_err e = CUB_OK;
     if (fstat(fd, &st) != 0)
         e = cub_diag_fail(diag, CUB_ERR_IO, path, 0, "cannot read the %s: %s", what,
@@ -123,8 +135,9 @@ cub_err cub_text_open(const cub_text_src *src, int *fd_out, size_t *size, cub_di
                           what, kind_of(st.st_mode));
     else if ((unsigned long long)st.st_size > cap)
         e = cub_diag_fail(diag, CUB_ERR_FORMAT, path, 0,
-                          "the %s is %lld bytes, more than the %zu a %s may have", what,
-                          (long long)st.st_size, cap, what);
+                          "the %s is %lld bytes, larger than the %s a %s may be", what,
+                          (long long)st.st_size, cub_text_size_str(cap, words, sizeof words),
+                          what);
     else if (fcntl(fd, F_SETFL, fcntl(fd, F_GETFL) & ~O_NONBLOCK) != 0)
         e = cub_diag_fail(diag, CUB_ERR_IO, path, 0, "cannot read the %s: %s", what,
                           strerror(errno));
@@ -170,6 +183,7 @@ cub_err cub_text_read(const cub_text_src *src, char **out, size_t *len, cub_diag
     *len = 0;
     FILE *f = NULL;
     size_t stated = 0;
+    char words[32];
     cub_err e = cub_text_fopen(src, &f, &stated, diag);
     if (e)
         return e;
@@ -183,8 +197,8 @@ cub_err cub_text_read(const cub_text_src *src, char **out, size_t *len, cub_diag
         e = cub_diag_fail(diag, CUB_ERR_IO, path, 0, "cannot read the %s: %s", what,
                           strerror(failed));
     else if (got > cap)
-        e = cub_diag_fail(diag, CUB_ERR_FORMAT, path, 0, "the %s grew past the %zu bytes a %s may have",
-                          what, cap, what);
+        e = cub_diag_fail(diag, CUB_ERR_FORMAT, path, 0, "the %s grew larger than the %s a %s may be",
+                          what, cub_text_size_str(cap, words, sizeof words), what);
     if (e) {
         free(buf);
         return e;

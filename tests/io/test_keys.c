@@ -84,6 +84,12 @@ static void test_errors_name_the_line(void **state)
     expect_error(CLIP "key 0\nloop\n", 3, "bare 'loop' needs two keys");
     expect_error(CLIP "key 0\nkey 1\nloop 0.5\n", 4, "must come after the last key");
     expect_error(CLIP "key 0\nloop\nkey 1\n", 4, "nothing may follow loop (line 3)");
+    /* Issue 18: taken as a bare loop, or a period overflowed ("0 s"). */
+    expect_error(CLIP "key 0\nkey 1\nloop -5\n", 4,
+                 "the loop time '-5' must be a number of seconds above 0 and at most 600");
+    expect_error(CLIP "key 0\nkey 1\nloop 1e300\n", 4,
+                 "the loop time '1e300' must be a number of seconds above 0 and at most 600");
+    expect_error(CLIP "key 0\nkey 1\nloop 0\n", 4, "the loop time '0' must be");
     expect_error("# no clip line\nkey 0\n", 2, "expected 'clip NAME ...' first");
     expect_error(CLIP "clip u\n", 2, "a second clip line");
     expect_error("clip t fps=0\n", 1, "fps 0 is not in 1..240");

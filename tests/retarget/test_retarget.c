@@ -77,6 +77,29 @@ static void test_map_many_to_one_weights_normalised(void **state)
     assert_int_equal(map.link[0].policy, CUB_RETARGET_ROT);
 }
 
+/* Weights whose sum overflows (issue 18): 1e308 + 1e308 is inf, and every
+ * weight was normalised to 0, so the joint never moved. Now they are as
+ * any equal pair, and the largest and smallest doubles keep their ratio. */
+static void test_map_huge_weights_normalise_finite(void **state)
+{
+    (void)state;
+    const char *t = "Chest Spine1:1e308 Spine2:1e308\nHips Hips:1.7e308 Spine:1e-300\n";
+    cub_diag d;
+    assert_int_equal(cub_retarget_map_parse(t, strlen(t), "m.map", &map, &d), CUB_OK);
+    for (int l = 0; l < 2; l++) {
+        double sum = 0;
+        for (int i = 0; i < map.link[l].source_count; i++) {
+            assert_true(isfinite(map.link[l].source[i].weight));
+            sum += map.link[l].source[i].weight;
+        }
+        assert_true(fabs(sum - 1.0) < 1e-12);
+    }
+    assert_true(fabs(map.link[0].source[0].weight - 0.5) < 1e-12);
+    assert_true(fabs(map.link[0].source[1].weight - 0.5) < 1e-12);
+    assert_true(map.link[1].source[0].weight > 0.999999);
+    expect_map_error("Hips Hips:1e309\n", 0, "t.map:1: bad weight \"1e309\"");
+}
+
 static void expect_recipe_error(const char *text, const char *want)
 {
     static cub_recipe r;
@@ -308,6 +331,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_map_errors_name_file_and_line),
         cmocka_unit_test(test_map_many_to_one_weights_normalised),
+        cmocka_unit_test(test_map_huge_weights_normalise_finite),
         cmocka_unit_test(test_recipe_errors_name_file_and_line),
         cmocka_unit_test(test_time_range_outside_source_fails),
         cmocka_unit_test(test_jumping_jacks_feet_and_flips),

@@ -35,8 +35,25 @@ cub_err cub_diag_vfail(cub_diag *diag, cub_err err, const char *file, int line, 
  * message in d, "file:line: msg" into buf. Returns e. */
 cub_err cub_diag_report(cub_err e, const cub_diag *d, char *buf, size_t size);
 
-/* Files larger than this are refused unless a reader says otherwise. */
-#define CUB_TEXT_MAX_BYTES ((size_t)512 << 20)
+/* How large each kind of file may be: far above any real one (the figures
+ * are the largest the repo ships), low enough that a huge or endless file
+ * is refused before a byte of it is read, in a message that states the
+ * limit. A reader that names no limit gets CUB_TEXT_MAX_BYTES. */
+#define CUB_TEXT_KB ((size_t)1 << 10)
+#define CUB_TEXT_MB ((size_t)1 << 20)
+#define CUB_TEXT_MAX_BYTES (64 * CUB_TEXT_MB)
+#define CUB_TEXT_MAX_CONFIG (64 * CUB_TEXT_KB)   /* the box's config: 1 kB */
+#define CUB_TEXT_MAX_SMALL (1 * CUB_TEXT_MB)     /* maps, recipes, keys, characters: 5 kB */
+#define CUB_TEXT_MAX_SONG (4 * CUB_TEXT_MB)      /* a song.xml: 3 kB */
+#define CUB_TEXT_MAX_MIDI (4 * CUB_TEXT_MB)      /* a song's MIDI: 2 kB */
+#define CUB_TEXT_MAX_TIMELINE (4 * CUB_TEXT_MB)  /* timelines, scripts, sequences */
+#define CUB_TEXT_MAX_TAGS (64 * CUB_TEXT_MB)     /* a clip library's tags: 0.9 MB */
+#define CUB_TEXT_MAX_CLIPS (64 * CUB_TEXT_MB)    /* a clip library (.cubclips): 0.45 MB */
+#define CUB_TEXT_MAX_MOCAP (64 * CUB_TEXT_MB)    /* BVH, ASF/AMC takes, truth: 3.8 MB */
+#define CUB_TEXT_MAX_FONT (32 * CUB_TEXT_MB)     /* DejaVuSans-Bold: 0.7 MB */
+
+/* n bytes in words for a message: "4 MB", "64 kB", else "1234 bytes". */
+const char *cub_text_size_str(size_t n, char *buf, size_t size);
 
 /* A file to read. */
 typedef struct cub_text_src {
