@@ -187,6 +187,12 @@ static int check_glyph(font *f, unsigned gi, int depth)
     if (len < 10)
         return bad(f, "glyph %u is shorter than its header", gi, 0);
     int contours = (int16_t)u16(&in, g, &ok);
+    /* stb_truetype sizes the glyph's bitmap from this box: inverted, the
+     * width is negative and the bake's memset runs wild. */
+    int x_min = (int16_t)u16(&in, g + 2, &ok), y_min = (int16_t)u16(&in, g + 4, &ok);
+    int x_max = (int16_t)u16(&in, g + 6, &ok), y_max = (int16_t)u16(&in, g + 8, &ok);
+    if (x_min > x_max || y_min > y_max)
+        return bad(f, "glyph %u has an inverted bounding box", gi, 0);
     if (contours > 0) {
         uint64_t ends = g + 10;
         unsigned prev = 0;

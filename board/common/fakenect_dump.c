@@ -163,8 +163,8 @@ static file_check check_file(const char *dir, const char *name)
     c.need_bytes = (nl ? (size_t)(nl - head + 1) : strlen(NONE_HEADER)) + frame;
     if ((unsigned long long)st.st_size < c.need_bytes) {
         c.fault = FILE_SHORT;
-    } else if (!nl) {
-        c.fault = FILE_NO_HEADER;
+    } else if (!nl || memchr(head, '\0', (size_t)(nl - head))) {
+        c.fault = FILE_NO_HEADER; /* fakenect finds the line's end with strchr */
     }
     return c;
 }

@@ -356,6 +356,7 @@ def report(out):
         elif os.path.exists(p):
             with open(p, encoding="utf-8") as f:
                 res[(r["kind"], r["case"])] = json.load(f)
+    texts = list(dict.fromkeys(n["pending"] for n in notes))  # one note, many rows
     print("| kind | " + " | ".join(c.replace("_", " ") for c in cases) + " |")
     print("|---" * (len(cases) + 1) + "|")
     for k in kinds:
@@ -365,12 +366,13 @@ def report(out):
             if not r:
                 cells.append("")
             elif r["ok"] is None:
-                cells.append("not yet (%d)" % (notes.index(next(n for n in notes if n["case"] == c and n["kind"] == k)) + 1))
+                cells.append("not yet (%d)" % (texts.index(r["pending"]) + 1))
             else:
                 cells.append(r["expect"] + ("" if r["ok"] else " **FAIL: %s**" % r["why"]))
         print("| %s | %s |" % (k, " | ".join(cells)))
-    for i, n in enumerate(notes):
-        print("\n(%d) %s %s: %s." % (i + 1, n["kind"], n["case"], n["pending"]), end="")
+    for i, t in enumerate(texts):
+        rows_of = ", ".join("%s %s" % (n["kind"], n["case"]) for n in notes if n["pending"] == t)
+        print("\n(%d) %s: %s." % (i + 1, rows_of, t), end="")
     done = [r for r in res.values() if r["ok"] is not None]
     if done:
         worst = max(done, key=lambda r: r["rss_mb"])

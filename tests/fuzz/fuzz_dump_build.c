@@ -59,6 +59,13 @@ static void remove_tree(const char *dir, int keep_top)
     if (!keep_top) rmdir(dir);
 }
 
+/* The dump and the TMPDIR beside it go when the fuzzer ends. */
+static void remove_dump(void)
+{
+    remove_tree(dump_dir, 0);
+    remove_tree(tmp_dir, 0);
+}
+
 static void setup_once(const char *tag)
 {
     char cwd[160];
@@ -68,6 +75,7 @@ static void setup_once(const char *tag)
     mkdir(dump_dir, 0700);
     mkdir(tmp_dir, 0700);
     setenv("TMPDIR", tmp_dir, 1);
+    atexit(remove_dump);
     static const char dh[] = "P5 640 480 65535\n", rh[] = "P6 640 480 255\n";
     good_depth = calloc(1, sizeof dh - 1 + DEPTH_BYTES);
     good_rgb = calloc(1, sizeof rh - 1 + RGB_BYTES);
