@@ -85,6 +85,10 @@ int cub_tool_dump_load(const char *dir, cub_tool_dump *d, int max_frames, const 
         if (read_pgm(path, d->raw + (size_t)d->n * FRAME_PIXELS, who)) continue;
         /* d-<sec>.<frac>-<us>.pgm: the seconds stamp */
         double sec = strtod(line + 2, NULL);
+        if (!(sec >= 0 && sec < 1e12)) { /* (int64_t) of more is undefined */
+            fprintf(stderr, "%s: %s: no usable seconds in the name; skipped\n", who, path);
+            continue;
+        }
         d->t_us[d->n] = (int64_t)(sec * 1e6);
         snprintf(d->name[d->n], sizeof d->name[d->n], "%s", line);
         d->n++;

@@ -195,11 +195,12 @@ static int check_glyph(font *f, unsigned gi, int depth)
         return bad(f, "glyph %u has an inverted bounding box", gi, 0);
     if (contours > 0) {
         uint64_t ends = g + 10;
-        unsigned prev = 0;
+        unsigned prev = 0, last_start = 0;
         for (int c = 0; c < contours && ok; c++) {
             unsigned e = u16(&in, ends + 2 * (uint64_t)c, &ok);
             if (c && e < prev)
                 return bad(f, "glyph %u has its contours out of order", gi, 0);
+            last_start = c ? prev + 1 : 0;
             prev = e;
         }
         unsigned ins = u16(&in, ends + 2 * (uint64_t)contours, &ok);
@@ -217,6 +218,10 @@ static int check_glyph(font *f, unsigned gi, int depth)
             } else {
                 --repeat;
             }
+            /* stb_truetype reads the point after a contour's off-curve
+             * start: past its array when that start is the last point. */
+            if (i == points - 1 && i == last_start && !(flags & 1))
+                return bad(f, "glyph %u ends with a contour of one off-curve point", gi, 0);
             xy += (flags & 2) ? 1 : (flags & 16) ? 0 : 2;
             xy += (flags & 4) ? 1 : (flags & 32) ? 0 : 2;
         }

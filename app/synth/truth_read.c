@@ -23,7 +23,7 @@ static cub_err parse_frame(const synth_fields *f, const char *name, int line,
     t->frame = (int)v;
     if (!synth_parse_num(f->f[1], 1e12, &t->t_s) || t->t_s < 0)
         return synth_fail(diag, name, line, "bad time '%.40s'", f->f[1]);
-    if (!synth_parse_num(f->f[2], 4294967295.0, &v) || v != (double)(uint32_t)v)
+    if (!synth_parse_num(f->f[2], 4294967295.0, &v) || v < 0 || v != (double)(uint32_t)v)
         return synth_fail(diag, name, line, "bad timestamp '%.40s'", f->f[2]);
     t->ts = (uint32_t)v;
     for (int j = 0; j < CUB_KJ_COUNT; j++) {

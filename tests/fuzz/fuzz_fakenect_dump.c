@@ -153,7 +153,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     memset(&v, 0, sizeof v);
     char err[512] = "";
     cub_err e = cub_fakenect_dump_prepare(&v, err, sizeof err);
-    if (e && strncmp(err, "fakenect dump ", 14) != 0) abort(); /* a refusal names the dump */
+    if (e && strncmp(err, "fakenect dump ", 14) != 0) { /* a refusal names the dump */
+        fprintf(stderr, "fuzz_fakenect_dump: refused as \"%s\"\n", err);
+        abort();
+    }
     unsigned long seen = frames_seen;
     if (!e) replay(&v, lines);
     cub_fuzz_tally("fuzz_fakenect_dump", !e && frames_seen > seen); /* accepted, frames replayed */

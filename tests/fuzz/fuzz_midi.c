@@ -1,6 +1,6 @@
 /* libFuzzer target: a MIDI file as the box reads it (app/music): our own
  * scan (midi_scan.c: length, tempo map, presets) and FluidSynth's player
- * loading the same bytes with fluid_player_add_mem on a synthesiser with
+ * loading the bytes our scan accepts with fluid_player_add_mem on a synthesiser with
  * no audio driver and no SoundFont, played for up to 0.5 s of rendered
  * samples (the player is timed by the samples, as music.c sets it).
  * FluidSynth is not instrumented: a bad read inside it shows only as a
@@ -49,15 +49,18 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     } else if (!d.msg[0]) {
         abort();
     }
-    fluid_player_t *player = new_fluid_player(synth);
-    if (!player) abort();
-    if (fluid_player_add_mem(player, data, size) == FLUID_OK && fluid_player_play(player) == FLUID_OK) {
+    /* FluidSynth gets only what our scan accepted, as cub_music_load does
+     * (a file without End of Track can spin FluidSynth's player). */
+    fluid_player_t *player = scanned ? new_fluid_player(synth) : NULL;
+    if (scanned && !player) abort();
+    if (player && fluid_player_add_mem(player, data, size) == FLUID_OK &&
+        fluid_player_play(player) == FLUID_OK) {
         static float left[BLOCK], right[BLOCK];
         for (int k = 0; k < RATE / 2 / BLOCK && fluid_player_get_status(player) == FLUID_PLAYER_PLAYING; k++)
             fluid_synth_write_float(synth, BLOCK, left, 0, 1, right, 0, 1), played = 1;
         fluid_player_stop(player);
     }
-    delete_fluid_player(player);
+    if (player) delete_fluid_player(player);
     cub_fuzz_tally("fuzz_midi", scanned && played); /* ours and FluidSynth's both took it */
     fluid_synth_system_reset(synth);
     return 0;
