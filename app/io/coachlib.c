@@ -18,10 +18,13 @@ static cub_err fail(cub_diag *diag, const char *file, cub_err e, const char *fmt
 }
 
 /* The bear's feature joints, found by name in the library's skeleton (the
- * library is retargeted onto the bear, but its skeleton is its own copy). */
+ * library is retargeted onto the bear, but its skeleton is its own copy).
+ * A joint the library lacks is the character's fault (a character the
+ * library was not built for), so the message names the character file. */
 static cub_err map_body(const cub_character *bear, const cub_skeleton *to, const char *lib_path,
-                        cub_fuzzy_body *out, cub_diag *diag)
+                        const char *bear_path, cub_fuzzy_body *out, cub_diag *diag)
 {
+    const char *lib_base = strrchr(lib_path, '/');
     *out = bear->body;
     int16_t *idx[] = {&out->hip_centre, &out->spine,    &out->shoulder_centre, &out->head,
                       &out->shoulder[0], &out->shoulder[1], &out->elbow[0],   &out->elbow[1],
@@ -33,9 +36,11 @@ static cub_err map_body(const cub_character *bear, const cub_skeleton *to, const
         const char *name = bear->skel.joints[j].name;
         int k = cub_motion_skeleton_find(to, name);
         if (k < 0)
-            return fail(diag, lib_path, CUB_ERR_FORMAT,
-                        "the library's skeleton has no joint '%s' (the bear's features read it)",
-                        name);
+            return cub_diag_fail(diag, CUB_ERR_FORMAT, bear_path, 0,
+                                 "the character's joint '%s' (its features read it) is not in "
+                                 "the skeleton of the clip library %s: a library built for "
+                                 "another character",
+                                 name, lib_base ? lib_base + 1 : lib_path);
         *idx[i] = (int16_t)k;
     }
     return CUB_OK;
@@ -84,11 +89,11 @@ static cub_err add_links(cub_coachlib *cl, const char *tags_path, cub_diag *diag
 }
 
 static cub_err build_table(cub_coachlib *cl, const char *lib_path, const char *tags_path,
-                           cub_diag *diag)
+                           const char *bear_path, cub_diag *diag)
 {
     cub_bridge_table_desc d = {.skel = &cl->lib.skel, .fuzzy = cl->tags.params.fuzzy,
                                .clip_count = cl->lib.clip_count};
-    cub_err e = map_body(&cl->bear, &cl->lib.skel, lib_path, &d.body, diag);
+    cub_err e = map_body(&cl->bear, &cl->lib.skel, lib_path, bear_path, &d.body, diag);
     if (e) return e;
     for (int c = 0; c < cl->lib.clip_count; c++) {
         d.frame_total += cl->lib.clips[c].clip.frame_count;
@@ -117,7 +122,7 @@ cub_err cub_coachlib_load(const char *library_path, const char *tags_path,
     cub_err e = cub_character_load(bear_path, &out->bear, diag);
     if (!e) e = cub_pack_read(library_path, &out->lib, diag);
     if (!e) e = cub_tags_read(tags_path, &out->lib, &out->tags, diag);
-    if (!e) e = build_table(out, library_path, tags_path, diag);
+    if (!e) e = build_table(out, library_path, tags_path, bear_path, diag);
     if (e) cub_coachlib_free(out);
     return e;
 }

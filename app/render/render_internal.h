@@ -76,7 +76,8 @@ typedef struct cub_render_text_vtx {
 typedef struct cub_render_text {
     GLuint prog, tex;
     GLint a_pos, a_uv, a_col, u_tex;
-    float px;                   /* baked glyph height in pixels */
+    float px;                   /* glyph height on the screen in pixels */
+    float baked_px;             /* glyph height in the atlas (px, capped) */
     float ascent_px, descent_px;
     int atlas_side;
     stbtt_bakedchar glyphs[CUB_RENDER_GLYPH_COUNT];

@@ -3,7 +3,8 @@
  *
  * The atlas holds codepoints 32..255 (ASCII and Latin-1: the songs' hints
  * are English, and names like "Zoë" still draw) at a pixel height of
- * h / 8 of the viewport, so 1280x720 bakes 90 px glyphs and 1920x1080 135 px:
+ * h / 8 of the viewport (baked at most 270 px high, drawn scaled up past
+ * that), so 1280x720 bakes 90 px glyphs and 1920x1080 135 px:
  * the title is drawn a little larger, the hint and cues smaller, and
  * bilinear filtering of a big atlas reads better than blowing up a small
  * one. Each label is drawn first eight times offset in a dark colour (an
@@ -21,6 +22,11 @@
 #include "render_internal.h"
 
 #define ATLAS_SHARE 8  /* glyph pixel height = viewport height / this */
+/* The glyphs are baked at most this high (a 4K screen's h / 8) and drawn
+ * scaled up past it: at 7680x4320 the 540 px glyphs do not fit a 4096
+ * atlas (they stop fitting near h = 3300), and an 8K screen seen from a
+ * sofa shows no difference. */
+#define BAKE_MAX_PX 270.0f
 #define MAX_FONT_BYTES CUB_TEXT_MAX_FONT
 
 static const char TEXT_VS[] =
@@ -78,7 +84,7 @@ static unsigned char *bake(cub_render_text *t, const unsigned char *font)
         unsigned char *px = calloc((size_t)side * side, 1);
         if (!px)
             return NULL;
-        int r = stbtt_BakeFontBitmap(font, 0, t->px, px, side, side, CUB_RENDER_GLYPH_FIRST,
+        int r = stbtt_BakeFontBitmap(font, 0, t->baked_px, px, side, side, CUB_RENDER_GLYPH_FIRST,
                                      CUB_RENDER_GLYPH_COUNT, t->glyphs);
         if (r > 0) {
             t->atlas_side = side;
@@ -124,6 +130,7 @@ cub_err cub_render_text_init(cub_render *r, const char *path, char *err, size_t 
         return CUB_ERR_FORMAT;
     }
     t->px = (float)(r->h / ATLAS_SHARE > 8 ? r->h / ATLAS_SHARE : 8);
+    t->baked_px = t->px < BAKE_MAX_PX ? t->px : BAKE_MAX_PX;
     int ascent = 0, descent = 0, gap = 0;
     stbtt_GetFontVMetrics(&info, &ascent, &descent, &gap);
     float scale = stbtt_ScaleForPixelHeight(&info, t->px);
@@ -182,7 +189,7 @@ void cub_render_text_layout(const cub_render *r, cub_render_label *l, const char
     l->quads = 0;
     float pen = 0.0f;
     const cub_render_text *t = &r->text;
-    float side = (float)t->atlas_side;
+    float side = (float)t->atlas_side, up = t->px / t->baked_px; /* atlas px -> screen px */
     for (size_t i = 0; l->text[i] && l->quads < CUB_RENDER_LABEL_LEN;) {
         int cp = next_codepoint(l->text, &i);
         if (cp < CUB_RENDER_GLYPH_FIRST || cp >= CUB_RENDER_GLYPH_FIRST + CUB_RENDER_GLYPH_COUNT ||
@@ -191,12 +198,12 @@ void cub_render_text_layout(const cub_render *r, cub_render_label *l, const char
         const stbtt_bakedchar *g = &t->glyphs[cp - CUB_RENDER_GLYPH_FIRST];
         float *q = l->q[l->quads];
         /* y up from the baseline; the atlas' rows run down. */
-        q[0] = pen + g->xoff, q[1] = -g->yoff - (float)(g->y1 - g->y0);
-        q[2] = q[0] + (float)(g->x1 - g->x0), q[3] = -g->yoff;
+        q[0] = pen + g->xoff * up, q[1] = (-g->yoff - (float)(g->y1 - g->y0)) * up;
+        q[2] = q[0] + (float)(g->x1 - g->x0) * up, q[3] = -g->yoff * up;
         q[4] = g->x0 / side, q[5] = g->y1 / side, q[6] = g->x1 / side, q[7] = g->y0 / side;
         if (g->x1 > g->x0)
             l->quads++;
-        pen += g->xadvance;
+        pen += g->xadvance * up;
     }
     l->width_px = pen;
 }

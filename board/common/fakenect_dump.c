@@ -16,6 +16,7 @@
 
 #include <dirent.h>
 #include <errno.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -87,14 +88,15 @@ typedef struct gap_clock {
     double cut_s;  /* seconds taken out so far */
 } gap_clock;
 
-/* The seconds line name replays at in *view_s (the recorded ones when not
- * parsable: fakenect reads them the same way, "<kind>-<seconds>-..."), and
- * the jump taken out at it (0: none). */
+/* The seconds line name replays at in *view_s, read the way fakenect reads
+ * them ("<kind>-<seconds>-..."), and the jump taken out at it (0: none). A
+ * name without readable seconds gets NAN: it is left as it is. */
 static double gap_step(gap_clock *g, const char *name, double *view_s)
 {
     double s = 0;
     char kind;
-    int parsed = sscanf(name, "%c-%lf-", &kind, &s) == 2 && s == s;
+    /* Past 1e15 s (31 million years) a difference could overflow. */
+    int parsed = sscanf(name, "%c-%lf-", &kind, &s) == 2 && fabs(s) < 1e15;
     double jump = 0;
     if (parsed && g->have_last && s - g->last_s > MAX_GAP_S) {
         jump = s - g->last_s;
@@ -104,8 +106,8 @@ static double gap_step(gap_clock *g, const char *name, double *view_s)
         g->have_last = 1;
         g->last_s = s;
     }
-    *view_s = s - g->cut_s;
-    return parsed ? jump : 0;
+    *view_s = parsed ? s - g->cut_s : NAN;
+    return jump;
 }
 
 /* name as the view lists it: its recorded seconds replaced by view_s when a
@@ -114,7 +116,7 @@ static void view_name(const char *name, const gap_clock *g, double view_s, char 
                       size_t size)
 {
     const char *rest = strchr(name + 2, '-');
-    if (g->cut_s == 0 || !rest)
+    if (g->cut_s == 0 || !rest || isnan(view_s))
         snprintf(out, size, "%s", name);
     else
         snprintf(out, size, "%c-%.6f%s", name[0], view_s, rest);

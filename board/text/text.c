@@ -208,6 +208,19 @@ cub_err cub_text_read(const cub_text_src *src, char **out, size_t *len, cub_diag
     return CUB_OK;
 }
 
+/* t without a UTF-8 byte-order mark at its start: editors on phones and
+ * Windows save one, invisible, and every parser would trip on its first
+ * word. */
+static cub_text without_bom(const cub_text *t)
+{
+    cub_text u = *t;
+    if (u.s && u.len >= 3 && memcmp(u.s, "\xEF\xBB\xBF", 3) == 0) {
+        u.s += 3;
+        u.len -= 3;
+    }
+    return u;
+}
+
 cub_err cub_text_parse(const cub_text *t, cub_text_whole_fn parse, const void *in, void *out)
 {
     const char *name = t->name ? t->name : "(text)";
@@ -215,7 +228,8 @@ cub_err cub_text_parse(const cub_text *t, cub_text_whole_fn parse, const void *i
         return cub_diag_fail(t->diag, CUB_ERR_ARG, name, 0, "no text");
     if (!out)
         return cub_diag_fail(t->diag, CUB_ERR_ARG, name, 0, "no output");
-    return parse(t, in, out);
+    cub_text u = without_bom(t);
+    return parse(&u, in, out);
 }
 
 cub_err cub_text_load(const cub_text_src *src, cub_text_whole_fn parse, const void *in, void *out,
@@ -292,8 +306,9 @@ cub_err cub_text_lines(const cub_text *t, cub_text_line_fn fn, void *ctx)
     size_t cap = 0;
     cub_err e = CUB_OK;
     cub_text_line ln = {NULL, {name, 0, t->diag}};
-    const char *end = t->s + t->len;
-    for (const char *c = t->s; !e && c < end;) {
+    cub_text u = without_bom(t);
+    const char *end = u.s + u.len;
+    for (const char *c = u.s; !e && c < end;) {
         const char *nl = memchr(c, '\n', (size_t)(end - c));
         const char *stop = nl ? nl : end;
         ln.at.line++;

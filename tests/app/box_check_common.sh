@@ -1,6 +1,6 @@
 # Shared set-up of the checks that feed the real cubdance bad input
 # (check_special_files.sh, check_dump_index.sh, check_dump_time.sh,
-# check_dump_seconds.sh, check_bad_files.sh):
+# check_dump_seconds.sh, check_huge_files.sh, check_odd_inputs.sh):
 # sourced once emu, build and out are set.
 bin="$build/app/cubdance/cubdance"
 export SDL_AUDIODRIVER=dummy EGL_PLATFORM=surfaceless LIBGL_ALWAYS_SOFTWARE=1

@@ -516,6 +516,26 @@ static void test_render_refuses_missing_font(void **state)
     assert_non_null(strstr(why, "stick_pose.png: not a TrueType font"));
 }
 
+/* A 4K and an 8K screen (issue 18: above h ~3300 the h / 8 glyphs did not
+ * fit a 4096 atlas, and the renderer refused the font): the glyphs are
+ * baked at most 270 px high and drawn scaled, so both get a renderer. */
+static void test_render_at_4k_and_8k(void **state)
+{
+    (void)state;
+    static const int sizes[][2] = {{3840, 2160}, {7680, 4320}};
+    for (int i = 0; i < 2; i++) {
+        char why[512] = "";
+        cub_render *r = NULL;
+        cub_render_desc desc = {.width = sizes[i][0], .height = sizes[i][1], .error = why,
+                                .error_size = sizeof why};
+        cub_err e = cub_render_create(&desc, &r);
+        printf("golden: %dx%d: %s%s\n", sizes[i][0], sizes[i][1], e ? "refused: " : "ok", why);
+        assert_int_equal(e, CUB_OK);
+        assert_non_null(r);
+        cub_render_destroy(r);
+    }
+}
+
 /* Only the face changes between faces: the pixels that differ between the
  * happy and the sleepy bear all lie in the head's box (the upper part of
  * the bear, centre columns), and there are enough of them to see. */
@@ -743,6 +763,7 @@ int main(void)
         cmocka_unit_test(test_child_inset_cue_matches_golden),
         cmocka_unit_test(test_child_cue_follows_status),
         cmocka_unit_test(test_render_refuses_missing_font),
+        cmocka_unit_test(test_render_at_4k_and_8k),
         cmocka_unit_test(test_bear_faces_differ_only_on_the_head),
         cmocka_unit_test(test_bear_rejects_bad_character),
         cmocka_unit_test(test_frames_are_deterministic),

@@ -100,6 +100,16 @@ static void test_map_huge_weights_normalise_finite(void **state)
     expect_map_error("Hips Hips:1e309\n", 0, "t.map:1: bad weight \"1e309\"");
 }
 
+/* A map saved with a UTF-8 byte-order mark reads as without one. */
+static void test_map_byte_order_mark_is_dropped(void **state)
+{
+    (void)state;
+    const char *t = "\xEF\xBB\xBFHips Hips\n";
+    cub_diag d;
+    assert_int_equal(cub_retarget_map_parse(t, strlen(t), "m.map", &map, &d), CUB_OK);
+    assert_string_equal(map.link[0].target_name, "Hips");
+}
+
 static void expect_recipe_error(const char *text, const char *want)
 {
     static cub_recipe r;
@@ -332,6 +342,7 @@ int main(void)
         cmocka_unit_test(test_map_errors_name_file_and_line),
         cmocka_unit_test(test_map_many_to_one_weights_normalised),
         cmocka_unit_test(test_map_huge_weights_normalise_finite),
+        cmocka_unit_test(test_map_byte_order_mark_is_dropped),
         cmocka_unit_test(test_recipe_errors_name_file_and_line),
         cmocka_unit_test(test_time_range_outside_source_fails),
         cmocka_unit_test(test_jumping_jacks_feet_and_flips),

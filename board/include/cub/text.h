@@ -102,15 +102,16 @@ cub_err cub_text_fopen(const cub_text_src *src, FILE **f, size_t *size, cub_diag
  * before the NUL; free() it). CUB_ERR_IO when it cannot be read,
  * CUB_ERR_FORMAT when it is larger than the cap, CUB_ERR_NOMEM. */
 cub_err cub_text_read(const cub_text_src *src, char **out, size_t *len, cub_diag *diag);
-/* Hand t whole to parse(t, in, out) and return its result; CUB_ERR_ARG
- * when t has a length but no bytes, or out is NULL. */
+/* Hand t whole to parse(t, in, out), without a UTF-8 byte-order mark at
+ * its start, and return its result; CUB_ERR_ARG when t has a length but no
+ * bytes, or out is NULL. */
 cub_err cub_text_parse(const cub_text *t, cub_text_whole_fn parse, const void *in, void *out);
 /* Read src->path, cub_text_parse it, free it; parse's result, or
  * cub_text_read's failure. */
 cub_err cub_text_load(const cub_text_src *src, cub_text_whole_fn parse, const void *in, void *out,
                       cub_diag *diag);
-/* Hand fn every line of t that holds more than blanks once its comment is
- * cut, in order; stops at fn's first failure and returns it. A line with a
+/* Hand fn every line of t (a UTF-8 byte-order mark at its start dropped)
+ * that holds more than blanks once its comment is cut, in order; stops at fn's first failure and returns it. A line with a
  * NUL byte fails ("contains a NUL byte"); CUB_ERR_ARG when t->s is NULL
  * with a length. */
 cub_err cub_text_lines(const cub_text *t, cub_text_line_fn fn, void *ctx);
