@@ -1,5 +1,6 @@
 #include "replay.h"
 
+#include <errno.h>
 #include <limits.h>
 #include <stdlib.h>
 #include <string.h>
@@ -27,7 +28,10 @@ int cub_replay_prepare(const char *dir, char **argv, FILE *err)
         return -1;
     }
     if (stat(index, &st) != 0) {
-        fprintf(err, "cubdance: --replay %s: not a fakenect dump (no INDEX.txt)\n", dir);
+        if (errno == ENOENT)
+            fprintf(err, "cubdance: --replay %s: not a fakenect dump (no INDEX.txt)\n", dir);
+        else
+            fprintf(err, "cubdance: --replay %s: cannot open INDEX.txt: %s\n", dir, strerror(errno));
         return -1;
     }
     /* Already set up (by the `fakenect` wrapper, a test, or our re-exec)?

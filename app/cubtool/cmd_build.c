@@ -211,7 +211,7 @@ static int build_all(const build_args *a, const cub_recipe *r, const cub_charact
         fprintf(stderr, "cubtool build: [%d/%d] %s <- %s\n", i + 1, r->clip_count, rc->name,
                 rc->source);
         if (build_clip(a, rc, bear, map, &outs[i], &rep, &d)) {
-            snprintf(where, sizeof(where), "recipe line %d (%s)", rc->line, rc->name);
+            snprintf(where, sizeof(where), "%.200s:%d (%s)", a->recipe, rc->line, rc->name);
             return report_fail(where, &d);
         }
         cub_library_clip *lc = &lib->clips[i];

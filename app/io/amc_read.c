@@ -278,6 +278,11 @@ static cub_err asf_amc(const char *asf, size_t asf_len, const char *asf_name, co
     if (!a)
         return cub_diag_fail(diag, CUB_ERR_NOMEM, asf_name, 0, "out of memory");
     a->m = out;
+    size_t asf_bom = cub_text_bom_len(asf, asf_len), amc_bom = cub_text_bom_len(amc, amc_len);
+    asf += asf_bom;
+    asf_len -= asf_bom;
+    amc += amc_bom;
+    amc_len -= amc_bom;
     cub_err err = parse_both(a, asf, asf_len, asf_name, amc, amc_len, amc_name, desc, diag);
     free(a);
     if (err) {

@@ -220,6 +220,13 @@ static int next_name(index_reader *r, char *name, char *err, size_t err_size)
                  r->dir, r->line, NAME_MAX_CHARS - 2);
         return -1;
     }
+    if (r->line == 1 && memcmp(name, "\xEF\xBB\xBF", 3) == 0) {
+        snprintf(err, err_size,
+                 "fakenect dump %s: INDEX.txt:1: starts with a UTF-8 byte order mark (BOM), "
+                 "which fakenect would take as part of the first name: save it without one",
+                 r->dir);
+        return -1;
+    }
     return name[0] ? 1 : 2;
 }
 

@@ -211,13 +211,17 @@ cub_err cub_text_read(const cub_text_src *src, char **out, size_t *len, cub_diag
 /* t without a UTF-8 byte-order mark at its start: editors on phones and
  * Windows save one, invisible, and every parser would trip on its first
  * word. */
+size_t cub_text_bom_len(const char *s, size_t len)
+{
+    return s && len >= 3 && memcmp(s, "\xEF\xBB\xBF", 3) == 0 ? 3 : 0;
+}
+
 static cub_text without_bom(const cub_text *t)
 {
     cub_text u = *t;
-    if (u.s && u.len >= 3 && memcmp(u.s, "\xEF\xBB\xBF", 3) == 0) {
-        u.s += 3;
-        u.len -= 3;
-    }
+    size_t bom = cub_text_bom_len(u.s, u.len);
+    u.s += bom;
+    u.len -= bom;
     return u;
 }
 

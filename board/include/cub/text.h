@@ -102,6 +102,9 @@ cub_err cub_text_fopen(const cub_text_src *src, FILE **f, size_t *size, cub_diag
  * before the NUL; free() it). CUB_ERR_IO when it cannot be read,
  * CUB_ERR_FORMAT when it is larger than the cap, CUB_ERR_NOMEM. */
 cub_err cub_text_read(const cub_text_src *src, char **out, size_t *len, cub_diag *diag);
+/* 3 when s starts with a UTF-8 byte-order mark (which cub_text_parse and
+ * cub_text_lines drop), else 0: for readers that take the text themselves. */
+size_t cub_text_bom_len(const char *s, size_t len);
 /* Hand t whole to parse(t, in, out), without a UTF-8 byte-order mark at
  * its start, and return its result; CUB_ERR_ARG when t has a length but no
  * bytes, or out is NULL. */
