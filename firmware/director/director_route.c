@@ -79,7 +79,8 @@ static cub_err plan_correction(cub_director *d, const cub_coach_action *a, cub_b
  * (danced, resumed or demonstrated) opens a window as long as the clip
  * plays at its speed, plus a beat for a late child; anything else the
  * coach asks for (a correction, the idle clip) closes what was open. */
-static void judge_clip(cub_director *d, const cub_coach_action *a, int64_t t_us)
+static void judge_clip(cub_director *d, const cub_coach_action *a, int64_t t_us,
+                       const cub_bridge_plan *plan)
 {
     cub_judge *j = d->desc.judge;
     if (!j) return;
@@ -99,6 +100,10 @@ static void judge_clip(cub_director *d, const cub_coach_action *a, int64_t t_us)
                        .start_us = t_us, .end_us = t_us + play_us,
                        .beat_us = d->desc.bpm > 0 ? 60000000 / d->desc.bpm : 0};
     for (int i = 0; i < k->count && i < CUB_JUDGE_MAX_KEYS; i++) r.keys[i] = k->key[i];
+    const cub_bridge_step *last = plan && plan->step_count > 0 ? &plan->step[plan->step_count - 1]
+                                                               : NULL;
+    director_key_moment(d, m, last ? last->to_frame : 0, plan ? plan->total_frames : 0,
+                        (cub_q16)speed, &r);
     cub_err e = cub_judge_begin_rep(j, &r);
     if (e == CUB_ERR_FULL) { /* frames stopped coming: nothing closed the old ones */
         cub_judge_cancel_reps(j);
@@ -111,11 +116,11 @@ static void judge_clip(cub_director *d, const cub_coach_action *a, int64_t t_us)
 
 void director_request(cub_director *d, const cub_coach_action *a, int64_t t_us)
 {
-    judge_clip(d, a, t_us);
     cub_bridge_player_set_start_frames(&d->player, start_frames(d, a));
     d->played_clip = d->requested_clip = -1;
     cub_bridge_plan plan;
     cub_err err = plan_correction(d, a, &plan, t_us);
+    judge_clip(d, a, t_us, err ? NULL : &plan);
     if (!err) {
         cub_log_event(dlog(d), t_us, "bridge", "plan", "to=%s steps=%d wait_frames=%d via=%s",
                       director_clip_name(d, a->clip), plan.step_count, plan.wait_frames,

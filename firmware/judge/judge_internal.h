@@ -25,6 +25,12 @@ typedef struct rep_slot {
     int64_t keys_run_first_us;
     uint16_t best_mu[CUB_JUDGE_MAX_KEYS];
     cub_q16 min_d;
+    int has_due;        /* an early deadline (the coach's key moment + lag) */
+    int64_t due_us;
+    int has_mirror;     /* the mirrored keys held instead are wrong at once */
+    cub_judge_key mirror[CUB_JUDGE_MAX_KEYS];
+    int mirror_run_on;
+    int64_t mirror_run_first_us;
 } rep_slot;
 
 /* Keys just credited: a run of them credits no other repetition until the
