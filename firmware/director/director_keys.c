@@ -1,6 +1,5 @@
-/* The coach's key moments: where in each move's own clip the bear first
- * reaches every key of the move together (the judge's rule, at its
- * key_mu), and whether the keys' left/right mirror ever shows there. The
+/* The coach's key moments: where in each move's own clip the bear shows
+ * every key of the move together, clearly (cub_judge_key_moment), and whether the keys' left/right mirror ever shows there. The
  * judge's early verdicts are timed from them (cub/judge.h). */
 #include "director_internal.h"
 
@@ -21,7 +20,7 @@ void director_find_keys(cub_director *d)
         if (!j || !k || k->count <= 0 || k->count > CUB_JUDGE_MAX_KEYS) continue;
         int32_t n = 0;
         const cub_fuzzy_frame *fr = clip_frames(d, d->moves[i].clip, &n);
-        d->key_frame[i] = cub_judge_first_match(j, k->key, k->count, fr, n);
+        d->key_frame[i] = cub_judge_key_moment(j, k->key, k->count, fr, n);
         cub_judge_key mirror[CUB_JUDGE_MAX_KEYS];
         /* A clip that shows the mirror too (boxing's two fists) makes it no
          * mistake: only a mirror the bear never shows is the other arm. */

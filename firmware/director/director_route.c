@@ -112,6 +112,9 @@ static void judge_clip(cub_director *d, const cub_coach_action *a, int64_t t_us,
     if (e)
         cub_log_event(dlog(d), t_us, "judge", "error", "what=begin_rep move=%d rep=%d error=\"%s\"",
                       m, a->rep, cub_err_str(e));
+    else if (r.has_key) /* when the bear shows the keys: the mistake shows there */
+        cub_log_event(dlog(d), t_us, "judge", "window", "move=%d rep=%d key_ms=%d end_ms=%d", m,
+                      a->rep, (int)(r.key_us / 1000), (int)(play_us / 1000));
 }
 
 void director_request(cub_director *d, const cub_coach_action *a, int64_t t_us)

@@ -59,6 +59,15 @@ static int keys_match(const cub_judge_key *keys, int32_t n, const cub_fuzzy_fram
     return 1;
 }
 
+/* The weakest key's membership in f. */
+static uint16_t weakest(const cub_judge_key *keys, int32_t n, const cub_fuzzy_frame *f)
+{
+    uint16_t w = CUB_FUZZY_ONE;
+    for (int k = 0; k < n; k++)
+        if (f->mu[keys[k].feature][keys[k].set] < w) w = f->mu[keys[k].feature][keys[k].set];
+    return w;
+}
+
 int32_t cub_judge_first_match(const cub_judge *j, const cub_judge_key *keys, int32_t key_count,
                               const cub_fuzzy_frame *frames, int32_t count)
 {
@@ -68,14 +77,30 @@ int32_t cub_judge_first_match(const cub_judge *j, const cub_judge_key *keys, int
     return -1;
 }
 
-/* The early deadline: the coach's key moment plus a child's lag and the
- * hold, never before a right verdict could first come. */
+int32_t cub_judge_key_moment(const cub_judge *j, const cub_judge_key *keys, int32_t key_count,
+                             const cub_fuzzy_frame *frames, int32_t count)
+{
+    if (cub_judge_first_match(j, keys, key_count, frames, count) < 0) return -1;
+    uint16_t peak = 0;
+    for (int32_t i = 0; i < count; i++) {
+        uint16_t w = weakest(keys, key_count, &frames[i]);
+        if (w > peak) peak = w;
+    }
+    uint16_t clear = (uint16_t)(((uint32_t)j->d.key_mu + peak + 1) / 2);
+    for (int32_t i = 0; i < count; i++)
+        if (weakest(keys, key_count, &frames[i]) >= clear) return i;
+    return -1; /* not reached: peak >= clear */
+}
+
+/* The early deadline: the coach's key moment plus a child's lag, never
+ * before a right verdict could first come. The hold is not added: a run
+ * of the keys under way at the deadline is waited for (early_wrong). */
 static void set_due(const cub_judge *j, rep_slot *s, const cub_judge_rep *r)
 {
     if (!r->has_key || r->key_us < 0) return;
     int64_t lag = j->d.lag_ms > 0 ? (int64_t)j->d.lag_ms * 1000 : r->beat_us;
     int64_t hold = (int64_t)j->d.hold_ms * 1000;
-    int64_t due = r->key_us + lag + hold, first = r->beat_us + hold;
+    int64_t due = r->key_us + lag, first = r->beat_us + hold;
     if (due < first) due = first;
     if (due > INT64_MAX - r->start_us) return;
     s->has_due = 1;

@@ -38,13 +38,13 @@
  *   as in a sway, counts for each repetition it is held through; a late
  *   child's pose at the start of the next repetition counts for the late
  *   one, not for both).
- * - Early verdicts, from the coach's own clip (has_key, key_us: when the
- *   bear's clip first reaches every key together, measured from start_us):
- *   the deadline is start_us + key_us + lag + hold_ms (lag = desc lag_ms,
- *   else the repetition's beat_us: children follow a leader late), never
- *   before start_us + beat_us + hold_ms (the earliest a right verdict can
- *   come). The first OK frame at or past it, the repetition still not
- *   right and no matching run under way, gives the wrong verdict at once
+ * - Early verdicts, from the coach's own clip (has_key, key_us: the bear's
+ *   key moment, cub_judge_key_moment, measured from start_us):
+ *   the deadline is start_us + key_us + lag (lag = desc lag_ms, else the
+ *   repetition's beat_us: children follow a leader late), never before
+ *   start_us + beat_us + hold_ms (the earliest a right verdict can come).
+ *   The first OK frame at or past it, the repetition still not right and
+ *   no matching run under way (one is waited for), gives the wrong verdict at once
  *   (why = missed). And with mirror_wrong (the keys' left/right mirror is a
  *   different set that the bear's clip never shows), the mirrored keys held
  *   (a run of hold_ms, past the first beat) while the keys are not, is a
@@ -200,10 +200,17 @@ int32_t cub_judge_cancel_reps(cub_judge *j);
 cub_err cub_judge_frame(cub_judge *j, int64_t t_us, const cub_track_skeleton *skel,
                         cub_judge_out *out);
 
-/* The first of count frames where every key reaches its set at j's key_mu
- * (how the director finds the coach's key moment in its clip); -1 none. */
+/* The first of count frames where every key reaches its set at j's key_mu;
+ * -1 none. */
 int32_t cub_judge_first_match(const cub_judge *j, const cub_judge_key *keys, int32_t key_count,
                               const cub_fuzzy_frame *frames, int32_t count);
+/* The coach's key moment in its clip: the first frame where the weakest
+ * key is half way from key_mu to its peak over the clip (the bear shows
+ * the keys clearly there; a bear whose rest pose already passes key_mu, as
+ * its bent knees do, is not "there" at frame 0); -1 when the clip never
+ * reaches the keys. */
+int32_t cub_judge_key_moment(const cub_judge *j, const cub_judge_key *keys, int32_t key_count,
+                             const cub_fuzzy_frame *frames, int32_t count);
 /* The keys' left/right mirror (RH<->LH, RHE<->LHE, RF<->LF, RFK<->LFK, the
  * same sets); returns 1 when it differs from the keys as a set. */
 int cub_judge_mirror_keys(const cub_judge_key *keys, int32_t key_count, cub_judge_key *mirror);
