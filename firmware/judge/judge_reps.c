@@ -257,6 +257,9 @@ static int rep_step(cub_judge *j, rep_slot *s, int64_t t_us, const cub_fuzzy_fra
      * does not break it. */
     uint16_t th = s->keys_run_on ? (uint16_t)(j->d.key_mu - j->d.key_mu / 5) : j->d.key_mu;
     int keys = keys_match(s->keys, s->key_count, f, th);
+    /* A sign of the move, even too short or taken by the previous
+     * repetition: no early wrong verdict then, only the close's. */
+    s->sign |= keys_match(s->keys, s->key_count, f, (uint16_t)(j->d.key_mu - j->d.key_mu / 5));
     int close = 1;
     if (keys && s->has_expected) {
         cub_q16 d = cub_fuzzy_distance(f, &s->expected, NULL);
@@ -278,8 +281,8 @@ static int rep_step(cub_judge *j, rep_slot *s, int64_t t_us, const cub_fuzzy_fra
 
 /* The evidence against a repetition not yet right, in an OK frame f:
  * CUB_JUDGE_WHY_MIRROR when its keys' mirror has been held past the first
- * beat, CUB_JUDGE_WHY_MISSED when its deadline passed with no run of its
- * keys under way; else 0. */
+ * beat, CUB_JUDGE_WHY_MISSED when its deadline passed with no sign of its
+ * keys in the window; else 0. */
 static int32_t early_wrong(const cub_judge *j, rep_slot *s, int64_t t_us, const cub_fuzzy_frame *f)
 {
     if (!f) {
@@ -295,7 +298,7 @@ static int32_t early_wrong(const cub_judge *j, rep_slot *s, int64_t t_us, const 
             t_us >= s->start_us + s->beat_us)
             return CUB_JUDGE_WHY_MIRROR;
     }
-    return s->has_due && t_us >= s->due_us && !s->run_on ? CUB_JUDGE_WHY_MISSED : 0;
+    return s->has_due && t_us >= s->due_us && !s->sign ? CUB_JUDGE_WHY_MISSED : 0;
 }
 
 /* The open slot with the lowest seq above `after` (after = -1: any). */
