@@ -93,14 +93,17 @@ int32_t cub_judge_key_moment(const cub_judge *j, const cub_judge_key *keys, int3
 }
 
 /* The early deadline: the coach's key moment plus a child's lag, never
- * before a right verdict could first come. The hold is not added: a run
- * of the keys under way at the deadline is waited for (early_wrong). */
+ * before two beats into the repetition. */
 static void set_due(const cub_judge *j, rep_slot *s, const cub_judge_rep *r)
 {
     if (!r->has_key || r->key_us < 0) return;
     int64_t lag = j->d.lag_ms > 0 ? (int64_t)j->d.lag_ms * 1000 : r->beat_us;
     int64_t hold = (int64_t)j->d.hold_ms * 1000;
-    int64_t due = r->key_us + lag, first = r->beat_us + hold;
+    /* Not before two beats: the first is the previous repetition's tail
+     * (a late child still does it), the second the child's lag for a key
+     * the bear shows from its clip's start. */
+    int64_t due = r->key_us + lag, first = 2 * r->beat_us;
+    if (first < r->beat_us + hold) first = r->beat_us + hold;
     if (due < first) due = first;
     if (due > INT64_MAX - r->start_us) return;
     s->has_due = 1;
@@ -259,7 +262,8 @@ static int rep_step(cub_judge *j, rep_slot *s, int64_t t_us, const cub_fuzzy_fra
     int keys = keys_match(s->keys, s->key_count, f, th);
     /* A sign of the move, even too short or taken by the previous
      * repetition: no early wrong verdict then, only the close's. */
-    s->sign |= keys_match(s->keys, s->key_count, f, (uint16_t)(j->d.key_mu - j->d.key_mu / 5));
+    if (t_us >= s->start_us + s->beat_us) /* the first beat is the previous one's tail */
+        s->sign |= keys_match(s->keys, s->key_count, f, (uint16_t)(j->d.key_mu - j->d.key_mu / 5));
     int close = 1;
     if (keys && s->has_expected) {
         cub_q16 d = cub_fuzzy_distance(f, &s->expected, NULL);

@@ -372,8 +372,8 @@ static void test_child_a_beat_late_is_still_right(void **state)
     rec_init(&r, NULL);
     cub_judge_rep rep = rep_rhe_keyed(0, 0, 60, 20, 0);
     assert_int_equal(cub_judge_begin_rep(r.j, &rep), CUB_OK);
-    /* reached at 34 (14 frames late), held at 38: the run under way at the
-     * deadline (35) is waited for */
+    /* reached at 34 (14 frames late), held at 38: the sign before the
+     * deadline (35) leaves it the window's whole time */
     play(&r, 100, 34, 45, bent_right());
     assert_int_equal(count(&r, CUB_JUDGE_VERDICT), 1);
     assert_verdict(&r, 0, 0, 1, 38);
@@ -404,7 +404,7 @@ static void test_early_deadline_not_before_the_first_beat(void **state)
     cub_judge_rep rep = rep_rhe_keyed(0, 0, 60, 0, 0);
     assert_int_equal(cub_judge_begin_rep(r.j, &rep), CUB_OK);
     play(&r, 100, 0, 0, STILL);
-    assert_verdict(&r, 0, 0, 0, 19); /* 15 + 100 ms (3.0 frames, so the 4th) */
+    assert_verdict(&r, 0, 0, 0, 30); /* two beats of 15 frames */
 }
 
 static void test_mirrored_key_is_wrong_at_once(void **state)
@@ -432,6 +432,17 @@ static void test_mirrored_key_is_wrong_at_once(void **state)
     assert_int_equal(cub_judge_begin_rep(r.j, &rep), CUB_OK);
     play(&r, 100, 5, 60, left);
     assert_verdict(&r, 0, 0, 0, 55);
+}
+
+static void test_the_previous_repetitions_tail_is_no_sign(void **state)
+{
+    (void)state;
+    rec r;
+    rec_init(&r, NULL);
+    cub_judge_rep rep = rep_rhe_keyed(0, 0, 60, 20, 0);
+    assert_int_equal(cub_judge_begin_rep(r.j, &rep), CUB_OK);
+    play(&r, 100, 0, 10, bent_right()); /* a late child ending the one before */
+    assert_verdict(&r, 0, 0, 0, 35);
 }
 
 static void test_no_early_verdict_without_the_tracker(void **state)
@@ -759,6 +770,7 @@ int main(void)
         cmocka_unit_test(test_lag_is_a_tunable),
         cmocka_unit_test(test_early_deadline_not_before_the_first_beat),
         cmocka_unit_test(test_mirrored_key_is_wrong_at_once),
+        cmocka_unit_test(test_the_previous_repetitions_tail_is_no_sign),
         cmocka_unit_test(test_no_early_verdict_without_the_tracker),
         cmocka_unit_test(test_mirror_keys),
         cmocka_unit_test(test_no_player_is_wrong_and_not_in_view),

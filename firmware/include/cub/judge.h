@@ -42,12 +42,14 @@
  *   key moment, cub_judge_key_moment, measured from start_us):
  *   the deadline is start_us + key_us + lag (lag = desc lag_ms, else the
  *   repetition's beat_us: children follow a leader late), never before
- *   start_us + beat_us + hold_ms (the earliest a right verdict can come).
- *   The first OK frame at or past it, the repetition still not right and
- *   no sign of its keys in its window so far (every key at 4/5 of key_mu
- *   in one frame, held or not, credited to the previous repetition or
- *   not: that child is doing the move, late or briefly, and gets the
- *   window's whole time), gives the wrong verdict at once
+ *   start_us + 2 beat_us (the first beat is the previous repetition's
+ *   tail, the second a late child's for a key the bear shows from its
+ *   clip's start; and never before beat_us + hold_ms). The first OK frame
+ *   at or past it, the repetition still not right and no sign of its keys
+ *   after its first beat (every key at 4/5 of key_mu in one frame, held or
+ *   not, credited to the previous repetition or not: that child is doing
+ *   the move, late or briefly, and gets the window's whole time), gives
+ *   the wrong verdict at once
  *   (why = missed). And with mirror_wrong (the keys' left/right mirror is a
  *   different set that the bear's clip never shows), the mirrored keys held
  *   (a run of hold_ms, past the first beat) while the keys are not, is a
