@@ -52,8 +52,8 @@ static int other_correction(const cub_director *d, int clip)
     return clip == r->head_shake ? r->watch_me : clip == r->watch_me ? r->head_shake : -1;
 }
 
-static cub_err plan_correction(cub_director *d, const cub_coach_action *a, cub_bridge_plan *plan,
-                               int64_t t_us)
+static cub_err plan_sooner(cub_director *d, const cub_coach_action *a, cub_bridge_plan *plan,
+                           int64_t t_us)
 {
     cub_bridge_player *p = &d->player;
     cub_err err = cub_bridge_player_request(p, a->clip, a->speed_q16, a->loop, plan);
@@ -70,6 +70,32 @@ static cub_err plan_correction(cub_director *d, const cub_coach_action *a, cub_b
     d->played_clip = other;
     d->requested_clip = a->clip;
     *plan = alt;
+    return CUB_OK;
+}
+
+/* A correction must begin within the reaction (react_frames): when no
+ * switch within the threshold gets into either correcting clip that soon,
+ * enter the one chosen at its closest frame anyway and let the blend cover
+ * the distance (a tween through other moves showed the correction 0.27 s
+ * after the verdict). */
+static cub_err plan_correction(cub_director *d, const cub_coach_action *a, cub_bridge_plan *plan,
+                               int64_t t_us)
+{
+    cub_err err = plan_sooner(d, a, plan, t_us);
+    if (a->reason != CUB_COACH_WHY_CORRECT || (!err && plan->total_frames <= d->desc.react_frames))
+        return err;
+    cub_bridge_player *p = &d->player;
+    int clip = d->played_clip >= 0 ? d->played_clip : a->clip;
+    cub_bridge_plan quick;
+    cub_bridge_player_set_reach_frames(p, d->desc.react_frames);
+    cub_err e = cub_bridge_player_request(p, clip, a->speed_q16, a->loop, &quick);
+    cub_bridge_player_set_reach_frames(p, 0);
+    if (e) return err; /* the player kept the plan it had */
+    if (err || quick.total_frames < plan->total_frames)
+        cub_log_event(dlog(d), t_us, "bridge", "reach", "to=%s@%d d=%q wait_frames=%d",
+                      director_clip_name(d, clip), quick.step[0].to_frame, quick.step[0].d,
+                      quick.wait_frames);
+    *plan = quick;
     return CUB_OK;
 }
 

@@ -22,7 +22,10 @@
  *   keeps its music time; a correction at any frame of its clip's front
  *   half that is close enough (the quickest way in), and by the other
  *   correcting clip when the one asked for is not on screen within
- *   react_frames (desc) and the other is sooner; anything else by the
+ *   react_frames (desc) and the other is sooner; when neither is, at the
+ *   closest frame of the chosen one's front half reached within
+ *   react_frames, beyond the threshold (logged as bridge reach: the blend
+ *   covers the distance, a correction does not wait); anything else by the
  *   quickest switch. No route at all: a cut, logged.
  * - Leads: the song ms by which a move is asked for before its tag so that
  *   the route into it (bridge frames, a tween, less the content it skips)
