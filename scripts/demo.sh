@@ -10,7 +10,9 @@
 # purpose (the wrong arm, no clap, no jump, standing still); the box tracks
 # it, judges every repetition and corrects. START is pressed from
 # scripts/demo.buttons. At the end the demo prints, per repetition, what
-# was planted, the verdict and whether the coach corrected.
+# was planted, the verdict and whether the coach corrected, then per
+# planted mistake the latency from the mistake showing to the correcting
+# clip's first frame (make_child.py score), and the counts.
 #
 # Headless (PNG frames + the event log, under the virtual clock: the run
 # is exact and takes about a minute) unless a display exists (a window,

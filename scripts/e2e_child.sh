@@ -3,7 +3,13 @@
 # mistakes, is rendered as Kinect depth, and replayed through fakenect into
 # the real cubdance binary, headless; then every verdict is scored.
 #
-#   scripts/e2e_child.sh BUILD_DIR [--remake [--from CUES]] [--keep DIR]
+#   scripts/e2e_child.sh BUILD_DIR [--child planted|late|sloppy] [--remake [--from CUES]] [--keep DIR]
+#
+# --child: planted (default) makes the planted mistakes; late follows the
+# bear 0.5 s late all song long and sloppy does every move right at half
+# amplitude on the joints that are not the move's keys (neither makes a
+# mistake: no repetition of theirs may be corrected). Each child has its
+# cues: scripts/child/twinkle.cues, twinkle_late.cues, twinkle_sloppy.cues.
 #
 # The child follows the bear (scripts/make_child.py): it does each move the
 # coach leads a moment after the bear starts it, watches the corrections,
@@ -23,13 +29,14 @@
 # depth dump is 614 KB a frame (about 2 GB for the song); it is written to
 # a temporary folder (or DIR with --keep) and deleted at the end.
 set -euo pipefail
-usage() { echo "usage: scripts/e2e_child.sh BUILD_DIR [--remake [--from CUES]] [--keep DIR]" >&2; exit 2; }
+usage() { echo "usage: scripts/e2e_child.sh BUILD_DIR [--child planted|late|sloppy] [--remake [--from CUES]] [--keep DIR]" >&2; exit 2; }
 [ $# -ge 1 ] || usage
 build=$1
 shift
-remake=0 keep="" from=""
+remake=0 keep="" from="" child=planted
 while [ $# -gt 0 ]; do
     case $1 in
+        --child) [ $# -ge 2 ] || usage; child=$2; shift ;;
         --remake) remake=1 ;;
         --from) [ $# -ge 2 ] || usage; from=$2; shift ;;
         --keep) [ $# -ge 2 ] || usage; keep=$2; shift ;;
@@ -44,7 +51,11 @@ tool=$build/app/cubtool/cubtool
 box=$build/app/cubdance/cubdance
 song=$root/assets/songs/twinkle.song.xml
 plan=$here/child/twinkle.plan
-cues=$here/child/twinkle.cues
+case $child in
+    planted) cues=$here/child/twinkle.cues ;;
+    late | sloppy) cues=$here/child/twinkle_$child.cues ;;
+    *) usage ;;
+esac
 for f in "$tool" "$box"; do
     [ -x "$f" ] || { echo "e2e_child: no $f (build cubtool and cubdance)" >&2; exit 1; }
 done
@@ -69,7 +80,7 @@ round() {
     local cues_in=$1
     rm -rf "$work/dump"
     # shellcheck disable=SC2086
-    python3 "$here/make_child.py" sequence "$song" "$plan" "$work" $cues_in
+    python3 "$here/make_child.py" sequence "$song" "$plan" "$work" $cues_in --child "$child"
     echo "+ cubtool synth-depth --sequence $work/child.seq --out $work/dump"
     "$tool" synth-depth --sequence "$work/child.seq" --data "$data" --out "$work/dump" 2>/dev/null |
         tail -n 1

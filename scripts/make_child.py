@@ -400,6 +400,30 @@ def fit(segs, dur):
 
 
 REACT = 0.3   # a child starts what the bear shows this long after the bear
+LATE = 0.5    # the late child (--child late): follows the bear this long after it
+SLOPPY = 0.5  # the sloppy child (--child sloppy): the non-key joints' motion scaled so
+
+# The BVH joints whose rotation moves each feature, under both namings of the
+# data (CMU's LeftArm/LeftForeArm/LeftUpLeg, animdraw's LeftShoulder/LeftElbow/
+# LeftHip; CMU's LeftShoulder is the collar): a sloppy child does the key
+# joints fully and every other of these joints at half amplitude.
+_ARM = {"H": ("Collar", "Shoulder", "Arm"), "HE": ("Elbow", "ForeArm")}
+_LEG = {"F": ("Hip", "UpLeg", "HipJoint"), "FK": ("Knee", "Leg")}
+_TRUNK = ("lowerback", "LowerBack", "Chest", "Chest2", "Spine", "Spine1")
+
+
+def feature_joints(feat):
+    side = {"R": ("Right", "R"), "L": ("Left", "L")}
+    if feat == "Trunk":
+        return set(_TRUNK)
+    if feat == "Posture":  # body height: both legs and the trunk
+        return set().union(*(feature_joints(f) for f in ("RF", "RFK", "LF", "LFK", "Trunk")))
+    long_, short = side[feat[0]]
+    group = _ARM.get(feat[1:]) or _LEG.get(feat[1:])
+    return {(short if n == "HipJoint" else long_) + n for n in group}
+
+
+ALL_FEATURE_JOINTS = set().union(*(feature_joints(f) for f in FEATURES))
 DANCE = ("move", "rep", "resume", "demo")   # coach requests that lead a move
 CUE = re.compile(r"t=\s*([\d.]+) coach request clip=(\S+) .*?reason=(\w+)"
                  r"(?: move=(\d+) rep=(\d+))?")
@@ -433,7 +457,7 @@ def cues_from_song(song, plan):
     return cues
 
 
-def build(song, plan, cues):
+def build(song, plan, cues, react=REACT):
     """The child's timeline in loop time, (t0, t1, segs, label), following
     the coach: every move the bear leads (a repetition, a resume, a slow
     demonstration) the child does right REACT s later, fitted to the bear's
@@ -449,11 +473,11 @@ def build(song, plan, cues):
             raise ValueError("the plan has no segments for move %r" % clip)
     mist = {(mi, r): (kind, segs) for mi, r, kind, segs in plan["mistakes"]}
     end = cues[-1][0] + 3.0
-    tl, expect, planted = [(0.0, cues[0][0] + REACT, stand, "lead-in")], [], set()
+    tl, expect, planted = [(0.0, cues[0][0] + react, stand, "lead-in")], [], set()
     t = tl[0][1]
     for i, (tc, clip, reason, mi, r) in enumerate(cues):
-        nxt = cues[i + 1][0] if i + 1 < len(cues) else end - REACT
-        t0, t1 = max(tc + REACT, t), nxt + REACT
+        nxt = cues[i + 1][0] if i + 1 < len(cues) else end - react
+        t0, t1 = max(tc + react, t), nxt + react
         wrong = reason in ("move", "rep") and (mi, r) in mist and (mi, r) not in planted
         if wrong:
             planted.add((mi, r))
@@ -501,16 +525,67 @@ def plan_and_cues(song_path, plan_path, cues_path):
     return song, plan, cues
 
 
-def cmd_sequence(song_path, plan_path, out, cues_path):
+def mocap_bvh(clip):
+    """A short clip name as cubtool resolves it, when it is a BVH (None for
+    an AMC-only take, which cannot be re-scaled here)."""
+    for rel in ("cmu/%s.bvh", "cmu/daz43/%s.bvh", "animdraw/fair1/%s.bvh",
+                "animdraw/cmu1/%s.bvh", "animdraw/rokoko/%s.bvh", "bandai/data/%s.bvh"):
+        path = os.path.join(data_dir(), "mocap", rel % clip)
+        if os.path.exists(path):
+            return path
+    return None
+
+
+def bvh_joints(path):
+    return {l.split()[1] for l in open(path) if l.split()[:1] in (["ROOT"], ["JOINT"])}
+
+
+def make_sloppy(song, plan, out):
+    """The sloppy child: every move's segments re-derived with the joints of
+    features that are not the move's keys at SLOPPY of their motion (on top
+    of a derived clip's own scaling). Rewrites plan["moves"]; returns the
+    derived paths."""
+    derives = {name: (src, dict(amps)) for name, src, amps in plan["derive"]}
+    paths = {}
+    for m in song["moves"]:
+        keep = set().union(*(feature_joints(f) for f, _ in m["keys"]))
+        segs = []
+        for clip, a, b, mir in plan["moves"].get(m["clip"], []):
+            src, amps = derives.get(clip, (None, {}))
+            src = os.path.join(data_dir(), src) if src else mocap_bvh(clip)
+            if not src:
+                sys.stderr.write("make_child: warning: %s is no BVH: the sloppy child does it "
+                                 "as recorded\n" % clip)
+                segs.append((clip, a, b, mir))
+                continue
+            loose = (ALL_FEATURE_JOINTS - keep) & bvh_joints(src)
+            scaled = [(j, amps.get(j, 1.0) * (SLOPPY if j in loose else 1.0))
+                      for j in sorted(loose | set(amps))]
+            name = "%s_sloppy_%s" % (clip, m["clip"])
+            path = os.path.abspath(os.path.join(out, name + ".bvh"))
+            derive_bvh(src, path, scaled)
+            paths[name] = path
+            segs.append((name, a, b, mir))
+        plan["moves"][m["clip"]] = segs
+    return paths
+
+
+def cmd_sequence(song_path, plan_path, out, cues_path, child="planted"):
     song, plan, cues = plan_and_cues(song_path, plan_path, cues_path)
-    loop, expect = build(song, plan, cues)
     os.makedirs(out, exist_ok=True)
-    write_sequence(loop, os.path.join(out, "child.seq"), make_derived(plan, out))
+    derived = make_derived(plan, out)
+    if child != "planted":  # the late and the sloppy child make no mistake
+        plan["mistakes"] = []
+    if child == "sloppy":
+        derived.update(make_sloppy(song, plan, out))
+    loop, expect = build(song, plan, cues, LATE if child == "late" else REACT)
+    write_sequence(loop, os.path.join(out, "child.seq"), derived)
     dance = {e[0]: e[5] for e in expect}
     with open(os.path.join(out, "expect.txt"), "w") as fh:
         fh.write("# every coach request the child follows: t_s clip reason move rep, and for\n"
                  "# the moves the verdict expected (right, or the planted wrong:KIND)\n")
         fh.write("beat %.4f\n" % song["beat"])
+        fh.write("child %s\n" % child)
         for i, (tc, clip, reason, mi, r) in enumerate(cues):
             tag = dance.get(i, "-")
             fh.write("%.3f %s %s %d %d %s\n" % (tc, clip, reason, mi, r, tag))
@@ -565,13 +640,15 @@ def cmd_check(song_path, plan_path, truth, cues_path):
 
 
 def read_expect(path):
-    beat, cues, tags, unled = None, [], [], []
+    beat, cues, tags, unled, child = None, [], [], [], "planted"
     for n, line in enumerate(open(path), 1):
         v = line.split()
         if not v or v[0].startswith("#"):
             continue
         if v[0] == "beat" and len(v) == 2:
             beat = float(v[1])
+        elif v[0] == "child" and len(v) == 2:
+            child = v[1]
         elif v[0] == "unled" and len(v) == 4:
             unled.append((int(v[1]), int(v[2]), v[3]))
         elif len(v) == 6:
@@ -581,7 +658,7 @@ def read_expect(path):
             raise ValueError("%s:%d: cannot read %r" % (path, n, line.strip()))
     if beat is None or not cues:
         raise ValueError("%s: no beat or no cues" % path)
-    return beat, cues, tags, unled
+    return beat, cues, tags, unled, child
 
 
 def cues_diverge(want, got):
@@ -612,6 +689,65 @@ def read_judging(log_path):
     return verdicts, corrections
 
 
+CORRECTING = ("head_shake", "watch_me")
+WRE = re.compile(r"t=\s*([\d.]+) judge window move=(\d+) rep=(\d+) key_ms=(\d+) end_ms=(\d+)")
+SRE = re.compile(r"t=\s*([\d.]+) bridge (?:switch from=\S+ to=|cut from=\S+ to=)([a-z_]+)@")
+
+
+def read_reaction(log_path):
+    """The judge's windows (t, move, rep, key_ms, end_ms) and the frames the
+    player entered a clip at (t, clip: its switches and cuts)."""
+    windows, entries = [], []
+    for line in open(log_path):
+        m = WRE.search(line)
+        if m:
+            windows.append((float(m.group(1)), int(m.group(2)), int(m.group(3)),
+                            int(m.group(4)) / 1000.0, int(m.group(5)) / 1000.0))
+        m = SRE.search(line)
+        if m:
+            entries.append((float(m.group(1)), m.group(2)))
+    return windows, entries
+
+
+def latency_rows(rows, log_path):
+    """Per corrected planted mistake: when its repetition began, when the
+    mistake shows (the bear's key moment in it), the verdict, the
+    correcting clip's first frame, the latency and whether that frame is
+    inside the repetition (before the bear's clip for it would end)."""
+    windows, entries = read_reaction(log_path)
+    out = []
+    for tc, mi, r, label, vt in rows:
+        w = next((x for x in windows if x[1:3] == (mi, r) and abs(x[0] - tc) < 0.05), None)
+        first = next((t for t, clip in entries if t >= vt - 1e-6 and clip in CORRECTING), None)
+        if w is None or first is None:
+            out.append((label, tc, None, vt, first, None, False))
+            continue
+        shows = w[0] + w[3]
+        out.append((label, tc, shows, vt, first, first - shows, first < w[0] + w[4]))
+    return out
+
+
+def print_latency(lat):
+    if not lat:
+        return True
+    print("\n| planted mistake | repetition began | mistake shows | verdict | "
+          "first correcting frame | latency | inside |")
+    print("|---|---|---|---|---|---|---|")
+    fmt = lambda v: "-" if v is None else "%.2f s" % v
+    for label, tc, shows, vt, first, lat_s, inside in lat:
+        print("| %s | %s | %s | %s | %s | %s | %s |" % (label, fmt(tc), fmt(shows), fmt(vt),
+                                                     fmt(first), fmt(lat_s),
+                                                     "yes" if inside else "NO"))
+    vals = sorted(x[5] for x in lat if x[5] is not None)
+    med = vals[len(vals) // 2] if len(vals) % 2 else sum(vals[len(vals) // 2 - 1:][:2]) / 2
+    inside = sum(1 for x in lat if x[6])
+    ok = bool(vals) and len(vals) == len(lat) and vals[-1] <= 1.5 and inside == len(lat)
+    print("e2e: latency from the mistake showing to the correcting clip: median %.2f s "
+          "(goal <= 0.70), max %.2f s (limit 1.50), inside its repetition %d of %d"
+          % (med, vals[-1], inside, len(lat)) if vals else "e2e: no latency measured")
+    return ok
+
+
 def cmd_score(expect_path, log_path):
     """Every window the coach opened: its verdict against the plan. A
     window gets the first unclaimed verdict of its move and repetition
@@ -621,7 +757,8 @@ def cmd_score(expect_path, log_path):
     judged wrong and corrected, or not judged at all, or the coach did not
     lead what the child followed; a move done right judged wrong with no
     correction (the coach had moved on) is counted and printed apart."""
-    beat, want, tags, unled = read_expect(expect_path)
+    beat, want, tags, unled, child = read_expect(expect_path)
+    caught_rows = []
     got = read_cues(log_path)
     verdicts, corrections = read_judging(log_path)
     claimed = set()
@@ -644,6 +781,9 @@ def cmd_score(expect_path, log_path):
                 n["right" if res == "right" else "false" if corr else "unseen"] += 1
             else:
                 n["caught" if corr else "missed"] += 1
+                if corr:
+                    caught_rows.append((tc, mi, r, "%d.%d %s %s" % (mi, r, clip, tags[k][6:]),
+                                        verdicts[v][0]))
             detail = "t=%.2f %s %s%s" % (verdicts[v][0], res, verdicts[v][4],
                                          " -> corrected" if corr else "")
         else:
@@ -671,19 +811,31 @@ def cmd_score(expect_path, log_path):
               "the coach did not correct (it had moved on): not a failure of the acceptance "
               "(no correct repetition triggers a correction), but the child was not credited"
               % n["unseen"])
+    lat_ok = print_latency(latency_rows(caught_rows, log_path))
     k = cues_diverge(want, got)
     if k is not None:
         w = want[k] if k < len(want) else None
         g = got[k] if k < len(got) else None
         print("e2e: the coach did not do what the child followed: request %d was %s, the child "
               "followed %s (re-make the cues: scripts/e2e_child.sh --remake)" % (k, g, w))
+    print("e2e: child=%s planted=%d caught=%d right_corrected=%d" % (child, planted, n["caught"],
+                                                                     n["false"]))
     return 0 if (n["missed"] == 0 and n["false"] == 0 and n["unjudged"] == 0 and k is None
-                 and planted > 0) else 1
+                 and (planted > 0) == (child == "planted") and lat_ok) else 1
 
 
 def main(argv):
+    if argv[:1] == ["sequence"] and "--child" in argv:
+        k = argv.index("--child")
+        child = argv[k + 1] if k + 1 < len(argv) else ""
+        if child not in ("planted", "late", "sloppy"):
+            sys.stderr.write("make_child: --child is planted, late or sloppy, not %r\n" % child)
+            return 2
+        argv = argv[:k] + argv[k + 2:]
+    else:
+        child = "planted"
     if len(argv) in (4, 5) and argv[0] == "sequence":
-        cmd_sequence(argv[1], argv[2], argv[3], argv[4] if len(argv) == 5 else None)
+        cmd_sequence(argv[1], argv[2], argv[3], argv[4] if len(argv) == 5 else None, child)
         return 0
     if len(argv) in (4, 5) and argv[0] == "check":
         return cmd_check(argv[1], argv[2], argv[3], argv[4] if len(argv) == 5 else None)

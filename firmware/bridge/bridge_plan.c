@@ -358,8 +358,46 @@ static int query_ok(const cub_bridge_table *t, const cub_bridge_query *q)
     int n = t->desc.clip_count;
     return q->from_clip >= 0 && q->from_clip < n && q->to_clip >= 0 && q->to_clip < n &&
            q->pos_q16 >= 0 && q->pos_q16 < ((int64_t)1 << 46) && q->window_frames >= 0 &&
-           q->wait_cost_mm >= 0 && q->start_frames >= 0;
+           q->wait_cost_mm >= 0 && q->start_frames >= 0 && q->reach_frames >= 0;
 }
+
+/* The first frame still to come; a clip that does not loop holds its
+ * last frame once there. */
+static int64_t first_upcoming(const cub_bridge_table *t, const cub_bridge_query *q)
+{
+    int nf = frames_of(t, q->from_clip);
+    int64_t g0 = (q->pos_q16 + 0xFFFF) >> 16;
+    return !q->from_loops && g0 > nf - 1 ? nf - 1 : g0;
+}
+
+/* Beyond the threshold, for a reaction that must not wait: of the next
+ * `window` frames and the wanted clip's first start_frames frames (all
+ * when 0), the pair with the smallest d, the sooner on a tie. */
+static int reach_search(const cub_bridge_table *t, const cub_bridge_query *q, int64_t g0,
+                        int window, hit *out)
+{
+    int nf = frames_of(t, q->from_clip), nt = frames_of(t, q->to_clip);
+    int starts = q->start_frames > 0 && q->start_frames < nt ? q->start_frames : nt;
+    int found = 0;
+    for (int k = 0; k < window; k++) {
+        int64_t at;
+        int gf = upcoming(q, nf, g0, k, &at);
+        if (gf < 0) break;
+        if (at_pass_start(q, nf, g0, k)) continue;
+        const cub_fuzzy_frame *now = features(t, q->from_clip, gf);
+        for (int b = 0; b < starts; b++) {
+            if (!jump_ok(q->from_clip == q->to_clip, gf, b, nf)) continue;
+            cub_q16 d = cub_fuzzy_distance(now, features(t, q->to_clip, b), &t->desc.fuzzy);
+            if (found && d >= out->d) continue;
+            *out = (hit){k, b, at, 0, d};
+            found = 1;
+        }
+    }
+    return found;
+}
+
+static cub_err plan_within(const cub_bridge_table *t, const cub_bridge_query *q,
+                           cub_bridge_plan *out, void *work);
 
 cub_err cub_bridge_plan_switch(const cub_bridge_table *t, const cub_bridge_query *q,
                                cub_bridge_plan *out, void *work, size_t work_size)
@@ -367,11 +405,21 @@ cub_err cub_bridge_plan_switch(const cub_bridge_table *t, const cub_bridge_query
     if (out) memset(out, 0, sizeof *out);
     if (!t || !q || !out || !t->finished || !query_ok(t, q)) return CUB_ERR_ARG;
     if (!work || work_size < cub_bridge_plan_work_size(t)) return CUB_ERR_NOMEM;
+    cub_err e = plan_within(t, q, out, work);
+    if (q->reach_frames <= 0 || (!e && out->total_frames <= q->reach_frames)) return e;
+    hit h;
+    if (!reach_search(t, q, first_upcoming(t, q), q->reach_frames, &h)) return e;
+    memset(out, 0, sizeof *out);
+    write_direct(q, frames_of(t, q->from_clip), &h, q->reach_frames, out);
+    return CUB_OK;
+}
+
+/* The plan within the threshold (see cub_bridge_plan_switch). */
+static cub_err plan_within(const cub_bridge_table *t, const cub_bridge_query *q,
+                           cub_bridge_plan *out, void *work)
+{
     int nf = frames_of(t, q->from_clip);
-    /* The first frame still to come; a clip that does not loop holds its
-     * last frame once there. */
-    int64_t g0 = (q->pos_q16 + 0xFFFF) >> 16;
-    if (!q->from_loops && g0 > nf - 1) g0 = nf - 1;
+    int64_t g0 = first_upcoming(t, q);
     int limit = q->from_loops ? nf : (int)(nf - g0);
     int window = q->window_frames ? q->window_frames : CUB_BRIDGE_WINDOW_FRAMES;
     scratch *w = scratch_of(work);

@@ -89,7 +89,7 @@ cub_err cub_bridge_player_request(cub_bridge_player *p, int clip, cub_q16 speed_
     if (!p || p->clip < 0 || !speed_ok(speed_q16)) return CUB_ERR_ARG;
     if (clip < 0 || clip >= p->desc.table->desc.clip_count) return CUB_ERR_ARG;
     cub_bridge_query q = {p->clip, p->pos_q16, p->loop, clip, p->desc.window_frames,
-                          p->desc.wait_cost_mm, p->desc.start_frames};
+                          p->desc.wait_cost_mm, p->desc.start_frames, p->desc.reach_frames};
     cub_bridge_plan plan;
     cub_err e = cub_bridge_plan_switch(p->desc.table, &q, &plan, p->work, p->work_size);
     if (e) return e;
@@ -469,5 +469,12 @@ cub_err cub_bridge_player_set_start_frames(cub_bridge_player *p, int start_frame
 {
     if (!p || start_frames < 0) return CUB_ERR_ARG;
     p->desc.start_frames = start_frames;
+    return CUB_OK;
+}
+
+cub_err cub_bridge_player_set_reach_frames(cub_bridge_player *p, int reach_frames)
+{
+    if (!p || reach_frames < 0) return CUB_ERR_ARG;
+    p->desc.reach_frames = reach_frames;
     return CUB_OK;
 }

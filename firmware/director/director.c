@@ -115,6 +115,7 @@ cub_err cub_director_init(cub_director *d, const cub_director_desc *desc, void *
     d->played_clip = d->requested_clip = d->lead_clip = -1;
     d->out_count = 0;
     director_plan_leads(d); /* the coach reads the moves through its desc */
+    director_find_keys(d);
     return CUB_OK;
 }
 

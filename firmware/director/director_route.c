@@ -52,8 +52,8 @@ static int other_correction(const cub_director *d, int clip)
     return clip == r->head_shake ? r->watch_me : clip == r->watch_me ? r->head_shake : -1;
 }
 
-static cub_err plan_correction(cub_director *d, const cub_coach_action *a, cub_bridge_plan *plan,
-                               int64_t t_us)
+static cub_err plan_sooner(cub_director *d, const cub_coach_action *a, cub_bridge_plan *plan,
+                           int64_t t_us)
 {
     cub_bridge_player *p = &d->player;
     cub_err err = cub_bridge_player_request(p, a->clip, a->speed_q16, a->loop, plan);
@@ -73,13 +73,40 @@ static cub_err plan_correction(cub_director *d, const cub_coach_action *a, cub_b
     return CUB_OK;
 }
 
+/* A correction must begin within the reaction (react_frames): when no
+ * switch within the threshold gets into either correcting clip that soon,
+ * enter the one chosen at its closest frame anyway and let the blend cover
+ * the distance (a tween through other moves showed the correction 0.27 s
+ * after the verdict). */
+static cub_err plan_correction(cub_director *d, const cub_coach_action *a, cub_bridge_plan *plan,
+                               int64_t t_us)
+{
+    cub_err err = plan_sooner(d, a, plan, t_us);
+    if (a->reason != CUB_COACH_WHY_CORRECT || (!err && plan->total_frames <= d->desc.react_frames))
+        return err;
+    cub_bridge_player *p = &d->player;
+    int clip = d->played_clip >= 0 ? d->played_clip : a->clip;
+    cub_bridge_plan quick;
+    cub_bridge_player_set_reach_frames(p, d->desc.react_frames);
+    cub_err e = cub_bridge_player_request(p, clip, a->speed_q16, a->loop, &quick);
+    cub_bridge_player_set_reach_frames(p, 0);
+    if (e) return err; /* the player kept the plan it had */
+    if (err || quick.total_frames < plan->total_frames)
+        cub_log_event(dlog(d), t_us, "bridge", "reach", "to=%s@%d d=%q wait_frames=%d",
+                      director_clip_name(d, clip), quick.step[0].to_frame, quick.step[0].d,
+                      quick.wait_frames);
+    *plan = quick;
+    return CUB_OK;
+}
+
 /* ---- the judge's windows ------------------------------------------------- */
 
 /* Tell the judge what the child should do now: a repetition of a move
  * (danced, resumed or demonstrated) opens a window as long as the clip
  * plays at its speed, plus a beat for a late child; anything else the
  * coach asks for (a correction, the idle clip) closes what was open. */
-static void judge_clip(cub_director *d, const cub_coach_action *a, int64_t t_us)
+static void judge_clip(cub_director *d, const cub_coach_action *a, int64_t t_us,
+                       const cub_bridge_plan *plan)
 {
     cub_judge *j = d->desc.judge;
     if (!j) return;
@@ -99,6 +126,10 @@ static void judge_clip(cub_director *d, const cub_coach_action *a, int64_t t_us)
                        .start_us = t_us, .end_us = t_us + play_us,
                        .beat_us = d->desc.bpm > 0 ? 60000000 / d->desc.bpm : 0};
     for (int i = 0; i < k->count && i < CUB_JUDGE_MAX_KEYS; i++) r.keys[i] = k->key[i];
+    const cub_bridge_step *last = plan && plan->step_count > 0 ? &plan->step[plan->step_count - 1]
+                                                               : NULL;
+    director_key_moment(d, m, last ? last->to_frame : 0, plan ? plan->total_frames : 0,
+                        (cub_q16)speed, &r);
     cub_err e = cub_judge_begin_rep(j, &r);
     if (e == CUB_ERR_FULL) { /* frames stopped coming: nothing closed the old ones */
         cub_judge_cancel_reps(j);
@@ -107,15 +138,18 @@ static void judge_clip(cub_director *d, const cub_coach_action *a, int64_t t_us)
     if (e)
         cub_log_event(dlog(d), t_us, "judge", "error", "what=begin_rep move=%d rep=%d error=\"%s\"",
                       m, a->rep, cub_err_str(e));
+    else if (r.has_key) /* when the bear shows the keys: the mistake shows there */
+        cub_log_event(dlog(d), t_us, "judge", "window", "move=%d rep=%d key_ms=%d end_ms=%d", m,
+                      a->rep, (int)(r.key_us / 1000), (int)(play_us / 1000));
 }
 
 void director_request(cub_director *d, const cub_coach_action *a, int64_t t_us)
 {
-    judge_clip(d, a, t_us);
     cub_bridge_player_set_start_frames(&d->player, start_frames(d, a));
     d->played_clip = d->requested_clip = -1;
     cub_bridge_plan plan;
     cub_err err = plan_correction(d, a, &plan, t_us);
+    judge_clip(d, a, t_us, err ? NULL : &plan);
     if (!err) {
         cub_log_event(dlog(d), t_us, "bridge", "plan", "to=%s steps=%d wait_frames=%d via=%s",
                       director_clip_name(d, a->clip), plan.step_count, plan.wait_frames,

@@ -40,7 +40,8 @@ static int desc_ok(const cub_judge_desc *d)
         if (ratio[i] < 0 || ratio[i] > CUB_Q16_INT(8)) return 0;
     return d->key_mu <= CUB_FUZZY_ONE && d->present_frames > 0 && d->present_frames <= 1000 &&
            d->absent_frames > 0 && d->absent_frames <= 1000 && d->wave_reversals > 0 &&
-           d->wave_reversals <= 100 && d->stand_cog_mm >= 0;
+           d->wave_reversals <= 100 && d->stand_cog_mm >= 0 && d->lag_ms >= 0 &&
+           d->lag_ms <= 60000;
 }
 
 size_t cub_judge_mem_size(const cub_judge_desc *desc)
@@ -177,7 +178,7 @@ const cub_fuzzy_frame *cub_judge_last_features(const cub_judge *j)
 }
 
 static const char *const why_names[] = {
-    "?", "keys", "missed", "pose", "no_player", "clap", "wave", "in_view", "out_of_view",
+    "?", "keys", "missed", "pose", "no_player", "clap", "wave", "in_view", "out_of_view", "mirror",
 };
 
 const char *cub_judge_why_name(int32_t why)

@@ -25,6 +25,13 @@ typedef struct rep_slot {
     int64_t keys_run_first_us;
     uint16_t best_mu[CUB_JUDGE_MAX_KEYS];
     cub_q16 min_d;
+    int sign;           /* the keys were reached together once (4/5 of key_mu), held or not */
+    int has_due;        /* an early deadline (the coach's key moment + lag) */
+    int64_t due_us;
+    int has_mirror;     /* the mirrored keys held instead are wrong at once */
+    cub_judge_key mirror[CUB_JUDGE_MAX_KEYS];
+    int mirror_run_on;
+    int64_t mirror_run_first_us;
 } rep_slot;
 
 /* Keys just credited: a run of them credits no other repetition until the

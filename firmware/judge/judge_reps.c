@@ -17,10 +17,105 @@ static int keys_valid(const cub_judge_rep *r)
     return 1;
 }
 
+static int32_t mirror_feature(int32_t f)
+{
+    switch (f) {
+    case CUB_FUZZY_RH: return CUB_FUZZY_LH;
+    case CUB_FUZZY_LH: return CUB_FUZZY_RH;
+    case CUB_FUZZY_RHE: return CUB_FUZZY_LHE;
+    case CUB_FUZZY_LHE: return CUB_FUZZY_RHE;
+    case CUB_FUZZY_RF: return CUB_FUZZY_LF;
+    case CUB_FUZZY_LF: return CUB_FUZZY_RF;
+    case CUB_FUZZY_RFK: return CUB_FUZZY_LFK;
+    case CUB_FUZZY_LFK: return CUB_FUZZY_RFK;
+    default: return f; /* Posture, Trunk: the body's, no side */
+    }
+}
+
+static int has_key(const cub_judge_key *keys, int32_t n, cub_judge_key k)
+{
+    for (int i = 0; i < n; i++)
+        if (keys[i].feature == k.feature && keys[i].set == k.set) return 1;
+    return 0;
+}
+
+int cub_judge_mirror_keys(const cub_judge_key *keys, int32_t key_count, cub_judge_key *mirror)
+{
+    if (!keys || !mirror || key_count < 0 || key_count > CUB_JUDGE_MAX_KEYS) return 0;
+    int differs = 0;
+    for (int i = 0; i < key_count; i++) {
+        mirror[i] = (cub_judge_key){mirror_feature(keys[i].feature), keys[i].set};
+        differs |= !has_key(keys, key_count, mirror[i]);
+    }
+    return differs;
+}
+
+/* Do all keys reach their sets in f? */
+static int keys_match(const cub_judge_key *keys, int32_t n, const cub_fuzzy_frame *f,
+                      uint16_t key_mu)
+{
+    for (int k = 0; k < n; k++)
+        if (f->mu[keys[k].feature][keys[k].set] < key_mu) return 0;
+    return 1;
+}
+
+/* The weakest key's membership in f. */
+static uint16_t weakest(const cub_judge_key *keys, int32_t n, const cub_fuzzy_frame *f)
+{
+    uint16_t w = CUB_FUZZY_ONE;
+    for (int k = 0; k < n; k++)
+        if (f->mu[keys[k].feature][keys[k].set] < w) w = f->mu[keys[k].feature][keys[k].set];
+    return w;
+}
+
+int32_t cub_judge_first_match(const cub_judge *j, const cub_judge_key *keys, int32_t key_count,
+                              const cub_fuzzy_frame *frames, int32_t count)
+{
+    if (!j || !keys || !frames || key_count < 1 || key_count > CUB_JUDGE_MAX_KEYS) return -1;
+    for (int32_t i = 0; i < count; i++)
+        if (keys_match(keys, key_count, &frames[i], j->d.key_mu)) return i;
+    return -1;
+}
+
+int32_t cub_judge_key_moment(const cub_judge *j, const cub_judge_key *keys, int32_t key_count,
+                             const cub_fuzzy_frame *frames, int32_t count)
+{
+    if (cub_judge_first_match(j, keys, key_count, frames, count) < 0) return -1;
+    uint16_t peak = 0;
+    for (int32_t i = 0; i < count; i++) {
+        uint16_t w = weakest(keys, key_count, &frames[i]);
+        if (w > peak) peak = w;
+    }
+    uint16_t clear = (uint16_t)(((uint32_t)j->d.key_mu + peak + 1) / 2);
+    for (int32_t i = 0; i < count; i++)
+        if (weakest(keys, key_count, &frames[i]) >= clear) return i;
+    return -1; /* not reached: peak >= clear */
+}
+
+/* The early deadline: the coach's key moment plus a child's lag, never
+ * before two beats into the repetition. */
+static void set_due(const cub_judge *j, rep_slot *s, const cub_judge_rep *r)
+{
+    if (!r->has_key || r->key_us < 0) return;
+    int64_t lag = j->d.lag_ms > 0 ? (int64_t)j->d.lag_ms * 1000 : r->beat_us;
+    int64_t hold = (int64_t)j->d.hold_ms * 1000;
+    /* Not before two beats: the first is the previous repetition's tail
+     * (a late child still does it), the second the child's lag for a key
+     * the bear shows from its clip's start. */
+    int64_t due = r->key_us + lag, first = 2 * r->beat_us;
+    if (first < r->beat_us + hold) first = r->beat_us + hold;
+    if (due < first) due = first;
+    if (due > INT64_MAX - r->start_us) return;
+    s->has_due = 1;
+    s->due_us = r->start_us + due;
+    if (r->mirror_wrong)
+        s->has_mirror = cub_judge_mirror_keys(s->keys, s->key_count, s->mirror);
+}
+
 cub_err cub_judge_begin_rep(cub_judge *j, const cub_judge_rep *r)
 {
     if (!j || !r || !keys_valid(r) || r->end_us <= r->start_us || r->beat_us < 0) return CUB_ERR_ARG;
-    if (r->end_us > INT64_MAX - r->beat_us) return CUB_ERR_ARG;
+    if (r->end_us > INT64_MAX - r->beat_us || (r->has_key && r->key_us < 0)) return CUB_ERR_ARG;
     /* The bear's repetitions follow one another: when this one begins the
      * open ones are over, whatever their clip's length at its first speed
      * said (the coach re-times clips to the music), so their late
@@ -48,6 +143,7 @@ cub_err cub_judge_begin_rep(cub_judge *j, const cub_judge_rep *r)
         s->expected = *r->expected;
     }
     s->min_d = CUB_Q16_ONE;
+    set_due(j, s, r);
     return CUB_OK;
 }
 
@@ -60,15 +156,6 @@ int32_t cub_judge_cancel_reps(cub_judge *j)
         j->reps[i].used = 0;
     }
     return n;
-}
-
-/* Do all keys reach their sets in f? */
-static int keys_match(const cub_judge_key *keys, int32_t n, const cub_fuzzy_frame *f,
-                      uint16_t key_mu)
-{
-    for (int k = 0; k < n; k++)
-        if (f->mu[keys[k].feature][keys[k].set] < key_mu) return 0;
-    return 1;
 }
 
 static int same_keys(const cub_judge_key *a, int32_t na, const cub_judge_key *b, int32_t nb)
@@ -173,6 +260,10 @@ static int rep_step(cub_judge *j, rep_slot *s, int64_t t_us, const cub_fuzzy_fra
      * does not break it. */
     uint16_t th = s->keys_run_on ? (uint16_t)(j->d.key_mu - j->d.key_mu / 5) : j->d.key_mu;
     int keys = keys_match(s->keys, s->key_count, f, th);
+    /* A sign of the move, even too short or taken by the previous
+     * repetition: no early wrong verdict then, only the close's. */
+    if (t_us >= s->start_us + s->beat_us) /* the first beat is the previous one's tail */
+        s->sign |= keys_match(s->keys, s->key_count, f, (uint16_t)(j->d.key_mu - j->d.key_mu / 5));
     int close = 1;
     if (keys && s->has_expected) {
         cub_q16 d = cub_fuzzy_distance(f, &s->expected, NULL);
@@ -190,6 +281,28 @@ static int rep_step(cub_judge *j, rep_slot *s, int64_t t_us, const cub_fuzzy_fra
      * the credit as the older one); a pose held on past it counts. */
     return match && t_us - s->run_first_us >= (int64_t)j->d.hold_ms * 1000 &&
            t_us >= s->start_us + s->beat_us;
+}
+
+/* The evidence against a repetition not yet right, in an OK frame f:
+ * CUB_JUDGE_WHY_MIRROR when its keys' mirror has been held past the first
+ * beat, CUB_JUDGE_WHY_MISSED when its deadline passed with no sign of its
+ * keys in the window; else 0. */
+static int32_t early_wrong(const cub_judge *j, rep_slot *s, int64_t t_us, const cub_fuzzy_frame *f)
+{
+    if (!f) {
+        s->mirror_run_on = 0;
+        return 0;
+    }
+    if (s->has_mirror) {
+        int on = keys_match(s->mirror, s->key_count, f, j->d.key_mu) &&
+                 !keys_match(s->keys, s->key_count, f, j->d.key_mu);
+        if (on && !s->mirror_run_on) s->mirror_run_first_us = t_us;
+        s->mirror_run_on = on;
+        if (on && t_us - s->mirror_run_first_us >= (int64_t)j->d.hold_ms * 1000 &&
+            t_us >= s->start_us + s->beat_us)
+            return CUB_JUDGE_WHY_MIRROR;
+    }
+    return s->has_due && t_us >= s->due_us && !s->sign ? CUB_JUDGE_WHY_MISSED : 0;
 }
 
 /* The open slot with the lowest seq above `after` (after = -1: any). */
@@ -224,6 +337,14 @@ void judge_reps_frame(cub_judge *j, int64_t t_us, const cub_fuzzy_frame *f, cub_
             e.set = s->keys[0].set;
             e.value = (cub_q16)s->best_mu[0] * 2;
             judge_emit(j, out, &e);
+            continue;
+        }
+        int32_t why = early_wrong(j, s, t_us, f);
+        if (why) {
+            cub_judge_event e = wrong(s, t_us);
+            if (why == CUB_JUDGE_WHY_MIRROR) e.why = why;
+            judge_emit(j, out, &e);
+            s->used = 0;
         }
     }
 }

@@ -339,6 +339,139 @@ static void test_standing_still_is_wrong(void **state)
     assert_int_equal(first(&r, CUB_JUDGE_VERDICT)->why, CUB_JUDGE_WHY_MISSED);
 }
 
+/* ---- early verdicts, from the coach's key moment ------------------------ */
+
+/* rep_rhe with the bear's key moment key_frames after the start. */
+static cub_judge_rep rep_rhe_keyed(int rep, int from, int to, int key_frames, int mirror)
+{
+    cub_judge_rep r = rep_rhe(rep, from, to);
+    r.has_key = 1;
+    r.key_us = (int64_t)key_frames * FRAME_US;
+    r.mirror_wrong = mirror;
+    return r;
+}
+
+static void test_standing_still_is_wrong_a_beat_after_the_key(void **state)
+{
+    (void)state;
+    rec r;
+    rec_init(&r, NULL);
+    cub_judge_rep rep = rep_rhe_keyed(0, 0, 60, 20, 0);
+    assert_int_equal(cub_judge_begin_rep(r.j, &rep), CUB_OK);
+    play(&r, 100, 0, 0, STILL);
+    assert_int_equal(count(&r, CUB_JUDGE_VERDICT), 1);
+    /* key at 20 + a beat of 15: wrong in frame 35, not at the close (75) */
+    assert_verdict(&r, 0, 0, 0, 35);
+    assert_int_equal(first(&r, CUB_JUDGE_VERDICT)->why, CUB_JUDGE_WHY_MISSED);
+}
+
+static void test_child_a_beat_late_is_still_right(void **state)
+{
+    (void)state;
+    rec r;
+    rec_init(&r, NULL);
+    cub_judge_rep rep = rep_rhe_keyed(0, 0, 60, 20, 0);
+    assert_int_equal(cub_judge_begin_rep(r.j, &rep), CUB_OK);
+    /* reached at 34 (14 frames late), held at 38: the sign before the
+     * deadline (35) leaves it the window's whole time */
+    play(&r, 100, 34, 45, bent_right());
+    assert_int_equal(count(&r, CUB_JUDGE_VERDICT), 1);
+    assert_verdict(&r, 0, 0, 1, 38);
+}
+
+static void test_lag_is_a_tunable(void **state)
+{
+    (void)state;
+    rec r;
+    cub_judge_desc d = {.lag_ms = 1000}; /* 30 frames */
+    rec_init(&r, &d);
+    cub_judge_rep rep = rep_rhe_keyed(0, 0, 60, 20, 0);
+    assert_int_equal(cub_judge_begin_rep(r.j, &rep), CUB_OK);
+    play(&r, 100, 0, 0, STILL);
+    assert_verdict(&r, 0, 0, 0, 51); /* 20 frames + 1 s is past frame 50 (frames of 33333 us) */
+    d.lag_ms = -1;
+    _Alignas(16) unsigned char mem[4096];
+    cub_judge *j;
+    assert_int_equal(cub_judge_init(&d, mem, sizeof mem, &j), CUB_ERR_ARG);
+}
+
+static void test_early_deadline_not_before_the_first_beat(void **state)
+{
+    (void)state;
+    rec r;
+    cub_judge_desc d = {.lag_ms = 33}; /* shorter than a beat: the beat + hold bounds it */
+    rec_init(&r, &d);
+    cub_judge_rep rep = rep_rhe_keyed(0, 0, 60, 0, 0);
+    assert_int_equal(cub_judge_begin_rep(r.j, &rep), CUB_OK);
+    play(&r, 100, 0, 0, STILL);
+    assert_verdict(&r, 0, 0, 0, 30); /* two beats of 15 frames */
+}
+
+static void test_mirrored_key_is_wrong_at_once(void **state)
+{
+    (void)state;
+    rec r;
+    rec_init(&r, NULL);
+    cub_judge_rep rep = rep_rhe_keyed(0, 0, 60, 40, 1);
+    assert_int_equal(cub_judge_begin_rep(r.j, &rep), CUB_OK);
+    pose left = STILL;
+    left.bend[0] = 1;
+    play(&r, 100, 5, 60, left);
+    assert_int_equal(count(&r, CUB_JUDGE_VERDICT), 1);
+    /* held from 5, but not in the first beat: wrong at 15, long before the
+     * key's deadline (55) */
+    assert_verdict(&r, 0, 0, 0, 15);
+    const cub_judge_event *v = first(&r, CUB_JUDGE_VERDICT);
+    assert_int_equal(v->why, CUB_JUDGE_WHY_MIRROR);
+    char line[160];
+    cub_judge_describe(v, line, sizeof line);
+    assert_non_null(strstr(line, "result=wrong why=mirror key=RHE=true"));
+    /* without mirror_wrong (a clip that shows both sides) it waits for the deadline */
+    rec_init(&r, NULL);
+    rep = rep_rhe_keyed(0, 0, 60, 40, 0);
+    assert_int_equal(cub_judge_begin_rep(r.j, &rep), CUB_OK);
+    play(&r, 100, 5, 60, left);
+    assert_verdict(&r, 0, 0, 0, 55);
+}
+
+static void test_the_previous_repetitions_tail_is_no_sign(void **state)
+{
+    (void)state;
+    rec r;
+    rec_init(&r, NULL);
+    cub_judge_rep rep = rep_rhe_keyed(0, 0, 60, 20, 0);
+    assert_int_equal(cub_judge_begin_rep(r.j, &rep), CUB_OK);
+    play(&r, 100, 0, 10, bent_right()); /* a late child ending the one before */
+    assert_verdict(&r, 0, 0, 0, 35);
+}
+
+static void test_no_early_verdict_without_the_tracker(void **state)
+{
+    (void)state;
+    rec r;
+    rec_init(&r, NULL);
+    cub_judge_rep rep = rep_rhe_keyed(0, 0, 60, 20, 0);
+    assert_int_equal(cub_judge_begin_rep(r.j, &rep), CUB_OK);
+    pose lost = STILL;
+    lost.status = CUB_TRACK_PARTLY_OUT;
+    play(&r, 100, 30, 45, lost); /* not sure of the child around the deadline */
+    assert_verdict(&r, 0, 0, 0, 45); /* the first sure frame after it */
+}
+
+static void test_mirror_keys(void **state)
+{
+    (void)state;
+    cub_judge_key k[2] = {{CUB_FUZZY_RH, 2}, {CUB_FUZZY_LH, 2}}, m[2];
+    assert_int_equal(cub_judge_mirror_keys(k, 2, m), 0); /* both arms up: its own mirror */
+    cub_judge_key lean[3] = {{CUB_FUZZY_TRUNK, 0}, {CUB_FUZZY_RH, 1}, {CUB_FUZZY_LH, 0}}, ml[3];
+    assert_int_equal(cub_judge_mirror_keys(lean, 3, ml), 1);
+    assert_int_equal(ml[0].feature, CUB_FUZZY_TRUNK);
+    assert_int_equal(ml[1].feature, CUB_FUZZY_LH);
+    assert_int_equal(ml[1].set, 1);
+    assert_int_equal(ml[2].feature, CUB_FUZZY_RH);
+    assert_int_equal(ml[2].set, 0);
+}
+
 static void test_no_player_is_wrong_and_not_in_view(void **state)
 {
     (void)state;
@@ -632,6 +765,14 @@ int main(void)
         cmocka_unit_test(test_child_later_than_a_beat_is_wrong_at_the_close),
         cmocka_unit_test(test_wrong_arm_is_wrong_naming_the_key),
         cmocka_unit_test(test_standing_still_is_wrong),
+        cmocka_unit_test(test_standing_still_is_wrong_a_beat_after_the_key),
+        cmocka_unit_test(test_child_a_beat_late_is_still_right),
+        cmocka_unit_test(test_lag_is_a_tunable),
+        cmocka_unit_test(test_early_deadline_not_before_the_first_beat),
+        cmocka_unit_test(test_mirrored_key_is_wrong_at_once),
+        cmocka_unit_test(test_the_previous_repetitions_tail_is_no_sign),
+        cmocka_unit_test(test_no_early_verdict_without_the_tracker),
+        cmocka_unit_test(test_mirror_keys),
         cmocka_unit_test(test_no_player_is_wrong_and_not_in_view),
         cmocka_unit_test(test_one_run_credits_one_repetition),
         cmocka_unit_test(test_a_pose_held_on_counts_for_each_repetition),

@@ -347,6 +347,38 @@ static void test_no_link_is_a_clear_error(void **s)
     assert_int_equal(p.clip, 0); /* playback went on */
 }
 
+/* A reaction that must not wait: the tween (18 frames) or no route at all
+ * gives way to a direct switch beyond the threshold within reach_frames;
+ * a plan that is soon enough is kept. */
+static void test_reach_enters_within_its_frames(void **s)
+{
+    (void)s;
+    for (int with_links = 1; with_links >= 0; with_links--) {
+        build_tween_table(with_links);
+        cub_bridge_query q = {.from_clip = 0, .pos_q16 = (int64_t)7 << 16, .from_loops = 1,
+                              .to_clip = 1, .reach_frames = 5};
+        cub_bridge_plan plan;
+        assert_int_equal(cub_bridge_plan_switch(&S.table, &q, &plan, S.work, sizeof S.work),
+                         CUB_OK);
+        assert_int_equal(plan.step_count, 1);
+        assert_int_equal(plan.step[0].via, CUB_BRIDGE_DIRECT);
+        assert_int_equal(plan.step[0].to_clip, 1);
+        assert_int_equal(plan.step[0].from_frame, 7); /* every pair is as far: the soonest */
+        assert_true(plan.step[0].d >= Q(0.4));
+        assert_true(plan.total_frames < 5);
+    }
+    build_tween_table(1);
+    cub_bridge_query q = {.from_clip = 0, .pos_q16 = (int64_t)7 << 16, .from_loops = 1,
+                          .to_clip = 2, .reach_frames = 5};
+    cub_bridge_plan plan;
+    assert_int_equal(cub_bridge_plan_switch(&S.table, &q, &plan, S.work, sizeof S.work), CUB_OK);
+    assert_int_equal(plan.step[0].to_frame, 2); /* the tagged frame within the threshold */
+    assert_true(plan.step[0].d < Q(0.4));
+    q.reach_frames = -1;
+    assert_int_equal(cub_bridge_plan_switch(&S.table, &q, &plan, S.work, sizeof S.work),
+                     CUB_ERR_ARG);
+}
+
 /* ---- the player -------------------------------------------------------- */
 
 static void test_speed_bounds(void **s)
@@ -567,6 +599,7 @@ int main(void)
         cmocka_unit_test(test_switch_takes_the_soonest_frame),
         cmocka_unit_test(test_tween_when_no_direct_link),
         cmocka_unit_test(test_no_link_is_a_clear_error),
+        cmocka_unit_test(test_reach_enters_within_its_frames),
         cmocka_unit_test(test_speed_bounds),
         cmocka_unit_test(test_player_switches_exactly_at_the_planned_frame),
         cmocka_unit_test(test_pose_is_continuous_at_the_switch),

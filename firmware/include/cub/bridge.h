@@ -184,6 +184,12 @@ typedef struct cub_bridge_query {
                           first start_frames frames (tagged or not, by d), the
                           soonest within the first window: a move then begins
                           at its beginning and keeps its music time. 0 = off */
+    int reach_frames;  /* > 0: when no plan within the threshold enters the
+                          wanted clip within reach_frames, enter it anyway at
+                          the closest (by d) of its first start_frames frames
+                          (or all) from one of the next reach_frames frames:
+                          a reaction that must not wait (the blend covers the
+                          distance). 0 = off */
 } cub_bridge_query;
 
 /* Scratch memory the planner needs for this table (the tween search). */
@@ -212,6 +218,7 @@ typedef struct cub_bridge_player_desc {
     int window_frames; /* 0 = CUB_BRIDGE_WINDOW_FRAMES */
     cub_q16 wait_cost_mm; /* the planner's, see cub_bridge_query; 0 = default */
     int start_frames;     /* the planner's, see cub_bridge_query; 0 = off */
+    int reach_frames;     /* the planner's, see cub_bridge_query; 0 = off */
 } cub_bridge_player_desc;
 
 typedef enum cub_bridge_event_type {
@@ -289,6 +296,9 @@ cub_err cub_bridge_player_set_speed(cub_bridge_player *p, cub_q16 speed_q16);
  * app asks for a move's beginning when it starts a move, and for the
  * quickest entry when it must react (a correction). CUB_ERR_ARG if < 0. */
 cub_err cub_bridge_player_set_start_frames(cub_bridge_player *p, int start_frames);
+/* How soon later requests must enter their clip (cub_bridge_query.
+ * reach_frames; 0 = when the threshold allows). CUB_ERR_ARG if < 0. */
+cub_err cub_bridge_player_set_reach_frames(cub_bridge_player *p, int reach_frames);
 /* Move time on by dt_us (>= 0): switch exactly at the planned frames,
  * report events into ev[max_ev] (count in *n_ev; events past max_ev are
  * dropped, the playback is not). */

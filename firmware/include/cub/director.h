@@ -22,7 +22,10 @@
  *   keeps its music time; a correction at any frame of its clip's front
  *   half that is close enough (the quickest way in), and by the other
  *   correcting clip when the one asked for is not on screen within
- *   react_frames (desc) and the other is sooner; anything else by the
+ *   react_frames (desc) and the other is sooner; when neither is, at the
+ *   closest frame of the chosen one's front half reached within
+ *   react_frames, beyond the threshold (logged as bridge reach: the blend
+ *   covers the distance, a correction does not wait); anything else by the
  *   quickest switch. No route at all: a cut, logged.
  * - Leads: the song ms by which a move is asked for before its tag so that
  *   the route into it (bridge frames, a tween, less the content it skips)
@@ -32,7 +35,11 @@
  *   gap (entry_lead_ms).
  * - Windows: a repetition of a move opens a judge window from its request
  *   for as long as its clip plays at its speed, plus one beat for a late
- *   child; anything else the coach asks for closes the open ones.
+ *   child; anything else the coach asks for closes the open ones. Each
+ *   window carries the coach's key moment: when the route into the clip
+ *   and the clip at its speed first show every key of the move together
+ *   (found at init in the clip's own fuzzy frames, a `judge keys` line per
+ *   move), so that the judge can say wrong inside the repetition.
  * - Music tags: entering the clip of the move being danced, the song time
  *   of the frame shown (the move's tag + the repetitions done + the part of
  *   this one the player entered past).
@@ -104,6 +111,8 @@ typedef struct cub_director {
     bool music_on, music_paused;    /* as asked of the app */
     int lead_clip, lead_loop;       /* the player's state the entry leads are for */
     int64_t lead_pos_q16;
+    int32_t key_frame[CUB_DIRECTOR_MAX_MOVES]; /* the bear's key moment in each move's clip; -1 */
+    bool mirror_wrong[CUB_DIRECTOR_MAX_MOVES]; /* the keys' mirror is a mistake (never shown) */
     cub_director_out out[CUB_DIRECTOR_MAX_OUT]; /* this call's output */
     int32_t out_count;
 } cub_director;

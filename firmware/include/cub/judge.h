@@ -38,6 +38,23 @@
  *   as in a sway, counts for each repetition it is held through; a late
  *   child's pose at the start of the next repetition counts for the late
  *   one, not for both).
+ * - Early verdicts, from the coach's own clip (has_key, key_us: the bear's
+ *   key moment, cub_judge_key_moment, measured from start_us):
+ *   the deadline is start_us + key_us + lag (lag = desc lag_ms, else the
+ *   repetition's beat_us: children follow a leader late), never before
+ *   start_us + 2 beat_us (the first beat is the previous repetition's
+ *   tail, the second a late child's for a key the bear shows from its
+ *   clip's start; and never before beat_us + hold_ms). The first OK frame
+ *   at or past it, the repetition still not right and no sign of its keys
+ *   after its first beat (every key at 4/5 of key_mu in one frame, held or
+ *   not, credited to the previous repetition or not: that child is doing
+ *   the move, late or briefly, and gets the window's whole time), gives
+ *   the wrong verdict at once
+ *   (why = missed). And with mirror_wrong (the keys' left/right mirror is a
+ *   different set that the bear's clip never shows), the mirrored keys held
+ *   (a run of hold_ms, past the first beat) while the keys are not, is a
+ *   wrong verdict at once (why = mirror: the other arm or leg). Frames the
+ *   tracker is not sure of (not CUB_TRACK_OK) never give an early verdict.
  * - A repetition still without a right verdict gets a wrong one (b = 0) in
  *   the first frame with t_us >= end_us + beat_us. Why: no_player when no
  *   frame of its window was CUB_TRACK_OK, pose when the keys were held but
@@ -106,6 +123,9 @@ typedef struct cub_judge_desc {
     int32_t wave_gap_ms;       /* 2000 */
     cub_q16 floor_y_mm;        /* with stand_cog_mm > 0: fixed calibration */
     cub_q16 stand_cog_mm;      /* 0: estimate online */
+    int32_t lag_ms;            /* 0: one beat (each repetition's beat_us): how long
+                                  after the coach's key moment a child may still
+                                  reach the keys before the early wrong verdict */
     cub_log *log;              /* optional: one line per event */
 } cub_judge_desc;
 
@@ -122,6 +142,9 @@ typedef struct cub_judge_rep {
     int64_t start_us, end_us; /* the repetition in loop time, end > start */
     int64_t beat_us;          /* the late allowance, >= 0 (one beat) */
     const cub_fuzzy_frame *expected; /* optional: the coach's pose (copied) */
+    int has_key;     /* key_us is known: an early verdict is possible */
+    int64_t key_us;  /* the coach's clip reaches every key this long after start_us, >= 0 */
+    int mirror_wrong;/* the keys' mirror held instead is a wrong verdict at once */
 } cub_judge_rep;
 
 typedef enum cub_judge_kind {
@@ -140,6 +163,7 @@ typedef enum cub_judge_why {
     CUB_JUDGE_WHY_WAVE,
     CUB_JUDGE_WHY_IN_VIEW,
     CUB_JUDGE_WHY_OUT_OF_VIEW,
+    CUB_JUDGE_WHY_MIRROR,   /* wrong: the keys' mirror held (the other arm) */
 } cub_judge_why;
 
 typedef struct cub_judge_event {
@@ -180,6 +204,21 @@ int32_t cub_judge_cancel_reps(cub_judge *j);
  * for NULL pointers. */
 cub_err cub_judge_frame(cub_judge *j, int64_t t_us, const cub_track_skeleton *skel,
                         cub_judge_out *out);
+
+/* The first of count frames where every key reaches its set at j's key_mu;
+ * -1 none. */
+int32_t cub_judge_first_match(const cub_judge *j, const cub_judge_key *keys, int32_t key_count,
+                              const cub_fuzzy_frame *frames, int32_t count);
+/* The coach's key moment in its clip: the first frame where the weakest
+ * key is half way from key_mu to its peak over the clip (the bear shows
+ * the keys clearly there; a bear whose rest pose already passes key_mu, as
+ * its bent knees do, is not "there" at frame 0); -1 when the clip never
+ * reaches the keys. */
+int32_t cub_judge_key_moment(const cub_judge *j, const cub_judge_key *keys, int32_t key_count,
+                             const cub_fuzzy_frame *frames, int32_t count);
+/* The keys' left/right mirror (RH<->LH, RHE<->LHE, RF<->LF, RFK<->LFK, the
+ * same sets); returns 1 when it differs from the keys as a set. */
+int cub_judge_mirror_keys(const cub_judge_key *keys, int32_t key_count, cub_judge_key *mirror);
 
 /* The last frame's fuzzy features (zero before the first OK frame). */
 const cub_fuzzy_frame *cub_judge_last_features(const cub_judge *j);

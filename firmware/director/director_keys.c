@@ -1,0 +1,47 @@
+/* The coach's key moments: where in each move's own clip the bear shows
+ * every key of the move together, clearly (cub_judge_key_moment), and whether the keys' left/right mirror ever shows there. The
+ * judge's early verdicts are timed from them (cub/judge.h). */
+#include "director_internal.h"
+
+static const cub_fuzzy_frame *clip_frames(const cub_director *d, int clip, int32_t *count)
+{
+    const cub_bridge_clip *bc = &d->desc.table->clips[clip];
+    *count = bc->clip.frame_count;
+    return &d->desc.table->fuzzy[bc->first_frame];
+}
+
+void director_find_keys(cub_director *d)
+{
+    const cub_judge *j = d->desc.judge;
+    for (int i = 0; i < d->desc.coach.move_count; i++) {
+        d->key_frame[i] = -1;
+        d->mirror_wrong[i] = false;
+        const cub_director_keys *k = d->desc.keys ? &d->desc.keys[i] : NULL;
+        if (!j || !k || k->count <= 0 || k->count > CUB_JUDGE_MAX_KEYS) continue;
+        int32_t n = 0;
+        const cub_fuzzy_frame *fr = clip_frames(d, d->moves[i].clip, &n);
+        d->key_frame[i] = cub_judge_key_moment(j, k->key, k->count, fr, n);
+        cub_judge_key mirror[CUB_JUDGE_MAX_KEYS];
+        /* A clip that shows the mirror too (boxing's two fists) makes it no
+         * mistake: only a mirror the bear never shows is the other arm. */
+        d->mirror_wrong[i] = cub_judge_mirror_keys(k->key, k->count, mirror) &&
+                             cub_judge_first_match(j, mirror, k->count, fr, n) < 0;
+        cub_log_event(d->desc.coach.log, d->now_us, "judge", "keys",
+                      "move=%d clip=%s key_frame=%d mirror_wrong=%d", i,
+                      director_clip_name(d, d->moves[i].clip), d->key_frame[i],
+                      d->mirror_wrong[i] ? 1 : 0);
+    }
+}
+
+void director_key_moment(const cub_director *d, int move, int32_t entry_frame, int32_t wait_frames,
+                         cub_q16 speed, cub_judge_rep *r)
+{
+    if (move < 0 || move >= d->desc.coach.move_count || d->key_frame[move] < 0) return;
+    const cub_clip *clip = &d->desc.table->clips[d->moves[move].clip].clip;
+    int64_t ahead = d->key_frame[move] - entry_frame;
+    int64_t play_us = (ahead > 0 ? ahead : 0) * clip->frame_ns / 1000 * CUB_Q16_ONE /
+                      (speed > 0 ? speed : CUB_Q16_ONE);
+    r->has_key = 1;
+    r->key_us = (int64_t)wait_frames * clip->frame_ns / 1000 + play_us;
+    r->mirror_wrong = d->mirror_wrong[move];
+}
