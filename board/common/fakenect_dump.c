@@ -115,11 +115,28 @@ static double gap_step(gap_clock *g, const char *name, double *view_s)
 static void view_name(const char *name, const gap_clock *g, double view_s, char *out,
                       size_t size)
 {
-    const char *rest = strchr(name + 2, '-');
-    if (g->cut_s == 0 || !rest || isnan(view_s))
+    int end = 0; /* where the seconds end: what follows them is kept byte for byte */
+    double s;
+    if (g->cut_s == 0 || isnan(view_s) || sscanf(name, "%*c-%lf%n", &s, &end) != 1 || end == 0)
         snprintf(out, size, "%s", name);
     else
-        snprintf(out, size, "%c-%.6f%s", name[0], view_s, rest);
+        snprintf(out, size, "%c-%.6f%s", name[0], view_s, name + end);
+}
+
+/* A renamed line must not take the name of a file already in the view (two
+ * spellings of the same seconds): its seconds move on by microseconds. */
+static void unique_view_name(const char *view_dir, const char *name, double view_s, char *as,
+                             size_t size)
+{
+    char path[2 * CUB_FAKENECT_PATH_MAX];
+    int end = 0;
+    double s;
+    if (strcmp(name, as) == 0 || sscanf(name, "%*c-%lf%n", &s, &end) != 1 || end == 0) return;
+    for (int k = 1; k < 1000; k++) {
+        snprintf(path, sizeof path, "%s/%s", view_dir, as);
+        if (access(path, F_OK) != 0) return;
+        snprintf(as, size, "%c-%.6f%s", name[0], view_s + k * 1e-6, name + end);
+    }
 }
 
 static size_t frame_bytes(const char *name)
@@ -495,6 +512,7 @@ static cub_err build_view(cub_fakenect_view *v, const char *dir, int rewrite, ch
         }
         double jump = gap_step(&g, name, &view_s);
         view_name(name, &g, view_s, as, sizeof as);
+        unique_view_name(v->dir, name, view_s, as, sizeof as);
         if (jump > 0) note_jump(&r, name, jump, as);
         if (index) written = written && fprintf(index, "%s\n", as) > 0;
         if (strcmp(name, "INDEX.txt") && add_to_view(v, &r, real_dir, name, as) != 0) break;
