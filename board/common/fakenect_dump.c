@@ -310,21 +310,29 @@ static cub_err scan_dump(const char *dir, dump_scan *scan, char *err, size_t err
     return e ? e : more < 0 ? CUB_ERR_FORMAT : CUB_OK;
 }
 
+/* A view mends a dump by rewriting INDEX.txt, which a name with a directory
+ * in it does not survive: refuse, saying what could not be mended. */
+static cub_err refuse_path(const char *dir, const dump_scan *scan, const char *what, char *err,
+                           size_t err_size)
+{
+    snprintf(err, err_size,
+             "fakenect dump %s: INDEX.txt:%d: a name with a directory in it; cannot %s around it",
+             dir, scan->path_line, what);
+    return CUB_ERR_FORMAT;
+}
+
 /* Bad frames are replayed only when there is something real around them. */
 static cub_err judge_scan(const char *dir, const dump_scan *scan, char *err, size_t err_size)
 {
-    char why[320];
+    char why[320], what[NAME_MAX_CHARS + 64];
     if (scan->names == 0) {
         snprintf(err, err_size, "fakenect dump %s: INDEX.txt lists no files: nothing to replay",
                  dir);
         return CUB_ERR_FORMAT;
     }
     if (scan->blank_lines > 0 && scan->path_line) {
-        snprintf(err, err_size,
-                 "fakenect dump %s: INDEX.txt:%d: a name with a directory in it; cannot drop "
-                 "the empty line at INDEX.txt:%d around it",
-                 dir, scan->path_line, scan->first_blank_line);
-        return CUB_ERR_FORMAT;
+        snprintf(what, sizeof what, "drop the empty line at INDEX.txt:%d", scan->first_blank_line);
+        return refuse_path(dir, scan, what, err, err_size);
     }
     if (scan->bad_frames > 0 && scan->good_frames == 0) {
         snprintf(err, err_size,
@@ -335,26 +343,14 @@ static cub_err judge_scan(const char *dir, const dump_scan *scan, char *err, siz
         return CUB_ERR_FORMAT;
     }
     if (scan->bad_frames > 0 && scan->path_line) {
-        snprintf(err, err_size,
-                 "fakenect dump %s: INDEX.txt:%d: a name with a directory in it; cannot replay "
-                 "the bad frame %s (INDEX.txt:%d) around it",
-                 dir, scan->path_line, scan->first_bad, scan->first_bad_line);
-        return CUB_ERR_FORMAT;
+        snprintf(what, sizeof what, "replay the bad frame %s (INDEX.txt:%d)", scan->first_bad,
+                 scan->first_bad_line);
+        return refuse_path(dir, scan, what, err, err_size);
     }
-    if (scan->jumps > 0 && scan->path_line) {
-        snprintf(err, err_size,
-                 "fakenect dump %s: INDEX.txt:%d: a name with a directory in it; cannot replay "
-                 "the jumps of its recorded seconds around it",
-                 dir, scan->path_line);
-        return CUB_ERR_FORMAT;
-    }
-    if (scan->empty_accel > 0 && scan->path_line) {
-        snprintf(err, err_size,
-                 "fakenect dump %s: INDEX.txt:%d: a name with a directory in it; cannot replay "
-                 "the empty accelerometer files around it",
-                 dir, scan->path_line);
-        return CUB_ERR_FORMAT;
-    }
+    if (scan->jumps > 0 && scan->path_line)
+        return refuse_path(dir, scan, "replay the jumps of its recorded seconds", err, err_size);
+    if (scan->empty_accel > 0 && scan->path_line)
+        return refuse_path(dir, scan, "replay the empty accelerometer files", err, err_size);
     return CUB_OK;
 }
 

@@ -155,29 +155,48 @@ static int direct_search(const cub_bridge_table *t, const cub_bridge_query *q, i
     return found;
 }
 
+/* Where a switch can land at the wanted clip's start: the next `window`
+ * frames from g0 against its first `starts` frames. */
+typedef struct start_scan {
+    int64_t g0;
+    int window, starts;
+    int nearest; /* 0: the first pair within the threshold; 1: the pair of smallest d */
+} start_scan;
+
+/* The pair s asks for, the sooner (then the earlier start frame) on a tie;
+ * 0 when there is none. */
+static int scan_starts(const cub_bridge_table *t, const cub_bridge_query *q, const start_scan *s,
+                       hit *out)
+{
+    int nf = frames_of(t, q->from_clip);
+    int found = 0;
+    for (int k = 0; k < s->window; k++) {
+        int64_t at;
+        int gf = upcoming(q, nf, s->g0, k, &at);
+        if (gf < 0) break;
+        if (at_pass_start(q, nf, s->g0, k)) continue;
+        const cub_fuzzy_frame *now = features(t, q->from_clip, gf);
+        for (int b = 0; b < s->starts; b++) {
+            if (!jump_ok(q->from_clip == q->to_clip, gf, b, nf)) continue;
+            cub_q16 d = cub_fuzzy_distance(now, features(t, q->to_clip, b), &t->desc.fuzzy);
+            if (s->nearest ? found && d >= out->d : d >= t->desc.fuzzy.threshold) continue;
+            *out = (hit){k, b, at, 0, d};
+            if (!s->nearest) return 1;
+            found = 1;
+        }
+    }
+    return found;
+}
+
 /* The soonest upcoming frame within the window that is within the
  * threshold of one of the wanted clip's first q->start_frames frames, the
  * earliest of those first (see cub_bridge_query.start_frames). */
 static int start_search(const cub_bridge_table *t, const cub_bridge_query *q, int64_t g0,
                         int window, hit *out)
 {
-    int nf = frames_of(t, q->from_clip), nt = frames_of(t, q->to_clip);
-    int starts = q->start_frames < nt ? q->start_frames : nt;
-    for (int k = 0; k < window; k++) {
-        int64_t at;
-        int gf = upcoming(q, nf, g0, k, &at);
-        if (gf < 0) break;
-        if (at_pass_start(q, nf, g0, k)) continue;
-        const cub_fuzzy_frame *now = features(t, q->from_clip, gf);
-        for (int b = 0; b < starts; b++) {
-            if (!jump_ok(q->from_clip == q->to_clip, gf, b, nf)) continue;
-            cub_q16 d = cub_fuzzy_distance(now, features(t, q->to_clip, b), &t->desc.fuzzy);
-            if (d >= t->desc.fuzzy.threshold) continue;
-            *out = (hit){k, b, at, 0, d};
-            return 1;
-        }
-    }
-    return 0;
+    int nt = frames_of(t, q->to_clip);
+    start_scan s = {g0, window, q->start_frames < nt ? q->start_frames : nt, 0};
+    return scan_starts(t, q, &s, out);
 }
 
 /* ---- the tween ------------------------------------------------------- */
@@ -376,24 +395,10 @@ static int64_t first_upcoming(const cub_bridge_table *t, const cub_bridge_query 
 static int reach_search(const cub_bridge_table *t, const cub_bridge_query *q, int64_t g0,
                         int window, hit *out)
 {
-    int nf = frames_of(t, q->from_clip), nt = frames_of(t, q->to_clip);
-    int starts = q->start_frames > 0 && q->start_frames < nt ? q->start_frames : nt;
-    int found = 0;
-    for (int k = 0; k < window; k++) {
-        int64_t at;
-        int gf = upcoming(q, nf, g0, k, &at);
-        if (gf < 0) break;
-        if (at_pass_start(q, nf, g0, k)) continue;
-        const cub_fuzzy_frame *now = features(t, q->from_clip, gf);
-        for (int b = 0; b < starts; b++) {
-            if (!jump_ok(q->from_clip == q->to_clip, gf, b, nf)) continue;
-            cub_q16 d = cub_fuzzy_distance(now, features(t, q->to_clip, b), &t->desc.fuzzy);
-            if (found && d >= out->d) continue;
-            *out = (hit){k, b, at, 0, d};
-            found = 1;
-        }
-    }
-    return found;
+    int nt = frames_of(t, q->to_clip);
+    start_scan s = {g0, window, q->start_frames > 0 && q->start_frames < nt ? q->start_frames : nt,
+                    1};
+    return scan_starts(t, q, &s, out);
 }
 
 static cub_err plan_within(const cub_bridge_table *t, const cub_bridge_query *q,
