@@ -72,7 +72,7 @@ if [ "$fuzz" = 1 ]; then
     stage "fuzz: libFuzzer on the parsers"
     cmake --preset fuzz
     cmake --build --preset fuzz -j "$jobs"
-    ctest --preset fuzz
+    ctest --preset fuzz -j "$jobs"
 fi
 # The allocation counter the soak reads cannot load into a sanitizer build.
 stage "soak: four songs on the Release box (scripts/soak.sh 0.034 --period 30)"

@@ -17,7 +17,7 @@ frame() { { printf 'P5 640 480 65535\n'; head -c 614400 /dev/zero; } > "$1"; }
 # run NAME DUMP: 30 s at most, no crash; exit code in $rc.
 run() {
     FAKENECT_PATH="$2" LD_LIBRARY_PATH="$fakenect_libs" \
-        timeout $((30 * slow)) $emu "$bin" --headless --clock virtual --seconds 1 --replay "$2" \
+        timeout $((30 * slow)) $emu "$bin" --headless "${view[@]}" --clock virtual --seconds 1 --replay "$2" \
         --log "$out/$1.log" >"$out/$1.out" 2>"$out/$1.err"
     rc=$?
     [ "$rc" != 124 ] || fail "$1: hung"

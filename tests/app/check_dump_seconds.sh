@@ -30,7 +30,7 @@ limit=$((60 * slow))
 for clock in virtual real; do
     start=$(date +%s)
     FAKENECT_PATH="$d" LD_LIBRARY_PATH="$fakenect_libs" \
-        timeout "$limit" $emu "$bin" --headless --clock "$clock" --seconds 2.5 \
+        timeout "$limit" $emu "$bin" --headless "${view[@]}" --clock "$clock" --seconds 2.5 \
         --replay "$d" --log "$out/$clock.log" >"$out/$clock.out" 2>"$out/$clock.err"
     rc=$? took=$(($(date +%s) - start))
     [ "$rc" != 124 ] || fail "$clock: hung past --seconds 2.5 (killed after $limit s)"

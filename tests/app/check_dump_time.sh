@@ -31,7 +31,7 @@ make_dump() {
 for kind in back jump; do
     make_dump "$out/$kind" "$kind"
     FAKENECT_PATH="$out/$kind" LD_LIBRARY_PATH="$fakenect_libs" \
-        timeout $((60 * slow)) $emu "$bin" --headless --clock virtual --seconds 2.5 \
+        timeout $((60 * slow)) $emu "$bin" --headless "${view[@]}" --clock virtual --seconds 2.5 \
         --replay "$out/$kind" \
         --log "$out/$kind.log" >"$out/$kind.out" 2>"$out/$kind.err"
     rc=$?

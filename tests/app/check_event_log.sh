@@ -6,15 +6,13 @@
 #   check_event_log.sh EMULATOR|"" BUILD_DIR OUT_DIR
 set -uo pipefail
 emu=$1 build=$2 out=$3
-bin="$build/app/cubdance/cubdance"
-export SDL_AUDIODRIVER=dummy EGL_PLATFORM=surfaceless LIBGL_ALWAYS_SOFTWARE=1
-rm -rf "$out" && mkdir -p "$out"
-fail() { echo "FAIL: $*"; exit 1; }
+# shellcheck source=box_check_common.sh
+. "$(dirname "$0")/box_check_common.sh"
 crashed() { [ "$1" -ge 128 ] || grep -qE "AddressSanitizer|LeakSanitizer|runtime error" "$2"; }
 
 # /dev/full: every write fails with ENOSPC, as on a full SD card.
 [ -w /dev/full ] || { echo "SKIP: no /dev/full"; exit 77; }
-ASAN_OPTIONS=detect_leaks=0 timeout 60 $emu "$bin" --headless --depth off --clock virtual \
+ASAN_OPTIONS=detect_leaks=0 timeout 60 $emu "$bin" --headless "${view[@]}" --depth off --clock virtual \
     --seconds 0.5 --log /dev/full >"$out/full.out" 2>"$out/full.err"
 rc=$?
 cat "$out/full.out" "$out/full.err"
@@ -28,7 +26,7 @@ grep -qE "^cubdance: the event log /dev/full is incomplete: [0-9]+ lines? lost" 
 echo "ok: --log /dev/full -> exit $rc"
 
 # A good log still ends with exit 0 and its line.
-ASAN_OPTIONS=detect_leaks=0 timeout 60 $emu "$bin" --headless --depth off --clock virtual \
+ASAN_OPTIONS=detect_leaks=0 timeout 60 $emu "$bin" --headless "${view[@]}" --depth off --clock virtual \
     --seconds 0.5 --log "$out/good.log" >"$out/good.out" 2>"$out/good.err"
 rc=$?
 [ "$rc" = 0 ] || { cat "$out/good.err"; fail "a writable log exited $rc"; }
@@ -37,7 +35,7 @@ grep -q "event log written to $out/good.log" "$out/good.out" || fail "no 'event 
 echo "ok: a writable log -> exit 0"
 
 # An unwritable path: a clear message, exit 1, and no leak.
-ASAN_OPTIONS=detect_leaks=1 timeout 60 $emu "$bin" --headless --depth off --clock virtual \
+ASAN_OPTIONS=detect_leaks=1 timeout 60 $emu "$bin" --headless "${view[@]}" --depth off --clock virtual \
     --seconds 0.5 --log "$out/no/such/dir/log.txt" >"$out/nodir.out" 2>"$out/nodir.err"
 rc=$?
 cat "$out/nodir.err"

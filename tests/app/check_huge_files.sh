@@ -39,7 +39,7 @@ ran() {
 }
 box() {
     local name=$1 pattern=$2; shift 2
-    ran "$name" "$pattern" $emu "$bin" --headless --depth off --clock virtual --seconds 0.5 \
+    ran "$name" "$pattern" $emu "$bin" --headless "${view[@]}" --depth off --clock virtual --seconds 0.5 \
         --audio-driver dummy --log "$out/$name.log" "$@"
 }
 huge() { truncate -s 3G "$out/$1"; }
@@ -115,7 +115,7 @@ for k in $(seq 0 59); do
     echo "$n" >> "$f/INDEX.txt"
 done
 FAKENECT_PATH="$f" LD_LIBRARY_PATH="$fakenect_libs" \
-    timeout $((60 * slow)) /usr/bin/time -o "$out/replay.rss" -f %M $emu "$bin" --headless \
+    timeout $((60 * slow)) /usr/bin/time -o "$out/replay.rss" -f %M $emu "$bin" --headless "${view[@]}" \
     --clock virtual --seconds 2 --replay "$f" --audio-driver dummy --log "$out/replay.log" \
     >"$out/replay.out" 2>"$out/replay.err"
 rc=$? rss=$(tail -n 1 "$out/replay.rss")

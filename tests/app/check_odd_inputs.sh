@@ -14,7 +14,7 @@ emu=$1 build=$2 src=$3 out=$4
 # PATTERN on stderr or stdout.
 run() {
     local name=$1 want=$2 pattern=$3; shift 3
-    timeout $((20 * slow)) $emu "$bin" --headless --depth off --clock virtual --seconds 0.5 \
+    timeout $((20 * slow)) $emu "$bin" --headless "${view[@]}" --depth off --clock virtual --seconds 0.5 \
         --audio-driver dummy --log "$out/$name.log" "$@" >"$out/$name.out" 2>"$out/$name.err"
     local rc=$?
     [ "$rc" != 124 ] || fail "$name: hung (killed after $((20 * slow)) s)"

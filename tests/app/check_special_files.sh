@@ -18,7 +18,7 @@ refused() {
         [ "$prev" = --replay ] && depth=() envs=(FAKENECT_PATH="$a" LD_LIBRARY_PATH="$fakenect_libs")
         prev=$a
     done
-    timeout $((20 * slow)) env "${envs[@]}" $emu "$bin" --headless "${depth[@]}" \
+    timeout $((20 * slow)) env "${envs[@]}" $emu "$bin" --headless "${view[@]}" "${depth[@]}" \
         --clock virtual --seconds 0.5 \
         --audio-driver dummy --log "$out/$name.log" "$@" >"$out/$name.out" 2>"$out/$name.err"
     local rc=$?
