@@ -13,7 +13,12 @@
  *                     jump cannot hide in the frames after the switch. Ours
  *                     carries the old clip's velocity over the cut and lets
  *                     it fade; that counts here as added, though it is the
- *                     old clip's own motion going on. */
+ *                     old clip's own motion going on.
+ * --strict plans by the seed's rule (both ends of every switch a bridge
+ * frame); --correct asks only for the correcting clips, as the box does
+ * when a move went wrong (entry anywhere in their front half, and within
+ * the reaction at the closest frame when nothing nearer comes). Each run
+ * also counts the switches whose ends are not both bridge frames. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -23,6 +28,7 @@
 #include "commands.h"
 #include "cub/bridge.h"
 #include "cub/coachlib.h"
+#include "cub/director.h"
 
 #define TICK_US 33333
 #define MAX_TICKS 600
@@ -170,6 +176,32 @@ static run play(const cub_coachlib *cl, cub_bridge_player *p, int a, int m, int 
     return r;
 }
 
+/* Is f one of clip c's bridge frames? */
+static int bridge_frame(const cub_bridge_table *t, int c, int f)
+{
+    const cub_bridge_clip *bc = &t->clips[c];
+    for (int i = 0; i < bc->bridge_count; i++)
+        if (t->bridges[bc->first_bridge + i] == f) return 1;
+    return 0;
+}
+
+/* The clips a run asks for: every clip, or (--correct) the two correcting ones. */
+static int wanted(const cub_coachlib *cl, int correct, int b)
+{
+    if (!correct) return 1;
+    const char *name = cl->lib.clips[b].name;
+    return !strcmp(name, "head_shake") || !strcmp(name, "watch_me");
+}
+
+/* How the box enters a correcting clip (firmware/director): anywhere in
+ * its front half, and within the reaction at the closest frame. */
+static void set_entry(cub_bridge_player *p, const cub_coachlib *cl, int correct, int b)
+{
+    if (!correct) return;
+    cub_bridge_player_set_start_frames(p, cl->lib.clips[b].clip.frame_count / 2);
+    cub_bridge_player_set_reach_frames(p, CUB_DIRECTOR_REACT_FRAMES);
+}
+
 typedef struct mode {
     const char *name;
     cub_bridge_smooth smooth;
@@ -180,13 +212,15 @@ typedef struct mode {
 static int usage(FILE *f, int code)
 {
     fprintf(f, "usage: cubtool bench-bridge [--assets DIR] [--step N] [--blend N] [--window N] "
-               "[--wait MM]\n"
+               "[--wait MM] [--strict] [--correct]\n"
                "  Measure clip switching over every ordered clip pair of the library,\n"
                "  switching at every N'th frame (default 5) of the playing clip.\n"
                "  --blend N   shortest smoothing in frames (default %d)\n"
                "  --window N  first look-ahead window in frames (default %d)\n"
                "  --wait MM   what a frame of waiting costs against body distance, mm\n"
-               "              (default -1: the soonest frame within the threshold)\n",
+               "              (default -1: the soonest frame within the threshold)\n"
+               "  --strict    the seed's rule: both ends of every switch are bridge frames\n"
+               "  --correct   ask only for the correcting clips, entered as the box does\n",
             CUB_BRIDGE_BLEND_FRAMES, CUB_BRIDGE_WINDOW_FRAMES);
     return code;
 }
@@ -194,9 +228,17 @@ static int usage(FILE *f, int code)
 int cub_cmd_bench_bridge(int argc, char **argv)
 {
     const char *assets = CUB_ASSETS_DIR;
-    int step = 5, blend = 0, window = 0, wait_mm = -1;
+    int step = 5, blend = 0, window = 0, wait_mm = -1, strict = 0, correct = 0;
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--help")) return usage(stdout, 0);
+        if (!strcmp(argv[i], "--strict")) {
+            strict = 1;
+            continue;
+        }
+        if (!strcmp(argv[i], "--correct")) {
+            correct = 1;
+            continue;
+        }
         if (i + 1 >= argc) return usage(stderr, 2);
         if (!strcmp(argv[i], "--assets"))
             assets = argv[++i];
@@ -235,7 +277,8 @@ int cub_cmd_bench_bridge(int argc, char **argv)
     for (int k = 0; k < 3; k++) {
         cub_bridge_player_desc pd = {.table = &cl.table, .smooth = modes[k].smooth,
                                      .blend_frames = blend, .window_frames = window,
-                                     .wait_cost_mm = wait_mm < 0 ? 0 : CUB_Q16_INT(wait_mm)};
+                                     .wait_cost_mm = wait_mm < 0 ? 0 : CUB_Q16_INT(wait_mm),
+                                     .strict = strict};
         size_t ws = cub_bridge_player_mem_size(&pd);
         work[k] = malloc(ws);
         if (!work[k] || cub_bridge_player_init(&players[k], &pd, work[k], ws)) {
@@ -244,16 +287,18 @@ int cub_cmd_bench_bridge(int argc, char **argv)
         }
     }
     int blend_frames = players[0].desc.blend_frames;
-    long switches = 0, tweens = 0, unreachable = 0, steps = 0;
+    long switches = 0, tweens = 0, unreachable = 0, steps = 0, loose_ends = 0;
     run worst = {0};
     int worst_m = 0, worst_b = 0;
     struct timespec t0, t1;
     clock_gettime(CLOCK_MONOTONIC, &t0);
     for (int a = 0; a < nc; a++)
         for (int b = 0; b < nc; b++) {
+            if (!wanted(&cl, correct, b)) continue;
             int n = cl.lib.clips[a].clip.frame_count;
             for (int m = 0; m < n; m += step) {
                 for (int k = 0; k < 3; k++) {
+                    set_entry(&players[k], &cl, correct, b);
                     run r = play(&cl, &players[k], a, m, b, blend_frames);
                     if (!r.ok) {
                         unreachable += k == 0;
@@ -269,6 +314,8 @@ int cub_cmd_bench_bridge(int argc, char **argv)
                     modes[k].over_p99 += r.jump_cm > own;
                     if (k) continue;
                     switches++;
+                    loose_ends += !bridge_frame(&cl.table, r.first.from_clip, r.first.from_frame) ||
+                                  !bridge_frame(&cl.table, r.first.to_clip, r.first.to_frame);
                     tweens += r.tween;
                     steps += r.steps;
                     push(&ours, r.latency_ms);
@@ -279,10 +326,14 @@ int cub_cmd_bench_bridge(int argc, char **argv)
     clock_gettime(CLOCK_MONOTONIC, &t1);
     double secs = (double)(t1.tv_sec - t0.tv_sec) + (double)(t1.tv_nsec - t0.tv_nsec) * 1e-9;
     printf("bench-bridge: clips=%d pairs=%d switches=%ld direct=%ld tween=%ld (mean steps %.2f) "
-           "unreachable=%ld window=%d min_blend=%d frames, step=%d\n",
+           "unreachable=%ld window=%d min_blend=%d frames, step=%d%s%s\n",
            nc, nc * nc, switches, switches - tweens, tweens,
            switches ? (double)steps / (double)switches : 0.0, unreachable,
-           players[0].desc.window_frames, blend_frames, step);
+           players[0].desc.window_frames, blend_frames, step, strict ? ", strict" : "",
+           correct ? ", corrections only" : "");
+    printf("bench-bridge: first switches with an end that is not a bridge frame: %ld of %ld "
+           "(%.1f%%)\n",
+           loose_ends, switches, switches ? 100.0 * (double)loose_ends / (double)switches : 0.0);
     double om = pct(&ours, 0.5), o95 = pct(&ours, 0.95), omax = ours.n ? ours.v[ours.n - 1] : 0;
     printf("bench-bridge: reaction ours median=%.0f ms p95=%.0f ms max=%.0f ms | "
            "wait-for-end median=%.0f ms p95=%.0f ms  (targets: median<=100 p95<=200)\n",

@@ -120,6 +120,18 @@ static int jump_ok(int same, int from, int to, int n)
     return !same || 4 * j >= n;
 }
 
+/* May a switch leave the current clip at its frame f, and enter clip c at
+ * frame b? Always, unless the query is strict (see cub_bridge_query). */
+static int leave_ok(const cub_bridge_table *t, const cub_bridge_query *q, int f)
+{
+    return !q->strict || cub_bridge_is_bridge(t, q->from_clip, f);
+}
+
+static int enter_ok(const cub_bridge_table *t, const cub_bridge_query *q, int c, int b)
+{
+    return !q->strict || cub_bridge_is_bridge(t, c, b);
+}
+
 typedef struct hit {
     int k, frame;
     int64_t at, cost;
@@ -139,7 +151,7 @@ static int direct_search(const cub_bridge_table *t, const cub_bridge_query *q, i
         int64_t at;
         int gf = upcoming(q, nf, g0, k, &at);
         if (gf < 0) break;
-        if (at_pass_start(q, nf, g0, k)) continue;
+        if (at_pass_start(q, nf, g0, k) || !leave_ok(t, q, gf)) continue;
         const cub_fuzzy_frame *now = features(t, q->from_clip, gf);
         for (int i = 0; i < to->bridge_count; i++) {
             int b = bridges[i];
@@ -174,10 +186,11 @@ static int scan_starts(const cub_bridge_table *t, const cub_bridge_query *q, con
         int64_t at;
         int gf = upcoming(q, nf, s->g0, k, &at);
         if (gf < 0) break;
-        if (at_pass_start(q, nf, s->g0, k)) continue;
+        if (at_pass_start(q, nf, s->g0, k) || !leave_ok(t, q, gf)) continue;
         const cub_fuzzy_frame *now = features(t, q->from_clip, gf);
         for (int b = 0; b < s->starts; b++) {
-            if (!jump_ok(q->from_clip == q->to_clip, gf, b, nf)) continue;
+            if (!jump_ok(q->from_clip == q->to_clip, gf, b, nf) || !enter_ok(t, q, q->to_clip, b))
+                continue;
             cub_q16 d = cub_fuzzy_distance(now, features(t, q->to_clip, b), &t->desc.fuzzy);
             if (s->nearest ? found && d >= out->d : d >= t->desc.fuzzy.threshold) continue;
             *out = (hit){k, b, at, 0, d};
@@ -218,7 +231,7 @@ static void seed_nodes(const cub_bridge_table *t, const cub_bridge_query *q, int
         int64_t at;
         int gf = upcoming(q, nf, g0, k, &at);
         if (gf < 0) break;
-        if (at_pass_start(q, nf, g0, k)) continue;
+        if (at_pass_start(q, nf, g0, k) || !leave_ok(t, q, gf)) continue;
         const cub_fuzzy_frame *now = features(t, q->from_clip, gf);
         for (int x = 0; x < t->desc.clip_count; x++) {
             if (x == q->from_clip || x == q->to_clip) continue;
@@ -307,7 +320,9 @@ static int start_tween(const cub_bridge_table *t, const cub_bridge_query *q, int
         for (int a = entry + MIN_DWELL_FRAMES; a < nx; a++) {
             int total = nodes[u].dist + (a - entry);
             if (total >= best_total) break;
+            if (q->strict && !cub_bridge_is_bridge(t, x, a)) continue;
             for (int s = 0; s < starts; s++) {
+                if (!enter_ok(t, q, q->to_clip, s)) continue;
                 cub_q16 d = cub_fuzzy_distance(features(t, x, a), features(t, q->to_clip, s),
                                                &t->desc.fuzzy);
                 if (d >= t->desc.fuzzy.threshold) continue;
@@ -377,7 +392,8 @@ static int query_ok(const cub_bridge_table *t, const cub_bridge_query *q)
     int n = t->desc.clip_count;
     return q->from_clip >= 0 && q->from_clip < n && q->to_clip >= 0 && q->to_clip < n &&
            q->pos_q16 >= 0 && q->pos_q16 < ((int64_t)1 << 46) && q->window_frames >= 0 &&
-           q->wait_cost_mm >= 0 && q->start_frames >= 0 && q->reach_frames >= 0;
+           q->wait_cost_mm >= 0 && q->start_frames >= 0 && q->reach_frames >= 0 &&
+           (q->strict == 0 || q->strict == 1);
 }
 
 /* The first frame still to come; a clip that does not loop holds its

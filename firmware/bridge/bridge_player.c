@@ -89,7 +89,8 @@ cub_err cub_bridge_player_request(cub_bridge_player *p, int clip, cub_q16 speed_
     if (!p || p->clip < 0 || !speed_ok(speed_q16)) return CUB_ERR_ARG;
     if (clip < 0 || clip >= p->desc.table->desc.clip_count) return CUB_ERR_ARG;
     cub_bridge_query q = {p->clip, p->pos_q16, p->loop, clip, p->desc.window_frames,
-                          p->desc.wait_cost_mm, p->desc.start_frames, p->desc.reach_frames};
+                          p->desc.wait_cost_mm, p->desc.start_frames, p->desc.reach_frames,
+                          p->desc.strict};
     cub_bridge_plan plan;
     cub_err e = cub_bridge_plan_switch(p->desc.table, &q, &plan, p->work, p->work_size);
     if (e) return e;
@@ -114,6 +115,7 @@ cub_err cub_bridge_player_preview(cub_bridge_player *p, const cub_bridge_query *
     }
     if (!here.window_frames) here.window_frames = p->desc.window_frames;
     if (!here.wait_cost_mm) here.wait_cost_mm = p->desc.wait_cost_mm;
+    here.strict |= p->desc.strict;
     return cub_bridge_plan_switch(p->desc.table, &here, out, p->work, p->work_size);
 }
 

@@ -172,8 +172,7 @@ int cub_bridge_lower_bound(const cub_bridge_table *t, int c, int f)
     return lo;
 }
 
-/* Is f a bridge frame of clip c? */
-static int is_bridge(const cub_bridge_table *t, int c, int f)
+int cub_bridge_is_bridge(const cub_bridge_table *t, int c, int f)
 {
     int i = cub_bridge_lower_bound(t, c, f);
     return i < t->clips[c].bridge_count && t->bridges[t->clips[c].first_bridge + i] == f;
@@ -189,7 +188,7 @@ cub_err cub_bridge_table_set_links(cub_bridge_table *t, int from, int to,
     int to_frames = t->clips[to].clip.frame_count;
     for (int i = 0; i < count; i++) {
         const cub_bridge_link *l = &links[i];
-        if (!is_bridge(t, from, l->a) || !is_bridge(t, to, l->b)) return CUB_ERR_ARG;
+        if (!cub_bridge_is_bridge(t, from, l->a) || !cub_bridge_is_bridge(t, to, l->b)) return CUB_ERR_ARG;
         if (l->d < 0 || l->d > CUB_Q16_ONE || l->back != (2 * l->b >= to_frames))
             return CUB_ERR_ARG;
     }

@@ -13,7 +13,6 @@
 #include "director_internal.h"
 
 #define DEFAULT_START_FRAMES 4
-#define DEFAULT_REACT_FRAMES 5
 
 static void push_out(cub_director *d, int32_t what, int32_t hint)
 {
@@ -105,7 +104,7 @@ cub_err cub_director_init(cub_director *d, const cub_director_desc *desc, void *
     memset(d, 0, sizeof *d);
     d->desc = *desc;
     if (!d->desc.start_frames) d->desc.start_frames = DEFAULT_START_FRAMES;
-    if (!d->desc.react_frames) d->desc.react_frames = DEFAULT_REACT_FRAMES;
+    if (!d->desc.react_frames) d->desc.react_frames = CUB_DIRECTOR_REACT_FRAMES;
     cub_bridge_player_desc pd = {.table = desc->table};
     cub_err e = cub_bridge_player_init(&d->player, &pd, mem, mem_size);
     if (!e) e = start_coach(d, desc, now_us);

@@ -3,7 +3,10 @@
  * every ordered clip pair is plannable, directly or through a tween, from
  * every 5th frame (every 30th under CUB_QUICK); and a sample of switches
  * played through the player reacts within the targets without a jump
- * larger than the clips' own motion. Figures go to stdout. */
+ * larger than the clips' own motion; and, by the seed's coverage rule,
+ * every clip reaches both correcting clips from each of its bridge frames
+ * with both ends of every switch a bridge frame (the strict planner).
+ * Figures go to stdout. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -136,6 +139,60 @@ static void test_every_pair_is_plannable(void **state)
     assert_int_equal(direct + tween, plans);
 }
 
+static int is_bridge_frame(const cub_bridge_table *t, int c, int f)
+{
+    const cub_bridge_clip *bc = &t->clips[c];
+    for (int i = 0; i < bc->bridge_count; i++)
+        if (t->bridges[bc->first_bridge + i] == f) return 1;
+    return 0;
+}
+
+/* SEEDS.md § 000: every move reaches each correcting clip through bridge
+ * frames. From each bridge frame of every clip, the strict planner finds
+ * a way into head_shake and watch_me whose every switch leaves and enters
+ * at bridge frames. */
+static void test_every_clip_reaches_the_corrections_by_bridge_frames(void **state)
+{
+    cub_coachlib *cl = *state;
+    if (!cl) skip();
+    const cub_bridge_table *t = &cl->table;
+    int n = t->desc.clip_count, targets[2] = {-1, -1};
+    for (int c = 0; c < n; c++) {
+        if (!strcmp(cl->lib.clips[c].name, "head_shake")) targets[0] = c;
+        if (!strcmp(cl->lib.clips[c].name, "watch_me")) targets[1] = c;
+    }
+    assert_true(targets[0] >= 0 && targets[1] >= 0);
+    long plans = 0, tweens = 0, frames = 0;
+    for (int a = 0; a < n; a++)
+        for (int i = 0; i < t->clips[a].bridge_count; i++) {
+            int m = t->bridges[t->clips[a].first_bridge + i];
+            for (int k = 0; k < 2; k++) {
+                cub_bridge_query q = {.from_clip = a, .pos_q16 = (int64_t)m << 16,
+                                      .from_loops = 1, .to_clip = targets[k], .strict = 1};
+                cub_bridge_plan p;
+                cub_err e = cub_bridge_plan_switch(t, &q, &p, g_work, g_work_size);
+                if (e)
+                    fail_msg("strict: no way from %s@%d to %s: %s", cl->lib.clips[a].name, m,
+                             cl->lib.clips[targets[k]].name, cub_err_str(e));
+                assert_int_equal(p.step[p.step_count - 1].to_clip, targets[k]);
+                for (int s = 0; s < p.step_count; s++) {
+                    const cub_bridge_step *st = &p.step[s];
+                    if (!is_bridge_frame(t, st->from_clip, st->from_frame) ||
+                        !is_bridge_frame(t, st->to_clip, st->to_frame))
+                        fail_msg("strict: %s@%d -> %s@%d is not bridge frame to bridge frame",
+                                 cl->lib.clips[st->from_clip].name, st->from_frame,
+                                 cl->lib.clips[st->to_clip].name, st->to_frame);
+                }
+                plans++;
+                tweens += p.step_count > 1;
+                frames += p.total_frames;
+            }
+        }
+    printf("bridge: strict coverage: %ld plans from every bridge frame into the 2 correcting "
+           "clips, %ld through other clips, mean %.1f frames to arrive\n",
+           plans, tweens, plans ? (double)frames / (double)plans : 0.0);
+}
+
 /* Largest joint displacement between two world poses, cm. */
 static double move_cm(const cub_vec3 *a, const cub_vec3 *b, int n)
 {
@@ -243,6 +300,7 @@ int main(void)
         cmocka_unit_test(test_loader_names_the_problem),
         cmocka_unit_test(test_table_holds_the_library),
         cmocka_unit_test(test_every_pair_is_plannable),
+        cmocka_unit_test(test_every_clip_reaches_the_corrections_by_bridge_frames),
         cmocka_unit_test(test_sample_switches_react_fast_without_a_jump),
     };
     return cmocka_run_group_tests_name("bridge_library", tests, setup, teardown);

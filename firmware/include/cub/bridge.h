@@ -190,6 +190,11 @@ typedef struct cub_bridge_query {
                           (or all) from one of the next reach_frames frames:
                           a reaction that must not wait (the blend covers the
                           distance). 0 = off */
+    int strict;        /* 1: the seed's rule, both ends of every switch are
+                          bridge frames (leave the current clip only at one
+                          of its own, enter only at one of the wanted
+                          clip's, start and reach entries included). 0:
+                          leave at any upcoming frame (the default) */
 } cub_bridge_query;
 
 /* Scratch memory the planner needs for this table (the tween search). */
@@ -219,6 +224,7 @@ typedef struct cub_bridge_player_desc {
     cub_q16 wait_cost_mm; /* the planner's, see cub_bridge_query; 0 = default */
     int start_frames;     /* the planner's, see cub_bridge_query; 0 = off */
     int reach_frames;     /* the planner's, see cub_bridge_query; 0 = off */
+    int strict;           /* the planner's, see cub_bridge_query; 0 = off */
 } cub_bridge_player_desc;
 
 typedef enum cub_bridge_event_type {

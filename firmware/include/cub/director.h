@@ -63,6 +63,7 @@
 #define CUB_DIRECTOR_MAX_MOVES 64
 #define CUB_DIRECTOR_MAX_OUT CUB_COACH_MAX_ACTIONS
 #define CUB_DIRECTOR_MAX_PLAYER_EVENTS 16 /* per advance; more are dropped */
+#define CUB_DIRECTOR_REACT_FRAMES 5 /* default react_frames: a correction begins within 167 ms */
 
 /* A move's key points for the judge. */
 typedef struct cub_director_keys {
