@@ -133,10 +133,10 @@ static cub_err read_effectors(reader *r, const cub_skeleton *skel, int *eff, int
     return CUB_OK;
 }
 
-static cub_err check_size(const reader *r, const header *h, cub_codec_problem *why)
+static cub_err check_size(const reader *r, const header *h, int animated, cub_codec_problem *why)
 {
     size_t need = r->pos + (size_t)h->effectors +
-                  (size_t)codec_kept_count(h->frames) * codec_frame_bytes(h->joints, h->has_trans) +
+                  (size_t)codec_kept_count(h->frames) * codec_frame_bytes(animated, h->has_trans) +
                   codec_flag_bytes(h->frames, h->effectors) + CODEC_CRC_BYTES;
     if (need != r->len) return refuse(why, "stream length does not match its frame count", r->pos);
     return CUB_OK;
@@ -149,7 +149,7 @@ static cub_err read_skeleton(reader *r, const header *h, cub_skeleton *skel, cub
         cub_err e = read_joint(r, skel, j, why);
         if (e) return e;
     }
-    return check_size(r, h, why);
+    return check_size(r, h, codec_animated(skel), why);
 }
 
 cub_err cub_codec_peek(const void *data, size_t len, cub_codec_info *info, cub_codec_problem *why)
@@ -158,12 +158,15 @@ cub_err cub_codec_peek(const void *data, size_t len, cub_codec_info *info, cub_c
     reader r = {data, len, 0};
     header h;
     cub_err e = read_header(&r, &h, why);
+    int animated = 0;
     for (int j = 0; j < h.joints && !e; j++) { /* names are checked by decode */
         unsigned name_len = rd_u8(&r);
-        r.pos += name_len + 2u + 3u * CODEC_SPLIT_BYTES;
+        r.pos += name_len + 1u;
+        animated += rd_u8(&r) == 0;
+        r.pos += 3u * CODEC_SPLIT_BYTES;
     }
     if (!e && r.pos > len) e = refuse(why, "stream ends inside the joints", len);
-    if (!e) e = check_size(&r, &h, why);
+    if (!e) e = check_size(&r, &h, animated, why);
     if (e) return e;
     info->joint_count = h.joints;
     info->frame_count = h.frames;
@@ -181,10 +184,11 @@ static void read_frames(reader *r, cub_clip *clip)
         if (!cub_codec_is_kept(f, n)) continue;
         clip->root_mm[f] = rd_vec3(r);
         for (int j = 0; j < joints; j++)
-            clip->rot[(size_t)f * joints + j] = rd_quat(r);
+            if (!clip->skel->joints[j].is_end_site) clip->rot[(size_t)f * joints + j] = rd_quat(r);
         if (clip->trans_mm)
             for (int j = 0; j < joints; j++)
-                clip->trans_mm[(size_t)f * joints + j] = rd_vec3(r);
+                if (!clip->skel->joints[j].is_end_site)
+                    clip->trans_mm[(size_t)f * joints + j] = rd_vec3(r);
     }
 }
 

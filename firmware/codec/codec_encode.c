@@ -64,7 +64,7 @@ size_t cub_codec_encoded_max(const cub_clip *clip, int effector_count)
         n += 1 + strlen(s->joints[j].name) + 2 + 3 * CODEC_SPLIT_BYTES;
     n += (size_t)effector_count;
     n += (size_t)codec_kept_count(clip->frame_count) *
-         codec_frame_bytes(s->joint_count, clip->trans_mm != NULL);
+         codec_frame_bytes(codec_animated(s), clip->trans_mm != NULL);
     return n + codec_flag_bytes(clip->frame_count, effector_count) + CODEC_CRC_BYTES;
 }
 
@@ -116,10 +116,10 @@ static void write_stream(const cub_codec_enc *in, writer *w, size_t total)
         if (!cub_codec_is_kept(f, n)) continue;
         wr_vec3(w, c->root_mm[f]);
         for (int j = 0; j < joints; j++)
-            wr_quat(w, c->rot[(size_t)f * joints + j]);
+            if (!s->joints[j].is_end_site) wr_quat(w, c->rot[(size_t)f * joints + j]);
         if (c->trans_mm)
             for (int j = 0; j < joints; j++)
-                wr_vec3(w, c->trans_mm[(size_t)f * joints + j]);
+                if (!s->joints[j].is_end_site) wr_vec3(w, c->trans_mm[(size_t)f * joints + j]);
     }
     size_t flags = codec_flag_bytes(n, in->effector_count);
     memset(w->p + w->pos, 0xFF, flags); /* IK everywhere until measured */

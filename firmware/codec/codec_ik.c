@@ -85,7 +85,9 @@ int cub_codec_pick_effectors(const cub_skeleton *skel, int *out, int max)
         const cub_joint *jt = &skel->joints[j];
         int p = jt->parent;
         if (p < 0 || skel->joints[p].parent < 0 || jt->is_end_site) continue;
-        if (ends_with_ci(jt->name, "foot") || ends_with_ci(jt->name, "hand")) out[count++] = j;
+        if (ends_with_ci(jt->name, "foot") || ends_with_ci(jt->name, "ankle") ||
+            ends_with_ci(jt->name, "hand"))
+            out[count++] = j;
     }
     return count;
 }

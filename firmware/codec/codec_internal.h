@@ -7,8 +7,9 @@
  *   joints   u8 name length, name, u8 parent + 1 (0: the root), u8 end site,
  *            offset x y z as split metres (i8 + u16 each)
  *   effectors  u8 joint index each
- *   kept frames, ascending: root x y z split, per joint a quaternion
- *            w x y z (u16 codes), [per joint a translation, split]
+ *   kept frames, ascending: root x y z split, per joint but end sites a
+ *            quaternion w x y z (u16 codes), [then per such joint a
+ *            translation, split]
  *   IK flags  one bit per 4-frame block and effector (bit block * E + e)
  *   u32 CRC-32 (IEEE) of everything before it */
 #ifndef CUB_CODEC_INTERNAL_H
@@ -32,8 +33,11 @@ uint32_t codec_crc32(const uint8_t *p, size_t len);
 int codec_kept_count(int n);
 int codec_block_count(int n);
 size_t codec_flag_bytes(int n, int effector_count);
-/* Bytes of one kept frame. */
-size_t codec_frame_bytes(int joint_count, int has_trans);
+/* Bytes of one kept frame: end sites (no channels in a BVH, identity
+ * always) store nothing, so they count out of animated. */
+size_t codec_frame_bytes(int animated, int has_trans);
+/* Joints that are not end sites. */
+int codec_animated(const cub_skeleton *skel);
 /* Bytes the decoder needs: the clip's frames plus the IK targets. */
 size_t codec_mem_size(int joint_count, int frame_count, int has_trans, int effector_count);
 

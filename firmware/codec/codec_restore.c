@@ -24,10 +24,18 @@ size_t codec_flag_bytes(int n, int effector_count)
     return ((size_t)codec_block_count(n) * (size_t)effector_count + 7) / 8;
 }
 
-size_t codec_frame_bytes(int joint_count, int has_trans)
+size_t codec_frame_bytes(int animated, int has_trans)
 {
     size_t per_joint = CODEC_QUAT_BYTES + (has_trans ? 3 * CODEC_SPLIT_BYTES : 0);
-    return 3 * CODEC_SPLIT_BYTES + (size_t)joint_count * per_joint;
+    return 3 * CODEC_SPLIT_BYTES + (size_t)animated * per_joint;
+}
+
+int codec_animated(const cub_skeleton *skel)
+{
+    int n = 0;
+    for (int j = 0; j < skel->joint_count; j++)
+        n += !skel->joints[j].is_end_site;
+    return n;
 }
 
 size_t codec_mem_size(int joint_count, int frame_count, int has_trans, int effector_count)

@@ -19,7 +19,7 @@
  *
  * Accuracy (tests/unit/test_codec.c, cubtool codec-figures): a quantised
  * quaternion component is within 2^-15 of the true one; kept frames decode
- * within 0.01 degree and 0.05 mm of the source.
+ * within 0.01 degree and 0.031 mm per coordinate of the source.
  */
 #ifndef CUB_CODEC_H
 #define CUB_CODEC_H
@@ -77,7 +77,8 @@ cub_err cub_codec_ccd(const cub_skeleton *skel, cub_pose *pose, int effector, cu
 
 /* Whether frame f of n is kept. */
 int cub_codec_is_kept(int f, int n);
-/* Up to max joints whose names end in "foot" or "hand" (any case) and have a
+/* Up to max joints whose names end in "foot", "ankle" or "hand" (any case), are
+ * not end sites and have a
  * grandparent, in skeleton order; returns how many. */
 int cub_codec_pick_effectors(const cub_skeleton *skel, int *out, int max);
 
