@@ -87,6 +87,9 @@ static cub_err read_header(reader *r, header *h, cub_codec_problem *why)
     if (h->frames < 1 || h->frames > CODEC_MAX_FRAMES)
         return refuse(why, "frame count outside 1..2^20", 12);
     if (h->frame_ns == 0) return refuse(why, "frame period is zero", 16);
+    /* End sites store nothing, so a short stream could ask for a huge clip. */
+    if ((int64_t)h->frames * h->joints > CODEC_MAX_JOINT_FRAMES)
+        return refuse(why, "more than 2^24 joint-frames", 12);
     if (h->length != r->len) return refuse(why, "stream length differs from the header's (truncated?)", 20);
     size_t body = r->len - CODEC_CRC_BYTES;
     reader crc = {r->p, r->len, body};

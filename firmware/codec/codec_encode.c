@@ -51,6 +51,7 @@ static int clip_ok(const cub_clip *clip)
 {
     return clip && clip->skel && clip->rot && clip->root_mm && clip->frame_count >= 1 &&
            clip->frame_count <= CODEC_MAX_FRAMES && clip->frame_ns > 0 &&
+           (int64_t)clip->frame_count * clip->skel->joint_count <= CODEC_MAX_JOINT_FRAMES &&
            clip->skel->joint_count >= 1 && clip->skel->joint_count <= CUB_MOTION_MAX_JOINTS &&
            !cub_motion_skeleton_validate(clip->skel);
 }

@@ -28,6 +28,7 @@
 #define CODEC_QUAT_BYTES 8
 #define CODEC_FLAG_TRANS 1u
 #define CODEC_MAX_FRAMES (1 << 20) /* 2.4 hours at 120 fps */
+#define CODEC_MAX_JOINT_FRAMES (1 << 24) /* a decoded clip within 256 MB */
 
 uint32_t codec_crc32(const uint8_t *p, size_t len);
 int codec_kept_count(int n);
