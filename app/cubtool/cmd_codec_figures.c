@@ -124,11 +124,18 @@ static double vertex_err_mm(cub_dv3 pa, cub_dq ra, cub_dv3 pb, cub_dq rb)
     return worst;
 }
 
+/* The largest rotation error of a clip and where, for --per-clip. */
+typedef struct worst {
+    double deg;
+    int frame, joint;
+} worst;
+
 typedef struct compare {
     const cub_clip *src, *dec;
     const world *ws, *wd;
     const int *eff;
     int ne;
+    worst *worst; /* NULL: not tracked */
 } compare;
 
 static void measure_slip(const compare *c, int f, row *r)
@@ -154,6 +161,8 @@ static void measure(const compare *c, row *r)
             if (c->src->skel->joints[j].is_end_site) continue; /* not a bone */
             double a = cub_dq_angle_between(cub_dq_from_fx(c->src->rot[i]), cub_dq_from_fx(c->dec->rot[i]));
             add(&r->rot, a * 180.0 / CUB_VEC_PI);
+            if (c->worst && a * 180.0 / CUB_VEC_PI > c->worst->deg)
+                *c->worst = (worst){a * 180.0 / CUB_VEC_PI, f, j};
             add(&r->vtx, vertex_err_mm(c->ws->pos[i], c->ws->rot[i], c->wd->pos[i], c->wd->rot[i]) / 10.0);
         }
         for (int k = 0; k < c->ne; k++) {
@@ -173,7 +182,7 @@ static double now_s(void)
 
 /* One decode configuration of one clip into its row. */
 static int run_config(const codec_blob *blob, const compare *base, int cfg, set_figs *s,
-                      const char *name)
+                      const char *name, worst *w)
 {
     cub_codec_opts o = {(cub_codec_method)(cfg / 2), cfg % 2 ? CUB_CODEC_IK_STREAM : CUB_CODEC_IK_OFF};
     codec_decoded d;
@@ -189,11 +198,26 @@ static int run_config(const codec_blob *blob, const compare *base, int cfg, set_
         compare c = *base;
         c.dec = &d.clip;
         c.wd = &wd;
+        c.worst = cfg == 1 ? w : NULL;
         measure(&c, &s->rows[cfg]);
     }
     world_free(&wd);
     codec_decoded_free(&d);
     return rc;
+}
+
+/* The source's largest one-frame rotation change of joint j next to frame f. */
+static double source_step_deg(const cub_clip *clip, int f, int j)
+{
+    int jn = clip->skel->joint_count;
+    double best = 0;
+    for (int g = f - 1; g <= f; g++) {
+        if (g < 0 || g + 1 >= clip->frame_count) continue;
+        double a = cub_dq_angle_between(cub_dq_from_fx(clip->rot[(size_t)g * jn + j]),
+                                        cub_dq_from_fx(clip->rot[(size_t)(g + 1) * jn + j]));
+        best = a > best ? a : best;
+    }
+    return best * 180.0 / CUB_VEC_PI;
 }
 
 static int run_clip(const cub_clip *clip, const char *name, set_figs *s, int per_clip)
@@ -204,9 +228,10 @@ static int run_clip(const cub_clip *clip, const char *name, set_figs *s, int per
     int ne = cub_codec_pick_effectors(clip->skel, eff, CUB_CODEC_MAX_EFFECTORS);
     world ws = {0};
     int rc = world_of(clip, &ws);
-    compare base = {clip, NULL, &ws, NULL, eff, ne};
+    compare base = {clip, NULL, &ws, NULL, eff, ne, NULL};
+    worst w = {0, 0, 0};
     for (int cfg = 0; cfg < CONFIGS && !rc; cfg++)
-        rc = run_config(&blob, &base, cfg, s, name);
+        rc = run_config(&blob, &base, cfg, s, name, &w);
     world_free(&ws);
     int jn = clip->skel->joint_count;
     s->clips++;
@@ -215,8 +240,11 @@ static int run_clip(const cub_clip *clip, const char *name, set_figs *s, int per
     s->raw += codec_raw_bytes(clip);
     s->seed_raw += (16.0 * (codec_raw_bytes(clip) / 40.0 / clip->frame_count) + 12.0) * clip->frame_count;
     if (per_clip)
-        fprintf(stderr, "codec-figures: %-28s %5d frames %3d joints %3d effectors %8zu bytes %6.2f : 1\n",
-                name, clip->frame_count, jn, ne, blob.len, codec_raw_bytes(clip) / (double)blob.len);
+        fprintf(stderr, "codec-figures: %-24s %5d frames %3d joints %d effectors %7zu bytes %6.2f : 1; "
+                "worst rotation %.1f deg (squad + IK), %s frame %d, where the source turns %.1f deg "
+                "in one frame\n",
+                name, clip->frame_count, jn, ne, blob.len, codec_raw_bytes(clip) / (double)blob.len,
+                w.deg, clip->skel->joints[w.joint].name, w.frame, source_step_deg(clip, w.frame, w.joint));
     free(blob.data);
     return rc;
 }
