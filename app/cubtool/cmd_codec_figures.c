@@ -23,21 +23,16 @@
 #include "codec_host.h"
 #include "commands.h"
 #include "cub/vec.h"
+#include "tool_util.h"
 
 #define VERTEX_MM 30.0
 #define PLANTED_MM_PER_S 100.0
 #define CONFIGS (2 * CUB_CODEC_METHOD_COUNT_)
 #define MAX_FILES 64
 
-typedef struct series {
-    float *v;
-    size_t n, cap;
-    double sum;
-} series;
-
 typedef struct row {
-    series rot, eff, vtx;
-    double slip_sum, src_slip_sum;
+    cub_tool_series rot, eff, vtx;
+    double rot_sum, eff_sum, slip_sum, src_slip_sum;
     size_t slip_n;
 } row;
 
@@ -50,34 +45,9 @@ typedef struct set_figs {
     row rows[CONFIGS];
 } set_figs;
 
-static void add(series *s, double x)
+static void add(cub_tool_series *s, double x)
 {
-    if (s->n == s->cap) {
-        s->cap = s->cap ? 2 * s->cap : 4096;
-        float *nv = realloc(s->v, s->cap * sizeof *nv);
-        if (!nv) {
-            fprintf(stderr, "codec-figures: out of memory\n");
-            exit(1);
-        }
-        s->v = nv;
-    }
-    s->v[s->n++] = (float)x;
-    s->sum += x;
-}
-
-static int cmp_float(const void *a, const void *b)
-{
-    float x = *(const float *)a, y = *(const float *)b;
-    return (x > y) - (x < y);
-}
-
-/* max (q = 1) or a nearest-rank percentile; sorts. */
-static double rank(series *s, double q)
-{
-    if (!s->n) return 0;
-    qsort(s->v, s->n, sizeof *s->v, cmp_float);
-    size_t i = (size_t)ceil(q * (double)s->n);
-    return s->v[i ? i - 1 : 0];
+    cub_tool_series_add(s, x, "codec-figures");
 }
 
 /* World positions and rotations of every frame, in doubles (mm). */
@@ -161,13 +131,16 @@ static void measure(const compare *c, row *r)
             if (c->src->skel->joints[j].is_end_site) continue; /* not a bone */
             double a = cub_dq_angle_between(cub_dq_from_fx(c->src->rot[i]), cub_dq_from_fx(c->dec->rot[i]));
             add(&r->rot, a * 180.0 / CUB_VEC_PI);
+            r->rot_sum += a * 180.0 / CUB_VEC_PI;
             if (c->worst && a * 180.0 / CUB_VEC_PI > c->worst->deg)
                 *c->worst = (worst){a * 180.0 / CUB_VEC_PI, f, j};
             add(&r->vtx, vertex_err_mm(c->ws->pos[i], c->ws->rot[i], c->wd->pos[i], c->wd->rot[i]) / 10.0);
         }
         for (int k = 0; k < c->ne; k++) {
             size_t i = (size_t)f * jn + c->eff[k];
-            add(&r->eff, cub_dv3_len(cub_dv3_sub(c->ws->pos[i], c->wd->pos[i])) / 10.0);
+            double d = cub_dv3_len(cub_dv3_sub(c->ws->pos[i], c->wd->pos[i])) / 10.0;
+            add(&r->eff, d);
+            r->eff_sum += d;
         }
         if (f + 1 < n) measure_slip(c, f, r);
     }
@@ -206,12 +179,13 @@ static int run_config(const codec_blob *blob, const compare *base, int cfg, set_
     return rc;
 }
 
-/* The source's largest one-frame rotation change of joint j next to frame f. */
+/* The source's largest one-frame rotation change of joint j within the
+ * span of kept frames frame f is restored from (f - 4 .. f + 4). */
 static double source_step_deg(const cub_clip *clip, int f, int j)
 {
     int jn = clip->skel->joint_count;
     double best = 0;
-    for (int g = f - 1; g <= f; g++) {
+    for (int g = f - 4; g < f + 4; g++) {
         if (g < 0 || g + 1 >= clip->frame_count) continue;
         double a = cub_dq_angle_between(cub_dq_from_fx(clip->rot[(size_t)g * jn + j]),
                                         cub_dq_from_fx(clip->rot[(size_t)(g + 1) * jn + j]));
@@ -241,8 +215,8 @@ static int run_clip(const cub_clip *clip, const char *name, set_figs *s, int per
     s->seed_raw += (16.0 * (codec_raw_bytes(clip) / 40.0 / clip->frame_count) + 12.0) * clip->frame_count;
     if (per_clip)
         fprintf(stderr, "codec-figures: %-24s %5d frames %3d joints %d effectors %7zu bytes %6.2f : 1; "
-                "worst rotation %.1f deg (squad + IK), %s frame %d, where the source turns %.1f deg "
-                "in one frame\n",
+                "worst rotation %.1f deg (squad + IK), %s frame %d, where the source turns up to "
+                "%.1f deg in one frame nearby\n",
                 name, clip->frame_count, jn, ne, blob.len, codec_raw_bytes(clip) / (double)blob.len,
                 w.deg, clip->skel->joints[w.joint].name, w.frame, source_step_deg(clip, w.frame, w.joint));
     free(blob.data);
@@ -321,12 +295,12 @@ static void print_set(set_figs *s)
            "slip cm/s (source)\n", "method", "ik");
     for (int c = 0; c < CONFIGS; c++) {
         row *r = &s->rows[c];
-        double rm = r->rot.n ? r->rot.sum / (double)r->rot.n : 0, em = r->eff.n ? r->eff.sum / (double)r->eff.n : 0;
+        double rm = r->rot.n ? r->rot_sum / (double)r->rot.n : 0, em = r->eff.n ? r->eff_sum / (double)r->eff.n : 0;
         double slip = r->slip_n ? r->slip_sum / (double)r->slip_n : 0;
         double src = r->slip_n ? r->src_slip_sum / (double)r->slip_n : 0;
         printf("  %-8s %-3s |     %6.3f %6.3f %6.2f |        %6.3f %6.2f |     %6.3f %6.2f | %6.2f (%5.2f)\n",
-               methods[c / 2], c % 2 ? "on" : "off", rm, rank(&r->rot, 0.99), rank(&r->rot, 1.0), em,
-               rank(&r->eff, 1.0), rank(&r->vtx, 0.99), rank(&r->vtx, 1.0), slip, src);
+               methods[c / 2], c % 2 ? "on" : "off", rm, cub_tool_series_pct(&r->rot, 0.99), cub_tool_series_pct(&r->rot, 1.0), em,
+               cub_tool_series_pct(&r->eff, 1.0), cub_tool_series_pct(&r->vtx, 0.99), cub_tool_series_pct(&r->vtx, 1.0), slip, src);
     }
 }
 

@@ -2,6 +2,7 @@
 
 #include <errno.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 
@@ -31,4 +32,32 @@ int cub_tool_make_dir(const char *dir, const char *who)
         return -1;
     }
     return 0;
+}
+
+void cub_tool_series_add(cub_tool_series *s, double x, const char *who)
+{
+    if (s->n == s->cap) {
+        s->cap = s->cap ? 2 * s->cap : 1024;
+        double *nv = realloc(s->v, s->cap * sizeof *nv);
+        if (!nv) {
+            fprintf(stderr, "%s: out of memory\n", who);
+            exit(1);
+        }
+        s->v = nv;
+    }
+    s->v[s->n++] = x;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+double cub_tool_series_pct(cub_tool_series *s, double q)
+{
+    if (!s->n) return 0;
+    qsort(s->v, s->n, sizeof *s->v, cmp_double);
+    size_t i = (size_t)(q * (double)s->n + 0.999999);
+    return s->v[i ? (i > s->n ? s->n - 1 : i - 1) : 0];
 }
