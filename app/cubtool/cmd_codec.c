@@ -6,6 +6,7 @@
 
 #include "codec_host.h"
 #include "commands.h"
+#include "tool_util.h"
 
 static void encode_usage(FILE *f)
 {
@@ -30,21 +31,10 @@ static int write_file(const char *path, const codec_blob *b)
 int cub_cmd_encode(int argc, char **argv)
 {
     const char *in = NULL, *out = NULL, *clip = NULL;
-    for (int i = 1; i < argc; i++) {
-        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
-            encode_usage(stdout);
-            return 0;
-        } else if (!strcmp(argv[i], "--out") && i + 1 < argc) {
-            out = argv[++i];
-        } else if (!strcmp(argv[i], "--clip") && i + 1 < argc) {
-            clip = argv[++i];
-        } else if (argv[i][0] != '-' && !in) {
-            in = argv[i];
-        } else {
-            fprintf(stderr, "cubtool encode: unexpected '%s'\n", argv[i]);
-            return 2;
-        }
-    }
+    const cub_tool_opt opts[] = {{"--out", &out, NULL}, {"--clip", &clip, NULL}};
+    cub_tool_parsed p = cub_tool_parse_opts(argc, argv, opts, 2, &in, 1);
+    if (p == CUB_TOOL_HELP) encode_usage(stdout);
+    if (p != CUB_TOOL_RUN) return p == CUB_TOOL_HELP ? 0 : 2;
     if (!in || !out) {
         encode_usage(stderr);
         return 2;
@@ -109,32 +99,19 @@ int cub_cmd_decode(int argc, char **argv)
 {
     static const char *const methods[] = {"squad", "slerp", "catmull"};
     static const char *const iks[] = {"stream", "off", "all"};
-    const char *in = NULL, *out = NULL;
-    cub_codec_opts o = {CUB_CODEC_SQUAD, CUB_CODEC_IK_STREAM};
-    for (int i = 1; i < argc; i++) {
-        int has = i + 1 < argc, v;
-        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
-            decode_usage(stdout);
-            return 0;
-        } else if (!strcmp(argv[i], "--out") && has) {
-            out = argv[++i];
-        } else if (!strcmp(argv[i], "--method") && has && (v = parse_choice(argv[i + 1], methods, 3)) >= 0) {
-            o.method = (cub_codec_method)v;
-            i++;
-        } else if (!strcmp(argv[i], "--ik") && has && (v = parse_choice(argv[i + 1], iks, 3)) >= 0) {
-            o.ik = (cub_codec_ik)v;
-            i++;
-        } else if (argv[i][0] != '-' && !in) {
-            in = argv[i];
-        } else {
-            fprintf(stderr, "cubtool decode: unexpected '%s'\n", argv[i]);
-            return 2;
-        }
-    }
-    if (!in || !out) {
+    const char *in = NULL, *out = NULL, *method = "squad", *ik = "stream";
+    const cub_tool_opt opts[] = {{"--out", &out, NULL}, {"--method", &method, NULL}, {"--ik", &ik, NULL}};
+    cub_tool_parsed p = cub_tool_parse_opts(argc, argv, opts, 3, &in, 1);
+    if (p == CUB_TOOL_HELP) decode_usage(stdout);
+    if (p != CUB_TOOL_RUN) return p == CUB_TOOL_HELP ? 0 : 2;
+    int m = parse_choice(method, methods, 3), k = parse_choice(ik, iks, 3);
+    if (m < 0) fprintf(stderr, "cubtool decode: --method is squad, slerp or catmull, not '%s'\n", method);
+    if (k < 0) fprintf(stderr, "cubtool decode: --ik is stream, off or all, not '%s'\n", ik);
+    if (!in || !out || m < 0 || k < 0) {
         decode_usage(stderr);
         return 2;
     }
+    cub_codec_opts o = {(cub_codec_method)m, (cub_codec_ik)k};
     codec_blob blob;
     codec_decoded d;
     if (codec_blob_read(in, &blob)) return 1;

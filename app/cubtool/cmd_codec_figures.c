@@ -333,21 +333,11 @@ int cub_cmd_codec_figures(int argc, char **argv)
     const char *data = env && *env ? env : CUB_DATA_DIR_DEFAULT;
     const char *library = CUB_ASSETS_DIR "/clips/bear.cubclips";
     int per_clip = 0;
-    for (int i = 1; i < argc; i++) {
-        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
-            usage(stdout);
-            return 0;
-        } else if (!strcmp(argv[i], "--data") && i + 1 < argc) {
-            data = argv[++i];
-        } else if (!strcmp(argv[i], "--library") && i + 1 < argc) {
-            library = argv[++i];
-        } else if (!strcmp(argv[i], "--per-clip")) {
-            per_clip = 1;
-        } else {
-            fprintf(stderr, "cubtool codec-figures: unexpected '%s'\n", argv[i]);
-            return 2;
-        }
-    }
+    const cub_tool_opt opts[] = {{"--data", &data, NULL}, {"--library", &library, NULL},
+                                 {"--per-clip", NULL, &per_clip}};
+    cub_tool_parsed p = cub_tool_parse_opts(argc, argv, opts, 3, NULL, 0);
+    if (p == CUB_TOOL_HELP) usage(stdout);
+    if (p != CUB_TOOL_RUN) return p == CUB_TOOL_HELP ? 0 : 2;
     static set_figs sets[3] = {{.name = "bear library"}, {.name = "cmu"}, {.name = "animdraw"}};
     char dir[1024];
     int rc = run_library(library, &sets[0], per_clip);

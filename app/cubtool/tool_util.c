@@ -61,3 +61,33 @@ double cub_tool_series_pct(cub_tool_series *s, double q)
     size_t i = (size_t)(q * (double)s->n + 0.999999);
     return s->v[i ? (i > s->n ? s->n - 1 : i - 1) : 0];
 }
+
+static const cub_tool_opt *find_opt(const char *arg, const cub_tool_opt *opts, int n)
+{
+    for (int k = 0; k < n; k++)
+        if (!strcmp(arg, opts[k].name)) return &opts[k];
+    return NULL;
+}
+
+cub_tool_parsed cub_tool_parse_opts(int argc, char **argv, const cub_tool_opt *opts, int n,
+                                    const char **positional, int npos)
+{
+    int used = 0;
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        const cub_tool_opt *o = find_opt(a, opts, n);
+        if (!strcmp(a, "--help") || !strcmp(a, "-h")) return CUB_TOOL_HELP;
+        if (o && o->flag) {
+            *o->flag = 1;
+        } else if (o && o->value && i + 1 < argc) {
+            *o->value = argv[++i];
+        } else if (!o && a[0] != '-' && used < npos) {
+            positional[used++] = a;
+        } else {
+            fprintf(stderr, "cubtool %s: unexpected '%s'%s\n", argv[0], a,
+                    o ? " (it needs a value)" : "");
+            return CUB_TOOL_BAD;
+        }
+    }
+    return CUB_TOOL_RUN;
+}

@@ -112,6 +112,7 @@ static void test_refusals(void **state)
                           CUB_TEST_OUT_DIR), 1);
     assert_non_null(strstr(g_out, "no clip named 'no_such_clip'"));
     assert_int_equal(tool("decode '%s' --method cubic --out x.bvh", src), 2);
+    assert_non_null(strstr(g_out, "--method is squad, slerp or catmull, not 'cubic'"));
 }
 
 int main(int argc, char **argv)
