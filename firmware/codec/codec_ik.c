@@ -84,7 +84,8 @@ int cub_codec_pick_effectors(const cub_skeleton *skel, int *out, int max)
     for (int j = 0; skel && j < skel->joint_count && count < max; j++) {
         const cub_joint *jt = &skel->joints[j];
         int p = jt->parent;
-        if (p < 0 || skel->joints[p].parent < 0 || jt->is_end_site) continue;
+        /* a grandparent that is the root would turn the whole body */
+        if (p < 0 || skel->joints[p].parent <= 0 || jt->is_end_site) continue;
         if (ends_with_ci(jt->name, "foot") || ends_with_ci(jt->name, "ankle") ||
             ends_with_ci(jt->name, "hand"))
             out[count++] = j;

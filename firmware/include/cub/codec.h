@@ -78,8 +78,8 @@ cub_err cub_codec_ccd(const cub_skeleton *skel, cub_pose *pose, int effector, cu
 /* Whether frame f of n is kept. */
 int cub_codec_is_kept(int f, int n);
 /* Up to max joints whose names end in "foot", "ankle" or "hand" (any case), are
- * not end sites and have a
- * grandparent, in skeleton order; returns how many. */
+ * not end sites and have a grandparent other than the root, in skeleton
+ * order; returns how many. */
 int cub_codec_pick_effectors(const cub_skeleton *skel, int *out, int max);
 
 typedef enum cub_codec_ik {
