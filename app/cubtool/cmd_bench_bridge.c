@@ -29,42 +29,22 @@
 #include "cub/bridge.h"
 #include "cub/coachlib.h"
 #include "cub/director.h"
+#include "tool_util.h"
 
 #define TICK_US 33333
 #define MAX_TICKS 600
 
-typedef struct stats {
-    double *v;
-    size_t n, cap;
-} stats;
+typedef cub_tool_series stats;
 
 static void push(stats *s, double x)
 {
-    if (s->n == s->cap) {
-        s->cap = s->cap ? 2 * s->cap : 1024;
-        double *nv = realloc(s->v, s->cap * sizeof *nv);
-        if (!nv) {
-            fprintf(stderr, "bench-bridge: out of memory\n");
-            exit(1);
-        }
-        s->v = nv;
-    }
-    s->v[s->n++] = x;
-}
-
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
+    cub_tool_series_add(s, x, "bench-bridge");
 }
 
 /* Nearest-rank percentile (q in 0..1) of the values; sorts them. */
 static double pct(stats *s, double q)
 {
-    if (!s->n) return 0;
-    qsort(s->v, s->n, sizeof *s->v, cmp_double);
-    size_t i = (size_t)(q * (double)s->n + 0.999999);
-    return s->v[i ? (i > s->n ? s->n - 1 : i - 1) : 0];
+    return cub_tool_series_pct(s, q);
 }
 
 /* Largest joint displacement between two world poses, cm. */
@@ -344,12 +324,7 @@ int cub_cmd_bench_bridge(int argc, char **argv)
            lib_median, lib_p99, lib_max, lib_joint_p99);
     for (int k = 0; k < 3; k++) {
         mode *md = &modes[k];
-        double jm = md->jump.n ? (qsort(md->jump.v, md->jump.n, sizeof(double), cmp_double),
-                                  md->jump.v[md->jump.n - 1])
-                               : 0;
-        double bm = md->blend.n ? (qsort(md->blend.v, md->blend.n, sizeof(double), cmp_double),
-                                   md->blend.v[md->blend.n - 1])
-                                : 0;
+        double jm = pct(&md->jump, 1.0), bm = pct(&md->blend, 1.0); /* the largest */
         printf("bench-bridge: jump at switch %-15s max=%.2f p95=%.2f median=%.2f cm/frame, "
                "over own p99: %d of %zu (%.1f%%); added during blend max=%.2f p95=%.2f\n",
                md->name, jm, pct(&md->jump, 0.95), pct(&md->jump, 0.5), md->over_p99, md->jump.n,

@@ -14,5 +14,8 @@ int cub_cmd_bench_track(int argc, char **argv); /* the tracker: ms per frame, me
 int cub_cmd_synth_depth(int argc, char **argv); /* a synthetic child as Kinect depth */
 int cub_cmd_bench_render(int argc, char **argv); /* the renderer: CPU per frame, ours vs GL */
 int cub_cmd_play(int argc, char **argv);         /* the content maker's viewer */
+int cub_cmd_encode(int argc, char **argv);       /* a clip -> the seed's codec stream */
+int cub_cmd_decode(int argc, char **argv);       /* a codec stream -> BVH, as the box decodes */
+int cub_cmd_codec_figures(int argc, char **argv); /* the seed's codec: errors and ratio */
 
 #endif

@@ -22,6 +22,9 @@ static const command commands[] = {
     {"synth-depth", cub_cmd_synth_depth, "a synthetic child as Kinect v1 depth: fakenect dump + truth"},
     {"bench-render", cub_cmd_bench_render, "the renderer's CPU per frame: own work vs the GL driver"},
     {"play", cub_cmd_play, "play clips or BVHs on the bear or a stick figure, side by side"},
+    {"encode", cub_cmd_encode, "compress a clip with the folk-dance seed's codec (.cubseed)"},
+    {"decode", cub_cmd_decode, "decode a .cubseed stream as the box does, to BVH"},
+    {"codec-figures", cub_cmd_codec_figures, "the seed's codec: Squad vs Slerp vs Catmull-Rom, IK, ratio"},
 };
 
 static void usage(FILE *f)

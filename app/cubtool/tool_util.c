@@ -2,6 +2,7 @@
 
 #include <errno.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 
@@ -31,4 +32,62 @@ int cub_tool_make_dir(const char *dir, const char *who)
         return -1;
     }
     return 0;
+}
+
+void cub_tool_series_add(cub_tool_series *s, double x, const char *who)
+{
+    if (s->n == s->cap) {
+        s->cap = s->cap ? 2 * s->cap : 1024;
+        double *nv = realloc(s->v, s->cap * sizeof *nv);
+        if (!nv) {
+            fprintf(stderr, "%s: out of memory\n", who);
+            exit(1);
+        }
+        s->v = nv;
+    }
+    s->v[s->n++] = x;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+double cub_tool_series_pct(cub_tool_series *s, double q)
+{
+    if (!s->n) return 0;
+    qsort(s->v, s->n, sizeof *s->v, cmp_double);
+    size_t i = (size_t)(q * (double)s->n + 0.999999);
+    return s->v[i ? (i > s->n ? s->n - 1 : i - 1) : 0];
+}
+
+static const cub_tool_opt *find_opt(const char *arg, const cub_tool_opt *opts, int n)
+{
+    for (int k = 0; k < n; k++)
+        if (!strcmp(arg, opts[k].name)) return &opts[k];
+    return NULL;
+}
+
+cub_tool_parsed cub_tool_parse_opts(int argc, char **argv, const cub_tool_opt *opts, int n,
+                                    const char **positional, int npos)
+{
+    int used = 0;
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        const cub_tool_opt *o = find_opt(a, opts, n);
+        if (!strcmp(a, "--help") || !strcmp(a, "-h")) return CUB_TOOL_HELP;
+        if (o && o->flag) {
+            *o->flag = 1;
+        } else if (o && o->value && i + 1 < argc) {
+            *o->value = argv[++i];
+        } else if (!o && a[0] != '-' && used < npos) {
+            positional[used++] = a;
+        } else {
+            fprintf(stderr, "cubtool %s: unexpected '%s'%s\n", argv[0], a,
+                    o ? " (it needs a value)" : "");
+            return CUB_TOOL_BAD;
+        }
+    }
+    return CUB_TOOL_RUN;
 }

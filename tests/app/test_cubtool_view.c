@@ -14,6 +14,7 @@
 #include <cmocka.h>
 
 #include "cub/png.h"
+#include "run_tool.h"
 
 static const char *g_tool;
 static char g_out[1024];
@@ -22,18 +23,11 @@ static char g_out[1024];
  * status returned. */
 static int run_tool(char *buf, size_t size, const char *fmt, ...)
 {
-    char args[4096], cmd[8192];
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(args, sizeof args, fmt, ap);
+    int st = cub_test_run_toolv(g_tool, buf, size, fmt, ap);
     va_end(ap);
-    snprintf(cmd, sizeof cmd, "'%s' %s 2>&1", g_tool, args);
-    FILE *f = popen(cmd, "r");
-    assert_non_null(f);
-    size_t n = fread(buf, 1, size - 1, f);
-    buf[n] = '\0';
-    int st = pclose(f);
-    return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+    return st;
 }
 
 /* ---- bench-render ---------------------------------------------------------- */

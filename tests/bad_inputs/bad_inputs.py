@@ -27,7 +27,7 @@ SHARED_DATA = os.environ.get("CUB_DATA_DIR") or os.path.join(SRC, "..", "shared"
 FONT = "/usr/share/fonts/truetype/dejavu/DejaVuSans-Bold.ttf"
 SOUNDFONT = "/usr/share/sounds/sf2/TimGM6mb.sf2"
 SANITIZER = re.compile(rb"AddressSanitizer|LeakSanitizer|runtime error:|MemorySanitizer")
-BINARY = {"midi", "soundfont", "library", "font", "frame", "track_frame"}
+BINARY = {"midi", "soundfont", "library", "font", "frame", "track_frame", "cubseed"}
 TEXT_ONLY = {"nan", "inf", "crlf", "bom", "badutf8"}
 
 
@@ -119,6 +119,8 @@ def base_of(kind, d, shared):
         return read(os.path.join(ASSETS, "clips", "bear.cubclips")), "bad.cubclips"
     if kind == "clip":
         return bear_bvh, "bad.bvh"
+    if kind == "cubseed":  # the seed's codec stream, made by tests/fuzz/make_seeds.py
+        return read(os.path.join(SRC, "tests", "fuzz", "seeds_codec", "leg.cubseed")), "bad.cubseed"
     if kind == "font":
         return read(FONT), "bad.ttf"
     if kind == "index":

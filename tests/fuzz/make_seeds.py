@@ -1,13 +1,15 @@
 #!/usr/bin/env python3
 """Write the fuzz targets' small seed inputs (issue 18) into tests/fuzz/:
 seeds_dump/ (fuzz_fakenect_dump, fuzz_track_dump), seeds_synth/,
-seeds_cli/, seeds_font/, seeds_map/. Everything is made here from the formats' rules,
+seeds_cli/, seeds_font/, seeds_map/, seeds_codec/. Everything is made here from the formats' rules,
 nothing copied from the shared data; run it again after changing a format:
 
   tests/fuzz/make_seeds.py          # rewrite the seed folders
 """
+import math
 import os
 import struct
+import zlib
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
@@ -132,7 +134,67 @@ def map_seeds():
     put("seeds_map", "bear_weighted.map", b"# weights\n" + b"\n".join(weighted) + b"\n")
 
 
+# ---- the seed's codec (firmware/codec, docs/codec.md): a .cubseed stream
+def trunc_div(a, b):
+    q = abs(a) // abs(b)
+    return q if (a >= 0) == (b > 0) else -q
+
+
+def split_m(mm):
+    """A length in mm as the codec's i8 whole metres + u16 fraction code."""
+    v = round(mm * 65536)
+    whole = trunc_div(v, 65536000)
+    rest = v - whole * 65536000
+    return struct.pack("<bH", whole, trunc_div(rest * 32768, 65536000) + 32768)
+
+
+def unit_code(x):
+    return min(65535, max(0, trunc_div(round(x * (1 << 30)), 1 << 15) + 32768))
+
+
+def kept(f, n):
+    return f < 6 or f >= n - 6 or f % 4 == 0
+
+
+def cubseed(frames=23, frame_ns=33333333):
+    # name, parent, end site, offset mm: a leg with its foot as the effector
+    joints = [("Hips", -1, 0, (0, 0, 0)), ("LeftUpLeg", 0, 0, (90, -40, 0)),
+              ("LeftLeg", 1, 0, (0, -420, 0)), ("LeftFoot", 2, 0, (0, -400, 20)),
+              ("LeftFoot_end", 3, 1, (0, -40, 110))]
+    effectors = [3]
+    body = b""
+    for name, parent, end, off in joints:
+        body += struct.pack("<B", len(name)) + name.encode() + struct.pack("<BB", parent + 1, end)
+        body += b"".join(split_m(c) for c in off)
+    body += bytes(effectors)
+    for f in range(frames):
+        if not kept(f, frames):
+            continue
+        body += split_m(100 * math.sin(f / 5)) + split_m(900 + f) + split_m(-1500)
+        for j, (_, _, end, _) in enumerate(joints):
+            if end:
+                continue
+            a = 0.2 * j + 0.5 * math.sin(f / 4 + j)
+            q = (math.cos(a / 2), math.sin(a / 2), 0.0, 0.0)
+            body += struct.pack("<4H", *(unit_code(c) for c in q))
+    blocks = (frames + 3) // 4
+    body += b"\xff" * ((blocks * len(effectors) + 7) // 8)
+    total = 24 + len(body) + 4
+    head = b"CUBSEED" + struct.pack("<BHBBIII", 1, len(joints), len(effectors), 0, frames,
+                                    frame_ns, total)
+    data = head + body
+    return data + struct.pack("<I", zlib.crc32(data))
+
+
+def codec_seeds():
+    # byte 0 of a fuzz input: bit 0 mends length and CRC, bits 1-2 the method, 3-4 the IK mode
+    put("seeds_codec", "leg.cubseed", cubseed())
+    put("seeds_codec", "leg_fixed", b"\x01" + cubseed(frames=40))
+    put("seeds_codec", "short_fixed", b"\x0b" + cubseed(frames=9))
+
+
 def main():
+    codec_seeds()
     map_seeds()
     dump_seeds()
     synth_seeds()
