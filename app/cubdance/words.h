@@ -27,7 +27,7 @@ const char *cub_words_cue(int32_t track_status);
 /* Every phrase the functions above can give for song (NULL: those that
  * need none), each handed to fn once per way it can be reached (a phrase
  * may come twice); returns how many calls. The voice pack is built from
- * this list (`cubtool voice`), so a phrase added here, or reached by a new
+ * this list (`cubvoice`), so a phrase added here, or reached by a new
  * hint or status below the bounds, is spoken with no other change; a new
  * function must be walked here too (test_voice_bank checks the pack holds
  * every phrase the box shows in its scenarios). */

@@ -14,6 +14,5 @@ int cub_cmd_bench_track(int argc, char **argv); /* the tracker: ms per frame, me
 int cub_cmd_synth_depth(int argc, char **argv); /* a synthetic child as Kinect depth */
 int cub_cmd_bench_render(int argc, char **argv); /* the renderer: CPU per frame, ours vs GL */
 int cub_cmd_play(int argc, char **argv);         /* the content maker's viewer */
-int cub_cmd_voice(int argc, char **argv);        /* the bear's spoken words */
 
 #endif

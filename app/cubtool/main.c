@@ -22,7 +22,6 @@ static const command commands[] = {
     {"synth-depth", cub_cmd_synth_depth, "a synthetic child as Kinect v1 depth: fakenect dump + truth"},
     {"bench-render", cub_cmd_bench_render, "the renderer's CPU per frame: own work vs the GL driver"},
     {"play", cub_cmd_play, "play clips or BVHs on the bear or a stick figure, side by side"},
-    {"voice", cub_cmd_voice, "speak every phrase the box shows (espeak-ng) into its voice pack"},
 };
 
 static void usage(FILE *f)

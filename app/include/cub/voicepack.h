@@ -1,5 +1,5 @@
 /* voicepack — the bear's spoken words (build/assets/voice/bear.cubvoice,
- * made at build time by `cubtool voice` with espeak-ng): every phrase the
+ * made at build time by `cubvoice` with espeak-ng): every phrase the
  * box can show, as mono int16 PCM, found by its text.
  *
  * Format (little-endian, versioned; the same phrases and samples always

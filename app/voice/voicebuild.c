@@ -1,10 +1,11 @@
-/* cubtool voice: the bear's spoken words. Every phrase the box can show
- * for the songs given (words.c's cub_words_each: the moves' hints, the
+/* cubvoice: the bear's spoken words, a build step (app/voice/CMakeLists.txt).
+ * Every phrase the box can show for the songs given (words.c's cub_words_each: the moves' hints, the
  * coach's own hints, the title, the cheer, the inset's cues) is spoken by
  * espeak-ng into <work>/<id>.wav (id: the phrase's FNV-1a, so a phrase is
  * found by its text), trimmed of the silence espeak puts around it,
  * brought to one peak level and packed into one voice pack
- * (cub/voicepack.h). Run by the build (app/cubdance/CMakeLists.txt). */
+ * (cub/voicepack.h). A small program of its own, not a cubtool command,
+ * so that a tree that builds only the box (the packages) builds it fast. */
 #include <errno.h>
 #include <spawn.h>
 #include <stdio.h>
@@ -12,12 +13,10 @@
 #include <string.h>
 #include <sys/wait.h>
 
-#include "../cubdance/words.h"
-#include "commands.h"
 #include "cub/pack.h"
 #include "cub/song.h"
 #include "cub/voicepack.h"
-#include "tool_util.h"
+#include "words.h"
 
 extern char **environ;
 
@@ -41,11 +40,11 @@ typedef struct phrase_list {
 static void usage(FILE *f)
 {
     fprintf(f,
-            "usage: cubtool voice --out FILE [--work DIR] [--espeak PROG] [--library FILE]\n"
-            "                     [--voice NAME] [--pitch 0..99] [--speed WPM] SONG.song.xml...\n"
+            "usage: cubvoice --out FILE [--work DIR] [--espeak PROG] [--library FILE]\n"
+            "                [--voice NAME] [--pitch 0..99] [--speed WPM] SONG.song.xml...\n"
             "Speak every phrase the box can show for these songs with espeak-ng and pack\n"
-            "them into a voice pack. --work keeps each phrase's <id>.txt and <id>.wav\n"
-            "(default: FILE's folder); --voice (default en-us+f3), --pitch (70) and\n"
+            "them into a voice pack. --work (an existing folder) keeps each phrase's\n"
+            "<id>.txt and <id>.wav (default: FILE's folder); --voice (default en-us+f3), --pitch (70) and\n"
             "--speed (135 words a minute): a friendly voice, higher and slower than\n"
             "espeak's own. --phrases instead of --out only lists the phrases.\n");
 }
@@ -67,22 +66,22 @@ static int parse_args(int argc, char **argv, voice_opts *o, int *list_only)
         if (!strcmp(a, "--phrases")) {
             *list_only = 1;
         } else if (slot || !strcmp(a, "--pitch") || !strcmp(a, "--speed")) {
-            if (!v) return fprintf(stderr, "cubtool voice: %s needs a value\n", a), -1;
+            if (!v) return fprintf(stderr, "cubvoice: %s needs a value\n", a), -1;
             if (slot) *slot = v;
             else if (!strcmp(a, "--pitch")) o->pitch = atoi(v);
             else o->speed = atoi(v);
             i++;
         } else if (a[0] == '-') {
-            return fprintf(stderr, "cubtool voice: unknown option '%s'\n", a), -1;
+            return fprintf(stderr, "cubvoice: unknown option '%s'\n", a), -1;
         } else if (o->song_count < MAX_SONGS) {
             o->songs[o->song_count++] = a;
         } else {
-            return fprintf(stderr, "cubtool voice: more than %d songs\n", MAX_SONGS), -1;
+            return fprintf(stderr, "cubvoice: more than %d songs\n", MAX_SONGS), -1;
         }
     }
-    if (!*list_only && !o->out) return fprintf(stderr, "cubtool voice: --out FILE is needed\n"), -1;
+    if (!*list_only && !o->out) return fprintf(stderr, "cubvoice: --out FILE is needed\n"), -1;
     if (o->pitch < 0 || o->pitch > 99 || o->speed < 80 || o->speed > 450)
-        return fprintf(stderr, "cubtool voice: --pitch 0..99, --speed 80..450\n"), -1;
+        return fprintf(stderr, "cubvoice: --pitch 0..99, --speed 80..450\n"), -1;
     return 0;
 }
 
@@ -106,15 +105,15 @@ static int collect(const voice_opts *o, cub_library *lib, cub_song *songs, phras
     cub_diag diag;
     char buf[600];
     if (cub_pack_read(o->library, lib, &diag))
-        return fprintf(stderr, "cubtool voice: %s\n", cub_diag_str(&diag, buf, sizeof buf)), -1;
+        return fprintf(stderr, "cubvoice: %s\n", cub_diag_str(&diag, buf, sizeof buf)), -1;
     cub_words_each(NULL, add_phrase, l);
     for (int i = 0; i < o->song_count; i++) {
         if (cub_song_load(o->songs[i], lib, &songs[i], &diag))
-            return fprintf(stderr, "cubtool voice: %s\n", cub_diag_str(&diag, buf, sizeof buf)), -1;
+            return fprintf(stderr, "cubvoice: %s\n", cub_diag_str(&diag, buf, sizeof buf)), -1;
         cub_words_each(&songs[i], add_phrase, l);
     }
     if (l->overflow)
-        return fprintf(stderr, "cubtool voice: more than %d phrases, or one over %d bytes\n",
+        return fprintf(stderr, "cubvoice: more than %d phrases, or one over %d bytes\n",
                        CUB_VOICEPACK_MAX_PHRASES, CUB_VOICEPACK_TEXT_MAX), -1;
     return 0;
 }
@@ -130,10 +129,10 @@ static int run_espeak(const voice_opts *o, const char *txt, const char *wav)
                     "-w", (char *)wav, "-f", (char *)txt, NULL};
     pid_t pid;
     int e = posix_spawnp(&pid, o->espeak, NULL, NULL, argv, environ);
-    if (e) return fprintf(stderr, "cubtool voice: cannot run %s: %s\n", o->espeak, strerror(e)), -1;
+    if (e) return fprintf(stderr, "cubvoice: cannot run %s: %s\n", o->espeak, strerror(e)), -1;
     int status = 0;
     if (waitpid(pid, &status, 0) < 0 || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
-        return fprintf(stderr, "cubtool voice: %s failed on %s\n", o->espeak, txt), -1;
+        return fprintf(stderr, "cubvoice: %s failed on %s\n", o->espeak, txt), -1;
     return 0;
 }
 
@@ -150,7 +149,7 @@ static int read_wav(const char *path, int16_t **pcm, uint32_t *frames, int *rate
     size_t n = f ? fread(buf, 1, sizeof buf, f) : 0;
     if (f) fclose(f);
     if (n < 12 || memcmp(buf, "RIFF", 4) || memcmp(buf + 8, "WAVE", 4))
-        return fprintf(stderr, "cubtool voice: %s: not a WAV file\n", path), -1;
+        return fprintf(stderr, "cubvoice: %s: not a WAV file\n", path), -1;
     int fmt_ok = 0;
     for (size_t at = 12; at + 8 <= n;) {
         uint32_t size = le32(buf + at + 4);
@@ -168,7 +167,7 @@ static int read_wav(const char *path, int16_t **pcm, uint32_t *frames, int *rate
         }
         at += 8 + (size_t)size + (size & 1);
     }
-    return fprintf(stderr, "cubtool voice: %s: no mono 16-bit PCM data\n", path), -1;
+    return fprintf(stderr, "cubvoice: %s: no mono 16-bit PCM data\n", path), -1;
 }
 
 /* Cut espeak's silence to KEEP_MS either side and scale the peak to PEAK. */
@@ -193,12 +192,12 @@ static int speak(const voice_opts *o, const char *work, cub_voice_phrase *ph, in
     snprintf(wav, sizeof wav, "%s/%08x.wav", work, ph->id);
     FILE *f = fopen(txt, "w");
     if (!f || fputs(ph->text, f) < 0 || fclose(f) != 0)
-        return fprintf(stderr, "cubtool voice: cannot write %s\n", txt), -1;
+        return fprintf(stderr, "cubvoice: cannot write %s\n", txt), -1;
     int16_t *pcm = NULL;
     int wav_rate = 0;
     if (run_espeak(o, txt, wav) || read_wav(wav, &pcm, &ph->frames, &wav_rate)) return -1;
     if (*rate && wav_rate != *rate)
-        return free(pcm), fprintf(stderr, "cubtool voice: %s at %d Hz, the rest at %d\n", wav,
+        return free(pcm), fprintf(stderr, "cubvoice: %s at %d Hz, the rest at %d\n", wav,
                                   wav_rate, *rate), -1;
     *rate = wav_rate;
     trim_and_level(ph, pcm, wav_rate);
@@ -212,7 +211,6 @@ static int pack_all(const voice_opts *o, const phrase_list *l)
     const char *slash = strrchr(o->out, '/');
     snprintf(work, sizeof work, "%.*s", slash ? (int)(slash - o->out) : 1, slash ? o->out : ".");
     if (o->work) snprintf(work, sizeof work, "%s", o->work);
-    if (cub_tool_make_dir(work, "cubtool voice")) return 1;
     cub_voice_phrase *ph = calloc((size_t)l->count, sizeof *ph);
     int rate = 0, bad = !ph;
     size_t bytes = 0;
@@ -225,7 +223,7 @@ static int pack_all(const voice_opts *o, const phrase_list *l)
     cub_diag diag;
     char buf[600];
     if (!bad && cub_voicepack_write(o->out, rate, ph, l->count, &diag))
-        bad = fprintf(stderr, "cubtool voice: %s\n", cub_diag_str(&diag, buf, sizeof buf)) > 0;
+        bad = fprintf(stderr, "cubvoice: %s\n", cub_diag_str(&diag, buf, sizeof buf)) > 0;
     if (!bad)
         printf("voice: %d phrases, %.1f s of speech at %d Hz, %zu kB of samples in %s\n",
                l->count, seconds, rate, bytes / 1024, o->out);
@@ -234,7 +232,7 @@ static int pack_all(const voice_opts *o, const phrase_list *l)
     return bad;
 }
 
-int cub_cmd_voice(int argc, char **argv)
+int main(int argc, char **argv)
 {
     voice_opts o;
     int list_only = 0, r = parse_args(argc, argv, &o, &list_only);
