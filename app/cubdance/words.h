@@ -29,8 +29,9 @@ const char *cub_words_cue(int32_t track_status);
  * may come twice); returns how many calls. The voice pack is built from
  * this list (`cubvoice`), so a phrase added here, or reached by a new
  * hint or status below the bounds, is spoken with no other change; a new
- * function must be walked here too (test_voice_bank checks the pack holds
- * every phrase the box shows in its scenarios). */
+ * function must be walked here too: test_voicepack checks the built pack
+ * holds every phrase listed here, and test_scenarios that no phrase the
+ * box said in its scenarios was missing from it (`speech missing`). */
 typedef void (*cub_words_fn)(void *user, const char *phrase);
 int cub_words_each(const cub_song *song, cub_words_fn fn, void *user);
 /* The bounds cub_words_each walks: hints from this up, statuses below the
