@@ -31,7 +31,7 @@ FONTS="fonts-dejavu-core"
 # binutils (readelf: the arm64 binary's ELF header), systemd
 # (systemd-analyze verify on the unit).
 TOOLS="build-essential cmake ninja-build pkg-config git clang libclang-rt-14-dev
-       libfreenect-bin timgm6mb-soundfont ca-certificates python3 time
+       libfreenect-bin timgm6mb-soundfont espeak-ng ca-certificates python3 time
        dpkg-dev binutils systemd"
 
 CROSS="crossbuild-essential-arm64 qemu-user-static"

@@ -5,6 +5,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "words.h"
+
 /* The music clock in song milliseconds, or CUB_COACH_NO_MUSIC. */
 static int32_t music_ms(const cub_dance *d)
 {
@@ -45,9 +47,45 @@ static void telling_pose(cub_dance *d, const cub_clip *clip, float *out)
     }
 }
 
-static void show_hint(cub_dance *d, int32_t hint)
+/* ---- what the bear says ---------------------------------------------------- */
+
+/* The words said now, logged (what the event log says never depends on the
+ * voice pack: a missing pack only warns at start; a phrase the pack lacks
+ * is a line of its own, which the tests look for). */
+static void say(cub_dance *d, const char *text, int64_t t_us)
+{
+    if (!d->speech || !text) return;
+    if (cub_dance_music_say(&d->music, text) == CUB_DANCE_NO_PHRASE)
+        cub_log_event(d->log, t_us, "speech", "missing", "text=\"%s\"", text);
+    else
+        cub_log_event(d->log, t_us, "speech", "say", "text=\"%s\" audio_frame=%llu", text,
+                      (unsigned long long)cub_dance_music_device_frames(&d->music));
+}
+
+/* "Press START!" when the bear starts waiting and when it tries to attract
+ * someone; the cheer when the song is over. */
+static void say_state(cub_dance *d, int64_t t_us)
+{
+    int32_t st = d->dir.coach.state, was = d->said_state;
+    if (st == was) return;
+    d->said_state = st;
+    if (st == CUB_COACH_ATTRACT ||
+        (st == CUB_COACH_IDLE && was != CUB_COACH_ATTRACT && was != CUB_COACH_DOZE))
+        say(d, cub_words_title(), t_us);
+    else if (st == CUB_COACH_CHEER)
+        say(d, cub_words_cheer(), t_us);
+}
+
+const char *cub_dance_words(const cub_dance *d)
+{
+    const char *w = cub_words_hint(&d->song, d->hint);
+    return !w && d->dir.coach.state == CUB_COACH_CHEER ? cub_words_cheer() : w;
+}
+
+static void show_hint(cub_dance *d, int32_t hint, int64_t t_us)
 {
     d->hint = hint;
+    say(d, cub_words_hint(&d->song, hint), t_us);
     if (hint < 0 || hint >= d->song.move_count || hint == d->icon_move) return;
     int clip = d->song.moves[hint].clip_index;
     d->icon_move = -1;
@@ -79,7 +117,7 @@ static void carry_out(cub_dance *d, int64_t t_us)
         case CUB_DIRECTOR_MUSIC_STOP: cub_dance_music_stop(&d->music); break;
         case CUB_DIRECTOR_MUSIC_PAUSE: cub_dance_music_pause(&d->music, 1, t_us); break;
         case CUB_DIRECTOR_MUSIC_RESUME: cub_dance_music_pause(&d->music, 0, t_us); break;
-        case CUB_DIRECTOR_HINT: show_hint(d, o->hint); break;
+        case CUB_DIRECTOR_HINT: show_hint(d, o->hint, t_us); break;
         default: break;
         }
     }
@@ -108,6 +146,7 @@ void cub_dance_tick(cub_dance *d, cub_loop *loop, int64_t t_us)
 {
     (void)loop;
     if (cub_director_tick(&d->dir, t_us, music_ms(d)) == CUB_OK) carry_out(d, t_us);
+    say_state(d, t_us);
 }
 
 /* ---- set-up ------------------------------------------------------------- */
@@ -180,6 +219,8 @@ cub_err cub_dance_open(cub_dance *d, const cub_app_options *o, cub_board *board,
     if (!e) e = open_director(d, o, judge, now_us, err, err_size);
     d->hint = CUB_COACH_HINT_NONE;
     d->icon_move = -1;
+    d->speech = o->speech;
+    d->said_state = -1;
     return e;
 }
 

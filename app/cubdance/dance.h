@@ -4,8 +4,11 @@
  *
  * Per event and per tick the director decides; what only the app can do
  * comes back from it and is done here: the music started, paused, resumed
- * or stopped, the hint shown (with its move's icon). Per loop step the
- * music advances, then the director's player. */
+ * or stopped, the hint shown (with its move's icon) and said. Per loop
+ * step the music advances, then the director's player. Each hint is said
+ * as the director shows it (a `speech say` line after its `coach hint`),
+ * "Press START!" as the bear starts waiting or attracting, the cheer as
+ * the song ends. */
 #ifndef CUB_APP_DANCE_H
 #define CUB_APP_DANCE_H
 
@@ -37,6 +40,8 @@ typedef struct cub_dance {
     int32_t hint;     /* the last hint: a move or CUB_COACH_HINT_* */
     int icon_move;    /* the move icon_xyz shows, or -1 */
     float icon_xyz[3 * CUB_MOTION_MAX_JOINTS];
+    int speech;         /* the config's speech=1: words are said as shown */
+    int32_t said_state; /* the coach state the last tick's words were for */
 } cub_dance;
 
 /* Load the coach's clips, the song and the music, and start the coach idle
@@ -68,6 +73,9 @@ cub_err cub_dance_pose(cub_dance *d, float *xyz, float *rot_xyzw);
 /* The hinted move's icon pose (joint world positions of
  * cub_dance_skeleton, mm), or NULL when the hint is not a move's. */
 const float *cub_dance_icon_xyz(const cub_dance *d);
+/* The words under the coach now: the hint's (words.c), or the cheer while
+ * the bear cheers; NULL for none. */
+const char *cub_dance_words(const cub_dance *d);
 /* How far the song's music has played, 0..1; -1 while it is not playing. */
 float cub_dance_progress(const cub_dance *d);
 

@@ -19,6 +19,33 @@ static cub_err fail(char *err, size_t size, const cub_diag *diag, const char *wh
     return CUB_ERR_FORMAT;
 }
 
+/* The audio thread's fill: the music, then the voice over it. */
+static void fill_device(void *user, int16_t *stereo, int frames)
+{
+    cub_dance_music *m = user;
+    cub_music_render(m->music, stereo, frames);
+    cub_voice_mix(&m->voice, stereo, frames);
+}
+
+/* The voice pack, or a warning: the box goes on showing its words. */
+static void open_voice(cub_dance_music *m, const cub_app_options *o, int rate)
+{
+    if (!o->speech || !o->voice_path) return;
+    cub_diag diag;
+    char buf[600];
+    if (cub_voicepack_read(o->voice_path, &m->voicepack, &diag)) {
+        fprintf(stderr, "cubdance: warning: speech off: %s (the words are shown, not spoken)\n",
+                cub_diag_str(&diag, buf, sizeof buf));
+        return;
+    }
+    if (cub_voice_init(&m->voice, &m->voicepack, rate)) {
+        fprintf(stderr, "cubdance: warning: speech off: %s: the device's %d Hz is out of range\n",
+                o->voice_path, rate);
+        cub_voicepack_free(&m->voicepack);
+        cub_voice_init(&m->voice, NULL, 44100);
+    }
+}
+
 cub_err cub_dance_music_open(cub_dance_music *m, const cub_app_options *o, cub_board *board,
                              const char *midi_path, char *err, size_t size)
 {
@@ -31,11 +58,12 @@ cub_err cub_dance_music_open(cub_dance_music *m, const cub_app_options *o, cub_b
 
     m->pcm = malloc(PCM_FRAMES * 2 * sizeof(int16_t));
     if (!m->pcm) return CUB_ERR_NOMEM;
+    open_voice(m, o, md.rate);
     /* Real time: the audio device plays the music and clocks it. Virtual
      * time, or no audio device: the tick renders it. */
     m->pull = o->virtual_clock;
     if (!m->pull) {
-        if (cub_board_audio_start(board, cub_music_fill, m->music) == CUB_OK)
+        if (cub_board_audio_start(board, fill_device, m) == CUB_OK)
             m->audio_open = 1;
         else
             m->pull = 1;
@@ -51,9 +79,10 @@ cub_err cub_dance_music_open(cub_dance_music *m, const cub_app_options *o, cub_b
 
 void cub_dance_music_close(cub_dance_music *m)
 {
-    if (m->audio_open) cub_board_audio_stop(m->board);
+    if (m->audio_open) cub_board_audio_stop(m->board); /* before the voice pack goes */
     cub_music_close(m->music);
     free(m->pcm);
+    cub_voicepack_free(&m->voicepack);
     memset(m, 0, sizeof *m);
 }
 
@@ -117,4 +146,18 @@ int cub_dance_music_poll(cub_dance_music *m, int64_t now_us)
     if (!m->started || m->end_told || cub_music_playing(m->music)) return 0;
     m->end_told = 1;
     return 1;
+}
+
+cub_dance_said cub_dance_music_say(cub_dance_music *m, const char *text)
+{
+    if (!m->voicepack.count) return CUB_DANCE_UNSAID;
+    int phrase = cub_voicepack_find(&m->voicepack, text);
+    if (phrase < 0) return CUB_DANCE_NO_PHRASE;
+    if (m->audio_open) cub_voice_say(&m->voice, phrase);
+    return CUB_DANCE_SAID;
+}
+
+uint64_t cub_dance_music_device_frames(const cub_dance_music *m)
+{
+    return m->audio_open ? cub_board_audio_frames(m->board) : 0;
 }

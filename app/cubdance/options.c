@@ -6,6 +6,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#ifndef CUB_VOICE_PATH
+#define CUB_VOICE_PATH "voice/bear.cubvoice"
+#endif
 #ifndef CUB_ASSETS_DIR
 #define CUB_ASSETS_DIR "assets"
 #endif
@@ -58,6 +61,8 @@ static void usage(FILE *f, const char *prog)
 "  --library FILE         clip library (default " CUB_ASSETS_DIR "/clips/bear.cubclips)\n"
 "  --tags FILE            its bridge tags (default " CUB_ASSETS_DIR "/clips/bear.tags.xml)\n"
 "  --character FILE       the coach (default " CUB_ASSETS_DIR "/bear/bear.xml)\n"
+"  --voice FILE           the bear's spoken words (default " CUB_VOICE_PATH ");\n"
+"                         speech=0 in the config keeps it quiet\n"
 "  --attract-after S      attract after S seconds without interaction\n"
 "  --doze-after S         doze after S seconds without interaction\n"
 "  --music-clock-scale K  a sound card K times as fast as it should be (tests: 0.95,\n"
@@ -172,6 +177,7 @@ static int apply_valued(cub_app_options *o, const char *opt, const char *val, FI
                             : !strcmp(opt, "--tags")         ? &o->tags_path
                             : !strcmp(opt, "--character")    ? &o->character_path
                             : !strcmp(opt, "--font")         ? &o->font_path
+                            : !strcmp(opt, "--voice")        ? &o->voice_path
                                                              : NULL;
         if (slot) return *slot = val, 0;
         fprintf(err, "cubdance: unknown option '%s' (see --help)\n", opt);
@@ -185,7 +191,7 @@ static int takes_value(const char *opt)
                                          "--depth", "--frames", "--replay", "--buttons",
                                          "--gpio-config", "--config", "--audio-driver", "--clip", "--log",
                                          "--song", "--timeline", "--library", "--tags",
-                                         "--character", "--font", "--attract-after", "--doze-after",
+                                         "--character", "--font", "--voice", "--attract-after", "--doze-after",
                                          "--music-clock-scale", "--record"};
     for (size_t i = 0; i < sizeof valued / sizeof *valued; i++)
         if (!strcmp(opt, valued[i])) return 1;
@@ -263,6 +269,13 @@ static int apply_assets(cub_app_options *o, const cub_boxconf *c, const char *bu
             return -1;
         }
     }
+    if (!o->voice_path) /* built with the program, not in the source's assets */
+        o->voice_path = c->assets_dir[0] ? join(o, 5, assets, "voice/bear.cubvoice", "")
+                                         : CUB_VOICE_PATH;
+    if (!o->voice_path) {
+        fprintf(err, "cubdance: assets_dir %s: path too long\n", assets);
+        return -1;
+    }
     if (!o->song_path && c->song[0]) {
         char songs[CUB_BOXCONF_PATH_MAX + 16];
         snprintf(songs, sizeof songs, "%s%s", c->songs_dir[0] ? c->songs_dir : assets,
@@ -284,6 +297,7 @@ int cub_app_apply_config(cub_app_options *o, const cub_boxconf *c, int from_file
     if (!o->audio_driver && strcmp(c->audio_driver, "auto") != 0) o->audio_driver = c->audio_driver;
     o->audio_volume = c->volume == 0 ? CUB_BOARD_MUTE : c->volume;
     o->soundfont = c->soundfont;
+    o->speech = c->speech;
     if (!o->font_path && c->font[0]) o->font_path = c->font;
     o->gpio = &c->gpio;
     o->record_max_mb = c->recording_max_mb;

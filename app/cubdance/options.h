@@ -38,6 +38,8 @@ typedef struct cub_app_options {
     int audio_volume;           /* as in cub_board_desc */
     const char *soundfont;      /* NULL = the music module's default */
     const char *font_path;      /* --font or the config's font; NULL = the renderer's default */
+    const char *voice_path;     /* --voice or <assets_dir>/voice/bear.cubvoice or the built one */
+    int speech;                 /* the config's speech (1: the bear says its words) */
     const cub_boxconf_gpio *gpio;
     /* Recording (record.h): --record DIR records the whole run into a new
      * folder under DIR; recording=1 in the config records each dance. */
@@ -45,7 +47,7 @@ typedef struct cub_app_options {
     int record_each_dance;      /* 1: from the config (a folder per dance) */
     int record_max_mb;          /* recording_max_mb */
     int log_max_kb;             /* the event log's cap (log_max_kb); 0 = none */
-    char path_buf[5][CUB_BOXCONF_PATH_MAX + 64]; /* joined asset paths */
+    char path_buf[6][CUB_BOXCONF_PATH_MAX + 64]; /* joined asset paths */
 } cub_app_options;
 
 typedef enum cub_app_parse {

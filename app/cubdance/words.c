@@ -19,6 +19,11 @@ const char *cub_words_title(void)
     return "Press START!";
 }
 
+const char *cub_words_cheer(void)
+{
+    return "Hooray! You did it!";
+}
+
 /* Where the camera reads the child badly, what the child can do about it. */
 const char *cub_words_cue(int32_t track_status)
 {
@@ -28,4 +33,24 @@ const char *cub_words_cue(int32_t track_status)
     case CUB_TRACK_PARTLY_OUT: return "Step into the middle";
     default: return NULL;
     }
+}
+
+/* Every input each function above takes, so that nothing it can return is
+ * left out: the hints from the lowest CUB_COACH_HINT_* up through the
+ * song's moves, every tracker status, the title and the cheer. */
+int cub_words_each(const cub_song *song, cub_words_fn fn, void *user)
+{
+    int n = 0;
+    const char *fixed[2] = {cub_words_title(), cub_words_cheer()};
+    for (int i = 0; i < 2; i++, n++) fn(user, fixed[i]);
+    int moves = song ? song->move_count : 0;
+    for (int32_t h = CUB_WORDS_HINT_LOWEST; h < moves; h++) {
+        const char *w = cub_words_hint(song, h);
+        if (w) fn(user, w), n++;
+    }
+    for (int32_t st = 0; st < CUB_WORDS_STATUS_COUNT; st++) {
+        const char *w = cub_words_cue(st);
+        if (w) fn(user, w), n++;
+    }
+    return n;
 }

@@ -42,6 +42,7 @@ static const key keys[] = {
     {"fullscreen", K_BOOL, AT(fullscreen), 0, 1, NULL, -1},
     {"volume", K_INT, AT(volume), 0, 100, NULL, -1},
     {"audio_driver", K_WORD, AT(audio_driver), 0, 0, audio_words, -1},
+    {"speech", K_BOOL, AT(speech), 0, 1, NULL, -1},
     {"attract_after_s", K_INT, AT(attract_after_s), 1, 3600, NULL, -1},
     {"doze_after_s", K_INT, AT(doze_after_s), 2, 86400, NULL, -1},
     {"assets_dir", K_PATH, AT(assets_dir), 0, 0, NULL, -1},
@@ -77,6 +78,7 @@ void cub_boxconf_defaults(cub_boxconf *c)
     c->fullscreen = 1;
     c->volume = 80;
     snprintf(c->audio_driver, sizeof c->audio_driver, "auto");
+    c->speech = 1;
     c->attract_after_s = 20;
     c->doze_after_s = 60;
     snprintf(c->soundfont, sizeof c->soundfont, "/usr/share/sounds/sf2/TimGM6mb.sf2");

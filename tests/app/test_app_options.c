@@ -117,6 +117,8 @@ static void test_defaults(void **s)
     assert_null(o.song_path);
     assert_string_equal(o.library_path, "/assets/clips/bear.cubclips");
     assert_true(o.music_clock_scale == 1.0);
+    assert_int_equal(o.speech, 1); /* the bear speaks unless told not to */
+    assert_string_equal(o.voice_path, "/build/voice/bear.cubvoice"); /* the built pack */
 }
 
 /* The file fills what the command line left unset; the command line wins. */
@@ -125,7 +127,8 @@ static void test_config_fills_unset_options_only(void **s)
     static cub_boxconf c;
     const char *text = "assets_dir=/opt/a\nsong=twinkle\nvolume=0\nresolution=1920x1080\n"
                        "fullscreen=0\nvideo_driver=kmsdrm\naudio_driver=dummy\n"
-                       "attract_after_s=7\ndoze_after_s=9\nsoundfont=/sf/x.sf2\nled_line=GPIO22\n";
+                       "attract_after_s=7\ndoze_after_s=9\nsoundfont=/sf/x.sf2\nled_line=GPIO22\n"
+                       "speech=0\n";
     char err[256];
     assert_int_equal(cub_boxconf_parse(text, strlen(text), "c.conf", &c, err, sizeof err), CUB_OK);
     cub_app_options o;
@@ -148,6 +151,8 @@ static void test_config_fills_unset_options_only(void **s)
     assert_true(o.doze_after_s == 30);
     assert_string_equal(o.soundfont, "/sf/x.sf2");
     assert_string_equal(o.gpio->line[CUB_BOXCONF_LINE_LED], "GPIO22");
+    assert_int_equal(o.speech, 0);
+    assert_string_equal(o.voice_path, "/opt/a/voice/bear.cubvoice"); /* beside the assets */
     /* The old name still works; --size beats the file's resolution. */
     assert_int_equal(parse(&o, (const char *[]){"--gpio-config", "g.conf", "--size", "640x480",
                                                "--song", "/s.song.xml", NULL}),
@@ -156,6 +161,9 @@ static void test_config_fills_unset_options_only(void **s)
     assert_int_equal(cub_app_apply_config(&o, &c, 1, "/assets", stderr), 0);
     assert_int_equal(o.width, 640);
     assert_string_equal(o.song_path, "/s.song.xml");
+    assert_int_equal(parse(&o, (const char *[]){"--voice", "/v.cubvoice", NULL}), CUB_APP_RUN);
+    assert_int_equal(cub_app_apply_config(&o, &c, 1, "/assets", stderr), 0);
+    assert_string_equal(o.voice_path, "/v.cubvoice");
     /* songs_dir moves the songs only. */
     text = "songs_dir=/songs\nsong=twinkle\n";
     assert_int_equal(cub_boxconf_parse(text, strlen(text), "c.conf", &c, err, sizeof err), CUB_OK);

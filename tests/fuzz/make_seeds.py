@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """Write the fuzz targets' small seed inputs (issue 18) into tests/fuzz/:
 seeds_dump/ (fuzz_fakenect_dump, fuzz_track_dump), seeds_synth/,
-seeds_cli/, seeds_font/, seeds_map/, seeds_codec/. Everything is made here from the formats' rules,
-nothing copied from the shared data; run it again after changing a format:
+seeds_cli/, seeds_font/, seeds_map/, seeds_codec/, seeds_voice/. Everything is made
+here from the formats' rules, nothing copied from the shared data; run it again
+after changing a format:
 
   tests/fuzz/make_seeds.py          # rewrite the seed folders
 """
@@ -191,6 +192,28 @@ def codec_seeds():
     put("seeds_codec", "leg.cubseed", cubseed())
     put("seeds_codec", "leg_fixed", b"\x01" + cubseed(frames=40))
     put("seeds_codec", "short_fixed", b"\x0b" + cubseed(frames=9))
+# ---- voice packs (cub/voicepack.h): phrases of a few samples each
+def fnv1a(text):
+    h = 2166136261
+    for b in text:
+        h = ((h ^ b) * 16777619) & 0xFFFFFFFF
+    return h
+
+
+def voice_pack(rate, phrases):
+    body = b"CUBVOICE" + struct.pack("<III", 1, rate, len(phrases))
+    for text, samples in phrases:
+        t = text.encode()
+        body += struct.pack("<II", fnv1a(t), len(t)) + t
+        body += struct.pack("<I", len(samples)) + struct.pack("<%dh" % len(samples), *samples)
+    return body + struct.pack("<I", zlib.crc32(body) & 0xFFFFFFFF)
+
+
+def voice_seeds():
+    wave = [(i * 2000) % 16000 - 8000 for i in range(24)]
+    put("seeds_voice", "two_phrases",
+        voice_pack(22050, [("Press START!", wave), ("Jump!", wave[::-2])]))
+    put("seeds_voice", "one_at_8k", voice_pack(8000, [("Come closer!", [32767, -32768, 0, 1])]))
 
 
 def main():
@@ -199,6 +222,7 @@ def main():
     dump_seeds()
     synth_seeds()
     cli_seeds()
+    voice_seeds()
     put("seeds_font", "squares.ttf", b"\x10" + font_seed())  # byte 0: the pixel height
     print("seeds written under", HERE)
 

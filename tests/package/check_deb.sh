@@ -44,6 +44,8 @@ trap 'rm -rf "$expected" "$listed" "$scratch"' EXIT
     for d in bear clips songs; do
         (cd "$src/assets" && find "$d" -type f | sed 's|^|./usr/share/cubdance/|')
     done
+    # the bear's spoken words, made by the build (app/voice; docs/speech.md)
+    echo ./usr/share/cubdance/voice/bear.cubvoice
     printf '%s\n' ./etc/cubdance/cubdance.conf ./lib/systemd/system/cubdance.service \
         ./lib/udev/rules.d/55-cubdance.rules ./usr/lib/sysusers.d/cubdance.conf \
         ./usr/share/doc/cubdance/copyright
@@ -124,10 +126,11 @@ if [ "$arch" = "$host_arch" ] || [ ${#run[@]} -gt 0 ]; then
         --clock virtual --seconds 4 --buttons "$scratch/buttons" --clip "$assets/clips/hello.bvh" \
         --song "$assets/songs/twinkle.song.xml" --library "$assets/clips/bear.cubclips" \
         --tags "$assets/clips/bear.tags.xml" --character "$assets/bear/bear.xml" \
-        --log "$scratch/events.log" 2> "$scratch/stderr" || {
+        --voice "$assets/voice/bear.cubvoice" --log "$scratch/events.log" 2> "$scratch/stderr" || {
         cat "$scratch/stderr"; fail "cubdance-pi did not run on the unpacked assets"; }
     grep -q '^t=[0-9.]* music start song="Twinkle Twinkle Little Star"' "$scratch/events.log" ||
         fail "the song did not start from the unpacked assets (log: $(tail -3 "$scratch/events.log"))"
+    ! grep -q "speech off" "$scratch/stderr" || fail "the packaged voice pack: $(cat "$scratch/stderr")"
     echo "deb: cubdance-pi played twinkle.song.xml from the scratch root"
 fi
 "$here/verify_unit.sh" "$root"

@@ -362,6 +362,39 @@ static void test_garbage_frames_give_no_player_and_recover(void **s)
     logread_free(&log);
 }
 
+/* The bear says what it shows (issue 19): every hint with words is said
+ * at the tick it is shown, the voice pack lacks none of them (no `speech
+ * missing`), and "Press START!" is the first thing said. */
+static void test_every_hint_shown_is_said_at_its_tick(void **s)
+{
+    (void)s;
+    static const char *names[] = {"correct", "quiet", "stop", "wake"};
+    int said = 0;
+    char show[32];
+    for (size_t n = 0; n < sizeof names / sizeof *names; n++) {
+        logread log;
+        load(names[n], &log);
+        int missing = logread_find(&log, 0, "speech", "missing");
+        if (missing >= 0)
+            fail_msg("%s line %d: no voice for %s", names[n], missing + 1, log.lines[missing].rest);
+        int first = logread_find(&log, 0, "speech", "say");
+        assert_true(first >= 0);
+        assert_non_null(strstr(log.lines[first].rest, "text=\"Press START!\""));
+        for (int i = logread_find(&log, 0, "coach", "hint"); i >= 0;
+             i = logread_find(&log, i + 1, "coach", "hint")) {
+            if (!strcmp(field(&log, i, "show", show, sizeof show), "none")) continue;
+            int say = logread_find(&log, i + 1, "speech", "say");
+            int next = logread_find(&log, i + 1, "coach", "hint");
+            if (say < 0 || log.lines[say].t_s != log.lines[i].t_s || (next >= 0 && say > next))
+                fail_msg("%s line %d: hint show=%s at %.3f s is not said at its tick", names[n],
+                         i + 1, show, log.lines[i].t_s);
+            said++;
+        }
+        logread_free(&log);
+    }
+    printf("scenario: %d hints shown and said at their tick, none missing from the voice\n", said);
+}
+
 static void test_demo_song_log_is_the_committed_one(void **s)
 {
     char path[1024];
@@ -408,6 +441,7 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_dance_follows_a_music_clock_5_percent_off),
         cmocka_unit_test(test_camera_loss_pauses_the_song_until_frames_return),
         cmocka_unit_test(test_garbage_frames_give_no_player_and_recover),
+        cmocka_unit_test(test_every_hint_shown_is_said_at_its_tick),
         cmocka_unit_test(test_demo_song_log_is_the_committed_one),
     };
     return cmocka_run_group_tests_name("scenarios", tests, NULL, NULL);

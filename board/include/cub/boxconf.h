@@ -47,6 +47,7 @@ typedef struct cub_boxconf {
     int volume;            /* percent, 0..100, default 80 */
     char audio_driver[16]; /* auto (default: SDL's choice, ALSA on the box), alsa, pulseaudio,
                               pipewire, dummy, disk */
+    int speech;            /* the bear says its words too (over the music); default 1 */
     /* timings (seconds without anyone moving or pressing) */
     int attract_after_s;   /* default 20, 1..3600 */
     int doze_after_s;      /* default 60, 2..86400, > attract_after_s */

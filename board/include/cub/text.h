@@ -51,6 +51,7 @@ cub_err cub_diag_report(cub_err e, const cub_diag *d, char *buf, size_t size);
 #define CUB_TEXT_MAX_CLIPS (64 * CUB_TEXT_MB)    /* a clip library (.cubclips): 0.45 MB */
 #define CUB_TEXT_MAX_MOCAP (64 * CUB_TEXT_MB)    /* BVH, ASF/AMC takes, truth: 3.8 MB */
 #define CUB_TEXT_MAX_FONT (32 * CUB_TEXT_MB)     /* DejaVuSans-Bold: 0.7 MB */
+#define CUB_TEXT_MAX_VOICE (32 * CUB_TEXT_MB)    /* the bear's spoken words: 2.2 MB */
 
 /* n bytes in words for a message: "4 MB", "64 kB", else "1234 bytes". */
 const char *cub_text_size_str(size_t n, char *buf, size_t size);
