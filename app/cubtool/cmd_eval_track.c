@@ -285,6 +285,12 @@ typedef struct eval_opts {
     int print, no_gravity, per_frame;
 } eval_opts;
 
+/* The child's truth and the second person's, each there or not. */
+typedef struct eval_truths {
+    cub_synth_truth child, second;
+    int have_child, have_second;
+} eval_truths;
+
 static int parse_args(int argc, char **argv, eval_opts *o)
 {
     for (int i = 1; i < argc; i++) {
@@ -322,9 +328,11 @@ static int parse_args(int argc, char **argv, eval_opts *o)
 }
 
 /* The tracker over every frame of d, scored against the truths. */
-static int run_frames(const eval_opts *o, const cub_tool_dump *d, const cub_synth_truth *tt,
-                      int have, const cub_synth_truth *t2, int have2, eval_acc *acc, double *secs)
+static int run_frames(const eval_opts *o, const cub_tool_dump *d, const eval_truths *tr_all,
+                      eval_acc *acc, double *secs)
 {
+    const cub_synth_truth *tt = &tr_all->child;
+    int have = tr_all->have_child;
     cub_vec3 grav = {(cub_q16)(tt->gravity[0] * 65536), (cub_q16)(tt->gravity[1] * 65536),
                      (cub_q16)(tt->gravity[2] * 65536)};
     int have_grav = have && !o->no_gravity;
@@ -342,7 +350,7 @@ static int run_frames(const eval_opts *o, const cub_tool_dump *d, const cub_synt
         const cub_synth_truth_frame *tr = truth_of(tt, have, f);
         if (!tr) continue;
         score_joints(acc, &s, tr, truth_yaw_deg(tr, tt->gravity), o->per_frame);
-        score_identity(acc, &s, tr, truth_of(t2, have2, f));
+        score_identity(acc, &s, tr, truth_of(&tr_all->second, tr_all->have_second, f));
     }
     free(mem);
     return 0;
@@ -358,11 +366,10 @@ int cub_cmd_eval_track(int argc, char **argv)
     char tpath[4096], spath[4096];
     if (!o.truth) snprintf(tpath, sizeof tpath, "%s/truth.txt", o.dir), o.truth = tpath;
     snprintf(spath, sizeof spath, "%s/truth_second.txt", o.dir);
-    cub_synth_truth tt = {0}, t2 = {0};
-    int have = 0, have2 = 0;
-    if (load_truth(o.truth, &tt, &have)) return 1;
-    if (have && load_truth(spath, &t2, &have2)) {
-        cub_synth_truth_free(&tt);
+    eval_truths tr = {0};
+    if (load_truth(o.truth, &tr.child, &tr.have_child)) return 1;
+    if (tr.have_child && load_truth(spath, &tr.second, &tr.have_second)) {
+        cub_synth_truth_free(&tr.child);
         return 1;
     }
     cub_tool_dump d;
@@ -370,10 +377,11 @@ int cub_cmd_eval_track(int argc, char **argv)
     double secs = 0;
     rc = !acc || cub_tool_dump_load(o.dir, &d, EVAL_MAX_FRAMES, "eval-track") ? 1 : 0;
     if (!rc) {
-        rc = run_frames(&o, &d, &tt, have, &t2, have2, acc, &secs) ? 1 : 0;
-        if (!rc && have) print_table(acc);
-        if (!rc && !have) printf("eval-track: no truth at %s (status and speed only)\n", o.truth);
-        if (!rc && have2)
+        rc = run_frames(&o, &d, &tr, acc, &secs) ? 1 : 0;
+        if (!rc && tr.have_child) print_table(acc);
+        if (!rc && !tr.have_child)
+            printf("eval-track: no truth at %s (status and speed only)\n", o.truth);
+        if (!rc && tr.have_second)
             printf("eval-track: wrong person in %d of %d frames with a player and a second person "
                    "(%d with the child in view)\n",
                    acc->wrong, acc->second_frames, acc->wrong_in_view);
@@ -386,7 +394,7 @@ int cub_cmd_eval_track(int argc, char **argv)
         cub_tool_dump_free(&d);
     }
     free(acc);
-    cub_synth_truth_free(&tt);
-    cub_synth_truth_free(&t2);
+    cub_synth_truth_free(&tr.child);
+    cub_synth_truth_free(&tr.second);
     return rc;
 }
