@@ -3,7 +3,8 @@
  * silhouette and truth, the clip's own travel is kept, clamped or pinned,
  * the second person's pixels and truth are where each mode puts them, loose
  * clothes widen the silhouette, and every option follows the seed. Clean
- * renders (quantisation only) unless noise is what is tested. */
+ * renders (quantisation only) unless noise is what is tested. Under
+ * CUB_QUICK (qemu) fewer frames and segments. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -40,6 +41,11 @@ static const char *data_dir(void)
             skip();                                                                                \
         }                                                                                          \
     } while (0)
+
+static int quick(void)
+{
+    return getenv("CUB_QUICK") != NULL;
+}
 
 static cub_synth *open_clip(cub_synth_desc d, const char *clip, double to_s)
 {
@@ -158,7 +164,7 @@ static void test_yaw_segments_follow_the_seed(void **state)
         cub_synth *base = open_clip((cub_synth_desc){.clean = 1}, "13_29", 4);
         cub_synth *s = open_clip((cub_synth_desc){.clean = 1, .seed = seeds[k], .yaw_segment_s = 1},
                                  "13_29", 4);
-        for (int g = 0; g < 4; g++) {
+        for (int g = 0; g < (quick() ? 2 : 4); g++) {
             int f0 = g * 30 + 18, f1 = g * 30 + 28; /* after the 0.5 s turn */
             double a0 = wrap180(left_angle_deg(&render(base, f0)->truth) -
                                 left_angle_deg(&render(s, f0)->truth));
@@ -174,7 +180,7 @@ static void test_yaw_segments_follow_the_seed(void **state)
            turn[0][0], turn[0][1], turn[0][2], turn[0][3], turn[2][0], turn[2][1], turn[2][2],
            turn[2][3]);
     double spread = 0, other = 0;
-    for (int g = 0; g < 4; g++) {
+    for (int g = 0; g < (quick() ? 2 : 4); g++) {
         assert_true(fabs(turn[0][g] - turn[1][g]) < 1e-3);
         spread = fmax(spread, fabs(wrap180(turn[0][g] - turn[0][0])));
         other = fmax(other, fabs(wrap180(turn[0][g] - turn[2][g])));
@@ -190,8 +196,9 @@ static double hip_travel_mm(cub_synth_desc d)
     cub_synth *s = open_clip(d, "02_01", 0);
     double lo = 1e9, hi = -1e9;
     int n = cub_synth_frame_count(s);
-    for (int f = 0; f < n; f += 10) {
-        double z = render(s, f)->truth.joint_mm[CUB_KJ_HIP_CENTRE][2];
+    int step = quick() ? 30 : 10;
+    for (int f = 0; f < n + step - 1; f += step) { /* the last frame too */
+        double z = render(s, f < n ? f : n - 1)->truth.joint_mm[CUB_KJ_HIP_CENTRE][2];
         lo = fmin(lo, z), hi = fmax(hi, z);
     }
     cub_synth_close(s);
