@@ -181,7 +181,8 @@ static int parse_opt(opts *o, int argc, char **argv, int *i)
         else if (!strcmp(a, "--clean"))
             o->d.clean = 1;
         else {
-            fprintf(stderr, "synth-depth: unknown option or missing value: %s\n", a);
+            /* not when a number was refused above: that said why */
+            if (ok) fprintf(stderr, "synth-depth: unknown option or missing value: %s\n", a);
             return 0;
         }
     }
