@@ -33,10 +33,20 @@
 # EVAL_DUMPS=DIR to keep the renders there and reuse them on the next run.
 # Prints the exact commands, per clip the share within 10 cm, overall, and
 # per joint over the whole set.
+#
+# Since issue 20 the protocol is the leave-one-source-out folds of
+# docs/tracker_eval.md: `scripts/eval_tracker.sh BUILD_DIR --folds
+# [dev|heldout|all] [--quick] [--fold NAME] [--csv FILE]` runs
+# scripts/eval_folds.sh. The sets below are the history of rounds 1-10.
 set -eu
 
-usage() { echo "usage: scripts/eval_tracker.sh BUILD_DIR [--tuning|--heldout2|--heldout3] [--mirror]" >&2; exit 2; }
+usage() { echo "usage: scripts/eval_tracker.sh BUILD_DIR [--tuning|--heldout2|--heldout3] [--mirror] | BUILD_DIR --folds [dev|heldout|all] [--quick] [--fold NAME] [--csv FILE]" >&2; exit 2; }
 [ $# -ge 1 ] || usage
+if [ "${2:-}" = "--folds" ]; then
+    B=$1
+    shift 2
+    exec sh "$(dirname "$0")/eval_folds.sh" "$B" "$@"
+fi
 BUILD=$1
 shift
 SET=heldout

@@ -36,15 +36,35 @@ static void help(FILE *f)
                "  --height MM          [1150]\n"
                "  --build B            slim | average | sturdy [average]\n"
                "  --loose              loose clothes: wider torso and thighs, a skirt hem\n"
+               "  --loose-clothes      looser still: that, plus a loose shirt, wide sleeves and\n"
+               "                       baggy trouser legs\n"
+               "\n"
+               "turning and travel (yaw: about the body's vertical axis, + = turned towards\n"
+               "its left, 0 = facing the camera, 180 = its back to the camera):\n"
+               "  --yaw DEG            the whole performance turned by DEG [0]\n"
+               "  --spin DEG_PER_S     and the body keeps turning about its hips [0]\n"
+               "  --yaw-segments S     every S seconds a new yaw in [-180, 180), drawn from\n"
+               "                       --seed, turned to in 0.5 s (S >= 0.1) [off]\n"
+               "  --max-travel MM      the clip's own travel about its mean spot is kept, softly\n"
+               "                       clamped (tanh) to +-MM on each floor axis [not clamped]\n"
+               "  --pin                no travel: the hips stay over one spot\n"
                "\n"
                "the scene:\n"
                "  --distance MM        from the camera to the child [2200]\n"
                "  --camera-height MM   above the floor [800]\n"
                "  --tilt DEG           camera pitch, + = up [0]; gravity goes in truth.txt\n"
                "  --room               a back wall, a sofa, a table and a plant\n"
-               "  --second-person CLIP an adult beside and behind the child\n"
-               "  --second-height MM   [1650]\n"
-               "  --second-x MM, --second-dz MM   its offset right / farther [700, 900]\n"
+               "  --second-person CLIP another person, driven by CLIP; its true joints go to\n"
+               "                       DIR/truth_second.txt (eval-track tells who is who)\n"
+               "  --second-mode MODE   behind: stands behind and beside the child [default];\n"
+               "                       walk-in: walks in from the right (1 m/s, from 1 s) to\n"
+               "                       that spot and stays; cross: walks across in front of\n"
+               "                       the child (0.7 m nearer the camera), right to left,\n"
+               "                       passing it mid-way; sibling: a child of similar height\n"
+               "                       (+8 %%) beside the child (0.65 m to its left)\n"
+               "  --second-height MM   [1650; sibling: the child's + 8 %%]\n"
+               "  --second-x MM, --second-dz MM   its offset right / farther [700, 900;\n"
+               "                       cross: 0, -700; sibling: -650, 100]\n"
                "  --clean              no projector shadow, edge noise or holes\n"
                "                       (quantisation and the 0.5-4 m range stay)\n"
                "  --seed N             noise seed [1]; the same seed gives the same bytes\n"
@@ -77,6 +97,18 @@ static int num(const char *opt, const char *v, double lo, double hi, double *out
     return 1;
 }
 
+static int second_mode(const char *v, int *mode)
+{
+    static const char *names[] = {"behind", "walk-in", "cross", "sibling"};
+    for (int k = 0; k < 4; k++)
+        if (!strcmp(v, names[k])) {
+            *mode = k;
+            return 1;
+        }
+    fprintf(stderr, "synth-depth: --second-mode is behind, walk-in, cross or sibling, not '%s'\n", v);
+    return 0;
+}
+
 /* One option at argv[*i]; 0 on a usage error. */
 static int parse_opt(opts *o, int argc, char **argv, int *i)
 {
@@ -98,6 +130,8 @@ static int parse_opt(opts *o, int argc, char **argv, int *i)
         o->d.data_dir = v;
     else if (!strcmp(a, "--second-person") && v)
         o->d.second_clip = v;
+    else if (!strcmp(a, "--second-mode") && v)
+        ok = second_mode(v, &o->d.second_mode);
     else if (!strcmp(a, "--build") && v) {
         o->d.build = !strcmp(v, "slim")     ? CUB_SYNTH_SLIM
                      : !strcmp(v, "sturdy") ? CUB_SYNTH_STURDY
@@ -118,6 +152,14 @@ static int parse_opt(opts *o, int argc, char **argv, int *i)
         o->d.camera_height_mm = (float)x;
     else if (!strcmp(a, "--tilt") && (ok = num(a, v, -45, 45, &x)))
         o->d.tilt_deg = (float)x;
+    else if (!strcmp(a, "--yaw") && (ok = num(a, v, -3600, 3600, &x)))
+        o->d.yaw_deg = (float)x;
+    else if (!strcmp(a, "--spin") && (ok = num(a, v, -1440, 1440, &x)))
+        o->d.spin_deg_s = (float)x;
+    else if (!strcmp(a, "--yaw-segments") && (ok = num(a, v, 0.1, 1e4, &x)))
+        o->d.yaw_segment_s = (float)x;
+    else if (!strcmp(a, "--max-travel") && (ok = num(a, v, 1, 10000, &x)))
+        o->d.max_travel_mm = (float)x;
     else if (!strcmp(a, "--second-height") && (ok = num(a, v, 600, 2200, &x)))
         o->d.second_height_mm = (float)x;
     else if (!strcmp(a, "--second-x") && (ok = num(a, v, -5000, 5000, &x)))
@@ -130,12 +172,17 @@ static int parse_opt(opts *o, int argc, char **argv, int *i)
             o->one.mirror = 1;
         else if (!strcmp(a, "--loose"))
             o->d.loose_clothes = 1;
+        else if (!strcmp(a, "--loose-clothes"))
+            o->d.loose_clothes = 2;
+        else if (!strcmp(a, "--pin"))
+            o->d.pin = 1;
         else if (!strcmp(a, "--room"))
             o->d.room = 1;
         else if (!strcmp(a, "--clean"))
             o->d.clean = 1;
         else {
-            fprintf(stderr, "synth-depth: unknown option or missing value: %s\n", a);
+            /* not when a number was refused above: that said why */
+            if (ok) fprintf(stderr, "synth-depth: unknown option or missing value: %s\n", a);
             return 0;
         }
     }
@@ -170,6 +217,10 @@ int cub_cmd_synth_depth(int argc, char **argv)
     }
     if (!o.out || o.have_clip == !!o.sequence) {
         fprintf(stderr, "synth-depth: give --out and one of --clip / --sequence (see --help)\n");
+        return 2;
+    }
+    if (o.d.second_mode && !o.d.second_clip) {
+        fprintf(stderr, "synth-depth: --second-mode needs --second-person CLIP\n");
         return 2;
     }
     if (!o.d.data_dir)

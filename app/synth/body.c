@@ -1,7 +1,9 @@
 /* The body: rounded primitives placed by the 20 joints, in child
  * proportions. Radii are fractions of the height H (a 1150 mm child: upper
  * arm 35 mm, thigh 58 mm, head 74 x 104 x 90 mm), times the build factor;
- * loose clothes widen the torso and thighs and add a skirt-like hem. */
+ * loose clothes widen the torso and thighs and add a skirt-like hem; at
+ * level 2 also a loose shirt over the chest, wide sleeves and baggy legs
+ * (fixed fractions: deterministic). */
 #include "synth_internal.h"
 
 #define NECK_F 0.03f    /* neck length / H */
@@ -43,22 +45,28 @@ static float loose_add(const synth_body_shape *s, float f)
     return s->loose ? f * s->height_mm : 0;
 }
 
+/* Level 2 only: the shirt, sleeves and trouser legs. */
+static float baggy_add(const synth_body_shape *s, float f)
+{
+    return s->loose >= 2 ? f * s->height_mm : 0;
+}
+
 float synth_body_joint_radius(const synth_body_shape *s, int j)
 {
     float h = s->height_mm, b = s->build;
     switch (j) {
     case CUB_KJ_HIP_CENTRE:
     case CUB_KJ_SPINE:
-    case CUB_KJ_SHOULDER_CENTRE: return 0.06f * h * b + loose_add(s, 0.02f);
+    case CUB_KJ_SHOULDER_CENTRE: return 0.06f * h * b + loose_add(s, 0.02f) + baggy_add(s, 0.015f);
     case CUB_KJ_HEAD: return 0.078f * h;
     case CUB_KJ_HIP_L:
     case CUB_KJ_HIP_R: return 0.05f * h * b + loose_add(s, 0.015f);
     case CUB_KJ_KNEE_L:
-    case CUB_KJ_KNEE_R: return 0.036f * h * b;
+    case CUB_KJ_KNEE_R: return 0.036f * h * b + baggy_add(s, 0.012f);
     case CUB_KJ_SHOULDER_L:
-    case CUB_KJ_SHOULDER_R: return 0.038f * h * b;
+    case CUB_KJ_SHOULDER_R: return 0.038f * h * b + baggy_add(s, 0.015f);
     case CUB_KJ_ELBOW_L:
-    case CUB_KJ_ELBOW_R: return 0.028f * h * b;
+    case CUB_KJ_ELBOW_R: return 0.028f * h * b + baggy_add(s, 0.015f);
     default: return 0.025f * h;
     }
 }
@@ -104,7 +112,7 @@ int synth_body_prims(const synth_body_shape *s, const cub_fv3 p[SP_COUNT], uint8
 
     frame_of(cub_fv3_sub(p[CUB_KJ_SHOULDER_CENTRE], p[CUB_KJ_HIP_CENTRE]),
              cub_fv3_sub(p[CUB_KJ_SHOULDER_L], p[CUB_KJ_SHOULDER_R]), ax);
-    float wide = loose_add(s, 0.02f);
+    float wide = loose_add(s, 0.02f) + baggy_add(s, 0.015f);
     out[n++] = ellipsoid(cub_fv3_lerp(p[CUB_KJ_SPINE], p[CUB_KJ_SHOULDER_CENTRE], 0.35f), ax,
                          0.095f * h * b + wide, 0.15f * h, 0.06f * h * b + wide, owner);
     out[n++] = ellipsoid(cub_fv3_lerp(p[CUB_KJ_HIP_CENTRE], p[CUB_KJ_SPINE], 0.2f), ax,
@@ -113,13 +121,13 @@ int synth_body_prims(const synth_body_shape *s, const cub_fv3 p[SP_COUNT], uint8
     out[n++] = capsule(p[CUB_KJ_HIP_L], p[CUB_KJ_HIP_R], 0.05f * h * b, owner);
     for (int side = 0; side < 2; side++) {
         int sh = side ? CUB_KJ_SHOULDER_R : CUB_KJ_SHOULDER_L;
-        out[n++] = capsule(p[sh], p[sh + 1], 0.03f * h * b, owner);
-        out[n++] = capsule(p[sh + 1], p[sh + 2], 0.025f * h * b, owner);
+        out[n++] = capsule(p[sh], p[sh + 1], 0.03f * h * b + baggy_add(s, 0.015f), owner);
+        out[n++] = capsule(p[sh + 1], p[sh + 2], 0.025f * h * b + baggy_add(s, 0.012f), owner);
         cub_fv3 tip = cub_fv3_lerp(p[sh + 2], p[sh + 3], 2.0f);
         out[n++] = capsule(p[sh + 2], tip, 0.021f * h, owner);
         int hip = side ? CUB_KJ_HIP_R : CUB_KJ_HIP_L;
         out[n++] = capsule(p[hip], p[hip + 1], 0.05f * h * b + loose_add(s, 0.015f), owner);
-        out[n++] = capsule(p[hip + 1], p[hip + 2], 0.036f * h * b, owner);
+        out[n++] = capsule(p[hip + 1], p[hip + 2], 0.036f * h * b + baggy_add(s, 0.012f), owner);
         cub_fv3 heel, toe;
         synth_body_foot_ends(p[hip + 2], p[hip + 3], &heel, &toe);
         out[n++] = capsule(heel, toe, FOOT_R_F * h, owner);

@@ -3,7 +3,7 @@
  * fakenect-record writes and ../shared/data/depth/skeltrack holds), each
  * followed by the accelerometer as fakenect-record writes it
  * (a-<time>-<timestamp>.dump, the scene's gravity), and truth.txt beside
- * them. */
+ * them (truth_second.txt too when there is a second person). */
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -115,6 +115,17 @@ static void write_truth_frame(FILE *f, const cub_synth_truth_frame *t)
     fputc('\n', f);
 }
 
+/* dir/name opened for writing, its truth head written when g is given. */
+static FILE *open_out(const char *dir, const char *name, const float *g, cub_diag *diag)
+{
+    char path[700];
+    snprintf(path, sizeof(path), "%s/%s", dir, name);
+    FILE *f = fopen(path, "w");
+    if (!f) io_fail(diag, path, "cannot write");
+    if (f && g) write_truth_head(f, g);
+    return f;
+}
+
 cub_err cub_synth_write_dump(cub_synth *s, const char *dir, int frames, int verbose, cub_diag *diag)
 {
     if (!s || !dir) return CUB_ERR_ARG;
@@ -122,18 +133,16 @@ cub_err cub_synth_write_dump(cub_synth *s, const char *dir, int frames, int verb
     if (frames <= 0 || frames > total) frames = total;
     if (make_dirs(dir) != 0) return io_fail(diag, dir, "cannot create the folder");
     char path[700], name[96];
-    snprintf(path, sizeof(path), "%s/INDEX.txt", dir);
-    FILE *index = fopen(path, "w");
-    if (!index) return io_fail(diag, path, "cannot write");
-    snprintf(path, sizeof(path), "%s/truth.txt", dir);
-    FILE *truth = fopen(path, "w");
-    if (!truth) {
-        fclose(index);
-        return io_fail(diag, path, "cannot write");
-    }
     float g[3];
     cub_synth_gravity(s, g);
-    write_truth_head(truth, g);
+    FILE *index = open_out(dir, "INDEX.txt", NULL, diag), *truth = NULL, *second = NULL;
+    if (index) truth = open_out(dir, "truth.txt", g, diag);
+    if (truth && cub_synth_has_second(s)) second = open_out(dir, "truth_second.txt", g, diag);
+    if (!index || !truth || (cub_synth_has_second(s) && !second)) {
+        if (index) fclose(index);
+        if (truth) fclose(truth);
+        return CUB_ERR_IO;
+    }
     uint16_t *raw = malloc(CUB_KINECT_WIDTH * CUB_KINECT_HEIGHT * sizeof(uint16_t));
     cub_err err = raw ? CUB_OK : CUB_ERR_NOMEM;
     for (int i = 0; i < frames && !err; i++) {
@@ -146,6 +155,7 @@ cub_err cub_synth_write_dump(cub_synth *s, const char *dir, int frames, int verb
             break;
         }
         write_truth_frame(truth, &t);
+        if (second && cub_synth_second_truth(s, &t) == CUB_OK) write_truth_frame(second, &t);
         if (verbose && (i % 30 == 29 || i + 1 == frames))
             fprintf(stderr, "\rsynth-depth: frame %d/%d", i + 1, frames);
     }
@@ -153,6 +163,7 @@ cub_err cub_synth_write_dump(cub_synth *s, const char *dir, int frames, int verb
     free(raw);
     int bad = fclose(index) != 0;
     bad |= fclose(truth) != 0;
-    if (!err && bad) err = io_fail(diag, dir, "cannot finish writing INDEX.txt or truth.txt");
+    if (second) bad |= fclose(second) != 0;
+    if (!err && bad) err = io_fail(diag, dir, "cannot finish writing INDEX.txt or a truth file");
     return err;
 }

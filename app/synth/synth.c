@@ -1,6 +1,7 @@
 /* The scene and the performance: segments of clips played back to back
- * (blended), the player placed facing the camera, the optional room and
- * second person, and one frame's render with its truth. */
+ * (blended), the player placed facing the camera then turned and its
+ * travel clamped as asked, the optional room and second person (standing,
+ * walking in, crossing, a sibling), and one frame's render with its truth. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -9,6 +10,11 @@
 
 #define PI_F 3.14159265f
 #define MAX_PRIMS 96
+#define YAW_TURN_S 0.5f   /* a new segment yaw is turned to in this time */
+#define WALK_MM_S 1000.0f /* the second person's walking speed */
+#define WALK_IN_FROM_S 1.0
+#define WALK_IN_MM 2400.0f /* from this far right of its spot: out of view */
+#define CROSS_HALF_MM 2000.0f
 #define NPIX (CUB_KINECT_WIDTH * CUB_KINECT_HEIGHT)
 
 typedef struct seg {
@@ -27,6 +33,10 @@ struct cub_synth {
     double total_s;
     seg second;
     int has_second;
+    cub_fv3 second_pts[SP_COUNT]; /* of the frame last rendered */
+    int last_frame;
+    float *yaws;                  /* per yaw segment, degrees */
+    int nyaw;
     synth_body_shape shape, second_shape;
     synth_camera cam, proj;
     synth_prim room[32];
@@ -46,9 +56,11 @@ static void defaults(cub_synth_desc *d)
     if (d->camera_height_mm <= 0) d->camera_height_mm = 800;
     if (d->fps <= 0) d->fps = 30;
     if (d->blend_s <= 0) d->blend_s = 0.3f;
-    if (d->second_height_mm <= 0) d->second_height_mm = 1650;
-    if (d->second_x_mm == 0) d->second_x_mm = 700;
-    if (d->second_dz_mm == 0) d->second_dz_mm = 900;
+    int sib = d->second_mode == CUB_SYNTH_SECOND_SIBLING;
+    int cross = d->second_mode == CUB_SYNTH_SECOND_CROSS;
+    if (d->second_height_mm <= 0) d->second_height_mm = sib ? d->height_mm * 1.08f : 1650;
+    if (d->second_x_mm == 0) d->second_x_mm = sib ? -650 : cross ? 0 : 700;
+    if (d->second_dz_mm == 0) d->second_dz_mm = sib ? 100 : cross ? -700 : 900;
 }
 
 static float build_factor(int build)
@@ -105,7 +117,76 @@ static void segment_points(const seg *s, double t_s, cub_fv3 out[SP_COUNT])
     }
 }
 
-static void player_points(const cub_synth *s, double t_s, cub_fv3 out[SP_COUNT])
+static cub_fv3 to_world(cub_fv3 p, float dx, float dz)
+{
+    return cub_fv3_make(p.x + dx, p.y, p.z + dz);
+}
+
+static float smooth01(float w)
+{
+    w = w < 0 ? 0 : w > 1 ? 1 : w;
+    return w * w * (3 - 2 * w);
+}
+
+/* Turn the points by deg about the vertical line through (cx, cz). */
+static void turn_about(cub_fv3 p[SP_COUNT], float cx, float cz, float deg)
+{
+    float th = deg * PI_F / 180.0f, c = cosf(th), n = sinf(th);
+    for (int j = 0; j < SP_COUNT; j++) {
+        float x = p[j].x - cx, z = p[j].z - cz;
+        p[j].x = cx + x * c + z * n;
+        p[j].z = cz - x * n + z * c;
+    }
+}
+
+/* The clip's own travel (the hips about the origin of the player frame):
+ * kept, softly clamped to +-max_mm on each floor axis, or pinned. */
+static void limit_travel(cub_fv3 p[SP_COUNT], float max_mm, int pin)
+{
+    cub_fv3 h = p[CUB_KJ_HIP_CENTRE];
+    float dx = 0, dz = 0;
+    if (pin) {
+        dx = -h.x, dz = -h.z;
+    } else if (max_mm > 0) {
+        dx = max_mm * tanhf(h.x / max_mm) - h.x;
+        dz = max_mm * tanhf(h.z / max_mm) - h.z;
+    }
+    for (int j = 0; j < SP_COUNT; j++)
+        p[j].x += dx, p[j].z += dz;
+}
+
+static float wrap180(float deg)
+{
+    return deg - 360.0f * floorf((deg + 180.0f) / 360.0f);
+}
+
+/* The turning about the hips at t: the spin plus the segment yaw. */
+static float turning_deg(const cub_synth *s, double t_s)
+{
+    float yaw = (float)(s->d.spin_deg_s * t_s);
+    if (s->nyaw == 0) return yaw;
+    int k = (int)(t_s / s->d.yaw_segment_s);
+    k = k < 0 ? 0 : k >= s->nyaw ? s->nyaw - 1 : k;
+    float w = smooth01((float)(t_s - k * s->d.yaw_segment_s) / YAW_TURN_S);
+    float prev = k > 0 ? s->yaws[k - 1] : s->yaws[0];
+    return yaw + prev + wrap180(s->yaws[k] - prev) * w;
+}
+
+/* Segment yaws uniform in [-180, 180), from their own stream of the seed. */
+static int draw_yaws(cub_synth *s)
+{
+    if (s->d.yaw_segment_s <= 0) return 0;
+    s->nyaw = (int)(s->total_s / s->d.yaw_segment_s) + 1;
+    s->yaws = malloc((size_t)s->nyaw * sizeof(float));
+    if (!s->yaws) return -1;
+    /* not seed x splitmix's own step: seeds n and n + 1 would be one stream */
+    synth_rng rng = {s->d.seed * 0xD1B54A32D192ED03ull + 0x5EEDull};
+    for (int k = 0; k < s->nyaw; k++)
+        s->yaws[k] = synth_rng_unit(&rng) * 360.0f - 180.0f;
+    return 0;
+}
+
+static void blended_points(const cub_synth *s, double t_s, cub_fv3 out[SP_COUNT])
 {
     int k = 0;
     while (k + 1 < s->nseg && t_s >= s->segs[k + 1].start_s)
@@ -123,6 +204,53 @@ static void player_points(const cub_synth *s, double t_s, cub_fv3 out[SP_COUNT])
         for (int j = 0; j < SP_COUNT; j++)
             out[j] = cub_fv3_lerp(prev[j], out[j], w);
     }
+}
+
+/* The player at t in the player frame: the whole performance turned by
+ * yaw_deg, the body turning about its hips, its travel limited. */
+static void player_points(const cub_synth *s, double t_s, cub_fv3 out[SP_COUNT])
+{
+    blended_points(s, t_s, out);
+    if (s->d.yaw_deg != 0) turn_about(out, 0, 0, s->d.yaw_deg);
+    float turn = turning_deg(s, t_s);
+    if (turn != 0) turn_about(out, out[CUB_KJ_HIP_CENTRE].x, out[CUB_KJ_HIP_CENTRE].z, turn);
+    limit_travel(out, s->d.max_travel_mm, s->d.pin);
+}
+
+/* The second person's spot (offset from the player's) and yaw at t; 1 when
+ * its motion is driven here (its own travel is then pinned). */
+static int second_spot(const cub_synth *s, double t_s, float *x, float *dz, float *yaw)
+{
+    *x = s->d.second_x_mm, *dz = s->d.second_dz_mm, *yaw = 0;
+    if (s->d.second_mode == CUB_SYNTH_SECOND_WALK_IN) {
+        double walked = (t_s - WALK_IN_FROM_S) * WALK_MM_S;
+        walked = walked < 0 ? 0 : walked > WALK_IN_MM ? WALK_IN_MM : walked;
+        *x += WALK_IN_MM - (float)walked;
+        double arrived_s = t_s - WALK_IN_FROM_S - WALK_IN_MM / WALK_MM_S;
+        /* walking to -x: facing its left (+90), then turning to the camera */
+        *yaw = 90.0f * (1 - smooth01((float)arrived_s / YAW_TURN_S));
+        return 1;
+    }
+    if (s->d.second_mode == CUB_SYNTH_SECOND_CROSS) {
+        double mid_s = s->total_s / 2;
+        double x_mm = -(t_s - mid_s) * WALK_MM_S;
+        *x += (float)(x_mm < -CROSS_HALF_MM ? -CROSS_HALF_MM : x_mm > CROSS_HALF_MM ? CROSS_HALF_MM : x_mm);
+        *yaw = 90.0f;
+        return 1;
+    }
+    return 0;
+}
+
+static void second_points(const cub_synth *s, double t_s, cub_fv3 q[SP_COUNT])
+{
+    const seg *g = &s->second;
+    segment_points(g, g->from_s + fmod(t_s, g->dur_s), q);
+    float x, dz, yaw;
+    int driven = second_spot(s, t_s, &x, &dz, &yaw);
+    if (yaw != 0) turn_about(q, q[CUB_KJ_HIP_CENTRE].x, q[CUB_KJ_HIP_CENTRE].z, yaw);
+    limit_travel(q, s->d.max_travel_mm, driven || s->d.pin);
+    for (int j = 0; j < SP_COUNT; j++)
+        q[j] = to_world(q[j], x, s->d.distance_mm + dz);
 }
 
 static void set_cameras(cub_synth *s)
@@ -180,6 +308,7 @@ cub_err cub_synth_open(const cub_synth_desc *desc, const cub_synth_segment *segs
     defaults(&s->d);
     s->shape = (synth_body_shape){s->d.height_mm, build_factor(s->d.build), s->d.loose_clothes};
     s->second_shape = (synth_body_shape){s->d.second_height_mm, 1.0f, 0};
+    if (s->d.yaw_segment_s > 0 && s->d.yaw_segment_s < 0.1f) s->d.yaw_segment_s = 0.1f;
     set_cameras(s);
     synth_room_build(s->d.distance_mm, s->d.room, s->room, &s->nroom);
     s->segs = calloc((size_t)(n ? n : 1), sizeof(seg));
@@ -204,6 +333,7 @@ cub_err cub_synth_open(const cub_synth_desc *desc, const cub_synth_segment *segs
         s->segs[i].start_s = s->total_s;
         s->total_s += s->segs[i].dur_s;
     }
+    if (!err && draw_yaws(s)) err = CUB_ERR_NOMEM;
     if (!err && s->d.second_clip) {
         err = load_segment(s, &s->second, s->d.second_clip, s->d.second_height_mm, 0, 0, 0, diag);
         s->has_second = !err;
@@ -223,6 +353,7 @@ void cub_synth_close(cub_synth *s)
         synth_actor_free(s->segs[i].actor);
     if (s->has_second) synth_actor_free(s->second.actor);
     free(s->segs);
+    free(s->yaws);
     free(s->depth);
     free(s->proj_depth);
     free(s->owner);
@@ -242,12 +373,10 @@ int cub_synth_frame_count(const cub_synth *s)
     return (int)(s->total_s * s->d.fps + 1e-6);
 }
 
-static cub_fv3 to_world(cub_fv3 p, float dx, float dz)
-{
-    return cub_fv3_make(p.x + dx, p.y, p.z + dz);
-}
-
-static void truth_of(const cub_synth *s, const cub_fv3 pts[SP_COUNT], cub_synth_truth_frame *t)
+/* The truth of a body (shape, owner) posed by pts, seen in the frame last
+ * rendered. */
+static void truth_of(const cub_synth *s, const cub_fv3 pts[SP_COUNT], const synth_body_shape *shape,
+                     uint8_t owner, cub_synth_truth_frame *t)
 {
     for (int j = 0; j < CUB_KJ_COUNT; j++) {
         cub_fv3 c = cub_fv3_sub(pts[j], s->cam.origin);
@@ -263,9 +392,9 @@ static void truth_of(const cub_synth *s, const cub_fv3 pts[SP_COUNT], cub_synth_
         if (u < 0 || v < 0 || u >= CUB_KINECT_WIDTH || v >= CUB_KINECT_HEIGHT) continue;
         /* Seen when the surface at its pixel is this body's, not something
          * in front of it (an arm across the chest). */
-        float margin = synth_body_joint_radius(&s->shape, j) + 50.0f;
+        float margin = synth_body_joint_radius(shape, j) + 50.0f;
         int i = v * CUB_KINECT_WIDTH + u;
-        t->visible[j] = s->owner[i] == OWNER_PLAYER && s->depth[i] >= z - margin;
+        t->visible[j] = s->owner[i] == owner && s->depth[i] >= z - margin;
     }
 }
 
@@ -277,6 +406,7 @@ cub_err cub_synth_render(cub_synth *s, int frame, uint16_t *raw, cub_synth_truth
     int n = 0;
     double t_s = frame / (double)s->d.fps;
     cub_fv3 pts[SP_COUNT];
+    s->last_frame = frame;
     if (s->nseg > 0) {
         player_points(s, t_s, pts);
         for (int j = 0; j < SP_COUNT; j++)
@@ -284,12 +414,8 @@ cub_err cub_synth_render(cub_synth *s, int frame, uint16_t *raw, cub_synth_truth
         n += synth_body_prims(&s->shape, pts, OWNER_PLAYER, prims + n);
     }
     if (s->has_second) {
-        cub_fv3 q[SP_COUNT];
-        const seg *g = &s->second;
-        segment_points(g, g->from_s + fmod(t_s, g->dur_s), q);
-        for (int j = 0; j < SP_COUNT; j++)
-            q[j] = to_world(q[j], s->d.second_x_mm, s->d.distance_mm + s->d.second_dz_mm);
-        n += synth_body_prims(&s->second_shape, q, OWNER_SECOND, prims + n);
+        second_points(s, t_s, s->second_pts);
+        n += synth_body_prims(&s->second_shape, s->second_pts, OWNER_SECOND, prims + n);
     }
     memcpy(s->depth, s->room_depth, NPIX * sizeof(float));
     memcpy(s->owner, s->room_owner, NPIX);
@@ -304,9 +430,24 @@ cub_err cub_synth_render(cub_synth *s, int frame, uint16_t *raw, cub_synth_truth
         memset(truth, 0, sizeof(*truth));
         truth->frame = frame;
         cub_synth_frame_name(frame, s->d.fps, NULL, 0, &truth->t_s, &truth->ts);
-        if (s->nseg > 0) truth_of(s, pts, truth);
+        if (s->nseg > 0) truth_of(s, pts, &s->shape, OWNER_PLAYER, truth);
     }
     if (depth_mm) memcpy(depth_mm, s->depth, NPIX * sizeof(float));
     if (owner) memcpy(owner, s->owner, NPIX);
+    return CUB_OK;
+}
+
+int cub_synth_has_second(const cub_synth *s)
+{
+    return s && s->has_second;
+}
+
+cub_err cub_synth_second_truth(const cub_synth *s, cub_synth_truth_frame *truth)
+{
+    if (!s || !truth || !s->has_second) return CUB_ERR_ARG;
+    memset(truth, 0, sizeof(*truth));
+    truth->frame = s->last_frame;
+    cub_synth_frame_name(s->last_frame, s->d.fps, NULL, 0, &truth->t_s, &truth->ts);
+    truth_of(s, s->second_pts, &s->second_shape, OWNER_SECOND, truth);
     return CUB_OK;
 }

@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <sys/stat.h>
 #include <string.h>
+#include <strings.h>
 
 static int fail(char *err, size_t size, const char *path, int line, const char *fmt, ...)
 {
@@ -214,6 +215,27 @@ void kinect_free(kinect_seq *s)
     memset(s, 0, sizeof *s);
 }
 
+enum { UTK_INTERVAL, UTK_MISSING, UTK_RUN, UTK_BAD, UTK_HALF_NAN };
+
+/* One line of actionLabel.txt: "action: first last", "action: NaN NaN"
+ * (the real file's mark of an action the run lacks) or a run "sSS_eEE". */
+static int utk_line(const char *line, char name[32], int *a, int *b)
+{
+    char na[8], nb[8], tail[2];
+    if (sscanf(line, "%31[A-Za-z]: %7s %7s %1s", name, na, nb, tail) == 3) {
+        int nan_a = !strcasecmp(na, "nan"), nan_b = !strcasecmp(nb, "nan");
+        if (nan_a && nan_b) return UTK_MISSING;
+        if (nan_a || nan_b) return UTK_HALF_NAN;
+    }
+    if (sscanf(line, "%31[A-Za-z]: %d %d", name, a, b) == 3) return UTK_INTERVAL;
+    char run[16];
+    if (sscanf(line, "%15s", run) == 1 && sscanf(run, "s%d_e%d%1s", a, b, tail) == 2) {
+        snprintf(name, 32, "%s", run);
+        return UTK_RUN;
+    }
+    return UTK_BAD;
+}
+
 int kinect_read_utk_labels(const char *path, utk_interval *out, int max, char *err, size_t err_size)
 {
     FILE *f = fopen(path, "r");
@@ -224,21 +246,23 @@ int kinect_read_utk_labels(const char *path, utk_interval *out, int max, char *e
         ln++;
         if (blank(line)) continue;
         char name[32];
-        int a, b;
-        if (sscanf(line, "%31[A-Za-z]: %d %d", name, &a, &b) == 3) {
-            if (!run[0] || n == max || a > b) {
-                fclose(f);
-                return fail(err, err_size, path, ln, "interval outside a run, or too many");
-            }
-            snprintf(out[n].run, sizeof out[n].run, "%s", run);
-            snprintf(out[n].action, sizeof out[n].action, "%s", name);
-            out[n].first = a;
-            out[n].last = b;
-            n++;
-        } else if (sscanf(line, "%15s", run) != 1 || run[0] != 's') {
+        int a = 0, b = 0, kind = utk_line(line, name, &a, &b);
+        const char *bad = kind == UTK_BAD ? "expected \"sSS_eEE\" or \"action: first last\""
+                          : kind == UTK_HALF_NAN ? "one NaN: a missing action is \"NaN NaN\""
+                          : kind != UTK_RUN && (!run[0] || (kind == UTK_INTERVAL && (n == max || a > b)))
+                              ? "interval outside a run, or too many"
+                              : NULL;
+        if (bad) {
             fclose(f);
-            return fail(err, err_size, path, ln, "expected \"sSS_eEE\" or \"action: first last\"");
+            return fail(err, err_size, path, ln, "%s", bad);
         }
+        if (kind == UTK_RUN) snprintf(run, sizeof run, "%.15s", name);
+        if (kind != UTK_INTERVAL) continue; /* a run, or an action missing from it */
+        snprintf(out[n].run, sizeof out[n].run, "%s", run);
+        snprintf(out[n].action, sizeof out[n].action, "%s", name);
+        out[n].first = a;
+        out[n].last = b;
+        n++;
     }
     fclose(f);
     return n;

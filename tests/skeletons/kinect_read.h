@@ -45,7 +45,9 @@ typedef struct utk_interval {
     int first, last;
 } utk_interval;
 
-/* All intervals of actionLabel.txt; returns the count (<= max) or -1. */
+/* All intervals of actionLabel.txt; returns the count (<= max) or -1. An
+ * action marked "NaN NaN" (the real file's way of saying a run lacks it)
+ * is missing: no interval; one NaN with a number is refused. */
 int kinect_read_utk_labels(const char *path, utk_interval *out, int max, char *err,
                            size_t err_size);
 

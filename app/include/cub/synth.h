@@ -47,12 +47,21 @@ typedef struct cub_synth_segment {
     int mirror;
 } cub_synth_segment;
 
+/* Where the second person is (cub_synth_desc.second_mode). */
+typedef enum cub_synth_second_mode {
+    CUB_SYNTH_SECOND_BEHIND = 0, /* stands at second_x, second_dz the whole time */
+    CUB_SYNTH_SECOND_WALK_IN,    /* walks in from the right (1 m/s, from 1 s) to that spot */
+    CUB_SYNTH_SECOND_CROSS,      /* crosses in front of the child, right to left, mid-way */
+    CUB_SYNTH_SECOND_SIBLING,    /* a child of similar height beside the child */
+} cub_synth_second_mode;
+
 /* Zero-initialised fields take the defaults in brackets. */
 typedef struct cub_synth_desc {
     const char *data_dir;            /* for short clip names [$CUB_DATA_DIR or none] */
     float height_mm;                 /* the child's height [1150] */
     int build;                       /* cub_synth_build [AVERAGE] */
-    int loose_clothes;               /* 1: wider torso and thighs, a skirt hem */
+    int loose_clothes;               /* 1: wider torso and thighs, a skirt hem;
+                                      * 2: also a loose shirt and sleeves, baggy legs */
     float distance_mm;               /* player's ground position from the camera [2200] */
     float camera_height_mm;          /* [800] */
     float tilt_deg;                  /* camera pitch, + = up [0] */
@@ -61,9 +70,23 @@ typedef struct cub_synth_desc {
     uint64_t seed;                   /* noise seed [0 is a seed like any other] */
     int clean;                       /* 1: quantisation only (no shadow, noise, holes) */
     int room;                        /* 1: back wall, sofa, table, plant */
+    /* Facing: the body's yaw about its own vertical axis, + = turned towards
+     * its left (anticlockwise seen from above), 0 = facing the camera. */
+    float yaw_deg;                   /* turns the whole performance about its centre [0] */
+    float spin_deg_s;                /* and keeps turning about the hips [0] */
+    float yaw_segment_s;             /* > 0: every this many seconds a new yaw drawn in
+                                      * [-180, 180) from the seed, turned to in 0.5 s */
+    /* Travel: the clip's own root travel about its mean position is kept
+     * (a walk walks); max_travel_mm > 0 clamps it softly (tanh) to +-that
+     * on each floor axis, pin = 1 holds the hips over one spot. */
+    float max_travel_mm;             /* [0: not clamped] */
+    int pin;
     const char *second_clip;         /* another person (NULL: none) */
-    float second_height_mm;          /* [1650] */
-    float second_x_mm, second_dz_mm; /* beside / behind the player [700, 900] */
+    int second_mode;                 /* cub_synth_second_mode [BEHIND] */
+    float second_height_mm;          /* [1650; SIBLING: the child's height + 8 %] */
+    /* beside / behind the player [700, 900; CROSS: 0, -700 (in front);
+     * SIBLING: -650, 100]; WALK_IN walks to this spot */
+    float second_x_mm, second_dz_mm;
 } cub_synth_desc;
 
 typedef struct cub_synth cub_synth;
@@ -93,6 +116,12 @@ void cub_synth_gravity(const cub_synth *s, float g[3]);
 cub_err cub_synth_render(cub_synth *s, int frame, uint16_t *raw, cub_synth_truth_frame *truth,
                          float *depth_mm, uint8_t *owner);
 
+/* 1 when the scene has a second person. Its true skeleton in the frame
+ * last rendered (visibility against its own pixels), for telling the
+ * player from the other person. */
+int cub_synth_has_second(const cub_synth *s);
+cub_err cub_synth_second_truth(const cub_synth *s, cub_synth_truth_frame *truth);
+
 /* The Kinect's mapping, both ways (raw 0..2046; out of range -> 2047). */
 uint16_t cub_synth_mm_to_raw(double mm);
 double cub_synth_raw_to_mm(uint16_t raw);
@@ -101,7 +130,8 @@ double cub_synth_raw_to_mm(uint16_t raw);
  * its time and timestamp. */
 void cub_synth_frame_name(int frame, float fps, char *buf, size_t size, double *t_s, uint32_t *ts);
 /* Write frames [0, frames) (frames <= 0: all) as a fakenect dump in dir
- * (created if needed): INDEX.txt, d-*.pgm, truth.txt. Progress to stderr
+ * (created if needed): INDEX.txt, d-*.pgm, truth.txt, and with a second
+ * person truth_second.txt (its joints, same format). Progress to stderr
  * when verbose. */
 cub_err cub_synth_write_dump(cub_synth *s, const char *dir, int frames, int verbose,
                              cub_diag *diag);

@@ -1,0 +1,219 @@
+#!/bin/sh
+# The tracker's held-out protocol of issue 20 (docs/tracker_eval.md says
+# why each choice): whole motion sources held out, one fold per source,
+# every fold reported, in the scenes a child's room has (facing, turning,
+# travel, a second person, loose clothes).
+#
+#   scripts/eval_folds.sh BUILD_DIR [dev|heldout|all] [--quick] [--fold NAME] [--csv FILE]
+#   (also: scripts/eval_tracker.sh BUILD_DIR --folds ...)
+#
+# dev      the folds hand-set numbers may be chosen on (CMU subject groups,
+#          AnimatedDrawings, 7 Bandai styles)
+# heldout  the 8 Bandai styles nobody tunes on: run once at the end of a
+#          round, never to decide (default: all = both, each fold reported)
+# --quick  3 folds x 5 renders x 8 frames: the ctest sample (seconds)
+# --fold NAME  that fold only; --csv FILE  every fold's rows for scripts
+#
+# Every render: cubtool synth-depth ... --seed 1 --frames 90 --fps 10 into
+# a temporary folder (EVAL_DUMPS=DIR keeps them for the next run), scored
+# by cubtool eval-track --csv. EVAL_JOBS=N renders N at a time [1].
+# EVAL_RESULTS=DIR keeps the scores there: a rerun scores only the renders
+# whose job line (clip, scene, arguments) has no score yet. A render that
+# fails is named, the table printed without it, and the exit status is 1.
+set -eu
+
+usage() {
+    echo "usage: scripts/eval_folds.sh BUILD_DIR [dev|heldout|all] [--quick] [--fold NAME] [--csv FILE]" >&2
+    exit 2
+}
+HERE=$(cd "$(dirname "$0")" && pwd)
+
+# One render and its score (run by xargs): job line
+# fold|set|item|scene|synth-depth arguments
+if [ "${1:-}" = "--job" ]; then
+    TOOL=$2 DATA=$3 DUMPS=$4 RESULTS=$5 COMMON=$6
+    IFS='|' read -r fold set item scene args <<EOF
+$7
+EOF
+    out=$DUMPS/$fold-$item-$scene
+    meta=$RESULTS/$fold-$item.meta
+    if [ -f "$meta" ] && [ "$(sed -n 2p "$meta")" = "$7 $COMMON" ]; then exit 0; fi
+    rm -f "$meta"
+    echo "+ $TOOL synth-depth $args $COMMON --data $DATA --out $out"
+    if [ ! -f "$out/truth.txt" ]; then
+        # shellcheck disable=SC2086
+        "$TOOL" synth-depth $args $COMMON --data "$DATA" --out "$out" >/dev/null 2>"$out.err" ||
+            { echo "eval_folds: synth-depth failed for $fold $item $scene:" >&2; cat "$out.err" >&2; exit 1; }
+        rm -f "$out.err"
+    fi
+    echo "+ $TOOL eval-track $out --csv $RESULTS/$fold-$item.csv"
+    "$TOOL" eval-track "$out" --csv "$RESULTS/$fold-$item.csv" >/dev/null ||
+        { echo "eval_folds: eval-track failed for $fold $item $scene" >&2; exit 1; }
+    printf '%s %s %s\n%s %s\n' "$fold" "$set" "$scene" "$7" "$COMMON" >"$meta"
+    [ -n "${EVAL_DUMPS:-}" ] || rm -rf "$out" # 55 MB a render: not all kept at once
+    exit 0
+fi
+
+[ $# -ge 1 ] || usage
+BUILD=$1
+shift
+SET=all QUICK=0 ONLY= CSV=
+while [ $# -gt 0 ]; do
+    case $1 in
+    dev | heldout | all) SET=$1 ;;
+    --quick) QUICK=1 ;;
+    --fold) [ $# -ge 2 ] || usage; ONLY=$2; shift ;;
+    --csv) [ $# -ge 2 ] || usage; CSV=$2; shift ;;
+    *) usage ;;
+    esac
+    shift
+done
+TOOL=$BUILD/app/cubtool/cubtool
+[ -x "$TOOL" ] || { echo "eval_folds: no cubtool at $TOOL (build the cubtool target)" >&2; exit 1; }
+DATA=${CUB_DATA_DIR:-$HERE/../../shared/data}
+[ -d "$DATA/mocap" ] || { echo "eval_folds: no mocap under $DATA (set CUB_DATA_DIR)" >&2; exit 1; }
+
+# fold|set|clips (';'-separated, each a --clip and its window). A fold is
+# one motion source: a CMU subject group, AnimatedDrawings, a Bandai style.
+BANDAI_MOTIONS="bow bye byebye guide walk run dash walk-back walk-left walk-right"
+bandai_fold() { # style set [extra clips]
+    printf 'bandai_%s|%s|' "$1" "$2"
+    sep=
+    for m in $BANDAI_MOTIONS; do
+        printf '%sdataset-1_%s_%s_001' "$sep" "$m" "$1"
+        sep=';'
+    done
+    printf '%s\n' "${3:-}"
+}
+folds() {
+    cat <<'EOF'
+cmu13|dev|13_29;13_29 --from 10;13_29 --from 20;13_17 --from 10;13_18 --from 5
+cmu14|dev|14_14;14_14 --from 8;14_14 --from 16;14_14 --from 24;14_14 --from 30
+cmu_walks|dev|02_01;16_11;07_05;08_01;03_01
+cmu_dance_sport|dev|05_06;10_03;131_03;141_16;05_06 --from 3.5
+animdraw|dev|dab;jumping;wave_hello;zombie;jumping_jacks;jesse_dance;jesse_dance --from 5
+EOF
+    bandai_fold normal dev ";dataset-1_call_normal_001;dataset-1_kick_normal_001;dataset-1_respond_normal_001;dataset-1_slash_normal_001;dataset-1_punch_normal_001;dataset-1_dance-short_normal_001 --from 10"
+    for s in active angry chimpira feminine giant masculinity; do bandai_fold $s dev; done
+    for s in childish happy musical not-confident old proud sad tired; do bandai_fold $s heldout; done
+}
+
+# The scene of clip i of fold k: (i + k) mod 5, so every fold has every
+# scene and a motion meets different scenes in different folds. All but
+# facing keep the clip's own travel, clamped to +-0.7 m.
+SCENES="facing turning travel second loose"
+MODES="behind walk-in cross sibling"
+nth() { # n word...
+    n=$1
+    shift
+    shift $((n % $#))
+    echo "$1"
+}
+scene_args() { # scene fold_index clip_index second_clip
+    case $1 in
+    facing) echo "--pin" ;;
+    turning) echo "--max-travel 700 --yaw-segments 1.5" ;;
+    travel) echo "--max-travel 700" ;;
+    second) echo "--max-travel 700 --room --second-person $4 --second-mode $(nth $(($2 + $3 / 5)) $MODES)" ;;
+    loose) [ $(($2 % 2)) = 0 ] && echo "--max-travel 700 --loose-clothes --height 1000 --build slim" ||
+        echo "--max-travel 700 --loose-clothes --height 1300 --build sturdy" ;;
+    esac
+}
+
+# The job lines: the second person's clip is the next fold's first clip
+# (another source, never the fold's own).
+jobs() {
+    folds >"$RESULTS/folds"
+    nf=$(wc -l <"$RESULTS/folds")
+    k=0
+    while IFS='|' read -r fold set clips; do
+        next=$(sed -n "$(((k + 1) % nf + 1))p" "$RESULTS/folds" | cut -d'|' -f3 | cut -d';' -f1 | cut -d' ' -f1)
+        if { [ "$SET" = all ] || [ "$SET" = "$set" ]; } && { [ -z "$ONLY" ] || [ "$ONLY" = "$fold" ]; } &&
+            { [ "$QUICK" = 0 ] || [ "$fold" = cmu14 ] || [ "$fold" = animdraw ] || [ "$fold" = bandai_childish ]; }; then
+            i=0
+            printf '%s\n' "$clips" | tr ';' '\n' | while read -r clip; do
+                [ "$QUICK" = 0 ] || [ $i -lt 5 ] || break
+                scene=$(nth $((i + k)) $SCENES)
+                printf '%s|%s|%02d|%s|--clip %s %s\n' "$fold" "$set" $i "$scene" "$clip" "$(scene_args $scene $k $i $next)"
+                i=$((i + 1))
+            done
+        fi
+        k=$((k + 1))
+    done <"$RESULTS/folds"
+}
+
+if [ -n "${EVAL_DUMPS:-}" ]; then
+    DUMPS=$EVAL_DUMPS KEEP=1
+    mkdir -p "$DUMPS"
+else
+    DUMPS=$(mktemp -d "${TMPDIR:-/tmp}/eval_folds.XXXXXX") KEEP=0
+fi
+if [ -n "${EVAL_RESULTS:-}" ]; then
+    RESULTS=$EVAL_RESULTS KEEP_RESULTS=1
+    mkdir -p "$RESULTS"
+else
+    RESULTS=$(mktemp -d "${TMPDIR:-/tmp}/eval_folds_results.XXXXXX") KEEP_RESULTS=0
+fi
+cleanup() { [ "$KEEP_RESULTS" = 1 ] || rm -rf "$RESULTS"; [ "$KEEP" = 1 ] || rm -rf "$DUMPS"; }
+trap cleanup EXIT INT TERM
+
+COMMON="--seed 1 --frames 90 --fps 10"
+[ "$QUICK" = 0 ] || COMMON="--seed 1 --frames 8 --fps 10"
+echo "eval_folds: $SET folds$([ "$QUICK" = 0 ] || echo ' (quick sample)'), $COMMON, data $DATA"
+jobs >"$RESULTS/jobs"
+[ -s "$RESULTS/jobs" ] || { echo "eval_folds: no fold matches" >&2; exit 1; }
+# each job line is one argument (tr: no xargs quoting inside)
+FAILED=0
+tr '\n' '\0' <"$RESULTS/jobs" |
+    xargs -0 -P "${EVAL_JOBS:-1}" -n 1 sh "$HERE/eval_folds.sh" --job "$TOOL" "$DATA" "$DUMPS" "$RESULTS" "$COMMON" ||
+    FAILED=1
+
+# The table: per fold the share of joints within 10 cm, overall and per
+# facing band, and the wrong-person frames over the frames with a second
+# person; then per set, per scene and per joint.
+cut -d'|' -f1,3 "$RESULTS/jobs" | tr '|' '-' | while read -r key; do
+    m=$RESULTS/$key.meta
+    [ -f "$m" ] || { echo "eval_folds: no score for $key (its render failed): left out" >&2; continue; }
+    set -- $(sed -n 1p "$m")
+    awk -F, -v fold="$1" -v set="$2" -v scene="$3" 'NR > 1 { print fold "," set "," scene "," $0 }' "${m%.meta}.csv"
+done >"$RESULTS/all.csv"
+[ -z "$CSV" ] || { echo "fold,set,scene,kind,band,joint,n,within,mean_mm" >"$CSV"; cat "$RESULTS/all.csv" >>"$CSV"; }
+awk -F, -v bands="yaw0-30 yaw30-60 yaw60-120 yaw120-180" '
+    function cell(w, n) { return n ? sprintf("%8.1f%%", 100 * w / n) : sprintf("%9s", "-") }
+    function row(name, set, key,   b, s) {
+        s = renders[key] ? sprintf("%-22s %-8s %4d %6d", name, set, renders[key], frames[key]) : sprintf("%-34s", name)
+        s = s cell(w[key, "all"], n[key, "all"])
+        for (b = 1; b <= nb; b++) s = s cell(w[key, band[b]], n[key, band[b]])
+        return renders[key] ? s sprintf("  %4d/%-4d", wrong[key], second[key]) : s
+    }
+    function add(key, b, ww, nn) { w[key, b] += ww; n[key, b] += nn }
+    BEGIN { nb = split(bands, band, " ") }
+    {
+        fold = $1; set = $2; scene = $3; kind = $4; b = $5; joint = $6; nn = $7; ww = $8
+        if (!(fold in fset)) { order[++nf] = fold; fset[fold] = set }
+        if (kind == "joint" && joint == "all") {
+            add(fold, b, ww, nn); add(set, b, ww, nn); add("total", b, ww, nn); add("scene " scene, b, ww, nn)
+        } else if (kind == "joint") {
+            if (!((joint) in jseen)) { jorder[++nj] = joint; jseen[joint] = 1 }
+            add("joint " joint, b, ww, nn)
+        } else if (kind == "frames" && b == "all") {
+            frames[fold] += nn; frames[set] += nn; frames["total"] += nn; frames["scene " scene] += nn
+            renders[fold]++; renders[set]++; renders["total"]++; renders["scene " scene]++
+        } else if (kind == "second" || kind == "wrong_person") {
+            if (kind == "second") { second[fold] += nn; second[set] += nn; second["total"] += nn; second["scene " scene] += nn }
+            else { wrong[fold] += nn; wrong[set] += nn; wrong["total"] += nn; wrong["scene " scene] += nn }
+        }
+    }
+    END {
+        h = sprintf("%-22s %-8s %4s %6s %9s", "fold", "set", "rend", "frames", "all")
+        for (b = 1; b <= nb; b++) h = h sprintf(" %9s", band[b])
+        print h "  wrong/2nd"
+        for (f = 1; f <= nf; f++) print row(order[f], fset[order[f]], order[f])
+        if (n["dev", "all"]) print row("dev folds", "dev", "dev")
+        if (n["heldout", "all"]) print row("held-out folds", "heldout", "heldout")
+        print row("all folds", "", "total")
+        split("facing turning travel second loose", sc, " ")
+        for (s = 1; s <= 5; s++) if (renders["scene " sc[s]]) print row("scene " sc[s], "", "scene " sc[s])
+        for (j = 1; j <= nj; j++) print row("joint " jorder[j], "", "joint " jorder[j])
+    }' "$RESULTS/all.csv"
+[ "$FAILED" = 0 ] || { echo "eval_folds: some renders failed (above): the table lacks them" >&2; exit 1; }
