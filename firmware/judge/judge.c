@@ -84,7 +84,7 @@ void judge_emit(cub_judge *j, cub_judge_out *out, const cub_judge_event *e)
 {
     if (out->count < CUB_JUDGE_MAX_EVENTS) out->events[out->count++] = *e;
     if (j->d.log) {
-        char line[160];
+        char line[192];
         cub_judge_describe(e, line, sizeof line);
         cub_log_event(j->d.log, e->ev.t_us, "judge", line, NULL);
     }
@@ -196,9 +196,13 @@ size_t cub_judge_describe(const cub_judge_event *e, char *buf, size_t size)
         const char *key = e->feature >= 0 ? cub_fuzzy_feature_name(e->feature) : "-";
         const char *set = e->feature >= 0 ? cub_fuzzy_set_name(e->feature, e->set) : "-";
         const char *what = e->why == CUB_JUDGE_WHY_POSE ? "d" : "best";
-        return cub_log_format(buf, size, "verdict move=%d rep=%d result=%s why=%s key=%s=%s %s=%q",
-                              e->move, e->rep, e->ev.b ? "right" : "wrong", why, key, set, what,
-                              e->value);
+        size_t n = cub_log_format(buf, size, "verdict move=%d rep=%d result=%s why=%s key=%s=%s %s=%q",
+                                  e->move, e->rep, e->ev.b ? "right" : "wrong", why, key, set,
+                                  what, e->value);
+        int32_t limb = e->ev.b ? CUB_JUDGE_LIMB_NONE
+                               : cub_judge_fault_limb(cub_judge_fault_of(e->ev.c));
+        if (limb == CUB_JUDGE_LIMB_NONE || n + 1 >= size) return n;
+        return n + cub_log_format(buf + n, size - n, " fix=%s", cub_judge_limb_name(limb));
     }
     case CUB_JUDGE_CLAP:
         return cub_log_format(buf, size, "clap gap_mm=%d", (int)(e->value >> 16));
