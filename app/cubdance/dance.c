@@ -45,15 +45,21 @@ static void telling_pose(cub_dance *d, const cub_clip *clip, float *out)
     }
 }
 
-static void show_hint(cub_dance *d, int32_t hint)
+static void show_hint(cub_dance *d, int32_t hint, int32_t fault)
 {
     d->hint = hint;
+    d->fault = fault;
     if (hint < 0 || hint >= d->song.move_count || hint == d->icon_move) return;
     int clip = d->song.moves[hint].clip_index;
     d->icon_move = -1;
     if (clip < 0 || clip >= d->cl.lib.clip_count) return;
     telling_pose(d, &d->cl.lib.clips[clip].clip, d->icon_xyz);
     d->icon_move = hint;
+}
+
+uint32_t cub_dance_child_mark(const cub_dance *d)
+{
+    return d->fault ? cub_judge_limb_joints(cub_judge_fault_limb(cub_judge_fault_of(d->fault))) : 0;
 }
 
 const float *cub_dance_icon_xyz(const cub_dance *d)
@@ -79,7 +85,7 @@ static void carry_out(cub_dance *d, int64_t t_us)
         case CUB_DIRECTOR_MUSIC_STOP: cub_dance_music_stop(&d->music); break;
         case CUB_DIRECTOR_MUSIC_PAUSE: cub_dance_music_pause(&d->music, 1, t_us); break;
         case CUB_DIRECTOR_MUSIC_RESUME: cub_dance_music_pause(&d->music, 0, t_us); break;
-        case CUB_DIRECTOR_HINT: show_hint(d, o->hint); break;
+        case CUB_DIRECTOR_HINT: show_hint(d, o->hint, o->fault); break;
         default: break;
         }
     }
@@ -176,6 +182,9 @@ cub_err cub_dance_open(cub_dance *d, const cub_app_options *o, cub_board *board,
         return fail(err, err_size, &diag, "coach clips");
     if (cub_song_load(o->song_path, &d->cl.lib, &d->song, &diag))
         return fail(err, err_size, &diag, "song");
+    if (d->song.faults_path[0] &&
+        cub_faults_load(d->song.faults_path, &d->cl.lib, &d->faults, &diag))
+        return fail(err, err_size, &diag, "fault words");
     cub_err e = cub_dance_music_open(&d->music, o, board, d->song.midi_path, err, err_size);
     if (!e) e = open_director(d, o, judge, now_us, err, err_size);
     d->hint = CUB_COACH_HINT_NONE;

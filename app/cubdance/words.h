@@ -1,5 +1,6 @@
 /* words — every word the child reads on the TV, chosen here and nowhere
- * else: the coach's hint (a move's own words from the song, "Come closer!",
+ * else: the coach's hint (a move's own words from the song, what to fix in
+ * it from the song's fault words table (cub/faults.h), "Come closer!",
  * "I can't see you!") and the cue over the child's inset from the tracker's
  * status ("Step back", "Come closer", "Step into the middle"), and the idle
  * screen's title ("Press START!"). The renderer
@@ -10,11 +11,24 @@
 
 #include <stdint.h>
 
+#include "cub/faults.h"
 #include "cub/song.h"
 
 /* The hint's words: hint is a move index of song or a CUB_COACH_HINT_*;
  * NULL for none (CUB_COACH_HINT_NONE, a move without a hint, out of range). */
 const char *cub_words_hint(const cub_song *song, int32_t hint);
+/* The words for what to fix in move (a song move index) after a wrong
+ * verdict's fault (cub_judge_fault_code): the move's own line of faults,
+ * else the general one for the key and how; the move's hint when the
+ * table has neither or fault is 0. Shown instead of the move's hint while
+ * the correction runs: one short line, what to do now. */
+const char *cub_words_fault(const cub_song *song, const cub_faults *faults, int32_t move,
+                            int32_t fault);
+/* Every phrase the box can show a child, each once (for the speech that
+ * says them too): the fixed ones, each move's hint, each fault line's
+ * words (faults may be NULL). fn gets each in turn with ctx. */
+void cub_words_each(const cub_song *song, const cub_faults *faults,
+                    void (*fn)(void *ctx, const char *phrase), void *ctx);
 /* The idle screen's title, while the box waits for START. */
 const char *cub_words_title(void);
 /* The cue for a tracker status (cub_track_status); NULL when the child is
