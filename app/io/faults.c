@@ -76,6 +76,22 @@ static cub_err get_clip(const char *name, const faults_parse *p, cub_fault_words
     return CUB_OK;
 }
 
+/* Bytes that are UTF-8: the words are drawn and spoken. */
+static int utf8_ok(const unsigned char *s, size_t n)
+{
+    for (size_t i = 0; i < n;) {
+        unsigned char c = s[i];
+        size_t len = c < 0x80 ? 1 : (c & 0xe0) == 0xc0 ? 2 : (c & 0xf0) == 0xe0 ? 3
+                                  : (c & 0xf8) == 0xf0 ? 4 : 0;
+        if (!len || (len == 2 && c < 0xc2) || i + len > n) return 0;
+        for (size_t k = 1; k < len; k++)
+            if ((s[i + k] & 0xc0) != 0x80) return 0;
+        if (len == 3 && c == 0xed && s[i + 1] >= 0xa0) return 0; /* a UTF-16 surrogate */
+        i += len;
+    }
+    return 1;
+}
+
 /* The rest of the line, without trailing blanks: what the child is told. */
 static cub_err get_words(char *rest, cub_fault_words *fw, const cub_text_at *at)
 {
@@ -90,6 +106,7 @@ static cub_err get_words(char *rest, cub_fault_words *fw, const cub_text_at *at)
     for (size_t i = 0; i < n; i++)
         if ((unsigned char)rest[i] < 0x20 || rest[i] == 0x7f)
             return cub_text_fail(at, "the words hold a control character (byte %zu)", i + 1);
+    if (!utf8_ok((const unsigned char *)rest, n)) return cub_text_fail(at, "the words are not UTF-8");
     memcpy(fw->words, rest, n);
     fw->words[n] = '\0';
     return CUB_OK;

@@ -64,6 +64,8 @@ static void test_bad_lines_are_refused_naming_file_and_line(void **state)
     expect_error("RH=up missed for=clap A\nRH=up missed for=clap B\n", 2,
                  "RH=up missed for=clap is given twice");
     expect_error("RH=up missed Up\thigh!\n", 1, "control character");
+    expect_error("RH=up missed Up \xff\xfe\xc3(!\n", 1, "not UTF-8");
+    expect_error("RH=up missed Up \xed\xa0\x80!\n", 1, "not UTF-8");
     char big[400];
     snprintf(big, sizeof big, "RH=up missed %0200d\n", 7);
     expect_error(big, 1, "longer than 127 bytes");
@@ -99,12 +101,14 @@ static void test_lookup_prefers_the_moves_own_line(void **state)
                        "RH=mid   missed                    Arms out wide!   \r\n"
                        "RH=mid   missed  for=jumping_jacks Jump!\n"
                        "RHE=true mirror                    The other arm!  # said kindly\n"
-                       "RFK=true missed  Bend your knees!\n";
+                       "RFK=true missed  Bend your knees!\n"
+                       "LFK=true missed  Plie\xcc\x81 les genoux \xe2\x98\x85\n";
     cub_faults *f = malloc(sizeof *f);
     cub_diag d = {0};
     assert_int_equal(cub_faults_parse(text, strlen(text), "t.words", &lib, f, &d), CUB_OK);
-    assert_int_equal(f->count, 4);
+    assert_int_equal(f->count, 5);
     assert_int_equal(f->w[1].line, 3);
+    assert_string_equal(f->w[4].words, "Plie\xcc\x81 les genoux \xe2\x98\x85");
     assert_string_equal(cub_faults_words(f, "jumping_jacks", CUB_JUDGE_HOW_MISSED, CUB_FUZZY_RH, 1),
                         "Jump!");
     assert_string_equal(cub_faults_words(f, "clap", CUB_JUDGE_HOW_MISSED, CUB_FUZZY_RH, 1),

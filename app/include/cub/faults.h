@@ -19,7 +19,8 @@
  *
  * Errors name the file and line: a bad key or set, an unknown HOW, a
  * mirror of a feature without a side, a clip the library lacks or that is
- * not a kid's move, no words, words too long or with control characters,
+ * not a kid's move, no words, words too long, not UTF-8 or with control
+ * characters,
  * a line given twice, more than CUB_FAULTS_MAX lines. */
 #ifndef CUB_FAULTS_H
 #define CUB_FAULTS_H
