@@ -35,7 +35,8 @@ static cub_err get_key(char *word, cub_fault_words *fw, const cub_text_at *at)
     while (f < CUB_FUZZY_FEATURE_COUNT && strcmp(cub_fuzzy_feature_name(f), word))
         f++;
     if (f == CUB_FUZZY_FEATURE_COUNT)
-        return cub_text_fail(at, "no fuzzy feature '%s' (RH RHE LH LHE Posture Trunk RF RFK LF LFK)",
+        return cub_text_fail(at,
+                             "no fuzzy feature '%s' (RH RHE LH LHE Posture Trunk RF RFK LF LFK)",
                              word);
     int set = 0, sets = cub_fuzzy_set_count(f);
     while (set < sets && strcmp(cub_fuzzy_set_name(f, set), eq + 1))
@@ -106,7 +107,8 @@ static cub_err get_words(char *rest, cub_fault_words *fw, const cub_text_at *at)
     for (size_t i = 0; i < n; i++)
         if ((unsigned char)rest[i] < 0x20 || rest[i] == 0x7f)
             return cub_text_fail(at, "the words hold a control character (byte %zu)", i + 1);
-    if (!utf8_ok((const unsigned char *)rest, n)) return cub_text_fail(at, "the words are not UTF-8");
+    if (!utf8_ok((const unsigned char *)rest, n))
+        return cub_text_fail(at, "the words are not UTF-8");
     memcpy(fw->words, rest, n);
     fw->words[n] = '\0';
     return CUB_OK;
@@ -122,7 +124,8 @@ static cub_err faults_line(void *ctx, cub_text_line *ln)
 {
     faults_parse *p = ctx;
     const cub_text_at *at = &ln->at;
-    if (p->out->count == CUB_FAULTS_MAX) return cub_text_fail(at, "more than %d lines", CUB_FAULTS_MAX);
+    if (p->out->count == CUB_FAULTS_MAX)
+        return cub_text_fail(at, "more than %d lines", CUB_FAULTS_MAX);
     cub_fault_words fw = {.line = at->line};
     char *rest = ln->s, *key = next_word(&rest);
     cub_err e = key ? get_key(key, &fw, at) : cub_text_fail(at, "an empty line");

@@ -206,7 +206,8 @@ static cub_err get_faults(const cub_xml_el *el, const char *name, cub_song *s, c
 static cub_err read_song(const cub_xml_el *root, const char *name, const cub_library *lib,
                          cub_song *s, cub_diag *diag)
 {
-    static const char *const known[] = {"version", "name", "midi", "faults", "bpm", "meter", "bars", NULL};
+    static const char *const known[] = {"version", "name",  "midi", "faults",
+                                        "bpm",     "meter", "bars", NULL};
     int version = 0;
     if (strcmp(cub_xml_name(root), "song") != 0)
         return cub_xml_fail(root, diag, "the root element is <%s>, not <song>", cub_xml_name(root));
@@ -214,7 +215,8 @@ static cub_err read_song(const cub_xml_el *root, const char *name, const cub_lib
     if (!e) e = cub_xml_get_int(root, "version", 1, 1, &version, diag);
     if (!e) e = get_text(root, "name", s->name, sizeof(s->name), diag);
     if (!e) e = get_text(root, "midi", s->midi, sizeof(s->midi), diag);
-    if (!e) e = resolve_beside(root, "midi", name, s->midi, s->midi_path, sizeof(s->midi_path), diag);
+    if (!e)
+        e = resolve_beside(root, "midi", name, s->midi, s->midi_path, sizeof(s->midi_path), diag);
     if (!e) e = get_faults(root, name, s, diag);
     if (!e) e = cub_xml_get_int(root, "bpm", 30, 300, &s->bpm, diag);
     if (!e) e = get_meter(root, s, diag);

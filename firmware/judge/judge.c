@@ -196,7 +196,8 @@ size_t cub_judge_describe(const cub_judge_event *e, char *buf, size_t size)
         const char *key = e->feature >= 0 ? cub_fuzzy_feature_name(e->feature) : "-";
         const char *set = e->feature >= 0 ? cub_fuzzy_set_name(e->feature, e->set) : "-";
         const char *what = e->why == CUB_JUDGE_WHY_POSE ? "d" : "best";
-        size_t n = cub_log_format(buf, size, "verdict move=%d rep=%d result=%s why=%s key=%s=%s %s=%q",
+        size_t n = cub_log_format(buf, size,
+                                  "verdict move=%d rep=%d result=%s why=%s key=%s=%s %s=%q",
                                   e->move, e->rep, e->ev.b ? "right" : "wrong", why, key, set,
                                   what, e->value);
         int32_t limb = e->ev.b ? CUB_JUDGE_LIMB_NONE

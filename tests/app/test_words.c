@@ -150,7 +150,8 @@ static void test_every_phrase_is_listed_once(void **state)
                                 "Clap, clap, clap!", "Clap with me!", "Bend your arms!",
                                 "The other arm!",  "Jump!"};
     for (size_t i = 0; i < sizeof want / sizeof want[0]; i++)
-        if (listed(&ps, want[i]) != 1) fail_msg("'%s' listed %d times", want[i], listed(&ps, want[i]));
+        if (listed(&ps, want[i]) != 1)
+            fail_msg("'%s' listed %d times", want[i], listed(&ps, want[i]));
     assert_int_equal(ps.n, (int)(sizeof want / sizeof want[0]));
     /* what cub_words_fault and cub_words_hint can return is among them */
     for (int m = 0; m < song.move_count; m++)

@@ -809,7 +809,8 @@ static void test_tv_fault_marks_the_limb_to_move(void **state)
     for (int y = 0; y < TV_H; y++)
         for (int x = 0; x < TV_W; x++) {
             int in = x >= x0 - 8 && y >= TV_H - 16 - 192 - 8;
-            const uint8_t *a = plain + 4 * ((size_t)y * TV_W + x), *b = t->rgba + 4 * ((size_t)y * TV_W + x);
+            const size_t i = 4 * ((size_t)y * TV_W + (size_t)x);
+            const uint8_t *a = plain + i, *b = t->rgba + i;
             outside += !in && (a[0] != b[0] || a[1] != b[1] || a[2] != b[2]);
         }
     printf("golden: marked right arm: %d pink pixels in the inset's right half, %d left of it; "
