@@ -100,6 +100,7 @@ static void leave_song(cub_coach *c)
     c->misses = 0;
     c->tag_pending = false;
     c->show_again = false;
+    c->fix = 0;
 }
 
 /* ---- entering states ----------------------------------------------------- */
@@ -174,6 +175,7 @@ static void begin_move(cub_coach *c, int32_t m, int32_t rep, int32_t reason)
     c->move = m;
     c->rep = rep;
     c->show_again = false;
+    c->fix = 0;
     c->phase = COACH_PH_MOVES;
     c->tag_pending = true;
     coach_out_clip(c, cur_move(c)->clip, move_speed(c, m, c->sync_q16), false, reason);
@@ -328,7 +330,9 @@ static bool just_left(const cub_coach *c, int32_t m)
  * the fault is what the child must change in it. */
 static void show_fault(cub_coach *c, int32_t fault)
 {
-    if (fault && c->player_in_view) coach_out_fault_hint(c, c->move, fault, CUB_COACH_WHY_WRONG);
+    if (!fault) return;
+    c->fix = fault;
+    if (c->player_in_view) coach_out_fault_hint(c, c->move, fault, CUB_COACH_WHY_WRONG);
 }
 
 static void on_verdict(cub_coach *c, const cub_event *ev, int32_t music_ms)
@@ -362,6 +366,11 @@ static void on_verdict(cub_coach *c, const cub_event *ev, int32_t music_ms)
     show_fault(c, ev->c);
 }
 
+static bool correcting(const cub_coach *c)
+{
+    return c->state == CUB_COACH_CORRECT || c->state == CUB_COACH_WORRIED;
+}
+
 static void on_player(cub_coach *c, bool in_view)
 {
     c->player_in_view = in_view;
@@ -370,7 +379,8 @@ static void on_player(cub_coach *c, bool in_view)
         return;
     }
     if (c->hint == CUB_COACH_HINT_COME_CLOSER)
-        coach_out_hint(c, in_song(c) ? c->move : CUB_COACH_HINT_NONE, CUB_COACH_WHY_PLAYER);
+        coach_out_fault_hint(c, in_song(c) ? c->move : CUB_COACH_HINT_NONE,
+                             correcting(c) ? c->fix : 0, CUB_COACH_WHY_PLAYER);
     if (c->state == CUB_COACH_DOZE)
         go_resting(c, CUB_COACH_ATTRACT, c->desc.roles.attract, CUB_COACH_WHY_PLAYER);
 }

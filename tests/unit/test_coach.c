@@ -379,6 +379,10 @@ static void test_fault_is_the_hint_while_its_correction_runs(void **s)
     ev = (cub_event){.t_us = 4000000, .type = CUB_EV_VERDICT, .a = 0, .b = 0, .c = 111};
     assert_int_equal(cub_coach_handle(&c, &ev, 3000), CUB_OK);
     assert_int_equal(act(&c, CUB_COACH_ACT_HINT, 0)->fault, 111);
+    send(&c, 4500, CUB_EV_PLAYER, 0, 0, 3500); /* away, and back: the fault again */
+    assert_int_equal(act(&c, CUB_COACH_ACT_HINT, 0)->hint, CUB_COACH_HINT_COME_CLOSER);
+    send(&c, 4600, CUB_EV_PLAYER, 1, 0, 3600);
+    assert_int_equal(act(&c, CUB_COACH_ACT_HINT, 0)->fault, 111);
     send(&c, 5000, CUB_EV_CLIP_DONE, C_WATCH, 0, 4000);
     send(&c, 6000, CUB_EV_VERDICT, 0, 1, 4100);
     assert_int_equal(c.state, CUB_COACH_DANCE);

@@ -179,6 +179,8 @@ typedef struct cub_coach {
     bool show_again; /* correcting the move just left: demonstrate it once */
     int32_t hint; /* the hint last shown */
     int32_t fault; /* ... and its fault (0: none) */
+    int32_t fix;   /* the fault the correction under way is about (0: none), shown
+                      again when the child comes back into view */
     int64_t now_us, quiet_since_us, state_since_us;
     int64_t music_start_us; /* loop time the music was started */
     int64_t anchor_us;      /* first loop time the music clock was seen moving */
