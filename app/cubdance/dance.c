@@ -59,7 +59,7 @@ static void show_hint(cub_dance *d, int32_t hint, int32_t fault)
 
 uint32_t cub_dance_child_mark(const cub_dance *d)
 {
-    return d->fault ? cub_judge_limb_joints(cub_judge_fault_limb(cub_judge_fault_of(d->fault))) : 0;
+    return cub_judge_fault_joints(cub_judge_fault_of(d->fault));
 }
 
 const float *cub_dance_icon_xyz(const cub_dance *d)

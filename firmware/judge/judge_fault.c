@@ -6,23 +6,25 @@
 #include "cub/judge.h"
 #include "cub/kinect.h"
 
+#define ALL_LIMBS ((1u << (CUB_JUDGE_LIMB_COUNT - 1)) - 1u)
+
 static int fault_ok(cub_judge_fault f)
 {
     return f.how > CUB_JUDGE_HOW_NONE && f.how < CUB_JUDGE_HOW_COUNT && f.feature >= 0 &&
            f.feature < CUB_FUZZY_FEATURE_COUNT && f.set >= 0 &&
-           f.set < cub_fuzzy_set_count((cub_fuzzy_feature)f.feature);
+           f.set < cub_fuzzy_set_count((cub_fuzzy_feature)f.feature) && f.limbs <= ALL_LIMBS;
 }
 
 int32_t cub_judge_fault_code(cub_judge_fault f)
 {
-    return fault_ok(f) ? f.how * 100 + f.feature * 10 + f.set : 0;
+    return fault_ok(f) ? (int32_t)f.limbs * 1000 + f.how * 100 + f.feature * 10 + f.set : 0;
 }
 
 cub_judge_fault cub_judge_fault_of(int32_t code)
 {
-    cub_judge_fault none = {CUB_JUDGE_HOW_NONE, -1, -1};
-    if (code <= 0 || code >= CUB_JUDGE_HOW_COUNT * 100) return none;
-    cub_judge_fault f = {code / 100, code / 10 % 10, code % 10};
+    cub_judge_fault none = {CUB_JUDGE_HOW_NONE, -1, -1, 0};
+    if (code <= 0 || code / 1000 > (int32_t)ALL_LIMBS) return none;
+    cub_judge_fault f = {code / 100 % 10, code / 10 % 10, code % 10, (uint32_t)(code / 1000)};
     return fault_ok(f) ? f : none;
 }
 
@@ -41,6 +43,16 @@ int32_t cub_judge_fault_limb(cub_judge_fault f)
     case CUB_FUZZY_POSTURE: return CUB_JUDGE_LIMB_LEGS;
     default: return CUB_JUDGE_LIMB_TRUNK;
     }
+}
+
+uint32_t cub_judge_fault_joints(cub_judge_fault f)
+{
+    if (!fault_ok(f)) return 0;
+    if (!f.limbs) return cub_judge_limb_joints(cub_judge_fault_limb(f));
+    uint32_t joints = 0;
+    for (int32_t limb = 1; limb < CUB_JUDGE_LIMB_COUNT; limb++)
+        if (f.limbs >> (limb - 1) & 1u) joints |= cub_judge_limb_joints(limb);
+    return joints;
 }
 
 #define BIT(j) (1u << (j))

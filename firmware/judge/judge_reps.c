@@ -235,9 +235,30 @@ static int failed_key(const rep_slot *s, int mirror)
     return weak < 0 ? 0 : weak;
 }
 
+/* The bit of a key's limb in a fault's limbs. */
+static uint32_t limb_bit(cub_judge_key k)
+{
+    cub_judge_fault f = {CUB_JUDGE_HOW_MISSED, k.feature, k.set, 0};
+    int32_t limb = cub_judge_fault_limb(f);
+    return limb > CUB_JUDGE_LIMB_NONE ? 1u << (limb - 1) : 0;
+}
+
+/* The limbs to move when keys were missed: those of the keys that never
+ * reached key_mu, or of every key when each did (alone: the keys never
+ * came together, the whole move is what is missing). */
+static uint32_t missed_limbs(const rep_slot *s, uint16_t key_mu)
+{
+    uint32_t lacking = 0, all = 0;
+    for (int k = 0; k < s->key_count; k++) {
+        all |= limb_bit(s->keys[k]);
+        if (s->best_mu[k] < key_mu) lacking |= limb_bit(s->keys[k]);
+    }
+    return lacking ? lacking : all;
+}
+
 /* A wrong verdict: why (early_why, else as a closed window has it), which key
  * and, for missed and mirror, the fault to fix (ev.c). */
-static cub_judge_event wrong(const rep_slot *s, int64_t t_us, int32_t early_why)
+static cub_judge_event wrong(const rep_slot *s, int64_t t_us, int32_t early_why, uint16_t key_mu)
 {
     int32_t why = early_why          ? early_why
                   : !s->seen         ? CUB_JUDGE_WHY_NO_PLAYER
@@ -252,10 +273,12 @@ static cub_judge_event wrong(const rep_slot *s, int64_t t_us, int32_t early_why)
     e.feature = s->keys[k].feature;
     e.set = s->keys[k].set;
     e.value = (cub_q16)s->best_mu[k] * 2; /* Q1.15 -> Q16.16 */
-    if (why != CUB_JUDGE_WHY_NO_PLAYER) {
-        int32_t how = why == CUB_JUDGE_WHY_MIRROR ? CUB_JUDGE_HOW_MIRROR : CUB_JUDGE_HOW_MISSED;
-        e.ev.c = cub_judge_fault_code((cub_judge_fault){how, e.feature, e.set});
-    }
+    if (why == CUB_JUDGE_WHY_MIRROR)
+        e.ev.c = cub_judge_fault_code(
+            (cub_judge_fault){CUB_JUDGE_HOW_MIRROR, e.feature, e.set, limb_bit(s->keys[k])});
+    else if (why == CUB_JUDGE_WHY_MISSED)
+        e.ev.c = cub_judge_fault_code(
+            (cub_judge_fault){CUB_JUDGE_HOW_MISSED, e.feature, e.set, missed_limbs(s, key_mu)});
     return e;
 }
 
@@ -339,7 +362,7 @@ void judge_reps_frame(cub_judge *j, int64_t t_us, const cub_fuzzy_frame *f, cub_
     for (rep_slot *s = next_oldest(j, -1); s; s = next_oldest(j, s->seq)) {
         if (t_us >= s->close_us) {
             if (!s->right) {
-                cub_judge_event e = wrong(s, t_us, 0);
+                cub_judge_event e = wrong(s, t_us, 0, j->d.key_mu);
                 judge_emit(j, out, &e);
             }
             s->used = 0;
@@ -359,7 +382,7 @@ void judge_reps_frame(cub_judge *j, int64_t t_us, const cub_fuzzy_frame *f, cub_
         int32_t why = early_wrong(j, s, t_us, f);
         if (why) {
             /* missed early: told as the window's close would tell it */
-            cub_judge_event e = wrong(s, t_us, why == CUB_JUDGE_WHY_MIRROR ? why : 0);
+            cub_judge_event e = wrong(s, t_us, why == CUB_JUDGE_WHY_MIRROR ? why : 0, j->d.key_mu);
             judge_emit(j, out, &e);
             s->used = 0;
         }

@@ -84,7 +84,7 @@ static void fault_song(cub_song *song, cub_faults *faults)
 
 static int32_t code(int32_t how, int32_t feature, int32_t set)
 {
-    return cub_judge_fault_code((cub_judge_fault){how, feature, set});
+    return cub_judge_fault_code((cub_judge_fault){how, feature, set, 0});
 }
 
 /* The fault's words: the move's own, else the general, else the move's
