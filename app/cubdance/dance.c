@@ -76,22 +76,35 @@ static void say_state(cub_dance *d, int64_t t_us)
         say(d, cub_words_cheer(), t_us);
 }
 
+/* The hint's words, or while a correction runs the fault's. */
+static const char *hint_words(const cub_dance *d)
+{
+    return d->fault ? cub_words_fault(&d->song, &d->faults, d->hint, d->fault)
+                    : cub_words_hint(&d->song, d->hint);
+}
+
 const char *cub_dance_words(const cub_dance *d)
 {
-    const char *w = cub_words_hint(&d->song, d->hint);
+    const char *w = hint_words(d);
     return !w && d->dir.coach.state == CUB_COACH_CHEER ? cub_words_cheer() : w;
 }
 
-static void show_hint(cub_dance *d, int32_t hint, int64_t t_us)
+static void show_hint(cub_dance *d, int32_t hint, int32_t fault, int64_t t_us)
 {
     d->hint = hint;
-    say(d, cub_words_hint(&d->song, hint), t_us);
+    d->fault = fault;
+    say(d, hint_words(d), t_us);
     if (hint < 0 || hint >= d->song.move_count || hint == d->icon_move) return;
     int clip = d->song.moves[hint].clip_index;
     d->icon_move = -1;
     if (clip < 0 || clip >= d->cl.lib.clip_count) return;
     telling_pose(d, &d->cl.lib.clips[clip].clip, d->icon_xyz);
     d->icon_move = hint;
+}
+
+uint32_t cub_dance_child_mark(const cub_dance *d)
+{
+    return cub_judge_fault_joints(cub_judge_fault_of(d->fault));
 }
 
 const float *cub_dance_icon_xyz(const cub_dance *d)
@@ -117,7 +130,7 @@ static void carry_out(cub_dance *d, int64_t t_us)
         case CUB_DIRECTOR_MUSIC_STOP: cub_dance_music_stop(&d->music); break;
         case CUB_DIRECTOR_MUSIC_PAUSE: cub_dance_music_pause(&d->music, 1, t_us); break;
         case CUB_DIRECTOR_MUSIC_RESUME: cub_dance_music_pause(&d->music, 0, t_us); break;
-        case CUB_DIRECTOR_HINT: show_hint(d, o->hint, t_us); break;
+        case CUB_DIRECTOR_HINT: show_hint(d, o->hint, o->fault, t_us); break;
         default: break;
         }
     }
@@ -215,6 +228,9 @@ cub_err cub_dance_open(cub_dance *d, const cub_app_options *o, cub_board *board,
         return fail(err, err_size, &diag, "coach clips");
     if (cub_song_load(o->song_path, &d->cl.lib, &d->song, &diag))
         return fail(err, err_size, &diag, "song");
+    if (d->song.faults_path[0] &&
+        cub_faults_load(d->song.faults_path, &d->cl.lib, &d->faults, &diag))
+        return fail(err, err_size, &diag, "fault words");
     cub_err e = cub_dance_music_open(&d->music, o, board, d->song.midi_path, err, err_size);
     if (!e) e = open_director(d, o, judge, now_us, err, err_size);
     d->hint = CUB_COACH_HINT_NONE;

@@ -18,6 +18,7 @@
 #include "cub/coach.h"
 #include "cub/coachlib.h"
 #include "cub/director.h"
+#include "cub/faults.h"
 #include "cub/judge.h"
 #include "cub/loop.h"
 #include "cub/song.h"
@@ -27,6 +28,7 @@
 typedef struct cub_dance {
     cub_coachlib cl;
     cub_song song;
+    cub_faults faults; /* the song's fault words (empty without faults=) */
     cub_dance_music music;
     cub_director dir;
     void *dir_mem;
@@ -38,6 +40,7 @@ typedef struct cub_dance {
     /* What the TV shows besides the coach (the director decided it; the
      * renderer draws it): the last hint, and the icon of the move hinted. */
     int32_t hint;     /* the last hint: a move or CUB_COACH_HINT_* */
+    int32_t fault;    /* ... and what to fix in the move (cub_judge_fault_code); 0 none */
     int icon_move;    /* the move icon_xyz shows, or -1 */
     float icon_xyz[3 * CUB_MOTION_MAX_JOINTS];
     int speech;         /* the config's speech=1: words are said as shown */
@@ -70,6 +73,9 @@ float cub_dance_figure_height_mm(const cub_dance *d);
  * into xyz and, unless rot_xyzw is NULL, joint world rotations (x y z w
  * floats each, for the renderer's skinning), from one forward pass. */
 cub_err cub_dance_pose(cub_dance *d, float *xyz, float *rot_xyzw);
+/* The child's joints to draw marked (bit CUB_KJ_*): the limb the shown
+ * fault asks to move, while its correction runs; 0 otherwise. */
+uint32_t cub_dance_child_mark(const cub_dance *d);
 /* The hinted move's icon pose (joint world positions of
  * cub_dance_skeleton, mm), or NULL when the hint is not a move's. */
 const float *cub_dance_icon_xyz(const cub_dance *d);

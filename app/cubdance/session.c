@@ -203,6 +203,7 @@ static void show_what_the_coach_says(cub_session *s, cub_render_scene *scene)
         cub_dance *d = s->dance;
         scene->idle = cub_dance_waiting(d);
         scene->hint = cub_dance_words(d);
+        scene->child_mark = cub_dance_child_mark(d);
         scene->icon_xyz_mm = scene->skel ? cub_dance_icon_xyz(d) : NULL;
         scene->progress = cub_dance_progress(d);
         scene->has_progress = scene->progress >= 0.0f;

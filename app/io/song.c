@@ -179,22 +179,35 @@ static int count_distinct(const cub_song *s)
     return n;
 }
 
-/* The MIDI file sits beside the song file unless midi is absolute. */
-static cub_err resolve_midi(const cub_xml_el *el, const char *name, cub_song *s, cub_diag *diag)
+/* A file the song names (its MIDI, its fault words) sits beside the song
+ * file unless it is absolute: value of attr into path. */
+static cub_err resolve_beside(const cub_xml_el *el, const char *attr, const char *name,
+                              const char *value, char *path, size_t size, cub_diag *diag)
 {
     const char *slash = strrchr(name, '/');
-    int dir = s->midi[0] == '/' || !slash ? 0 : (int)(slash - name + 1);
-    if (strstr(s->midi, "..") || (size_t)dir + strlen(s->midi) >= sizeof(s->midi_path))
-        return cub_xml_fail_attr(el, "midi", diag, "midi=\"%s\" is not a file name beside the song",
-                                 s->midi);
-    snprintf(s->midi_path, sizeof(s->midi_path), "%.*s%s", dir, name, s->midi);
+    int dir = value[0] == '/' || !slash ? 0 : (int)(slash - name + 1);
+    if (strstr(value, "..") || (size_t)dir + strlen(value) >= size)
+        return cub_xml_fail_attr(el, attr, diag, "%s=\"%s\" is not a file name beside the song",
+                                 attr, value);
+    snprintf(path, size, "%.*s%s", dir, name, value);
     return CUB_OK;
+}
+
+/* faults="..." is optional: without it a wrong move shows its own hint. */
+static cub_err get_faults(const cub_xml_el *el, const char *name, cub_song *s, cub_diag *diag)
+{
+    if (!cub_xml_attr(el, "faults")) return CUB_OK;
+    cub_err e = get_text(el, "faults", s->faults, sizeof(s->faults), diag);
+    return e ? e
+             : resolve_beside(el, "faults", name, s->faults, s->faults_path,
+                              sizeof(s->faults_path), diag);
 }
 
 static cub_err read_song(const cub_xml_el *root, const char *name, const cub_library *lib,
                          cub_song *s, cub_diag *diag)
 {
-    static const char *const known[] = {"version", "name", "midi", "bpm", "meter", "bars", NULL};
+    static const char *const known[] = {"version", "name",  "midi", "faults",
+                                        "bpm",     "meter", "bars", NULL};
     int version = 0;
     if (strcmp(cub_xml_name(root), "song") != 0)
         return cub_xml_fail(root, diag, "the root element is <%s>, not <song>", cub_xml_name(root));
@@ -202,7 +215,9 @@ static cub_err read_song(const cub_xml_el *root, const char *name, const cub_lib
     if (!e) e = cub_xml_get_int(root, "version", 1, 1, &version, diag);
     if (!e) e = get_text(root, "name", s->name, sizeof(s->name), diag);
     if (!e) e = get_text(root, "midi", s->midi, sizeof(s->midi), diag);
-    if (!e) e = resolve_midi(root, name, s, diag);
+    if (!e)
+        e = resolve_beside(root, "midi", name, s->midi, s->midi_path, sizeof(s->midi_path), diag);
+    if (!e) e = get_faults(root, name, s, diag);
     if (!e) e = cub_xml_get_int(root, "bpm", 30, 300, &s->bpm, diag);
     if (!e) e = get_meter(root, s, diag);
     if (!e) e = cub_xml_get_int(root, "bars", 1, MAX_BARS, &s->bars, diag);

@@ -279,7 +279,8 @@ cub_err cub_render_frame(cub_render *r, const cub_render_scene *scene)
         cub_render_inset_draw(r, scene->depth_raw);
     if (scene->child) {
         glEnable(GL_BLEND);
-        cub_render_child_draw(r, scene->child, scene->child_cue, scene->depth_raw != NULL);
+        cub_render_child_draw(r, scene->child, scene->child_cue, scene->child_mark,
+                              scene->depth_raw != NULL);
         glDisable(GL_BLEND);
     }
     glDisable(GL_SCISSOR_TEST);

@@ -4,7 +4,8 @@
  * camera sees and what the tracker made of it), or on a dark panel when
  * there is no depth image. Above the inset, the cue the scene gives (the
  * words for a child the camera does not read well). Green bones: tracked
- * whole; orange: tracked, but not well. */
+ * whole; orange: tracked, but not well; pink and wider: the limb the hint
+ * asks the child to move (the scene's child_mark). */
 #include "cub/kinect.h"
 #include "cub/track.h"
 #include "render_internal.h"
@@ -26,22 +27,46 @@ static int to_inset(const cub_vec3 *p, int x0, int y0, int iw, int ih, float out
     return 1;
 }
 
-static void bones(cub_render *r, const cub_track_skeleton *c, int x0, int y0, int iw, int ih)
+/* One way of drawing bones: those of the joints in mask (in = 1) or of
+ * the others (in = 0), hw wide, in rgba. */
+typedef struct bone_pass {
+    uint32_t mask;
+    int in;
+    float hw;
+    const float *rgba;
+} bone_pass;
+
+static void bone_set(cub_render *r, const cub_track_skeleton *c, const int rect[4],
+                     const bone_pass *bp)
 {
-    static const float OK_RGBA[4] = {0.35f, 0.95f, 0.45f, 1.0f};
-    static const float CUE_RGBA[4] = {1.0f, 0.60f, 0.15f, 1.0f};
-    const float *rgba = c->status == CUB_TRACK_OK ? OK_RGBA : CUE_RGBA;
-    float hw = (float)iw / 60.0f;
-    hw = hw < 1.0f ? 1.0f : hw;
     float a[2], b[2];
     for (int j = 0; j < CUB_KJ_COUNT; j++) {
         int p = cub_kinect_joint_parent(j);
-        if (p >= 0 && to_inset(&c->joint_mm[j], x0, y0, iw, ih, a) &&
-            to_inset(&c->joint_mm[p], x0, y0, iw, ih, b))
-            cub_render_shape_limb(r, a[0], a[1], b[0], b[1], hw, rgba);
+        if (p < 0 || ((bp->mask >> j & 1u) != 0) != (bp->in != 0)) continue;
+        if (to_inset(&c->joint_mm[j], rect[0], rect[1], rect[2], rect[3], a) &&
+            to_inset(&c->joint_mm[p], rect[0], rect[1], rect[2], rect[3], b))
+            cub_render_shape_limb(r, a[0], a[1], b[0], b[1], bp->hw, bp->rgba);
     }
+}
+
+/* The marked limb (the one the hint asks to move) is pink and wider, on
+ * top: a colour of its own beside the green and orange of the tracking,
+ * clear on the grey depth image, and the width tells it without colour. */
+static void bones(cub_render *r, const cub_track_skeleton *c, int x0, int y0, int iw, int ih,
+                  uint32_t mark)
+{
+    static const float OK_RGBA[4] = {0.35f, 0.95f, 0.45f, 1.0f};
+    static const float CUE_RGBA[4] = {1.0f, 0.60f, 0.15f, 1.0f};
+    static const float MARK_RGBA[4] = {1.0f, 0.35f, 0.80f, 1.0f};
+    const float *rgba = c->status == CUB_TRACK_OK ? OK_RGBA : CUE_RGBA;
+    const int rect[4] = {x0, y0, iw, ih};
+    float hw = (float)iw / 60.0f;
+    hw = hw < 1.0f ? 1.0f : hw;
+    bone_set(r, c, rect, &(bone_pass){mark, 0, hw, rgba});
+    float a[2];
     if (to_inset(&c->joint_mm[CUB_KJ_HEAD], x0, y0, iw, ih, a))
         cub_render_shape_disc(r, a[0], a[1], 3.0f * hw, rgba);
+    if (mark) bone_set(r, c, rect, &(bone_pass){mark, 1, 1.75f * hw, MARK_RGBA});
 }
 
 static void cue(cub_render *r, const char *text, int x0, int y0, int iw, int ih)
@@ -68,7 +93,7 @@ static void cue(cub_render *r, const char *text, int x0, int y0, int iw, int ih)
 }
 
 void cub_render_child_draw(cub_render *r, const cub_track_skeleton *child, const char *cue_text,
-                           int have_depth)
+                           uint32_t mark, int have_depth)
 {
     int x0, y0, iw, ih;
     cub_render_inset_rect(r->w, r->h, &x0, &y0, &iw, &ih);
@@ -88,7 +113,7 @@ void cub_render_child_draw(cub_render *r, const cub_track_skeleton *child, const
          * set to the viewport). */
         cub_render_batch_draw(r);
         glScissor(r->x0 + x0, r->y0 + y0, iw, ih);
-        bones(r, child, x0, y0, iw, ih);
+        bones(r, child, x0, y0, iw, ih, mark);
         cub_render_batch_draw(r);
         glScissor(r->x0, r->y0, r->w, r->h);
     }

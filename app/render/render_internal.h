@@ -196,9 +196,9 @@ void cub_render_shape_limb(cub_render *r, float x0, float y0, float x1, float y1
 
 /* render_hud.c: hint and icon, progress, the idle screen. */
 void cub_render_hud_draw(cub_render *r, const cub_render_scene *scene);
-/* render_child.c: the child's skeleton over the inset and the cue text
- * (NULL or "": none) above it. */
+/* render_child.c: the child's skeleton over the inset (the bones of the
+ * joints in mark drawn marked) and the cue text (NULL or "": none) above it. */
 void cub_render_child_draw(cub_render *r, const cub_track_skeleton *child, const char *cue_text,
-                           int have_depth);
+                           uint32_t mark, int have_depth);
 
 #endif

@@ -13,6 +13,7 @@
 #include <string.h>
 #include <sys/wait.h>
 
+#include "cub/faults.h"
 #include "cub/pack.h"
 #include "cub/song.h"
 #include "cub/voicepack.h"
@@ -99,18 +100,33 @@ static void add_phrase(void *user, const char *text)
     l->text[l->count++] = text;
 }
 
+/* A song and its fault words, as the box loads them. */
+typedef struct song_words {
+    cub_song song;
+    cub_faults faults;
+} song_words;
+
+static int load_song(const char *path, const cub_library *lib, song_words *sw, cub_diag *diag)
+{
+    if (cub_song_load(path, lib, &sw->song, diag)) return -1;
+    sw->faults.count = 0;
+    return sw->song.faults_path[0] ? (int)cub_faults_load(sw->song.faults_path, lib, &sw->faults,
+                                                          diag)
+                                   : 0;
+}
+
 /* The songs stay loaded: the list points into them. */
-static int collect(const voice_opts *o, cub_library *lib, cub_song *songs, phrase_list *l)
+static int collect(const voice_opts *o, cub_library *lib, song_words *songs, phrase_list *l)
 {
     cub_diag diag;
     char buf[600];
     if (cub_pack_read(o->library, lib, &diag))
         return fprintf(stderr, "cubvoice: %s\n", cub_diag_str(&diag, buf, sizeof buf)), -1;
-    cub_words_each(NULL, add_phrase, l);
+    cub_words_each(NULL, NULL, add_phrase, l);
     for (int i = 0; i < o->song_count; i++) {
-        if (cub_song_load(o->songs[i], lib, &songs[i], &diag))
+        if (load_song(o->songs[i], lib, &songs[i], &diag))
             return fprintf(stderr, "cubvoice: %s\n", cub_diag_str(&diag, buf, sizeof buf)), -1;
-        cub_words_each(&songs[i], add_phrase, l);
+        cub_words_each(&songs[i].song, &songs[i].faults, add_phrase, l);
     }
     if (l->overflow)
         return fprintf(stderr, "cubvoice: more than %d phrases, or one over %d bytes\n",
@@ -237,7 +253,7 @@ int main(int argc, char **argv)
     voice_opts o;
     int list_only = 0, r = parse_args(argc, argv, &o, &list_only);
     if (r) return r > 0 ? 0 : 2;
-    static cub_song songs[MAX_SONGS];
+    static song_words songs[MAX_SONGS];
     static phrase_list l;
     cub_library lib = {0};
     l.count = l.overflow = 0;

@@ -2,6 +2,8 @@
  *
  *   idle --START/clap--> wake --wake_up done--> dance --wrong--> correct
  *   correct: correcting clip, then the move at demo speed, again and again
+ *            (a wrong verdict's fault, "The other arm!", is the hint
+ *            meanwhile; the move's own words come back with the dance)
  *            --right--> dance (inside the same move's span, found from the
  *            music clock); N wrong in a row --> worried --done--> correct;
  *            a demonstration ending after the music has left the move's
@@ -98,6 +100,7 @@ static void leave_song(cub_coach *c)
     c->misses = 0;
     c->tag_pending = false;
     c->show_again = false;
+    c->fix = 0;
 }
 
 /* ---- entering states ----------------------------------------------------- */
@@ -172,6 +175,7 @@ static void begin_move(cub_coach *c, int32_t m, int32_t rep, int32_t reason)
     c->move = m;
     c->rep = rep;
     c->show_again = false;
+    c->fix = 0;
     c->phase = COACH_PH_MOVES;
     c->tag_pending = true;
     coach_out_clip(c, cur_move(c)->clip, move_speed(c, m, c->sync_q16), false, reason);
@@ -318,6 +322,19 @@ static bool just_left(const cub_coach *c, int32_t m)
            ((c->phase == COACH_PH_MOVES && c->rep == 0) || c->phase == COACH_PH_WAIT);
 }
 
+/* What to fix, from a wrong verdict's fault: shown instead of the move's
+ * words from the correction it starts until the dance resumes (begin_move
+ * shows the move's words again). One short line at a time: most children
+ * cannot read yet and hear the hint spoken; the move's own words were
+ * shown while it was danced, the slower demonstration shows the move, and
+ * the fault is what the child must change in it. */
+static void show_fault(cub_coach *c, int32_t fault)
+{
+    if (!fault) return;
+    c->fix = fault;
+    if (c->player_in_view) coach_out_fault_hint(c, c->move, fault, CUB_COACH_WHY_WRONG);
+}
+
 static void on_verdict(cub_coach *c, const cub_event *ev, int32_t music_ms)
 {
     if (!ev->b && just_left(c, ev->a)) {
@@ -328,7 +345,7 @@ static void on_verdict(cub_coach *c, const cub_event *ev, int32_t music_ms)
         c->rep = c->desc.moves[ev->a].reps - 1;
         c->phase = COACH_PH_MOVES;
         c->show_again = true;
-        show_move_hint(c, CUB_COACH_WHY_WRONG);
+        if (!ev->c) show_move_hint(c, CUB_COACH_WHY_WRONG); /* else its fault, below */
     }
     const bool about_this_move = in_song(c) && ev->a == c->move;
     if (ev->b) {
@@ -346,6 +363,12 @@ static void on_verdict(cub_coach *c, const cub_event *ev, int32_t music_ms)
         go_worried(c);
     else if (c->phase != COACH_PH_FIX) /* never cut a head shake short */
         go_correct(c);
+    show_fault(c, ev->c);
+}
+
+static bool correcting(const cub_coach *c)
+{
+    return c->state == CUB_COACH_CORRECT || c->state == CUB_COACH_WORRIED;
 }
 
 static void on_player(cub_coach *c, bool in_view)
@@ -356,7 +379,8 @@ static void on_player(cub_coach *c, bool in_view)
         return;
     }
     if (c->hint == CUB_COACH_HINT_COME_CLOSER)
-        coach_out_hint(c, in_song(c) ? c->move : CUB_COACH_HINT_NONE, CUB_COACH_WHY_PLAYER);
+        coach_out_fault_hint(c, in_song(c) ? c->move : CUB_COACH_HINT_NONE,
+                             correcting(c) ? c->fix : 0, CUB_COACH_WHY_PLAYER);
     if (c->state == CUB_COACH_DOZE)
         go_resting(c, CUB_COACH_ATTRACT, c->desc.roles.attract, CUB_COACH_WHY_PLAYER);
 }
@@ -489,6 +513,7 @@ cub_err cub_coach_init(cub_coach *c, const cub_coach_desc *desc, int64_t now_us)
     c->speed_q16 = c->sync_q16 = c->rate_q16 = CUB_Q16_ONE;
     c->player_in_view = true; /* no "come closer" until told nobody is there */
     c->hint = CUB_COACH_HINT_NONE;
+    c->fault = 0;
     c->now_us = c->quiet_since_us = c->state_since_us = now_us;
     c->anchor_ms = -1;
     coach_out_clip(c, d.roles.idle, CUB_Q16_ONE, true, CUB_COACH_WHY_IDLE);

@@ -23,8 +23,9 @@ void coach_out_music(cub_coach *c, bool on, int32_t reason);
 /* Hold (paused = true) or go on with the music; its clock holds too, so
  * the rate measurement starts afresh. */
 void coach_music_pause(cub_coach *c, bool paused, int32_t reason);
-/* Only when the hint changes. */
+/* Only when the hint changes; coach_out_hint shows no fault. */
 void coach_out_hint(cub_coach *c, int32_t hint, int32_t reason);
+void coach_out_fault_hint(cub_coach *c, int32_t hint, int32_t fault, int32_t reason);
 /* A log line without an action (events the coach set aside). */
 void coach_out_ignore(cub_coach *c, const cub_event *ev);
 

@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "coach_internal.h"
+#include "cub/judge.h"
 
 static const char *const state_names[CUB_COACH_STATE_COUNT] = {
     "idle", "wake", "dance", "correct", "worried", "attract", "doze", "cheer", "paused",
@@ -160,18 +161,35 @@ static const char *hint_name(int32_t hint)
                                               : "none";
 }
 
-void coach_out_hint(cub_coach *c, int32_t hint, int32_t reason)
+void coach_out_fault_hint(cub_coach *c, int32_t hint, int32_t fault, int32_t reason)
 {
-    if (hint == c->hint) return;
+    if (hint < 0) fault = 0; /* a fault is about a move */
+    if (hint == c->hint && fault == c->fault) return;
     c->hint = hint;
+    c->fault = fault;
     cub_coach_action *a = push(c, CUB_COACH_ACT_HINT, reason);
-    if (a) a->hint = hint;
-    if (hint >= 0)
+    if (a) {
+        a->hint = hint;
+        a->fault = fault;
+    }
+    if (fault) {
+        cub_judge_fault f = cub_judge_fault_of(fault);
+        cub_log_event(c->desc.log, c->now_us, "coach", "hint",
+                      "show=fault move=%d how=%s key=%s=%s reason=%s", hint,
+                      cub_judge_how_name(f.how), cub_fuzzy_feature_name(f.feature),
+                      cub_fuzzy_set_name(f.feature, f.set), cub_coach_reason_name(reason));
+    } else if (hint >= 0) {
         cub_log_event(c->desc.log, c->now_us, "coach", "hint", "show=move move=%d reason=%s", hint,
                       cub_coach_reason_name(reason));
-    else
+    } else {
         cub_log_event(c->desc.log, c->now_us, "coach", "hint", "show=%s reason=%s",
                       hint_name(hint), cub_coach_reason_name(reason));
+    }
+}
+
+void coach_out_hint(cub_coach *c, int32_t hint, int32_t reason)
+{
+    coach_out_fault_hint(c, hint, 0, reason);
 }
 
 void coach_out_ignore(cub_coach *c, const cub_event *ev)

@@ -14,10 +14,10 @@
 
 #define DEFAULT_START_FRAMES 4
 
-static void push_out(cub_director *d, int32_t what, int32_t hint)
+static void push_out(cub_director *d, int32_t what, int32_t hint, int32_t fault)
 {
     if (d->out_count >= CUB_DIRECTOR_MAX_OUT) return; /* the coach gives at most as many */
-    d->out[d->out_count++] = (cub_director_out){.what = what, .hint = hint};
+    d->out[d->out_count++] = (cub_director_out){.what = what, .hint = hint, .fault = fault};
 }
 
 /* ---- the music, as asked of the app ---------------------------------------- */
@@ -29,13 +29,13 @@ static void music_start(cub_director *d, int64_t t_us)
     cub_log_event(d->desc.coach.log, t_us, "music", "start", "song=\"%s\" bpm=%d length_ms=%d",
                   d->desc.song_name ? d->desc.song_name : "", d->desc.bpm,
                   d->desc.song_length_ms);
-    push_out(d, CUB_DIRECTOR_MUSIC_START, 0);
+    push_out(d, CUB_DIRECTOR_MUSIC_START, 0, 0);
 }
 
 static void music_stop(cub_director *d)
 {
     d->music_on = d->music_paused = false;
-    push_out(d, CUB_DIRECTOR_MUSIC_STOP, 0);
+    push_out(d, CUB_DIRECTOR_MUSIC_STOP, 0, 0);
 }
 
 /* Hold the music or go on; only a change reaches the app. */
@@ -45,7 +45,7 @@ static void music_pause(cub_director *d, bool paused, int64_t t_us, int32_t musi
     d->music_paused = paused;
     cub_log_event(d->desc.coach.log, t_us, "music", paused ? "pause" : "resume", "music_ms=%d",
                   music_ms);
-    push_out(d, paused ? CUB_DIRECTOR_MUSIC_PAUSE : CUB_DIRECTOR_MUSIC_RESUME, 0);
+    push_out(d, paused ? CUB_DIRECTOR_MUSIC_PAUSE : CUB_DIRECTOR_MUSIC_RESUME, 0, 0);
 }
 
 /* ---- the coach's actions ------------------------------------------------- */
@@ -62,7 +62,7 @@ static void carry_out(cub_director *d, int64_t t_us, int32_t music_ms)
         case CUB_COACH_ACT_MUSIC_STOP: music_stop(d); break;
         case CUB_COACH_ACT_MUSIC_PAUSE: music_pause(d, true, t_us, music_ms); break;
         case CUB_COACH_ACT_MUSIC_RESUME: music_pause(d, false, t_us, music_ms); break;
-        case CUB_COACH_ACT_HINT: push_out(d, CUB_DIRECTOR_HINT, a->hint); break;
+        case CUB_COACH_ACT_HINT: push_out(d, CUB_DIRECTOR_HINT, a->hint, a->fault); break;
         default: break; /* states: logged by the coach */
         }
     }

@@ -84,7 +84,7 @@ void judge_emit(cub_judge *j, cub_judge_out *out, const cub_judge_event *e)
 {
     if (out->count < CUB_JUDGE_MAX_EVENTS) out->events[out->count++] = *e;
     if (j->d.log) {
-        char line[160];
+        char line[192];
         cub_judge_describe(e, line, sizeof line);
         cub_log_event(j->d.log, e->ev.t_us, "judge", line, NULL);
     }
@@ -187,6 +187,20 @@ const char *cub_judge_why_name(int32_t why)
     return why_names[why];
 }
 
+/* " fix=right_arm,left_arm": the limbs a fault asks to move; "" without. */
+static size_t describe_fix(cub_judge_fault f, char *buf, size_t size)
+{
+    uint32_t limbs = f.limbs;
+    int32_t own = cub_judge_fault_limb(f);
+    if (!limbs && own > CUB_JUDGE_LIMB_NONE) limbs = 1u << (own - 1);
+    size_t n = 0;
+    for (int32_t limb = 1; limb < CUB_JUDGE_LIMB_COUNT && n + 1 < size; limb++)
+        if (limbs >> (limb - 1) & 1u)
+            n += cub_log_format(buf + n, size - n, "%s%s", n ? "," : " fix=",
+                                cub_judge_limb_name(limb));
+    return n;
+}
+
 size_t cub_judge_describe(const cub_judge_event *e, char *buf, size_t size)
 {
     if (!e || !buf || size == 0) return 0;
@@ -196,9 +210,11 @@ size_t cub_judge_describe(const cub_judge_event *e, char *buf, size_t size)
         const char *key = e->feature >= 0 ? cub_fuzzy_feature_name(e->feature) : "-";
         const char *set = e->feature >= 0 ? cub_fuzzy_set_name(e->feature, e->set) : "-";
         const char *what = e->why == CUB_JUDGE_WHY_POSE ? "d" : "best";
-        return cub_log_format(buf, size, "verdict move=%d rep=%d result=%s why=%s key=%s=%s %s=%q",
-                              e->move, e->rep, e->ev.b ? "right" : "wrong", why, key, set, what,
-                              e->value);
+        size_t n = cub_log_format(buf, size,
+                                  "verdict move=%d rep=%d result=%s why=%s key=%s=%s %s=%q",
+                                  e->move, e->rep, e->ev.b ? "right" : "wrong", why, key, set,
+                                  what, e->value);
+        return e->ev.b ? n : n + describe_fix(cub_judge_fault_of(e->ev.c), buf + n, size - n);
     }
     case CUB_JUDGE_CLAP:
         return cub_log_format(buf, size, "clap gap_mm=%d", (int)(e->value >> 16));

@@ -222,10 +222,46 @@ static cub_judge_event verdict(const rep_slot *s, int64_t t_us, int right, int32
     return e;
 }
 
-/* The wrong verdict of a window that closed: why, and which key. */
-static cub_judge_event wrong(const rep_slot *s, int64_t t_us)
+/* The key a wrong verdict names: the weakest, and for a mirror the
+ * weakest of those whose mirror is another key (the side that should have
+ * moved; a Posture key of a mirrored move has no other side). */
+static int failed_key(const rep_slot *s, int mirror)
 {
-    int32_t why = !s->seen ? CUB_JUDGE_WHY_NO_PLAYER
+    int weak = -1;
+    for (int k = 0; k < s->key_count; k++) {
+        if (mirror && has_key(s->keys, s->key_count, s->mirror[k])) continue;
+        if (weak < 0 || s->best_mu[k] < s->best_mu[weak]) weak = k;
+    }
+    return weak < 0 ? 0 : weak;
+}
+
+/* The bit of a key's limb in a fault's limbs. */
+static uint32_t limb_bit(cub_judge_key k)
+{
+    cub_judge_fault f = {CUB_JUDGE_HOW_MISSED, k.feature, k.set, 0};
+    int32_t limb = cub_judge_fault_limb(f);
+    return limb > CUB_JUDGE_LIMB_NONE ? 1u << (limb - 1) : 0;
+}
+
+/* The limbs to move when keys were missed: those of the keys that never
+ * reached key_mu, or of every key when each did (alone: the keys never
+ * came together, the whole move is what is missing). */
+static uint32_t missed_limbs(const rep_slot *s, uint16_t key_mu)
+{
+    uint32_t lacking = 0, all = 0;
+    for (int k = 0; k < s->key_count; k++) {
+        all |= limb_bit(s->keys[k]);
+        if (s->best_mu[k] < key_mu) lacking |= limb_bit(s->keys[k]);
+    }
+    return lacking ? lacking : all;
+}
+
+/* A wrong verdict: why (early_why, else as a closed window has it), which key
+ * and, for missed and mirror, the fault to fix (ev.c). */
+static cub_judge_event wrong(const rep_slot *s, int64_t t_us, int32_t early_why, uint16_t key_mu)
+{
+    int32_t why = early_why          ? early_why
+                  : !s->seen         ? CUB_JUDGE_WHY_NO_PLAYER
                   : s->keys_held && s->has_expected ? CUB_JUDGE_WHY_POSE
                                                     : CUB_JUDGE_WHY_MISSED;
     cub_judge_event e = verdict(s, t_us, 0, why);
@@ -233,12 +269,16 @@ static cub_judge_event wrong(const rep_slot *s, int64_t t_us)
         e.value = s->min_d;
         return e;
     }
-    int weak = 0;
-    for (int k = 1; k < s->key_count; k++)
-        if (s->best_mu[k] < s->best_mu[weak]) weak = k;
-    e.feature = s->keys[weak].feature;
-    e.set = s->keys[weak].set;
-    e.value = (cub_q16)s->best_mu[weak] * 2; /* Q1.15 -> Q16.16 */
+    int k = failed_key(s, why == CUB_JUDGE_WHY_MIRROR);
+    e.feature = s->keys[k].feature;
+    e.set = s->keys[k].set;
+    e.value = (cub_q16)s->best_mu[k] * 2; /* Q1.15 -> Q16.16 */
+    if (why == CUB_JUDGE_WHY_MIRROR)
+        e.ev.c = cub_judge_fault_code(
+            (cub_judge_fault){CUB_JUDGE_HOW_MIRROR, e.feature, e.set, limb_bit(s->keys[k])});
+    else if (why == CUB_JUDGE_WHY_MISSED)
+        e.ev.c = cub_judge_fault_code(
+            (cub_judge_fault){CUB_JUDGE_HOW_MISSED, e.feature, e.set, missed_limbs(s, key_mu)});
     return e;
 }
 
@@ -322,7 +362,7 @@ void judge_reps_frame(cub_judge *j, int64_t t_us, const cub_fuzzy_frame *f, cub_
     for (rep_slot *s = next_oldest(j, -1); s; s = next_oldest(j, s->seq)) {
         if (t_us >= s->close_us) {
             if (!s->right) {
-                cub_judge_event e = wrong(s, t_us);
+                cub_judge_event e = wrong(s, t_us, 0, j->d.key_mu);
                 judge_emit(j, out, &e);
             }
             s->used = 0;
@@ -341,8 +381,8 @@ void judge_reps_frame(cub_judge *j, int64_t t_us, const cub_fuzzy_frame *f, cub_
         }
         int32_t why = early_wrong(j, s, t_us, f);
         if (why) {
-            cub_judge_event e = wrong(s, t_us);
-            if (why == CUB_JUDGE_WHY_MIRROR) e.why = why;
+            /* missed early: told as the window's close would tell it */
+            cub_judge_event e = wrong(s, t_us, why == CUB_JUDGE_WHY_MIRROR ? why : 0, j->d.key_mu);
             judge_emit(j, out, &e);
             s->used = 0;
         }

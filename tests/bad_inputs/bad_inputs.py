@@ -80,11 +80,18 @@ def copy_dump(shared, dst):
     return sorted(n for n in os.listdir(dst) if n.startswith("d-"))
 
 
-def song_beside(d, midi_name):
+def song_beside(d, midi_name, faults_name="faults.words"):
     song = read(os.path.join(ASSETS, "songs", "twinkle.song.xml"))
+    song = song.replace(b'midi="twinkle.mid"', b'midi="' + midi_name.encode() + b'"')
     write(os.path.join(d, "twinkle.song.xml"),
-          song.replace(b'midi="twinkle.mid"', b'midi="' + midi_name.encode() + b'"'))
+          song.replace(b'faults="faults.words"', b'faults="' + faults_name.encode() + b'"'))
     shutil.copyfile(os.path.join(ASSETS, "songs", "twinkle.mid"), os.path.join(d, "twinkle.mid"))
+    faults_beside(d)
+
+
+def faults_beside(d):
+    """The song's fault words, beside it as the song names them."""
+    shutil.copyfile(os.path.join(ASSETS, "songs", "faults.words"), os.path.join(d, "faults.words"))
 
 
 def base_of(kind, d, shared, build=""):
@@ -100,7 +107,11 @@ def base_of(kind, d, shared, build=""):
                 b"doze_after_s=60\ndebounce_ms=30\nlog_max_kb=1024\n", "box.conf")
     if kind == "song":
         shutil.copyfile(os.path.join(ASSETS, "songs", "twinkle.mid"), os.path.join(d, "twinkle.mid"))
+        faults_beside(d)
         return read(os.path.join(ASSETS, "songs", "twinkle.song.xml")), "bad.song.xml"
+    if kind == "faults":
+        song_beside(d, "twinkle.mid", "bad.words")
+        return read(os.path.join(ASSETS, "songs", "faults.words")), "bad.words"
     if kind == "midi":
         song_beside(d, "bad.mid")
         return read(os.path.join(ASSETS, "songs", "twinkle.mid")), "bad.mid"

@@ -2,6 +2,7 @@
  * Input: byte 0 picks the parser, the rest is the text (or bytes).
  *   'T': a bridge tag file (cub/tags.h), validated against a fixed library.
  *   'S': a song's choreography (cub/song.h), against a fixed library.
+ *   'F': a fault words table (cub/faults.h), against the same library.
  *   'L': the scripted judge timeline (app/cubdance/timeline.h).
  *   'U': a button timeline (board/common/buttons_script.h).
  *   'G': the box's config file (cub/boxconf.h; also fuzz_boxconf on its own).
@@ -21,6 +22,7 @@
 #include <string.h>
 
 #include "cub/character.h"
+#include "cub/faults.h"
 #include "cub/io.h"
 #include "cub/keys.h"
 #include "cub/pack.h"
@@ -35,6 +37,7 @@
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 static int fuzz_tags(const char *text, size_t len);
 static int fuzz_song(const char *text, size_t len);
+static int fuzz_faults(const char *text, size_t len);
 
 /* A button timeline that parses hands out its edges in time order, as many
  * as it says it has. */
@@ -219,6 +222,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         return fuzz_timeline((const char *)data + 1, size - 1);
     if (data[0] == 'S')
         return fuzz_song((const char *)data + 1, size - 1);
+    if (data[0] == 'F')
+        return fuzz_faults((const char *)data + 1, size - 1);
     const char *text = (const char *)data + 1;
     size_t len = size - 1;
     cub_io_desc desc = {.unit_mm = (data[0] & 2) ? 1.0 : 0.0};
@@ -306,6 +311,30 @@ static int fuzz_song(const char *text, size_t len)
                 __builtin_trap();
     } else if (d.msg[0] == '\0') {
         __builtin_trap();
+    }
+    return 0;
+}
+
+/* A fault table that parses has words for each of its lines: non-empty,
+ * NUL-terminated inside their field, found again by their own key. */
+static int fuzz_faults(const char *text, size_t len)
+{
+    static cub_library_clip clips[2] = {{.name = "a", .kind = "dance"},
+                                        {.name = "b", .kind = "coach"}};
+    cub_library lib = {.clip_count = 2, .clips = clips};
+    static cub_faults f;
+    cub_diag d = {{0}, 0, {0}};
+    if (cub_faults_parse(text, len, "fuzz.words", &lib, &f, &d) != CUB_OK) {
+        if (!d.msg[0]) abort();
+        return 0;
+    }
+    if (f.count < 0 || f.count > CUB_FAULTS_MAX) abort();
+    for (int i = 0; i < f.count; i++) {
+        const cub_fault_words *w = &f.w[i];
+        if (!memchr(w->words, 0, sizeof w->words) || !w->words[0]) abort();
+        if (cub_faults_words(&f, w->clip[0] ? w->clip : NULL, w->how, w->feature, w->set) !=
+            w->words)
+            abort();
     }
     return 0;
 }

@@ -34,6 +34,7 @@
 #include <math.h>
 
 #include "cub/character.h"
+#include "cub/judge.h"
 #include "cub/png.h"
 #include "cub/render.h"
 #include "display.h"
@@ -752,6 +753,78 @@ static void test_tv_dance_layout_matches_golden(void **state)
     check_golden_sized(t->rgba, TV_W, TV_H, "tv_dance_1280x720", 1, BEAR_MAX_SHARE);
 }
 
+/* The lower half of the TV frame (top-first rows): the hint and the
+ * child's corner, without the bear's upper body. */
+#define TV_CROP_Y0 (TV_H / 2)
+#define TV_CROP_H (TV_H - TV_CROP_Y0)
+
+static void draw_tv(tv_fixture *t, const cub_render_scene *scene)
+{
+    assert_int_equal(cub_render_frame(t->render, scene), CUB_OK);
+    assert_int_equal(cub_display_read_rgba(t->disp, t->rgba, (size_t)TV_W * TV_H * 4), CUB_OK);
+    cub_display_swap(t->disp);
+}
+
+/* Pixels of the mark's pink (1.0, 0.35, 0.80) in columns [x0, x1) of the
+ * inset's rows; the inset at TV size: 256x192, 16 px from the right and
+ * bottom edges. */
+static int pink_in(const tv_fixture *t, int x0, int x1)
+{
+    int n = 0;
+    for (int y = TV_H - 16 - 192; y < TV_H - 16; y++)
+        for (int x = x0; x < x1; x++) {
+            const uint8_t *p = t->rgba + 4 * ((size_t)y * TV_W + (size_t)x);
+            n += p[0] > 220 && p[1] > 60 && p[1] < 130 && p[2] > 170 && p[2] < 235;
+        }
+    return n;
+}
+
+/* A wrong verdict's correction at TV size: the fault's words from the
+ * shipped table's kind ("The other arm!") and, in the child's corner, the
+ * arm to move (the child's right, at +x: the inset's right half) in pink
+ * and wider. The same frame without the mark has no pink and differs
+ * only in the inset. */
+static void test_tv_fault_marks_the_limb_to_move(void **state)
+{
+    tv_fixture *t = *state;
+    static uint8_t plain[TV_W * TV_H * 4];
+    icon_from_dance();
+    child_at(2200.0f, CUB_TRACK_OK);
+    cub_render_scene scene = bear_pose(BENDS(CORRECT), CUB_RENDER_FACE_WORRIED);
+    scene.hint = "The other arm!";
+    scene.icon_xyz_mm = g_icon_xyz;
+    scene.progress = 0.3f;
+    scene.has_progress = 1;
+    scene.depth_raw = g_depth;
+    scene.child = &g_child;
+    draw_tv(t, &scene);
+    memcpy(plain, t->rgba, sizeof plain);
+    scene.child_mark = cub_judge_limb_joints(CUB_JUDGE_LIMB_RIGHT_ARM);
+    draw_tv(t, &scene);
+    /* the collar bone starts at the inset's middle column (the child's
+     * centre, x = 0): its end cap may cross it by a few pixels */
+    const int x0 = TV_W - 16 - 256, mid = x0 + 128;
+    int left = pink_in(t, x0, mid - 8), right = pink_in(t, mid, TV_W - 16);
+    int outside = 0;
+    for (int y = 0; y < TV_H; y++)
+        for (int x = 0; x < TV_W; x++) {
+            int in = x >= x0 - 8 && y >= TV_H - 16 - 192 - 8;
+            const size_t i = 4 * ((size_t)y * TV_W + (size_t)x);
+            const uint8_t *a = plain + i, *b = t->rgba + i;
+            outside += !in && (a[0] != b[0] || a[1] != b[1] || a[2] != b[2]);
+        }
+    printf("golden: marked right arm: %d pink pixels in the inset's right half, %d left of it; "
+           "%d pixels changed outside the inset\n", right, left, outside);
+    assert_true(right > 300);
+    assert_int_equal(left, 0);
+    assert_int_equal(outside, 0);
+    memcpy(t->rgba, plain, sizeof plain); /* restore for the pink count of the plain frame */
+    assert_int_equal(pink_in(t, x0, TV_W - 16), 0);
+    draw_tv(t, &scene);
+    check_golden_sized(t->rgba + 4 * (size_t)TV_CROP_Y0 * TV_W, TV_W, TV_CROP_H,
+                       "tv_fault_other_arm", 1, BEAR_MAX_SHARE);
+}
+
 int main(void)
 {
     const struct CMUnitTest headless[] = {
@@ -778,6 +851,7 @@ int main(void)
     };
     const struct CMUnitTest tv[] = {
         cmocka_unit_test(test_tv_dance_layout_matches_golden),
+        cmocka_unit_test(test_tv_fault_marks_the_limb_to_move),
     };
     int failed = cmocka_run_group_tests_name("golden_headless", headless, setup, teardown);
     failed += cmocka_run_group_tests_name("golden_tv", tv, setup_tv, teardown_tv);

@@ -13,6 +13,7 @@
 
 #include <cmocka.h>
 
+#include "cub/faults.h"
 #include "cub/pack.h"
 #include "cub/song.h"
 #include "cub/voicepack.h"
@@ -195,13 +196,17 @@ static void test_the_built_pack_speaks_every_phrase_of_every_song(void **state)
     snprintf(path, sizeof path, "%s/clips/bear.cubclips", assets_dir);
     assert_int_equal(cub_pack_read(path, &lib, &diag), CUB_OK);
     coverage c = {.pack = &p};
-    cub_words_each(NULL, check_phrase, &c);
+    cub_words_each(NULL, NULL, check_phrase, &c);
     static const char *songs[] = {"twinkle", "old_macdonald", "london_bridge"};
     static cub_song song;
+    static cub_faults faults;
     for (size_t i = 0; i < sizeof songs / sizeof *songs; i++) {
         snprintf(path, sizeof path, "%s/songs/%s.song.xml", assets_dir, songs[i]);
         assert_int_equal(cub_song_load(path, &lib, &song, &diag), CUB_OK);
-        cub_words_each(&song, check_phrase, &c);
+        faults.count = 0;
+        if (song.faults_path[0])
+            assert_int_equal(cub_faults_load(song.faults_path, &lib, &faults, &diag), CUB_OK);
+        cub_words_each(&song, &faults, check_phrase, &c);
     }
     double seconds = 0;
     size_t bytes = 0;

@@ -14,6 +14,7 @@
 #include <string.h>
 
 #include "cub/judge.h"
+#include "cub/kinect.h"
 
 #define FRAME_US 33333
 
@@ -434,6 +435,191 @@ static void test_mirrored_key_is_wrong_at_once(void **state)
     assert_verdict(&r, 0, 0, 0, 55);
 }
 
+/* ---- what a wrong verdict says to fix ------------------------------------ */
+
+static void assert_fault(const cub_judge_event *v, int32_t how, int32_t feature, int32_t set)
+{
+    cub_judge_fault f = cub_judge_fault_of(v->ev.c);
+    assert_int_equal(f.how, how);
+    assert_int_equal(f.feature, feature);
+    assert_int_equal(f.set, set);
+}
+
+/* Standing still past the key's moment: missed RHE=true, the right arm to
+ * move; the line says so by one field added at its end. */
+static void test_missed_key_is_the_fault(void **state)
+{
+    (void)state;
+    rec r;
+    rec_init(&r, NULL);
+    cub_judge_rep rep = rep_rhe_keyed(0, 0, 60, 20, 1);
+    assert_int_equal(cub_judge_begin_rep(r.j, &rep), CUB_OK);
+    play(&r, 100, 0, 0, STILL);
+    const cub_judge_event *v = first(&r, CUB_JUDGE_VERDICT);
+    assert_int_equal(v->ev.c, 1111); /* the right arm (1), missed (1), RHE (1), true (1) */
+    assert_fault(v, CUB_JUDGE_HOW_MISSED, CUB_FUZZY_RHE, 1);
+    assert_int_equal(cub_judge_fault_limb(cub_judge_fault_of(v->ev.c)), CUB_JUDGE_LIMB_RIGHT_ARM);
+    char line[192];
+    cub_judge_describe(v, line, sizeof line);
+    assert_string_equal(line,
+                        "verdict move=3 rep=0 result=wrong why=missed key=RHE=true best=0.000 "
+                        "fix=right_arm");
+}
+
+/* Both elbows to bend (a clap): the limbs to move are the arms whose key
+ * never came; when each came alone but never together, both. */
+static void test_missed_fault_marks_the_limbs_that_never_came(void **state)
+{
+    (void)state;
+    static const struct {
+        int right_from, right_to, left_from, left_to;
+        uint32_t limbs;
+        const char *fix;
+    } cases[] = {
+        {0, 0, 0, 0, 3u, " fix=right_arm,left_arm"},    /* standing still */
+        {5, 60, 0, 0, 2u, " fix=left_arm"},             /* the right arm only */
+        {5, 15, 20, 30, 3u, " fix=right_arm,left_arm"}, /* one after the other */
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        rec r;
+        rec_init(&r, NULL);
+        cub_judge_rep rep = rep_rhe_keyed(0, 0, 60, 20, 0);
+        rep.key_count = 2;
+        rep.keys[1] = (cub_judge_key){CUB_FUZZY_LHE, 1};
+        assert_int_equal(cub_judge_begin_rep(r.j, &rep), CUB_OK);
+        for (int f = 0; f < 100; f++) {
+            pose p = STILL;
+            p.bend[1] = f >= cases[i].right_from && f < cases[i].right_to;
+            p.bend[0] = f >= cases[i].left_from && f < cases[i].left_to;
+            feed(&r, f, p);
+        }
+        const cub_judge_event *v = first(&r, CUB_JUDGE_VERDICT);
+        assert_int_equal(v->ev.b, 0);
+        cub_judge_fault fault = cub_judge_fault_of(v->ev.c);
+        assert_int_equal(fault.how, CUB_JUDGE_HOW_MISSED);
+        assert_int_equal(fault.limbs, cases[i].limbs);
+        char line[192];
+        cub_judge_describe(v, line, sizeof line);
+        printf("judge: case %zu: %s\n", i, line);
+        const char *fix = strstr(line, " fix=");
+        assert_non_null(fix);
+        assert_string_equal(fix, cases[i].fix);
+        uint32_t joints = cub_judge_fault_joints(fault);
+        assert_int_equal((joints >> CUB_KJ_ELBOW_L) & 1u, (cases[i].limbs >> 1) & 1u);
+        assert_int_equal((joints >> CUB_KJ_ELBOW_R) & 1u, cases[i].limbs & 1u);
+    }
+}
+
+/* The left arm did the right arm's key: mirror RHE=true, the right arm
+ * (the side that should have moved) to mark; a key with no other side
+ * (Posture) is never the one named for a mirror. */
+static void test_mirror_fault_names_the_side_to_move(void **state)
+{
+    (void)state;
+    rec r;
+    rec_init(&r, NULL);
+    cub_judge_rep rep = rep_rhe_keyed(0, 0, 60, 40, 1);
+    rep.key_count = 2;
+    rep.keys[0] = (cub_judge_key){CUB_FUZZY_POSTURE, 2}; /* stand: held throughout */
+    rep.keys[1] = (cub_judge_key){CUB_FUZZY_RHE, 1};
+    assert_int_equal(cub_judge_begin_rep(r.j, &rep), CUB_OK);
+    pose left = STILL;
+    left.bend[0] = 1;
+    play(&r, 100, 5, 60, left);
+    const cub_judge_event *v = first(&r, CUB_JUDGE_VERDICT);
+    assert_int_equal(v->why, CUB_JUDGE_WHY_MIRROR);
+    assert_fault(v, CUB_JUDGE_HOW_MIRROR, CUB_FUZZY_RHE, 1);
+    char line[192];
+    cub_judge_describe(v, line, sizeof line);
+    assert_non_null(strstr(line, "why=mirror key=RHE=true best="));
+    assert_non_null(strstr(line, " fix=right_arm"));
+    assert_null(strstr(line, "left_arm"));
+    assert_int_equal(cub_judge_fault_of(v->ev.c).limbs, 1u);
+}
+
+/* Nothing one limb can fix: no fault for nobody seen, none for a right
+ * verdict, and no fix= field on their lines. */
+static void test_no_fault_without_a_key_to_fix(void **state)
+{
+    (void)state;
+    rec r;
+    rec_init(&r, NULL);
+    cub_judge_rep rep = rep_rhe(0, 0, 60);
+    assert_int_equal(cub_judge_begin_rep(r.j, &rep), CUB_OK);
+    pose gone = STILL;
+    gone.status = CUB_TRACK_NO_PLAYER;
+    play(&r, 100, 0, 100, gone);
+    const cub_judge_event *v = first(&r, CUB_JUDGE_VERDICT);
+    assert_int_equal(v->why, CUB_JUDGE_WHY_NO_PLAYER);
+    assert_int_equal(v->ev.c, 0);
+    char line[192];
+    cub_judge_describe(v, line, sizeof line);
+    assert_null(strstr(line, "fix="));
+    rec_init(&r, NULL);
+    assert_int_equal(cub_judge_begin_rep(r.j, &rep), CUB_OK);
+    play(&r, 100, 20, 40, bent_right());
+    v = first(&r, CUB_JUDGE_VERDICT);
+    assert_int_equal(v->ev.b, 1);
+    assert_int_equal(v->ev.c, 0);
+    cub_judge_describe(v, line, sizeof line);
+    assert_null(strstr(line, "fix="));
+}
+
+/* Every valid fault survives its code; anything else is no fault. */
+static void test_fault_codes_round_trip(void **state)
+{
+    (void)state;
+    int valid = 0;
+    for (uint32_t limbs = 0; limbs <= 64; limbs += 7)
+        for (int32_t how = 0; how <= CUB_JUDGE_HOW_COUNT; how++)
+            for (int32_t f = -1; f <= CUB_FUZZY_FEATURE_COUNT; f++)
+                for (int32_t set = -1; set <= CUB_FUZZY_MAX_SETS; set++) {
+                    cub_judge_fault in = {how, f, set, limbs};
+                    int32_t code = cub_judge_fault_code(in);
+                    int ok = how > 0 && how < CUB_JUDGE_HOW_COUNT && f >= 0 &&
+                             f < CUB_FUZZY_FEATURE_COUNT && set >= 0 &&
+                             set < cub_fuzzy_set_count((cub_fuzzy_feature)f) && limbs < 64;
+                    assert_int_equal(code != 0, ok);
+                    if (!ok) continue;
+                    valid++;
+                    cub_judge_fault out = cub_judge_fault_of(code);
+                    assert_memory_equal(&in, &out, sizeof in);
+                }
+    assert_int_equal(valid, 10 * 2 * 24); /* 10 limb sets below 64, two hows of the 24 sets */
+    const int32_t bad[] = {0, -211, 99, 153, 104, 300, 64111, 199, 1099};
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++)
+        assert_int_equal(cub_judge_fault_of(bad[i]).how, CUB_JUDGE_HOW_NONE);
+}
+
+/* Each limb's joints are its own side's, arms and legs apart. */
+static void test_limb_joints(void **state)
+{
+    (void)state;
+    uint32_t ra = cub_judge_limb_joints(CUB_JUDGE_LIMB_RIGHT_ARM);
+    uint32_t la = cub_judge_limb_joints(CUB_JUDGE_LIMB_LEFT_ARM);
+    uint32_t rl = cub_judge_limb_joints(CUB_JUDGE_LIMB_RIGHT_LEG);
+    uint32_t ll = cub_judge_limb_joints(CUB_JUDGE_LIMB_LEFT_LEG);
+    assert_true(ra & (1u << CUB_KJ_ELBOW_R));
+    assert_true(ra & (1u << CUB_KJ_HAND_R));
+    assert_false(ra & (1u << CUB_KJ_ELBOW_L));
+    assert_true(la & (1u << CUB_KJ_WRIST_L));
+    assert_true(rl & (1u << CUB_KJ_KNEE_R));
+    assert_false(rl & (1u << CUB_KJ_KNEE_L));
+    assert_int_equal(ra & la, 0);
+    assert_int_equal(rl & ll, 0);
+    assert_int_equal((ra | la) & (rl | ll), 0);
+    assert_int_equal(cub_judge_limb_joints(CUB_JUDGE_LIMB_LEGS), rl | ll);
+    assert_int_equal(cub_judge_limb_joints(CUB_JUDGE_LIMB_NONE), 0);
+    assert_int_equal(cub_judge_limb_joints(99), 0);
+    cub_judge_fault knees = {CUB_JUDGE_HOW_MISSED, CUB_FUZZY_LFK, 0, 0};
+    assert_int_equal(cub_judge_fault_limb(knees), CUB_JUDGE_LIMB_LEFT_LEG);
+    cub_judge_fault jump = {CUB_JUDGE_HOW_MISSED, CUB_FUZZY_POSTURE, 3, 0};
+    assert_int_equal(cub_judge_fault_limb(jump), CUB_JUDGE_LIMB_LEGS);
+    assert_string_equal(cub_judge_limb_name(CUB_JUDGE_LIMB_LEFT_LEG), "left_leg");
+    assert_string_equal(cub_judge_how_name(CUB_JUDGE_HOW_MIRROR), "mirror");
+    assert_string_equal(cub_judge_how_name(7), "?");
+}
+
 static void test_the_previous_repetitions_tail_is_no_sign(void **state)
 {
     (void)state;
@@ -773,6 +959,12 @@ int main(void)
         cmocka_unit_test(test_the_previous_repetitions_tail_is_no_sign),
         cmocka_unit_test(test_no_early_verdict_without_the_tracker),
         cmocka_unit_test(test_mirror_keys),
+        cmocka_unit_test(test_missed_key_is_the_fault),
+        cmocka_unit_test(test_missed_fault_marks_the_limbs_that_never_came),
+        cmocka_unit_test(test_mirror_fault_names_the_side_to_move),
+        cmocka_unit_test(test_no_fault_without_a_key_to_fix),
+        cmocka_unit_test(test_fault_codes_round_trip),
+        cmocka_unit_test(test_limb_joints),
         cmocka_unit_test(test_no_player_is_wrong_and_not_in_view),
         cmocka_unit_test(test_one_run_credits_one_repetition),
         cmocka_unit_test(test_a_pose_held_on_counts_for_each_repetition),

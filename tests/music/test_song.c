@@ -64,6 +64,7 @@ static void test_song_accepts_a_good_file(void **state)
     cub_diag d = {0};
     assert_int_equal(cub_song_parse(text, strlen(text), "songs/t.song.xml", &lib, s, &d), CUB_OK);
     assert_string_equal(s->midi_path, "songs/t.mid");
+    assert_string_equal(s->faults_path, ""); /* no faults= */
     assert_int_equal(s->move_count, 8);
     assert_int_equal(s->distinct_moves, 8);
     assert_int_equal(s->moves[7].line, 10);
@@ -85,6 +86,26 @@ static void test_song_accepts_a_good_file(void **state)
     s->meter_den = 8; /* 6/8: three quarter notes a bar */
     assert_int_equal(cub_song_bar_us(s, 2), 3LL * 60000000 / 112);
     free(s);
+}
+
+/* faults= names a file beside the song, like the MIDI. */
+static void test_song_faults_sit_beside_the_song(void **state)
+{
+    (void)state;
+    const char *text = HEAD "<song version=\"1\" name=\"T\" midi=\"t.mid\" faults=\"f.words\" "
+                            "bpm=\"120\" meter=\"4/4\" bars=\"16\">\n" EIGHT "</song>\n";
+    cub_song *s = malloc(sizeof(*s));
+    cub_diag d = {0};
+    assert_int_equal(cub_song_parse(text, strlen(text), "songs/t.song.xml", &lib, s, &d), CUB_OK);
+    assert_string_equal(s->faults, "f.words");
+    assert_string_equal(s->faults_path, "songs/f.words");
+    free(s);
+    expect_error(HEAD "<song version=\"1\" name=\"T\" midi=\"t.mid\" faults=\"../f.words\" "
+                      "bpm=\"120\" meter=\"4/4\" bars=\"16\">\n" EIGHT "</song>\n",
+                 2, "faults=\"../f.words\" is not a file name beside the song");
+    expect_error(HEAD "<song version=\"1\" name=\"T\" midi=\"t.mid\" faults=\"\" "
+                      "bpm=\"120\" meter=\"4/4\" bars=\"16\">\n" EIGHT "</song>\n",
+                 2, "faults is empty");
 }
 
 static void test_song_rejects_bad_moves(void **state)
@@ -220,6 +241,7 @@ int main(void)
     make_lib();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_song_accepts_a_good_file),
+        cmocka_unit_test(test_song_faults_sit_beside_the_song),
         cmocka_unit_test(test_song_rejects_bad_moves),
         cmocka_unit_test(test_song_rejects_bad_numbers_and_names),
         cmocka_unit_test(test_song_shipped_songs_validate),

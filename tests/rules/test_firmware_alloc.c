@@ -159,13 +159,13 @@ static void run_coach_after_init(void)
 
     counting = 1;
     const cub_event script[] = {
-        {100000, CUB_EV_CLAP, 0, 0},       {1500000, CUB_EV_CLIP_DONE, 1, 0},
-        {1600000, CUB_EV_MUSIC_TAG, 0, 0}, {2000000, CUB_EV_VERDICT, 0, 0},
-        {3000000, CUB_EV_CLIP_DONE, 4, 0}, {4000000, CUB_EV_CLIP_DONE, 8, 0},
-        {4500000, CUB_EV_PLAYER, 0, 0},    {5000000, CUB_EV_VERDICT, 0, 1},
-        {5100000, CUB_EV_PLAYER, 1, 0},    {6000000, CUB_EV_CLIP_DONE, 9, 0},
-        {9000000, CUB_EV_SONG_END, 0, 0},  {9900000, CUB_EV_CLIP_DONE, 7, 0},
-        {9950000, CUB_EV_BUTTON_DOWN, CUB_BUTTON_STOP, 0},
+        {100000, CUB_EV_CLAP, 0, 0, 0},       {1500000, CUB_EV_CLIP_DONE, 1, 0, 0},
+        {1600000, CUB_EV_MUSIC_TAG, 0, 0, 0}, {2000000, CUB_EV_VERDICT, 0, 0, 0},
+        {3000000, CUB_EV_CLIP_DONE, 4, 0, 0}, {4000000, CUB_EV_CLIP_DONE, 8, 0, 0},
+        {4500000, CUB_EV_PLAYER, 0, 0, 0},    {5000000, CUB_EV_VERDICT, 0, 1, 0},
+        {5100000, CUB_EV_PLAYER, 1, 0, 0},    {6000000, CUB_EV_CLIP_DONE, 9, 0, 0},
+        {9000000, CUB_EV_SONG_END, 0, 0, 0},  {9900000, CUB_EV_CLIP_DONE, 7, 0, 0},
+        {9950000, CUB_EV_BUTTON_DOWN, CUB_BUTTON_STOP, 0, 0},
     };
     for (size_t i = 0; i < sizeof script / sizeof script[0]; i++) {
         cub_coach_handle(&coach, &script[i], (int32_t)(script[i].t_us / 1000) - 1500);
@@ -202,8 +202,8 @@ static void run_director_after_init(const cub_bridge_table *table)
 
     counting = 1;
     const cub_event script[] = {
-        {100000, CUB_EV_BUTTON_DOWN, CUB_BUTTON_START, 0}, {1000000, CUB_EV_CLIP_DONE, 0, 0},
-        {1500000, CUB_EV_VERDICT, -1, 0}, {3000000, CUB_EV_BUTTON_DOWN, CUB_BUTTON_STOP, 0},
+        {100000, CUB_EV_BUTTON_DOWN, CUB_BUTTON_START, 0, 0}, {1000000, CUB_EV_CLIP_DONE, 0, 0, 0},
+        {1500000, CUB_EV_VERDICT, -1, 0, 0}, {3000000, CUB_EV_BUTTON_DOWN, CUB_BUTTON_STOP, 0, 0},
     };
     for (size_t i = 0; i < sizeof script / sizeof script[0]; i++) {
         cub_director_advance(&dir, &loop, script[i].t_us, (int32_t)(script[i].t_us / 1000));

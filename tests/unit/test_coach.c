@@ -355,6 +355,47 @@ static void test_correction_repeats_until_right_then_resumes_same_move(void **s)
     expect_clip(&c, C_SWAY, cub_fx_mul(81920, demo), false, CUB_COACH_WHY_DEMO);
 }
 
+/* A wrong verdict with a fault (c) shows the fault in place of the move's
+ * words, in the same call as the correcting clip, through the slower
+ * demonstration; a second fault replaces it; the dance's resume brings
+ * the move's words back. A wrong verdict without a fault leaves the
+ * move's words. */
+static void test_fault_is_the_hint_while_its_correction_runs(void **s)
+{
+    cub_coach c;
+    start_dancing(&c, 1000);
+    cub_event ev = {.t_us = 2000000, .type = CUB_EV_VERDICT, .a = 0, .b = 0, .c = 211};
+    assert_int_equal(cub_coach_handle(&c, &ev, 1000), CUB_OK);
+    expect_clip(&c, C_SHAKE, CUB_Q16_ONE, false, CUB_COACH_WHY_CORRECT);
+    const cub_coach_action *h = act(&c, CUB_COACH_ACT_HINT, 0);
+    assert_non_null(h);
+    assert_int_equal(h->hint, 0);
+    assert_int_equal(h->fault, 211);
+    assert_int_equal(h->reason, CUB_COACH_WHY_WRONG);
+    assert_true(logged("coach hint show=fault move=0 how=mirror key=RHE=true reason=wrong"));
+    send(&c, 3000, CUB_EV_CLIP_DONE, C_SHAKE, 0, 2000);
+    expect_clip(&c, C_CLAP, 0, false, CUB_COACH_WHY_DEMO);
+    assert_null(act(&c, CUB_COACH_ACT_HINT, 0)); /* the fault stays */
+    ev = (cub_event){.t_us = 4000000, .type = CUB_EV_VERDICT, .a = 0, .b = 0, .c = 111};
+    assert_int_equal(cub_coach_handle(&c, &ev, 3000), CUB_OK);
+    assert_int_equal(act(&c, CUB_COACH_ACT_HINT, 0)->fault, 111);
+    send(&c, 4500, CUB_EV_PLAYER, 0, 0, 3500); /* away, and back: the fault again */
+    assert_int_equal(act(&c, CUB_COACH_ACT_HINT, 0)->hint, CUB_COACH_HINT_COME_CLOSER);
+    send(&c, 4600, CUB_EV_PLAYER, 1, 0, 3600);
+    assert_int_equal(act(&c, CUB_COACH_ACT_HINT, 0)->fault, 111);
+    send(&c, 5000, CUB_EV_CLIP_DONE, C_WATCH, 0, 4000);
+    send(&c, 6000, CUB_EV_VERDICT, 0, 1, 4100);
+    assert_int_equal(c.state, CUB_COACH_DANCE);
+    h = act(&c, CUB_COACH_ACT_HINT, 0);
+    assert_non_null(h);
+    assert_int_equal(h->hint, 0);
+    assert_int_equal(h->fault, 0);
+    assert_true(logged("coach hint show=move move=0 reason=resume"));
+    send(&c, 7000, CUB_EV_VERDICT, 0, 0, 5000); /* no fault: the move's words stay */
+    assert_int_equal(c.state, CUB_COACH_CORRECT);
+    assert_null(act(&c, CUB_COACH_ACT_HINT, 0));
+}
+
 /* The Kinect goes mid-song: the music and the dance hold with "can't see
  * you"; verdicts are set aside; when frames come back the music goes on
  * and the dance resumes where the music is. Outside a song nothing
@@ -938,6 +979,7 @@ int main(void)
         cmocka_unit_test(test_clap_wakes_from_idle_attract_and_doze),
         cmocka_unit_test(test_wrong_verdict_corrects_in_the_same_call),
         cmocka_unit_test(test_correction_repeats_until_right_then_resumes_same_move),
+        cmocka_unit_test(test_fault_is_the_hint_while_its_correction_runs),
         cmocka_unit_test(test_last_repetition_wrong_after_the_next_move_began),
         cmocka_unit_test(test_resume_follows_the_music_past_the_move),
         cmocka_unit_test(test_camera_loss_pauses_the_song_and_resumes_it),

@@ -99,6 +99,10 @@ typedef struct cub_render_scene {
      * its status is OK. NULL = none. */
     const cub_track_skeleton *child;
     const char *child_cue;    /* with child: words above the inset ("Step back"); NULL = none */
+    /* With child: the joints (bit CUB_KJ_*) whose bones to their parents
+     * are drawn marked, wider and in pink: the limb the hint asks the
+     * child to move. 0 = none. */
+    uint32_t child_mark;
 } cub_render_scene;
 
 /* CUB_ERR_ARG for a bad desc, CUB_ERR_IO / CUB_ERR_FORMAT for a font that

@@ -3,11 +3,13 @@
  * each on a span of whole bars (SEEDS.md § 000, "Choreography").
  *
  *   <song version="1" name="Twinkle Twinkle Little Star" midi="twinkle.mid"
- *         bpm="96" meter="4/4" bars="40">
+ *         faults="faults.words" bpm="96" meter="4/4" bars="40">
  *       <move clip="clap" reps="5" bar="15" bars="4" keys="RHE=true LHE=true"
  *             hint="Clap with me!" icon="clap"/>
  *   </song>
  *
+ * faults (optional) names the words said when a key of a move fails
+ * (cub/faults.h), a file beside the song like the MIDI; the app reads it.
  * bpm counts quarter notes (as MIDI does); meter is N/D, a bar lasting N
  * D-th notes. bar is where a move starts (1-based), bars how long it lasts.
  * keys are the move's key points for the judge: one or two (at most
@@ -62,6 +64,8 @@ typedef struct cub_song {
     char name[CUB_SONG_TEXT_LEN];
     char midi[256];           /* as written (relative to the song file) */
     char midi_path[512];      /* resolved: the song file's folder + midi */
+    char faults[256];         /* optional: the fault words table (cub/faults.h) as written */
+    char faults_path[512];    /* resolved like midi_path; "" without faults */
     int bpm;                  /* quarter notes per minute, 30..300 */
     int meter_num, meter_den; /* N/D, D in {2, 4, 8, 16} */
     int bars;                 /* the song's length */

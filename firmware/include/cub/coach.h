@@ -106,6 +106,9 @@ typedef struct cub_coach_action {
     bool loop;         /* ACT_CLIP: loop until the next request, else play once
                           (the player then posts CUB_EV_CLIP_DONE) */
     int32_t hint;      /* ACT_HINT */
+    int32_t fault;     /* ACT_HINT with a move: what to fix in it (a wrong verdict's
+                          cub_judge_fault_code, shown instead of the move's own
+                          words while its correction runs); 0 = the move's words */
     int32_t from, to;  /* ACT_STATE: cub_coach_state */
     int32_t move, rep; /* the song position concerned, from 0; -1 when none */
 } cub_coach_action;
@@ -175,6 +178,9 @@ typedef struct cub_coach {
     bool music_on, tag_pending, player_in_view;
     bool show_again; /* correcting the move just left: demonstrate it once */
     int32_t hint; /* the hint last shown */
+    int32_t fault; /* ... and its fault (0: none) */
+    int32_t fix;   /* the fault the correction under way is about (0: none), shown
+                      again when the child comes back into view */
     int64_t now_us, quiet_since_us, state_since_us;
     int64_t music_start_us; /* loop time the music was started */
     int64_t anchor_us;      /* first loop time the music clock was seen moving */
@@ -194,7 +200,10 @@ cub_err cub_coach_init(cub_coach *c, const cub_coach_desc *desc, int64_t now_us)
  * taken as the last call's time). What the coach reads from it:
  *   BUTTON_DOWN a = START (wake when resting) / STOP (idle, from anywhere)
  *   CLAP        wake when resting (idle, attract, doze)
- *   VERDICT     a = move, b = 1 right / 0 wrong; about another move: ignored,
+ *   VERDICT     a = move, b = 1 right / 0 wrong, c = a wrong one's fault
+ *               (shown as the hint through the correction it starts, until
+ *               the dance resumes; 0 = the move's own words stay);
+ *               about another move: ignored,
  *               except a wrong one about the move just left while the next
  *               one's first repetition plays or is waited for (the last
  *               repetition's window closes a beat late): that move is

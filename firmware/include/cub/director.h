@@ -100,6 +100,7 @@ typedef enum cub_director_do {
 typedef struct cub_director_out {
     int32_t what; /* cub_director_do */
     int32_t hint; /* HINT */
+    int32_t fault; /* HINT: what to fix in the move (cub_coach_action fault); 0 none */
 } cub_director_out;
 
 typedef struct cub_director {

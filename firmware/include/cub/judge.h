@@ -55,6 +55,14 @@
  *   (a run of hold_ms, past the first beat) while the keys are not, is a
  *   wrong verdict at once (why = mirror: the other arm or leg). Frames the
  *   tracker is not sure of (not CUB_TRACK_OK) never give an early verdict.
+ * - A wrong verdict's fault (ev.c, cub_judge_fault_code) says what to fix:
+ *   why = missed: how = missed, the key named (the weakest), and as the
+ *   limbs to move those of the keys that never reached key_mu in the
+ *   window, or of every key when each did, alone (the keys never came
+ *   together: the whole move is missing); why = mirror: how = mirror, the
+ *   key whose mirror was held (of those with a mirror of another set, the
+ *   weakest) and its limb: the side that should have moved. No fault (c =
+ *   0) for no_player and pose: nothing one limb can fix.
  * - A repetition still without a right verdict gets a wrong one (b = 0) in
  *   the first frame with t_us >= end_us + beat_us. Why: no_player when no
  *   frame of its window was CUB_TRACK_OK, pose when the keys were held but
@@ -166,6 +174,34 @@ typedef enum cub_judge_why {
     CUB_JUDGE_WHY_MIRROR,   /* wrong: the keys' mirror held (the other arm) */
 } cub_judge_why;
 
+/* What a wrong verdict says to fix: which key failed and how. */
+typedef enum cub_judge_how {
+    CUB_JUDGE_HOW_NONE = 0, /* no fault to name (nobody seen, the pose, a right verdict) */
+    CUB_JUDGE_HOW_MISSED,   /* the key never came (its moment passed, or the window closed) */
+    CUB_JUDGE_HOW_MIRROR,   /* the other side did it: the key's mirror was held instead */
+    CUB_JUDGE_HOW_COUNT
+} cub_judge_how;
+
+typedef struct cub_judge_fault {
+    int32_t how;     /* cub_judge_how */
+    int32_t feature; /* the key that failed (cub_fuzzy_feature)... */
+    int32_t set;     /* ...and its set: for a mirror, the side that should have moved */
+    uint32_t limbs;  /* the limbs to move, bit (limb - 1) of each cub_judge_limb;
+                        0: the key's own */
+} cub_judge_fault;
+
+/* The body part a fault is about, the one the child should move. */
+typedef enum cub_judge_limb {
+    CUB_JUDGE_LIMB_NONE = 0,
+    CUB_JUDGE_LIMB_RIGHT_ARM, /* RH, RHE */
+    CUB_JUDGE_LIMB_LEFT_ARM,  /* LH, LHE */
+    CUB_JUDGE_LIMB_RIGHT_LEG, /* RF, RFK */
+    CUB_JUDGE_LIMB_LEFT_LEG,  /* LF, LFK */
+    CUB_JUDGE_LIMB_LEGS,      /* Posture: the body goes up or down on both legs */
+    CUB_JUDGE_LIMB_TRUNK,     /* Trunk */
+    CUB_JUDGE_LIMB_COUNT
+} cub_judge_limb;
+
 typedef struct cub_judge_event {
     cub_event ev;     /* ready to post (type CUB_EV_NONE for a wave) */
     int32_t kind;     /* cub_judge_kind */
@@ -173,7 +209,7 @@ typedef struct cub_judge_event {
     int32_t move, rep;/* verdicts; -1 otherwise */
     int32_t feature;  /* verdicts: the key's feature (cub_fuzzy_feature)... */
     int32_t set;      /* ...and set concerned; -1 none */
-    cub_q16 value;    /* verdict: the key's best membership (0..1) or min d;
+    cub_q16 value;    /* verdict: the (failed) key's best membership (0..1) or min d;
                          clap: hand gap at the meet (mm); wave: reversals;
                          player: 1 / 0 */
     int32_t side;     /* wave: 0 left hand, 1 right hand; else -1 */
@@ -220,11 +256,33 @@ int32_t cub_judge_key_moment(const cub_judge *j, const cub_judge_key *keys, int3
  * same sets); returns 1 when it differs from the keys as a set. */
 int cub_judge_mirror_keys(const cub_judge_key *keys, int32_t key_count, cub_judge_key *mirror);
 
+/* A fault as one number, for the loop event (cub_event c of a verdict):
+ * limbs * 1000 + how * 100 + feature * 10 + set, so 3111 reads "both arms
+ * (3), missed (1) RHE=true (1, 1)" at a glance; 0 for none or an invalid
+ * fault (limbs beyond the six). */
+int32_t cub_judge_fault_code(cub_judge_fault f);
+/* The fault a code names; how = CUB_JUDGE_HOW_NONE for 0 or an invalid code. */
+cub_judge_fault cub_judge_fault_of(int32_t code);
+/* The limb a fault's key is about (CUB_JUDGE_LIMB_NONE for none). */
+int32_t cub_judge_fault_limb(cub_judge_fault f);
+/* The tracker joints (bit CUB_KJ_*) of every limb the fault asks to move:
+ * its limbs, or its key's limb when it names none; 0 for no fault. */
+uint32_t cub_judge_fault_joints(cub_judge_fault f);
+/* The tracker joints of a limb as a bit mask (bit CUB_KJ_* set): those
+ * whose bone to their parent belongs to the limb; 0 for none. */
+uint32_t cub_judge_limb_joints(int32_t limb);
+/* "missed", "mirror" ("none" for none); "right_arm", ... ("none"); "?"
+ * out of range. */
+const char *cub_judge_how_name(int32_t how);
+const char *cub_judge_limb_name(int32_t limb);
+
 /* The last frame's fuzzy features (zero before the first OK frame). */
 const cub_fuzzy_frame *cub_judge_last_features(const cub_judge *j);
 
 /* A log line for an event, e.g. "verdict move=3 rep=1 result=wrong
- * why=missed key=RHE best=0.420"; returns its length (cut to size). */
+ * why=missed key=RHE=true best=0.420 fix=right_arm,left_arm" (fix: the
+ * limbs a wrong verdict with a fault asks to move; only then); returns
+ * its length (cut to size). */
 size_t cub_judge_describe(const cub_judge_event *e, char *buf, size_t size);
 
 /* "keys", "missed", ...; "?" out of range. */

@@ -25,7 +25,8 @@ typedef enum cub_event_type {
     CUB_EV_TIMER,       /* a = timer id, b = periods missed (a late periodic timer) */
     CUB_EV_QUIT,        /* the board or the user asked the program to end */
     /* The dance (issue 4 on): */
-    CUB_EV_VERDICT,     /* the judge: a = move index in the song, b = 1 right / 0 wrong */
+    CUB_EV_VERDICT,     /* the judge: a = move index in the song, b = 1 right / 0 wrong,
+                           c = a wrong one's fault (cub_judge_fault_code), 0 none */
     CUB_EV_CLAP,        /* the child clapped (wakes the coach like START) */
     CUB_EV_PLAYER,      /* a = 1 a player is in view, 0 nobody */
     CUB_EV_CLIP_DONE,   /* the coach's clip played to its end: a = clip index */
@@ -45,6 +46,7 @@ typedef struct cub_event {
     int64_t t_us;  /* when it happened (loop time) */
     int32_t type;  /* cub_event_type */
     int32_t a, b;  /* meaning depends on type (see above) */
+    int32_t c;     /* a third value where the type says so; else 0 */
 } cub_event;
 
 /* Name of a button ("start", "stop") or event type ("button_down", ...). */
