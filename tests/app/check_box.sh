@@ -84,8 +84,9 @@ missing_assets)
         --library "$out/none.cubclips" --seconds 1
     expect_error song "$out/none.song.xml" "$sim" --headless --depth off --song "$out/none.song.xml" \
         --seconds 1
-    # A song whose MIDI file is missing: the choreography copied alone.
-    mkdir -p "$out/lonely" && cp "$song" "$out/lonely/"
+    # A song whose MIDI file is missing: the choreography copied with its
+    # fault words but not its music.
+    mkdir -p "$out/lonely" && cp "$song" "$src/assets/songs/faults.words" "$out/lonely/"
     expect_error midi "lonely/.*\.mid" "$sim" --headless --depth off \
         --song "$out/lonely/twinkle.song.xml" --seconds 1
     printf 'soundfont=%s/none.sf2\n' "$out" >"$out/sf.conf"

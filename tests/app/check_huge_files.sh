@@ -50,6 +50,7 @@ box song "huge.song.xml: the song is $big bytes, larger than the 4 MB a song may
     --song "$out/huge.song.xml"
 huge huge.mid
 sed 's/midi="[^"]*"/midi="huge.mid"/' "$src/assets/songs/twinkle.song.xml" > "$out/midi.song.xml"
+cp "$src/assets/songs/faults.words" "$out/" # found beside the song, like its MIDI
 box midi "huge.mid: the MIDI file is $big bytes, larger than the 4 MB a MIDI file may be" \
     --song "$out/midi.song.xml"
 huge huge.timeline
