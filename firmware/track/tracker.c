@@ -535,7 +535,8 @@
 
 #define TRK_DEFAULT_MIN_MM 500
 #define TRK_DEFAULT_MAX_MM 4500
-#define TRK_LOST_RESET 30 /* frames without the player before a new one may take over */
+#define TRK_LOST_RESET 45 /* frames without the player before a new one may take over (1.5 s at 30 fps;
+                           * trk_pick_player holds 1.5 s by the frames' times) */
 
 size_t cub_track_mem_size(const cub_track_desc *desc)
 {
