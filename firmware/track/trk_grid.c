@@ -395,8 +395,9 @@ static trk_p3 predicted(const cub_tracker *t)
 /* Blob centre cc's distance from the prediction, -1 outside the gate or in front. */
 static int32_t track_gap(const cub_tracker *t, trk_p3 pred, trk_p3 cc)
 {
+    /* the front does not widen: a hidden player is behind whoever hides it */
     int32_t grow = per_s(ID_GATE_GROW, unseen_us(t));
-    if (cc.z < pred.z - ID_FRONT_MM - grow) return -1;
+    if (cc.z < pred.z - ID_FRONT_MM) return -1;
     int32_t d = trk_len(cc.x - pred.x, cc.y - pred.y, cc.z - pred.z);
     return d <= ID_GATE_MM + grow ? d : -1;
 }
@@ -418,11 +419,10 @@ static int64_t person_score(const cub_tracker *t, trk_p3 pred, trk_p3 cc)
  * player may be hidden but for pieces. */
 static bool someone_in_front(const cub_tracker *t, trk_p3 pred)
 {
-    int32_t grow = per_s(ID_GATE_GROW, unseen_us(t));
     for (int32_t k = 0; k < t->ncomps; k++) {
         const trk_comp *c = &t->comps[k];
         if (!person_like(c) || c->gx1 < t->seen_gx0 || c->gx0 > t->seen_gx1) continue;
-        if ((int32_t)(c->sz / c->n) < pred.z - ID_FRONT_MM - grow) return true;
+        if ((int32_t)(c->sz / c->n) < pred.z - ID_FRONT_MM) return true;
     }
     return false;
 }
