@@ -4,7 +4,7 @@
 # every fold reported, in the scenes a child's room has (facing, turning,
 # travel, a second person, loose clothes).
 #
-#   scripts/eval_folds.sh BUILD_DIR [dev|heldout|all] [--quick] [--fold NAME] [--csv FILE]
+#   scripts/eval_folds.sh BUILD_DIR [dev|heldout|all] [--quick] [--fold NAME] [--scene NAME] [--csv FILE]
 #   (also: scripts/eval_tracker.sh BUILD_DIR --folds ...)
 #
 # dev      the folds hand-set numbers may be chosen on (CMU subject groups,
@@ -12,6 +12,8 @@
 # heldout  the 8 Bandai styles nobody tunes on: run once at the end of a
 #          round, never to decide (default: all = both, each fold reported)
 # --quick  3 folds x 5 renders x 8 frames: the ctest sample (seconds)
+# --scene NAME  that scene's renders only (second: the second-person
+# renders, to work on identity without rendering the rest);
 # --fold NAME  that fold only; --csv FILE  every fold's rows for scripts
 #
 # Every render: cubtool synth-depth ... --seed 1 --frames 90 --fps 10 into
@@ -23,7 +25,7 @@
 set -eu
 
 usage() {
-    echo "usage: scripts/eval_folds.sh BUILD_DIR [dev|heldout|all] [--quick] [--fold NAME] [--csv FILE]" >&2
+    echo "usage: scripts/eval_folds.sh BUILD_DIR [dev|heldout|all] [--quick] [--fold NAME] [--scene NAME] [--csv FILE]" >&2
     exit 2
 }
 HERE=$(cd "$(dirname "$0")" && pwd)
@@ -57,13 +59,14 @@ fi
 [ $# -ge 1 ] || usage
 BUILD=$1
 shift
-SET=all QUICK=0 ONLY= CSV=
+SET=all QUICK=0 ONLY= CSV= SCENE=
 while [ $# -gt 0 ]; do
     case $1 in
     dev | heldout | all) SET=$1 ;;
     --quick) QUICK=1 ;;
     --fold) [ $# -ge 2 ] || usage; ONLY=$2; shift ;;
     --csv) [ $# -ge 2 ] || usage; CSV=$2; shift ;;
+    --scene) [ $# -ge 2 ] || usage; SCENE=$2; shift ;;
     *) usage ;;
     esac
     shift
@@ -134,6 +137,7 @@ jobs() {
             printf '%s\n' "$clips" | tr ';' '\n' | while read -r clip; do
                 [ "$QUICK" = 0 ] || [ $i -lt 5 ] || break
                 scene=$(nth $((i + k)) $SCENES)
+                [ -z "$SCENE" ] || [ "$SCENE" = "$scene" ] || { i=$((i + 1)); continue; }
                 printf '%s|%s|%02d|%s|--clip %s %s\n' "$fold" "$set" $i "$scene" "$clip" "$(scene_args $scene $k $i $next)"
                 i=$((i + 1))
             done

@@ -8,9 +8,13 @@
  *      height histogram has the densest low layer; floor cells go;
  *   3. blobs by depth continuity; person-like blobs (size, upright extent,
  *      not wall-wide) are candidates; the player is the nearest one near the
- *      centre, then always the blob nearest last frame's player (the same
- *      player_id while it stays within reach), so a second person walking
- *      in never takes over; small blobs in front of the player and inside
+ *      centre, then a track in the room (centre, velocity along the floor):
+ *      the blob nearest the prediction within a gate that widens while the
+ *      player is unseen, never one well in front of it (someone crossing
+ *      before the player hides it but stands nearer), and while the track
+ *      lives (1.5 s unseen) nobody else takes over: a player hidden but
+ *      for pieces is its largest piece at its depth, a player hidden whole
+ *      is no player until it reappears near the prediction; small blobs in front of the player and inside
  *      its outline are merged back (hands before the chest), and so is a
  *      smaller blob at the player's depth touching it within its columns
  *      (a forearm across the whole width of a turned torso cuts the body
@@ -535,7 +539,8 @@
 
 #define TRK_DEFAULT_MIN_MM 500
 #define TRK_DEFAULT_MAX_MM 4500
-#define TRK_LOST_RESET 30 /* frames without the player before a new one may take over */
+#define TRK_LOST_RESET 45 /* frames without the player before a new one may take over (1.5 s at 30 fps;
+                           * trk_pick_player holds 1.5 s by the frames' times) */
 
 size_t cub_track_mem_size(const cub_track_desc *desc)
 {

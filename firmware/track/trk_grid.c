@@ -360,36 +360,147 @@ static void remember_who(cub_tracker *t)
  * better). */
 static int64_t newcomer_score(trk_p3 cc) { return cc.z + 2 * trk_abs(cc.x); }
 
-int32_t trk_pick_player(cub_tracker *t)
+/* The player's identity is its track in the room: the centre where it was
+ * last seen, moving on at its velocity. A blob is the player only near
+ * that prediction (the gate widens while the player is unseen), and never
+ * a blob well in front of it: someone crossing before the player hides it
+ * but stands nearer the camera than the player can have moved. While the
+ * track is alive (unseen for less than ID_HOLD_US) nobody else becomes the
+ * player; the player hidden but for pieces (an arm, the legs beside the
+ * one in front) is those pieces at its depth. */
+#define ID_HOLD_US 1500000 /* a hidden player keeps its track this long */
+#define ID_GATE_MM 450     /* a blob's centre this near the prediction may be the player (a child moves 250 mm in 0.1 s) */
+#define ID_GATE_GROW 600   /* and this much farther per second unseen (mm/s) */
+#define ID_FRONT_MM 350    /* a blob this much nearer than the prediction is someone in front */
+#define ID_PART_DZ_MM 400  /* a piece of a hidden player: within this depth of the prediction */
+#define ID_PART_CELLS 12   /* and no smaller */
+#define ID_MAX_SPEED 2500  /* mm/s: a child's run; faster is a wrong centre, not motion */
+#define ID_FAR 1000000     /* score offset: a blob that is not the tracked player */
+
+static int32_t unseen_us(const cub_tracker *t)
 {
-    if (t->tracked) split_merged(t);
+    int64_t d = t->prev_t_us - t->seen_us;
+    return d < 0 ? 0 : d > ID_HOLD_US ? ID_HOLD_US + 1 : (int32_t)d;
+}
+
+static int32_t per_s(int32_t v, int32_t us) { return (int32_t)((int64_t)v * us / 1000000); }
+
+static trk_p3 predicted(const cub_tracker *t)
+{
+    int32_t u = unseen_us(t);
+    return (trk_p3){t->centre.x + per_s(t->vel.x, u), t->centre.y + per_s(t->vel.y, u),
+                    t->centre.z + per_s(t->vel.z, u)};
+}
+
+/* Blob centre cc's distance from the prediction, -1 outside the gate or in front. */
+static int32_t track_gap(const cub_tracker *t, trk_p3 pred, trk_p3 cc)
+{
+    /* the front does not widen: a hidden player is behind whoever hides it */
+    int32_t grow = per_s(ID_GATE_GROW, unseen_us(t));
+    if (cc.z < pred.z - ID_FRONT_MM) return -1;
+    int32_t d = trk_len(cc.x - pred.x, cc.y - pred.y, cc.z - pred.z);
+    return d <= ID_GATE_MM + grow ? d : -1;
+}
+
+/* A person-like blob's score: the tracked player's gap, else ID_FAR and
+ * more (a newcomer); below 0 a newcomer who takes over at once (see below). */
+static int64_t person_score(const cub_tracker *t, trk_p3 pred, trk_p3 cc)
+{
+    if (!t->tracked) return ID_FAR + newcomer_score(cc);
+    int32_t d = track_gap(t, pred, cc);
+    /* a player never yet nearer than the play range's far end (someone at
+     * the back of the room when the box started) gives way to another
+     * person who comes into it: the child walking in */
+    if (!t->in_play && d < 0 && cc.z <= TRK_FAR_MM) return -ID_FAR + newcomer_score(cc);
+    return d >= 0 ? d : ID_FAR + newcomer_score(cc);
+}
+
+/* Someone stands before the player's columns of last sighting: the
+ * player may be hidden but for pieces. */
+static bool someone_in_front(const cub_tracker *t, trk_p3 pred)
+{
+    for (int32_t k = 0; k < t->ncomps; k++) {
+        const trk_comp *c = &t->comps[k];
+        if (!person_like(c) || c->gx1 < t->seen_gx0 || c->gx0 > t->seen_gx1) continue;
+        if ((int32_t)(c->sz / c->n) < pred.z - ID_FRONT_MM) return true;
+    }
+    return false;
+}
+
+/* The hidden player's largest piece near the prediction, -1 none. */
+static int32_t player_part(const cub_tracker *t, trk_p3 pred)
+{
+    int32_t best = -1;
+    for (int32_t k = 0; k < t->ncomps; k++) {
+        const trk_comp *c = &t->comps[k];
+        if (c->n < ID_PART_CELLS || (best >= 0 && c->n <= t->comps[best].n)) continue;
+        trk_p3 cc = comp_centre(c);
+        if (trk_abs(cc.z - pred.z) > ID_PART_DZ_MM || track_gap(t, pred, cc) < 0) continue;
+        best = k;
+    }
+    return best;
+}
+
+/* The player's blob this frame; *same: the tracked player (else a
+ * newcomer), *hidden: someone stands before it. */
+static int32_t choose_blob(cub_tracker *t, bool *same, bool *hidden)
+{
+    *hidden = t->tracked && someone_in_front(t, predicted(t));
+    trk_p3 pred = predicted(t);
     int32_t best = -1;
     int64_t best_score = INT64_MAX;
     for (int32_t k = 0; k < t->ncomps; k++) {
-        const trk_comp *c = &t->comps[k];
-        if (!person_like(c)) continue;
-        trk_p3 cc = comp_centre(c);
-        int64_t score;
-        if (t->tracked) {
-            /* the same person: the blob nearest where the player was */
-            int32_t d = trk_len(cc.x - t->centre.x, cc.y - t->centre.y, cc.z - t->centre.z);
-            score = d <= 700 ? d : 1000000 + newcomer_score(cc);
-            /* a player never yet nearer than the play range's far end
-             * (someone at the back of the room when the box started)
-             * gives way to another person who comes into it: the child
-             * walking in */
-            if (!t->in_play && d > 700 && cc.z <= TRK_FAR_MM) score = -1000000 + newcomer_score(cc);
-        } else {
-            score = 1000000 + newcomer_score(cc);
-        }
+        if (!person_like(&t->comps[k])) continue;
+        int64_t score = person_score(t, pred, comp_centre(&t->comps[k]));
         if (score < best_score) best_score = score, best = k;
     }
+    *same = t->tracked && best >= 0 && best_score >= 0 && best_score < ID_FAR;
+    if (*same || !t->tracked || best_score < 0) return best;
+    /* the track is alive: its pieces, or nobody, but no one else */
+    int32_t part = *hidden ? player_part(t, pred) : -1;
+    *same = part >= 0;
+    return part >= 0 || unseen_us(t) <= ID_HOLD_US ? part : best;
+}
+
+/* The track follows the blob seen: its centre, and the velocity along the
+ * floor from the last sighting (people walk on it). A player with someone
+ * in front shows pieces whose centre is not the body's: the centre goes
+ * half-way to them from the prediction, the velocity and columns stay. */
+static void track_update(cub_tracker *t, int32_t blob, bool same, bool hidden)
+{
+    trk_p3 c = comp_centre(&t->comps[blob]), pred = predicted(t);
+    int32_t u = unseen_us(t);
+    if (!same) {
+        t->vel = (trk_p3){0, 0, 0};
+    } else if (hidden) {
+        c = (trk_p3){(c.x + pred.x) / 2, (c.y + pred.y) / 2, (c.z + pred.z) / 2};
+    } else if (u > 0 && u <= 200000) {
+        trk_p3 v = {(int32_t)((int64_t)(c.x - t->centre.x) * 1000000 / u),
+                    (int32_t)((int64_t)(c.y - t->centre.y) * 1000000 / u),
+                    (int32_t)((int64_t)(c.z - t->centre.z) * 1000000 / u)};
+        int32_t h = trk_along(v.x, v.y, v.z, t->up);
+        v = (trk_p3){v.x - (int32_t)(((int64_t)t->up.x * h) >> 16), v.y - (int32_t)(((int64_t)t->up.y * h) >> 16),
+                     v.z - (int32_t)(((int64_t)t->up.z * h) >> 16)};
+        int32_t s = trk_len(v.x, v.y, v.z);
+        if (s > ID_MAX_SPEED) v.x = v.x * ID_MAX_SPEED / s, v.y = v.y * ID_MAX_SPEED / s, v.z = v.z * ID_MAX_SPEED / s;
+        t->vel = (trk_p3){(t->vel.x + v.x) / 2, (t->vel.y + v.y) / 2, (t->vel.z + v.z) / 2};
+    }
+    t->centre = c;
+    t->seen_us = t->prev_t_us;
+    if (!hidden) t->seen_gx0 = t->comps[blob].gx0, t->seen_gx1 = t->comps[blob].gx1;
+}
+
+int32_t trk_pick_player(cub_tracker *t)
+{
+    if (t->tracked && unseen_us(t) > ID_HOLD_US && t->lost_frames > 0) t->tracked = false;
+    if (t->tracked) split_merged(t);
+    bool same, hidden;
+    int32_t best = choose_blob(t, &same, &hidden);
     memset(t->mask, 0, sizeof t->mask);
     if (best < 0) {
         memset(t->who_prev, 0, sizeof t->who_prev);
         return -1;
     }
-    bool same = t->tracked && best_score >= 0 && best_score < 1000000;
     if (!same) {
         t->player_id = ++t->next_id;
         memset(t->reach_mm, 0, sizeof t->reach_mm); /* another body */
@@ -397,7 +508,7 @@ int32_t trk_pick_player(cub_tracker *t)
         t->stature_mm = t->neck_drop_mm = 0;
     }
     t->tracked = true;
-    t->centre = comp_centre(&t->comps[best]);
+    track_update(t, best, same, hidden);
     t->in_play = (same && t->in_play) || t->centre.z <= TRK_FAR_MM;
     for (int32_t i = 0; i < TRK_CELLS; i++)
         if (t->label[i] == best) t->mask[i] = 1;

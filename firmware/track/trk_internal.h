@@ -69,7 +69,9 @@ struct cub_tracker {
     bool tracked;
     int32_t player_id, next_id, lost_frames;
     bool in_play; /* the player has come nearer than TRK_FAR_MM */
-    trk_p3 centre;
+    trk_p3 centre, vel; /* where the player was last seen (mm) and its velocity (mm/s) */
+    int64_t seen_us;    /* when */
+    int32_t seen_gx0, seen_gx1; /* and its blob's columns on the grid */
     int32_t stature_mm;
     int32_t neck_drop_mm; /* head top to the neck base (smoothed), 0 unknown */
     int32_t head_cell, stature_seen_mm; /* this frame's, for tools */
