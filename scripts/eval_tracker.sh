@@ -244,10 +244,11 @@ ${SET}_set | while IFS='|' read -r name args; do
     fi
     echo "+ $TOOL eval-track $out"
     "$TOOL" eval-track "$out" >"$RESULTS/$name.txt"
-    # per joint rows: name mean_mm pct n -> within count (pct has one decimal)
+    # per joint rows: name mean_mm pct n [per facing band...] -> within
+    # count (pct has one decimal); the total line, not the bands' lines
     awk -v clip="$name" '
-        /^[a-z_]+ +[0-9]+ +[0-9.]+% +[0-9]+$/ { p = $3; sub("%", "", p); printf "J %s %d %d\n", $1, int(p * $4 / 100 + 0.5), $4 }
-        /of joints within 10 cm/ { s = $0; sub(/.*\(/, "", s); sub(/\).*/, "", s); split(s, a, " of "); printf "C %s %d %d\n", clip, a[1], a[2] }
+        /^[a-z_]+ +[0-9]+ +[0-9.]+% +[0-9]+( |$)/ { p = $3; sub("%", "", p); printf "J %s %d %d\n", $1, int(p * $4 / 100 + 0.5), $4 }
+        /^eval-track: +[0-9.]+% of joints within 10 cm/ { s = $0; sub(/.*\(/, "", s); sub(/\).*/, "", s); split(s, a, " of "); printf "C %s %d %d\n", clip, a[1], a[2] }
     ' "$RESULTS/$name.txt" >>"$REPORT"
 done
 
