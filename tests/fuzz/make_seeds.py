@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Write the fuzz targets' small seed inputs (issue 18) into tests/fuzz/:
 seeds_dump/ (fuzz_fakenect_dump, fuzz_track_dump), seeds_synth/,
-seeds_cli/, seeds_font/, seeds_map/, seeds_codec/, seeds_voice/. Everything is made
+seeds_cli/, seeds_font/, seeds_map/, seeds_codec/, seeds_voice/, seeds_trc/. Everything is made
 here from the formats' rules, nothing copied from the shared data; run it again
 after changing a format:
 
@@ -216,7 +216,37 @@ def voice_seeds():
     put("seeds_voice", "one_at_8k", voice_pack(8000, [("Come closer!", [32767, -32768, 0, 1])]))
 
 
+# ---- TRC marker files: the header, names, X1 Y1 Z1 line, then rows of
+# frame, time, x y z per marker; three blank cells where a marker is lost.
+def trc(units, rate, rows, names, trailing_tab=False):
+    end = "\t\n" if trailing_tab else "\n"
+    out = "PathFileType\t4\t(X/Y/Z)\tseed.trc\n"
+    out += "DataRate\tCameraRate\tNumFrames\tNumMarkers\tUnits\tOrigDataRate\t"
+    out += "OrigDataStartFrame\tOrigNumFrames\n"
+    out += "%g\t%g\t%d\t%d\t%s\t%g\t1\t%d\n" % (rate, rate, len(rows), len(names), units,
+                                                   rate, len(rows))
+    out += "Frame#\tTime\t" + "".join(n + "\t\t\t" for n in names).rstrip("\t") + end
+    out += "\t\t" + "\t".join("%s%d" % (a, i + 1) for i in range(len(names)) for a in "XYZ")
+    out += end + "\n"
+    for f, row in enumerate(rows):
+        cells = ["%d" % (f + 1), "%.6f" % (f / rate)]
+        for p in row:
+            cells += ["", "", ""] if p is None else ["%.3f" % v for v in p]
+        out += "\t".join(cells) + end
+    return out.encode()
+
+
+def trc_seeds():
+    names = ["R.Knee", "L.Knee", "Sternum"]
+    rows = [[(400.0 + f, 500.0 - 2 * f, 30.5 * math.sin(f)), (-400.0, 500.0, f * 1.5),
+             None if f == 2 else (0.0, 1300.0 + f, -12.25)] for f in range(4)]
+    put("seeds_trc", "small_mm.trc", trc("mm", 60, rows, names, trailing_tab=True))
+    metres = [[(1.25, 0.5, -0.125)], [None]]
+    put("seeds_trc", "lost_m.trc", trc("m", 100, metres, ["Head"]))
+
+
 def main():
+    trc_seeds()
     codec_seeds()
     map_seeds()
     dump_seeds()
