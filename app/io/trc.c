@@ -151,6 +151,8 @@ static cub_err read_row(trc_lines *r, cub_trc *t, char *s, double scale, int f)
     if (n < need) return fail(r, "the row is short of cells (frame, time, x y z per marker)%s", "");
     if (n > need) return fail(r, "the row has more cells than frame, time and x y z per marker%s", "");
     double v;
+    if (!get_num(c[0], &v) || v < 0 || v > 1e9 || v != floor(v))
+        return fail(r, "frame '%s' is not a whole number from 0 to 1e9", c[0]);
     if (!get_num(c[1], &v)) return fail(r, "time '%s' is not a finite number", c[1]);
     t->time[f] = v;
     for (int m = 0; m < t->markers; m++) {
@@ -195,6 +197,7 @@ static size_t count_lines(const char *s, const char *end)
 
 static cub_err parse_lines(trc_lines *r, cub_trc *t)
 {
+    if (r->end == r->buf) return fail(r, "%s", "the file is empty: no TRC header");
     char *first = next_line(r);
     if (!first || strncmp(first, "PathFileType", 12))
         return fail(r, "%s", "not a TRC file: the first line is not PathFileType");

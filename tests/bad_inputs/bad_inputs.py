@@ -133,6 +133,8 @@ def base_of(kind, d, shared, build=""):
         return bear_bvh, "bad.bvh"
     if kind == "cubseed":  # the seed's codec stream, made by tests/fuzz/make_seeds.py
         return read(os.path.join(SRC, "tests", "fuzz", "seeds_codec", "leg.cubseed")), "bad.cubseed"
+    if kind == "trc":  # a small marker file, made by tests/fuzz/make_seeds.py
+        return read(os.path.join(SRC, "tests", "fuzz", "seeds_trc", "small_mm.trc")), "bad.trc"
     if kind == "voice":  # made by the build (app/voice.cmake), not committed
         song_beside(d, "twinkle.mid")
         pack = os.path.join(build, "assets", "voice", "bear.cubvoice")

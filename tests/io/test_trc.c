@@ -99,7 +99,9 @@ static void expect_error(const char *text, int line, const char *words)
 static void test_bad_files(void **state)
 {
     (void)state;
+    expect_error("", 0, "empty");
     expect_error("DataRate\tNumFrames\n", 1, "PathFileType");
+    expect_error(HEAD("mm", "1", "2") NAMES2 "1.5\t0\t1\t2\t3\t4\t5\t6\n", 7, "frame '1.5'");
     expect_error("PathFileType\t4\n", 1, "header ends");
     expect_error("PathFileType\t4\nDataRate\tNumFrames\tNumMarkers\n50\t1\t1\n", 3, "Units");
     expect_error(HEAD("in", "1", "2") NAMES2 "1\t0\t1\t2\t3\t4\t5\t6\n", 3, "units 'in'");

@@ -19,7 +19,7 @@
  * that disagree with NumMarkers, more than CUB_TRC_MAX_MARKERS markers or
  * CUB_TRC_MAX_FRAMES frames, a row with too few or too many cells, a
  * number that is not one or not finite, a marker partly missing, rows that
- * disagree with NumFrames. */
+ * disagree with NumFrames, a frame number that is not a whole number. */
 #ifndef CUB_TRC_H
 #define CUB_TRC_H
 
