@@ -120,7 +120,8 @@ static cub_err read_names(trc_lines *r, cub_trc *t)
         if (blank(cells[i])) continue;
         if (m == t->markers)
             return fail(r, "more marker names than NumMarkers (at '%s')", cells[i]);
-        if (strlen(cells[i]) >= CUB_TRC_NAME_LEN) return fail(r, "marker name '%s' is too long", cells[i]);
+        if (strlen(cells[i]) >= CUB_TRC_NAME_LEN)
+            return fail(r, "marker name '%s' is too long", cells[i]);
         strcpy(t->names[m++], cells[i]);
     }
     if (m != t->markers) return fail(r, "fewer marker names than NumMarkers%s", "");
@@ -149,7 +150,8 @@ static cub_err read_row(trc_lines *r, cub_trc *t, char *s, double scale, int f)
     int need = 2 + 3 * t->markers, n = split_tabs(s, c, TRC_MAX_CELLS);
     if (n == need + 1 && blank(c[need])) n = need;
     if (n < need) return fail(r, "the row is short of cells (frame, time, x y z per marker)%s", "");
-    if (n > need) return fail(r, "the row has more cells than frame, time and x y z per marker%s", "");
+    if (n > need)
+        return fail(r, "the row has more cells than frame, time and x y z per marker%s", "");
     double v;
     if (!get_num(c[0], &v) || v < 0 || v > 1e9 || v != floor(v))
         return fail(r, "frame '%s' is not a whole number from 0 to 1e9", c[0]);
