@@ -156,15 +156,6 @@ static run play(const cub_coachlib *cl, cub_bridge_player *p, int a, int m, int 
     return r;
 }
 
-/* Is f one of clip c's bridge frames? */
-static int bridge_frame(const cub_bridge_table *t, int c, int f)
-{
-    const cub_bridge_clip *bc = &t->clips[c];
-    for (int i = 0; i < bc->bridge_count; i++)
-        if (t->bridges[bc->first_bridge + i] == f) return 1;
-    return 0;
-}
-
 /* The clips a run asks for: every clip, or (--correct) the two correcting ones. */
 static int wanted(const cub_coachlib *cl, int correct, int b)
 {
@@ -294,8 +285,8 @@ int cub_cmd_bench_bridge(int argc, char **argv)
                     modes[k].over_p99 += r.jump_cm > own;
                     if (k) continue;
                     switches++;
-                    loose_ends += !bridge_frame(&cl.table, r.first.from_clip, r.first.from_frame) ||
-                                  !bridge_frame(&cl.table, r.first.to_clip, r.first.to_frame);
+                    loose_ends += !cub_bridge_is_bridge(&cl.table, r.first.from_clip, r.first.from_frame) ||
+                                  !cub_bridge_is_bridge(&cl.table, r.first.to_clip, r.first.to_frame);
                     tweens += r.tween;
                     steps += r.steps;
                     push(&ours, r.latency_ms);

@@ -11,8 +11,6 @@ cub_err cub_bridge_body_mm(const cub_skeleton *skel, const cub_pose *pose, cub_v
 /* The first of clip c's bridge frames (ascending) that is >= f, as an index
  * from the clip's first bridge: bridge_count when none is. */
 int cub_bridge_lower_bound(const cub_bridge_table *t, int c, int f);
-/* Is f a bridge frame of clip c? */
-int cub_bridge_is_bridge(const cub_bridge_table *t, int c, int f);
 /* The largest distance between matching joints of two such shapes, mm Q16. */
 cub_q16 cub_bridge_shape_dist_mm(const cub_vec3 *a, const cub_vec3 *b, int joints);
 

@@ -174,6 +174,7 @@ int cub_bridge_lower_bound(const cub_bridge_table *t, int c, int f)
 
 int cub_bridge_is_bridge(const cub_bridge_table *t, int c, int f)
 {
+    if (!t || c < 0 || c >= t->clips_added) return 0;
     int i = cub_bridge_lower_bound(t, c, f);
     return i < t->clips[c].bridge_count && t->bridges[t->clips[c].first_bridge + i] == f;
 }

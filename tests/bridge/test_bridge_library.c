@@ -139,14 +139,6 @@ static void test_every_pair_is_plannable(void **state)
     assert_int_equal(direct + tween, plans);
 }
 
-static int is_bridge_frame(const cub_bridge_table *t, int c, int f)
-{
-    const cub_bridge_clip *bc = &t->clips[c];
-    for (int i = 0; i < bc->bridge_count; i++)
-        if (t->bridges[bc->first_bridge + i] == f) return 1;
-    return 0;
-}
-
 /* SEEDS.md § 000: every move reaches each correcting clip through bridge
  * frames. From each bridge frame of every clip, the strict planner finds
  * a way into head_shake and watch_me whose every switch leaves and enters
@@ -177,8 +169,8 @@ static void test_every_clip_reaches_the_corrections_by_bridge_frames(void **stat
                 assert_int_equal(p.step[p.step_count - 1].to_clip, targets[k]);
                 for (int s = 0; s < p.step_count; s++) {
                     const cub_bridge_step *st = &p.step[s];
-                    if (!is_bridge_frame(t, st->from_clip, st->from_frame) ||
-                        !is_bridge_frame(t, st->to_clip, st->to_frame))
+                    if (!cub_bridge_is_bridge(t, st->from_clip, st->from_frame) ||
+                        !cub_bridge_is_bridge(t, st->to_clip, st->to_frame))
                         fail_msg("strict: %s@%d -> %s@%d is not bridge frame to bridge frame",
                                  cl->lib.clips[st->from_clip].name, st->from_frame,
                                  cl->lib.clips[st->to_clip].name, st->to_frame);

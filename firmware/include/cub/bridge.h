@@ -143,6 +143,8 @@ cub_err cub_bridge_table_add_clip(cub_bridge_table *t, const cub_clip *clip,
  * CUB_ERR_ARG (bad link), CUB_ERR_FULL (link_total exceeded). */
 cub_err cub_bridge_table_set_links(cub_bridge_table *t, int from, int to,
                                    const cub_bridge_link *links, int count);
+/* Is frame f of clip c one of its bridge frames? (0 for a bad c or f.) */
+int cub_bridge_is_bridge(const cub_bridge_table *t, int c, int f);
 /* All clips added? Pairs never set have no links. CUB_ERR_RANGE if not. */
 cub_err cub_bridge_table_finish(cub_bridge_table *t);
 
