@@ -10,6 +10,9 @@ end"; scripts/e2e_child.sh runs it all).
         move the coach leads the verdict expected: right or planted wrong).
         CUES: the coach's `coach request` lines (a cubdance log, or
         scripts/child/<song>.cues); without, the song's own timing.
+    scripts/make_child.py expect SONG PLAN OUT [CUES]
+        only OUT/expect.txt (no mocap read): for scoring a child rendered
+        from its joint track (scripts/child/twinkle.jtrack, scripts/demo.sh).
     scripts/make_child.py check SONG PLAN TRUTH [CUES]
         the TRUE joints (truth.txt of the rendered sequence) through the
         judge's fuzzy features: per window the coach opens, each key's best
@@ -570,18 +573,9 @@ def make_sloppy(song, plan, out):
     return paths
 
 
-def cmd_sequence(song_path, plan_path, out, cues_path, child="planted"):
-    song, plan, cues = plan_and_cues(song_path, plan_path, cues_path)
-    os.makedirs(out, exist_ok=True)
-    derived = make_derived(plan, out)
-    if child != "planted":  # the late and the sloppy child make no mistake
-        plan["mistakes"] = []
-    if child == "sloppy":
-        derived.update(make_sloppy(song, plan, out))
-    loop, expect = build(song, plan, cues, LATE if child == "late" else REACT)
-    write_sequence(loop, os.path.join(out, "child.seq"), derived)
+def write_expect(path, song, cues, expect, child):
     dance = {e[0]: e[5] for e in expect}
-    with open(os.path.join(out, "expect.txt"), "w") as fh:
+    with open(path, "w") as fh:
         fh.write("# every coach request the child follows: t_s clip reason move rep, and for\n"
                  "# the moves the verdict expected (right, or the planted wrong:KIND)\n")
         fh.write("beat %.4f\n" % song["beat"])
@@ -592,10 +586,28 @@ def cmd_sequence(song_path, plan_path, out, cues_path, child="planted"):
         for e in expect:
             if e[0] < 0:
                 fh.write("unled %d %d %s\n" % (e[3], e[4], e[5]))
-    print("make_child: %s and %s: %.1f s, the coach's %d requests (%s), %d moves led, "
-          "%d planted wrong" % (os.path.join(out, "child.seq"), os.path.join(out, "expect.txt"),
+
+
+def cmd_sequence(song_path, plan_path, out, cues_path, child="planted", clips=True):
+    """clips False: expect.txt only (no mocap needed: the demo's shipped
+    child brings its performance as a joint track)."""
+    song, plan, cues = plan_and_cues(song_path, plan_path, cues_path)
+    os.makedirs(out, exist_ok=True)
+    derived = make_derived(plan, out) if clips else {}
+    if child != "planted":  # the late and the sloppy child make no mistake
+        plan["mistakes"] = []
+    if child == "sloppy" and clips:
+        derived.update(make_sloppy(song, plan, out))
+    loop, expect = build(song, plan, cues, LATE if child == "late" else REACT)
+    if clips:
+        write_sequence(loop, os.path.join(out, "child.seq"), derived)
+    write_expect(os.path.join(out, "expect.txt"), song, cues, expect, child)
+    print("make_child: %s%s: %.1f s, the coach's %d requests (%s), %d moves led, "
+          "%d planted wrong" % (os.path.join(out, "child.seq and ") if clips else "",
+                                os.path.join(out, "expect.txt"),
                                 loop[-1][1], len(cues), cues_path or "from the song",
-                                sum(1 for e in expect if e[0] >= 0), sum(1 for e in expect if e[5] != "right")))
+                                sum(1 for e in expect if e[0] >= 0),
+                                sum(1 for e in expect if e[5] != "right")))
 
 
 def cmd_scan(truth, keys, t_from, t_to, every):
@@ -834,8 +846,9 @@ def main(argv):
         argv = argv[:k] + argv[k + 2:]
     else:
         child = "planted"
-    if len(argv) in (4, 5) and argv[0] == "sequence":
-        cmd_sequence(argv[1], argv[2], argv[3], argv[4] if len(argv) == 5 else None, child)
+    if len(argv) in (4, 5) and argv[0] in ("sequence", "expect"):
+        cmd_sequence(argv[1], argv[2], argv[3], argv[4] if len(argv) == 5 else None, child,
+                     argv[0] == "sequence")
         return 0
     if len(argv) in (4, 5) and argv[0] == "check":
         return cmd_check(argv[1], argv[2], argv[3], argv[4] if len(argv) == 5 else None)

@@ -29,6 +29,11 @@ static void help(FILE *f)
                "  --sequence FILE      segments played one after another, blended over 0.3 s;\n"
                "                       one a line: `clip from_s to_s [mirror]` (to_s may be\n"
                "                       `end`); '#' starts a comment line\n"
+               "  --track FILE         a joint track (cub/synth.h): a performance written by\n"
+               "                       --write-track, rendered without its mocap\n"
+               "  --write-track FILE   write the performance of --clip / --sequence as a joint\n"
+               "                       track instead of rendering it (--out not needed)\n"
+               "  --track-unit MM      the track's resolution [0.25]\n"
                "  --frames N           at most N frames [the whole clip or sequence]\n"
                "  --fps F              frames per second [30]\n"
                "\n"
@@ -80,7 +85,8 @@ typedef struct opts {
     cub_synth_desc d;
     cub_synth_segment one;
     int have_clip;
-    const char *sequence, *out;
+    const char *sequence, *out, *track, *write_track;
+    double track_unit;
     int frames;
 } opts;
 
@@ -126,6 +132,12 @@ static int parse_opt(opts *o, int argc, char **argv, int *i)
         o->sequence = v;
     else if (!strcmp(a, "--out") && v)
         o->out = v;
+    else if (!strcmp(a, "--track") && v)
+        o->track = v;
+    else if (!strcmp(a, "--write-track") && v)
+        o->write_track = v;
+    else if (!strcmp(a, "--track-unit"))
+        ok = num(a, v, 0.001, 100, &o->track_unit);
     else if (!strcmp(a, "--data") && v)
         o->d.data_dir = v;
     else if (!strcmp(a, "--second-person") && v)
@@ -205,6 +217,61 @@ static int load_sequence(const char *path, cub_synth_segment **segs, int *n)
     return !err;
 }
 
+static int fail(const cub_diag *diag)
+{
+    char buf[600];
+    fprintf(stderr, "synth-depth: %s\n", cub_diag_str(diag, buf, sizeof(buf)));
+    return 1;
+}
+
+static int check_opts(const opts *o)
+{
+    int sources = o->have_clip + !!o->sequence + !!o->track;
+    if (sources != 1 || !(o->out || o->write_track) || (o->write_track && o->track)) {
+        fprintf(stderr, "synth-depth: give one of --clip / --sequence / --track, and --out "
+                        "(or --write-track with --clip / --sequence) (see --help)\n");
+        return 0;
+    }
+    if (o->d.second_mode && !o->d.second_clip) {
+        fprintf(stderr, "synth-depth: --second-mode needs --second-person CLIP\n");
+        return 0;
+    }
+    return 1;
+}
+
+/* The scene of o: its clips loaded, or its joint track (in *track). */
+static int open_scene(opts *o, cub_synth_jtrack *track, cub_synth **s)
+{
+    cub_diag diag;
+    cub_synth_segment *segs = &o->one;
+    int n = 1;
+    if (o->track) {
+        if (cub_synth_jtrack_read(o->track, track, &diag)) return !fail(&diag);
+        o->d.track = track;
+        n = 0;
+    } else if (o->sequence && !load_sequence(o->sequence, &segs, &n))
+        return 0;
+    cub_err err = cub_synth_open(&o->d, segs, n, s, &diag);
+    if (segs != &o->one) free(segs);
+    if (!err) return 1;
+    cub_synth_jtrack_free(track);
+    return !fail(&diag);
+}
+
+static int write_track(const opts *o, const cub_synth *s)
+{
+    char comment[600];
+    cub_diag diag;
+    snprintf(comment, sizeof(comment),
+             "# cubtool synth-depth --write-track: the performance of %.500s\n",
+             o->sequence ? o->sequence : o->one.clip);
+    float unit = o->track_unit > 0 ? (float)o->track_unit : 0.25f;
+    if (cub_synth_write_jtrack(s, o->write_track, unit, comment, &diag)) return fail(&diag);
+    printf("synth-depth: %d frames -> %s (joint track, %g mm)\n", cub_synth_frame_count(s),
+           o->write_track, unit);
+    return 0;
+}
+
 int cub_cmd_synth_depth(int argc, char **argv)
 {
     opts o = {.d = {.seed = 1}};
@@ -215,39 +282,27 @@ int cub_cmd_synth_depth(int argc, char **argv)
         }
         if (!parse_opt(&o, argc, argv, &i)) return 2;
     }
-    if (!o.out || o.have_clip == !!o.sequence) {
-        fprintf(stderr, "synth-depth: give --out and one of --clip / --sequence (see --help)\n");
-        return 2;
-    }
-    if (o.d.second_mode && !o.d.second_clip) {
-        fprintf(stderr, "synth-depth: --second-mode needs --second-person CLIP\n");
-        return 2;
-    }
+    if (!check_opts(&o)) return 2;
     if (!o.d.data_dir)
         o.d.data_dir = getenv("CUB_DATA_DIR") ? getenv("CUB_DATA_DIR") : CUB_DATA_DIR_DEFAULT;
-    cub_synth_segment *segs = &o.one;
-    int n = 1;
-    if (o.sequence && !load_sequence(o.sequence, &segs, &n)) return 1;
     cub_synth *s = NULL;
-    cub_diag diag;
-    char buf[600];
-    cub_err err = cub_synth_open(&o.d, segs, n, &s, &diag);
-    if (segs != &o.one) free(segs);
-    if (err) {
-        fprintf(stderr, "synth-depth: %s\n", cub_diag_str(&diag, buf, sizeof(buf)));
-        return 1;
+    cub_synth_jtrack track = {0};
+    if (!open_scene(&o, &track, &s)) return 1;
+    if (o.write_track) {
+        int rc = write_track(&o, s);
+        cub_synth_close(s);
+        return rc;
     }
     int frames = cub_synth_frame_count(s);
     if (o.frames > 0 && o.frames < frames) frames = o.frames;
     struct timespec t0, t1;
+    cub_diag diag;
     clock_gettime(CLOCK_MONOTONIC, &t0);
-    err = cub_synth_write_dump(s, o.out, frames, 1, &diag);
+    cub_err err = cub_synth_write_dump(s, o.out, frames, 1, &diag);
     clock_gettime(CLOCK_MONOTONIC, &t1);
     cub_synth_close(s);
-    if (err) {
-        fprintf(stderr, "synth-depth: %s\n", cub_diag_str(&diag, buf, sizeof(buf)));
-        return 1;
-    }
+    cub_synth_jtrack_free(&track);
+    if (err) return fail(&diag);
     double ms = (t1.tv_sec - t0.tv_sec) * 1e3 + (t1.tv_nsec - t0.tv_nsec) / 1e6;
     printf("synth-depth: %d frames -> %s (%.1f ms/frame)\n", frames, o.out,
            frames ? ms / frames : 0.0);

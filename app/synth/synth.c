@@ -17,6 +17,8 @@
 #define CROSS_HALF_MM 2000.0f
 #define NPIX (CUB_KINECT_WIDTH * CUB_KINECT_HEIGHT)
 
+_Static_assert(SP_COUNT == CUB_SYNTH_JTRACK_POINTS, "a joint track holds every point");
+
 typedef struct seg {
     synth_actor *actor;
     double from_s, dur_s, start_s; /* clip time, length, start in the performance */
@@ -186,8 +188,22 @@ static int draw_yaws(cub_synth *s)
     return 0;
 }
 
-static void blended_points(const cub_synth *s, double t_s, cub_fv3 out[SP_COUNT])
+/* The joint track's frame nearest t (the track fixes the performance). */
+static void track_points(const cub_synth_jtrack *t, double t_s, cub_fv3 out[SP_COUNT])
 {
+    long i = lround(t_s * t->fps);
+    i = i < 0 ? 0 : i >= t->frame_count ? t->frame_count - 1 : i;
+    const float *v = t->points_mm + (size_t)i * CUB_SYNTH_JTRACK_POINTS * 3;
+    for (int j = 0; j < SP_COUNT; j++)
+        out[j] = cub_fv3_make(v[3 * j], v[3 * j + 1], v[3 * j + 2]);
+}
+
+void synth_performance_points(const cub_synth *s, double t_s, cub_fv3 out[SP_COUNT])
+{
+    if (s->d.track) {
+        track_points(s->d.track, t_s, out);
+        return;
+    }
     int k = 0;
     while (k + 1 < s->nseg && t_s >= s->segs[k + 1].start_s)
         k++;
@@ -210,7 +226,7 @@ static void blended_points(const cub_synth *s, double t_s, cub_fv3 out[SP_COUNT]
  * yaw_deg, the body turning about its hips, its travel limited. */
 static void player_points(const cub_synth *s, double t_s, cub_fv3 out[SP_COUNT])
 {
-    blended_points(s, t_s, out);
+    synth_performance_points(s, t_s, out);
     if (s->d.yaw_deg != 0) turn_about(out, 0, 0, s->d.yaw_deg);
     float turn = turning_deg(s, t_s);
     if (turn != 0) turn_about(out, out[CUB_KJ_HIP_CENTRE].x, out[CUB_KJ_HIP_CENTRE].z, turn);
@@ -302,6 +318,9 @@ cub_err cub_synth_open(const cub_synth_desc *desc, const cub_synth_segment *segs
                        cub_synth **out, cub_diag *diag)
 {
     if (!desc || !out || n < 0 || (n > 0 && !segs)) return CUB_ERR_ARG;
+    if (desc->track && (n > 0 || desc->track->frame_count < 1 || !(desc->track->fps > 0) ||
+                        !desc->track->points_mm))
+        return CUB_ERR_ARG;
     cub_synth *s = calloc(1, sizeof(*s));
     if (!s) return CUB_ERR_NOMEM;
     s->d = *desc;
@@ -333,6 +352,7 @@ cub_err cub_synth_open(const cub_synth_desc *desc, const cub_synth_segment *segs
         s->segs[i].start_s = s->total_s;
         s->total_s += s->segs[i].dur_s;
     }
+    if (s->d.track) s->total_s = s->d.track->frame_count / (double)s->d.track->fps;
     if (!err && draw_yaws(s)) err = CUB_ERR_NOMEM;
     if (!err && s->d.second_clip) {
         err = load_segment(s, &s->second, s->d.second_clip, s->d.second_height_mm, 0, 0, 0, diag);
@@ -407,7 +427,7 @@ cub_err cub_synth_render(cub_synth *s, int frame, uint16_t *raw, cub_synth_truth
     double t_s = frame / (double)s->d.fps;
     cub_fv3 pts[SP_COUNT];
     s->last_frame = frame;
-    if (s->nseg > 0) {
+    if (s->nseg > 0 || s->d.track) {
         player_points(s, t_s, pts);
         for (int j = 0; j < SP_COUNT; j++)
             pts[j] = to_world(pts[j], 0, s->d.distance_mm);
@@ -430,7 +450,7 @@ cub_err cub_synth_render(cub_synth *s, int frame, uint16_t *raw, cub_synth_truth
         memset(truth, 0, sizeof(*truth));
         truth->frame = frame;
         cub_synth_frame_name(frame, s->d.fps, NULL, 0, &truth->t_s, &truth->ts);
-        if (s->nseg > 0) truth_of(s, pts, &s->shape, OWNER_PLAYER, truth);
+        if (s->nseg > 0 || s->d.track) truth_of(s, pts, &s->shape, OWNER_PLAYER, truth);
     }
     if (depth_mm) memcpy(depth_mm, s->depth, NPIX * sizeof(float));
     if (owner) memcpy(owner, s->owner, NPIX);

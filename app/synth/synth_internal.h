@@ -76,6 +76,9 @@ void synth_body_head(const synth_body_shape *shape, cub_fv3 shoulder_centre, cub
 
 /* The frame rate of a synth (synth.c). */
 float synth_fps(const cub_synth *s);
+/* The performance at t in the player frame (floor y = 0, facing -z), before
+ * any turning or travel limit: the segments blended, or the joint track. */
+void synth_performance_points(const cub_synth *s, double t_s, cub_fv3 out[SP_COUNT]);
 
 /* ---- text lines for the parsers (lines.c) ------------------------------- */
 #define SYNTH_MAX_FIELDS 96

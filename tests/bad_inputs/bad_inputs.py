@@ -135,6 +135,10 @@ def base_of(kind, d, shared, build=""):
         return read(os.path.join(SRC, "tests", "fuzz", "seeds_codec", "leg.cubseed")), "bad.cubseed"
     if kind == "trc":  # a small marker file, made by tests/fuzz/make_seeds.py
         return read(os.path.join(SRC, "tests", "fuzz", "seeds_trc", "small_mm.trc")), "bad.trc"
+    if kind == "jtrack":  # a joint track of three frames (the format: cub/synth.h)
+        head = b"# every point at one spot, then moving\ncub-jtrack 1\nfps 30\nunit_mm 0.5\nframes 3\n"
+        frames = b"(100)(2000)(-50)" * 21 + b"\n" + b"`__" * 21 + b"\n" + b"___" * 21 + b"\n"
+        return head + frames, "bad.jtrack"
     if kind == "voice":  # made by the build (app/voice.cmake), not committed
         song_beside(d, "twinkle.mid")
         pack = os.path.join(build, "assets", "voice", "bear.cubvoice")

@@ -62,6 +62,8 @@ def truth_seed():
 
 def synth_seeds():
     put("seeds_synth", "truth", truth_seed())
+    put("seeds_synth", "jtrack", b"J# three frames\ncub-jtrack 1\nfps 30\nunit_mm 0.25\n"
+        b"frames 3\n" + b"(4000)" * 63 + b"\n" + b"`^" * 31 + b"_\n" + b"(40)(-40)" + b"_" * 61 + b"\n")
     put("seeds_synth", "sequence", b"S# a warm-up then a wave\n13_29 0 2.5\njumping_jacks 1 end mirror\n")
 
 

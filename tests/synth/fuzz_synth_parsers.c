@@ -2,6 +2,7 @@
  * Input: byte 0 picks the parser, the rest is the text (not NUL-terminated:
  * the parsers must stay inside it).
  *   'T': truth.txt (cub_synth_truth_parse)
+ *   'J': a joint track (cub_synth_jtrack_parse)
  *   anything else (e.g. 'S'): a sequence file (cub_synth_sequence_parse)
  * Whatever the input: no crash, hang or overread; a failure names the
  * file and says why; a success holds what the format promises. Built by
@@ -54,6 +55,22 @@ static void check_sequence(const char *text, size_t len)
     free(s);
 }
 
+static void check_jtrack(const char *text, size_t len)
+{
+    cub_synth_jtrack t;
+    cub_diag d;
+    int ok = cub_synth_jtrack_parse(text, len, "fuzz.jtrack", &t, &d) == CUB_OK;
+    cub_fuzz_tally("fuzz_synth_parsers", ok);
+    if (!ok) {
+        if (!d.msg[0] || t.points_mm || t.frame_count) abort();
+        return;
+    }
+    if (t.frame_count < 1 || !(t.fps > 0) || !(t.unit_mm > 0)) abort();
+    for (size_t k = 0; k < (size_t)t.frame_count * CUB_SYNTH_JTRACK_POINTS * 3; k++)
+        if (!isfinite(t.points_mm[k])) abort();
+    cub_synth_jtrack_free(&t);
+}
+
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     if (size < 1) return 0;
@@ -63,6 +80,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     memcpy(text, data + 1, size - 1);
     if (data[0] == 'T')
         check_truth(text, size - 1);
+    else if (data[0] == 'J')
+        check_jtrack(text, size - 1);
     else
         check_sequence(text, size - 1);
     free(text);

@@ -1,4 +1,4 @@
-/* The synth's text formats: truth.txt and sequence files. First what bad
+/* The synth's text formats: truth.txt, sequence files and joint tracks. First what bad
  * input gets (an error naming the file and the line), then round trips.
  * No data needed. */
 #include <setjmp.h>
@@ -27,18 +27,25 @@ static void frame_line(char *buf, size_t size, int frame, const char *vis_of_las
     snprintf(buf + n, size - (size_t)n, "\n");
 }
 
+/* A refusal of a file named file: at line, saying needle. */
+static void expect_refusal(cub_err err, const cub_diag *d, const char *what, const char *file,
+                           int line, const char *needle)
+{
+    char shown[600];
+    assert_int_equal(err, CUB_ERR_FORMAT);
+    cub_diag_str(d, shown, sizeof(shown));
+    printf("%s: rejected as expected: %s\n", what, shown);
+    assert_string_equal(d->file, file);
+    assert_int_equal(d->line, line);
+    assert_non_null(strstr(d->msg, needle));
+}
+
 static void expect_bad_truth(const char *text, int line, const char *needle)
 {
     cub_synth_truth t;
     cub_diag d;
-    char shown[600];
     cub_err err = cub_synth_truth_parse(text, strlen(text), "bad.txt", &t, &d);
-    assert_int_equal(err, CUB_ERR_FORMAT);
-    cub_diag_str(&d, shown, sizeof(shown));
-    printf("synth truth: rejected as expected: %s\n", shown);
-    assert_string_equal(d.file, "bad.txt");
-    assert_int_equal(d.line, line);
-    assert_non_null(strstr(d.msg, needle));
+    expect_refusal(err, &d, "synth truth", "bad.txt", line, needle);
     assert_null(t.frames);
 }
 
@@ -154,6 +161,105 @@ static void test_sequence_reads_segments(void **state)
     free(s);
 }
 
+#define JT_HEAD "cub-jtrack 1\nfps 30\nunit_mm 0.5\nframes 3\n"
+
+/* A frame line of 63 residuals: the first n given, the rest `fill`. */
+static const char *jt_line(char *buf, const char *first, char fill)
+{
+    size_t n = strlen(first);
+    memcpy(buf, first, n);
+    int k = 0;
+    for (const char *c = first; *c; c++)
+        k += *c == '(' || (*c >= '@' && *c <= '~');
+    for (; k < CUB_SYNTH_JTRACK_POINTS * 3; k++)
+        buf[n++] = fill;
+    buf[n++] = '\n';
+    buf[n] = 0;
+    return buf;
+}
+
+static void expect_bad_jtrack(const char *text, int line, const char *needle)
+{
+    cub_synth_jtrack t;
+    cub_diag d;
+    cub_err err = cub_synth_jtrack_parse(text, strlen(text), "bad.jtrack", &t, &d);
+    expect_refusal(err, &d, "joint track", "bad.jtrack", line, needle);
+    assert_null(t.points_mm);
+    assert_int_equal(t.frame_count, 0);
+}
+
+static void test_jtrack_rejects_malformed_files(void **state)
+{
+    (void)state;
+    char a[400], b[400], c[400], text[2000];
+    jt_line(a, "(2000)", '_');
+    jt_line(b, "`", '_');
+    expect_bad_jtrack("", 0, "header ends early");
+    expect_bad_jtrack("cub-jtrack 2\n", 1, "not a number in [1, 1]");
+    expect_bad_jtrack("fps 30\n", 1, "expected 'cub-jtrack VALUE'");
+    expect_bad_jtrack("cub-jtrack 1\nfps 0\n", 2, "fps");
+    expect_bad_jtrack("cub-jtrack 1\nfps 30\nunit_mm x\n", 3, "unit_mm 'x'");
+    expect_bad_jtrack("cub-jtrack 1\nfps 30\nunit_mm 1\nframes 2.5\n", 4, "not whole");
+    snprintf(text, sizeof(text), JT_HEAD "%s%s", a, b);
+    expect_bad_jtrack(text, 0, "2 frame lines, the header says 3");
+    snprintf(text, sizeof(text), JT_HEAD "%s%s%s%s", a, b, b, b);
+    expect_bad_jtrack(text, 8, "more frame lines");
+    snprintf(text, sizeof(text), JT_HEAD "%s%s%s", a, jt_line(c, "` ", '_'), b);
+    expect_bad_jtrack(text, 6, "value 2 of 63");
+    snprintf(text, sizeof(text), JT_HEAD "%s%s%s", a, jt_line(c, "(12", '_'), b);
+    expect_bad_jtrack(text, 6, "value 1 of 63");
+    snprintf(text, sizeof(text), JT_HEAD "%s%.62s\n%s", a, b, b);
+    expect_bad_jtrack(text, 6, "value 63 of 63");
+    snprintf(text, sizeof(text), JT_HEAD "%s%.63s_\n%s", a, b, b);
+    expect_bad_jtrack(text, 6, "more than 63 values");
+    snprintf(text, sizeof(text), JT_HEAD "%s%s%s", jt_line(c, "(999999999)", '_'), a, b);
+    expect_bad_jtrack(text, 5, "beyond");
+}
+
+/* Decoded: frame 0 as written, frame 1 its residual on frame 0, frame 2
+ * the constant-velocity guess plus its residual. */
+static void test_jtrack_decodes_and_drives_a_render(void **state)
+{
+    (void)state;
+    char a[400], b[400], c[400], text[2000];
+    snprintf(text, sizeof(text), "# a comment\n" JT_HEAD "%s%s%s", jt_line(a, "(2000)\\", '_'),
+             jt_line(b, "`^", '_'), jt_line(c, "(40)", '_'));
+    cub_synth_jtrack t;
+    cub_diag d;
+    assert_int_equal(cub_synth_jtrack_parse(text, strlen(text), "ok.jtrack", &t, &d), CUB_OK);
+    assert_int_equal(t.frame_count, 3);
+    assert_true(t.fps == 30 && t.unit_mm == 0.5f);
+    const float *f0 = t.points_mm, *f1 = f0 + 63, *f2 = f1 + 63;
+    assert_true(f0[0] == 1000.0f && f0[1] == -1.5f && f0[2] == 0.0f);
+    assert_true(f1[0] == 1000.5f && f1[1] == -2.0f && f1[2] == 0.0f);
+    assert_true(f2[0] == 1021.0f && f2[1] == -2.5f && f2[2] == 0.0f);
+    /* The scene plays it: 3 frames, the hips where frame 1 has them. */
+    cub_synth_desc desc = {.track = &t, .clean = 1};
+    cub_synth *s;
+    assert_int_equal(cub_synth_open(&desc, NULL, 0, &s, &d), CUB_OK);
+    assert_int_equal(cub_synth_frame_count(s), 3);
+    static uint16_t raw[640 * 480];
+    cub_synth_truth_frame truth;
+    assert_int_equal(cub_synth_render(s, 1, raw, &truth, NULL, NULL), CUB_OK);
+    assert_true(fabsf(truth.joint_mm[CUB_KJ_HIP_CENTRE][0] - 1000.5f) < 1e-3f);
+    assert_true(fabsf(truth.joint_mm[CUB_KJ_HIP_CENTRE][1] - (-2.0f - 800.0f)) < 1e-3f);
+    assert_true(fabsf(truth.joint_mm[CUB_KJ_HIP_CENTRE][2] - 2200.0f) < 1e-3f);
+    /* Written back, it is the same text (the comment aside; -3 was written
+     * as its character '\\'). */
+    const char *path = "test_synth_parse.jtrack"; /* in the test's folder */
+    assert_int_equal(cub_synth_write_jtrack(s, path, 0.5f, NULL, &d), CUB_OK);
+    cub_synth_close(s);
+    FILE *f = fopen(path, "r");
+    assert_non_null(f);
+    char back[2000] = {0};
+    size_t n = fread(back, 1, sizeof(back) - 1, f);
+    fclose(f);
+    remove(path);
+    assert_int_equal(n, strlen(text) - strlen("# a comment\n"));
+    assert_string_equal(back, text + strlen("# a comment\n"));
+    cub_synth_jtrack_free(&t);
+}
+
 static void test_raw_mapping_follows_the_formula(void **state)
 {
     (void)state;
@@ -185,6 +291,8 @@ int main(void)
         cmocka_unit_test(test_truth_reads_frames_and_comments),
         cmocka_unit_test(test_sequence_rejects_malformed_lines),
         cmocka_unit_test(test_sequence_reads_segments),
+        cmocka_unit_test(test_jtrack_rejects_malformed_files),
+        cmocka_unit_test(test_jtrack_decodes_and_drives_a_render),
         cmocka_unit_test(test_raw_mapping_follows_the_formula),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -56,7 +56,11 @@ typedef enum cub_synth_second_mode {
 } cub_synth_second_mode;
 
 /* Zero-initialised fields take the defaults in brackets. */
+typedef struct cub_synth_jtrack cub_synth_jtrack;
+
 typedef struct cub_synth_desc {
+    const struct cub_synth_jtrack *track; /* the performance as a joint track (then no
+                                      * segments; it is not copied: keep it open) */
     const char *data_dir;            /* for short clip names [$CUB_DATA_DIR or none] */
     float height_mm;                 /* the child's height [1150] */
     int build;                       /* cub_synth_build [AVERAGE] */
@@ -139,6 +143,35 @@ cub_err cub_synth_write_dump(cub_synth *s, const char *dir, int frames, int verb
 /* ---- segments file: `clip from_s to_s [mirror]` per line, # comments --- */
 cub_err cub_synth_sequence_parse(const char *text, size_t len, const char *name,
                                  cub_synth_segment **out, int *n, cub_diag *diag);
+
+/* ---- joint tracks: a performance without its mocap ----------------------
+ * The player's points per frame as the segments make them (blended, placed
+ * on the floor facing the camera, before any turning or travel limit), so
+ * that a scene can be rendered without the clips (scripts/demo.sh ships its
+ * child this way). Text:
+ *   cub-jtrack 1
+ *   fps F
+ *   unit_mm U        every coordinate is a whole number of U mm
+ *   frames N
+ * then N lines, one a frame, of the 21 points (the 20 joints of kinect.h,
+ * then the top of the head) x y z in units: each the residual from the
+ * constant-velocity guess 2 a[f-1] - a[f-2] (a[f-1] for frame 1, 0 for frame
+ * 0), written as one character '@'..'~' for -31..31 ('_' = 0) or as "(N)".
+ * '#' starts a comment. */
+#define CUB_SYNTH_JTRACK_POINTS 21
+struct cub_synth_jtrack {
+    float fps, unit_mm;
+    int frame_count;
+    float *points_mm; /* frame_count x 21 x 3, heap; cub_synth_jtrack_free */
+};
+cub_err cub_synth_jtrack_parse(const char *text, size_t len, const char *name,
+                               cub_synth_jtrack *out, cub_diag *diag);
+cub_err cub_synth_jtrack_read(const char *path, cub_synth_jtrack *out, cub_diag *diag);
+void cub_synth_jtrack_free(cub_synth_jtrack *t);
+/* Write s's performance (all its frames at its fps) as a joint track in
+ * units of unit_mm (0.001..100), comment (# lines, may be NULL) first. */
+cub_err cub_synth_write_jtrack(const cub_synth *s, const char *path, float unit_mm,
+                               const char *comment, cub_diag *diag);
 
 /* ---- truth.txt ----------------------------------------------------------
  * Line 1: "# cub-synth truth v1: ..." (a description of the format).
