@@ -12,6 +12,7 @@ const char *cub_words_hint(const cub_song *song, int32_t hint)
 {
     if (hint == CUB_COACH_HINT_COME_CLOSER) return "Come closer!";
     if (hint == CUB_COACH_HINT_CANT_SEE) return "I can't see you!";
+    if (hint == CUB_COACH_HINT_WHERE) return "Where are you?";
     if (!song || hint < 0 || hint >= song->move_count) return NULL;
     return song->moves[hint].hint[0] ? song->moves[hint].hint : NULL;
 }
@@ -59,13 +60,14 @@ static void once(const char *const *list, int n, cub_words_fn fn, void *ctx)
 
 void cub_words_each(const cub_song *song, const cub_faults *faults, cub_words_fn fn, void *ctx)
 {
-    enum { FIXED = 8 };
+    enum { FIXED = 9 };
     const char *list[FIXED + CUB_SONG_MAX_MOVES + CUB_FAULTS_MAX];
     int n = 0;
     list[n++] = cub_words_title();
     list[n++] = cub_words_cheer();
     list[n++] = cub_words_hint(NULL, CUB_COACH_HINT_COME_CLOSER);
     list[n++] = cub_words_hint(NULL, CUB_COACH_HINT_CANT_SEE);
+    list[n++] = cub_words_hint(NULL, CUB_COACH_HINT_WHERE);
     const int32_t cues[] = {CUB_TRACK_TOO_CLOSE, CUB_TRACK_TOO_FAR, CUB_TRACK_PARTLY_OUT};
     for (size_t i = 0; i < sizeof cues / sizeof cues[0]; i++)
         list[n++] = cub_words_cue(cues[i]);

@@ -1,7 +1,7 @@
 /* words — every word the child reads on the TV, chosen here and nowhere
  * else: the coach's hint (a move's own words from the song, what to fix in
  * it from the song's fault words table (cub/faults.h), "Come closer!",
- * "I can't see you!") and the cue over the child's inset from the tracker's
+ * "I can't see you!", "Where are you?") and the cue over the child's inset from the tracker's
  * status ("Step back", "Come closer", "Step into the middle"), and the idle
  * screen's title ("Press START!") and the cheer at the song's end. Each
  * is spoken too (the voice pack holds every phrase; dance.c asks). The renderer

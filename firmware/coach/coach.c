@@ -12,6 +12,10 @@
  *   dance --song end--> cheer --done--> idle
  *   dance/correct/worried --camera lost--> paused --camera back--> dance
  *            (the music holds meanwhile; the dance resumes where it is)
+ *   dance/correct/worried --child out of view AWAY_PAUSE_MS--> paused
+ *            ("Where are you?") --child back--> dance, as for the camera;
+ *            verdicts while nobody is in view are set aside, and are no
+ *            interaction: a child gone for good brings attract, then doze
  *   idle/dance/correct/worried/paused --quiet attract_after--> attract
  *   attract --quiet doze_after--> doze;   attract/doze --START/clap--> wake
  *   any --STOP--> idle
@@ -227,6 +231,7 @@ static void start_dance(cub_coach *c)
     coach_out_state(c, CUB_COACH_DANCE, CUB_COACH_WHY_WOKE);
     coach_out_music(c, true, CUB_COACH_WHY_WOKE);
     c->music_start_us = c->now_us;
+    c->away_since_us = c->now_us; /* a child not in view yet has the grace too */
     /* The audio clock the app passed was read before this start. */
     begin_or_wait(c, 0, CUB_COACH_WHY_MOVE, CUB_COACH_NO_MUSIC);
 }
@@ -337,6 +342,10 @@ static void show_fault(cub_coach *c, int32_t fault)
 
 static void on_verdict(cub_coach *c, const cub_event *ev, int32_t music_ms)
 {
+    if (!c->player_in_view) { /* nobody to correct or to credit */
+        coach_out_ignore(c, ev);
+        return;
+    }
     if (!ev->b && just_left(c, ev->a)) {
         /* back to it: corrected like any other, and shown again once
          * though its music is over (then the dance goes on where the
@@ -369,20 +378,6 @@ static void on_verdict(cub_coach *c, const cub_event *ev, int32_t music_ms)
 static bool correcting(const cub_coach *c)
 {
     return c->state == CUB_COACH_CORRECT || c->state == CUB_COACH_WORRIED;
-}
-
-static void on_player(cub_coach *c, bool in_view)
-{
-    c->player_in_view = in_view;
-    if (!in_view) {
-        coach_out_hint(c, CUB_COACH_HINT_COME_CLOSER, CUB_COACH_WHY_PLAYER);
-        return;
-    }
-    if (c->hint == CUB_COACH_HINT_COME_CLOSER)
-        coach_out_fault_hint(c, in_song(c) ? c->move : CUB_COACH_HINT_NONE,
-                             correcting(c) ? c->fix : 0, CUB_COACH_WHY_PLAYER);
-    if (c->state == CUB_COACH_DOZE)
-        go_resting(c, CUB_COACH_ATTRACT, c->desc.roles.attract, CUB_COACH_WHY_PLAYER);
 }
 
 /* The music has played past the end of the move being corrected. */
@@ -442,30 +437,61 @@ static void on_music_tag(cub_coach *c, const cub_event *ev, int32_t music_ms)
     coach_out_speed(c, move_speed(c, c->move, factor), CUB_COACH_WHY_SYNC);
 }
 
-/* The camera went mid-song: hold the music and the dance, say so. The
- * outro (every move danced, the music playing to its end) pauses too. */
-static void pause_for_camera(cub_coach *c)
+/* The camera (why CAMERA) or the child (AWAY) went mid-song: hold the
+ * music and the dance, say so. The outro (every move danced, the music
+ * playing to its end) pauses for the camera too. */
+static void pause_song(cub_coach *c, int32_t why)
 {
     c->paused_phase = c->phase;
-    coach_out_state(c, CUB_COACH_PAUSED, CUB_COACH_WHY_CAMERA);
-    coach_music_pause(c, true, CUB_COACH_WHY_CAMERA);
+    c->paused_for = why;
+    coach_out_state(c, CUB_COACH_PAUSED, why);
+    coach_music_pause(c, true, why);
     c->phase = COACH_PH_NONE;
     c->tag_pending = false;
-    coach_out_clip(c, c->desc.roles.idle, CUB_Q16_ONE, true, CUB_COACH_WHY_CAMERA);
-    coach_out_hint(c, CUB_COACH_HINT_CANT_SEE, CUB_COACH_WHY_CAMERA);
+    coach_out_clip(c, c->desc.roles.idle, CUB_Q16_ONE, true, why);
+    coach_out_hint(c, why == CUB_COACH_WHY_AWAY ? CUB_COACH_HINT_WHERE : CUB_COACH_HINT_CANT_SEE,
+                   why);
 }
 
-static void resume_after_camera(cub_coach *c, int32_t music_ms)
+static void resume_song(cub_coach *c, int32_t music_ms, int32_t why)
 {
-    coach_music_pause(c, false, CUB_COACH_WHY_CAMERA);
-    coach_out_hint(c, c->player_in_view ? CUB_COACH_HINT_NONE : CUB_COACH_HINT_COME_CLOSER,
-                   CUB_COACH_WHY_CAMERA);
+    coach_music_pause(c, false, why);
+    c->away_since_us = c->now_us; /* a child still missing gets the grace again */
+    coach_out_hint(c, c->player_in_view ? CUB_COACH_HINT_NONE : CUB_COACH_HINT_COME_CLOSER, why);
     if (c->paused_phase == COACH_PH_OUTRO) {
-        coach_out_state(c, CUB_COACH_DANCE, CUB_COACH_WHY_CAMERA);
+        coach_out_state(c, CUB_COACH_DANCE, why);
         go_outro(c);
         return;
     }
-    resume(c, music_ms, CUB_COACH_WHY_CAMERA);
+    resume(c, music_ms, why);
+}
+
+/* The child has been out of view long enough mid-song to pause it (the
+ * outro plays on: every move is danced). */
+static bool away_too_long(const cub_coach *c)
+{
+    return !c->player_in_view && in_song(c) &&
+           c->now_us - c->away_since_us >= (int64_t)CUB_COACH_AWAY_PAUSE_MS * 1000;
+}
+
+static void on_player(cub_coach *c, bool in_view, int32_t music_ms)
+{
+    c->player_in_view = in_view;
+    if (!in_view) {
+        c->away_since_us = c->now_us;
+        if (c->state != CUB_COACH_PAUSED)
+            coach_out_hint(c, CUB_COACH_HINT_COME_CLOSER, CUB_COACH_WHY_PLAYER);
+        return;
+    }
+    if (c->state == CUB_COACH_PAUSED && c->paused_for == CUB_COACH_WHY_AWAY) {
+        resume_song(c, music_ms, CUB_COACH_WHY_PLAYER);
+        return;
+    }
+    if (c->hint == CUB_COACH_HINT_COME_CLOSER)
+        coach_out_fault_hint(c, in_song(c) ? c->move : CUB_COACH_HINT_NONE,
+                             correcting(c) ? c->fix : 0, CUB_COACH_WHY_PLAYER);
+    if (c->state == CUB_COACH_DOZE)
+        go_resting(c, CUB_COACH_ATTRACT, c->desc.roles.attract, CUB_COACH_WHY_PLAYER);
 }
 
 static void on_camera(cub_coach *c, const cub_event *ev, int32_t music_ms)
@@ -473,9 +499,9 @@ static void on_camera(cub_coach *c, const cub_event *ev, int32_t music_ms)
     const bool singing = c->state == CUB_COACH_DANCE || c->state == CUB_COACH_CORRECT ||
                          c->state == CUB_COACH_WORRIED;
     if (!ev->a && singing)
-        pause_for_camera(c);
-    else if (ev->a && c->state == CUB_COACH_PAUSED)
-        resume_after_camera(c, music_ms);
+        pause_song(c, CUB_COACH_WHY_CAMERA);
+    else if (ev->a && c->state == CUB_COACH_PAUSED && c->paused_for == CUB_COACH_WHY_CAMERA)
+        resume_song(c, music_ms, CUB_COACH_WHY_CAMERA);
     else
         coach_out_ignore(c, ev);
 }
@@ -529,7 +555,8 @@ cub_err cub_coach_handle(cub_coach *c, const cub_event *ev, int32_t music_ms)
     if (ev->t_us > c->now_us) c->now_us = ev->t_us;
     coach_sync_observe(c, music_ms);
     const bool interaction = ev->type == CUB_EV_BUTTON_DOWN || ev->type == CUB_EV_CLAP ||
-                             ev->type == CUB_EV_VERDICT || (ev->type == CUB_EV_PLAYER && ev->a);
+                             (ev->type == CUB_EV_VERDICT && c->player_in_view) ||
+                             (ev->type == CUB_EV_PLAYER && ev->a);
     if (interaction) c->quiet_since_us = c->now_us;
     switch (ev->type) {
     case CUB_EV_BUTTON_DOWN: on_button(c, ev->a); break;
@@ -537,7 +564,7 @@ cub_err cub_coach_handle(cub_coach *c, const cub_event *ev, int32_t music_ms)
         if (resting(c)) go_wake(c, CUB_COACH_WHY_CLAP);
         break;
     case CUB_EV_VERDICT: on_verdict(c, ev, music_ms); break;
-    case CUB_EV_PLAYER: on_player(c, ev->a != 0); break;
+    case CUB_EV_PLAYER: on_player(c, ev->a != 0, music_ms); break;
     case CUB_EV_CLIP_DONE: on_clip_done(c, ev, music_ms); break;
     case CUB_EV_MUSIC_TAG: on_music_tag(c, ev, music_ms); break;
     case CUB_EV_SONG_END: on_song_end(c); break;
@@ -556,6 +583,7 @@ cub_err cub_coach_tick(cub_coach *c, int64_t now_us, int32_t music_ms)
     if (c->state == CUB_COACH_DANCE && c->phase == COACH_PH_WAIT &&
         time_to_begin(c, c->move, music_ms))
         begin_move(c, c->move, 0, CUB_COACH_WHY_MOVE);
+    if (away_too_long(c)) pause_song(c, CUB_COACH_WHY_AWAY);
     const int64_t quiet_ms = (c->now_us - c->quiet_since_us) / 1000;
     switch (c->state) {
     case CUB_COACH_IDLE:

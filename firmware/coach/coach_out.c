@@ -14,7 +14,7 @@ static const char *const reason_names[CUB_COACH_WHY_COUNT] = {
     "init",  "start", "clap",     "stop",  "woke",    "intro",   "move",   "rep",
     "wrong", "right", "correct",  "demo",  "misses",  "worried", "calmed", "resume",
     "sync",  "outro", "song_end", "cheer", "cheered", "quiet",   "player", "idle",
-    "camera", "moved_on",
+    "camera", "moved_on", "away",
 };
 
 const char *cub_coach_state_name(int32_t state)
@@ -158,6 +158,7 @@ static const char *hint_name(int32_t hint)
 {
     return hint == CUB_COACH_HINT_COME_CLOSER ? "come_closer"
            : hint == CUB_COACH_HINT_CANT_SEE  ? "cant_see"
+           : hint == CUB_COACH_HINT_WHERE     ? "where"
                                               : "none";
 }
 

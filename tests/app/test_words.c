@@ -30,6 +30,7 @@ static void test_each_coach_hint_has_its_words(void **state)
     cub_song song = two_moves();
     assert_string_equal(cub_words_hint(&song, CUB_COACH_HINT_COME_CLOSER), "Come closer!");
     assert_string_equal(cub_words_hint(&song, CUB_COACH_HINT_CANT_SEE), "I can't see you!");
+    assert_string_equal(cub_words_hint(&song, CUB_COACH_HINT_WHERE), "Where are you?");
     assert_string_equal(cub_words_hint(&song, 0), "Clap with me!");
     assert_null(cub_words_hint(&song, CUB_COACH_HINT_NONE));
     assert_null(cub_words_hint(&song, 1)); /* a move without words shows none */
@@ -40,7 +41,7 @@ static void test_a_hint_outside_the_song_has_no_words(void **state)
     (void)state;
     cub_song song = two_moves();
     assert_null(cub_words_hint(&song, 2));
-    assert_null(cub_words_hint(&song, -4));
+    assert_null(cub_words_hint(&song, -5));
     assert_null(cub_words_hint(NULL, 0));
     /* The coach's own hints need no song. */
     assert_string_equal(cub_words_hint(NULL, CUB_COACH_HINT_CANT_SEE), "I can't see you!");
@@ -146,7 +147,8 @@ static void test_every_phrase_is_listed_once(void **state)
     phrases ps = {0};
     cub_words_each(&song, &faults, collect, &ps);
     const char *const want[] = {"Press START!",      "Hooray! You did it!", "Come closer!",
-                                "I can't see you!",  "Step back",           "Come closer",
+                                "I can't see you!",  "Where are you?",      "Step back",
+                                "Come closer",
                                 "Step into the middle", "Clap, clap, clap!", "Clap with me!",
                                 "Bend your arms!",   "The other arm!",      "Jump!"};
     for (size_t i = 0; i < sizeof want / sizeof want[0]; i++)
@@ -158,7 +160,7 @@ static void test_every_phrase_is_listed_once(void **state)
         assert_int_equal(listed(&ps, cub_words_hint(&song, m)), 1);
     ps.n = 0;
     cub_words_each(NULL, NULL, collect, &ps);
-    assert_int_equal(ps.n, 7);
+    assert_int_equal(ps.n, 8);
 }
 
 int main(void)

@@ -365,10 +365,46 @@ static void test_garbage_frames_give_no_player_and_recover(void **s)
 /* The bear says what it shows (issue 19): every hint with words is said
  * at the tick it is shown, the voice pack lacks none of them (no `speech
  * missing`), and "Press START!" is the first thing said. */
+/* The line of the state change to `to` at or after from, at t_s (within a
+ * tick) and for why; fails otherwise. */
+static int state_at(const logread *log, int from, const char *to, double t_s, const char *why)
+{
+    char buf[32];
+    int i = next_state(log, from, to);
+    if (i < 0) fail_msg("no coach state to=%s after line %d", to, from + 1);
+    printf("scenario: away: to=%s reason=%s at %.3f s (expected %.1f)\n", to,
+           field(log, i, "reason", buf, sizeof buf), log->lines[i].t_s, t_s);
+    assert_true(fabs(log->lines[i].t_s - t_s) <= TICK_S);
+    assert_string_equal(field(log, i, "reason", buf, sizeof buf), why);
+    return i;
+}
+
+/* A child out of view mid-song: the song pauses 4 s later with "Where are
+ * you?" and resumes when the child is back; gone for good, the verdicts
+ * are set aside and the attract and doze come as when idle. */
+static void test_child_who_walks_away_pauses_then_attracts(void **s)
+{
+    logread log;
+    load("away", &log);
+    int p = state_at(&log, 0, "paused", 10.0, "away");
+    int hint = logread_find(&log, p, "coach", "hint");
+    assert_true(hint >= 0 && log.lines[hint].t_s == log.lines[p].t_s);
+    assert_non_null(strstr(log.lines[hint].rest, "show=where"));
+    int music = logread_find(&log, p, "coach", "music");
+    assert_non_null(strstr(log.lines[music].rest, "action=pause"));
+    int back = state_at(&log, p, "dance", 11.0, "player");
+    p = state_at(&log, back, "paused", 17.0, "away");
+    int a = state_at(&log, p, "attract", 22.0, "quiet");
+    state_at(&log, a, "doze", 26.0, "quiet");
+    assert_true(next_state(&log, back, "correct") < 0); /* "wrong" while nobody is there */
+    assert_true(logread_find(&log, back, "coach", "ignore") >= 0);
+    logread_free(&log);
+}
+
 static void test_every_hint_shown_is_said_at_its_tick(void **s)
 {
     (void)s;
-    static const char *names[] = {"correct", "quiet", "stop", "wake"};
+    static const char *names[] = {"correct", "quiet", "stop", "wake", "away"};
     int said = 0;
     char show[32];
     for (size_t n = 0; n < sizeof names / sizeof *names; n++) {
@@ -441,6 +477,7 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_dance_follows_a_music_clock_5_percent_off),
         cmocka_unit_test(test_camera_loss_pauses_the_song_until_frames_return),
         cmocka_unit_test(test_garbage_frames_give_no_player_and_recover),
+        cmocka_unit_test(test_child_who_walks_away_pauses_then_attracts),
         cmocka_unit_test(test_every_hint_shown_is_said_at_its_tick),
         cmocka_unit_test(test_demo_song_log_is_the_committed_one),
     };

@@ -43,7 +43,7 @@ static const cub_coach_move song[3] = {
 };
 
 #define MAX_LINES 400
-#define SESSION_LOG_FNV 0xacbdcac1u /* the scripted session's whole log, pinned */
+#define SESSION_LOG_FNV 0x63133209u /* the scripted session's whole log, pinned */
 typedef struct recorder {
     char lines[MAX_LINES][160];
     int n;
@@ -665,6 +665,75 @@ static void test_player_away_shows_come_closer(void **s)
     assert_int_equal(act(&c, CUB_COACH_ACT_HINT, 0)->hint, 0);
 }
 
+/* A child who steps out of view mid-song: "Come closer!" at once, the
+ * music on for CUB_COACH_AWAY_PAUSE_MS; then the song pauses with "Where
+ * are you?". Verdicts meanwhile are set aside, a right one included (no
+ * one is there to credit). Back in view: the music and the dance go on
+ * where the music is. */
+static void test_child_gone_briefly_pauses_then_resumes(void **s)
+{
+    cub_coach c;
+    start_dancing(&c, 0); /* the dance from 1 s; music time = loop time - 1 s */
+    send(&c, 2000, CUB_EV_VERDICT, 0, 0, 1000); /* the child there, wrong: corrected */
+    assert_int_equal(c.state, CUB_COACH_CORRECT);
+    send(&c, 2500, CUB_EV_PLAYER, 0, 0, 1500);
+    assert_int_equal(act(&c, CUB_COACH_ACT_HINT, 0)->hint, CUB_COACH_HINT_COME_CLOSER);
+    send(&c, 3000, CUB_EV_VERDICT, 0, 1, 2000); /* right, after "no player": not acted on */
+    assert_int_equal(c.state, CUB_COACH_CORRECT);
+    assert_null(act(&c, CUB_COACH_ACT_STATE, 0));
+    assert_true(logged("coach ignore"));
+    tick(&c, 2500 + CUB_COACH_AWAY_PAUSE_MS - 10, 5490);
+    assert_int_equal(c.state, CUB_COACH_CORRECT); /* the grace: the music plays on */
+    tick(&c, 2500 + CUB_COACH_AWAY_PAUSE_MS, 5500);
+    assert_int_equal(c.state, CUB_COACH_PAUSED);
+    assert_non_null(act(&c, CUB_COACH_ACT_MUSIC_PAUSE, 0));
+    expect_clip(&c, C_IDLE, CUB_Q16_ONE, true, CUB_COACH_WHY_AWAY);
+    assert_int_equal(act(&c, CUB_COACH_ACT_HINT, 0)->hint, CUB_COACH_HINT_WHERE);
+    assert_true(logged("t=6.500 coach state from=correct to=paused reason=away"));
+    assert_true(logged("t=6.500 coach hint show=where reason=away"));
+    send(&c, 7000, CUB_EV_VERDICT, 0, 1, 5500); /* still nobody: set aside */
+    send(&c, 7500, CUB_EV_CAMERA, 1, 0, 5500);  /* not what it waits for */
+    assert_int_equal(c.state, CUB_COACH_PAUSED);
+    send(&c, 9000, CUB_EV_PLAYER, 1, 0, 5500);
+    assert_int_equal(c.state, CUB_COACH_DANCE);
+    assert_non_null(act(&c, CUB_COACH_ACT_MUSIC_RESUME, 0));
+    assert_int_equal(c.move, 0);
+    assert_int_equal(c.rep, 3); /* 5.5 s of clap's 8: its 4th repetition (6 s) is nearest */
+    assert_true(logged("t=9.000 coach state from=paused to=dance reason=player move=0 rep=3"));
+    tick(&c, 9000 + CUB_COACH_AWAY_PAUSE_MS + 10, 9500); /* in view: no pause */
+    assert_int_equal(c.state, CUB_COACH_DANCE);
+}
+
+/* A child gone for good: the song pauses, and the judge's "no player"
+ * verdicts (one a repetition) no longer count as interaction, so the
+ * attract comes attract_after the child's last verdict, the doze
+ * doze_after it, as when idle. */
+static void test_child_gone_long_attracts_then_dozes(void **s)
+{
+    cub_coach c;
+    start_dancing(&c, 0);
+    send(&c, 2000, CUB_EV_VERDICT, 0, 1, 1000); /* the last interaction */
+    send(&c, 2500, CUB_EV_PLAYER, 0, 0, 1500);
+    const int64_t attract = 2000 + c.desc.attract_after_ms, doze = 2000 + c.desc.doze_after_ms;
+    for (int64_t t = 3000; t < attract; t += 2000) {
+        send(&c, t, CUB_EV_VERDICT, 0, 0, 2000); /* wrong, nobody seen: no correction */
+        assert_true(c.state == CUB_COACH_DANCE || c.state == CUB_COACH_PAUSED);
+        tick(&c, t + 500, 2000);
+    }
+    assert_int_equal(c.state, CUB_COACH_PAUSED);
+    tick(&c, attract - 10, 2000);
+    assert_int_equal(c.state, CUB_COACH_PAUSED);
+    tick(&c, attract, 2000);
+    assert_int_equal(c.state, CUB_COACH_ATTRACT);
+    assert_non_null(act(&c, CUB_COACH_ACT_MUSIC_STOP, 0));
+    expect_clip(&c, C_WAVE, CUB_Q16_ONE, true, CUB_COACH_WHY_QUIET);
+    tick(&c, doze - 10, CUB_COACH_NO_MUSIC);
+    assert_int_equal(c.state, CUB_COACH_ATTRACT);
+    tick(&c, doze, CUB_COACH_NO_MUSIC);
+    assert_int_equal(c.state, CUB_COACH_DOZE);
+    assert_false(logged("to=correct"));
+}
+
 /* ---- music sync ---------------------------------------------------------- */
 
 static void test_sync_speed_behind_ahead_and_bounded(void **s)
@@ -913,7 +982,7 @@ static const script_ev session_script[] = {
     {7000, CUB_EV_VERDICT, -1, 1},  /* right: back into the same move */
     {9500, CUB_EV_VERDICT, -1, 0},  /* watch_me this time, then the demo */
     {12000, CUB_EV_PLAYER, 0, 0},   /* the child steps out of view ... */
-    {12500, CUB_EV_VERDICT, -1, 1}, /* (the judge's last word) */
+    {12500, CUB_EV_VERDICT, -1, 1}, /* (the judge's last word: nobody to credit) */
     {13000, CUB_EV_PLAYER, 1, 0},   /* ... and back */
     {15000, CUB_EV_VERDICT, -1, 0},
     {15100, CUB_EV_VERDICT, -1, 0},
@@ -928,7 +997,9 @@ static const char *const session_states[] = {
     "coach state from=dance to=correct reason=wrong move=0 rep=1",
     "coach state from=correct to=dance reason=right move=0 rep=3", /* the same move */
     "coach state from=dance to=correct reason=wrong move=1 rep=0",
-    "coach state from=correct to=dance reason=right move=1 rep=1",
+    /* the right verdict while the child was out of view is set aside: the
+     * correction runs on until the music leaves the move */
+    "coach state from=correct to=dance reason=moved_on move=2 rep=0",
     "coach state from=dance to=correct reason=wrong move=2 rep=0",
     "coach state from=correct to=worried reason=misses move=2 rep=0",
     "coach state from=worried to=correct reason=calmed move=2 rep=0",
@@ -989,6 +1060,8 @@ int main(void)
         cmocka_unit_test(test_song_end_cheers_then_idles),
         cmocka_unit_test(test_stop_returns_to_idle_from_every_state),
         cmocka_unit_test(test_player_away_shows_come_closer),
+        cmocka_unit_test(test_child_gone_briefly_pauses_then_resumes),
+        cmocka_unit_test(test_child_gone_long_attracts_then_dozes),
         cmocka_unit_test(test_sync_speed_behind_ahead_and_bounded),
         cmocka_unit_test(test_music_tag_sets_the_moves_speed),
         cmocka_unit_test(test_sync_keeps_the_dance_on_a_skewed_music_clock),

@@ -48,7 +48,8 @@ typedef enum cub_coach_state {
     CUB_COACH_ATTRACT,  /* nobody interacted for a while: wave */
     CUB_COACH_DOZE,     /* nobody for longer: doze */
     CUB_COACH_CHEER,    /* the song ended */
-    CUB_COACH_PAUSED,   /* the camera is gone mid-song: music paused, "can't see you" */
+    CUB_COACH_PAUSED,   /* mid-song, music paused: the camera is gone ("can't see you"),
+                           or the child ("where are you?") */
     CUB_COACH_STATE_COUNT
 } cub_coach_state;
 
@@ -80,6 +81,7 @@ typedef enum cub_coach_reason {
     CUB_COACH_WHY_IDLE,    /* the idle clip */
     CUB_COACH_WHY_CAMERA,  /* the camera went or came back */
     CUB_COACH_WHY_MOVED_ON, /* the music left the corrected move: dance on with it */
+    CUB_COACH_WHY_AWAY,     /* the child has been out of view mid-song for a while */
     CUB_COACH_WHY_COUNT
 } cub_coach_reason;
 
@@ -97,6 +99,7 @@ typedef enum cub_coach_action_kind {
 #define CUB_COACH_HINT_NONE (-1)        /* clear the hint */
 #define CUB_COACH_HINT_COME_CLOSER (-2) /* nobody in view: "come closer" */
 #define CUB_COACH_HINT_CANT_SEE (-3)    /* the camera is gone: "I can't see you" */
+#define CUB_COACH_HINT_WHERE (-4)       /* the child left mid-song: "Where are you?" */
 
 typedef struct cub_coach_action {
     int32_t kind;      /* cub_coach_action_kind */
@@ -173,7 +176,8 @@ typedef struct cub_coach {
     cub_q16 sync_q16;     /* music-sync factor applied to the move's speed */
     cub_q16 rate_q16;     /* music ms per loop ms, as measured */
     int32_t misses;       /* wrong verdicts in a row */
-    int32_t paused_phase; /* the dance's phase when the camera went */
+    int32_t paused_phase; /* the dance's phase when the song paused */
+    int32_t paused_for;   /* why it paused: CUB_COACH_WHY_CAMERA or _AWAY */
     uint32_t corrections; /* correcting clips played (they alternate) */
     bool music_on, tag_pending, player_in_view;
     bool show_again; /* correcting the move just left: demonstrate it once */
@@ -182,6 +186,7 @@ typedef struct cub_coach {
     int32_t fix;   /* the fault the correction under way is about (0: none), shown
                       again when the child comes back into view */
     int64_t now_us, quiet_since_us, state_since_us;
+    int64_t away_since_us;  /* the child last left the view (or the song began) */
     int64_t music_start_us; /* loop time the music was started */
     int64_t anchor_us;      /* first loop time the music clock was seen moving */
     int32_t anchor_ms;      /* ... and its song time then (-1: not yet) */
@@ -208,7 +213,10 @@ cub_err cub_coach_init(cub_coach *c, const cub_coach_desc *desc, int64_t now_us)
  *               one's first repetition plays or is waited for (the last
  *               repetition's window closes a beat late): that move is
  *               corrected, then the dance resumes where the music is
- *   PLAYER      a = 0 shows "come closer", a = 1 takes it back
+ *   PLAYER      a = 0 shows "come closer", a = 1 takes it back; a child out
+ *               of view mid-song for CUB_COACH_AWAY_PAUSE_MS pauses the song
+ *               ("where are you?", as CAMERA a = 0 does) until a = 1
+ *               resumes it where the music is
  *   CLIP_DONE   a = clip; only the clip last requested counts
  *   MUSIC_TAG   a = move, b = song ms of the frame reached (the tag of the
  *               repetition begun, or later if the player entered past its
@@ -220,7 +228,10 @@ cub_err cub_coach_init(cub_coach *c, const cub_coach_desc *desc, int64_t now_us)
  *               the music and the dance where the music is (as after a
  *               correction). Outside a song: ignored
  * Buttons, claps, verdicts and a player arriving count as interaction (they
- * restart the attract/doze countdown). Other events are ignored (CUB_OK).
+ * restart the attract/doze countdown), except verdicts while nobody is in
+ * view: those are set aside (no one to correct), so a child who walked
+ * away brings attract_after_ms later the attract and the doze, as idle.
+ * Other events are ignored (CUB_OK).
  * CUB_ERR_ARG for NULL; CUB_ERR_RANGE for a verdict or music tag naming a
  * move outside the song (nothing changes then). Moves and reps count from 0. */
 cub_err cub_coach_handle(cub_coach *c, const cub_event *ev, int32_t music_ms);
@@ -240,6 +251,15 @@ cub_err cub_coach_tick(cub_coach *c, int64_t now_us, int32_t music_ms);
  * 0.15; span_ms <= 0 gives 1.0; music already past the target gives 1+bound. */
 cub_q16 cub_coach_sync_speed(int32_t tag_ms, int32_t music_ms, int32_t span_ms, cub_q16 rate_q16,
                              cub_q16 bound_q16);
+
+/* How long a child may be out of view mid-song before the song pauses and
+ * the bear asks "Where are you?". The judge already waits a second of
+ * frames without the child before it says so, and "Come closer!" shows at
+ * once; pausing the music is the bigger step, so a child who only stepped
+ * aside (a toy, a turn the camera lost) has about two bars of Twinkle
+ * (4 s at 120 bpm) to come back with the music still playing. The longer
+ * absence that ends the song is the config's attract_after (20 s). */
+#define CUB_COACH_AWAY_PAUSE_MS 4000
 
 /* Fill roles from clip names: idle, wake_up, wave (attract), doze,
  * head_shake, watch_me, worried, cheer. CUB_ERR_ARG for NULL or count <= 0;
