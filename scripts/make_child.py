@@ -603,7 +603,7 @@ def cmd_sequence(song_path, plan_path, out, cues_path, child="planted", clips=Tr
         write_sequence(loop, os.path.join(out, "child.seq"), derived)
     write_expect(os.path.join(out, "expect.txt"), song, cues, expect, child)
     print("make_child: %s%s: %.1f s, the coach's %d requests (%s), %d moves led, "
-          "%d planted wrong" % (os.path.join(out, "child.seq and ") if clips else "",
+          "%d planted wrong" % (os.path.join(out, "child.seq") + " and " if clips else "",
                                 os.path.join(out, "expect.txt"),
                                 loop[-1][1], len(cues), cues_path or "from the song",
                                 sum(1 for e in expect if e[0] >= 0),
@@ -837,7 +837,7 @@ def cmd_score(expect_path, log_path):
 
 
 def main(argv):
-    if argv[:1] == ["sequence"] and "--child" in argv:
+    if argv[:1] in (["sequence"], ["expect"]) and "--child" in argv:
         k = argv.index("--child")
         child = argv[k + 1] if k + 1 < len(argv) else ""
         if child not in ("planted", "late", "sloppy"):
