@@ -25,16 +25,19 @@
  *      farthest (or the column's top above the root); stature from the
  *      floor or the neck base, learnt over frames   trk_head.c trk_fit_head
  *   7. body frame: shoulder centre, pelvis, torso axis, left direction,
- *      stature and the arms' roots                trk_fit.c trk_fit_skeleton
+ *      stature and the arms' roots, computed once into a trk_frame that
+ *      every later step reads                       trk_fit.c body_frame
  *   8. limbs: an extremity is a leg when its path joins the torso low and
  *      is long or its tip is low; the two longest legs are the feet; the
  *      hands are named both at once by a cost per candidate and side
  *      (surface from each shoulder, side of the body, path's side, last
- *      frame's hand)              trk_fit.c pick_limbs, trk_hands.c
- *   9. resolvers: the special poses the general rule gets wrong (a knee
- *      raised aside, legs together, a hand before the torso, an elbow
- *      taken for the hand, a guard's fist, a bow, an arm hanging against
- *      the thigh, ...)                       trk_hands.c, trk_fit.c
+ *      frame's hand)    trk_fit.c classify_limbs, name_feet; trk_hands.c
+ *   9. resolvers: the special poses those rules get wrong (a bow, a foot
+ *      raised within reach, a knee, legs together, a hand before the
+ *      torso, an elbow taken for the hand or a guard's fist, an arm
+ *      hanging against the thigh), each a function of one signature, run
+ *      in the order of one table at the stage of step 8 it names, each
+ *      with its unit test (tests/track/test_trk_resolvers.c) trk_resolve.c
  *  10. joints: torso joints down the axis onto the surface; elbows and
  *      knees fit both bone lengths scaled to the limb's reach learnt per
  *      player; a limb with no extremity hangs or keeps last frame's pose
@@ -48,8 +51,9 @@
  * quarters. trk_internal.h holds the tracker's state, trk_body.h the
  * body's proportions and the geometry helpers.
  *
- * To change a heuristic: its history is in docs/tracker.md; measure the
- * change on the folds (docs/tracker_eval.md).
+ * To change a heuristic: find its resolver in trk_resolve.c's table, its
+ * history in docs/tracker.md, run its test in tests/track
+ * (test_trk_resolvers), then the folds (docs/tracker_eval.md).
  *
  * Defaults: min_mm 500, max_mm 4500 (readings outside are ignored). Status:
  * TOO_CLOSE when the player's centre is nearer than 1000 mm, TOO_FAR beyond
