@@ -145,6 +145,16 @@ typedef struct trk_frame {
 /* Which limb an extremity (not the head) ends. */
 enum { TRK_ARM = 0, TRK_LEG = 1, TRK_NEITHER = 2 };
 
+/* The hands' naming (trk_hands.c): its candidates and what each costs
+ * per side, both hands then chosen at once as the least summed cost. */
+typedef struct hand_naming {
+    int32_t n, cell[TRK_MAX_EXTREMA];     /* the candidates: extremities classed TRK_ARM */
+    int32_t cost[2][TRK_MAX_EXTREMA + 1]; /* [side][k], [side][n]: no hand; INT32_MAX: out of that arm's reach */
+    int32_t gs[2][TRK_MAX_EXTREMA];       /* along the surface from its own arm's root (straight where cut off) */
+    int32_t go[2][TRK_MAX_EXTREMA];       /* and from the other arm's */
+    int32_t le[2][TRK_MAX_EXTREMA];       /* where its path from the root leaves the torso, out to that side (mm) */
+} hand_naming;
+
 /* The extremities picked for the limbs: what the resolvers read and
  * correct (trk_resolve.c). */
 typedef struct limb_pick {
@@ -154,6 +164,7 @@ typedef struct limb_pick {
     int32_t elbow[2];                     /* an elbow taken for the hand: its cell, else -1 */
     int32_t hang[2];                      /* an arm with no hand hanging against the thigh: its tip, else -1 */
     bool bent;                            /* the body bent toward the camera (a bow) */
+    hand_naming nm;
 } limb_pick;
 
 /* trk_resolve.c: the special poses, one signature, one table. A resolver
@@ -164,6 +175,7 @@ typedef enum trk_stage {
     TRK_AT_FRAME,      /* the body's frame known, no limb named yet */
     TRK_AT_CLASSIFIED, /* each extremity classed an arm's or a leg's */
     TRK_AT_FEET,       /* the feet named, the hands' candidates known */
+    TRK_AT_COSTED,     /* each candidate costed per side (lp->nm), the hands not chosen yet */
     TRK_AT_NAMED,      /* the hands named too */
 } trk_stage;
 typedef struct trk_resolver_entry {
@@ -180,8 +192,11 @@ void trk_resolve(const trk_frame *f, limb_pick *lp, trk_stage stage);
 bool trk_bent(const trk_frame *f);
 /* surface distances from both arms' roots (f->arm_root) into t->dist_sh */
 void trk_from_shoulders(cub_tracker *t, const trk_frame *f);
-/* the hands among the candidates classed TRK_ARM: lp->hand (both -1 when none) */
-void trk_pick_hands(const trk_frame *f, limb_pick *lp);
+/* the hands' naming: each candidate classed TRK_ARM costed per side
+ * (lp->nm), then the pair with the least cost chosen: lp->hand (both -1
+ * when none) */
+void trk_cost_hands(const trk_frame *f, limb_pick *lp);
+void trk_choose_hands(limb_pick *lp);
 /* extremity i lies on the torso's surface (a shoulder bump, an elbow) */
 bool trk_on_torso(const trk_frame *f, int32_t i);
 /* cell c lies on a leg: on a named foot's path (a knee raised aside) or

@@ -5,10 +5,10 @@
  * torso axis with body proportions (trk_body.h). */
 #include "trk_body.h"
 
-/* an extremity this far from a shoulder (percent of the arm's reach with
- * the hand) is no hand */
+/* an extremity this far from a shoulder (per mille of the arm's reach
+ * with the hand) is no hand */
 enum {
-    ARM_SLACK = 100,
+    ARM_SLACK = 1000,
 };
 
 /* the elbow: how far around the path's cell it is looked for (per mille of
@@ -245,7 +245,7 @@ static void body_frame(cub_tracker *t, int32_t root, int32_t *ext, int32_t *next
         f->arm_root[side] = onto_shoulder(t, add_s(sc, f->lft, h), radius(st, R_SHOULDER));
         f->fit_root[side] = onto_shoulder(t, add_s(sj, f->lft, h), radius(st, R_SHOULDER));
     }
-    f->reach_mm = pm(st, P_UPPER_ARM + P_FOREARM + P_HAND_REACH) * ARM_SLACK / 100;
+    f->reach_mm = pm(st, P_UPPER_ARM + P_FOREARM + P_HAND_REACH) * ARM_SLACK / 1000;
 }
 
 /* The torso's joints: spine and hip centre down the torso in the
@@ -506,7 +506,9 @@ void trk_fit_skeleton(cub_tracker *t, int32_t root, int32_t *ext, int32_t next, 
     trk_resolve(&f, &lp, TRK_AT_CLASSIFIED);
     name_feet(&f, &lp);
     trk_resolve(&f, &lp, TRK_AT_FEET);
-    trk_pick_hands(&f, &lp);
+    trk_cost_hands(&f, &lp);
+    trk_resolve(&f, &lp, TRK_AT_COSTED);
+    trk_choose_hands(&lp);
     trk_resolve(&f, &lp, TRK_AT_NAMED);
     for (int side = 0; side < 2; side++) {
         int jh = side ? CUB_KJ_HIP_R : CUB_KJ_HIP_L;

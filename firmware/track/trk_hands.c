@@ -3,11 +3,13 @@
  * which is no extremity. */
 #include "trk_body.h"
 
-/* naming the hands: limits (per mille of stature, or percent of the arm's
- * reach: shoulder to fingertip) and the cost's weights (quarters) */
+/* naming the hands: limits (per mille of stature, or of the arm's reach:
+ * shoulder to fingertip) and the cost's weights (quarters); the naming's
+ * special cases (a bump on a shoulder or the skull, a path from across
+ * the body) are trk_resolve.c's */
 enum {
-    HC_REACH = 130,    /* percent: no farther from its shoulder, straight */
-    HC_GEO = 150,      /* percent: nor along the surface */
+    HC_REACH = 1300,   /* per mille of the reach: no farther from its shoulder, straight */
+    HC_GEO = 1500,     /* per mille of the reach: nor along the surface */
     HC_W_GOWN = 4,     /* along the surface, nearer its own shoulder than the other */
     HC_W_FAR = 1,      /* far along the arm from its shoulder */
     HC_W_SIDE = 0,     /* on its own side of the body (0: a sword's grip crosses the hands) */
@@ -15,15 +17,9 @@ enum {
     HC_LONG = 600,     /* ...up to this */
     HC_W_PREV = 3,     /* near last frame's hand... */
     HC_PREV_CAP = 300, /* ...counted up to this */
-    HC_NEAR = 120,     /* a "hand" this near a shoulder is a bump on it (on a bowed body, across the line of sight)... */
-    HC_NEAR_COST = 800,
-    HC_HEAD = 130,     /* ...and one this near the head's centre a bump on the skull */
-    HC_HEAD_COST = 400,
     HC_NONE = -100,    /* the cost of seeing no hand on a side */
     HC_W_ENTRY = 6,    /* the side the arm's path leaves the torso... */
     HC_ENTRY = 180,    /* ...this far from the root along the surface */
-    HC_ACROSS = 80,    /* a path leaving the torso this far on the other shoulder's side... */
-    HC_ACROSS_COST = 400, /* ...is the other arm's: this much, all but a veto */
     HC_FORE = 220,     /* a "hand" this much nearer the camera than its shoulder: the arm points at it */
 };
 
@@ -101,34 +97,20 @@ void trk_from_shoulders(cub_tracker *t, const trk_frame *f)
     from_shoulder(t, f->arm_root[1], t->dist_sh[1]);
 }
 
-/* A bowed body's shoulder top: a body bent toward the camera shows its
- * shoulders' tops as extremities far from the root, round the bent
- * torso's depth from the arm's root (the surface test misses them), while
- * the hands hang below, hidden or beside the thighs. Such a top lies above
- * the shoulder centre, over a shoulder across the camera's line of sight,
- * and behind the bowed head's centre (a hand called to the mouth stands
- * before it). */
-static bool bow_shoulder(const trk_frame *f, const limb_pick *lp, trk_p3 p)
-{
-    trk_p3 sc = f->sc;
-    if (!lp->bent || p.z <= f->head_c.z || trk_along(p.x - sc.x, p.y - sc.y, p.z - sc.z, f->t->up) <= 0) return false;
-    for (int side = 0; side < 2; side++)
-        if (trk_len(p.x - f->arm_root[side].x, p.y - f->arm_root[side].y, 0) < pm(f->st, HC_NEAR)) return true;
-    return false;
-}
-
-/* The cost of naming candidate c side's hand (mm-like units; lower is
+/* The cost of naming candidate k side's hand (mm-like units; lower is
  * better), INT32_MAX when out of that arm's reach: a hand is nearer its own
- * shoulder than the other, on its own side of the body, near where it was,
- * and at the end of a long path (a bump on the torso is not). */
-static int32_t hand_cost(const trk_frame *f, const limb_pick *lp, int32_t c, int side)
+ * shoulder than the other, near where it was, and at the end of a long
+ * path (a bump on the torso is not); what it needs for the naming's
+ * special cases (the resolvers of TRK_AT_COSTED) goes into lp->nm too. */
+static int32_t hand_cost(const trk_frame *f, limb_pick *lp, int32_t k, int side)
 {
     const cub_tracker *t = f->t;
+    int32_t c = lp->nm.cell[k];
     trk_p3 p = cell_p(t, c), sc = f->sc;
     cub_vec3 lft = f->lft;
     int32_t st = f->st;
     int32_t d = dist3(p, f->arm_root[side]), d_other = dist3(p, f->arm_root[1 - side]);
-    if (d > f->reach_mm * HC_REACH / 100) return INT32_MAX;
+    if (d > f->reach_mm * HC_REACH / 1000) return INT32_MAX;
     /* along the surface from each shoulder; a part cut off by the
      * projector's shadow (a hand before the body) has the straight line */
     int32_t gs = trk_coarse_at(t, t->dist_sh[side], c), go = trk_coarse_at(t, t->dist_sh[1 - side], c);
@@ -139,7 +121,7 @@ static int32_t hand_cost(const trk_frame *f, const limb_pick *lp, int32_t c, int
     /* (an arm pointing at the camera is foreshortened into depth steps,
      * and the surface runs round them: there the straight line counts) */
     bool fore = p.z < f->arm_root[side].z - pm(st, HC_FORE);
-    if ((fore ? d : gs) > f->reach_mm * HC_GEO / 100) return INT32_MAX;
+    if ((fore ? d : gs) > f->reach_mm * HC_GEO / 1000) return INT32_MAX;
     int32_t sgn = side ? -1 : 1, l = sgn * trk_along(p.x - sc.x, p.y - sc.y, p.z - sc.z, lft);
     int32_t g = t->dist0[c] < pm(st, HC_LONG) ? t->dist0[c] : pm(st, HC_LONG);
     int32_t cost = -HC_W_SIDE * l / 4 - HC_W_LONG * g / 4;
@@ -151,44 +133,42 @@ static int32_t hand_cost(const trk_frame *f, const limb_pick *lp, int32_t c, int
         e = t->parent0[e];
     int32_t le = sgn * trk_along(t->x[e] - sc.x, t->y[e] - sc.y, t->z[e] - sc.z, lft);
     cost -= HC_W_ENTRY * le / 4;
-    /* well across the axis the weight alone is outbid by the surface from
-     * the shoulders (a forearm across the body ends nearer the other one) */
-    if (le < -pm(st, HC_ACROSS)) cost += pm(st, HC_ACROSS_COST);
-    /* nearer its own shoulder than the other; the arm's length from it (a
-     * bump on a shoulder is no hand) */
+    /* nearer its own shoulder than the other; the arm's length from it */
     cost += HC_W_GOWN * (gs - go) / 4 - HC_W_FAR * (gs < f->reach_mm ? gs : f->reach_mm) / 4;
-    if (gs < pm(st, HC_NEAR) || go < pm(st, HC_NEAR)) cost += pm(st, HC_NEAR_COST);
-    else if (bow_shoulder(f, lp, p)) cost += pm(st, HC_NEAR_COST);
-    /* on the head's surface: the skull's side, not a hand (a palm's centre
-     * keeps off the head's) */
-    if (f->head >= 0 && dist3(p, f->head_c) < pm(st, HC_HEAD)) cost += pm(st, HC_HEAD_COST);
     if (t->have_prev && t->lost_frames == 0) {
         int32_t dp = dist3(p, got(&t->prev, side ? CUB_KJ_HAND_R : CUB_KJ_HAND_L));
         cost += HC_W_PREV * (dp < pm(st, HC_PREV_CAP) ? dp : pm(st, HC_PREV_CAP)) / 4;
     }
+    lp->nm.gs[side][k] = gs, lp->nm.go[side][k] = go, lp->nm.le[side][k] = le;
     return cost;
+}
+
+void trk_cost_hands(const trk_frame *f, limb_pick *lp)
+{
+    hand_naming *nm = &lp->nm;
+    nm->n = 0;
+    for (int32_t k = 0; k < lp->ncand; k++)
+        if (lp->limb[k] == TRK_ARM) nm->cell[nm->n++] = lp->cand[k];
+    for (int side = 0; side < 2; side++) {
+        for (int32_t k = 0; k < nm->n; k++) nm->cost[side][k] = hand_cost(f, lp, k, side);
+        nm->cost[side][nm->n] = pm(f->st, HC_NONE); /* no hand seen on this side */
+    }
 }
 
 /* Both hands at once: the pair of candidates (or none for a side) with the
  * least summed cost. */
-void trk_pick_hands(const trk_frame *f, limb_pick *lp)
+void trk_choose_hands(limb_pick *lp)
 {
-    int32_t hands[TRK_MAX_EXTREMA], nh = 0;
-    for (int32_t k = 0; k < lp->ncand; k++)
-        if (lp->limb[k] == TRK_ARM) hands[nh++] = lp->cand[k];
-    int32_t cost[2][TRK_MAX_EXTREMA + 1];
-    for (int side = 0; side < 2; side++) {
-        for (int32_t k = 0; k < nh; k++) cost[side][k] = hand_cost(f, lp, hands[k], side);
-        cost[side][nh] = pm(f->st, HC_NONE); /* no hand seen on this side */
-    }
+    const hand_naming *nm = &lp->nm;
+    int32_t nh = nm->n;
     int64_t best = INT64_MAX;
     lp->hand[0] = lp->hand[1] = -1;
     for (int32_t a = 0; a <= nh; a++)
         for (int32_t b = 0; b <= nh; b++) {
             if (a == b && a < nh) continue;
-            if (cost[0][a] == INT32_MAX || cost[1][b] == INT32_MAX) continue;
-            int64_t c = (int64_t)cost[0][a] + cost[1][b];
-            if (c < best) best = c, lp->hand[0] = a < nh ? hands[a] : -1, lp->hand[1] = b < nh ? hands[b] : -1;
+            if (nm->cost[0][a] == INT32_MAX || nm->cost[1][b] == INT32_MAX) continue;
+            int64_t c = (int64_t)nm->cost[0][a] + nm->cost[1][b];
+            if (c < best) best = c, lp->hand[0] = a < nh ? nm->cell[a] : -1, lp->hand[1] = b < nh ? nm->cell[b] : -1;
         }
 }
 

@@ -16,6 +16,17 @@ enum {
     FOOT_FLOOR = 100, /* and touching the floor within this */
 };
 
+/* the hands' naming's special cases: a candidate this near (per mille of
+ * stature) pays this much more (all but a veto) */
+enum {
+    HC_NEAR = 120,        /* a "hand" this near a shoulder is a bump on it (on a bowed body, across the line of sight) */
+    HC_NEAR_COST = 800,
+    HC_HEAD = 130,        /* one this near the head's centre is a bump on the skull */
+    HC_HEAD_COST = 400,
+    HC_ACROSS = 80,       /* a path leaving the torso this far on the other shoulder's side is the other arm's */
+    HC_ACROSS_COST = 400,
+};
+
 /* an arm hanging against the thigh or the flank (no extremity: its hand
  * is reached across the touching surfaces, a short cut), per mille of
  * stature */
@@ -68,6 +79,87 @@ static bool knee_is_no_hand(const trk_frame *f, limb_pick *lp)
     for (int32_t k = 0; k < lp->ncand; k++)
         if (lp->limb[k] == TRK_ARM && trk_on_leg(f, lp, lp->cand[k])) lp->limb[k] = TRK_NEITHER, changed = true;
     return changed;
+}
+
+/* Adds cost to every candidate (each side) that pred holds for, within
+ * that arm's reach; true when any. */
+typedef bool (*cand_pred)(const trk_frame *f, const limb_pick *lp, int32_t k, int side);
+static bool penalise(const trk_frame *f, limb_pick *lp, cand_pred pred, int32_t cost)
+{
+    bool changed = false;
+    for (int side = 0; side < 2; side++)
+        for (int32_t k = 0; k < lp->nm.n; k++) {
+            if (lp->nm.cost[side][k] == INT32_MAX || !pred(f, lp, k, side)) continue;
+            lp->nm.cost[side][k] += cost;
+            changed = true;
+        }
+    return changed;
+}
+
+static bool near_a_shoulder(const trk_frame *f, const limb_pick *lp, int32_t k, int side)
+{
+    int32_t near = pm(f->st, HC_NEAR);
+    return lp->nm.gs[side][k] < near || lp->nm.go[side][k] < near;
+}
+
+/* A bump on a shoulder is no hand: a candidate near either shoulder
+ * along the surface (section 8). */
+static bool shoulder_bump(const trk_frame *f, limb_pick *lp)
+{
+    return penalise(f, lp, near_a_shoulder, pm(f->st, HC_NEAR_COST));
+}
+
+/* A bowed body's shoulder top: a body bent toward the camera shows its
+ * shoulders' tops as extremities far from the root, round the bent
+ * torso's depth from the arm's root (the surface test misses them), while
+ * the hands hang below, hidden or beside the thighs. Such a top lies above
+ * the shoulder centre, over a shoulder across the camera's line of sight,
+ * and behind the bowed head's centre (a hand called to the mouth stands
+ * before it). */
+static bool bowed_top(const trk_frame *f, const limb_pick *lp, int32_t k, int side)
+{
+    trk_p3 p = cell_p(f->t, lp->nm.cell[k]), sc = f->sc;
+    if (near_a_shoulder(f, lp, k, side)) return false; /* paid as a bump already */
+    if (!lp->bent || p.z <= f->head_c.z || trk_along(p.x - sc.x, p.y - sc.y, p.z - sc.z, f->t->up) <= 0) return false;
+    for (int s = 0; s < 2; s++)
+        if (trk_len(p.x - f->arm_root[s].x, p.y - f->arm_root[s].y, 0) < pm(f->st, HC_NEAR)) return true;
+    return false;
+}
+
+/* On a bow, a shoulder's top named a hand pays the shoulder bump's cost;
+ * the hanging or before-the-torso resolvers then place the arm (section
+ * 12). */
+static bool bow_shoulder_top(const trk_frame *f, limb_pick *lp)
+{
+    return penalise(f, lp, bowed_top, pm(f->st, HC_NEAR_COST));
+}
+
+static bool on_the_skull(const trk_frame *f, const limb_pick *lp, int32_t k, int side)
+{
+    (void)side;
+    return f->head >= 0 && dist3(cell_p(f->t, lp->nm.cell[k]), f->head_c) < pm(f->st, HC_HEAD);
+}
+
+/* On the head's surface: the skull's side or a bowed head's chin, not a
+ * hand (a palm's centre keeps off the head's) (section 8). */
+static bool skull_bump(const trk_frame *f, limb_pick *lp)
+{
+    return penalise(f, lp, on_the_skull, pm(f->st, HC_HEAD_COST));
+}
+
+static bool from_across(const trk_frame *f, const limb_pick *lp, int32_t k, int side)
+{
+    return lp->nm.le[side][k] < -pm(f->st, HC_ACROSS);
+}
+
+/* A path from across the body: the naming weighs the side where a
+ * candidate's path from the root leaves the torso, but well across the
+ * axis that weight is outbid by the surface from the shoulders (a forearm
+ * across the body ends nearer the other one): such a candidate is the
+ * other arm's (section 8). */
+static bool path_from_across(const trk_frame *f, limb_pick *lp)
+{
+    return penalise(f, lp, from_across, pm(f->st, HC_ACROSS_COST));
 }
 
 /* Legs held together make one extremity for two feet: a leg whose tip
@@ -179,6 +271,10 @@ static const trk_resolver_entry resolvers[] = {
     {"bow", TRK_AT_FRAME, bow},
     {"raised_foot_is_hand", TRK_AT_CLASSIFIED, raised_foot_is_hand},
     {"knee_is_no_hand", TRK_AT_FEET, knee_is_no_hand},
+    {"path_from_across", TRK_AT_COSTED, path_from_across},
+    {"shoulder_bump", TRK_AT_COSTED, shoulder_bump},
+    {"bow_shoulder_top", TRK_AT_COSTED, bow_shoulder_top},
+    {"skull_bump", TRK_AT_COSTED, skull_bump},
     {"legs_together", TRK_AT_NAMED, legs_together},
     {"hand_before_torso", TRK_AT_NAMED, hand_before_torso},
     {"fist_beyond_elbow", TRK_AT_NAMED, fist_beyond_elbow},

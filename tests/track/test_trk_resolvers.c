@@ -129,6 +129,15 @@ static trk_frame frame_of_body(void)
     return f;
 }
 
+/* paint_body with the right arm held out, its frame and paths. */
+static trk_frame body_right_arm_out(void)
+{
+    new_scene();
+    paint_body();
+    paint_right_arm_out();
+    return frame_of_body();
+}
+
 static limb_pick no_pick(void)
 {
     return (limb_pick){.hand = {-1, -1}, .foot = {-1, -1}, .elbow = {-1, -1}, .hang = {-1, -1}};
@@ -156,6 +165,10 @@ static void test_table_order(void **st)
         {"bow", TRK_AT_FRAME},
         {"raised_foot_is_hand", TRK_AT_CLASSIFIED},
         {"knee_is_no_hand", TRK_AT_FEET},
+        {"path_from_across", TRK_AT_COSTED},
+        {"shoulder_bump", TRK_AT_COSTED},
+        {"bow_shoulder_top", TRK_AT_COSTED},
+        {"skull_bump", TRK_AT_COSTED},
         {"legs_together", TRK_AT_NAMED},
         {"hand_before_torso", TRK_AT_NAMED},
         {"fist_beyond_elbow", TRK_AT_NAMED},
@@ -239,6 +252,112 @@ static void test_knee_is_no_hand(void **st)
     lp.cand[0] = cell_near(-340, -340, Z), lp.ncand = 1, lp.limb[0] = TRK_ARM;
     assert_false(resolver("knee_is_no_hand")(&f, &lp));
     assert_int_equal(lp.limb[0], TRK_ARM);
+}
+
+/* The hands' naming with these candidate cells, each costing 0 on both
+ * sides, far from both shoulders along the surface and leaving the torso
+ * on its own side; the last one out of the right arm's reach. */
+static void naming_of(limb_pick *lp, const int32_t *cells, int32_t n)
+{
+    lp->nm.n = n;
+    for (int side = 0; side < 2; side++) {
+        for (int32_t k = 0; k < n; k++) {
+            lp->nm.cell[k] = cells[k];
+            lp->nm.cost[side][k] = 0;
+            lp->nm.gs[side][k] = lp->nm.go[side][k] = 400;
+            lp->nm.le[side][k] = 100;
+        }
+        lp->nm.cost[side][n] = -ST / 10;
+    }
+    lp->nm.cost[1][n - 1] = INT32_MAX;
+}
+
+/* The first candidate paid cost on both sides, the second nothing. */
+static void expect_first_paid(const limb_pick *lp, int32_t cost)
+{
+    assert_int_equal(lp->nm.cost[0][0], cost);
+    assert_int_equal(lp->nm.cost[1][0], cost);
+    assert_int_equal(lp->nm.cost[0][1], 0);
+}
+
+/* path_from_across: a candidate whose path leaves the torso 100 mm on
+ * the other shoulder's side pays 400 per mille of stature for that side;
+ * one leaving on its own side, or out of reach, pays nothing. */
+static void test_path_from_across(void **st)
+{
+    (void)st;
+    trk_frame f = body_right_arm_out();
+    limb_pick lp = no_pick();
+    const int32_t cells[2] = {cell_near(-80, 0, Z), cell_near(560, 150, Z)};
+    naming_of(&lp, cells, 2);
+    assert_false(resolver("path_from_across")(&f, &lp));
+    lp.nm.le[0][0] = -100, lp.nm.le[1][1] = -100;
+    assert_true(resolver("path_from_across")(&f, &lp));
+    assert_int_equal(lp.nm.cost[0][0], ST * 400 / 1000);
+    assert_int_equal(lp.nm.cost[1][0], 0);
+    assert_int_equal(lp.nm.cost[0][1], 0);
+    assert_int_equal(lp.nm.cost[1][1], INT32_MAX);
+}
+
+/* shoulder_bump: a candidate 100 mm along the surface from either
+ * shoulder is a bump on it: 800 per mille of stature, on both sides. */
+static void test_shoulder_bump(void **st)
+{
+    (void)st;
+    new_scene();
+    paint_body();
+    trk_frame f = frame_of_body();
+    limb_pick lp = no_pick();
+    const int32_t cells[3] = {cell_near(-140, 190, Z), cell_near(0, -600, Z), cell_near(60, -600, Z)};
+    naming_of(&lp, cells, 3);
+    assert_false(resolver("shoulder_bump")(&f, &lp));
+    lp.nm.gs[0][0] = 100, lp.nm.go[1][0] = 100;
+    assert_true(resolver("shoulder_bump")(&f, &lp));
+    expect_first_paid(&lp, ST * 800 / 1000);
+}
+
+/* bow_shoulder_top: on a bow (the head 120 mm before the torso), a
+ * candidate above the shoulder centre, over a shoulder and behind the
+ * head's centre is the shoulder's top, far along the surface though it
+ * is: it pays the bump's cost. Upright, or before the head (a hand at the
+ * mouth), or already paid as a bump, it does not. */
+static void test_bow_shoulder_top(void **st)
+{
+    (void)st;
+    new_scene();
+    paint_body();
+    paint(-90, 230, -90, 230, 30, Z - 200);
+    trk_frame f = frame_of_body();
+    f.head_c.z = Z - 120;
+    limb_pick lp = no_pick();
+    const int32_t cells[3] = {cell_near(-130, 200, Z), cell_near(-90, 230, Z - 200), cell_near(0, -600, Z)};
+    naming_of(&lp, cells, 3);
+    assert_false(resolver("bow_shoulder_top")(&f, &lp));
+    assert_true(resolver("bow")(&f, &lp));
+    assert_true(resolver("bow_shoulder_top")(&f, &lp));
+    expect_first_paid(&lp, ST * 800 / 1000);
+    assert_int_equal(lp.nm.cost[0][2], 0);
+    naming_of(&lp, cells, 3);
+    lp.nm.gs[0][0] = lp.nm.go[1][0] = 100; /* the left shoulder's distance, seen from each side */
+    resolver("bow_shoulder_top")(&f, &lp);
+    expect_first_paid(&lp, 0);
+}
+
+/* skull_bump: a candidate 60 mm from the head's centre is the skull's
+ * side (or a bowed head's chin): 400 per mille of stature; away from the
+ * head, or with no head, nothing. */
+static void test_skull_bump(void **st)
+{
+    (void)st;
+    trk_frame f = body_right_arm_out();
+    limb_pick lp = no_pick();
+    const int32_t cells[3] = {cell_near(60, 330, Z), cell_near(560, 150, Z), cell_near(0, -600, Z)};
+    naming_of(&lp, cells, 3);
+    f.head = -1;
+    assert_false(resolver("skull_bump")(&f, &lp));
+    f.head = 0;
+    assert_true(resolver("skull_bump")(&f, &lp));
+    expect_first_paid(&lp, ST * 400 / 1000);
 }
 
 /* legs_together: legs held together end in one extremity, named the
@@ -380,6 +499,10 @@ int main(void)
         cmocka_unit_test(test_bow),
         cmocka_unit_test(test_raised_foot_is_hand),
         cmocka_unit_test(test_knee_is_no_hand),
+        cmocka_unit_test(test_path_from_across),
+        cmocka_unit_test(test_shoulder_bump),
+        cmocka_unit_test(test_bow_shoulder_top),
+        cmocka_unit_test(test_skull_bump),
         cmocka_unit_test(test_legs_together),
         cmocka_unit_test(test_hand_before_torso),
         cmocka_unit_test(test_fist_beyond_elbow),
