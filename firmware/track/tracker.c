@@ -35,7 +35,8 @@
  *      trk_cost_hands, trk_choose_hands
  *   9. resolvers: the special poses those rules get wrong (a bow, a foot
  *      raised within reach, a knee, a bump on a shoulder or the skull, a
- *      path from across the body, legs together, a hand before the
+ *      path from across the body, the reach along the surface (not for
+ *      an arm pointing at the camera), legs together, a hand before the
  *      torso, an elbow taken for the hand or a guard's fist, an arm
  *      hanging against the thigh), each a function of one signature, run
  *      in the order of one table at the stage of step 8 it names, each

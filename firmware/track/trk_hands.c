@@ -5,11 +5,10 @@
 
 /* naming the hands: limits (per mille of stature, or of the arm's reach:
  * shoulder to fingertip) and the cost's weights (quarters); the naming's
- * special cases (a bump on a shoulder or the skull, a path from across
- * the body) are trk_resolve.c's */
+ * special cases (the reach along the surface, a bump on a shoulder or the
+ * skull, a path from across the body) are trk_resolve.c's */
 enum {
     HC_REACH = 1300,   /* per mille of the reach: no farther from its shoulder, straight */
-    HC_GEO = 1500,     /* per mille of the reach: nor along the surface */
     HC_W_GOWN = 4,     /* along the surface, nearer its own shoulder than the other */
     HC_W_FAR = 1,      /* far along the arm from its shoulder */
     HC_W_SIDE = 0,     /* on its own side of the body (0: a sword's grip crosses the hands) */
@@ -20,7 +19,6 @@ enum {
     HC_NONE = -100,    /* the cost of seeing no hand on a side */
     HC_W_ENTRY = 6,    /* the side the arm's path leaves the torso... */
     HC_ENTRY = 180,    /* ...this far from the root along the surface */
-    HC_FORE = 220,     /* a "hand" this much nearer the camera than its shoulder: the arm points at it */
 };
 
 /* a hand before the torso, per mille of stature */
@@ -116,12 +114,6 @@ static int32_t hand_cost(const trk_frame *f, limb_pick *lp, int32_t k, int side)
     int32_t gs = trk_coarse_at(t, t->dist_sh[side], c), go = trk_coarse_at(t, t->dist_sh[1 - side], c);
     if (gs == TRK_INF) gs = d;
     if (go == TRK_INF) go = d_other;
-    /* the arm is no longer than its reach along the surface either (a knee
-     * or a hip bulge within reach is not: its path runs down the torso) */
-    /* (an arm pointing at the camera is foreshortened into depth steps,
-     * and the surface runs round them: there the straight line counts) */
-    bool fore = p.z < f->arm_root[side].z - pm(st, HC_FORE);
-    if ((fore ? d : gs) > f->reach_mm * HC_GEO / 1000) return INT32_MAX;
     int32_t sgn = side ? -1 : 1, l = sgn * trk_along(p.x - sc.x, p.y - sc.y, p.z - sc.z, lft);
     int32_t g = t->dist0[c] < pm(st, HC_LONG) ? t->dist0[c] : pm(st, HC_LONG);
     int32_t cost = -HC_W_SIDE * l / 4 - HC_W_LONG * g / 4;

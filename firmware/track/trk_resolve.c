@@ -19,6 +19,8 @@ enum {
 /* the hands' naming's special cases: a candidate this near (per mille of
  * stature) pays this much more (all but a veto) */
 enum {
+    HC_GEO = 1500,        /* per mille of the arm's reach: no farther along the surface from its shoulder */
+    HC_FORE = 220,        /* a "hand" this much nearer the camera than its shoulder: the arm points at it */
     HC_NEAR = 120,        /* a "hand" this near a shoulder is a bump on it (on a bowed body, across the line of sight) */
     HC_NEAR_COST = 800,
     HC_HEAD = 130,        /* one this near the head's centre is a bump on the skull */
@@ -78,6 +80,27 @@ static bool knee_is_no_hand(const trk_frame *f, limb_pick *lp)
     bool changed = false;
     for (int32_t k = 0; k < lp->ncand; k++)
         if (lp->limb[k] == TRK_ARM && trk_on_leg(f, lp, lp->cand[k])) lp->limb[k] = TRK_NEITHER, changed = true;
+    return changed;
+}
+
+/* An arm is no longer than its reach along the surface either: a knee or
+ * a hip bulge within reach in a straight line is not reached along the
+ * arm (its path runs down the torso), and is no hand. But an arm pointing
+ * at the camera is foreshortened into depth steps that the surface runs
+ * round: there the straight line counts (section 8, round 7). */
+static bool surface_reach(const trk_frame *f, limb_pick *lp)
+{
+    bool changed = false;
+    int32_t lim = f->reach_mm * HC_GEO / 1000;
+    for (int side = 0; side < 2; side++)
+        for (int32_t k = 0; k < lp->nm.n; k++) {
+            if (lp->nm.cost[side][k] == INT32_MAX) continue;
+            trk_p3 p = cell_p(f->t, lp->nm.cell[k]), sh = f->arm_root[side];
+            bool fore = p.z < sh.z - pm(f->st, HC_FORE);
+            if ((fore ? dist3(p, sh) : lp->nm.gs[side][k]) <= lim) continue;
+            lp->nm.cost[side][k] = INT32_MAX;
+            changed = true;
+        }
     return changed;
 }
 
@@ -271,6 +294,7 @@ static const trk_resolver_entry resolvers[] = {
     {"bow", TRK_AT_FRAME, bow},
     {"raised_foot_is_hand", TRK_AT_CLASSIFIED, raised_foot_is_hand},
     {"knee_is_no_hand", TRK_AT_FEET, knee_is_no_hand},
+    {"surface_reach", TRK_AT_COSTED, surface_reach},
     {"path_from_across", TRK_AT_COSTED, path_from_across},
     {"shoulder_bump", TRK_AT_COSTED, shoulder_bump},
     {"bow_shoulder_top", TRK_AT_COSTED, bow_shoulder_top},

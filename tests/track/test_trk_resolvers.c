@@ -165,6 +165,7 @@ static void test_table_order(void **st)
         {"bow", TRK_AT_FRAME},
         {"raised_foot_is_hand", TRK_AT_CLASSIFIED},
         {"knee_is_no_hand", TRK_AT_FEET},
+        {"surface_reach", TRK_AT_COSTED},
         {"path_from_across", TRK_AT_COSTED},
         {"shoulder_bump", TRK_AT_COSTED},
         {"bow_shoulder_top", TRK_AT_COSTED},
@@ -278,6 +279,27 @@ static void expect_first_paid(const limb_pick *lp, int32_t cost)
     assert_int_equal(lp->nm.cost[0][0], cost);
     assert_int_equal(lp->nm.cost[1][0], cost);
     assert_int_equal(lp->nm.cost[0][1], 0);
+}
+
+/* surface_reach: a candidate 1000 mm along the surface from its
+ * shoulder (more than 1.5 times the 480 mm reach) is out of that arm's
+ * reach, though near in a straight line; a fist 300 mm nearer the camera
+ * than the shoulder (an arm pointing at it) is held to the straight line
+ * only; a candidate within reach stays. */
+static void test_surface_reach(void **st)
+{
+    (void)st;
+    trk_frame f = body_right_arm_out();
+    paint(-200, 60, -200, 60, 40, Z - 300);
+    limb_pick lp = no_pick();
+    const int32_t cells[3] = {cell_near(-80, -300, Z), cell_near(-200, 60, Z - 300), cell_near(560, 150, Z)};
+    naming_of(&lp, cells, 3);
+    assert_false(resolver("surface_reach")(&f, &lp));
+    lp.nm.gs[0][0] = lp.nm.gs[0][1] = 1000;
+    assert_true(resolver("surface_reach")(&f, &lp));
+    assert_int_equal(lp.nm.cost[0][0], INT32_MAX);
+    assert_int_equal(lp.nm.cost[0][1], 0);
+    assert_int_equal(lp.nm.cost[1][0], 0);
 }
 
 /* path_from_across: a candidate whose path leaves the torso 100 mm on
@@ -499,6 +521,7 @@ int main(void)
         cmocka_unit_test(test_bow),
         cmocka_unit_test(test_raised_foot_is_hand),
         cmocka_unit_test(test_knee_is_no_hand),
+        cmocka_unit_test(test_surface_reach),
         cmocka_unit_test(test_path_from_across),
         cmocka_unit_test(test_shoulder_bump),
         cmocka_unit_test(test_bow_shoulder_top),
