@@ -61,19 +61,19 @@ static void new_scene(void)
  * at depth z: the player's cells it covers, nearer parts in front. */
 static void paint(int32_t ax, int32_t ay, int32_t bx, int32_t by, int32_t r, int32_t z)
 {
-    for (int32_t gy = 0; gy < TRK_GH; gy++)
-        for (int32_t gx = 0; gx < TRK_GW; gx++) {
-            int32_t i = gy * TRK_GW + gx;
-            if (t->z[i] && t->z[i] <= z) continue;
-            int64_t x = (int64_t)(gx * TRK_CELL_PX + 2 - CUB_KINECT_CX) * z / CUB_KINECT_FOCAL_PX;
-            int64_t y = (int64_t)(CUB_KINECT_CY - gy * TRK_CELL_PX - 2) * z / CUB_KINECT_FOCAL_PX;
-            int64_t dx = bx - ax, dy = by - ay, l2 = dx * dx + dy * dy;
-            int64_t u = l2 ? ((x - ax) * dx + (y - ay) * dy) * 1024 / l2 : 0;
-            u = u < 0 ? 0 : u > 1024 ? 1024 : u;
-            int64_t ex = x - (ax + dx * u / 1024), ey = y - (ay + dy * u / 1024);
-            if (ex * ex + ey * ey >= (int64_t)r * r) continue;
-            t->z[i] = (int16_t)z, t->x[i] = (int32_t)x, t->y[i] = (int32_t)y, t->mask[i] = 1;
-        }
+    int32_t dx = bx - ax, dy = by - ay, l2 = dx * dx + dy * dy;
+    for (int32_t i = 0; i < TRK_CELLS; i++) {
+        if (t->z[i] && t->z[i] <= z) continue;
+        int32_t gx = i % TRK_GW, gy = i / TRK_GW;
+        int32_t x = (gx * TRK_CELL_PX + 2 - CUB_KINECT_CX) * z / CUB_KINECT_FOCAL_PX;
+        int32_t y = (CUB_KINECT_CY - gy * TRK_CELL_PX - 2) * z / CUB_KINECT_FOCAL_PX;
+        /* the nearest point of the segment, at u/1024 along it */
+        int32_t u = 0;
+        if (l2 > 0) u = (int32_t)cub_fx_clamp((int32_t)(((int64_t)(x - ax) * dx + (int64_t)(y - ay) * dy) * 1024 / l2), 0, 1024);
+        int32_t ex = x - ax - dx * u / 1024, ey = y - ay - dy * u / 1024;
+        if (ex * ex + ey * ey >= r * r) continue;
+        t->z[i] = (int16_t)z, t->x[i] = x, t->y[i] = y, t->mask[i] = 1;
+    }
 }
 
 /* Head, torso and two legs apart, standing on the floor. */
