@@ -12,28 +12,28 @@ enum {
     FOOT_ABOVE = 200, /* a leg's tip within an arm's reach and this far above the floor is a hand */
     FOOT_LIFTED = 150, /* legs together: a foot this far above the floor stands on nothing */
     FOOT_BESIDE = 200, /* its cell within this of the hips' middle across the body */
-    FOOT_APART = 60,  /* and at least this far from the other foot */
-    FOOT_FLOOR = 100, /* and touching the floor within this */
+    FOOT_APART = 60,   /* and at least this far from the other foot */
+    FOOT_FLOOR = 100,  /* and touching the floor within this */
 };
 
-/* the hands' naming's special cases: a candidate this near (per mille of
- * stature) pays this much more (all but a veto) */
+/* the hands' naming's special cases: limits (per mille of stature unless
+ * said) and what a candidate found so pays (all but a veto) */
 enum {
-    HC_GEO = 1500,        /* per mille of the arm's reach: no farther along the surface from its shoulder */
-    HC_FORE = 220,        /* a "hand" this much nearer the camera than its shoulder: the arm points at it */
-    HC_NEAR = 120,        /* a "hand" this near a shoulder is a bump on it (on a bowed body, across the line of sight) */
+    HC_GEO = 1500, /* per mille of the arm's reach: no farther along the surface */
+    HC_FORE = 220, /* nearer the camera than its shoulder by this: the arm points at it */
+    HC_NEAR = 120, /* this near a shoulder: a bump on it (on a bow, across the line of sight) */
     HC_NEAR_COST = 800,
-    HC_HEAD = 130,        /* one this near the head's centre is a bump on the skull */
+    HC_HEAD = 130, /* this near the head's centre: a bump on the skull */
     HC_HEAD_COST = 400,
-    HC_ACROSS = 80,       /* a path leaving the torso this far on the other shoulder's side is the other arm's */
-    HC_ACROSS_COST = 400,
+    HC_ACROSS = 80,       /* its path leaving the torso this far on the other shoulder's side */
+    HC_ACROSS_COST = 400, /* ...is the other arm's */
 };
 
 /* an arm hanging against the thigh or the flank (no extremity: its hand
  * is reached across the touching surfaces, a short cut), per mille of
  * stature */
 enum {
-    HANG_OUT = 90,   /* out from the torso's axis by (the hip's side: 106; a hanging arm lies beside it) */
+    HANG_OUT = 90, /* out from the torso's axis by (the hip's side: 106; the arm lies beside it) */
     HANG_DROP = 250, /* the tip at least this far below the shoulder */
     HANG_CELLS = 6,  /* such cells at least (fewer are the hip's bulge or noise) */
 };
@@ -79,7 +79,8 @@ static bool knee_is_no_hand(const trk_frame *f, limb_pick *lp)
 {
     bool changed = false;
     for (int32_t k = 0; k < lp->ncand; k++)
-        if (lp->limb[k] == TRK_ARM && trk_on_leg(f, lp, lp->cand[k])) lp->limb[k] = TRK_NEITHER, changed = true;
+        if (lp->limb[k] == TRK_ARM && trk_on_leg(f, lp, lp->cand[k]))
+            lp->limb[k] = TRK_NEITHER, changed = true;
     return changed;
 }
 
@@ -143,9 +144,12 @@ static bool bowed_top(const trk_frame *f, const limb_pick *lp, int32_t k, int si
 {
     trk_p3 p = cell_p(f->t, lp->nm.cell[k]), sc = f->sc;
     if (near_a_shoulder(f, lp, k, side)) return false; /* paid as a bump already */
-    if (!lp->bent || p.z <= f->head_c.z || trk_along(p.x - sc.x, p.y - sc.y, p.z - sc.z, f->t->up) <= 0) return false;
+    if (!lp->bent || p.z <= f->head_c.z ||
+        trk_along(p.x - sc.x, p.y - sc.y, p.z - sc.z, f->t->up) <= 0)
+        return false;
     for (int s = 0; s < 2; s++)
-        if (trk_len(p.x - f->arm_root[s].x, p.y - f->arm_root[s].y, 0) < pm(f->st, HC_NEAR)) return true;
+        if (trk_len(p.x - f->arm_root[s].x, p.y - f->arm_root[s].y, 0) < pm(f->st, HC_NEAR))
+            return true;
     return false;
 }
 
@@ -198,18 +202,22 @@ static bool legs_together(const trk_frame *f, limb_pick *lp)
     if (!f->on_floor || !t->have_floor) return false;
     for (int side = 0; side < 2; side++) {
         int32_t tip = lp->foot[side], other = lp->foot[1 - side];
-        if (tip >= 0 && trk_along(t->x[tip], t->y[tip], t->z[tip], t->up) - t->floor_h_mm < pm(st, FOOT_LIFTED)) continue;
+        if (tip >= 0 &&
+            trk_along(t->x[tip], t->y[tip], t->z[tip], t->up) - t->floor_h_mm < pm(st, FOOT_LIFTED))
+            continue;
         int32_t best = -1, best_h = INT32_MAX;
         for (int32_t i = 0; i < TRK_CELLS; i++) {
             if (!t->mask[i] || t->dist0[i] == TRK_INF) continue;
-            int32_t l = TRK_LEFT_SIGN * trk_along(t->x[i] - hc.x, t->y[i] - hc.y, t->z[i] - hc.z, f->lat);
+            int32_t l =
+                TRK_LEFT_SIGN * trk_along(t->x[i] - hc.x, t->y[i] - hc.y, t->z[i] - hc.z, f->lat);
             if ((side == 0) != (l > 0) || trk_abs(l) > pm(st, FOOT_BESIDE)) continue;
             int32_t h = trk_along(t->x[i], t->y[i], t->z[i], t->up);
             if (h >= best_h) continue;
             if (other >= 0 && dist3(cell_p(t, i), cell_p(t, other)) < pm(st, FOOT_APART)) continue;
             best_h = h, best = i;
         }
-        if (best >= 0 && best_h - t->floor_h_mm < pm(st, FOOT_FLOOR)) lp->foot[side] = best, changed = true;
+        if (best >= 0 && best_h - t->floor_h_mm < pm(st, FOOT_FLOOR))
+            lp->foot[side] = best, changed = true;
     }
     return changed;
 }
@@ -265,7 +273,8 @@ static int32_t hang_tip(const trk_frame *f, const limb_pick *lp, int side)
         trk_p3 p = cell_p(t, i);
         int32_t up = trk_along(p.x - sc.x, p.y - sc.y, p.z - sc.z, axis);
         /* out from the axis (a leaning torso's axis slants sideways) */
-        int32_t l = sgn * (trk_along(p.x - sc.x, p.y - sc.y, p.z - sc.z, lft) - (int32_t)(((int64_t)tilt * up) >> 16));
+        int32_t l = sgn * (trk_along(p.x - sc.x, p.y - sc.y, p.z - sc.z, lft) -
+                           (int32_t)(((int64_t)tilt * up) >> 16));
         if (l < pm(st, HANG_OUT) || up > -pm(st, HANG_DROP)) continue;
         int32_t d = dist3(p, sh);
         if (d > reach) continue;
@@ -289,19 +298,32 @@ static bool hanging_arm(const trk_frame *f, limb_pick *lp)
     return changed;
 }
 
-/* In the order they run. */
+/* In the order they run; each function above says more, and the section
+ * of docs/tracker.md its comment names has the figures it was kept on. */
 static const trk_resolver_entry resolvers[] = {
+    /* a bow: the chest before the belly, the shoulders' tops as extremities */
     {"bow", TRK_AT_FRAME, bow},
+    /* a "leg" ending within an arm's reach high above the floor: a hand */
     {"raised_foot_is_hand", TRK_AT_CLASSIFIED, raised_foot_is_hand},
+    /* a knee raised aside or bent toward the camera looks like a hand */
     {"knee_is_no_hand", TRK_AT_FEET, knee_is_no_hand},
+    /* out of reach along the surface (a knee, a hip), unless the arm points at the camera */
     {"surface_reach", TRK_AT_COSTED, surface_reach},
+    /* a forearm across the body: its path leaves the torso on the other side */
     {"path_from_across", TRK_AT_COSTED, path_from_across},
+    /* a bump on a shoulder stands out like a short arm */
     {"shoulder_bump", TRK_AT_COSTED, shoulder_bump},
+    /* on a bow, the shoulders' tops are far along the surface, no hands */
     {"bow_shoulder_top", TRK_AT_COSTED, bow_shoulder_top},
+    /* the skull's side or a bowed head's chin is no hand */
     {"skull_bump", TRK_AT_COSTED, skull_bump},
+    /* legs together: one extremity for two feet */
     {"legs_together", TRK_AT_NAMED, legs_together},
+    /* a hand held before the torso: no extremity, but it stands out in depth */
     {"hand_before_torso", TRK_AT_NAMED, hand_before_torso},
+    /* a forearm pointing at the camera, or a guard: the elbow ends the arm's path */
     {"fist_beyond_elbow", TRK_AT_NAMED, fist_beyond_elbow},
+    /* an arm hanging against the thigh: no extremity, beside the hips */
     {"hanging_arm", TRK_AT_NAMED, hanging_arm},
 };
 

@@ -19,8 +19,8 @@
 
 #include "trk_body.h"
 
-#define ST 1200   /* stature, mm */
-#define Z 2000    /* the body's depth */
+#define ST 1200    /* stature, mm */
+#define Z 2000     /* the body's depth */
 #define FLOOR -800 /* the floor's height (y) */
 
 static void *mem;
@@ -69,7 +69,9 @@ static void paint(int32_t ax, int32_t ay, int32_t bx, int32_t by, int32_t r, int
         int32_t y = (CUB_KINECT_CY - gy * TRK_CELL_PX - 2) * z / CUB_KINECT_FOCAL_PX;
         /* the nearest point of the segment, at u/1024 along it */
         int32_t u = 0;
-        if (l2 > 0) u = (int32_t)cub_fx_clamp((int32_t)(((int64_t)(x - ax) * dx + (int64_t)(y - ay) * dy) * 1024 / l2), 0, 1024);
+        if (l2 > 0)
+            u = (int32_t)cub_fx_clamp(
+                (int32_t)(((int64_t)(x - ax) * dx + (int64_t)(y - ay) * dy) * 1024 / l2), 0, 1024);
         int32_t ex = x - ax - dx * u / 1024, ey = y - ay - dy * u / 1024;
         if (ex * ex + ey * ey >= r * r) continue;
         t->z[i] = (int16_t)z, t->x[i] = x, t->y[i] = y, t->mask[i] = 1;
@@ -86,7 +88,10 @@ static void paint_body(void)
 }
 
 /* The right arm held out level: its hand is a plain extremity. */
-static void paint_right_arm_out(void) { paint(140, 150, 520, 150, 35, Z); }
+static void paint_right_arm_out(void)
+{
+    paint(140, 150, 520, 150, 35, Z);
+}
 
 /* The player's cell nearest (x, y, z) (z 0: any depth, nearest in x, y). */
 static int32_t cell_near(int32_t x, int32_t y, int32_t z)
@@ -292,7 +297,8 @@ static void test_surface_reach(void **st)
     trk_frame f = body_right_arm_out();
     paint(-200, 60, -200, 60, 40, Z - 300);
     limb_pick lp = no_pick();
-    const int32_t cells[3] = {cell_near(-80, -300, Z), cell_near(-200, 60, Z - 300), cell_near(560, 150, Z)};
+    const int32_t cells[3] = {cell_near(-80, -300, Z), cell_near(-200, 60, Z - 300),
+                              cell_near(560, 150, Z)};
     naming_of(&lp, cells, 3);
     assert_false(resolver("surface_reach")(&f, &lp));
     lp.nm.gs[0][0] = lp.nm.gs[0][1] = 1000;
@@ -330,7 +336,8 @@ static void test_shoulder_bump(void **st)
     paint_body();
     trk_frame f = frame_of_body();
     limb_pick lp = no_pick();
-    const int32_t cells[3] = {cell_near(-140, 190, Z), cell_near(0, -600, Z), cell_near(60, -600, Z)};
+    const int32_t cells[3] = {cell_near(-140, 190, Z), cell_near(0, -600, Z),
+                              cell_near(60, -600, Z)};
     naming_of(&lp, cells, 3);
     assert_false(resolver("shoulder_bump")(&f, &lp));
     lp.nm.gs[0][0] = 100, lp.nm.go[1][0] = 100;
@@ -352,7 +359,8 @@ static void test_bow_shoulder_top(void **st)
     trk_frame f = frame_of_body();
     f.head_c.z = Z - 120;
     limb_pick lp = no_pick();
-    const int32_t cells[3] = {cell_near(-130, 200, Z), cell_near(-90, 230, Z - 200), cell_near(0, -600, Z)};
+    const int32_t cells[3] = {cell_near(-130, 200, Z), cell_near(-90, 230, Z - 200),
+                              cell_near(0, -600, Z)};
     naming_of(&lp, cells, 3);
     assert_false(resolver("bow_shoulder_top")(&f, &lp));
     assert_true(resolver("bow")(&f, &lp));
@@ -517,20 +525,13 @@ static void test_hanging_arm(void **st)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_table_order),
-        cmocka_unit_test(test_bow),
-        cmocka_unit_test(test_raised_foot_is_hand),
-        cmocka_unit_test(test_knee_is_no_hand),
-        cmocka_unit_test(test_surface_reach),
-        cmocka_unit_test(test_path_from_across),
-        cmocka_unit_test(test_shoulder_bump),
-        cmocka_unit_test(test_bow_shoulder_top),
-        cmocka_unit_test(test_skull_bump),
-        cmocka_unit_test(test_legs_together),
-        cmocka_unit_test(test_hand_before_torso),
-        cmocka_unit_test(test_fist_beyond_elbow),
-        cmocka_unit_test(test_guard_fist),
-        cmocka_unit_test(test_hanging_arm),
+        cmocka_unit_test(test_table_order),         cmocka_unit_test(test_bow),
+        cmocka_unit_test(test_raised_foot_is_hand), cmocka_unit_test(test_knee_is_no_hand),
+        cmocka_unit_test(test_surface_reach),       cmocka_unit_test(test_path_from_across),
+        cmocka_unit_test(test_shoulder_bump),       cmocka_unit_test(test_bow_shoulder_top),
+        cmocka_unit_test(test_skull_bump),          cmocka_unit_test(test_legs_together),
+        cmocka_unit_test(test_hand_before_torso),   cmocka_unit_test(test_fist_beyond_elbow),
+        cmocka_unit_test(test_guard_fist),          cmocka_unit_test(test_hanging_arm),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }
