@@ -112,35 +112,99 @@ static inline trk_p3 got(const cub_track_skeleton *s, int j)
     return (trk_p3){s->joint_mm[j].x >> 16, s->joint_mm[j].y >> 16, s->joint_mm[j].z >> 16};
 }
 
-/* The extremities picked for the limbs, and what naming them needs. */
+/* The arm's stretched length (shoulder to wrist) as learnt, the
+ * proportions' before it is. */
+static inline int32_t arm_reach_mm(const cub_tracker *t, int side, int32_t st)
+{
+    return t->reach_mm[side] ? t->reach_mm[side] : pm(st, P_UPPER_ARM + P_FOREARM);
+}
+
+/* The body's frame in this frame: where the torso is and how it stands,
+ * computed once (trk_fit.c) after the head and stature, and read by every
+ * later step instead of each taking the same values one by one. */
+typedef struct trk_frame {
+    const cub_tracker *t; /* the grid, the paths from the root, the state */
+    int32_t root;         /* the root cell: the torso's thickest */
+    int32_t st;           /* stature (mm), as learnt */
+    int32_t head;         /* the head's index among the extremities, -1 none */
+    trk_p3 head_c;        /* the head joint (its centre) */
+    trk_p3 sc;            /* the shoulder centre from the neck base (the torso and the arms' roots hang from it) */
+    trk_p3 sj;            /* the shoulder centre joint: its drop held to the proportions' range */
+    trk_p3 hc;            /* the pelvis' middle, on the axis (the limbs' reference) */
+    cub_vec3 axis;        /* up the torso, hc to sc (unit, Q16.16); up when there is no head */
+    cub_vec3 lat;         /* across the torso, toward +x (the image's right) */
+    cub_vec3 lft;         /* across the torso, toward the player's left */
+    cub_vec3 down;        /* down the torso in the image's plane (the axis's tilt in depth mostly taken out) */
+    trk_p3 arm_root[2];   /* the arms' roots (0 = left), from sc: what names the hands */
+    trk_p3 fit_root[2];   /* the same level with the shoulder joints (sj): what the elbows hang from */
+    int32_t joint_half;   /* the output shoulder joints' half width (mm, learnt per player) */
+    int32_t reach_mm;     /* shoulder to fingertip with slack: an extremity farther is no hand */
+    bool on_floor;        /* the body stands on the floor */
+} trk_frame;
+
+/* Which limb an extremity (not the head) ends. */
+enum { TRK_ARM = 0, TRK_LEG = 1, TRK_NEITHER = 2 };
+
+/* The hands' naming (trk_hands.c): its candidates and what each costs
+ * per side, both hands then chosen at once as the least summed cost. */
+typedef struct hand_naming {
+    int32_t n, cell[TRK_MAX_EXTREMA];     /* the candidates: extremities classed TRK_ARM */
+    int32_t cost[2][TRK_MAX_EXTREMA + 1]; /* [side][k], [side][n]: no hand; INT32_MAX: out of that arm's reach */
+    int32_t gs[2][TRK_MAX_EXTREMA];       /* along the surface from its own arm's root (straight where cut off) */
+    int32_t go[2][TRK_MAX_EXTREMA];       /* and from the other arm's */
+    int32_t le[2][TRK_MAX_EXTREMA];       /* where its path from the root leaves the torso, out to that side (mm) */
+} hand_naming;
+
+/* The extremities picked for the limbs: what the resolvers read and
+ * correct (trk_resolve.c). */
 typedef struct limb_pick {
-    int32_t hand[2], foot[2]; /* extremum cell per side (0 = left), -1 none */
-    int32_t elbow[2];         /* an elbow taken for the hand: its cell, else -1 */
-    int32_t head;
-    trk_p3 shoulder[2], head_c;
-    int32_t reach_mm; /* shoulder to fingertip, 0 unknown */
-    bool bent;        /* the body bent toward the camera (a bow) */
+    int32_t cand[TRK_MAX_EXTREMA], ncand; /* the extremities but the head, in the extremities' order */
+    uint8_t limb[TRK_MAX_EXTREMA];        /* cand k ends: TRK_ARM, TRK_LEG or TRK_NEITHER */
+    int32_t hand[2], foot[2];             /* extremum cell per side (0 = left), -1 none */
+    int32_t elbow[2];                     /* an elbow taken for the hand: its cell, else -1 */
+    int32_t hang[2];                      /* an arm with no hand hanging against the thigh: its tip, else -1 */
+    bool bent;                            /* the body bent toward the camera (a bow) */
+    hand_naming nm;
 } limb_pick;
 
+/* trk_resolve.c: the special poses, one signature, one table. A resolver
+ * reads the body's frame and corrects the limbs' pick; true when it
+ * changed something. Each runs at one stage of the pick (below). */
+typedef bool (*trk_resolver)(const trk_frame *f, limb_pick *lp);
+typedef enum trk_stage {
+    TRK_AT_FRAME,      /* the body's frame known, no limb named yet */
+    TRK_AT_CLASSIFIED, /* each extremity classed an arm's or a leg's */
+    TRK_AT_FEET,       /* the feet named, the hands' candidates known */
+    TRK_AT_COSTED,     /* each candidate costed per side (lp->nm), the hands not chosen yet */
+    TRK_AT_NAMED,      /* the hands named too */
+} trk_stage;
+typedef struct trk_resolver_entry {
+    const char *name;
+    trk_stage stage;
+    trk_resolver run;
+} trk_resolver_entry;
+/* The table, in the order the resolvers run; *n its length. */
+const trk_resolver_entry *trk_resolvers(int32_t *n);
+/* Run the table's resolvers of one stage, in order. */
+void trk_resolve(const trk_frame *f, limb_pick *lp, trk_stage stage);
+
 /* trk_hands.c: the body bent toward the camera (the head's centre well before the root) */
-bool trk_bent(const cub_tracker *t, int32_t root, const limb_pick *lp, int32_t st);
-/* surface distances from both shoulders (lp->shoulder) */
-void trk_from_shoulders(cub_tracker *t, limb_pick *lp);
-/* the hands among the candidate extremities: lp->hand (both -1 when none) */
-void trk_pick_hands(const cub_tracker *t, const int32_t *hands, int32_t nh, limb_pick *lp, trk_p3 sc, cub_vec3 lft,
-                    int32_t st);
+bool trk_bent(const trk_frame *f);
+/* surface distances from both arms' roots (f->arm_root) into t->dist_sh */
+void trk_from_shoulders(cub_tracker *t, const trk_frame *f);
+/* the hands' naming: each candidate classed TRK_ARM costed per side
+ * (lp->nm), then the pair with the least cost chosen: lp->hand (both -1
+ * when none) */
+void trk_cost_hands(const trk_frame *f, limb_pick *lp);
+void trk_choose_hands(limb_pick *lp);
 /* extremity i lies on the torso's surface (a shoulder bump, an elbow) */
-bool trk_on_torso(const cub_tracker *t, int32_t root, int32_t i, trk_p3 sc, trk_p3 hc, cub_vec3 axis, cub_vec3 lft,
-                  int32_t st);
+bool trk_on_torso(const trk_frame *f, int32_t i);
 /* cell c lies on a leg: on a named foot's path (a knee raised aside) or
  * near its knee (a bent knee's tip): no hand */
-bool trk_on_leg(const cub_tracker *t, int32_t c, const limb_pick *lp, int32_t st);
+bool trk_on_leg(const trk_frame *f, const limb_pick *lp, int32_t c);
 /* a hand before the torso on this side: a cell, -1 none */
-int32_t trk_hand_in_front(const cub_tracker *t, int32_t root, const limb_pick *lp, trk_p3 sc, trk_p3 hc,
-                          cub_vec3 axis, cub_vec3 lft, int side, int32_t st);
-
-/* an elbow taken for the hand: the fist beyond it, -1 none */
-int32_t trk_hand_beyond(const cub_tracker *t, const limb_pick *lp, trk_p3 sc, trk_p3 hc, cub_vec3 axis, cub_vec3 lft,
-                        int side, int32_t st);
+int32_t trk_hand_in_front(const trk_frame *f, const limb_pick *lp, int side);
+/* an elbow taken for the hand: the fist beyond it (or a guard's fist above it), -1 none */
+int32_t trk_hand_beyond(const trk_frame *f, const limb_pick *lp, int side);
 
 #endif

@@ -1,17 +1,16 @@
-/* From extremities to twenty joints: label the extremities (hands, feet;
- * the head and stature come from trk_head.c), then place the joints along
- * the geodesic paths and the torso axis with body proportions
- * (trk_body.h). */
+/* From extremities to twenty joints (the pipeline's steps 7-10, see
+ * tracker.c): the body's frame once per frame, the limbs' pick (the
+ * hands and feet among the extremities, corrected by the resolvers of
+ * trk_resolve.c), then the joints placed along the geodesic paths and the
+ * torso axis with body proportions (trk_body.h). */
 #include "trk_body.h"
 
-/* legs and feet: a leg's extremity within the arms' reach (percent) and
- * this far above the floor is a hand; legs held together put the second
- * foot at least this far from the first (per mille of stature) */
+/* an extremity this far from a shoulder (per mille of the arm's reach
+ * with the hand) is no hand */
 enum {
-    ARM_SLACK = 100,
-    FOOT_ABOVE = 200,
-    FOOT_APART = 60,
+    ARM_SLACK = 1000,
 };
+
 /* the elbow: how far around the path's cell it is looked for (per mille of
  * stature), the weight (quarters) of lying out to the arm's side, the
  * upper arm's length it fits (per mille of its share of the learnt
@@ -125,89 +124,6 @@ static trk_p3 onto_shoulder(const cub_tracker *t, trk_p3 p, int32_t r_mm)
     return onto_surface_within(t, p, r_mm, SH_NEAR);
 }
 
-/* Legs and arms among the extremities (all but the head): a leg joins the
- * torso below the root or ends low, unless it ends within an arm's reach
- * well above the floor; then the feet and the hands. */
-static void pick_limbs(const cub_tracker *t, int32_t root, const int32_t *ext, int32_t n, int32_t stature,
-                       trk_p3 sc, trk_p3 hc, cub_vec3 axis, cub_vec3 lat, limb_pick *lp)
-{
-    int32_t hands[TRK_MAX_EXTREMA], feet[TRK_MAX_EXTREMA], nh = 0, nf = 0;
-    trk_p3 r = cell_p(t, root);
-    for (int32_t k = 0; k < n; k++) {
-        if (k == lp->head) continue;
-        trk_p3 p = cell_p(t, ext[k]);
-        int32_t b = path_base(t, ext[k], pm(stature, 200));
-        trk_p3 bp = cell_p(t, b);
-        /* the attachment above or below the root; the tip's height decides
-         * only when the attachment is level with the root */
-        int32_t bh = trk_along(bp.x - r.x, bp.y - r.y, bp.z - r.z, axis);
-        int32_t dh = trk_along(p.x - hc.x, p.y - hc.y, p.z - hc.z, axis);
-        /* a hand hanging against the hip joins the torso low too, by a
-         * short cut: a leg raised high is also far along the surface */
-        bool leg = dh < -pm(stature, 250) || (bh < -pm(stature, 40) && t->dist0[ext[k]] > pm(stature, 550));
-        /* a foot is out of the arms' reach, or on the floor */
-        if (leg && lp->reach_mm > 0) {
-            /* each arm's reach as learnt (bodies differ), not shorter than
-             * the proportions' */
-            bool in_reach = false;
-            for (int side = 0; side < 2; side++) {
-                int32_t arm = t->reach_mm[side] + pm(stature, P_HAND_REACH);
-                if (arm < lp->reach_mm) arm = lp->reach_mm;
-                if (dist3(p, lp->shoulder[side]) < arm) in_reach = true;
-            }
-            int32_t above = trk_along(p.x, p.y, p.z, t->up) - t->floor_h_mm;
-            if (in_reach && t->have_floor && above > pm(stature, FOOT_ABOVE)) leg = false;
-        }
-        if (leg) feet[nf++] = ext[k];
-        else hands[nh++] = ext[k];
-    }
-    /* the feet: the two farthest along the surface (extrema come farthest
-     * first), each on its side of the hips */
-    lp->foot[0] = lp->foot[1] = -1;
-    int32_t m = nf < 2 ? nf : 2, s[2] = {0, 0};
-    for (int32_t k = 0; k < m; k++) {
-        trk_p3 p = cell_p(t, feet[k]);
-        s[k] = TRK_LEFT_SIGN * trk_along(p.x - hc.x, p.y - hc.y, p.z - hc.z, lat);
-    }
-    if (m == 2) {
-        int left = s[0] > s[1] ? 0 : 1;
-        lp->foot[0] = feet[left], lp->foot[1] = feet[1 - left];
-    } else if (m == 1) {
-        lp->foot[s[0] > 0 ? 0 : 1] = feet[0];
-    }
-    /* a knee raised aside stands out like a hand within reach, but the
-     * foot's path runs through it: it is no hand */
-    int32_t kept = 0;
-    for (int32_t k = 0; k < nh; k++)
-        if (!trk_on_leg(t, hands[k], lp, stature)) hands[kept++] = hands[k];
-    cub_vec3 lft = {lat.x * TRK_LEFT_SIGN, lat.y * TRK_LEFT_SIGN, lat.z * TRK_LEFT_SIGN};
-    trk_pick_hands(t, hands, kept, lp, sc, lft, stature);
-}
-
-/* Legs held together make one extremity for two feet: a leg whose tip
- * hangs well above the floor (or that has none) while the body stands on
- * it takes the lowest cell on its side of the hips, away from the other
- * foot, when that cell touches the floor. */
-static void feet_on_floor(const cub_tracker *t, trk_p3 hc, cub_vec3 lat, int32_t st, limb_pick *lp)
-{
-    if (!t->have_floor) return;
-    for (int side = 0; side < 2; side++) {
-        int32_t tip = lp->foot[side], other = lp->foot[1 - side];
-        if (tip >= 0 && trk_along(t->x[tip], t->y[tip], t->z[tip], t->up) - t->floor_h_mm < pm(st, 150)) continue;
-        int32_t best = -1, best_h = INT32_MAX;
-        for (int32_t i = 0; i < TRK_CELLS; i++) {
-            if (!t->mask[i] || t->dist0[i] == TRK_INF) continue;
-            int32_t l = TRK_LEFT_SIGN * trk_along(t->x[i] - hc.x, t->y[i] - hc.y, t->z[i] - hc.z, lat);
-            if ((side == 0) != (l > 0) || trk_abs(l) > pm(st, 200)) continue;
-            int32_t h = trk_along(t->x[i], t->y[i], t->z[i], t->up);
-            if (h >= best_h) continue;
-            if (other >= 0 && dist3(cell_p(t, i), cell_p(t, other)) < pm(st, FOOT_APART)) continue;
-            best_h = h, best = i;
-        }
-        if (best >= 0 && best_h - t->floor_h_mm < pm(st, 100)) lp->foot[side] = best;
-    }
-}
-
 /* The horizontal line across the torso (the shoulders' direction), from
  * the spread of the torso's surface in x and z. */
 static cub_vec3 torso_lateral(const cub_tracker *t, int32_t root, int32_t radius_mm)
@@ -276,19 +192,156 @@ static int32_t learn_shoulders(cub_tracker *t, int32_t m, int32_t st)
     return cur;
 }
 
-/* The elbow near the path's middle cell mid: the
- * player's cell around it that best fits both bone lengths from a (the
- * shoulder) and b (the wrist), out to the arm's side rather than toward
- * the body's middle: an arm against the torso lets the path cut across
- * the touching surfaces, which pulls the path's cell inward. other: the
- * other shoulder (the outward direction is away from it, level);
- * search_mm: how far around mid; w_up: the weight (quarters) of lying
- * above the shoulder. (Knees
- * keep the path's cell: legs together make the search find the other
- * leg.) */
-static trk_p3 middle_near(const cub_tracker *t, int32_t mid, trk_p3 a, int32_t la, trk_p3 b, int32_t lb, trk_p3 other,
-                          int32_t r, int32_t search_mm, int32_t w_up)
+/* The body's frame (trk_body.h): the head and stature first
+ * (trk_head.c), then the torso from the head down, the direction across
+ * it, and the arms' roots. */
+static void body_frame(cub_tracker *t, int32_t root, int32_t *ext, int32_t *next, trk_frame *f)
 {
+    f->t = t, f->root = root;
+    f->head = trk_fit_head(t, root, ext, next, &f->on_floor);
+    int32_t head = f->head >= 0 ? ext[f->head] : root, st = t->stature_mm;
+    f->st = st;
+    f->head_c = inside(cell_p(t, path_at(t, head, pm(st, P_HEAD_DOWN))), radius(st, R_HEAD));
+    /* the torso hangs from just below the neck base, where one was seen
+     * (the silhouette's shoulders: a long neck, a long torso); the
+     * shoulder centre joint, and the shoulder joints level with it, sit
+     * close to a fixed share of stature below the head top on every
+     * source, which the neck base measured on a silhouette (100-250 per
+     * mille, and a first reading taken on a bent body lasts) may only
+     * nudge */
+    int32_t sc_drop = t->neck_drop_mm ? t->neck_drop_mm + pm(st, P_BELOW_NECK) : pm(st, P_NECK_DOWN);
+    f->sc = inside(cell_p(t, path_at(t, head, sc_drop)), radius(st, R_TORSO));
+    int32_t sj_drop = cub_fx_clamp(sc_drop, pm(st, P_NECK_DOWN_MIN), pm(st, P_NECK_DOWN_MAX)); /* mm */
+    f->sj = inside(cell_p(t, path_at(t, head, sj_drop)), radius(st, R_TORSO));
+    trk_p3 sc = f->sc, sj = f->sj, rt = inside(cell_p(t, root), radius(st, R_TORSO));
+    f->axis = dist3(sc, rt) > 60 ? unit(sc.x - rt.x, sc.y - rt.y, sc.z - rt.z) : t->up;
+    if (f->head < 0) f->axis = t->up;
+    f->lat = torso_lateral(t, root, pm(st, 150));
+    f->lft = (cub_vec3){f->lat.x * TRK_LEFT_SIGN, f->lat.y * TRK_LEFT_SIGN, f->lat.z * TRK_LEFT_SIGN};
+    /* down the torso in the image's plane: the axis's tilt in depth is
+     * mostly the chest standing out before the neck (depth comes from the
+     * surface below) */
+    f->down = unit(f->axis.x, f->axis.y, f->axis.z * AXIS_Z / 4);
+    f->hc = add_s(sc, f->axis, -pm(st, P_HIPC));
+    /* the arms hang from the shoulders deep in the body (where they
+     * widen the silhouette below the shoulders); the joints the skeletons
+     * name shoulders sit nearer the front, and as far in from the
+     * silhouette's edge at their own height as the shoulder's round top is
+     * thick, whatever the source: CMU's wide, Bandai's close to the neck
+     * (the chest is as wide for both, and below the shoulders it or an arm
+     * held out hides where the joint is) */
+    int32_t half = run_half_mm(t, add_s(sc, f->axis, -pm(st, P_ARM_ROOT_RUN))) - pm(st, R_ARM_ROOT_EDGE);
+    if (half < pm(st, P_ARM_ROOT_MIN)) half = pm(st, P_SHOULDER_HALF);
+    if (half > pm(st, P_SHOULDER_MAX)) half = pm(st, P_SHOULDER_MAX);
+    int32_t jrun = run_half_mm(t, add_s(sj, f->axis, -pm(st, P_SHOULDER_RUN)));
+    f->joint_half = learn_shoulders(t, jrun - pm(st, R_SHOULDER_EDGE), st);
+    /* the hands are named from the arms' roots level with the neck-based
+     * centre; the elbows hang from roots level with the shoulder joints
+     * (sj, its drop held to the proportions' range): a bent or leaning
+     * body measures its neck base low, and a root 80 mm down the flank
+     * fits the elbow onto the torso */
+    for (int side = 0; side < 2; side++) {
+        int32_t h = side ? -half : half;
+        f->arm_root[side] = onto_shoulder(t, add_s(sc, f->lft, h), radius(st, R_SHOULDER));
+        f->fit_root[side] = onto_shoulder(t, add_s(sj, f->lft, h), radius(st, R_SHOULDER));
+    }
+    f->reach_mm = pm(st, P_UPPER_ARM + P_FOREARM + P_HAND_REACH) * ARM_SLACK / 1000;
+}
+
+/* The torso's joints: spine and hip centre down the torso in the
+ * image's plane, taking their depth from the surface there (the axis
+ * tilts in depth as the chest stands out); the hips too. */
+static void fit_torso(const trk_frame *f, cub_track_skeleton *s)
+{
+    const cub_tracker *t = f->t;
+    int32_t st = f->st;
+    trk_p3 sc = f->sc, hp = add_s(sc, f->down, -pm(st, P_HIPC + P_HIP_DROP));
+    put(s, CUB_KJ_HEAD, f->head_c, f->head >= 0 ? CUB_Q16_ONE : 0);
+    put(s, CUB_KJ_SHOULDER_CENTRE, f->sj, CUB_Q16_ONE * 3 / 4);
+    put(s, CUB_KJ_SPINE, onto_surface(t, add_s(sc, f->down, -pm(st, P_SPINE)), radius(st, R_TORSO)), CUB_Q16_ONE / 2);
+    put(s, CUB_KJ_HIP_CENTRE, onto_surface(t, add_s(sc, f->down, -pm(st, P_HIPC_JOINT)), radius(st, R_TORSO)),
+        CUB_Q16_ONE / 2);
+    put(s, CUB_KJ_HIP_L, onto_surface(t, add_s(hp, f->lft, pm(st, P_HIP_HALF)), radius(st, R_HIP)), CUB_Q16_ONE / 2);
+    put(s, CUB_KJ_HIP_R, onto_surface(t, add_s(hp, f->lft, -pm(st, P_HIP_HALF)), radius(st, R_HIP)), CUB_Q16_ONE / 2);
+}
+
+/* The output's shoulder joints, written once: the learnt width about
+ * the shoulder centre joint, R_SHOULDER_JOINT inside the surface (the
+ * arms were fitted from their roots, f->fit_root). */
+static void fit_shoulders(const trk_frame *f, cub_track_skeleton *s)
+{
+    int32_t st = f->st, front = radius(st, R_SHOULDER) - pm(st, R_SHOULDER_JOINT);
+    for (int side = 0; side < 2; side++) {
+        int32_t h = side ? -f->joint_half : f->joint_half;
+        trk_p3 j = onto_shoulder(f->t, add_s(f->sj, f->lft, h), radius(st, R_SHOULDER));
+        put(s, side ? CUB_KJ_SHOULDER_R : CUB_KJ_SHOULDER_L, (trk_p3){j.x, j.y, j.z - front}, CUB_Q16_ONE / 2);
+    }
+}
+
+/* Legs and arms among the extremities (all but the head): a leg joins the
+ * torso below the root or ends low (a hand hanging against the hip joins
+ * the torso low too, by a short cut: a leg raised high is also far along
+ * the surface). The resolvers of TRK_AT_CLASSIFIED may class it again. */
+static void classify_limbs(const trk_frame *f, const int32_t *ext, int32_t n, limb_pick *lp)
+{
+    const cub_tracker *t = f->t;
+    int32_t st = f->st;
+    trk_p3 r = cell_p(t, f->root), hc = f->hc;
+    lp->ncand = 0;
+    for (int32_t k = 0; k < n; k++) {
+        if (k == f->head) continue;
+        trk_p3 p = cell_p(t, ext[k]);
+        trk_p3 bp = cell_p(t, path_base(t, ext[k], pm(st, 200)));
+        /* the attachment above or below the root; the tip's height decides
+         * only when the attachment is level with the root */
+        int32_t bh = trk_along(bp.x - r.x, bp.y - r.y, bp.z - r.z, f->axis);
+        int32_t dh = trk_along(p.x - hc.x, p.y - hc.y, p.z - hc.z, f->axis);
+        bool leg = dh < -pm(st, 250) || (bh < -pm(st, 40) && t->dist0[ext[k]] > pm(st, 550));
+        lp->limb[lp->ncand] = leg ? TRK_LEG : TRK_ARM;
+        lp->cand[lp->ncand++] = ext[k];
+    }
+}
+
+/* The feet: the two legs farthest along the surface (extrema come
+ * farthest first), each on its side of the hips. */
+static void name_feet(const trk_frame *f, limb_pick *lp)
+{
+    int32_t feet[2], nf = 0, s[2] = {0, 0};
+    for (int32_t k = 0; k < lp->ncand && nf < 2; k++)
+        if (lp->limb[k] == TRK_LEG) feet[nf++] = lp->cand[k];
+    lp->foot[0] = lp->foot[1] = -1;
+    for (int32_t k = 0; k < nf; k++) {
+        trk_p3 p = cell_p(f->t, feet[k]), hc = f->hc;
+        s[k] = TRK_LEFT_SIGN * trk_along(p.x - hc.x, p.y - hc.y, p.z - hc.z, f->lat);
+    }
+    if (nf == 2) {
+        int left = s[0] > s[1] ? 0 : 1;
+        lp->foot[0] = feet[left], lp->foot[1] = feet[1 - left];
+    } else if (nf == 1) {
+        lp->foot[s[0] > 0 ? 0 : 1] = feet[0];
+    }
+}
+
+/* What the elbow's search fits: both bone lengths from a (the shoulder,
+ * la) and b (the wrist, lb); other: the other shoulder (the outward
+ * direction is away from it, level); r: the limb's radius; search_mm: how
+ * far around the path's cell; w_up: the weight (quarters) of lying above
+ * the shoulder. */
+typedef struct elbow_fit {
+    trk_p3 a, b, other;
+    int32_t la, lb, r, search_mm, w_up;
+} elbow_fit;
+
+/* The elbow near the path's middle cell mid: the player's cell around it
+ * that best fits both bone lengths, out to the arm's side rather than
+ * toward the body's middle: an arm against the torso lets the path cut
+ * across the touching surfaces, which pulls the path's cell inward.
+ * (Knees keep the path's cell: legs together make the search find the
+ * other leg.) */
+static trk_p3 middle_near(const cub_tracker *t, int32_t mid, const elbow_fit *ef)
+{
+    trk_p3 a = ef->a, b = ef->b, other = ef->other;
+    int32_t la = ef->la, lb = ef->lb, r = ef->r, search_mm = ef->search_mm, w_up = ef->w_up;
     trk_p3 m = cell_p(t, mid), c = {(a.x + other.x) / 2, (a.y + other.y) / 2, (a.z + other.z) / 2};
     int32_t ox = a.x - other.x, oz = a.z - other.z, ol = trk_len(ox, 0, oz);
     if (ol == 0 || m.z <= 0) return inside(m, r);
@@ -308,12 +361,14 @@ static trk_p3 middle_near(const cub_tracker *t, int32_t mid, trk_p3 a, int32_t l
     return inside(cell_p(t, best), r);
 }
 
-/* The arm from its fingertip cell tip; el: the extremity that was an
- * elbow taken for the hand (trk_hand_beyond), -1 none. */
-static void fit_arm(cub_tracker *t, cub_track_skeleton *s, int side, int32_t tip, int32_t el, int32_t st)
+/* The arm from its fingertip cell tip, hanging from its root level with
+ * the shoulder joints (f->fit_root); el: the extremity that was an elbow
+ * taken for the hand (trk_hand_beyond), -1 none. */
+static void fit_arm(cub_tracker *t, const trk_frame *f, cub_track_skeleton *s, int side, int32_t tip, int32_t el)
 {
     int js = side ? CUB_KJ_SHOULDER_R : CUB_KJ_SHOULDER_L;
-    trk_p3 sh = got(s, js);
+    int32_t st = f->st;
+    trk_p3 sh = f->fit_root[side];
     int32_t r = radius(st, R_LIMB);
     trk_p3 hand = inside(hand_centre(t, tip, pm(st, P_HAND_REACH)), r);
     trk_p3 wrist = inside(cell_p(t, path_at(t, tip, pm(st, P_WRIST_IN))), r);
@@ -330,14 +385,15 @@ static void fit_arm(cub_tracker *t, cub_track_skeleton *s, int side, int32_t tip
     int32_t lu = pm(st, P_UPPER_ARM), lf = pm(st, P_FOREARM);
     int32_t reach = learn_reach(t, side, dist3(sh, wrist), lu + lf);
     lu = reach * lu / (lu + lf), lf = reach - lu;
-    trk_p3 other = got(s, side ? CUB_KJ_SHOULDER_L : CUB_KJ_SHOULDER_R);
+    trk_p3 other = f->fit_root[1 - side];
     /* a folded arm: the elbow fitting both lengths lies on a wide circle
      * that the path need not cross (a forearm raised before the chest),
      * and mostly hangs below */
     bool folded = dist3(sh, wrist) * 1000 < reach * EL_FOLDED;
     int32_t search = pm(st, folded ? EL_SEARCH_FOLDED : EL_SEARCH), w_up = folded ? EL_W_UP : 0;
-    trk_p3 elbow = middle_near(t, path_middle(t, tip, sh, lu, wrist, lf), sh, lu * EL_UPPER / 1000, wrist, lf, other, r,
-                               search, w_up);
+    elbow_fit ef = {.a = sh, .b = wrist, .other = other, .la = lu * EL_UPPER / 1000, .lb = lf, .r = r,
+                    .search_mm = search, .w_up = w_up};
+    trk_p3 elbow = middle_near(t, path_middle(t, tip, sh, lu, wrist, lf), &ef);
     put(s, js + 1, elbow, CUB_Q16_ONE * 3 / 4);
     put(s, js + 2, wrist, CUB_Q16_ONE);
     put(s, js + 3, hand, CUB_Q16_ONE);
@@ -392,8 +448,11 @@ static int32_t chain_agrees(const cub_tracker *t, const trk_p3 chain[4])
  * root joint, or hanging straight down along the torso. A leg keeps last
  * frame's pose; an arm takes whichever has more of its joints agreeing
  * with the depth. Confidence 0. */
-static void guess_chain(const cub_tracker *t, cub_track_skeleton *s, int j0, cub_vec3 axis, int32_t st, bool leg)
+static void guess_chain(const trk_frame *f, cub_track_skeleton *s, int j0, bool leg)
 {
+    const cub_tracker *t = f->t;
+    cub_vec3 axis = f->axis;
+    int32_t st = f->st;
     static const int32_t arm[4] = {0, 190, 320, 365}, leg_[4] = {0, 267, 552, 560};
     trk_p3 base = got(s, j0), hang[4], kept[4];
     for (int k = 1; k <= 3; k++) hang[k] = add_s(base, axis, -pm(st, leg ? leg_[k] : arm[k]));
@@ -409,53 +468,14 @@ static void guess_chain(const cub_tracker *t, cub_track_skeleton *s, int j0, cub
     for (int k = 1; k <= 3; k++) put(s, j0 + k, chain[k], 0);
 }
 
-/* The arm's stretched length (shoulder to wrist) as learnt, the
- * proportions' before it is. */
-static int32_t arm_reach_mm(const cub_tracker *t, int side, int32_t st)
+/* A straight arm hanging from the output's shoulder joint to the tip
+ * cell (the resolver hanging_arm's): the hand, wrist and elbow on the line
+ * between them (inside the limb). */
+static void hang_arm(const trk_frame *f, cub_track_skeleton *s, int side, int32_t tip)
 {
-    return t->reach_mm[side] ? t->reach_mm[side] : pm(st, P_UPPER_ARM + P_FOREARM);
-}
-
-/* an arm hanging against the thigh or the flank (no extremity: its hand
- * is reached across the touching surfaces, a short cut), per mille of
- * stature */
-enum {
-    HANG_OUT = 90,   /* out from the torso's axis by (the hip's side: 106; a hanging arm lies beside it) */
-    HANG_DROP = 250, /* the tip at least this far below the shoulder */
-    HANG_CELLS = 6,  /* such cells at least (fewer are the hip's bulge or noise) */
-};
-
-/* The hanging hand's tip on this side: among the player's cells out to
- * the arm's side of the torso's axis beyond the hip, within the arm's
- * reach below its shoulder and off the legs, the farthest from the
- * shoulder (the silhouette's arm beside the thigh ends in the hand); -1
- * when too few cells stand out there. */
-static int32_t hang_tip(const cub_tracker *t, const limb_pick *lp, trk_p3 sc, cub_vec3 axis, cub_vec3 lft, int side,
-                        int32_t st)
-{
-    trk_p3 sh = lp->shoulder[side];
-    int32_t sgn = side ? -1 : 1, tilt = trk_along(axis.x, axis.y, axis.z, lft);
-    int32_t reach = arm_reach_mm(t, side, st) + pm(st, P_HAND_REACH);
-    int32_t best = -1, best_d = 0, n = 0;
-    for (int32_t i = 0; i < TRK_CELLS; i++) {
-        if (!t->mask[i] || t->dist0[i] == TRK_INF) continue;
-        trk_p3 p = cell_p(t, i);
-        int32_t up = trk_along(p.x - sc.x, p.y - sc.y, p.z - sc.z, axis);
-        /* out from the axis (a leaning torso's axis slants sideways) */
-        int32_t l = sgn * (trk_along(p.x - sc.x, p.y - sc.y, p.z - sc.z, lft) - (int32_t)(((int64_t)tilt * up) >> 16));
-        if (l < pm(st, HANG_OUT) || up > -pm(st, HANG_DROP)) continue;
-        int32_t d = dist3(p, sh);
-        if (d > reach) continue;
-        n++;
-        if (d > best_d && !trk_on_leg(t, i, lp, st)) best_d = d, best = i;
-    }
-    return n >= HANG_CELLS ? best : -1;
-}
-
-/* A straight arm hanging from the shoulder joint j0 to the tip cell: the
- * hand, wrist and elbow on the line between them (inside the limb). */
-static void hang_arm(const cub_tracker *t, cub_track_skeleton *s, int j0, int32_t tip, int side, int32_t st)
-{
+    const cub_tracker *t = f->t;
+    int32_t st = f->st;
+    int j0 = side ? CUB_KJ_SHOULDER_R : CUB_KJ_SHOULDER_L;
     int32_t r = radius(st, R_LIMB);
     trk_p3 sh = got(s, j0), tp = inside(cell_p(t, tip), r);
     int32_t l = dist3(sh, tp);
@@ -472,105 +492,38 @@ static void hang_arm(const cub_tracker *t, cub_track_skeleton *s, int j0, int32_
     }
 }
 
+/* The pipeline's steps 7-10 (tracker.c): the body's frame, the limbs'
+ * pick with the resolvers at each stage, then the joints. */
 void trk_fit_skeleton(cub_tracker *t, int32_t root, int32_t *ext, int32_t next, cub_track_skeleton *s)
 {
-    bool on_floor;
-    limb_pick lp = {.head = trk_fit_head(t, root, ext, &next, &on_floor), .elbow = {-1, -1}};
-    int32_t head = lp.head >= 0 ? ext[lp.head] : root, st = t->stature_mm;
-    trk_p3 hd = inside(cell_p(t, path_at(t, head, pm(st, P_HEAD_DOWN))), radius(st, R_HEAD));
-    /* the torso hangs from just below the neck base, where one was seen
-     * (the silhouette's shoulders: a long neck, a long torso); the
-     * shoulder centre joint, and the shoulder joints level with it, sit
-     * close to a fixed share of stature below the head top on every
-     * source, which the neck base measured on a silhouette (100-250 per
-     * mille, and a first reading taken on a bent body lasts) may only
-     * nudge */
-    int32_t sc_drop = t->neck_drop_mm ? t->neck_drop_mm + pm(st, P_BELOW_NECK) : pm(st, P_NECK_DOWN);
-    trk_p3 sc = inside(cell_p(t, path_at(t, head, sc_drop)), radius(st, R_TORSO));
-    int32_t sj_drop = cub_fx_clamp(sc_drop, pm(st, P_NECK_DOWN_MIN), pm(st, P_NECK_DOWN_MAX)); /* mm */
-    trk_p3 sj = inside(cell_p(t, path_at(t, head, sj_drop)), radius(st, R_TORSO));
-    trk_p3 rt = inside(cell_p(t, root), radius(st, R_TORSO));
-    cub_vec3 axis = dist3(sc, rt) > 60 ? unit(sc.x - rt.x, sc.y - rt.y, sc.z - rt.z) : t->up;
-    if (lp.head < 0) axis = t->up;
-    cub_vec3 lat = torso_lateral(t, root, pm(st, 150));
-    cub_vec3 lft = {lat.x * TRK_LEFT_SIGN, lat.y * TRK_LEFT_SIGN, lat.z * TRK_LEFT_SIGN};
-    /* down the torso in the image's plane: the axis's tilt in depth is
-     * mostly the chest standing out before the neck (depth comes from the
-     * surface below) */
-    cub_vec3 down = unit(axis.x, axis.y, axis.z * AXIS_Z / 4);
-    trk_p3 hc = add_s(sc, axis, -pm(st, P_HIPC));
-    put(s, CUB_KJ_HEAD, hd, lp.head >= 0 ? CUB_Q16_ONE : 0);
-    put(s, CUB_KJ_SHOULDER_CENTRE, sj, CUB_Q16_ONE * 3 / 4);
-    put(s, CUB_KJ_SPINE, onto_surface(t, add_s(sc, down, -pm(st, P_SPINE)), radius(st, R_TORSO)), CUB_Q16_ONE / 2);
-    put(s, CUB_KJ_HIP_CENTRE, onto_surface(t, add_s(sc, down, -pm(st, P_HIPC_JOINT)), radius(st, R_TORSO)),
-        CUB_Q16_ONE / 2);
-    trk_p3 hp = add_s(sc, down, -pm(st, P_HIPC + P_HIP_DROP));
-    int32_t half = run_half_mm(t, add_s(sc, axis, -pm(st, P_ARM_ROOT_RUN))) - pm(st, R_ARM_ROOT_EDGE);
-    if (half < pm(st, P_ARM_ROOT_MIN)) half = pm(st, P_SHOULDER_HALF);
-    if (half > pm(st, P_SHOULDER_MAX)) half = pm(st, P_SHOULDER_MAX);
-    int32_t jrun = run_half_mm(t, add_s(sj, axis, -pm(st, P_SHOULDER_RUN)));
-    int32_t jhalf = learn_shoulders(t, jrun - pm(st, R_SHOULDER_EDGE), st);
-    /* the arms hang from the shoulders deep in the body (where they
-     * widen the silhouette below the shoulders); the joints the skeletons
-     * name shoulders sit nearer the front, and as far in from the
-     * silhouette's edge at their own height as the shoulder's round top is
-     * thick, whatever the source: CMU's wide, Bandai's close to the neck
-     * (the chest is as wide for both, and below the shoulders it or an arm
-     * held out hides where the joint is) */
-    trk_p3 shl = onto_shoulder(t, add_s(sc, lft, half), radius(st, R_SHOULDER));
-    trk_p3 shr = onto_shoulder(t, add_s(sc, lft, -half), radius(st, R_SHOULDER));
-    put(s, CUB_KJ_SHOULDER_L, shl, CUB_Q16_ONE / 2);
-    put(s, CUB_KJ_SHOULDER_R, shr, CUB_Q16_ONE / 2);
-    put(s, CUB_KJ_HIP_L, onto_surface(t, add_s(hp, lft, pm(st, P_HIP_HALF)), radius(st, R_HIP)), CUB_Q16_ONE / 2);
-    put(s, CUB_KJ_HIP_R, onto_surface(t, add_s(hp, lft, -pm(st, P_HIP_HALF)), radius(st, R_HIP)), CUB_Q16_ONE / 2);
-
-    lp.shoulder[0] = got(s, CUB_KJ_SHOULDER_L), lp.shoulder[1] = got(s, CUB_KJ_SHOULDER_R), lp.head_c = hd;
-    lp.reach_mm = pm(st, P_UPPER_ARM + P_FOREARM + P_HAND_REACH) * ARM_SLACK / 100;
-    lp.bent = trk_bent(t, root, &lp, st);
-    trk_from_shoulders(t, &lp);
-    pick_limbs(t, root, ext, next, st, sc, hc, axis, lat, &lp);
-    if (on_floor) feet_on_floor(t, hc, lat, st, &lp);
-    for (int side = 0; side < 2; side++) {
-        int32_t h = lp.hand[side];
-        if (h >= 0 && !trk_on_torso(t, root, h, sc, hc, axis, lft, st)) continue;
-        int32_t f = trk_hand_in_front(t, root, &lp, sc, hc, axis, lft, side, st);
-        if (f >= 0) lp.hand[side] = f;
-    }
-    /* a forearm pointing at the camera or raised before the chest leaves
-     * its elbow as the arm's extremity: the fist lies beyond it */
-    for (int side = 0; side < 2; side++) {
-        if (lp.hand[side] < 0) continue;
-        int32_t f = trk_hand_beyond(t, &lp, sc, hc, axis, lft, side, st);
-        if (f >= 0) lp.elbow[side] = lp.hand[side], lp.hand[side] = f;
-    }
-    /* the elbows hang from the arms' roots level with the shoulder joints
-     * (sj, its drop held to the proportions' range), not with the
-     * neck-based centre: a bent or leaning body measures its neck base
-     * low, and a root 80 mm down the flank fits the elbow onto the torso;
-     * the hands were named from the roots above */
-    put(s, CUB_KJ_SHOULDER_L, onto_shoulder(t, add_s(sj, lft, half), radius(st, R_SHOULDER)), CUB_Q16_ONE / 2);
-    put(s, CUB_KJ_SHOULDER_R, onto_shoulder(t, add_s(sj, lft, -half), radius(st, R_SHOULDER)), CUB_Q16_ONE / 2);
+    trk_frame f;
+    body_frame(t, root, ext, &next, &f);
+    fit_torso(&f, s);
+    limb_pick lp = {.elbow = {-1, -1}, .hang = {-1, -1}};
+    trk_from_shoulders(t, &f);
+    trk_resolve(&f, &lp, TRK_AT_FRAME);
+    classify_limbs(&f, ext, next, &lp);
+    trk_resolve(&f, &lp, TRK_AT_CLASSIFIED);
+    name_feet(&f, &lp);
+    trk_resolve(&f, &lp, TRK_AT_FEET);
+    trk_cost_hands(&f, &lp);
+    trk_resolve(&f, &lp, TRK_AT_COSTED);
+    trk_choose_hands(&lp);
+    trk_resolve(&f, &lp, TRK_AT_NAMED);
     for (int side = 0; side < 2; side++) {
         int jh = side ? CUB_KJ_HIP_R : CUB_KJ_HIP_L;
-        if (lp.hand[side] >= 0) fit_arm(t, s, side, lp.hand[side], lp.elbow[side], st);
-        if (lp.foot[side] >= 0) fit_leg(t, s, side, lp.foot[side], st);
-        else guess_chain(t, s, jh, axis, st, true);
+        if (lp.hand[side] >= 0) fit_arm(t, &f, s, side, lp.hand[side], lp.elbow[side]);
+        if (lp.foot[side] >= 0) fit_leg(t, s, side, lp.foot[side], f.st);
+        else guess_chain(&f, s, jh, true);
     }
-    int32_t front = radius(st, R_SHOULDER) - pm(st, R_SHOULDER_JOINT);
-    /* the output's shoulder joints (the arms were fitted from their roots above) */
-    trk_p3 jl = onto_shoulder(t, add_s(sj, lft, jhalf), radius(st, R_SHOULDER));
-    trk_p3 jr = onto_shoulder(t, add_s(sj, lft, -jhalf), radius(st, R_SHOULDER));
-    put(s, CUB_KJ_SHOULDER_L, (trk_p3){jl.x, jl.y, jl.z - front}, CUB_Q16_ONE / 2);
-    put(s, CUB_KJ_SHOULDER_R, (trk_p3){jr.x, jr.y, jr.z - front}, CUB_Q16_ONE / 2);
+    fit_shoulders(&f, s);
     /* an arm without a hand: hanging beside the thigh when the silhouette
      * shows it there, else last frame's pose about the output's shoulder
      * or down the torso */
     for (int side = 0; side < 2; side++) {
         if (lp.hand[side] >= 0) continue;
-        int j0 = side ? CUB_KJ_SHOULDER_R : CUB_KJ_SHOULDER_L;
-        int32_t h = hang_tip(t, &lp, sc, axis, lft, side, st);
-        if (h >= 0) hang_arm(t, s, j0, h, side, st);
-        else guess_chain(t, s, j0, axis, st, false);
+        if (lp.hang[side] >= 0) hang_arm(&f, s, side, lp.hang[side]);
+        else guess_chain(&f, s, side ? CUB_KJ_SHOULDER_R : CUB_KJ_SHOULDER_L, false);
     }
 }
 

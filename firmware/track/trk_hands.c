@@ -3,11 +3,12 @@
  * which is no extremity. */
 #include "trk_body.h"
 
-/* naming the hands: limits (per mille of stature, or percent of the arm's
- * reach: shoulder to fingertip) and the cost's weights (quarters) */
+/* naming the hands: limits (per mille of stature, or of the arm's reach:
+ * shoulder to fingertip) and the cost's weights (quarters); the naming's
+ * special cases (the reach along the surface, a bump on a shoulder or the
+ * skull, a path from across the body) are trk_resolve.c's */
 enum {
-    HC_REACH = 130,    /* percent: no farther from its shoulder, straight */
-    HC_GEO = 150,      /* percent: nor along the surface */
+    HC_REACH = 1300,   /* per mille of the reach: no farther from its shoulder, straight */
     HC_W_GOWN = 4,     /* along the surface, nearer its own shoulder than the other */
     HC_W_FAR = 1,      /* far along the arm from its shoulder */
     HC_W_SIDE = 0,     /* on its own side of the body (0: a sword's grip crosses the hands) */
@@ -15,16 +16,9 @@ enum {
     HC_LONG = 600,     /* ...up to this */
     HC_W_PREV = 3,     /* near last frame's hand... */
     HC_PREV_CAP = 300, /* ...counted up to this */
-    HC_NEAR = 120,     /* a "hand" this near a shoulder is a bump on it (on a bowed body, across the line of sight)... */
-    HC_NEAR_COST = 800,
-    HC_HEAD = 130,     /* ...and one this near the head's centre a bump on the skull */
-    HC_HEAD_COST = 400,
     HC_NONE = -100,    /* the cost of seeing no hand on a side */
     HC_W_ENTRY = 6,    /* the side the arm's path leaves the torso... */
     HC_ENTRY = 180,    /* ...this far from the root along the surface */
-    HC_ACROSS = 80,    /* a path leaving the torso this far on the other shoulder's side... */
-    HC_ACROSS_COST = 400, /* ...is the other arm's: this much, all but a veto */
-    HC_FORE = 220,     /* a "hand" this much nearer the camera than its shoulder: the arm points at it */
 };
 
 /* a hand before the torso, per mille of stature */
@@ -70,9 +64,9 @@ enum {
 
 /* The head's centre well before the root's surface: a bow (its chest and
  * shoulders stand out before the belly, the hands hang below). */
-bool trk_bent(const cub_tracker *t, int32_t root, const limb_pick *lp, int32_t st)
+bool trk_bent(const trk_frame *f)
 {
-    return lp->head >= 0 && lp->head_c.z < t->z[root] - pm(st, HF_BOW);
+    return f->head >= 0 && f->head_c.z < f->t->z[f->root] - pm(f->st, HF_BOW);
 }
 
 /* Distances along the surface from the shoulder joint sh (the player's
@@ -95,48 +89,31 @@ static void from_shoulder(cub_tracker *t, trk_p3 sh, int32_t *dist)
     if (best >= 0) trk_geodesic_coarse(t, dist, best);
 }
 
-void trk_from_shoulders(cub_tracker *t, limb_pick *lp)
+void trk_from_shoulders(cub_tracker *t, const trk_frame *f)
 {
-    from_shoulder(t, lp->shoulder[0], t->dist_sh[0]);
-    from_shoulder(t, lp->shoulder[1], t->dist_sh[1]);
+    from_shoulder(t, f->arm_root[0], t->dist_sh[0]);
+    from_shoulder(t, f->arm_root[1], t->dist_sh[1]);
 }
 
-/* A bowed body's shoulder top: a body bent toward the camera shows its
- * shoulders' tops as extremities far from the root, round the bent
- * torso's depth from the arm's root (the surface test misses them), while
- * the hands hang below, hidden or beside the thighs. Such a top lies above
- * the shoulder centre, over a shoulder across the camera's line of sight,
- * and behind the bowed head's centre (a hand called to the mouth stands
- * before it). */
-static bool bow_shoulder(const cub_tracker *t, trk_p3 p, const limb_pick *lp, trk_p3 sc, int32_t st)
-{
-    if (!lp->bent || p.z <= lp->head_c.z || trk_along(p.x - sc.x, p.y - sc.y, p.z - sc.z, t->up) <= 0) return false;
-    for (int side = 0; side < 2; side++)
-        if (trk_len(p.x - lp->shoulder[side].x, p.y - lp->shoulder[side].y, 0) < pm(st, HC_NEAR)) return true;
-    return false;
-}
-
-/* The cost of naming candidate c side's hand (mm-like units; lower is
+/* The cost of naming candidate k side's hand (mm-like units; lower is
  * better), INT32_MAX when out of that arm's reach: a hand is nearer its own
- * shoulder than the other, on its own side of the body, near where it was,
- * and at the end of a long path (a bump on the torso is not). */
-static int32_t hand_cost(const cub_tracker *t, int32_t c, int side, const limb_pick *lp, trk_p3 sc, cub_vec3 lft,
-                         int32_t st)
+ * shoulder than the other, near where it was, and at the end of a long
+ * path (a bump on the torso is not); what it needs for the naming's
+ * special cases (the resolvers of TRK_AT_COSTED) goes into lp->nm too. */
+static int32_t hand_cost(const trk_frame *f, limb_pick *lp, int32_t k, int side)
 {
-    trk_p3 p = cell_p(t, c);
-    int32_t d = dist3(p, lp->shoulder[side]), d_other = dist3(p, lp->shoulder[1 - side]);
-    if (d > lp->reach_mm * HC_REACH / 100) return INT32_MAX;
+    const cub_tracker *t = f->t;
+    int32_t c = lp->nm.cell[k];
+    trk_p3 p = cell_p(t, c), sc = f->sc;
+    cub_vec3 lft = f->lft;
+    int32_t st = f->st;
+    int32_t d = dist3(p, f->arm_root[side]), d_other = dist3(p, f->arm_root[1 - side]);
+    if (d > f->reach_mm * HC_REACH / 1000) return INT32_MAX;
     /* along the surface from each shoulder; a part cut off by the
      * projector's shadow (a hand before the body) has the straight line */
     int32_t gs = trk_coarse_at(t, t->dist_sh[side], c), go = trk_coarse_at(t, t->dist_sh[1 - side], c);
     if (gs == TRK_INF) gs = d;
     if (go == TRK_INF) go = d_other;
-    /* the arm is no longer than its reach along the surface either (a knee
-     * or a hip bulge within reach is not: its path runs down the torso) */
-    /* (an arm pointing at the camera is foreshortened into depth steps,
-     * and the surface runs round them: there the straight line counts) */
-    bool fore = p.z < lp->shoulder[side].z - pm(st, HC_FORE);
-    if ((fore ? d : gs) > lp->reach_mm * HC_GEO / 100) return INT32_MAX;
     int32_t sgn = side ? -1 : 1, l = sgn * trk_along(p.x - sc.x, p.y - sc.y, p.z - sc.z, lft);
     int32_t g = t->dist0[c] < pm(st, HC_LONG) ? t->dist0[c] : pm(st, HC_LONG);
     int32_t cost = -HC_W_SIDE * l / 4 - HC_W_LONG * g / 4;
@@ -148,42 +125,42 @@ static int32_t hand_cost(const cub_tracker *t, int32_t c, int side, const limb_p
         e = t->parent0[e];
     int32_t le = sgn * trk_along(t->x[e] - sc.x, t->y[e] - sc.y, t->z[e] - sc.z, lft);
     cost -= HC_W_ENTRY * le / 4;
-    /* well across the axis the weight alone is outbid by the surface from
-     * the shoulders (a forearm across the body ends nearer the other one) */
-    if (le < -pm(st, HC_ACROSS)) cost += pm(st, HC_ACROSS_COST);
-    /* nearer its own shoulder than the other; the arm's length from it (a
-     * bump on a shoulder is no hand) */
-    cost += HC_W_GOWN * (gs - go) / 4 - HC_W_FAR * (gs < lp->reach_mm ? gs : lp->reach_mm) / 4;
-    if (gs < pm(st, HC_NEAR) || go < pm(st, HC_NEAR)) cost += pm(st, HC_NEAR_COST);
-    else if (bow_shoulder(t, p, lp, sc, st)) cost += pm(st, HC_NEAR_COST);
-    /* on the head's surface: the skull's side, not a hand (a palm's centre
-     * keeps off the head's) */
-    if (lp->head >= 0 && dist3(p, lp->head_c) < pm(st, HC_HEAD)) cost += pm(st, HC_HEAD_COST);
+    /* nearer its own shoulder than the other; the arm's length from it */
+    cost += HC_W_GOWN * (gs - go) / 4 - HC_W_FAR * (gs < f->reach_mm ? gs : f->reach_mm) / 4;
     if (t->have_prev && t->lost_frames == 0) {
         int32_t dp = dist3(p, got(&t->prev, side ? CUB_KJ_HAND_R : CUB_KJ_HAND_L));
         cost += HC_W_PREV * (dp < pm(st, HC_PREV_CAP) ? dp : pm(st, HC_PREV_CAP)) / 4;
     }
+    lp->nm.gs[side][k] = gs, lp->nm.go[side][k] = go, lp->nm.le[side][k] = le;
     return cost;
+}
+
+void trk_cost_hands(const trk_frame *f, limb_pick *lp)
+{
+    hand_naming *nm = &lp->nm;
+    nm->n = 0;
+    for (int32_t k = 0; k < lp->ncand; k++)
+        if (lp->limb[k] == TRK_ARM) nm->cell[nm->n++] = lp->cand[k];
+    for (int side = 0; side < 2; side++) {
+        for (int32_t k = 0; k < nm->n; k++) nm->cost[side][k] = hand_cost(f, lp, k, side);
+        nm->cost[side][nm->n] = pm(f->st, HC_NONE); /* no hand seen on this side */
+    }
 }
 
 /* Both hands at once: the pair of candidates (or none for a side) with the
  * least summed cost. */
-void trk_pick_hands(const cub_tracker *t, const int32_t *hands, int32_t nh, limb_pick *lp, trk_p3 sc, cub_vec3 lft,
-                    int32_t st)
+void trk_choose_hands(limb_pick *lp)
 {
-    int32_t cost[2][TRK_MAX_EXTREMA + 1];
-    for (int side = 0; side < 2; side++) {
-        for (int32_t k = 0; k < nh; k++) cost[side][k] = hand_cost(t, hands[k], side, lp, sc, lft, st);
-        cost[side][nh] = pm(st, HC_NONE); /* no hand seen on this side */
-    }
+    const hand_naming *nm = &lp->nm;
+    int32_t nh = nm->n;
     int64_t best = INT64_MAX;
     lp->hand[0] = lp->hand[1] = -1;
     for (int32_t a = 0; a <= nh; a++)
         for (int32_t b = 0; b <= nh; b++) {
             if (a == b && a < nh) continue;
-            if (cost[0][a] == INT32_MAX || cost[1][b] == INT32_MAX) continue;
-            int64_t c = (int64_t)cost[0][a] + cost[1][b];
-            if (c < best) best = c, lp->hand[0] = a < nh ? hands[a] : -1, lp->hand[1] = b < nh ? hands[b] : -1;
+            if (nm->cost[0][a] == INT32_MAX || nm->cost[1][b] == INT32_MAX) continue;
+            int64_t c = (int64_t)nm->cost[0][a] + nm->cost[1][b];
+            if (c < best) best = c, lp->hand[0] = a < nh ? nm->cell[a] : -1, lp->hand[1] = b < nh ? nm->cell[b] : -1;
         }
 }
 
@@ -200,10 +177,13 @@ static int32_t torso_z(const cub_tracker *t, int32_t root, trk_p3 p, cub_vec3 ax
 
 /* An extremity on the torso's surface (not before it): a shoulder bump or
  * the elbow of an arm whose hand lies before the chest. */
-bool trk_on_torso(const cub_tracker *t, int32_t root, int32_t i, trk_p3 sc, trk_p3 hc, cub_vec3 axis, cub_vec3 lft,
-                  int32_t st)
+bool trk_on_torso(const trk_frame *f, int32_t i)
 {
-    if (t->z[i] <= t->z[root] - pm(st, HF_FRONT)) return false;
+    const cub_tracker *t = f->t;
+    trk_p3 sc = f->sc, hc = f->hc;
+    cub_vec3 axis = f->axis, lft = f->lft;
+    int32_t st = f->st;
+    if (t->z[i] <= t->z[f->root] - pm(st, HF_FRONT)) return false;
     trk_p3 p = cell_p(t, i);
     int32_t up_sc = trk_along(p.x - sc.x, p.y - sc.y, p.z - sc.z, axis);
     int32_t up_hc = trk_along(p.x - hc.x, p.y - hc.y, p.z - hc.z, axis);
@@ -233,7 +213,7 @@ static bool near_foot_path(const cub_tracker *t, trk_p3 p, const limb_pick *lp, 
  * bent knee's inner side, and its outer tip, raised aside or toward the
  * camera, stands a thigh's thickness off the path: HF_FOOT_PATH misses
  * it, and a wider path distance everywhere takes hands beside the thigh). */
-static bool near_knee(const cub_tracker *t, int32_t c, const limb_pick *lp, int32_t st)
+static bool near_knee(const cub_tracker *t, const limb_pick *lp, int32_t c, int32_t st)
 {
     trk_p3 p = cell_p(t, c);
     for (int side = 0; side < 2; side++) {
@@ -249,7 +229,7 @@ static bool near_knee(const cub_tracker *t, int32_t c, const limb_pick *lp, int3
  * the root runs along one away from the hips (the foot's path follows the
  * raised thigh's underside, the knee's tip sticks out above it, farther
  * than HF_FOOT_PATH). A real hand's path runs along the arm. */
-static bool on_foot_path(const cub_tracker *t, int32_t c, const limb_pick *lp, int32_t st)
+static bool on_foot_path(const cub_tracker *t, const limb_pick *lp, int32_t c, int32_t st)
 {
     int32_t near_mm = pm(st, HF_FOOT_PATH);
     if (near_foot_path(t, cell_p(t, c), lp, t->dist0[c] - near_mm, near_mm)) return true;
@@ -259,9 +239,9 @@ static bool on_foot_path(const cub_tracker *t, int32_t c, const limb_pick *lp, i
                           pm(st, HF_JOIN_NEAR));
 }
 
-bool trk_on_leg(const cub_tracker *t, int32_t c, const limb_pick *lp, int32_t st)
+bool trk_on_leg(const trk_frame *f, const limb_pick *lp, int32_t c)
 {
-    return on_foot_path(t, c, lp, st) || near_knee(t, c, lp, st);
+    return on_foot_path(f->t, lp, c, f->st) || near_knee(f->t, lp, c, f->st);
 }
 
 /* A hand held before the torso is no extremity (its path ends in the
@@ -269,10 +249,12 @@ bool trk_on_leg(const cub_tracker *t, int32_t c, const limb_pick *lp, int32_t st
  * clearly nearer the camera than the torso's surface, on the shoulder's
  * side and within the arm's reach, the farthest along the surface from
  * the root. */
-int32_t trk_hand_in_front(const cub_tracker *t, int32_t root, const limb_pick *lp, trk_p3 sc, trk_p3 hc,
-                          cub_vec3 axis, cub_vec3 lft, int side, int32_t st)
+int32_t trk_hand_in_front(const trk_frame *f, const limb_pick *lp, int side)
 {
-    trk_p3 sh = lp->shoulder[side];
+    const cub_tracker *t = f->t;
+    trk_p3 sc = f->sc, hc = f->hc, sh = f->arm_root[side];
+    cub_vec3 axis = f->axis, lft = f->lft;
+    int32_t root = f->root, st = f->st;
     int32_t other = lp->hand[1 - side];
     int32_t zf = t->z[root] - pm(st, HF_FRONT), reach = pm(st, P_UPPER_ARM + P_FOREARM + P_HAND_REACH);
     int32_t best = -1, best_s = INT32_MIN, nfront = 0, sgn = side ? -1 : 1;
@@ -289,14 +271,14 @@ int32_t trk_hand_in_front(const cub_tracker *t, int32_t root, const limb_pick *l
         if (d > reach) continue;
         if (other >= 0 && dist3(p, cell_p(t, other)) < pm(st, HF_OTHER)) continue;
         /* a face leaning forward is no fist before it */
-        if (lp->head >= 0 && dist3(p, lp->head_c) < pm(st, HF_HEAD)) continue;
+        if (f->head >= 0 && dist3(p, f->head_c) < pm(st, HF_HEAD)) continue;
         nfront++;
         /* the fist ends the forearm's path: a guard's elbow hangs as far
          * from the shoulder as its fist, but is nearer the root along the
          * surface (depth steps cost extra there) */
         if (d <= pm(st, HF_MIN) || t->dist0[i] <= best_s) continue;
         /* a knee raised before the hip stands out in depth too */
-        if (!on_foot_path(t, i, lp, st)) best_s = t->dist0[i], best = i;
+        if (!on_foot_path(t, lp, i, st)) best_s = t->dist0[i], best = i;
     }
     return nfront >= HF_CELLS ? best : -1;
 }
@@ -307,11 +289,13 @@ int32_t trk_hand_in_front(const cub_tracker *t, int32_t root, const limb_pick *l
  * shoulder than the elbow). The fist is the top of the cells above the
  * elbow at its depth, about as far from the shoulder as it (the upper
  * arm's cells run up to the shoulder), off the face; -1 when too few. */
-static int32_t fist_above(const cub_tracker *t, const limb_pick *lp, int side, int32_t de, int32_t gx0, int32_t gy0,
-                          int32_t rc, int32_t st)
+static int32_t fist_above(const trk_frame *f, const limb_pick *lp, int side)
 {
-    trk_p3 pe = cell_p(t, lp->hand[side]), sh = lp->shoulder[side];
-    int32_t other = lp->hand[1 - side], lim = pm(st, HB_NEAR);
+    const cub_tracker *t = f->t;
+    int32_t e = lp->hand[side], st = f->st;
+    trk_p3 pe = cell_p(t, e), sh = f->arm_root[side];
+    int32_t other = lp->hand[1 - side], lim = pm(st, HB_NEAR), de = dist3(pe, sh);
+    int32_t rc = lim * CUB_KINECT_FOCAL_PX / (pe.z * TRK_CELL_PX) + 1, gx0 = e % TRK_GW, gy0 = e / TRK_GW;
     int32_t best = -1, best_up = INT32_MIN, n = 0;
     for (int32_t gy = gy0 - rc; gy <= gy0; gy++)
         for (int32_t gx = gx0 - rc; gx <= gx0 + rc; gx++) {
@@ -322,7 +306,7 @@ static int32_t fist_above(const cub_tracker *t, const limb_pick *lp, int side, i
             int32_t up = trk_along(p.x - pe.x, p.y - pe.y, p.z - pe.z, t->up);
             if (up < pm(st, HG_UP) || dist3(p, pe) > lim || dist3(p, sh) < de - pm(st, HG_LESS)) continue;
             if (other >= 0 && dist3(p, cell_p(t, other)) < pm(st, HF_OTHER)) continue;
-            if (lp->head >= 0 && dist3(p, lp->head_c) < pm(st, HF_HEAD)) continue;
+            if (f->head >= 0 && dist3(p, f->head_c) < pm(st, HF_HEAD)) continue;
             n++;
             if (up > best_up) best_up = up, best = i;
         }
@@ -339,19 +323,21 @@ static int32_t fist_above(const cub_tracker *t, const limb_pick *lp, int side, i
  * arm's fist before a real hand, the belly of a side bend); a fist at the
  * back of the room shows fewer cells. A guard's fist by the chin is
  * neither nearer nor farther: it is looked for above the elbow first. */
-int32_t trk_hand_beyond(const cub_tracker *t, const limb_pick *lp, trk_p3 sc, trk_p3 hc, cub_vec3 axis, cub_vec3 lft,
-                        int side, int32_t st)
+int32_t trk_hand_beyond(const trk_frame *f, const limb_pick *lp, int side)
 {
-    int32_t e = lp->hand[side], other = lp->hand[1 - side];
-    trk_p3 pe = cell_p(t, e), sh = lp->shoulder[side], so = lp->shoulder[1 - side];
+    const cub_tracker *t = f->t;
+    trk_p3 sc = f->sc, hc = f->hc;
+    cub_vec3 axis = f->axis, lft = f->lft;
+    int32_t e = lp->hand[side], other = lp->hand[1 - side], st = f->st;
+    trk_p3 pe = cell_p(t, e), sh = f->arm_root[side], so = f->arm_root[1 - side];
     if (pe.z <= 0) return -1;
     int32_t deo = dist3(pe, so) - pm(st, HB_ACROSS);
     int32_t de = dist3(pe, sh), lim = pm(st, HB_NEAR), reach = pm(st, P_UPPER_ARM + P_FOREARM + P_HAND_REACH);
     int32_t rc = lim * CUB_KINECT_FOCAL_PX / (pe.z * TRK_CELL_PX) + 1, gx0 = e % TRK_GW, gy0 = e / TRK_GW;
     int32_t best = -1, best_z = INT32_MAX, n = 0;
     if (!lp->bent && de <= pm(st, HG_ELBOW) && trk_along(pe.x - sh.x, pe.y - sh.y, pe.z - sh.z, t->up) < 0) {
-        int32_t f = fist_above(t, lp, side, de, gx0, gy0, rc, st);
-        if (f >= 0) return f;
+        int32_t fist = fist_above(f, lp, side);
+        if (fist >= 0) return fist;
     }
     for (int32_t gy = gy0 - rc; gy <= gy0 + rc; gy++)
         for (int32_t gx = gx0 - rc; gx <= gx0 + rc; gx++) {
@@ -363,7 +349,7 @@ int32_t trk_hand_beyond(const cub_tracker *t, const limb_pick *lp, trk_p3 sc, tr
             if (dist3(p, pe) > lim || ds < de + pm(st, HB_MORE) || ds > reach) continue;
             if (trk_along(p.x - hc.x, p.y - hc.y, p.z - hc.z, axis) < -pm(st, HB_BELOW)) continue;
             if (other >= 0 && dist3(p, cell_p(t, other)) < pm(st, HF_OTHER)) continue;
-            if (lp->head >= 0 && dist3(p, lp->head_c) < pm(st, HF_HEAD)) continue;
+            if (f->head >= 0 && dist3(p, f->head_c) < pm(st, HF_HEAD)) continue;
             n++;
             /* the nearest the camera, not the farthest from the shoulder:
              * a fist pointing at the camera is the forearm's nearest part,
