@@ -3,28 +3,7 @@
 #include <string.h>
 
 #include "codec_internal.h"
-
-typedef struct reader {
-    const uint8_t *p;
-    size_t len, pos;
-} reader;
-
-static uint8_t rd_u8(reader *r)
-{
-    return r->pos < r->len ? r->p[r->pos++] : 0;
-}
-
-static uint16_t rd_u16(reader *r)
-{
-    uint16_t lo = rd_u8(r);
-    return (uint16_t)(lo | (uint16_t)rd_u8(r) << 8);
-}
-
-static uint32_t rd_u32(reader *r)
-{
-    uint32_t lo = rd_u16(r);
-    return lo | (uint32_t)rd_u16(r) << 16;
-}
+#include "codec_reader.h"
 
 static cub_q16 rd_split(reader *r)
 {
@@ -49,15 +28,6 @@ static cub_quat rd_quat(reader *r)
     q.y = cub_codec_dequant_unit(rd_u16(r));
     q.z = cub_codec_dequant_unit(rd_u16(r));
     return cub_fx_quat_normalize(q);
-}
-
-static cub_err refuse(cub_codec_problem *why, const char *what, size_t offset)
-{
-    if (why) {
-        why->what = what;
-        why->offset = offset;
-    }
-    return CUB_ERR_FORMAT;
 }
 
 typedef struct header {

@@ -28,12 +28,14 @@
 
 #include "codec_vs.h"
 #include "cub/codec.h"
+#include "cub/codec_enc.h"
 #include "cub/io.h"
 #include "cub/pack.h"
 
 #define SHELL_MM 30.0
 #define MAX_FILES 512
 #define MAX_CODECS 3
+#define DEFAULT_BOUND_CM 0.01
 #define QUICK_CLIPS 2
 #define QUICK_FRAMES 240
 #define TIME_RUNS 3
@@ -243,6 +245,57 @@ static double seed_time_all(void *self)
 
 static seed_state seed_st;
 
+/* ---- ours: the error-bounded stream --------------------------------------- */
+
+typedef struct keys_state {
+    double bound_mm;
+    cub_keys_result enc;
+    cub_skeleton skel;
+    cub_keys k;
+    cub_pose pose;
+} keys_state;
+
+static void keys_release(void *self)
+{
+    keys_state *s = self;
+    free(s->enc.data);
+    s->enc.data = NULL;
+}
+
+static int keys_encode(void *self, const cub_clip *clip, size_t *bytes)
+{
+    keys_state *s = self;
+    keys_release(s);
+    if (cub_keys_encode(clip, s->bound_mm, &s->enc)) return -1;
+    *bytes = s->enc.len;
+    return cub_keys_open(s->enc.data, s->enc.len, &s->skel, &s->k, NULL) ? -1 : 0;
+}
+
+static int keys_pose(void *self, int frame, vs_pose *out)
+{
+    keys_state *s = self;
+    if (cub_keys_pose(&s->k, frame, &s->pose)) return -1;
+    for (int j = 0; j < s->skel.joint_count; j++) {
+        cub_quat r = s->pose.rot[j];
+        out->rot[j][0] = r.w / 1073741824.0, out->rot[j][1] = r.x / 1073741824.0;
+        out->rot[j][2] = r.y / 1073741824.0, out->rot[j][3] = r.z / 1073741824.0;
+        cub_vec3 t = j == 0 ? s->pose.root_mm : s->pose.has_trans ? s->pose.trans_mm[j] : s->skel.joints[j].offset_mm;
+        out->pos[j][0] = t.x / 65536.0, out->pos[j][1] = t.y / 65536.0, out->pos[j][2] = t.z / 65536.0;
+    }
+    return 0;
+}
+
+static double keys_time_all(void *self)
+{
+    keys_state *s = self;
+    double t0 = now_s();
+    for (int f = 0; f < s->k.frame_count; f++)
+        if (cub_keys_pose(&s->k, f, &s->pose)) return -1;
+    return now_s() - t0;
+}
+
+static keys_state keys_st = {.bound_mm = 10.0 * DEFAULT_BOUND_CM};
+
 /* ---- the run ------------------------------------------------------------- */
 
 typedef struct run {
@@ -414,9 +467,10 @@ static void usage(FILE *f)
                "  --library FILE  the clip library (default %s/clips/bear.cubclips)\n"
                "  --clips GLOB    only the clips whose SET/NAME matches (sets: cmu animdraw\n"
                "                  bandai bear; e.g. 'cmu/*' or 'bandai/*walk*')\n"
+               "  --bound CM      our codec's bound (default %g cm: ACL's threshold)\n"
                "  --quick         at most %d clips per set, each cut to %d frames\n"
                "  --per-clip      a row per clip and codec\n",
-               CUB_DATA_DIR_DEFAULT, CUB_ASSETS_DIR, QUICK_CLIPS, QUICK_FRAMES);
+               CUB_DATA_DIR_DEFAULT, CUB_ASSETS_DIR, DEFAULT_BOUND_CM, QUICK_CLIPS, QUICK_FRAMES);
 }
 
 static int parse(int argc, char **argv, run *r, const char **data, const char **library)
@@ -428,6 +482,7 @@ static int parse(int argc, char **argv, run *r, const char **data, const char **
         else if (!strcmp(a, "--library") && has) *library = argv[++i];
         else if (!strcmp(a, "--clips") && has) r->glob = argv[++i];
         else if (!strcmp(a, "--quick")) r->quick = 1;
+        else if (!strcmp(a, "--bound") && has) keys_st.bound_mm = 10.0 * atof(argv[++i]);
         else if (!strcmp(a, "--per-clip")) r->per_clip = 1;
         else if (!strcmp(a, "--help") || !strcmp(a, "-h")) return 1;
         else {
@@ -454,6 +509,7 @@ int main(int argc, char **argv)
         r.codec_count++;
     else
         printf("bench_codec_vs: ACL is skipped: ../shared/peers/acl was not there when this was built\n");
+    r.codecs[r.codec_count++] = (vs_codec){"ours", keys_encode, keys_pose, keys_time_all, keys_release, &keys_st};
     r.codecs[r.codec_count++] = (vs_codec){"seed", seed_encode, seed_pose, seed_time_all, seed_release, &seed_st};
     static const struct {
         const char *set;

@@ -1,0 +1,558 @@
+/* The cubkeys encoder (cub/codec_enc.h). Per track: the default, a
+ * constant, or keys: the largest step 2^shift whose rounding holds the
+ * track's tolerance, and up to three finer ones, each with greedy key
+ * removal (extend a linear run while every frame inside stays within the
+ * tolerance), the cheapest kept. Tolerances: a rotation of joint j may be
+ * off by s * bound / lever_j radians, lever_j being the longest reach from
+ * j to a virtual vertex below it; a translation by s * bound mm. The scale s
+ * is searched on the real decoder's measured error. Doubles only pick
+ * candidates; the bound is checked on the integer decode. */
+#include "cub/codec_enc.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cub/codec.h"
+
+#define Q30 1073741824.0
+#define Q16 65536.0
+#define MAX_SHIFT 30
+#define SHIFT_TRIES 4
+#define GROW_STEPS 8
+#define SHRINK_STEPS 24
+#define BISECT_STEPS 3
+
+typedef struct src_track {
+    int rotation, joint;
+    int32_t *v;  /* [n * 3]: x y z on w >= 0 (Q2.30), or mm (Q16.16) */
+    int32_t def[3];
+} src_track;
+
+typedef struct enc_track {
+    int kind, shift, bits[3], keys;
+    int32_t base[3];
+    uint8_t *key;   /* [n] 1 where a key is */
+    uint32_t *code; /* [n * 3] codes, valid where key */
+} enc_track;
+
+typedef struct enc {
+    const cub_clip *clip;
+    int n, count;
+    src_track src[CUB_KEYS_MAX_TRACKS];
+    enc_track trk[CUB_KEYS_MAX_TRACKS];
+    double lever[CUB_MOTION_MAX_JOINTS];
+    uint32_t *scratch; /* [n * 3] */
+} enc;
+
+/* ---- per-track error, in doubles ------------------------------------- */
+
+static void rot_of(const double *x, double *q)
+{
+    double s = x[0] * x[0] + x[1] * x[1] + x[2] * x[2];
+    q[0] = s < 1 ? sqrt(1 - s) : 0;
+    q[1] = x[0], q[2] = x[1], q[3] = x[2];
+    if (s > 1) {
+        double m = sqrt(s);
+        for (int c = 1; c < 4; c++) q[c] /= m;
+    }
+}
+
+/* Error of value x (decoded units as doubles) at frame f: 1 - |dot| for a
+ * rotation, squared distance (mm^2) for a translation. */
+static double err_at(const src_track *s, int f, const double *x)
+{
+    const int32_t *v = s->v + 3 * (size_t)f;
+    if (s->rotation) {
+        double a[4], b[4], xs[3] = {v[0] / Q30, v[1] / Q30, v[2] / Q30};
+        rot_of(x, a);
+        rot_of(xs, b);
+        double d = a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + a[3] * b[3];
+        return 1 - fabs(d);
+    }
+    double e = 0;
+    for (int c = 0; c < 3; c++) {
+        double d = (x[c] - v[c]) / Q16;
+        e += d * d;
+    }
+    return e;
+}
+
+static double unit(const src_track *s)
+{
+    return s->rotation ? Q30 : Q16;
+}
+
+static int fits_value(const src_track *s, int n, const int32_t *val, double tol)
+{
+    double x[3] = {val[0] / unit(s), val[1] / unit(s), val[2] / unit(s)};
+    for (int f = 0; f < n; f++)
+        if (err_at(s, f, x) > tol) return 0;
+    return 1;
+}
+
+/* ---- keys at one shift ------------------------------------------------ */
+
+/* Codes of every frame at shift sh (into code); 0 if rounding alone breaks
+ * the tolerance or a value would leave int32. */
+static int quantise(const src_track *s, int n, int sh, double tol, enc_track *t, uint32_t *code)
+{
+    int64_t half = sh ? (int64_t)1 << (sh - 1) : 0;
+    for (int c = 0; c < 3; c++) {
+        int32_t mn = s->v[c];
+        for (int f = 1; f < n; f++) mn = s->v[3 * (size_t)f + c] < mn ? s->v[3 * (size_t)f + c] : mn;
+        t->base[c] = mn;
+        uint32_t top = 0;
+        for (int f = 0; f < n; f++) {
+            uint32_t k = (uint32_t)(((int64_t)s->v[3 * (size_t)f + c] - mn + half) >> sh);
+            code[3 * (size_t)f + c] = k;
+            top = k > top ? k : top;
+        }
+        int b = 0;
+        while (b < 32 && (top >> b)) b++;
+        t->bits[c] = b;
+        if (mn + ((((int64_t)1 << b) - 1) << sh) > INT32_MAX) return 0;
+    }
+    t->shift = sh;
+    for (int f = 0; f < n; f++) {
+        double x[3];
+        for (int c = 0; c < 3; c++)
+            x[c] = cub_keys_key(t->base[c], code[3 * (size_t)f + c], sh, s->rotation) / unit(s);
+        if (err_at(s, f, x) > tol) return 0;
+    }
+    return 1;
+}
+
+static void key_x(const src_track *s, const enc_track *t, const uint32_t *code, int f, double *x)
+{
+    for (int c = 0; c < 3; c++)
+        x[c] = cub_keys_key(t->base[c], code[3 * (size_t)f + c], t->shift, s->rotation) / unit(s);
+}
+
+/* Whether the line from key a to key b holds every frame between. */
+static int run_holds(const src_track *s, const enc_track *t, const uint32_t *code, int a, int b, double tol)
+{
+    double xa[3], xb[3];
+    key_x(s, t, code, a, xa);
+    key_x(s, t, code, b, xb);
+    for (int f = a + 1; f < b; f++) {
+        double u = (double)(f - a) / (b - a), x[3];
+        for (int c = 0; c < 3; c++) x[c] = xa[c] + (xb[c] - xa[c]) * u;
+        if (err_at(s, f, x) > tol) return 0;
+    }
+    return 1;
+}
+
+/* Greedy key removal; the number of keys. */
+static int place_keys(const src_track *s, int n, const enc_track *t, const uint32_t *code, double tol,
+                      uint8_t *key)
+{
+    memset(key, 0, (size_t)n);
+    key[0] = 1;
+    int a = 0, keys = 1;
+    while (a < n - 1) {
+        int best = a + 1;
+        for (int b = a + 2; b < n && b - a <= CUB_KEYS_MAX_GAP; b++) {
+            if (!run_holds(s, t, code, a, b, tol)) break;
+            best = b;
+        }
+        key[best] = 1;
+        keys++;
+        a = best;
+    }
+    return keys;
+}
+
+/* ---- one track ---------------------------------------------------------- */
+
+static void encode_track(enc *e, int i, double tol)
+{
+    const src_track *s = &e->src[i];
+    enc_track *t = &e->trk[i];
+    int n = e->n;
+    t->kind = CUB_KEYS_DEFAULT;
+    if (fits_value(s, n, s->def, tol)) return;
+    t->kind = CUB_KEYS_CONSTANT;
+    for (int c = 0; c < 3; c++) {
+        int32_t mn = s->v[c], mx = s->v[c];
+        for (int f = 1; f < n; f++) {
+            int32_t x = s->v[3 * (size_t)f + c];
+            mn = x < mn ? x : mn;
+            mx = x > mx ? x : mx;
+        }
+        t->base[c] = (int32_t)(((int64_t)mn + mx) / 2);
+    }
+    if (fits_value(s, n, t->base, tol)) return;
+    t->kind = CUB_KEYS_ANIMATED;
+    int top = MAX_SHIFT;
+    enc_track trial = *t;
+    while (top > 0 && !quantise(s, n, top, tol, &trial, e->scratch)) top--;
+    long best_cost = -1;
+    uint8_t *key = malloc((size_t)n);
+    for (int sh = top; sh >= 0 && sh > top - SHIFT_TRIES && key; sh--) {
+        if (!quantise(s, n, sh, tol, &trial, e->scratch) && sh > 0) continue;
+        int keys = place_keys(s, n, &trial, e->scratch, tol, key);
+        long cost = (long)keys * (trial.bits[0] + trial.bits[1] + trial.bits[2]);
+        if (best_cost >= 0 && cost >= best_cost) continue;
+        best_cost = cost;
+        t->shift = trial.shift;
+        memcpy(t->bits, trial.bits, sizeof t->bits);
+        memcpy(t->base, trial.base, sizeof t->base);
+        t->keys = keys;
+        memcpy(t->key, key, (size_t)n);
+        memcpy(t->code, e->scratch, sizeof *t->code * 3 * (size_t)n);
+    }
+    free(key);
+}
+
+/* ---- the stream ---------------------------------------------------------- */
+
+typedef struct writer {
+    uint8_t *p;
+    size_t len, cap;
+    int bad;
+} writer;
+
+static void put(writer *w, const void *src, size_t n)
+{
+    if (w->len + n > w->cap) {
+        size_t cap = w->cap ? w->cap * 2 : 4096;
+        while (cap < w->len + n) cap *= 2;
+        uint8_t *p = realloc(w->p, cap);
+        if (!p) {
+            w->bad = 1;
+            return;
+        }
+        w->p = p, w->cap = cap;
+    }
+    memcpy(w->p + w->len, src, n);
+    w->len += n;
+}
+
+static void put_u8(writer *w, unsigned v)
+{
+    uint8_t b = (uint8_t)v;
+    put(w, &b, 1);
+}
+
+static void put_u32(writer *w, uint32_t v)
+{
+    uint8_t b[4] = {(uint8_t)v, (uint8_t)(v >> 8), (uint8_t)(v >> 16), (uint8_t)(v >> 24)};
+    put(w, b, 4);
+}
+
+static void put_u64(writer *w, uint64_t v)
+{
+    put_u32(w, (uint32_t)v);
+    put_u32(w, (uint32_t)(v >> 32));
+}
+
+static void write_joints(writer *w, const cub_skeleton *sk)
+{
+    for (int j = 0; j < sk->joint_count; j++) {
+        const cub_joint *jt = &sk->joints[j];
+        size_t len = strlen(jt->name);
+        put_u8(w, (unsigned)len);
+        put(w, jt->name, len);
+        put_u8(w, (unsigned)(jt->parent + 1));
+        put_u8(w, jt->is_end_site);
+        put_u32(w, (uint32_t)jt->offset_mm.x);
+        put_u32(w, (uint32_t)jt->offset_mm.y);
+        put_u32(w, (uint32_t)jt->offset_mm.z);
+    }
+}
+
+static void write_codes(writer *w, const enc_track *t, int n)
+{
+    uint64_t acc = 0;
+    int have = 0;
+    for (int f = 0; f < n; f++) {
+        if (!t->key[f]) continue;
+        for (int c = 0; c < 3; c++) {
+            for (int b = 0; b < t->bits[c]; b++) { /* bit by bit: 32-bit codes do not overflow */
+                acc |= (uint64_t)((t->code[3 * (size_t)f + c] >> b) & 1) << have;
+                if (++have == 8) {
+                    put_u8(w, (unsigned)acc);
+                    acc = 0, have = 0;
+                }
+            }
+        }
+    }
+    if (have) put_u8(w, (unsigned)acc);
+}
+
+static void write_track(writer *w, const enc_track *t, int n)
+{
+    put_u8(w, (unsigned)t->kind);
+    if (t->kind == CUB_KEYS_DEFAULT) return;
+    if (t->kind == CUB_KEYS_ANIMATED) {
+        put_u8(w, (unsigned)t->shift);
+        for (int c = 0; c < 3; c++) put_u8(w, (unsigned)t->bits[c]);
+    }
+    for (int c = 0; c < 3; c++) put_u32(w, (uint32_t)t->base[c]);
+    if (t->kind == CUB_KEYS_CONSTANT) return;
+    int words = (n + 63) / 64;
+    for (int wd = 0; wd < words; wd++) {
+        uint64_t bits = 0;
+        for (int b = 0; b < 64 && wd * 64 + b < n; b++) bits |= (uint64_t)t->key[wd * 64 + b] << b;
+        put_u64(w, bits);
+    }
+    uint32_t count = 0;
+    for (int wd = 0; wd < words; wd++) {
+        put_u32(w, count);
+        for (int b = 0; b < 64 && wd * 64 + b < n; b++) count += t->key[wd * 64 + b];
+    }
+    write_codes(w, t, n);
+}
+
+static uint32_t crc32_of(const uint8_t *p, size_t len)
+{
+    uint32_t c = 0xFFFFFFFFu;
+    for (size_t i = 0; i < len; i++) {
+        c ^= p[i];
+        for (int k = 0; k < 8; k++) c = (c >> 1) ^ (0xEDB88320u & (0u - (c & 1)));
+    }
+    return ~c;
+}
+
+static int write_stream(const enc *e, writer *w)
+{
+    const cub_clip *clip = e->clip;
+    w->len = 0;
+    put(w, "CUBKEYS", 7);
+    put_u8(w, CUB_KEYS_VERSION);
+    put_u8(w, (unsigned)clip->skel->joint_count & 0xFF);
+    put_u8(w, (unsigned)clip->skel->joint_count >> 8);
+    put_u8(w, clip->trans_mm ? 1 : 0);
+    put_u8(w, 0);
+    put_u32(w, (uint32_t)clip->frame_count);
+    put_u32(w, clip->frame_ns);
+    put_u32(w, 0); /* the length, below */
+    write_joints(w, clip->skel);
+    for (int i = 0; i < e->count; i++) write_track(w, &e->trk[i], e->n);
+    if (w->bad) return -1;
+    uint32_t total = (uint32_t)(w->len + 4);
+    for (int b = 0; b < 4; b++) w->p[20 + b] = (uint8_t)(total >> (8 * b));
+    put_u32(w, crc32_of(w->p, w->len));
+    return w->bad ? -1 : 0;
+}
+
+/* ---- measuring the decoded stream ----------------------------------------- */
+
+typedef struct xf {
+    double q[4], p[3];
+} xf;
+
+static void qmul(const double *a, const double *b, double *o)
+{
+    double r[4] = {a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3],
+                   a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2],
+                   a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1],
+                   a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0]};
+    memcpy(o, r, sizeof r);
+}
+
+static void qrot(const double *q, const double *v, double *o)
+{
+    double p[4] = {0, v[0], v[1], v[2]}, c[4] = {q[0], -q[1], -q[2], -q[3]}, t[4];
+    qmul(q, p, t);
+    qmul(t, c, t);
+    o[0] = t[1], o[1] = t[2], o[2] = t[3];
+}
+
+/* Object-space transforms of a pose, in doubles (mm). */
+static void forward(const cub_skeleton *sk, const cub_pose *ps, xf *w)
+{
+    for (int j = 0; j < sk->joint_count; j++) {
+        cub_quat r = ps->rot[j];
+        double lq[4] = {r.w / Q30, r.x / Q30, r.y / Q30, r.z / Q30};
+        int par = sk->joints[j].parent;
+        if (par < 0) {
+            memcpy(w[j].q, lq, sizeof lq);
+            w[j].p[0] = ps->root_mm.x / Q16, w[j].p[1] = ps->root_mm.y / Q16, w[j].p[2] = ps->root_mm.z / Q16;
+            continue;
+        }
+        cub_vec3 o = ps->has_trans ? ps->trans_mm[j] : sk->joints[j].offset_mm;
+        double off[3] = {o.x / Q16, o.y / Q16, o.z / Q16}, d[3];
+        qrot(w[par].q, off, d);
+        for (int k = 0; k < 3; k++) w[j].p[k] = w[par].p[k] + d[k];
+        qmul(w[par].q, lq, w[j].q);
+    }
+}
+
+/* Squared distance of the farthest of the three virtual vertices. */
+static double vertex_err2(const xf *a, const xf *b)
+{
+    double worst = 0;
+    for (int axis = 0; axis < 3; axis++) {
+        double v[3] = {0, 0, 0}, va[3], vb[3], d2 = 0;
+        v[axis] = CUB_KEYS_SHELL_MM;
+        qrot(a->q, v, va);
+        qrot(b->q, v, vb);
+        for (int k = 0; k < 3; k++) {
+            double d = (a->p[k] + va[k]) - (b->p[k] + vb[k]);
+            d2 += d * d;
+        }
+        worst = d2 > worst ? d2 : worst;
+    }
+    return worst;
+}
+
+double cub_keys_max_error(const cub_clip *clip, const void *data, size_t len)
+{
+    static cub_skeleton skel;
+    static cub_keys k;
+    static cub_pose src, dec;
+    static xf ws[CUB_MOTION_MAX_JOINTS], wd[CUB_MOTION_MAX_JOINTS];
+    if (cub_keys_open(data, len, &skel, &k, NULL) || k.frame_count != clip->frame_count) return INFINITY;
+    double worst = 0;
+    for (int f = 0; f < clip->frame_count; f++) {
+        if (cub_motion_clip_get_frame(clip, f, &src) || cub_keys_pose(&k, f, &dec)) return INFINITY;
+        forward(clip->skel, &src, ws);
+        forward(&skel, &dec, wd);
+        for (int j = 0; j < skel.joint_count; j++) {
+            if (skel.joints[j].is_end_site) continue;
+            double e = vertex_err2(&ws[j], &wd[j]);
+            worst = e > worst ? e : worst;
+        }
+    }
+    return sqrt(worst);
+}
+
+/* ---- the source's tracks and levers ----------------------------------------- */
+
+static double offset_len(cub_vec3 o)
+{
+    double x = o.x / Q16, y = o.y / Q16, z = o.z / Q16;
+    return sqrt(x * x + y * y + z * z);
+}
+
+/* Longest reach from each joint to a virtual vertex of a bone below it
+ * (children come after parents, so one pass from the leaves up). */
+static void levers(const cub_skeleton *sk, double *lever)
+{
+    for (int j = 0; j < sk->joint_count; j++) lever[j] = CUB_KEYS_SHELL_MM;
+    for (int j = sk->joint_count - 1; j > 0; j--) {
+        int p = sk->joints[j].parent;
+        if (sk->joints[j].is_end_site) continue;
+        double reach = offset_len(sk->joints[j].offset_mm) + lever[j];
+        lever[p] = reach > lever[p] ? reach : lever[p];
+    }
+}
+
+static int add_src(enc *e, int joint, int rotation)
+{
+    const cub_clip *clip = e->clip;
+    int jn = clip->skel->joint_count, n = e->n;
+    src_track *s = &e->src[e->count];
+    enc_track *t = &e->trk[e->count];
+    s->rotation = rotation, s->joint = joint;
+    s->v = malloc(sizeof *s->v * 3 * (size_t)n);
+    t->key = malloc((size_t)n);
+    t->code = malloc(sizeof *t->code * 3 * (size_t)n);
+    if (!s->v || !t->key || !t->code) return -1;
+    e->count++;
+    cub_vec3 def = joint == 0 ? (cub_vec3){0, 0, 0} : clip->skel->joints[joint].offset_mm;
+    s->def[0] = def.x, s->def[1] = def.y, s->def[2] = def.z;
+    if (rotation) memset(s->def, 0, sizeof s->def);
+    for (int f = 0; f < n; f++) {
+        int32_t *v = s->v + 3 * (size_t)f;
+        if (rotation) {
+            cub_quat q = clip->rot[(size_t)f * jn + joint];
+            int flip = q.w < 0;
+            v[0] = flip ? -q.x : q.x, v[1] = flip ? -q.y : q.y, v[2] = flip ? -q.z : q.z;
+        } else {
+            cub_vec3 p = joint == 0 ? clip->root_mm[f] : clip->trans_mm[(size_t)f * jn + joint];
+            v[0] = p.x, v[1] = p.y, v[2] = p.z;
+        }
+    }
+    return 0;
+}
+
+static int build_sources(enc *e)
+{
+    const cub_skeleton *sk = e->clip->skel;
+    int rc = 0;
+    for (int j = 0; j < sk->joint_count && !rc; j++)
+        if (!sk->joints[j].is_end_site) rc = add_src(e, j, 1);
+    if (!rc) rc = add_src(e, 0, 0);
+    for (int j = 1; j < sk->joint_count && e->clip->trans_mm && !rc; j++)
+        if (!sk->joints[j].is_end_site) rc = add_src(e, j, 0);
+    return rc;
+}
+
+static void enc_free(enc *e)
+{
+    for (int i = 0; i < e->count; i++) {
+        free(e->src[i].v);
+        free(e->trk[i].key);
+        free(e->trk[i].code);
+    }
+    free(e->scratch);
+}
+
+/* ---- the search -------------------------------------------------------------- */
+
+/* Encode every track at scale s and measure; the error (mm), or INFINITY. */
+static double attempt(enc *e, double s, double bound, writer *w)
+{
+    for (int i = 0; i < e->count; i++) {
+        const src_track *src = &e->src[i];
+        double tol;
+        if (src->rotation) {
+            double theta = s * bound / e->lever[src->joint];
+            tol = theta * theta / 8; /* 1 - cos(theta / 2) */
+        } else {
+            tol = (s * bound) * (s * bound);
+        }
+        encode_track(e, i, tol);
+    }
+    if (write_stream(e, w)) return INFINITY;
+    return cub_keys_max_error(e->clip, w->p, w->len);
+}
+
+static int clip_ok(const cub_clip *clip)
+{
+    return clip && clip->skel && clip->frame_count >= 1 && clip->frame_count <= (1 << 20) &&
+           clip->frame_ns > 0 && clip->skel->joint_count >= 1 && !clip->skel->joints[0].is_end_site;
+}
+
+cub_err cub_keys_encode(const cub_clip *clip, double bound_mm, cub_keys_result *out)
+{
+    if (!out) return CUB_ERR_ARG;
+    memset(out, 0, sizeof *out);
+    if (!clip_ok(clip) || !(bound_mm > 0)) return CUB_ERR_ARG;
+    enc *e = calloc(1, sizeof *e);
+    if (!e) return CUB_ERR_NOMEM;
+    e->clip = clip, e->n = clip->frame_count;
+    e->scratch = malloc(sizeof *e->scratch * 3 * (size_t)e->n);
+    writer w = {0}, best = {0};
+    levers(clip->skel, e->lever);
+    cub_err rc = !e->scratch || build_sources(e) ? CUB_ERR_NOMEM : CUB_OK;
+    double lo = 0, hi = INFINITY, s = 1, best_err = INFINITY;
+    for (int step = 0; !rc && step < GROW_STEPS + SHRINK_STEPS + BISECT_STEPS; step++) {
+        double err = attempt(e, s, bound_mm, &w);
+        out->trials++;
+        if (w.bad) rc = CUB_ERR_NOMEM;
+        if (err <= bound_mm) { /* holds: keep it, try coarser */
+            lo = s, best_err = err;
+            writer t = best;
+            best = w, w = t;
+        } else {
+            hi = s;
+        }
+        if (lo > 0 && hi < INFINITY && hi / lo < 1.1) break;
+        s = lo == 0 ? s * 0.6 : hi == INFINITY ? s * 1.5 : sqrt(lo * hi);
+        if (lo == 0 && s < 1e-6) break;
+    }
+    free(w.p);
+    enc_free(e);
+    free(e);
+    if (!rc && best_err == INFINITY) rc = CUB_ERR_ARG; /* nothing held: no bound reachable */
+    if (rc) {
+        free(best.p);
+        return rc;
+    }
+    out->data = best.p, out->len = best.len, out->max_err_mm = best_err;
+    return CUB_OK;
+}

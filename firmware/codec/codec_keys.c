@@ -1,0 +1,308 @@
+/* The error-bounded stream (cubkeys): open = check everything once, then
+ * decode any one frame by random access. Layout (little-endian):
+ *   header  "CUBKEYS" u8 version, u16 joint_count, u8 flags (bit 0: joint
+ *           translations), u8 0, u32 frame_count, u32 frame_ns, u32 length
+ *   joints  u8 name length, name, u8 parent + 1, u8 end site, offset x y z
+ *           (i32 Q16.16 mm each)
+ *   tracks  the rotation of every joint but end sites, the root's position,
+ *           then (flag bit 0) the translation of every other such joint:
+ *           u8 kind; a constant: 3 x i32; keys: u8 shift, 3 x u8 bits,
+ *           3 x i32 base, the key frames as ceil(n / 64) u64 bit words, per
+ *           word a u32 count of the keys before it, then the codes, each
+ *           key's three components LSB first, bits[c] wide, packed
+ *   u32 CRC-32 (IEEE) of everything before it */
+#include <string.h>
+
+#include "codec_internal.h"
+#include "codec_reader.h"
+
+#define KEYS_MAGIC "CUBKEYS"
+#define KEYS_HEADER_BYTES 24
+#define KEYS_FLAG_TRANS 1u
+#define Q30_ONE (INT32_C(1) << 30)
+
+static uint64_t le64(const uint8_t *p)
+{
+    uint64_t v = 0;
+    for (int i = 7; i >= 0; i--) v = v << 8 | p[i];
+    return v;
+}
+
+static uint32_t le32(const uint8_t *p)
+{
+    return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
+}
+
+/* Set bits of x; by hand, as the firmware links no helper library. */
+static int pop64(uint64_t x)
+{
+    x = x - ((x >> 1) & UINT64_C(0x5555555555555555));
+    x = (x & UINT64_C(0x3333333333333333)) + ((x >> 2) & UINT64_C(0x3333333333333333));
+    x = (x + (x >> 4)) & UINT64_C(0x0f0f0f0f0f0f0f0f);
+    return (int)((x * UINT64_C(0x0101010101010101)) >> 56);
+}
+
+/* n (<= 32) bits at bit offset `at` of p, LSB first. */
+static uint32_t bits_at(const uint8_t *p, uint64_t at, int n)
+{
+    if (n == 0) return 0;
+    const uint8_t *b = p + (at >> 3);
+    int skip = (int)(at & 7), bytes = (skip + n + 7) >> 3;
+    uint64_t v = 0;
+    for (int i = bytes - 1; i >= 0; i--) v = v << 8 | b[i];
+    return (uint32_t)((v >> skip) & ((UINT64_C(1) << n) - 1));
+}
+
+int32_t cub_keys_lerp(int32_t va, int32_t vb, int a, int b, int f)
+{
+    uint32_t t = ((uint32_t)(f - a) << 16) / (uint32_t)(b - a);
+    int64_t d = (int64_t)((int64_t)vb - va) * t;
+    return (int32_t)(va + (d >= 0 ? d >> 16 : -((-d) >> 16)));
+}
+
+cub_quat cub_keys_quat(int32_t x, int32_t y, int32_t z)
+{
+    uint64_t s = (uint64_t)((int64_t)x * x) + (uint64_t)((int64_t)y * y) + (uint64_t)((int64_t)z * z);
+    uint64_t one = UINT64_C(1) << 60;
+    if (s <= one) return (cub_quat){(int32_t)cub_fx_isqrt64(one - s), x, y, z};
+    return cub_fx_quat_normalize((cub_quat){0, x, y, z});
+}
+
+int32_t cub_keys_key(int32_t base, uint32_t code, int shift, int rotation)
+{
+    int64_t v = base + ((int64_t)code << shift);
+    if (rotation) v = v < -Q30_ONE ? -Q30_ONE : v > Q30_ONE ? Q30_ONE : v;
+    return (int32_t)v;
+}
+
+static void key_value(const cub_keys *k, const cub_keys_track *t, uint32_t rank, int32_t v[3])
+{
+    uint64_t at = (uint64_t)rank * t->key_bits;
+    for (int c = 0; c < 3; c++) {
+        v[c] = cub_keys_key(t->base[c], bits_at(k->data + t->codes, at, t->bits[c]), t->shift, t->rotation);
+        at += t->bits[c];
+    }
+}
+
+/* The track's value at frame f. */
+static void track_value(const cub_keys *k, const cub_keys_track *t, int f, int32_t v[3])
+{
+    if (t->kind != CUB_KEYS_ANIMATED) {
+        memcpy(v, t->base, sizeof t->base);
+        return;
+    }
+    const uint8_t *set = k->data + t->keyset;
+    int w = f >> 6, bit = f & 63, a, b;
+    uint64_t word = le64(set + 8 * w);
+    uint64_t upto = bit == 63 ? ~UINT64_C(0) : (UINT64_C(2) << bit) - 1;
+    uint64_t below = word & upto, above = word & ~upto;
+    uint32_t rank = le32(k->data + t->ranks + 4 * (size_t)w);
+    if (below) {
+        a = (w << 6) + 63 - __builtin_clzll(below);
+        rank += (uint32_t)pop64(below) - 1;
+    } else { /* keys are at most 64 apart: the previous one is in the word before */
+        a = ((w - 1) << 6) + 63 - __builtin_clzll(le64(set + 8 * (w - 1)));
+        rank -= 1;
+    }
+    key_value(k, t, rank, v);
+    if (a == f) return;
+    b = above ? (w << 6) + __builtin_ctzll(above) : ((w + 1) << 6) + __builtin_ctzll(le64(set + 8 * (w + 1)));
+    int32_t vb[3];
+    key_value(k, t, rank + 1, vb);
+    for (int c = 0; c < 3; c++) v[c] = cub_keys_lerp(v[c], vb[c], a, b, f);
+}
+
+cub_err cub_keys_pose(const cub_keys *k, int frame, cub_pose *out)
+{
+    if (!k || !out || frame < 0 || frame >= k->frame_count) return CUB_ERR_ARG;
+    out->joint_count = k->joint_count;
+    out->has_trans = k->has_trans;
+    for (int j = 0; j < k->joint_count; j++) {
+        int32_t v[3];
+        int r = k->rot_track[j], tr = k->trans_track[j];
+        if (r < 0 || k->tracks[r].kind == CUB_KEYS_DEFAULT) {
+            out->rot[j] = cub_fx_quat_identity();
+        } else {
+            track_value(k, &k->tracks[r], frame, v);
+            out->rot[j] = cub_keys_quat(v[0], v[1], v[2]);
+        }
+        if (j > 0 && !k->has_trans) continue;
+        cub_vec3 *dst = j == 0 ? &out->root_mm : &out->trans_mm[j];
+        if (tr < 0 || k->tracks[tr].kind == CUB_KEYS_DEFAULT) {
+            *dst = j == 0 ? (cub_vec3){0, 0, 0} : k->offsets[j];
+            continue;
+        }
+        track_value(k, &k->tracks[tr], frame, v);
+        *dst = (cub_vec3){v[0], v[1], v[2]};
+    }
+    if (k->has_trans) out->trans_mm[0] = (cub_vec3){0, 0, 0};
+    return CUB_OK;
+}
+
+static cub_err read_header(reader *r, cub_keys *k, cub_codec_problem *why)
+{
+    if (r->len < KEYS_HEADER_BYTES + CODEC_CRC_BYTES)
+        return refuse(why, "too short for a cubkeys header", r->len);
+    if (memcmp(r->p, KEYS_MAGIC, CODEC_MAGIC_LEN) != 0)
+        return refuse(why, "not a cubkeys stream (no CUBKEYS magic)", 0);
+    r->pos = CODEC_MAGIC_LEN;
+    if (rd_u8(r) != CUB_KEYS_VERSION) return refuse(why, "unsupported cubkeys version", 7);
+    k->joint_count = rd_u16(r);
+    unsigned flags = rd_u8(r), zero = rd_u8(r);
+    k->frame_count = (int)rd_u32(r);
+    k->frame_ns = rd_u32(r);
+    uint32_t length = rd_u32(r);
+    k->has_trans = (flags & KEYS_FLAG_TRANS) != 0;
+    if (k->joint_count < 1 || k->joint_count > CUB_MOTION_MAX_JOINTS)
+        return refuse(why, "joint count outside 1..128", 8);
+    if ((flags & ~KEYS_FLAG_TRANS) || zero) return refuse(why, "unknown flag bits", 10);
+    if (k->frame_count < 1 || k->frame_count > CODEC_MAX_FRAMES)
+        return refuse(why, "frame count outside 1..2^20", 12);
+    if (k->frame_ns == 0) return refuse(why, "frame period is zero", 16);
+    if (length != r->len) return refuse(why, "stream length differs from the header's (truncated?)", 20);
+    size_t body = r->len - CODEC_CRC_BYTES;
+    reader crc = {r->p, r->len, body};
+    if (rd_u32(&crc) != codec_crc32(r->p, body)) return refuse(why, "CRC mismatch (damaged stream)", body);
+    r->len = body; /* nothing below may read the CRC as data */
+    return CUB_OK;
+}
+
+static cub_err read_joint(reader *r, cub_skeleton *skel, int j, cub_codec_problem *why)
+{
+    size_t at = r->pos;
+    char name[CUB_MOTION_NAME_LEN];
+    unsigned n = rd_u8(r);
+    if (n < 1 || n >= CUB_MOTION_NAME_LEN) return refuse(why, "joint name length outside 1..31", at);
+    for (unsigned i = 0; i < n; i++) {
+        name[i] = (char)rd_u8(r);
+        if ((unsigned char)name[i] <= ' ' || (unsigned char)name[i] > '~')
+            return refuse(why, "joint name has a byte that is not printable ASCII", r->pos - 1);
+    }
+    name[n] = '\0';
+    int parent = (int)rd_u8(r) - 1;
+    unsigned end_site = rd_u8(r);
+    cub_vec3 off;
+    off.x = (int32_t)rd_u32(r);
+    off.y = (int32_t)rd_u32(r);
+    off.z = (int32_t)rd_u32(r);
+    if (r->pos > r->len) return refuse(why, "stream ends inside the joints", at);
+    if ((j == 0) != (parent < 0) || parent >= j)
+        return refuse(why, "joint parent is not an earlier joint (or a second root)", at + 1 + n);
+    if (end_site > 1) return refuse(why, "end-site byte is not 0 or 1", at + 2 + n);
+    int idx;
+    if (cub_motion_skeleton_add(skel, name, parent, off, &idx))
+        return refuse(why, "joint name repeated", at);
+    skel->joints[idx].is_end_site = (uint8_t)end_site;
+    return CUB_OK;
+}
+
+/* The key frames: frame 0 and the last set, none past it, at most
+ * CUB_KEYS_MAX_GAP apart, and each word's count right. *keys: how many. */
+static cub_err check_keyset(const reader *r, const cub_keys *k, const cub_keys_track *t,
+                            uint32_t *keys, cub_codec_problem *why)
+{
+    int words = (k->frame_count + 63) >> 6, last = -1;
+    uint32_t count = 0;
+    for (int w = 0; w < words; w++) {
+        uint64_t word = le64(r->p + t->keyset + 8 * (size_t)w);
+        if (le32(r->p + t->ranks + 4 * (size_t)w) != count)
+            return refuse(why, "key count before a word is wrong", t->ranks + 4 * (size_t)w);
+        for (int b = 0; b < 64; b++) {
+            if (!(word >> b & 1)) continue;
+            int f = (w << 6) + b;
+            if (f >= k->frame_count) return refuse(why, "a key past the last frame", t->keyset + 8 * (size_t)w);
+            if ((last < 0 && f != 0) || (last >= 0 && f - last > CUB_KEYS_MAX_GAP))
+                return refuse(why, "keys more than 64 frames apart (or none at frame 0)", t->keyset + 8 * (size_t)w);
+            last = f;
+            count++;
+        }
+    }
+    if (last != k->frame_count - 1) return refuse(why, "no key at the last frame", t->keyset);
+    *keys = count;
+    return CUB_OK;
+}
+
+/* The largest value a component can decode to must stay an int32; a
+ * rotation's constant within +-1 (its keys are clamped there). */
+static int range_ok(const cub_keys_track *t, int rotation)
+{
+    for (int c = 0; c < 3; c++) {
+        int64_t top = t->base[c] + ((((int64_t)1 << t->bits[c]) - 1) << t->shift);
+        if (top > INT32_MAX) return 0;
+        if (rotation && t->kind == CUB_KEYS_CONSTANT && (t->base[c] < -Q30_ONE || t->base[c] > Q30_ONE))
+            return 0;
+    }
+    return 1;
+}
+
+static cub_err read_track(reader *r, cub_keys *k, cub_keys_track *t, int rotation,
+                          cub_codec_problem *why)
+{
+    size_t at = r->pos;
+    memset(t, 0, sizeof *t);
+    t->kind = rd_u8(r);
+    t->rotation = (uint8_t)rotation;
+    if (t->kind >= CUB_KEYS_KIND_COUNT_) return refuse(why, "unknown track kind", at);
+    if (t->kind == CUB_KEYS_DEFAULT) return r->pos > r->len ? refuse(why, "stream ends inside a track", at) : CUB_OK;
+    if (t->kind == CUB_KEYS_ANIMATED) {
+        t->shift = rd_u8(r);
+        for (int c = 0; c < 3; c++) t->bits[c] = rd_u8(r);
+    }
+    for (int c = 0; c < 3; c++) t->base[c] = (int32_t)rd_u32(r);
+    if (r->pos > r->len) return refuse(why, "stream ends inside a track", at);
+    if (t->shift > 31 || t->bits[0] > 32 || t->bits[1] > 32 || t->bits[2] > 32)
+        return refuse(why, "track shift or bit width past 31 / 32", at + 1);
+    t->key_bits = (uint8_t)(t->bits[0] + t->bits[1] + t->bits[2]);
+    if (!range_ok(t, rotation)) return refuse(why, "track values outside their range", at + 5);
+    if (t->kind == CUB_KEYS_CONSTANT) return CUB_OK;
+    size_t words = (size_t)(k->frame_count + 63) >> 6;
+    t->keyset = (uint32_t)r->pos;
+    t->ranks = (uint32_t)(r->pos + 8 * words);
+    t->codes = (uint32_t)(t->ranks + 4 * words);
+    if (t->codes > r->len) return refuse(why, "stream ends inside a track's key frames", r->pos);
+    uint32_t keys;
+    cub_err e = check_keyset(r, k, t, &keys, why);
+    if (e) return e;
+    uint64_t end = t->codes + ((uint64_t)keys * t->key_bits + 7) / 8;
+    if (end > r->len) return refuse(why, "stream ends inside a track's codes", t->codes);
+    r->pos = (size_t)end;
+    return CUB_OK;
+}
+
+static cub_err add_track(reader *r, cub_keys *k, int16_t *slot, int rotation, cub_codec_problem *why)
+{
+    *slot = (int16_t)k->track_count;
+    return read_track(r, k, &k->tracks[k->track_count++], rotation, why);
+}
+
+static cub_err read_tracks(reader *r, const cub_skeleton *skel, cub_keys *k, cub_codec_problem *why)
+{
+    cub_err e = CUB_OK;
+    for (int j = 0; j < k->joint_count; j++) {
+        k->rot_track[j] = k->trans_track[j] = -1;
+        k->offsets[j] = skel->joints[j].offset_mm;
+    }
+    for (int j = 0; j < k->joint_count && !e; j++)
+        if (!skel->joints[j].is_end_site) e = add_track(r, k, &k->rot_track[j], 1, why);
+    if (!e) e = add_track(r, k, &k->trans_track[0], 0, why);
+    for (int j = 1; j < k->joint_count && k->has_trans && !e; j++)
+        if (!skel->joints[j].is_end_site) e = add_track(r, k, &k->trans_track[j], 0, why);
+    if (!e && r->pos != r->len) return refuse(why, "bytes left over after the last track", r->pos);
+    return e;
+}
+
+cub_err cub_keys_open(const void *data, size_t len, cub_skeleton *skel, cub_keys *out,
+                      cub_codec_problem *why)
+{
+    if (!data || !skel || !out) return CUB_ERR_ARG;
+    memset(out, 0, sizeof *out);
+    reader r = {data, len, 0};
+    cub_err e = read_header(&r, out, why);
+    if (e) return e;
+    out->data = data;
+    out->len = len;
+    cub_motion_skeleton_reset(skel);
+    for (int j = 0; j < out->joint_count && !e; j++) e = read_joint(&r, skel, j, why);
+    if (!e && skel->joints[0].is_end_site) e = refuse(why, "the root is an end site", KEYS_HEADER_BYTES);
+    return e ? e : read_tracks(&r, skel, out, why);
+}
