@@ -12,6 +12,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <stdio.h>
 
 #include "cub/codec.h"
 
@@ -42,6 +43,8 @@ typedef struct enc {
     src_track src[CUB_KEYS_MAX_TRACKS];
     enc_track trk[CUB_KEYS_MAX_TRACKS];
     double lever[CUB_MOTION_MAX_JOINTS];
+    double scale[CUB_KEYS_MAX_TRACKS]; /* each track's own factor on s, from the refinement */
+    enc_track spare;                   /* a track's trial encoding */
     uint32_t *scratch; /* [n * 3] */
 } enc;
 
@@ -72,7 +75,7 @@ static double err_at(const src_track *s, int f, const double *x)
     }
     double e = 0;
     for (int c = 0; c < 3; c++) {
-        double d = (x[c] - v[c]) / Q16;
+        double d = x[c] - v[c] / Q16;
         e += d * d;
     }
     return e;
@@ -165,10 +168,9 @@ static int place_keys(const src_track *s, int n, const enc_track *t, const uint3
 
 /* ---- one track ---------------------------------------------------------- */
 
-static void encode_track(enc *e, int i, double tol)
+static void encode_track(enc *e, int i, double tol, enc_track *t)
 {
     const src_track *s = &e->src[i];
-    enc_track *t = &e->trk[i];
     int n = e->n;
     t->kind = CUB_KEYS_DEFAULT;
     if (fits_value(s, n, s->def, tol)) return;
@@ -317,6 +319,10 @@ static uint32_t crc32_of(const uint8_t *p, size_t len)
 
 static int write_stream(const enc *e, writer *w)
 {
+    if (getenv("CUB_KEYS_DEBUG2")) { /* TEMP */
+        for (int i = 0; i < e->count; i++) { const enc_track *t = &e->trk[i];
+            fprintf(stderr, "T%d j%d rot%d kind%d sh%d bits%d/%d/%d keys%d/%d lever%.0f sc%.2f\n", i, e->src[i].joint, e->src[i].rotation, t->kind, t->shift, t->bits[0], t->bits[1], t->bits[2], t->keys, e->n, e->lever[e->src[i].joint], e->scale[i]); }
+    }
     const cub_clip *clip = e->clip;
     w->len = 0;
     put(w, "CUBKEYS", 7);
@@ -489,26 +495,61 @@ static void enc_free(enc *e)
         free(e->trk[i].code);
     }
     free(e->scratch);
+    free(e->spare.key);
+    free(e->spare.code);
 }
 
 /* ---- the search -------------------------------------------------------------- */
 
+/* Track i's tolerance at scale s: a rotation's 1 - cos(theta / 2) for an
+ * angle that swings its farthest vertex by s * bound, a translation's
+ * squared distance. */
+static double tolerance(const enc *e, int i, double s, double bound)
+{
+    const src_track *src = &e->src[i];
+    double d = s * e->scale[i] * bound;
+    if (!src->rotation) return d * d;
+    double theta = d / e->lever[src->joint];
+    return theta * theta / 8;
+}
+
 /* Encode every track at scale s and measure; the error (mm), or INFINITY. */
 static double attempt(enc *e, double s, double bound, writer *w)
 {
-    for (int i = 0; i < e->count; i++) {
-        const src_track *src = &e->src[i];
-        double tol;
-        if (src->rotation) {
-            double theta = s * bound / e->lever[src->joint];
-            tol = theta * theta / 8; /* 1 - cos(theta / 2) */
-        } else {
-            tol = (s * bound) * (s * bound);
-        }
-        encode_track(e, i, tol);
-    }
+    for (int i = 0; i < e->count; i++) encode_track(e, i, tolerance(e, i, s, bound), &e->trk[i]);
     if (write_stream(e, w)) return INFINITY;
     return cub_keys_max_error(e->clip, w->p, w->len);
+}
+
+static long track_bits(const enc_track *t)
+{
+    return t->kind == CUB_KEYS_ANIMATED ? (long)t->keys * (t->bits[0] + t->bits[1] + t->bits[2]) : 0;
+}
+
+/* Loosen one track at a time by `factor` while the measured error holds:
+ * the lever split is conservative (errors down a chain rarely add up). */
+static void refine(enc *e, double s, double bound, double factor, writer *w, double *err)
+{
+    for (int i = 0; i < e->count; i++) {
+        if (e->trk[i].kind != CUB_KEYS_ANIMATED) continue;
+        e->scale[i] *= factor;
+        encode_track(e, i, tolerance(e, i, s, bound), &e->spare);
+        if (track_bits(&e->spare) >= track_bits(&e->trk[i])) {
+            e->scale[i] /= factor;
+            continue;
+        }
+        enc_track old = e->trk[i];
+        e->trk[i] = e->spare;
+        e->spare = old;
+        double m = write_stream(e, w) ? INFINITY : cub_keys_max_error(e->clip, w->p, w->len);
+        if (m <= bound) {
+            *err = m;
+            continue;
+        }
+        e->scale[i] /= factor; /* back to the one that held */
+        e->spare = e->trk[i];
+        e->trk[i] = old;
+    }
 }
 
 static int clip_ok(const cub_clip *clip)
@@ -528,7 +569,10 @@ cub_err cub_keys_encode(const cub_clip *clip, double bound_mm, cub_keys_result *
     e->scratch = malloc(sizeof *e->scratch * 3 * (size_t)e->n);
     writer w = {0}, best = {0};
     levers(clip->skel, e->lever);
-    cub_err rc = !e->scratch || build_sources(e) ? CUB_ERR_NOMEM : CUB_OK;
+    for (int i = 0; i < CUB_KEYS_MAX_TRACKS; i++) e->scale[i] = 1;
+    e->spare.key = malloc((size_t)e->n);
+    e->spare.code = malloc(sizeof *e->spare.code * 3 * (size_t)e->n);
+    cub_err rc = !e->scratch || !e->spare.key || !e->spare.code || build_sources(e) ? CUB_ERR_NOMEM : CUB_OK;
     double lo = 0, hi = INFINITY, s = 1, best_err = INFINITY;
     for (int step = 0; !rc && step < GROW_STEPS + SHRINK_STEPS + BISECT_STEPS; step++) {
         double err = attempt(e, s, bound_mm, &w);
@@ -545,6 +589,13 @@ cub_err cub_keys_encode(const cub_clip *clip, double bound_mm, cub_keys_result *
         s = lo == 0 ? s * 0.6 : hi == INFINITY ? s * 1.5 : sqrt(lo * hi);
         if (lo == 0 && s < 1e-6) break;
     }
+    if (!rc && best_err <= bound_mm) {
+        static const double factors[] = {2.0, 1.41, 1.19};
+        attempt(e, lo, bound_mm, &w); /* the tracks as they held */
+        for (size_t f = 0; f < sizeof factors / sizeof *factors; f++) refine(e, lo, bound_mm, factors[f], &w, &best_err);
+        if (write_stream(e, &best)) rc = CUB_ERR_NOMEM;
+        best_err = cub_keys_max_error(clip, best.p, best.len);
+    }
     free(w.p);
     enc_free(e);
     free(e);
@@ -554,5 +605,13 @@ cub_err cub_keys_encode(const cub_clip *clip, double bound_mm, cub_keys_result *
         return rc;
     }
     out->data = best.p, out->len = best.len, out->max_err_mm = best_err;
+    if (getenv("CUB_KEYS_DEBUG")) { /* TEMP */
+        const cub_skeleton *sk = clip->skel;
+        size_t names = 0; int anim = 0, cons = 0, def = 0; long keys = 0, codebits = 0;
+        for (int j = 0; j < sk->joint_count; j++) names += strlen(sk->joints[j].name) + 15;
+        enc *e2 = NULL; (void)e2;
+        fprintf(stderr, "DBG n=%d joints=%d skelbytes=%zu len=%zu\n", clip->frame_count, sk->joint_count, names, best.len);
+        (void)anim; (void)cons; (void)def; (void)keys; (void)codebits;
+    }
     return CUB_OK;
 }
