@@ -31,7 +31,7 @@ typedef struct src_track {
 } src_track;
 
 typedef struct enc_track {
-    int kind, shift, bits[3], keys;
+    int kind, shift, bits[3], keys; /* bits: of every frame's code, at the clip's range */
     int32_t base[3];
     uint8_t *key;   /* [n] 1 where a key is */
     uint32_t *code; /* [n * 3] codes, valid where key */
@@ -166,6 +166,69 @@ static int place_keys(const src_track *s, int n, const enc_track *t, const uint3
     return keys;
 }
 
+/* ---- segments: range reduction per 64 frames ------------------------- */
+
+static int bit_len(uint64_t v)
+{
+    int b = 0;
+    while (b < 64 && (v >> b)) b++;
+    return b;
+}
+
+/* A segment's minimum code and widths, from the keys in it. */
+typedef struct seg_enc {
+    uint32_t min[3];
+    int bits[3], keys;
+} seg_enc;
+
+static void seg_of(const enc_track *t, int n, int w, seg_enc *sg)
+{
+    uint32_t mx[3] = {0, 0, 0};
+    sg->keys = 0;
+    for (int c = 0; c < 3; c++) sg->min[c] = UINT32_MAX;
+    for (int f = w * 64; f < n && f < w * 64 + 64; f++) {
+        if (!t->key[f]) continue;
+        sg->keys++;
+        for (int c = 0; c < 3; c++) {
+            uint32_t k = t->code[3 * (size_t)f + c];
+            sg->min[c] = k < sg->min[c] ? k : sg->min[c];
+            mx[c] = k > mx[c] ? k : mx[c];
+        }
+    }
+    for (int c = 0; c < 3; c++) {
+        if (!sg->keys) sg->min[c] = mx[c] = 0;
+        sg->bits[c] = bit_len(mx[c] - sg->min[c]);
+    }
+}
+
+/* Widths of the segments' minimums. */
+static void range_bits(const enc_track *t, int n, int rb[3])
+{
+    uint32_t top[3] = {0, 0, 0};
+    for (int w = 0; w * 64 < n; w++) {
+        seg_enc sg;
+        seg_of(t, n, w, &sg);
+        for (int c = 0; c < 3; c++) top[c] = sg.min[c] > top[c] ? sg.min[c] : top[c];
+    }
+    for (int c = 0; c < 3; c++) rb[c] = bit_len(top[c]);
+}
+
+/* Bits the track takes in the stream. */
+static long track_cost(const enc_track *t, int n)
+{
+    if (t->kind == CUB_KEYS_DEFAULT) return 8;
+    if (t->kind == CUB_KEYS_CONSTANT) return 8 + 96;
+    long bits = 8 * (1 + 4 + 12 + 4), words = (n + 63) / 64;
+    int rb[3];
+    range_bits(t, n, rb);
+    for (int w = 0; w < words; w++) {
+        seg_enc sg;
+        seg_of(t, n, w, &sg);
+        bits += (long)sg.keys * (sg.bits[0] + sg.bits[1] + sg.bits[2]);
+    }
+    return bits + words * (64 + 32 + 18 + rb[0] + rb[1] + rb[2]);
+}
+
 /* ---- one track ---------------------------------------------------------- */
 
 static void encode_track(enc *e, int i, double tol, enc_track *t)
@@ -193,14 +256,15 @@ static void encode_track(enc *e, int i, double tol, enc_track *t)
     uint8_t *key = malloc((size_t)n);
     for (int sh = top; sh >= 0 && sh > top - SHIFT_TRIES && key; sh--) {
         if (!quantise(s, n, sh, tol, &trial, e->scratch) && sh > 0) continue;
-        int keys = place_keys(s, n, &trial, e->scratch, tol, key);
-        long cost = (long)keys * (trial.bits[0] + trial.bits[1] + trial.bits[2]);
+        trial.keys = place_keys(s, n, &trial, e->scratch, tol, key);
+        trial.key = key, trial.code = e->scratch;
+        long cost = track_cost(&trial, n);
         if (best_cost >= 0 && cost >= best_cost) continue;
         best_cost = cost;
         t->shift = trial.shift;
         memcpy(t->bits, trial.bits, sizeof t->bits);
         memcpy(t->base, trial.base, sizeof t->base);
-        t->keys = keys;
+        t->keys = trial.keys;
         memcpy(t->key, key, (size_t)n);
         memcpy(t->code, e->scratch, sizeof *t->code * 3 * (size_t)n);
     }
@@ -264,23 +328,70 @@ static void write_joints(writer *w, const cub_skeleton *sk)
     }
 }
 
-static void write_codes(writer *w, const enc_track *t, int n)
+/* Bits LSB first into bytes. */
+typedef struct bitw {
+    writer *w;
+    uint64_t acc;
+    int have;
+} bitw;
+
+static void put_bits(bitw *b, uint64_t v, int n)
 {
-    uint64_t acc = 0;
-    int have = 0;
-    for (int f = 0; f < n; f++) {
-        if (!t->key[f]) continue;
-        for (int c = 0; c < 3; c++) {
-            for (int b = 0; b < t->bits[c]; b++) { /* bit by bit: 32-bit codes do not overflow */
-                acc |= (uint64_t)((t->code[3 * (size_t)f + c] >> b) & 1) << have;
-                if (++have == 8) {
-                    put_u8(w, (unsigned)acc);
-                    acc = 0, have = 0;
-                }
-            }
+    for (int i = 0; i < n; i++) {
+        b->acc |= ((v >> i) & 1) << b->have;
+        if (++b->have == 8) {
+            put_u8(b->w, (unsigned)b->acc);
+            b->acc = 0, b->have = 0;
         }
     }
-    if (have) put_u8(w, (unsigned)acc);
+}
+
+static void flush_bits(bitw *b)
+{
+    if (b->have) put_u8(b->w, (unsigned)b->acc);
+    b->acc = 0, b->have = 0;
+}
+
+static void write_keys(writer *w, const enc_track *t, int n)
+{
+    int words = (n + 63) / 64, rb[3];
+    range_bits(t, n, rb);
+    for (int c = 0; c < 3; c++) put_u8(w, (unsigned)rb[c]);
+    for (int c = 0; c < 3; c++) put_u32(w, (uint32_t)t->base[c]);
+    uint64_t code_bits = 0;
+    for (int wd = 0; wd < words; wd++) {
+        seg_enc sg;
+        seg_of(t, n, wd, &sg);
+        code_bits += (uint64_t)sg.keys * (sg.bits[0] + sg.bits[1] + sg.bits[2]);
+    }
+    put_u32(w, (uint32_t)((code_bits + 7) / 8));
+    for (int wd = 0; wd < words; wd++) {
+        uint64_t bits = 0;
+        for (int b = 0; b < 64 && wd * 64 + b < n; b++) bits |= (uint64_t)t->key[wd * 64 + b] << b;
+        put_u64(w, bits);
+    }
+    uint32_t at = 0;
+    for (int wd = 0; wd < words; wd++) {
+        seg_enc sg;
+        seg_of(t, n, wd, &sg);
+        put_u32(w, at);
+        at += (uint32_t)(sg.keys * (sg.bits[0] + sg.bits[1] + sg.bits[2]));
+    }
+    bitw b = {w, 0, 0};
+    for (int wd = 0; wd < words; wd++) {
+        seg_enc sg;
+        seg_of(t, n, wd, &sg);
+        for (int c = 0; c < 3; c++) put_bits(&b, (uint64_t)sg.bits[c], 6);
+        for (int c = 0; c < 3; c++) put_bits(&b, sg.min[c], rb[c]);
+    }
+    flush_bits(&b);
+    for (int wd = 0; wd < words; wd++) {
+        seg_enc sg;
+        seg_of(t, n, wd, &sg);
+        for (int f = wd * 64; f < n && f < wd * 64 + 64; f++)
+            for (int c = 0; c < 3 && t->key[f]; c++) put_bits(&b, t->code[3 * (size_t)f + c] - sg.min[c], sg.bits[c]);
+    }
+    flush_bits(&b);
 }
 
 static void write_track(writer *w, const enc_track *t, int n)
@@ -289,22 +400,10 @@ static void write_track(writer *w, const enc_track *t, int n)
     if (t->kind == CUB_KEYS_DEFAULT) return;
     if (t->kind == CUB_KEYS_ANIMATED) {
         put_u8(w, (unsigned)t->shift);
-        for (int c = 0; c < 3; c++) put_u8(w, (unsigned)t->bits[c]);
+        write_keys(w, t, n);
+        return;
     }
     for (int c = 0; c < 3; c++) put_u32(w, (uint32_t)t->base[c]);
-    if (t->kind == CUB_KEYS_CONSTANT) return;
-    int words = (n + 63) / 64;
-    for (int wd = 0; wd < words; wd++) {
-        uint64_t bits = 0;
-        for (int b = 0; b < 64 && wd * 64 + b < n; b++) bits |= (uint64_t)t->key[wd * 64 + b] << b;
-        put_u64(w, bits);
-    }
-    uint32_t count = 0;
-    for (int wd = 0; wd < words; wd++) {
-        put_u32(w, count);
-        for (int b = 0; b < 64 && wd * 64 + b < n; b++) count += t->key[wd * 64 + b];
-    }
-    write_codes(w, t, n);
 }
 
 static uint32_t crc32_of(const uint8_t *p, size_t len)
@@ -521,10 +620,6 @@ static double attempt(enc *e, double s, double bound, writer *w)
     return cub_keys_max_error(e->clip, w->p, w->len);
 }
 
-static long track_bits(const enc_track *t)
-{
-    return t->kind == CUB_KEYS_ANIMATED ? (long)t->keys * (t->bits[0] + t->bits[1] + t->bits[2]) : 0;
-}
 
 /* Loosen one track at a time by `factor` while the measured error holds:
  * the lever split is conservative (errors down a chain rarely add up). */
@@ -534,7 +629,7 @@ static void refine(enc *e, double s, double bound, double factor, writer *w, dou
         if (e->trk[i].kind != CUB_KEYS_ANIMATED) continue;
         e->scale[i] *= factor;
         encode_track(e, i, tolerance(e, i, s, bound), &e->spare);
-        if (track_bits(&e->spare) >= track_bits(&e->trk[i])) {
+        if (track_cost(&e->spare, e->n) >= track_cost(&e->trk[i], e->n)) {
             e->scale[i] /= factor;
             continue;
         }

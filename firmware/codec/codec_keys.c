@@ -6,10 +6,12 @@
  *           (i32 Q16.16 mm each)
  *   tracks  the rotation of every joint but end sites, the root's position,
  *           then (flag bit 0) the translation of every other such joint:
- *           u8 kind; a constant: 3 x i32; keys: u8 shift, 3 x u8 bits,
- *           3 x i32 base, the key frames as ceil(n / 64) u64 bit words, per
- *           word a u32 count of the keys before it, then the codes, each
- *           key's three components LSB first, bits[c] wide, packed
+ *           u8 kind; a constant: 3 x i32; keys: u8 shift, 3 x u8 range
+ *           bits, 3 x i32 base, u32 code bytes; the key frames as W =
+ *           ceil(n / 64) u64 bit words (a segment per word); per segment the
+ *           u32 bit offset of its first code; per segment a header of 3 x 6
+ *           bits (its widths) and 3 x range bits (its minimum), packed;
+ *           then the codes, each key's three components LSB first, packed
  *   u32 CRC-32 (IEEE) of everything before it */
 #include <string.h>
 
@@ -110,20 +112,40 @@ cub_quat cub_keys_quat(int32_t x, int32_t y, int32_t z)
     return cub_fx_quat_normalize((cub_quat){0, x, y, z});
 }
 
-int32_t cub_keys_key(int32_t base, uint32_t code, int shift, int rotation)
+int32_t cub_keys_key(int32_t base, uint64_t code, int shift, int rotation)
 {
-    int64_t v = base + ((int64_t)code << shift);
+    int64_t v = base + (int64_t)(code << shift);
     if (rotation) v = v < -Q30_ONE ? -Q30_ONE : v > Q30_ONE ? Q30_ONE : v;
     return (int32_t)v;
 }
 
-static void key_value(const cub_keys *k, const cub_keys_track *t, uint32_t rank, int32_t v[3])
+/* A segment's header: its widths, its minimum, where its codes start. */
+typedef struct seg {
+    int bits[3], key_bits;
+    uint64_t min[3], at;
+} seg;
+
+static void seg_read(const cub_keys *k, const cub_keys_track *t, int w, seg *s)
 {
-    uint64_t at = (uint64_t)rank * t->key_bits;
+    const uint8_t *p = k->data + t->segs, *end = k->data + k->len;
+    uint64_t at = (uint64_t)w * t->seg_bits;
+    for (int c = 0; c < 3; c++, at += 6) s->bits[c] = (int)bits_at(p, end, at, 6);
     for (int c = 0; c < 3; c++) {
-        v[c] = cub_keys_key(t->base[c], bits_at(k->data + t->codes, k->data + k->len, at, t->bits[c]),
-                            t->shift, t->rotation);
-        at += t->bits[c];
+        s->min[c] = bits_at(p, end, at, t->range_bits[c]);
+        at += t->range_bits[c];
+    }
+    s->key_bits = s->bits[0] + s->bits[1] + s->bits[2];
+    s->at = le32(k->data + t->segoff + 4 * (size_t)w);
+}
+
+/* The value of the idx-th key of a segment. */
+static void seg_key(const cub_keys *k, const cub_keys_track *t, const seg *s, int idx, int32_t v[3])
+{
+    const uint8_t *p = k->data + t->codes, *end = k->data + k->len;
+    uint64_t at = s->at + (uint64_t)idx * s->key_bits;
+    for (int c = 0; c < 3; c++) {
+        v[c] = cub_keys_key(t->base[c], s->min[c] + bits_at(p, end, at, s->bits[c]), t->shift, t->rotation);
+        at += s->bits[c];
     }
 }
 
@@ -135,23 +157,33 @@ static void track_value(const cub_keys *k, const cub_keys_track *t, int f, int32
         return;
     }
     const uint8_t *set = k->data + t->keyset;
-    int w = f >> 6, bit = f & 63, a, b;
+    int w = f >> 6, bit = f & 63, a, b, wa = w, ia;
     uint64_t word = le64(set + 8 * w);
     uint64_t upto = bit == 63 ? ~UINT64_C(0) : (UINT64_C(2) << bit) - 1;
     uint64_t below = word & upto, above = word & ~upto;
-    uint32_t rank = le32(k->data + t->ranks + 4 * (size_t)w);
     if (below) {
         a = (w << 6) + 63 - __builtin_clzll(below);
-        rank += (uint32_t)pop64(below) - 1;
+        ia = pop64(below) - 1;
     } else { /* keys are at most 64 apart: the previous one is in the word before */
-        a = ((w - 1) << 6) + 63 - __builtin_clzll(le64(set + 8 * (w - 1)));
-        rank -= 1;
+        uint64_t prev = le64(set + 8 * (w - 1));
+        wa = w - 1;
+        a = (wa << 6) + 63 - __builtin_clzll(prev);
+        ia = pop64(prev) - 1;
     }
-    key_value(k, t, rank, v);
+    seg sa, sb;
+    seg_read(k, t, wa, &sa);
+    seg_key(k, t, &sa, ia, v);
     if (a == f) return;
-    b = above ? (w << 6) + __builtin_ctzll(above) : ((w + 1) << 6) + __builtin_ctzll(le64(set + 8 * (w + 1)));
     int32_t vb[3];
-    key_value(k, t, rank + 1, vb);
+    if (above) {
+        b = (w << 6) + __builtin_ctzll(above);
+        if (wa != w) seg_read(k, t, w, &sb);
+        seg_key(k, t, wa == w ? &sa : &sb, wa == w ? ia + 1 : 0, vb);
+    } else {
+        b = ((w + 1) << 6) + __builtin_ctzll(le64(set + 8 * (w + 1)));
+        seg_read(k, t, w + 1, &sb);
+        seg_key(k, t, &sb, 0, vb);
+    }
     for (int c = 0; c < 3; c++) v[c] = cub_keys_lerp(v[c], vb[c], a, b, f);
 }
 
@@ -240,42 +272,79 @@ static cub_err read_joint(reader *r, cub_skeleton *skel, int j, cub_codec_proble
 }
 
 /* The key frames: frame 0 and the last set, none past it, at most
- * CUB_KEYS_MAX_GAP apart, and each word's count right. *keys: how many. */
+ * CUB_KEYS_MAX_GAP apart. */
 static cub_err check_keyset(const reader *r, const cub_keys *k, const cub_keys_track *t,
-                            uint32_t *keys, cub_codec_problem *why)
+                            cub_codec_problem *why)
 {
     int words = (k->frame_count + 63) >> 6, last = -1;
-    uint32_t count = 0;
     for (int w = 0; w < words; w++) {
-        uint64_t word = le64(r->p + t->keyset + 8 * (size_t)w);
-        if (le32(r->p + t->ranks + 4 * (size_t)w) != count)
-            return refuse(why, "key count before a word is wrong", t->ranks + 4 * (size_t)w);
+        size_t at = t->keyset + 8 * (size_t)w;
+        uint64_t word = le64(r->p + at);
         for (int b = 0; b < 64; b++) {
             if (!(word >> b & 1)) continue;
             int f = (w << 6) + b;
-            if (f >= k->frame_count) return refuse(why, "a key past the last frame", t->keyset + 8 * (size_t)w);
+            if (f >= k->frame_count) return refuse(why, "a key past the last frame", at);
             if ((last < 0 && f != 0) || (last >= 0 && f - last > CUB_KEYS_MAX_GAP))
-                return refuse(why, "keys more than 64 frames apart (or none at frame 0)", t->keyset + 8 * (size_t)w);
+                return refuse(why, "keys more than 64 frames apart (or none at frame 0)", at);
             last = f;
-            count++;
         }
     }
     if (last != k->frame_count - 1) return refuse(why, "no key at the last frame", t->keyset);
-    *keys = count;
     return CUB_OK;
 }
 
-/* The largest value a component can decode to must stay an int32; a
- * rotation's constant within +-1 (its keys are clamped there). */
-static int range_ok(const cub_keys_track *t, int rotation)
+/* Whether base + code * 2^shift stays an int32 for every code up to top. */
+static int fits(int32_t base, uint64_t top, int shift)
 {
-    for (int c = 0; c < 3; c++) {
-        int64_t top = t->base[c] + ((((int64_t)1 << t->bits[c]) - 1) << t->shift);
-        if (top > INT32_MAX) return 0;
-        if (rotation && t->kind == CUB_KEYS_CONSTANT && (t->base[c] < -Q30_ONE || t->base[c] > Q30_ONE))
-            return 0;
+    if (top > (UINT64_C(1) << (63 - shift))) return 0;
+    return (top << shift) <= (uint64_t)((int64_t)INT32_MAX - base);
+}
+
+/* Every segment: widths within 32 bits, values within int32, its codes
+ * within the track's. */
+static cub_err check_segments(const reader *r, const cub_keys *k, const cub_keys_track *t,
+                              cub_codec_problem *why)
+{
+    int words = (k->frame_count + 63) >> 6;
+    for (int w = 0; w < words; w++) {
+        seg s;
+        seg_read(k, t, w, &s);
+        size_t at = t->segs + (size_t)w * t->seg_bits / 8;
+        for (int c = 0; c < 3; c++)
+            if (s.bits[c] > 32 || !fits(t->base[c], s.min[c] + ((UINT64_C(1) << s.bits[c]) - 1), t->shift))
+                return refuse(why, "a segment's width or minimum is out of range", at);
+        int keys = pop64(le64(r->p + t->keyset + 8 * (size_t)w));
+        if (s.at + (uint64_t)keys * s.key_bits > (uint64_t)t->code_bytes * 8)
+            return refuse(why, "a segment's codes run past the track's", t->segoff + 4 * (size_t)w);
     }
+    return CUB_OK;
+}
+
+/* A constant's values within int32 and a rotation's within +-1. */
+static int constant_ok(const cub_keys_track *t)
+{
+    for (int c = 0; c < 3; c++)
+        if (t->rotation && (t->base[c] < -Q30_ONE || t->base[c] > Q30_ONE)) return 0;
     return 1;
+}
+
+static cub_err read_keys(reader *r, cub_keys *k, cub_keys_track *t, size_t at, cub_codec_problem *why)
+{
+    t->code_bytes = rd_u32(r);
+    if (r->pos > r->len) return refuse(why, "stream ends inside a track", at);
+    if (t->shift > 31 || t->range_bits[0] > 32 || t->range_bits[1] > 32 || t->range_bits[2] > 32)
+        return refuse(why, "track shift or range width past 31 / 32", at + 1);
+    t->seg_bits = (uint8_t)(18 + t->range_bits[0] + t->range_bits[1] + t->range_bits[2]);
+    size_t words = (size_t)(k->frame_count + 63) >> 6;
+    uint64_t keyset = r->pos, segoff = keyset + 8 * words, segs = segoff + 4 * words;
+    uint64_t codes = segs + (words * t->seg_bits + 7) / 8, end = codes + t->code_bytes;
+    if (end > r->len) return refuse(why, "stream ends inside a track's keys", r->pos);
+    t->keyset = (uint32_t)keyset, t->segoff = (uint32_t)segoff;
+    t->segs = (uint32_t)segs, t->codes = (uint32_t)codes;
+    cub_err e = check_keyset(r, k, t, why);
+    if (!e) e = check_segments(r, k, t, why);
+    r->pos = (size_t)end;
+    return e;
 }
 
 static cub_err read_track(reader *r, cub_keys *k, cub_keys_track *t, int rotation,
@@ -289,27 +358,12 @@ static cub_err read_track(reader *r, cub_keys *k, cub_keys_track *t, int rotatio
     if (t->kind == CUB_KEYS_DEFAULT) return r->pos > r->len ? refuse(why, "stream ends inside a track", at) : CUB_OK;
     if (t->kind == CUB_KEYS_ANIMATED) {
         t->shift = rd_u8(r);
-        for (int c = 0; c < 3; c++) t->bits[c] = rd_u8(r);
+        for (int c = 0; c < 3; c++) t->range_bits[c] = rd_u8(r);
     }
     for (int c = 0; c < 3; c++) t->base[c] = (int32_t)rd_u32(r);
     if (r->pos > r->len) return refuse(why, "stream ends inside a track", at);
-    if (t->shift > 31 || t->bits[0] > 32 || t->bits[1] > 32 || t->bits[2] > 32)
-        return refuse(why, "track shift or bit width past 31 / 32", at + 1);
-    t->key_bits = (uint8_t)(t->bits[0] + t->bits[1] + t->bits[2]);
-    if (!range_ok(t, rotation)) return refuse(why, "track values outside their range", at + 5);
-    if (t->kind == CUB_KEYS_CONSTANT) return CUB_OK;
-    size_t words = (size_t)(k->frame_count + 63) >> 6;
-    t->keyset = (uint32_t)r->pos;
-    t->ranks = (uint32_t)(r->pos + 8 * words);
-    t->codes = (uint32_t)(t->ranks + 4 * words);
-    if (t->codes > r->len) return refuse(why, "stream ends inside a track's key frames", r->pos);
-    uint32_t keys;
-    cub_err e = check_keyset(r, k, t, &keys, why);
-    if (e) return e;
-    uint64_t end = t->codes + ((uint64_t)keys * t->key_bits + 7) / 8;
-    if (end > r->len) return refuse(why, "stream ends inside a track's codes", t->codes);
-    r->pos = (size_t)end;
-    return CUB_OK;
+    if (t->kind == CUB_KEYS_ANIMATED) return read_keys(r, k, t, at, why);
+    return constant_ok(t) ? CUB_OK : refuse(why, "a constant rotation outside +-1", at + 1);
 }
 
 static cub_err add_track(reader *r, cub_keys *k, int16_t *slot, int rotation, cub_codec_problem *why)

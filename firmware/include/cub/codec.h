@@ -148,13 +148,14 @@ cub_err cub_codec_encode(const cub_codec_enc *in, void *buf, size_t cap, size_t 
  * clips that animate them, the joints' translations are tracks. A track is
  * either its default (identity, or the skeleton's offset), a constant, or
  * keys: the frames the encoder kept (the first, the last, and never more
- * than CUB_KEYS_MAX_GAP apart), each a code of its own bit width per
- * component above the track's minimum, in steps of 2^shift; between keys
+ * than CUB_KEYS_MAX_GAP apart), each a code above its 64-frame segment's
+ * minimum at that segment's bit width per component, in steps of 2^shift
+ * (range reduction per segment); between keys
  * the value is linear in the frame number. The encoder (cub/keys_enc.h)
  * drops keys and bits until the error at virtual vertices 3 cm from every
  * bone, in object space, would pass its bound. One pose is decoded at a
  * time, from any frame (random access): a bit set of key frames per track
- * with a running count every 64 frames finds the two keys around it.
+ * and each segment's code offset find the two keys around it.
  * docs/codec.md describes the byte layout. Integer only, no heap:
  * bit-identical on every CPU (test_codec_keys). */
 
@@ -169,12 +170,14 @@ typedef enum cub_keys_kind {
     CUB_KEYS_KIND_COUNT_
 } cub_keys_kind;
 
-/* One track of an opened stream: where its parts start in the stream. */
+/* One track of an opened stream: where its parts start in the stream. The
+ * keys of each 64-frame segment are coded above the segment's own minimum
+ * (range reduction), at the segment's own bit widths. */
 typedef struct cub_keys_track {
-    uint8_t kind, shift, bits[3], key_bits; /* key_bits = bits[0] + bits[1] + bits[2] */
-    uint8_t rotation;                         /* keys clamped to +-1 (Q2.30) */
-    int32_t base[3];                          /* the constant, or the codes' zero */
-    uint32_t keyset, ranks, codes;            /* byte offsets (animated only) */
+    uint8_t kind, shift, rotation;     /* rotation: keys clamped to +-1 (Q2.30) */
+    uint8_t range_bits[3], seg_bits;   /* widths of a segment's minimum; its header's */
+    int32_t base[3];                   /* the constant, or the codes' zero */
+    uint32_t keyset, segoff, segs, codes, code_bytes; /* byte offsets (animated only) */
 } cub_keys_track;
 
 /* An opened, fully checked stream; it points into the caller's bytes,
@@ -196,7 +199,7 @@ typedef struct cub_keys {
  * for the encoder to measure with). */
 int32_t cub_keys_lerp(int32_t va, int32_t vb, int a, int b, int f);
 /* A key's value: base + code * 2^shift, a rotation's clamped to +-1. */
-int32_t cub_keys_key(int32_t base, uint32_t code, int shift, int rotation);
+int32_t cub_keys_key(int32_t base, uint64_t code, int shift, int rotation);
 /* A rotation from its x y z (Q2.30) on w >= 0. */
 cub_quat cub_keys_quat(int32_t x, int32_t y, int32_t z);
 /* Check a whole stream (header, skeleton, every track, CRC) and open it;
