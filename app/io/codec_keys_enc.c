@@ -28,10 +28,12 @@ typedef struct src_track {
     int rotation, joint;
     int32_t *v;  /* [n * 3]: x y z on w >= 0 (Q2.30), or mm (Q16.16) */
     int32_t def[3];
+    int probes;     /* a rotation's: bones below its joint */
+    double *probe;  /* [n * probes * 3]: where they are in the joint's frame (mm) */
 } src_track;
 
 typedef struct enc_track {
-    int kind, shift, bits[3], keys; /* bits: of every frame's code, at the clip's range */
+    int kind, shift[3], bits[3], keys; /* bits: of every frame's code, at the clip's range */
     int32_t base[3];
     uint8_t *key;   /* [n] 1 where a key is */
     uint32_t *code; /* [n * 3] codes, valid where key */
@@ -42,13 +44,35 @@ typedef struct enc {
     int n, count;
     src_track src[CUB_KEYS_MAX_TRACKS];
     enc_track trk[CUB_KEYS_MAX_TRACKS];
-    double lever[CUB_MOTION_MAX_JOINTS];
     double scale[CUB_KEYS_MAX_TRACKS]; /* each track's own factor on s, from the refinement */
     enc_track spare;                   /* a track's trial encoding */
     uint32_t *scratch; /* [n * 3] */
 } enc;
 
 /* ---- per-track error, in doubles ------------------------------------- */
+
+typedef struct xf {
+    double q[4], p[3];
+} xf;
+
+static void qmul(const double *a, const double *b, double *o)
+{
+    double r[4] = {a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3],
+                   a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2],
+                   a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1],
+                   a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0]};
+    memcpy(o, r, sizeof r);
+}
+
+static void qrot(const double *q, const double *v, double *o)
+{
+    double p[4] = {0, v[0], v[1], v[2]}, c[4] = {q[0], -q[1], -q[2], -q[3]}, t[4];
+    qmul(q, p, t);
+    qmul(t, c, t);
+    o[0] = t[1], o[1] = t[2], o[2] = t[3];
+}
+
+
 
 static void rot_of(const double *x, double *q)
 {
@@ -67,11 +91,23 @@ static double err_at(const src_track *s, int f, const double *x)
 {
     const int32_t *v = s->v + 3 * (size_t)f;
     if (s->rotation) {
-        double a[4], b[4], xs[3] = {v[0] / Q30, v[1] / Q30, v[2] / Q30};
+        /* The rotation error d = b^-1 a moves a point p of the joint's own
+         * frame by |2 vec(d) x p| (exactly the chord, for p across the
+         * axis); every bone below, and the 30 mm shell around it. */
+        double a[4], b[4], d[4], xs[3] = {v[0] / Q30, v[1] / Q30, v[2] / Q30};
         rot_of(x, a);
         rot_of(xs, b);
-        double d = a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + a[3] * b[3];
-        return 1 - fabs(d);
+        b[1] = -b[1], b[2] = -b[2], b[3] = -b[3];
+        qmul(b, a, d);
+        double sg = d[0] < 0 ? -2 : 2, w[3] = {sg * d[1], sg * d[2], sg * d[3]}, worst = 0;
+        const double *p = s->probe + (size_t)f * s->probes * 3;
+        for (int k = 0; k < s->probes; k++, p += 3) {
+            double cx = w[1] * p[2] - w[2] * p[1], cy = w[2] * p[0] - w[0] * p[2], cz = w[0] * p[1] - w[1] * p[0];
+            double m = cx * cx + cy * cy + cz * cz;
+            worst = m > worst ? m : worst;
+        }
+        double e = sqrt(worst) + CUB_KEYS_SHELL_MM * sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+        return e * e;
     }
     double e = 0;
     for (int c = 0; c < 3; c++) {
@@ -96,12 +132,13 @@ static int fits_value(const src_track *s, int n, const int32_t *val, double tol)
 
 /* ---- keys at one shift ------------------------------------------------ */
 
-/* Codes of every frame at shift sh (into code); 0 if rounding alone breaks
- * the tolerance or a value would leave int32. */
-static int quantise(const src_track *s, int n, int sh, double tol, enc_track *t, uint32_t *code)
+/* Codes of every frame at shifts sh[3] (into code); 0 if rounding alone
+ * breaks the tolerance or a value would leave int32. */
+static int quantise(const src_track *s, int n, const int *sh3, double tol, enc_track *t, uint32_t *code)
 {
-    int64_t half = sh ? (int64_t)1 << (sh - 1) : 0;
     for (int c = 0; c < 3; c++) {
+        int sh = sh3[c];
+        int64_t half = sh ? (int64_t)1 << (sh - 1) : 0;
         int32_t mn = s->v[c];
         for (int f = 1; f < n; f++) mn = s->v[3 * (size_t)f + c] < mn ? s->v[3 * (size_t)f + c] : mn;
         t->base[c] = mn;
@@ -116,11 +153,11 @@ static int quantise(const src_track *s, int n, int sh, double tol, enc_track *t,
         t->bits[c] = b;
         if (mn + ((((int64_t)1 << b) - 1) << sh) > INT32_MAX) return 0;
     }
-    t->shift = sh;
+    memcpy(t->shift, sh3, sizeof t->shift);
     for (int f = 0; f < n; f++) {
         double x[3];
         for (int c = 0; c < 3; c++)
-            x[c] = cub_keys_key(t->base[c], code[3 * (size_t)f + c], sh, s->rotation) / unit(s);
+            x[c] = cub_keys_key(t->base[c], code[3 * (size_t)f + c], sh3[c], s->rotation) / unit(s);
         if (err_at(s, f, x) > tol) return 0;
     }
     return 1;
@@ -129,7 +166,7 @@ static int quantise(const src_track *s, int n, int sh, double tol, enc_track *t,
 static void key_x(const src_track *s, const enc_track *t, const uint32_t *code, int f, double *x)
 {
     for (int c = 0; c < 3; c++)
-        x[c] = cub_keys_key(t->base[c], code[3 * (size_t)f + c], t->shift, s->rotation) / unit(s);
+        x[c] = cub_keys_key(t->base[c], code[3 * (size_t)f + c], t->shift[c], s->rotation) / unit(s);
 }
 
 /* Whether the line from key a to key b holds every frame between. */
@@ -218,7 +255,7 @@ static long track_cost(const enc_track *t, int n)
 {
     if (t->kind == CUB_KEYS_DEFAULT) return 8;
     if (t->kind == CUB_KEYS_CONSTANT) return 8 + 96;
-    long bits = 8 * (1 + 4 + 12 + 4), words = (n + 63) / 64;
+    long bits = 8 * (1 + 6 + 12 + 4), words = (n + 63) / 64;
     int rb[3];
     range_bits(t, n, rb);
     for (int w = 0; w < words; w++) {
@@ -249,19 +286,36 @@ static void encode_track(enc *e, int i, double tol, enc_track *t)
     }
     if (fits_value(s, n, t->base, tol)) return;
     t->kind = CUB_KEYS_ANIMATED;
-    int top = MAX_SHIFT;
+    /* The coarsest step that holds for all three components alike, then
+     * each component as coarse as it can be alone (a twist about the bone
+     * moves little but the shell), then finer steps to leave room for key
+     * removal; the cheapest. */
     enc_track trial = *t;
-    while (top > 0 && !quantise(s, n, top, tol, &trial, e->scratch)) top--;
+    int top[3] = {MAX_SHIFT, MAX_SHIFT, MAX_SHIFT};
+    while (top[0] > 0 && !quantise(s, n, top, tol, &trial, e->scratch)) top[0] = top[1] = --top[2];
+    for (int c = 0; c < 3; c++) {
+        int up[3] = {top[0], top[1], top[2]};
+        while (up[c] < MAX_SHIFT) {
+            up[c]++;
+            if (!quantise(s, n, up, tol, &trial, e->scratch)) {
+                up[c]--;
+                break;
+            }
+        }
+        top[c] = up[c];
+    }
     long best_cost = -1;
     uint8_t *key = malloc((size_t)n);
-    for (int sh = top; sh >= 0 && sh > top - SHIFT_TRIES && key; sh--) {
-        if (!quantise(s, n, sh, tol, &trial, e->scratch) && sh > 0) continue;
+    for (int d = 0; d < SHIFT_TRIES && key; d++) {
+        int sh[3];
+        for (int c = 0; c < 3; c++) sh[c] = top[c] - d < 0 ? 0 : top[c] - d;
+        if (!quantise(s, n, sh, tol, &trial, e->scratch) && (sh[0] | sh[1] | sh[2])) continue;
         trial.keys = place_keys(s, n, &trial, e->scratch, tol, key);
         trial.key = key, trial.code = e->scratch;
         long cost = track_cost(&trial, n);
         if (best_cost >= 0 && cost >= best_cost) continue;
         best_cost = cost;
-        t->shift = trial.shift;
+        memcpy(t->shift, trial.shift, sizeof t->shift);
         memcpy(t->bits, trial.bits, sizeof t->bits);
         memcpy(t->base, trial.base, sizeof t->base);
         t->keys = trial.keys;
@@ -399,7 +453,7 @@ static void write_track(writer *w, const enc_track *t, int n)
     put_u8(w, (unsigned)t->kind);
     if (t->kind == CUB_KEYS_DEFAULT) return;
     if (t->kind == CUB_KEYS_ANIMATED) {
-        put_u8(w, (unsigned)t->shift);
+        for (int c = 0; c < 3; c++) put_u8(w, (unsigned)t->shift[c]);
         write_keys(w, t, n);
         return;
     }
@@ -420,7 +474,7 @@ static int write_stream(const enc *e, writer *w)
 {
     if (getenv("CUB_KEYS_DEBUG2")) { /* TEMP */
         for (int i = 0; i < e->count; i++) { const enc_track *t = &e->trk[i];
-            fprintf(stderr, "T%d j%d rot%d kind%d sh%d bits%d/%d/%d keys%d/%d lever%.0f sc%.2f\n", i, e->src[i].joint, e->src[i].rotation, t->kind, t->shift, t->bits[0], t->bits[1], t->bits[2], t->keys, e->n, e->lever[e->src[i].joint], e->scale[i]); }
+            fprintf(stderr, "T%d j%d rot%d kind%d sh%d bits%d/%d/%d keys%d/%d lever%.0f sc%.2f\n", i, e->src[i].joint, e->src[i].rotation, t->kind, t->shift[0], t->bits[0], t->bits[1], t->bits[2], t->keys, e->n, 0.0, e->scale[i]); }
     }
     const cub_clip *clip = e->clip;
     w->len = 0;
@@ -434,7 +488,20 @@ static int write_stream(const enc *e, writer *w)
     put_u32(w, clip->frame_ns);
     put_u32(w, 0); /* the length, below */
     write_joints(w, clip->skel);
-    for (int i = 0; i < e->count; i++) write_track(w, &e->trk[i], e->n);
+    size_t skel_end = w->len;
+    static double acc[8]; /* TEMP */
+    for (int i = 0; i < e->count; i++) {
+        size_t at = w->len;
+        write_track(w, &e->trk[i], e->n);
+        if (getenv("CUB_KEYS_SIZES")) {
+            const enc_track *t = &e->trk[i];
+            int words = (e->n + 63) / 64;
+            acc[t->kind] += 1;
+            if (t->kind == 2) { acc[3] += 21; acc[4] += words * 8; acc[5] += words * 4; acc[6] += (double)(w->len - at) - 21 - words * 12; }
+            else acc[7] += (double)(w->len - at);
+        }
+    }
+    if (getenv("CUB_KEYS_SIZES")) { acc[0] += 0; fprintf(stderr, "SZ skel %zu | def %g const %g anim %g | hdr %g keyset %g segoff %g seghdr+codes %g other %g\n", skel_end, acc[0], acc[1], acc[2], acc[3], acc[4], acc[5], acc[6], acc[7]); memset(acc, 0, sizeof acc); }
     if (w->bad) return -1;
     uint32_t total = (uint32_t)(w->len + 4);
     for (int b = 0; b < 4; b++) w->p[20 + b] = (uint8_t)(total >> (8 * b));
@@ -443,27 +510,6 @@ static int write_stream(const enc *e, writer *w)
 }
 
 /* ---- measuring the decoded stream ----------------------------------------- */
-
-typedef struct xf {
-    double q[4], p[3];
-} xf;
-
-static void qmul(const double *a, const double *b, double *o)
-{
-    double r[4] = {a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3],
-                   a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2],
-                   a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1],
-                   a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0]};
-    memcpy(o, r, sizeof r);
-}
-
-static void qrot(const double *q, const double *v, double *o)
-{
-    double p[4] = {0, v[0], v[1], v[2]}, c[4] = {q[0], -q[1], -q[2], -q[3]}, t[4];
-    qmul(q, p, t);
-    qmul(t, c, t);
-    o[0] = t[1], o[1] = t[2], o[2] = t[3];
-}
 
 /* Object-space transforms of a pose, in doubles (mm). */
 static void forward(const cub_skeleton *sk, const cub_pose *ps, xf *w)
@@ -483,6 +529,47 @@ static void forward(const cub_skeleton *sk, const cub_pose *ps, xf *w)
         for (int k = 0; k < 3; k++) w[j].p[k] = w[par].p[k] + d[k];
         qmul(w[par].q, lq, w[j].q);
     }
+}
+
+static int below(const cub_skeleton *sk, int k, int j)
+{
+    while (k > j) k = sk->joints[k].parent;
+    return k == j;
+}
+
+/* Every rotation track's probes: the bones below its joint, per frame, in
+ * the joint's own frame (after its rotation), from the source. */
+static int build_probes(enc *e)
+{
+    static cub_pose ps;
+    static xf w[CUB_MOTION_MAX_JOINTS];
+    const cub_skeleton *sk = e->clip->skel;
+    for (int i = 0; i < e->count; i++) {
+        src_track *s = &e->src[i];
+        if (!s->rotation) continue;
+        for (int k = s->joint + 1; k < sk->joint_count; k++)
+            s->probes += !sk->joints[k].is_end_site && below(sk, k, s->joint);
+        s->probe = malloc(sizeof *s->probe * 3 * (size_t)e->n * (size_t)(s->probes ? s->probes : 1));
+        if (!s->probe) return -1;
+    }
+    for (int f = 0; f < e->n; f++) {
+        if (cub_motion_clip_get_frame(e->clip, f, &ps)) return -1;
+        forward(sk, &ps, w);
+        for (int i = 0; i < e->count; i++) {
+            src_track *s = &e->src[i];
+            if (!s->rotation) continue;
+            const xf *o = &w[s->joint];
+            double inv[4] = {o->q[0], -o->q[1], -o->q[2], -o->q[3]};
+            double *p = s->probe + (size_t)f * s->probes * 3;
+            for (int k = s->joint + 1; k < sk->joint_count; k++) {
+                if (sk->joints[k].is_end_site || !below(sk, k, s->joint)) continue;
+                double d[3] = {w[k].p[0] - o->p[0], w[k].p[1] - o->p[1], w[k].p[2] - o->p[2]};
+                qrot(inv, d, p);
+                p += 3;
+            }
+        }
+    }
+    return 0;
 }
 
 /* Squared distance of the farthest of the three virtual vertices. */
@@ -524,26 +611,7 @@ double cub_keys_max_error(const cub_clip *clip, const void *data, size_t len)
     return sqrt(worst);
 }
 
-/* ---- the source's tracks and levers ----------------------------------------- */
-
-static double offset_len(cub_vec3 o)
-{
-    double x = o.x / Q16, y = o.y / Q16, z = o.z / Q16;
-    return sqrt(x * x + y * y + z * z);
-}
-
-/* Longest reach from each joint to a virtual vertex of a bone below it
- * (children come after parents, so one pass from the leaves up). */
-static void levers(const cub_skeleton *sk, double *lever)
-{
-    for (int j = 0; j < sk->joint_count; j++) lever[j] = CUB_KEYS_SHELL_MM;
-    for (int j = sk->joint_count - 1; j > 0; j--) {
-        int p = sk->joints[j].parent;
-        if (sk->joints[j].is_end_site) continue;
-        double reach = offset_len(sk->joints[j].offset_mm) + lever[j];
-        lever[p] = reach > lever[p] ? reach : lever[p];
-    }
-}
+/* ---- the source's tracks ----------------------------------------- */
 
 static int add_src(enc *e, int joint, int rotation)
 {
@@ -590,6 +658,7 @@ static void enc_free(enc *e)
 {
     for (int i = 0; i < e->count; i++) {
         free(e->src[i].v);
+        free(e->src[i].probe);
         free(e->trk[i].key);
         free(e->trk[i].code);
     }
@@ -605,11 +674,8 @@ static void enc_free(enc *e)
  * squared distance. */
 static double tolerance(const enc *e, int i, double s, double bound)
 {
-    const src_track *src = &e->src[i];
     double d = s * e->scale[i] * bound;
-    if (!src->rotation) return d * d;
-    double theta = d / e->lever[src->joint];
-    return theta * theta / 8;
+    return d * d;
 }
 
 /* Encode every track at scale s and measure; the error (mm), or INFINITY. */
@@ -663,11 +729,10 @@ cub_err cub_keys_encode(const cub_clip *clip, double bound_mm, cub_keys_result *
     e->clip = clip, e->n = clip->frame_count;
     e->scratch = malloc(sizeof *e->scratch * 3 * (size_t)e->n);
     writer w = {0}, best = {0};
-    levers(clip->skel, e->lever);
     for (int i = 0; i < CUB_KEYS_MAX_TRACKS; i++) e->scale[i] = 1;
     e->spare.key = malloc((size_t)e->n);
     e->spare.code = malloc(sizeof *e->spare.code * 3 * (size_t)e->n);
-    cub_err rc = !e->scratch || !e->spare.key || !e->spare.code || build_sources(e) ? CUB_ERR_NOMEM : CUB_OK;
+    cub_err rc = !e->scratch || !e->spare.key || !e->spare.code || build_sources(e) || build_probes(e) ? CUB_ERR_NOMEM : CUB_OK;
     double lo = 0, hi = INFINITY, s = 1, best_err = INFINITY;
     for (int step = 0; !rc && step < GROW_STEPS + SHRINK_STEPS + BISECT_STEPS; step++) {
         double err = attempt(e, s, bound_mm, &w);

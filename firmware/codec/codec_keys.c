@@ -6,7 +6,7 @@
  *           (i32 Q16.16 mm each)
  *   tracks  the rotation of every joint but end sites, the root's position,
  *           then (flag bit 0) the translation of every other such joint:
- *           u8 kind; a constant: 3 x i32; keys: u8 shift, 3 x u8 range
+ *           u8 kind; a constant: 3 x i32; keys: 3 x u8 shift, 3 x u8 range
  *           bits, 3 x i32 base, u32 code bytes; the key frames as W =
  *           ceil(n / 64) u64 bit words (a segment per word); per segment the
  *           u32 bit offset of its first code; per segment a header of 3 x 6
@@ -144,7 +144,7 @@ static void seg_key(const cub_keys *k, const cub_keys_track *t, const seg *s, in
     const uint8_t *p = k->data + t->codes, *end = k->data + k->len;
     uint64_t at = s->at + (uint64_t)idx * s->key_bits;
     for (int c = 0; c < 3; c++) {
-        v[c] = cub_keys_key(t->base[c], s->min[c] + bits_at(p, end, at, s->bits[c]), t->shift, t->rotation);
+        v[c] = cub_keys_key(t->base[c], s->min[c] + bits_at(p, end, at, s->bits[c]), t->shift[c], t->rotation);
         at += s->bits[c];
     }
 }
@@ -311,7 +311,7 @@ static cub_err check_segments(const reader *r, const cub_keys *k, const cub_keys
         seg_read(k, t, w, &s);
         size_t at = t->segs + (size_t)w * t->seg_bits / 8;
         for (int c = 0; c < 3; c++)
-            if (s.bits[c] > 32 || !fits(t->base[c], s.min[c] + ((UINT64_C(1) << s.bits[c]) - 1), t->shift))
+            if (s.bits[c] > 32 || !fits(t->base[c], s.min[c] + ((UINT64_C(1) << s.bits[c]) - 1), t->shift[c]))
                 return refuse(why, "a segment's width or minimum is out of range", at);
         int keys = pop64(le64(r->p + t->keyset + 8 * (size_t)w));
         if (s.at + (uint64_t)keys * s.key_bits > (uint64_t)t->code_bytes * 8)
@@ -332,7 +332,8 @@ static cub_err read_keys(reader *r, cub_keys *k, cub_keys_track *t, size_t at, c
 {
     t->code_bytes = rd_u32(r);
     if (r->pos > r->len) return refuse(why, "stream ends inside a track", at);
-    if (t->shift > 31 || t->range_bits[0] > 32 || t->range_bits[1] > 32 || t->range_bits[2] > 32)
+    if (t->shift[0] > 31 || t->shift[1] > 31 || t->shift[2] > 31 || t->range_bits[0] > 32 ||
+        t->range_bits[1] > 32 || t->range_bits[2] > 32)
         return refuse(why, "track shift or range width past 31 / 32", at + 1);
     t->seg_bits = (uint8_t)(18 + t->range_bits[0] + t->range_bits[1] + t->range_bits[2]);
     size_t words = (size_t)(k->frame_count + 63) >> 6;
@@ -357,7 +358,7 @@ static cub_err read_track(reader *r, cub_keys *k, cub_keys_track *t, int rotatio
     if (t->kind >= CUB_KEYS_KIND_COUNT_) return refuse(why, "unknown track kind", at);
     if (t->kind == CUB_KEYS_DEFAULT) return r->pos > r->len ? refuse(why, "stream ends inside a track", at) : CUB_OK;
     if (t->kind == CUB_KEYS_ANIMATED) {
-        t->shift = rd_u8(r);
+        for (int c = 0; c < 3; c++) t->shift[c] = rd_u8(r);
         for (int c = 0; c < 3; c++) t->range_bits[c] = rd_u8(r);
     }
     for (int c = 0; c < 3; c++) t->base[c] = (int32_t)rd_u32(r);

@@ -150,6 +150,7 @@ cub_err cub_codec_encode(const cub_codec_enc *in, void *buf, size_t cap, size_t 
  * keys: the frames the encoder kept (the first, the last, and never more
  * than CUB_KEYS_MAX_GAP apart), each a code above its 64-frame segment's
  * minimum at that segment's bit width per component, in steps of 2^shift
+ * (a shift per component)
  * (range reduction per segment); between keys
  * the value is linear in the frame number. The encoder (cub/keys_enc.h)
  * drops keys and bits until the error at virtual vertices 3 cm from every
@@ -174,7 +175,7 @@ typedef enum cub_keys_kind {
  * keys of each 64-frame segment are coded above the segment's own minimum
  * (range reduction), at the segment's own bit widths. */
 typedef struct cub_keys_track {
-    uint8_t kind, shift, rotation;     /* rotation: keys clamped to +-1 (Q2.30) */
+    uint8_t kind, shift[3], rotation;  /* steps 2^shift; rotation: keys clamped to +-1 (Q2.30) */
     uint8_t range_bits[3], seg_bits;   /* widths of a segment's minimum; its header's */
     int32_t base[3];                   /* the constant, or the codes' zero */
     uint32_t keyset, segoff, segs, codes, code_bytes; /* byte offsets (animated only) */
