@@ -1,0 +1,48 @@
+/* libFuzzer target: a .cubkeys stream (our error-bounded codec,
+ * firmware/codec/codec_keys.c) as `cubtool decode` takes it. Byte 0 steers:
+ * bit 0 rewrites the length field and the CRC to match the bytes (so the
+ * fuzzer gets past the CRC into the skeleton, the tracks, their key sets
+ * and segments). An opened stream is then decoded at its first and last
+ * frame and at up to 64 frames between. Seeds: seeds_keys/ (make_seeds.py).
+ * Whatever the bytes: no crash, no read past the stream, and a refusal
+ * always has a reason. */
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "codec_internal.h" /* codec_crc32: the stream's own CRC */
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
+
+static void put_u32(uint8_t *p, uint32_t v)
+{
+    for (int i = 0; i < 4; i++)
+        p[i] = (uint8_t)(v >> (8 * i));
+}
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+    if (size < 1) return 0;
+    size_t n = size - 1;
+    uint8_t *s = malloc(n ? n : 1); /* exactly the stream's size */
+    if (!s) return 0;
+    memcpy(s, data + 1, n);
+    if ((data[0] & 1) && n >= 28) {
+        put_u32(s + 20, (uint32_t)n);
+        put_u32(s + n - 4, codec_crc32(s, n - 4));
+    }
+    static cub_skeleton skel;
+    static cub_keys k;
+    static cub_pose pose;
+    cub_codec_problem why = {0};
+    cub_err e = cub_keys_open(s, n, &skel, &k, &why);
+    if (e == CUB_ERR_FORMAT && !why.what) abort();
+    if (!e) {
+        int step = k.frame_count / 64 + 1;
+        for (int f = 0; f < k.frame_count; f += step)
+            if (cub_keys_pose(&k, f, &pose)) abort();
+        if (cub_keys_pose(&k, k.frame_count - 1, &pose)) abort();
+    }
+    free(s);
+    return 0;
+}
