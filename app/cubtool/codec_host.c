@@ -31,6 +31,15 @@ int codec_host_encode(const cub_clip *clip, codec_blob *out, const char *name)
     return 0;
 }
 
+/* Say why a stream was not decoded. */
+static void report(cub_err e, const cub_codec_problem *why, const char *name)
+{
+    if (e == CUB_ERR_FORMAT)
+        fprintf(stderr, "%s: byte %zu: %s\n", name, why->offset, why->what);
+    else if (e)
+        fprintf(stderr, "%s: cannot decode: %s\n", name, cub_err_str(e));
+}
+
 int codec_host_decode(const codec_blob *in, const cub_codec_opts *opts, codec_decoded *out,
                       const char *name)
 {
@@ -45,10 +54,7 @@ int codec_host_decode(const codec_blob *in, const cub_codec_opts *opts, codec_de
         e = out->skel && out->mem ? cub_codec_decode(in->data, in->len, opts, &dst, &why)
                                   : CUB_ERR_NOMEM;
     }
-    if (e == CUB_ERR_FORMAT)
-        fprintf(stderr, "%s: byte %zu: %s\n", name, why.offset, why.what);
-    else if (e)
-        fprintf(stderr, "%s: cannot decode: %s\n", name, cub_err_str(e));
+    report(e, &why, name);
     if (e) codec_decoded_free(out);
     return e ? -1 : 0;
 }
@@ -91,10 +97,7 @@ int codec_host_decode_keys(const codec_blob *in, codec_decoded *out, const char 
     out->skel = malloc(sizeof *out->skel);
     cub_err e = out->skel ? cub_keys_open(in->data, in->len, out->skel, &k, &why) : CUB_ERR_NOMEM;
     if (!e) e = keys_to_clip(&k, out);
-    if (e == CUB_ERR_FORMAT)
-        fprintf(stderr, "%s: byte %zu: %s\n", name, why.offset, why.what);
-    else if (e)
-        fprintf(stderr, "%s: cannot decode: %s\n", name, cub_err_str(e));
+    report(e, &why, name);
     if (e) codec_decoded_free(out);
     return e ? -1 : 0;
 }

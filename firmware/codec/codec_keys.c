@@ -234,41 +234,9 @@ static cub_err read_header(reader *r, cub_keys *k, cub_codec_problem *why)
     if (k->frame_count < 1 || k->frame_count > CODEC_MAX_FRAMES)
         return refuse(why, "frame count outside 1..2^20", 12);
     if (k->frame_ns == 0) return refuse(why, "frame period is zero", 16);
-    if (length != r->len) return refuse(why, "stream length differs from the header's (truncated?)", 20);
-    size_t body = r->len - CODEC_CRC_BYTES;
-    reader crc = {r->p, r->len, body};
-    if (rd_u32(&crc) != codec_crc32(r->p, body)) return refuse(why, "CRC mismatch (damaged stream)", body);
-    r->len = body; /* nothing below may read the CRC as data */
-    return CUB_OK;
-}
-
-static cub_err read_joint(reader *r, cub_skeleton *skel, int j, cub_codec_problem *why)
-{
-    size_t at = r->pos;
-    char name[CUB_MOTION_NAME_LEN];
-    unsigned n = rd_u8(r);
-    if (n < 1 || n >= CUB_MOTION_NAME_LEN) return refuse(why, "joint name length outside 1..31", at);
-    for (unsigned i = 0; i < n; i++) {
-        name[i] = (char)rd_u8(r);
-        if ((unsigned char)name[i] <= ' ' || (unsigned char)name[i] > '~')
-            return refuse(why, "joint name has a byte that is not printable ASCII", r->pos - 1);
-    }
-    name[n] = '\0';
-    int parent = (int)rd_u8(r) - 1;
-    unsigned end_site = rd_u8(r);
-    cub_vec3 off;
-    off.x = (int32_t)rd_u32(r);
-    off.y = (int32_t)rd_u32(r);
-    off.z = (int32_t)rd_u32(r);
-    if (r->pos > r->len) return refuse(why, "stream ends inside the joints", at);
-    if ((j == 0) != (parent < 0) || parent >= j)
-        return refuse(why, "joint parent is not an earlier joint (or a second root)", at + 1 + n);
-    if (end_site > 1) return refuse(why, "end-site byte is not 0 or 1", at + 2 + n);
-    int idx;
-    if (cub_motion_skeleton_add(skel, name, parent, off, &idx))
-        return refuse(why, "joint name repeated", at);
-    skel->joints[idx].is_end_site = (uint8_t)end_site;
-    return CUB_OK;
+    cub_err e = codec_check_crc(r, length, why);
+    if (!e) r->len -= CODEC_CRC_BYTES; /* nothing below may read the CRC as data */
+    return e;
 }
 
 /* The key frames: frame 0 and the last set, none past it, at most
@@ -400,7 +368,7 @@ cub_err cub_keys_open(const void *data, size_t len, cub_skeleton *skel, cub_keys
     out->data = data;
     out->len = len;
     cub_motion_skeleton_reset(skel);
-    for (int j = 0; j < out->joint_count && !e; j++) e = read_joint(&r, skel, j, why);
+    for (int j = 0; j < out->joint_count && !e; j++) e = codec_read_joint(&r, skel, j, 1, why);
     if (!e && skel->joints[0].is_end_site) e = refuse(why, "the root is an end site", KEYS_HEADER_BYTES);
     return e ? e : read_tracks(&r, skel, out, why);
 }

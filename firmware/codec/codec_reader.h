@@ -40,4 +40,11 @@ static inline cub_err refuse(cub_codec_problem *why, const char *what, size_t of
     return CUB_ERR_FORMAT;
 }
 
+/* The stream's length field against its bytes, then its CRC. */
+cub_err codec_check_crc(reader *r, uint32_t length, cub_codec_problem *why);
+/* One joint: name, parent, end site, offset (exact: 3 x i32 Q16.16 mm, the
+ * cubkeys way; else split metres, the cubseed way, with the CRC still in
+ * r->len). */
+cub_err codec_read_joint(reader *r, cub_skeleton *skel, int j, int exact, cub_codec_problem *why);
+
 #endif

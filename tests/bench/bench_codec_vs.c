@@ -18,7 +18,6 @@
  *            access; the seed's: the whole clip at once, divided), best of 3
  * Prints figures and fails only when a clip cannot be read or coded. */
 #define _POSIX_C_SOURCE 200809L
-#include <dirent.h>
 #include <fnmatch.h>
 #include <math.h>
 #include <stdio.h>
@@ -31,6 +30,7 @@
 #include "cub/codec_enc.h"
 #include "cub/io.h"
 #include "cub/pack.h"
+#include "cub/vec.h"
 
 #define SHELL_MM 30.0
 #define MAX_FILES 512
@@ -50,50 +50,23 @@ static double now_s(void)
 /* ---- errors: FK in doubles, virtual vertices ---------------------------- */
 
 typedef struct dxf {
-    double q[4]; /* w x y z */
-    double p[3];
+    cub_dq q;
+    cub_dv3 p;
 } dxf;
-
-static void qmul(const double *a, const double *b, double *o)
-{
-    double r[4] = {a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3],
-                   a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2],
-                   a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1],
-                   a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0]};
-    memcpy(o, r, sizeof r);
-}
-
-static void qrot(const double *q, const double *v, double *o)
-{
-    double p[4] = {0, v[0], v[1], v[2]}, c[4] = {q[0], -q[1], -q[2], -q[3]}, t[4];
-    qmul(q, p, t);
-    qmul(t, c, t);
-    o[0] = t[1], o[1] = t[2], o[2] = t[3];
-}
-
-static void qnorm(double *q)
-{
-    double n = sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
-    for (int k = 0; k < 4; k++) q[k] = n > 0 ? q[k] / n : (k == 0);
-}
 
 /* Object-space transforms of every joint of a local pose. */
 static void forward(const cub_skeleton *sk, const vs_pose *lp, dxf *w)
 {
     for (int j = 0; j < sk->joint_count; j++) {
-        double lq[4];
-        memcpy(lq, lp->rot[j], sizeof lq);
-        qnorm(lq);
+        cub_dq lq = cub_dq_norm((cub_dq){lp->rot[j][0], lp->rot[j][1], lp->rot[j][2], lp->rot[j][3]});
+        cub_dv3 lt = {lp->pos[j][0], lp->pos[j][1], lp->pos[j][2]};
         int par = sk->joints[j].parent;
         if (par < 0) {
-            memcpy(w[j].q, lq, sizeof lq);
-            memcpy(w[j].p, lp->pos[j], sizeof w[j].p);
+            w[j] = (dxf){lq, lt};
             continue;
         }
-        double d[3];
-        qrot(w[par].q, lp->pos[j], d);
-        for (int k = 0; k < 3; k++) w[j].p[k] = w[par].p[k] + d[k];
-        qmul(w[par].q, lq, w[j].q);
+        w[j].p = cub_dv3_add(w[par].p, cub_dq_rotate(w[par].q, lt));
+        w[j].q = cub_dq_mul(w[par].q, lq);
     }
 }
 
@@ -101,17 +74,12 @@ static double vertex_err_cm(const dxf *a, const dxf *b)
 {
     double worst = 0;
     for (int axis = 0; axis < 3; axis++) {
-        double v[3] = {0, 0, 0}, va[3], vb[3], d2 = 0;
-        v[axis] = SHELL_MM;
-        qrot(a->q, v, va);
-        qrot(b->q, v, vb);
-        for (int k = 0; k < 3; k++) {
-            double d = (a->p[k] + va[k]) - (b->p[k] + vb[k]);
-            d2 += d * d;
-        }
-        worst = d2 > worst ? d2 : worst;
+        cub_dv3 v = {axis == 0 ? SHELL_MM : 0, axis == 1 ? SHELL_MM : 0, axis == 2 ? SHELL_MM : 0};
+        cub_dv3 va = cub_dv3_add(a->p, cub_dq_rotate(a->q, v)), vb = cub_dv3_add(b->p, cub_dq_rotate(b->q, v));
+        double d = cub_dv3_len(cub_dv3_sub(va, vb));
+        worst = d > worst ? d : worst;
     }
-    return sqrt(worst) / 10.0;
+    return worst / 10.0;
 }
 
 /* The source's frame f as a vs_pose. */
@@ -365,30 +333,6 @@ static int run_clip(run *r, cub_clip *clip, const char *name)
     return 0;
 }
 
-static int by_name(const void *a, const void *b)
-{
-    return strcmp(*(char *const *)a, *(char *const *)b);
-}
-
-static int list_bvh(const char *dir, int depth, char **out, int n)
-{
-    DIR *d = opendir(dir);
-    if (!d) return n;
-    struct dirent *e;
-    while ((e = readdir(d)) && n < MAX_FILES) {
-        if (e->d_name[0] == '.') continue;
-        char path[1024];
-        snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
-        size_t len = strlen(e->d_name);
-        if (len > 4 && !strcmp(e->d_name + len - 4, ".bvh"))
-            out[n++] = strdup(path);
-        else if (depth > 0)
-            n = list_bvh(path, depth - 1, out, n);
-    }
-    closedir(d);
-    return n;
-}
-
 /* "set/clip" for --clips GLOB. */
 static int wanted(const run *r, const char *set, const char *clip, int *taken)
 {
@@ -404,8 +348,7 @@ static int run_bvh_set(run *r, const char *data, const char *set, int depth)
 {
     char dir[1024], *files[MAX_FILES];
     snprintf(dir, sizeof dir, "%s/mocap/%s", data, set);
-    int n = list_bvh(dir, depth, files, 0), rc = 0, taken = 0;
-    qsort(files, (size_t)n, sizeof *files, by_name);
+    int n = cub_io_list_bvh(dir, depth, files, MAX_FILES), rc = 0, taken = 0;
     if (n == 0) printf("bench_codec_vs: no BVH under %s: the %s set is skipped\n", dir, set);
     for (int i = 0; i < n; i++) {
         const char *name = files[i] + strlen(dir) + 1;

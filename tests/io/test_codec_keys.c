@@ -27,6 +27,7 @@
 #include "cub/codec.h"
 #include "cub/codec_enc.h"
 #include "cub/io.h"
+#include "bear_library.h"
 #include "cub/pack.h"
 
 /* FNV-1a over every stream and decoded pose of the bear's library at
@@ -45,15 +46,7 @@ static cub_library lib;
 static int setup(void **state)
 {
     (void)state;
-    const char *src = getenv("CUB_SOURCE_DIR");
-    char path[1024];
-    snprintf(path, sizeof path, "%s/assets/clips/bear.cubclips", src ? src : ".");
-    cub_diag d = {0};
-    if (cub_pack_read(path, &lib, &d)) {
-        fprintf(stderr, "cannot read %s: %s\n", path, d.msg);
-        return -1;
-    }
-    return 0;
+    return support_bear_library(&lib);
 }
 
 static int teardown(void **state)
