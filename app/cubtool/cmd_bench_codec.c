@@ -19,8 +19,10 @@ int cub_cmd_bench_codec(int argc, char **argv)
         perror(exe);
         return 1;
     }
-    fprintf(stderr, "cubtool bench-codec: %s is not built: cmake --build --preset release "
-                    "--target bench_codec_vs\n", exe);
+    fprintf(stderr,
+            "cubtool bench-codec: %s is not built: cmake --build --preset release "
+            "--target bench_codec_vs\n",
+            exe);
 #else
     fprintf(stderr, "cubtool bench-codec: this tree has no tests/bench (bench_codec_vs)\n");
 #endif

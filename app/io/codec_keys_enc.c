@@ -12,7 +12,6 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <stdio.h>
 
 #include "cub/codec.h"
 
@@ -26,10 +25,10 @@
 
 typedef struct src_track {
     int rotation, joint;
-    int32_t *v;  /* [n * 3]: x y z on w >= 0 (Q2.30), or mm (Q16.16) */
+    int32_t *v; /* [n * 3]: x y z on w >= 0 (Q2.30), or mm (Q16.16) */
     int32_t def[3];
-    int probes;     /* a rotation's: bones below its joint */
-    double *probe;  /* [n * probes * 3]: where they are in the joint's frame (mm) */
+    int probes;    /* a rotation's: bones below its joint */
+    double *probe; /* [n * probes * 3]: where they are in the joint's frame (mm) */
 } src_track;
 
 typedef struct enc_track {
@@ -46,7 +45,7 @@ typedef struct enc {
     enc_track trk[CUB_KEYS_MAX_TRACKS];
     double scale[CUB_KEYS_MAX_TRACKS]; /* each track's own factor on s, from the refinement */
     enc_track spare;                   /* a track's trial encoding */
-    uint32_t *scratch; /* [n * 3] */
+    uint32_t *scratch;                 /* [n * 3] */
 } enc;
 
 /* ---- per-track error, in doubles ------------------------------------- */
@@ -72,8 +71,6 @@ static void qrot(const double *q, const double *v, double *o)
     o[0] = t[1], o[1] = t[2], o[2] = t[3];
 }
 
-
-
 static void rot_of(const double *x, double *q)
 {
     double s = x[0] * x[0] + x[1] * x[1] + x[2] * x[2];
@@ -81,7 +78,8 @@ static void rot_of(const double *x, double *q)
     q[1] = x[0], q[2] = x[1], q[3] = x[2];
     if (s > 1) {
         double m = sqrt(s);
-        for (int c = 1; c < 4; c++) q[c] /= m;
+        for (int c = 1; c < 4; c++)
+            q[c] /= m;
     }
 }
 
@@ -102,7 +100,8 @@ static double err_at(const src_track *s, int f, const double *x)
         double sg = d[0] < 0 ? -2 : 2, w[3] = {sg * d[1], sg * d[2], sg * d[3]}, worst = 0;
         const double *p = s->probe + (size_t)f * s->probes * 3;
         for (int k = 0; k < s->probes; k++, p += 3) {
-            double cx = w[1] * p[2] - w[2] * p[1], cy = w[2] * p[0] - w[0] * p[2], cz = w[0] * p[1] - w[1] * p[0];
+            double cx = w[1] * p[2] - w[2] * p[1], cy = w[2] * p[0] - w[0] * p[2],
+                   cz = w[0] * p[1] - w[1] * p[0];
             double m = cx * cx + cy * cy + cz * cz;
             worst = m > worst ? m : worst;
         }
@@ -134,13 +133,15 @@ static int fits_value(const src_track *s, int n, const int32_t *val, double tol)
 
 /* Codes of every frame at shifts sh[3] (into code); 0 if rounding alone
  * breaks the tolerance or a value would leave int32. */
-static int quantise(const src_track *s, int n, const int *sh3, double tol, enc_track *t, uint32_t *code)
+static int quantise(const src_track *s, int n, const int *sh3, double tol, enc_track *t,
+                    uint32_t *code)
 {
     for (int c = 0; c < 3; c++) {
         int sh = sh3[c];
         int64_t half = sh ? (int64_t)1 << (sh - 1) : 0;
         int32_t mn = s->v[c];
-        for (int f = 1; f < n; f++) mn = s->v[3 * (size_t)f + c] < mn ? s->v[3 * (size_t)f + c] : mn;
+        for (int f = 1; f < n; f++)
+            mn = s->v[3 * (size_t)f + c] < mn ? s->v[3 * (size_t)f + c] : mn;
         t->base[c] = mn;
         uint32_t top = 0;
         for (int f = 0; f < n; f++) {
@@ -149,7 +150,8 @@ static int quantise(const src_track *s, int n, const int *sh3, double tol, enc_t
             top = k > top ? k : top;
         }
         int b = 0;
-        while (b < 32 && (top >> b)) b++;
+        while (b < 32 && (top >> b))
+            b++;
         t->bits[c] = b;
         if (mn + ((((int64_t)1 << b) - 1) << sh) > INT32_MAX) return 0;
     }
@@ -166,26 +168,29 @@ static int quantise(const src_track *s, int n, const int *sh3, double tol, enc_t
 static void key_x(const src_track *s, const enc_track *t, const uint32_t *code, int f, double *x)
 {
     for (int c = 0; c < 3; c++)
-        x[c] = cub_keys_key(t->base[c], code[3 * (size_t)f + c], t->shift[c], s->rotation) / unit(s);
+        x[c] =
+            cub_keys_key(t->base[c], code[3 * (size_t)f + c], t->shift[c], s->rotation) / unit(s);
 }
 
 /* Whether the line from key a to key b holds every frame between. */
-static int run_holds(const src_track *s, const enc_track *t, const uint32_t *code, int a, int b, double tol)
+static int run_holds(const src_track *s, const enc_track *t, const uint32_t *code, int a, int b,
+                     double tol)
 {
     double xa[3], xb[3];
     key_x(s, t, code, a, xa);
     key_x(s, t, code, b, xb);
     for (int f = a + 1; f < b; f++) {
         double u = (double)(f - a) / (b - a), x[3];
-        for (int c = 0; c < 3; c++) x[c] = xa[c] + (xb[c] - xa[c]) * u;
+        for (int c = 0; c < 3; c++)
+            x[c] = xa[c] + (xb[c] - xa[c]) * u;
         if (err_at(s, f, x) > tol) return 0;
     }
     return 1;
 }
 
 /* Greedy key removal; the number of keys. */
-static int place_keys(const src_track *s, int n, const enc_track *t, const uint32_t *code, double tol,
-                      uint8_t *key)
+static int place_keys(const src_track *s, int n, const enc_track *t, const uint32_t *code,
+                      double tol, uint8_t *key)
 {
     memset(key, 0, (size_t)n);
     key[0] = 1;
@@ -208,7 +213,8 @@ static int place_keys(const src_track *s, int n, const enc_track *t, const uint3
 static int bit_len(uint64_t v)
 {
     int b = 0;
-    while (b < 64 && (v >> b)) b++;
+    while (b < 64 && (v >> b))
+        b++;
     return b;
 }
 
@@ -222,7 +228,8 @@ static void seg_of(const enc_track *t, int n, int w, seg_enc *sg)
 {
     uint32_t mx[3] = {0, 0, 0};
     sg->keys = 0;
-    for (int c = 0; c < 3; c++) sg->min[c] = UINT32_MAX;
+    for (int c = 0; c < 3; c++)
+        sg->min[c] = UINT32_MAX;
     for (int f = w * 64; f < n && f < w * 64 + 64; f++) {
         if (!t->key[f]) continue;
         sg->keys++;
@@ -245,9 +252,11 @@ static void range_bits(const enc_track *t, int n, int rb[3])
     for (int w = 0; w * 64 < n; w++) {
         seg_enc sg;
         seg_of(t, n, w, &sg);
-        for (int c = 0; c < 3; c++) top[c] = sg.min[c] > top[c] ? sg.min[c] : top[c];
+        for (int c = 0; c < 3; c++)
+            top[c] = sg.min[c] > top[c] ? sg.min[c] : top[c];
     }
-    for (int c = 0; c < 3; c++) rb[c] = bit_len(top[c]);
+    for (int c = 0; c < 3; c++)
+        rb[c] = bit_len(top[c]);
 }
 
 /* Bits the track takes in the stream. */
@@ -292,7 +301,8 @@ static void encode_track(enc *e, int i, double tol, enc_track *t)
      * removal; the cheapest. */
     enc_track trial = *t;
     int top[3] = {MAX_SHIFT, MAX_SHIFT, MAX_SHIFT};
-    while (top[0] > 0 && !quantise(s, n, top, tol, &trial, e->scratch)) top[0] = top[1] = --top[2];
+    while (top[0] > 0 && !quantise(s, n, top, tol, &trial, e->scratch))
+        top[0] = top[1] = --top[2];
     for (int c = 0; c < 3; c++) {
         int up[3] = {top[0], top[1], top[2]};
         while (up[c] < MAX_SHIFT) {
@@ -308,7 +318,8 @@ static void encode_track(enc *e, int i, double tol, enc_track *t)
     uint8_t *key = malloc((size_t)n);
     for (int d = 0; d < SHIFT_TRIES && key; d++) {
         int sh[3];
-        for (int c = 0; c < 3; c++) sh[c] = top[c] - d < 0 ? 0 : top[c] - d;
+        for (int c = 0; c < 3; c++)
+            sh[c] = top[c] - d < 0 ? 0 : top[c] - d;
         if (!quantise(s, n, sh, tol, &trial, e->scratch) && (sh[0] | sh[1] | sh[2])) continue;
         trial.keys = place_keys(s, n, &trial, e->scratch, tol, key);
         trial.key = key, trial.code = e->scratch;
@@ -337,7 +348,8 @@ static void put(writer *w, const void *src, size_t n)
 {
     if (w->len + n > w->cap) {
         size_t cap = w->cap ? w->cap * 2 : 4096;
-        while (cap < w->len + n) cap *= 2;
+        while (cap < w->len + n)
+            cap *= 2;
         uint8_t *p = realloc(w->p, cap);
         if (!p) {
             w->bad = 1;
@@ -410,8 +422,10 @@ static void write_keys(writer *w, const enc_track *t, int n)
 {
     int words = (n + 63) / 64, rb[3];
     range_bits(t, n, rb);
-    for (int c = 0; c < 3; c++) put_u8(w, (unsigned)rb[c]);
-    for (int c = 0; c < 3; c++) put_u32(w, (uint32_t)t->base[c]);
+    for (int c = 0; c < 3; c++)
+        put_u8(w, (unsigned)rb[c]);
+    for (int c = 0; c < 3; c++)
+        put_u32(w, (uint32_t)t->base[c]);
     uint64_t code_bits = 0;
     for (int wd = 0; wd < words; wd++) {
         seg_enc sg;
@@ -421,7 +435,8 @@ static void write_keys(writer *w, const enc_track *t, int n)
     put_u32(w, (uint32_t)((code_bits + 7) / 8));
     for (int wd = 0; wd < words; wd++) {
         uint64_t bits = 0;
-        for (int b = 0; b < 64 && wd * 64 + b < n; b++) bits |= (uint64_t)t->key[wd * 64 + b] << b;
+        for (int b = 0; b < 64 && wd * 64 + b < n; b++)
+            bits |= (uint64_t)t->key[wd * 64 + b] << b;
         put_u64(w, bits);
     }
     uint32_t at = 0;
@@ -435,15 +450,18 @@ static void write_keys(writer *w, const enc_track *t, int n)
     for (int wd = 0; wd < words; wd++) {
         seg_enc sg;
         seg_of(t, n, wd, &sg);
-        for (int c = 0; c < 3; c++) put_bits(&b, (uint64_t)sg.bits[c], 6);
-        for (int c = 0; c < 3; c++) put_bits(&b, sg.min[c], rb[c]);
+        for (int c = 0; c < 3; c++)
+            put_bits(&b, (uint64_t)sg.bits[c], 6);
+        for (int c = 0; c < 3; c++)
+            put_bits(&b, sg.min[c], rb[c]);
     }
     flush_bits(&b);
     for (int wd = 0; wd < words; wd++) {
         seg_enc sg;
         seg_of(t, n, wd, &sg);
         for (int f = wd * 64; f < n && f < wd * 64 + 64; f++)
-            for (int c = 0; c < 3 && t->key[f]; c++) put_bits(&b, t->code[3 * (size_t)f + c] - sg.min[c], sg.bits[c]);
+            for (int c = 0; c < 3 && t->key[f]; c++)
+                put_bits(&b, t->code[3 * (size_t)f + c] - sg.min[c], sg.bits[c]);
     }
     flush_bits(&b);
 }
@@ -453,11 +471,13 @@ static void write_track(writer *w, const enc_track *t, int n)
     put_u8(w, (unsigned)t->kind);
     if (t->kind == CUB_KEYS_DEFAULT) return;
     if (t->kind == CUB_KEYS_ANIMATED) {
-        for (int c = 0; c < 3; c++) put_u8(w, (unsigned)t->shift[c]);
+        for (int c = 0; c < 3; c++)
+            put_u8(w, (unsigned)t->shift[c]);
         write_keys(w, t, n);
         return;
     }
-    for (int c = 0; c < 3; c++) put_u32(w, (uint32_t)t->base[c]);
+    for (int c = 0; c < 3; c++)
+        put_u32(w, (uint32_t)t->base[c]);
 }
 
 static uint32_t crc32_of(const uint8_t *p, size_t len)
@@ -465,17 +485,14 @@ static uint32_t crc32_of(const uint8_t *p, size_t len)
     uint32_t c = 0xFFFFFFFFu;
     for (size_t i = 0; i < len; i++) {
         c ^= p[i];
-        for (int k = 0; k < 8; k++) c = (c >> 1) ^ (0xEDB88320u & (0u - (c & 1)));
+        for (int k = 0; k < 8; k++)
+            c = (c >> 1) ^ (0xEDB88320u & (0u - (c & 1)));
     }
     return ~c;
 }
 
 static int write_stream(const enc *e, writer *w)
 {
-    if (getenv("CUB_KEYS_DEBUG2")) { /* TEMP */
-        for (int i = 0; i < e->count; i++) { const enc_track *t = &e->trk[i];
-            fprintf(stderr, "T%d j%d rot%d kind%d sh%d bits%d/%d/%d keys%d/%d lever%.0f sc%.2f\n", i, e->src[i].joint, e->src[i].rotation, t->kind, t->shift[0], t->bits[0], t->bits[1], t->bits[2], t->keys, e->n, 0.0, e->scale[i]); }
-    }
     const cub_clip *clip = e->clip;
     w->len = 0;
     put(w, "CUBKEYS", 7);
@@ -488,23 +505,12 @@ static int write_stream(const enc *e, writer *w)
     put_u32(w, clip->frame_ns);
     put_u32(w, 0); /* the length, below */
     write_joints(w, clip->skel);
-    size_t skel_end = w->len;
-    static double acc[8]; /* TEMP */
-    for (int i = 0; i < e->count; i++) {
-        size_t at = w->len;
+    for (int i = 0; i < e->count; i++)
         write_track(w, &e->trk[i], e->n);
-        if (getenv("CUB_KEYS_SIZES")) {
-            const enc_track *t = &e->trk[i];
-            int words = (e->n + 63) / 64;
-            acc[t->kind] += 1;
-            if (t->kind == 2) { acc[3] += 21; acc[4] += words * 8; acc[5] += words * 4; acc[6] += (double)(w->len - at) - 21 - words * 12; }
-            else acc[7] += (double)(w->len - at);
-        }
-    }
-    if (getenv("CUB_KEYS_SIZES")) { acc[0] += 0; fprintf(stderr, "SZ skel %zu | def %g const %g anim %g | hdr %g keyset %g segoff %g seghdr+codes %g other %g\n", skel_end, acc[0], acc[1], acc[2], acc[3], acc[4], acc[5], acc[6], acc[7]); memset(acc, 0, sizeof acc); }
     if (w->bad) return -1;
     uint32_t total = (uint32_t)(w->len + 4);
-    for (int b = 0; b < 4; b++) w->p[20 + b] = (uint8_t)(total >> (8 * b));
+    for (int b = 0; b < 4; b++)
+        w->p[20 + b] = (uint8_t)(total >> (8 * b));
     put_u32(w, crc32_of(w->p, w->len));
     return w->bad ? -1 : 0;
 }
@@ -520,20 +526,23 @@ static void forward(const cub_skeleton *sk, const cub_pose *ps, xf *w)
         int par = sk->joints[j].parent;
         if (par < 0) {
             memcpy(w[j].q, lq, sizeof lq);
-            w[j].p[0] = ps->root_mm.x / Q16, w[j].p[1] = ps->root_mm.y / Q16, w[j].p[2] = ps->root_mm.z / Q16;
+            w[j].p[0] = ps->root_mm.x / Q16, w[j].p[1] = ps->root_mm.y / Q16,
+            w[j].p[2] = ps->root_mm.z / Q16;
             continue;
         }
         cub_vec3 o = ps->has_trans ? ps->trans_mm[j] : sk->joints[j].offset_mm;
         double off[3] = {o.x / Q16, o.y / Q16, o.z / Q16}, d[3];
         qrot(w[par].q, off, d);
-        for (int k = 0; k < 3; k++) w[j].p[k] = w[par].p[k] + d[k];
+        for (int k = 0; k < 3; k++)
+            w[j].p[k] = w[par].p[k] + d[k];
         qmul(w[par].q, lq, w[j].q);
     }
 }
 
 static int below(const cub_skeleton *sk, int k, int j)
 {
-    while (k > j) k = sk->joints[k].parent;
+    while (k > j)
+        k = sk->joints[k].parent;
     return k == j;
 }
 
@@ -549,7 +558,8 @@ static int build_probes(enc *e)
         if (!s->rotation) continue;
         for (int k = s->joint + 1; k < sk->joint_count; k++)
             s->probes += !sk->joints[k].is_end_site && below(sk, k, s->joint);
-        s->probe = malloc(sizeof *s->probe * 3 * (size_t)e->n * (size_t)(s->probes ? s->probes : 1));
+        s->probe =
+            malloc(sizeof *s->probe * 3 * (size_t)e->n * (size_t)(s->probes ? s->probes : 1));
         if (!s->probe) return -1;
     }
     for (int f = 0; f < e->n; f++) {
@@ -596,7 +606,8 @@ double cub_keys_max_error(const cub_clip *clip, const void *data, size_t len)
     static cub_keys k;
     static cub_pose src, dec;
     static xf ws[CUB_MOTION_MAX_JOINTS], wd[CUB_MOTION_MAX_JOINTS];
-    if (cub_keys_open(data, len, &skel, &k, NULL) || k.frame_count != clip->frame_count) return INFINITY;
+    if (cub_keys_open(data, len, &skel, &k, NULL) || k.frame_count != clip->frame_count)
+        return INFINITY;
     double worst = 0;
     for (int f = 0; f < clip->frame_count; f++) {
         if (cub_motion_clip_get_frame(clip, f, &src) || cub_keys_pose(&k, f, &dec)) return INFINITY;
@@ -681,11 +692,11 @@ static double tolerance(const enc *e, int i, double s, double bound)
 /* Encode every track at scale s and measure; the error (mm), or INFINITY. */
 static double attempt(enc *e, double s, double bound, writer *w)
 {
-    for (int i = 0; i < e->count; i++) encode_track(e, i, tolerance(e, i, s, bound), &e->trk[i]);
+    for (int i = 0; i < e->count; i++)
+        encode_track(e, i, tolerance(e, i, s, bound), &e->trk[i]);
     if (write_stream(e, w)) return INFINITY;
     return cub_keys_max_error(e->clip, w->p, w->len);
 }
-
 
 /* Loosen one track at a time by `factor` while the measured error holds:
  * the lever split is conservative (errors down a chain rarely add up). */
@@ -729,10 +740,14 @@ cub_err cub_keys_encode(const cub_clip *clip, double bound_mm, cub_keys_result *
     e->clip = clip, e->n = clip->frame_count;
     e->scratch = malloc(sizeof *e->scratch * 3 * (size_t)e->n);
     writer w = {0}, best = {0};
-    for (int i = 0; i < CUB_KEYS_MAX_TRACKS; i++) e->scale[i] = 1;
+    for (int i = 0; i < CUB_KEYS_MAX_TRACKS; i++)
+        e->scale[i] = 1;
     e->spare.key = malloc((size_t)e->n);
     e->spare.code = malloc(sizeof *e->spare.code * 3 * (size_t)e->n);
-    cub_err rc = !e->scratch || !e->spare.key || !e->spare.code || build_sources(e) || build_probes(e) ? CUB_ERR_NOMEM : CUB_OK;
+    cub_err rc =
+        !e->scratch || !e->spare.key || !e->spare.code || build_sources(e) || build_probes(e)
+            ? CUB_ERR_NOMEM
+            : CUB_OK;
     double lo = 0, hi = INFINITY, s = 1, best_err = INFINITY;
     for (int step = 0; !rc && step < GROW_STEPS + SHRINK_STEPS + BISECT_STEPS; step++) {
         double err = attempt(e, s, bound_mm, &w);
@@ -752,7 +767,8 @@ cub_err cub_keys_encode(const cub_clip *clip, double bound_mm, cub_keys_result *
     if (!rc && best_err <= bound_mm) {
         static const double factors[] = {2.0, 1.41, 1.19};
         attempt(e, lo, bound_mm, &w); /* the tracks as they held */
-        for (size_t f = 0; f < sizeof factors / sizeof *factors; f++) refine(e, lo, bound_mm, factors[f], &w, &best_err);
+        for (size_t f = 0; f < sizeof factors / sizeof *factors; f++)
+            refine(e, lo, bound_mm, factors[f], &w, &best_err);
         if (write_stream(e, &best)) rc = CUB_ERR_NOMEM;
         best_err = cub_keys_max_error(clip, best.p, best.len);
     }
@@ -765,13 +781,5 @@ cub_err cub_keys_encode(const cub_clip *clip, double bound_mm, cub_keys_result *
         return rc;
     }
     out->data = best.p, out->len = best.len, out->max_err_mm = best_err;
-    if (getenv("CUB_KEYS_DEBUG")) { /* TEMP */
-        const cub_skeleton *sk = clip->skel;
-        size_t names = 0; int anim = 0, cons = 0, def = 0; long keys = 0, codebits = 0;
-        for (int j = 0; j < sk->joint_count; j++) names += strlen(sk->joints[j].name) + 15;
-        enc *e2 = NULL; (void)e2;
-        fprintf(stderr, "DBG n=%d joints=%d skelbytes=%zu len=%zu\n", clip->frame_count, sk->joint_count, names, best.len);
-        (void)anim; (void)cons; (void)def; (void)keys; (void)codebits;
-    }
     return CUB_OK;
 }

@@ -57,29 +57,26 @@ static uint32_t bits_at(const uint8_t *p, const uint8_t *end, uint64_t at, int n
     if (end - b >= 8) {
         v = le64(b);
     } else {
-        for (int i = (int)(end - b) - 1; i >= 0; i--) v = v << 8 | b[i];
+        for (int i = (int)(end - b) - 1; i >= 0; i--)
+            v = v << 8 | b[i];
     }
     return (uint32_t)((v >> skip) & ((UINT64_C(1) << n) - 1));
 }
 
 /* ceil(256 sqrt(t + 1)) for t = 64..255: a first guess for keys_sqrt. */
 static const uint16_t sqrt_guess[192] = {
-    2064, 2080, 2096, 2112, 2127, 2142, 2158, 2173, 2188, 2203, 2218, 2232,
-    2247, 2261, 2276, 2290, 2304, 2319, 2333, 2347, 2361, 2375, 2388, 2402,
-    2416, 2429, 2443, 2456, 2469, 2483, 2496, 2509, 2522, 2535, 2548, 2560,
-    2573, 2586, 2599, 2611, 2624, 2636, 2649, 2661, 2673, 2685, 2698, 2710,
-    2722, 2734, 2746, 2758, 2770, 2781, 2793, 2805, 2816, 2828, 2840, 2851,
-    2863, 2874, 2885, 2897, 2908, 2919, 2931, 2942, 2953, 2964, 2975, 2986,
-    2997, 3008, 3019, 3030, 3040, 3051, 3062, 3072, 3083, 3094, 3104, 3115,
-    3125, 3136, 3146, 3157, 3167, 3177, 3188, 3198, 3208, 3218, 3229, 3239,
-    3249, 3259, 3269, 3279, 3289, 3299, 3309, 3319, 3328, 3338, 3348, 3358,
-    3368, 3377, 3387, 3397, 3406, 3416, 3426, 3435, 3445, 3454, 3464, 3473,
-    3482, 3492, 3501, 3511, 3520, 3529, 3538, 3548, 3557, 3566, 3575, 3584,
-    3594, 3603, 3612, 3621, 3630, 3639, 3648, 3657, 3666, 3675, 3684, 3693,
-    3701, 3710, 3719, 3728, 3737, 3745, 3754, 3763, 3772, 3780, 3789, 3798,
-    3806, 3815, 3823, 3832, 3840, 3849, 3858, 3866, 3874, 3883, 3891, 3900,
-    3908, 3917, 3925, 3933, 3942, 3950, 3958, 3966, 3975, 3983, 3991, 3999,
-    4008, 4016, 4024, 4032, 4040, 4048, 4056, 4064, 4072, 4080, 4088, 4096,
+    2064, 2080, 2096, 2112, 2127, 2142, 2158, 2173, 2188, 2203, 2218, 2232, 2247, 2261, 2276, 2290,
+    2304, 2319, 2333, 2347, 2361, 2375, 2388, 2402, 2416, 2429, 2443, 2456, 2469, 2483, 2496, 2509,
+    2522, 2535, 2548, 2560, 2573, 2586, 2599, 2611, 2624, 2636, 2649, 2661, 2673, 2685, 2698, 2710,
+    2722, 2734, 2746, 2758, 2770, 2781, 2793, 2805, 2816, 2828, 2840, 2851, 2863, 2874, 2885, 2897,
+    2908, 2919, 2931, 2942, 2953, 2964, 2975, 2986, 2997, 3008, 3019, 3030, 3040, 3051, 3062, 3072,
+    3083, 3094, 3104, 3115, 3125, 3136, 3146, 3157, 3167, 3177, 3188, 3198, 3208, 3218, 3229, 3239,
+    3249, 3259, 3269, 3279, 3289, 3299, 3309, 3319, 3328, 3338, 3348, 3358, 3368, 3377, 3387, 3397,
+    3406, 3416, 3426, 3435, 3445, 3454, 3464, 3473, 3482, 3492, 3501, 3511, 3520, 3529, 3538, 3548,
+    3557, 3566, 3575, 3584, 3594, 3603, 3612, 3621, 3630, 3639, 3648, 3657, 3666, 3675, 3684, 3693,
+    3701, 3710, 3719, 3728, 3737, 3745, 3754, 3763, 3772, 3780, 3789, 3798, 3806, 3815, 3823, 3832,
+    3840, 3849, 3858, 3866, 3874, 3883, 3891, 3900, 3908, 3917, 3925, 3933, 3942, 3950, 3958, 3966,
+    3975, 3983, 3991, 3999, 4008, 4016, 4024, 4032, 4040, 4048, 4056, 4064, 4072, 4080, 4088, 4096,
 };
 
 /* floor(sqrt(x)) for x <= 2^60, exact: a guess from the table (8 bits),
@@ -92,8 +89,10 @@ static uint32_t keys_sqrt(uint64_t x)
     uint64_t r = (((uint64_t)sqrt_guess[(x >> sh) - 64] << (sh / 2)) >> 8) + 1;
     r = (r + x / r) / 2;
     r = (r + x / r) / 2;
-    while (r * r > x) r--;
-    while ((r + 1) * (r + 1) <= x) r++;
+    while (r * r > x)
+        r--;
+    while ((r + 1) * (r + 1) <= x)
+        r++;
     return (uint32_t)r;
 }
 
@@ -106,7 +105,8 @@ int32_t cub_keys_lerp(int32_t va, int32_t vb, int a, int b, int f)
 
 cub_quat cub_keys_quat(int32_t x, int32_t y, int32_t z)
 {
-    uint64_t s = (uint64_t)((int64_t)x * x) + (uint64_t)((int64_t)y * y) + (uint64_t)((int64_t)z * z);
+    uint64_t s =
+        (uint64_t)((int64_t)x * x) + (uint64_t)((int64_t)y * y) + (uint64_t)((int64_t)z * z);
     uint64_t one = UINT64_C(1) << 60;
     if (s <= one) return (cub_quat){(int32_t)keys_sqrt(one - s), x, y, z};
     return cub_fx_quat_normalize((cub_quat){0, x, y, z});
@@ -129,7 +129,8 @@ static void seg_read(const cub_keys *k, const cub_keys_track *t, int w, seg *s)
 {
     const uint8_t *p = k->data + t->segs, *end = k->data + k->len;
     uint64_t at = (uint64_t)w * t->seg_bits;
-    for (int c = 0; c < 3; c++, at += 6) s->bits[c] = (int)bits_at(p, end, at, 6);
+    for (int c = 0; c < 3; c++, at += 6)
+        s->bits[c] = (int)bits_at(p, end, at, 6);
     for (int c = 0; c < 3; c++) {
         s->min[c] = bits_at(p, end, at, t->range_bits[c]);
         at += t->range_bits[c];
@@ -144,7 +145,8 @@ static void seg_key(const cub_keys *k, const cub_keys_track *t, const seg *s, in
     const uint8_t *p = k->data + t->codes, *end = k->data + k->len;
     uint64_t at = s->at + (uint64_t)idx * s->key_bits;
     for (int c = 0; c < 3; c++) {
-        v[c] = cub_keys_key(t->base[c], s->min[c] + bits_at(p, end, at, s->bits[c]), t->shift[c], t->rotation);
+        v[c] = cub_keys_key(t->base[c], s->min[c] + bits_at(p, end, at, s->bits[c]), t->shift[c],
+                            t->rotation);
         at += s->bits[c];
     }
 }
@@ -184,7 +186,8 @@ static void track_value(const cub_keys *k, const cub_keys_track *t, int f, int32
         seg_read(k, t, w + 1, &sb);
         seg_key(k, t, &sb, 0, vb);
     }
-    for (int c = 0; c < 3; c++) v[c] = cub_keys_lerp(v[c], vb[c], a, b, f);
+    for (int c = 0; c < 3; c++)
+        v[c] = cub_keys_lerp(v[c], vb[c], a, b, f);
 }
 
 cub_err cub_keys_pose(const cub_keys *k, int frame, cub_pose *out)
@@ -279,7 +282,8 @@ static cub_err check_segments(const reader *r, const cub_keys *k, const cub_keys
         seg_read(k, t, w, &s);
         size_t at = t->segs + (size_t)w * t->seg_bits / 8;
         for (int c = 0; c < 3; c++)
-            if (s.bits[c] > 32 || !fits(t->base[c], s.min[c] + ((UINT64_C(1) << s.bits[c]) - 1), t->shift[c]))
+            if (s.bits[c] > 32 ||
+                !fits(t->base[c], s.min[c] + ((UINT64_C(1) << s.bits[c]) - 1), t->shift[c]))
                 return refuse(why, "a segment's width or minimum is out of range", at);
         int keys = pop64(le64(r->p + t->keyset + 8 * (size_t)w));
         if (s.at + (uint64_t)keys * s.key_bits > (uint64_t)t->code_bytes * 8)
@@ -296,7 +300,8 @@ static int constant_ok(const cub_keys_track *t)
     return 1;
 }
 
-static cub_err read_keys(reader *r, cub_keys *k, cub_keys_track *t, size_t at, cub_codec_problem *why)
+static cub_err read_keys(reader *r, cub_keys *k, cub_keys_track *t, size_t at,
+                         cub_codec_problem *why)
 {
     t->code_bytes = rd_u32(r);
     if (r->pos > r->len) return refuse(why, "stream ends inside a track", at);
@@ -324,18 +329,23 @@ static cub_err read_track(reader *r, cub_keys *k, cub_keys_track *t, int rotatio
     t->kind = rd_u8(r);
     t->rotation = (uint8_t)rotation;
     if (t->kind >= CUB_KEYS_KIND_COUNT_) return refuse(why, "unknown track kind", at);
-    if (t->kind == CUB_KEYS_DEFAULT) return r->pos > r->len ? refuse(why, "stream ends inside a track", at) : CUB_OK;
+    if (t->kind == CUB_KEYS_DEFAULT)
+        return r->pos > r->len ? refuse(why, "stream ends inside a track", at) : CUB_OK;
     if (t->kind == CUB_KEYS_ANIMATED) {
-        for (int c = 0; c < 3; c++) t->shift[c] = rd_u8(r);
-        for (int c = 0; c < 3; c++) t->range_bits[c] = rd_u8(r);
+        for (int c = 0; c < 3; c++)
+            t->shift[c] = rd_u8(r);
+        for (int c = 0; c < 3; c++)
+            t->range_bits[c] = rd_u8(r);
     }
-    for (int c = 0; c < 3; c++) t->base[c] = (int32_t)rd_u32(r);
+    for (int c = 0; c < 3; c++)
+        t->base[c] = (int32_t)rd_u32(r);
     if (r->pos > r->len) return refuse(why, "stream ends inside a track", at);
     if (t->kind == CUB_KEYS_ANIMATED) return read_keys(r, k, t, at, why);
     return constant_ok(t) ? CUB_OK : refuse(why, "a constant rotation outside +-1", at + 1);
 }
 
-static cub_err add_track(reader *r, cub_keys *k, int16_t *slot, int rotation, cub_codec_problem *why)
+static cub_err add_track(reader *r, cub_keys *k, int16_t *slot, int rotation,
+                         cub_codec_problem *why)
 {
     *slot = (int16_t)k->track_count;
     return read_track(r, k, &k->tracks[k->track_count++], rotation, why);
@@ -368,7 +378,9 @@ cub_err cub_keys_open(const void *data, size_t len, cub_skeleton *skel, cub_keys
     out->data = data;
     out->len = len;
     cub_motion_skeleton_reset(skel);
-    for (int j = 0; j < out->joint_count && !e; j++) e = codec_read_joint(&r, skel, j, 1, why);
-    if (!e && skel->joints[0].is_end_site) e = refuse(why, "the root is an end site", KEYS_HEADER_BYTES);
+    for (int j = 0; j < out->joint_count && !e; j++)
+        e = codec_read_joint(&r, skel, j, 1, why);
+    if (!e && skel->joints[0].is_end_site)
+        e = refuse(why, "the root is an end site", KEYS_HEADER_BYTES);
     return e ? e : read_tracks(&r, skel, out, why);
 }

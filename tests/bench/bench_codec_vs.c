@@ -58,7 +58,8 @@ typedef struct dxf {
 static void forward(const cub_skeleton *sk, const vs_pose *lp, dxf *w)
 {
     for (int j = 0; j < sk->joint_count; j++) {
-        cub_dq lq = cub_dq_norm((cub_dq){lp->rot[j][0], lp->rot[j][1], lp->rot[j][2], lp->rot[j][3]});
+        cub_dq lq =
+            cub_dq_norm((cub_dq){lp->rot[j][0], lp->rot[j][1], lp->rot[j][2], lp->rot[j][3]});
         cub_dv3 lt = {lp->pos[j][0], lp->pos[j][1], lp->pos[j][2]};
         int par = sk->joints[j].parent;
         if (par < 0) {
@@ -75,7 +76,8 @@ static double vertex_err_cm(const dxf *a, const dxf *b)
     double worst = 0;
     for (int axis = 0; axis < 3; axis++) {
         cub_dv3 v = {axis == 0 ? SHELL_MM : 0, axis == 1 ? SHELL_MM : 0, axis == 2 ? SHELL_MM : 0};
-        cub_dv3 va = cub_dv3_add(a->p, cub_dq_rotate(a->q, v)), vb = cub_dv3_add(b->p, cub_dq_rotate(b->q, v));
+        cub_dv3 va = cub_dv3_add(a->p, cub_dq_rotate(a->q, v)),
+                vb = cub_dv3_add(b->p, cub_dq_rotate(b->q, v));
         double d = cub_dv3_len(cub_dv3_sub(va, vb));
         worst = d > worst ? d : worst;
     }
@@ -89,10 +91,14 @@ static void source_pose(const cub_clip *c, int f, vs_pose *out)
     int jn = sk->joint_count;
     for (int j = 0; j < jn; j++) {
         cub_quat r = c->rot[(size_t)f * jn + j];
-        cub_vec3 t = j == 0 ? c->root_mm[f] : c->trans_mm ? c->trans_mm[(size_t)f * jn + j] : sk->joints[j].offset_mm;
-        double q[4] = {r.w / 1073741824.0, r.x / 1073741824.0, r.y / 1073741824.0, r.z / 1073741824.0};
+        cub_vec3 t = j == 0        ? c->root_mm[f]
+                     : c->trans_mm ? c->trans_mm[(size_t)f * jn + j]
+                                   : sk->joints[j].offset_mm;
+        double q[4] = {r.w / 1073741824.0, r.x / 1073741824.0, r.y / 1073741824.0,
+                       r.z / 1073741824.0};
         memcpy(out->rot[j], q, sizeof q);
-        out->pos[j][0] = t.x / 65536.0, out->pos[j][1] = t.y / 65536.0, out->pos[j][2] = t.z / 65536.0;
+        out->pos[j][0] = t.x / 65536.0, out->pos[j][1] = t.y / 65536.0,
+        out->pos[j][2] = t.z / 65536.0;
     }
 }
 
@@ -247,8 +253,11 @@ static int keys_pose(void *self, int frame, vs_pose *out)
         cub_quat r = s->pose.rot[j];
         out->rot[j][0] = r.w / 1073741824.0, out->rot[j][1] = r.x / 1073741824.0;
         out->rot[j][2] = r.y / 1073741824.0, out->rot[j][3] = r.z / 1073741824.0;
-        cub_vec3 t = j == 0 ? s->pose.root_mm : s->pose.has_trans ? s->pose.trans_mm[j] : s->skel.joints[j].offset_mm;
-        out->pos[j][0] = t.x / 65536.0, out->pos[j][1] = t.y / 65536.0, out->pos[j][2] = t.z / 65536.0;
+        cub_vec3 t = j == 0              ? s->pose.root_mm
+                     : s->pose.has_trans ? s->pose.trans_mm[j]
+                                         : s->skel.joints[j].offset_mm;
+        out->pos[j][0] = t.x / 65536.0, out->pos[j][1] = t.y / 65536.0,
+        out->pos[j][2] = t.z / 65536.0;
     }
     return 0;
 }
@@ -381,7 +390,8 @@ static int run_library(run *r, const char *path)
     }
     int rc = 0, taken = 0;
     for (int i = 0; i < lib.clip_count && !rc; i++)
-        if (wanted(r, "bear", lib.clips[i].name, &taken)) rc = run_clip(r, &lib.clips[i].clip, lib.clips[i].name);
+        if (wanted(r, "bear", lib.clips[i].name, &taken))
+            rc = run_clip(r, &lib.clips[i].clip, lib.clips[i].name);
     cub_library_free(&lib);
     return rc;
 }
@@ -400,20 +410,22 @@ static int end_set(run *r, const char *set)
 
 static void usage(FILE *f)
 {
-    fprintf(f, "usage: bench_codec_vs [--data DIR] [--library FILE] [--clips GLOB] [--quick] [--per-clip]\n"
-               "  (cubtool bench-codec runs this)\n"
-               "ACL (medium, 0.01 cm), the seed's codec and ours on every BVH of DIR/mocap's\n"
-               "cmu, animdraw and bandai folders and on the bear's library: ratio against raw\n"
-               "(10 float32 per bone per sample), max and p99 error at virtual vertices 3 cm\n"
-               "from each bone (cm), decode time per pose. docs/codec.md explains each figure.\n"
-               "  --data DIR      the shared data (default $CUB_DATA_DIR, else %s)\n"
-               "  --library FILE  the clip library (default %s/clips/bear.cubclips)\n"
-               "  --clips GLOB    only the clips whose SET/NAME matches (sets: cmu animdraw\n"
-               "                  bandai bear; e.g. 'cmu/*' or 'bandai/*walk*')\n"
-               "  --bound CM      our codec's bound (default %g cm: ACL's threshold)\n"
-               "  --quick         at most %d clips per set, each cut to %d frames\n"
-               "  --per-clip      a row per clip and codec\n",
-               CUB_DATA_DIR_DEFAULT, CUB_ASSETS_DIR, DEFAULT_BOUND_CM, QUICK_CLIPS, QUICK_FRAMES);
+    fprintf(f,
+            "usage: bench_codec_vs [--data DIR] [--library FILE] [--clips GLOB] [--quick] "
+            "[--per-clip]\n"
+            "  (cubtool bench-codec runs this)\n"
+            "ACL (medium, 0.01 cm), the seed's codec and ours on every BVH of DIR/mocap's\n"
+            "cmu, animdraw and bandai folders and on the bear's library: ratio against raw\n"
+            "(10 float32 per bone per sample), max and p99 error at virtual vertices 3 cm\n"
+            "from each bone (cm), decode time per pose. docs/codec.md explains each figure.\n"
+            "  --data DIR      the shared data (default $CUB_DATA_DIR, else %s)\n"
+            "  --library FILE  the clip library (default %s/clips/bear.cubclips)\n"
+            "  --clips GLOB    only the clips whose SET/NAME matches (sets: cmu animdraw\n"
+            "                  bandai bear; e.g. 'cmu/*' or 'bandai/*walk*')\n"
+            "  --bound CM      our codec's bound (default %g cm: ACL's threshold)\n"
+            "  --quick         at most %d clips per set, each cut to %d frames\n"
+            "  --per-clip      a row per clip and codec\n",
+            CUB_DATA_DIR_DEFAULT, CUB_ASSETS_DIR, DEFAULT_BOUND_CM, QUICK_CLIPS, QUICK_FRAMES);
 }
 
 static int parse(int argc, char **argv, run *r, const char **data, const char **library)
@@ -421,13 +433,20 @@ static int parse(int argc, char **argv, run *r, const char **data, const char **
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         int has = i + 1 < argc;
-        if (!strcmp(a, "--data") && has) *data = argv[++i];
-        else if (!strcmp(a, "--library") && has) *library = argv[++i];
-        else if (!strcmp(a, "--clips") && has) r->glob = argv[++i];
-        else if (!strcmp(a, "--quick")) r->quick = 1;
-        else if (!strcmp(a, "--bound") && has) keys_st.bound_mm = 10.0 * atof(argv[++i]);
-        else if (!strcmp(a, "--per-clip")) r->per_clip = 1;
-        else if (!strcmp(a, "--help") || !strcmp(a, "-h")) return 1;
+        if (!strcmp(a, "--data") && has)
+            *data = argv[++i];
+        else if (!strcmp(a, "--library") && has)
+            *library = argv[++i];
+        else if (!strcmp(a, "--clips") && has)
+            r->glob = argv[++i];
+        else if (!strcmp(a, "--quick"))
+            r->quick = 1;
+        else if (!strcmp(a, "--bound") && has)
+            keys_st.bound_mm = 10.0 * atof(argv[++i]);
+        else if (!strcmp(a, "--per-clip"))
+            r->per_clip = 1;
+        else if (!strcmp(a, "--help") || !strcmp(a, "-h"))
+            return 1;
         else {
             fprintf(stderr, "bench_codec_vs: unknown or incomplete option '%s'\n", a);
             usage(stderr);
@@ -451,15 +470,20 @@ int main(int argc, char **argv)
     if (vs_acl_codec(&r.codecs[r.codec_count]) == 0)
         r.codec_count++;
     else
-        printf("bench_codec_vs: ACL is skipped: ../shared/peers/acl was not there when this was built\n");
-    r.codecs[r.codec_count++] = (vs_codec){"ours", keys_encode, keys_pose, keys_time_all, keys_release, &keys_st};
-    r.codecs[r.codec_count++] = (vs_codec){"seed", seed_encode, seed_pose, seed_time_all, seed_release, &seed_st};
+        printf("bench_codec_vs: ACL is skipped: ../shared/peers/acl was not there when this was "
+               "built\n");
+    r.codecs[r.codec_count++] =
+        (vs_codec){"ours", keys_encode, keys_pose, keys_time_all, keys_release, &keys_st};
+    r.codecs[r.codec_count++] =
+        (vs_codec){"seed", seed_encode, seed_pose, seed_time_all, seed_release, &seed_st};
     static const struct {
         const char *set;
         int depth;
     } sets[] = {{"cmu", 1}, {"animdraw", 1}, {"bandai", 2}};
-    printf("bench_codec_vs: ratio against raw (10 float32 per bone per sample); error at virtual vertices\n"
-           "3 cm from each bone, object space, every bone and sample (cm); decode per pose, best of %d\n",
+    printf("bench_codec_vs: ratio against raw (10 float32 per bone per sample); error at virtual "
+           "vertices\n"
+           "3 cm from each bone, object space, every bone and sample (cm); decode per pose, best "
+           "of %d\n",
            TIME_RUNS);
     print_head();
     int rc = 0;
@@ -470,7 +494,8 @@ int main(int argc, char **argv)
     if (!rc) rc = run_library(&r, library);
     if (!rc) rc = end_set(&r, "bear");
     if (!rc)
-        for (int c = 0; c < r.codec_count; c++) print_row("total", r.codecs[c].name, &r.total[c]);
+        for (int c = 0; c < r.codec_count; c++)
+            print_row("total", r.codecs[c].name, &r.total[c]);
     for (int c = 0; c < r.codec_count; c++) {
         r.codecs[c].release(r.codecs[c].self);
         free(r.total[c].err.v);

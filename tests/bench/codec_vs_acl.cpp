@@ -16,7 +16,8 @@
 
 #include "codec_vs.h"
 
-namespace {
+namespace
+{
 
 // One pose as ACL writes it, per track (our bones, end sites left out).
 struct pose_writer final : public acl::track_writer {
@@ -56,17 +57,27 @@ struct acl_state {
 
 acl_state state;
 
-double q(int32_t v) { return v / 1073741824.0; }
-double mm(int32_t v) { return v / 65536.0; }
+double q(int32_t v)
+{
+    return v / 1073741824.0;
+}
+double mm(int32_t v)
+{
+    return v / 65536.0;
+}
 
 // The local transform of joint j at frame f as a qvvf in centimetres.
 rtm::qvvf source_transform(const cub_clip *c, int f, int j)
 {
     int jn = c->skel->joint_count;
     const cub_quat &r = c->rot[(size_t)f * jn + j];
-    cub_vec3 t = j == 0 ? c->root_mm[f] : c->trans_mm ? c->trans_mm[(size_t)f * jn + j] : c->skel->joints[j].offset_mm;
-    rtm::quatf rq = rtm::quat_normalize(rtm::quat_set((float)q(r.x), (float)q(r.y), (float)q(r.z), (float)q(r.w)));
-    rtm::vector4f tv = rtm::vector_set((float)(mm(t.x) / 10.0), (float)(mm(t.y) / 10.0), (float)(mm(t.z) / 10.0));
+    cub_vec3 t = j == 0        ? c->root_mm[f]
+                 : c->trans_mm ? c->trans_mm[(size_t)f * jn + j]
+                               : c->skel->joints[j].offset_mm;
+    rtm::quatf rq = rtm::quat_normalize(
+        rtm::quat_set((float)q(r.x), (float)q(r.y), (float)q(r.z), (float)q(r.w)));
+    rtm::vector4f tv =
+        rtm::vector_set((float)(mm(t.x) / 10.0), (float)(mm(t.y) / 10.0), (float)(mm(t.z) / 10.0));
     return rtm::qvv_set(rq, tv, rtm::vector_set(1.0f));
 }
 
@@ -85,10 +96,12 @@ int acl_encode(void *, const cub_clip *clip, size_t *bytes)
         if (s.track_of[j] < 0) continue;
         acl::track_desc_transformf desc;
         desc.output_index = (uint32_t)s.track_of[j];
-        desc.parent_index = j == 0 ? acl::k_invalid_track_index : (uint32_t)s.track_of[sk->joints[j].parent];
+        desc.parent_index =
+            j == 0 ? acl::k_invalid_track_index : (uint32_t)s.track_of[sk->joints[j].parent];
         desc.precision = 0.01f;     // cm, ACL's default
         desc.shell_distance = 3.0f; // cm, ACL's default
-        acl::track_qvvf t = acl::track_qvvf::make_reserve(desc, s.alloc, (uint32_t)clip->frame_count, s.rate);
+        acl::track_qvvf t =
+            acl::track_qvvf::make_reserve(desc, s.alloc, (uint32_t)clip->frame_count, s.rate);
         for (int f = 0; f < clip->frame_count; f++)
             t[(uint32_t)f] = source_transform(clip, f, j);
         list[(uint32_t)s.track_of[j]] = std::move(t);
@@ -118,8 +131,10 @@ int acl_pose(void *, int frame, vs_pose *out)
     for (int j = 0; j < sk->joint_count; j++) {
         int t = s.track_of[j];
         if (t < 0) continue;
-        for (int k = 0; k < 4; k++) out->rot[j][k] = s.out.rot[t][k];
-        for (int k = 0; k < 3; k++) out->pos[j][k] = s.out.pos[t][k] * 10.0;
+        for (int k = 0; k < 4; k++)
+            out->rot[j][k] = s.out.rot[t][k];
+        for (int k = 0; k < 3; k++)
+            out->pos[j][k] = s.out.pos[t][k] * 10.0;
     }
     return 0;
 }
@@ -136,7 +151,10 @@ double acl_time_all(void *)
     return d.count();
 }
 
-void acl_release(void *) { state.drop(); }
+void acl_release(void *)
+{
+    state.drop();
+}
 
 } // namespace
 

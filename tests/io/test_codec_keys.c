@@ -104,7 +104,8 @@ static uint8_t *round_trip(const cub_clip *clip, double bound_mm, size_t *len, c
 static uint64_t fnv(uint64_t h, const void *p, size_t n)
 {
     const uint8_t *b = p;
-    for (size_t i = 0; i < n; i++) h = (h ^ b[i]) * UINT64_C(0x100000001b3);
+    for (size_t i = 0; i < n; i++)
+        h = (h ^ b[i]) * UINT64_C(0x100000001b3);
     return h;
 }
 
@@ -175,7 +176,8 @@ static void test_any_order(void **state)
     size_t len;
     uint8_t *s = round_trip(c, BOUND_MM, &len, &k);
     int n = c->frame_count < 128 ? c->frame_count : 128;
-    for (int f = 0; f < n; f++) assert_int_equal(cub_keys_pose(&k, f, &fwd[f]), CUB_OK);
+    for (int f = 0; f < n; f++)
+        assert_int_equal(cub_keys_pose(&k, f, &fwd[f]), CUB_OK);
     for (int f = n - 1; f >= 0; f -= 3) { /* backwards, skipping */
         assert_int_equal(cub_keys_pose(&k, f, &one), CUB_OK);
         assert_memory_equal(one.rot, fwd[f].rot, sizeof *one.rot * (size_t)c->skel->joint_count);
@@ -207,15 +209,18 @@ static void synth_clip(cub_skeleton *sk, cub_clip *c, void **mem, int n, int wit
     for (int f = 0; f < n; f++) {
         cub_motion_pose_rest(sk, &p);
         double t = f / 30.0;
-        p.root_mm = (cub_vec3){(int32_t)(t * 500 * 65536), (int32_t)((900 + 30 * sin(t * 6)) * 65536), 0};
+        p.root_mm =
+            (cub_vec3){(int32_t)(t * 500 * 65536), (int32_t)((900 + 30 * sin(t * 6)) * 65536), 0};
         for (int j = 0; j < 3; j++) {
             double ang = 1.2 * sin(t * (2 + j) + j), ax[3] = {j == 0, j == 1, j == 2};
-            cub_vec3 axis = {(int32_t)(ax[0] * 65536), (int32_t)(ax[1] * 65536), (int32_t)(ax[2] * 65536)};
+            cub_vec3 axis = {(int32_t)(ax[0] * 65536), (int32_t)(ax[1] * 65536),
+                             (int32_t)(ax[2] * 65536)};
             p.rot[j] = cub_fx_quat_from_axis_angle(axis, (int32_t)(ang * 65536));
         }
         if (with_trans) {
             p.has_trans = 1;
-            for (int j = 1; j < sk->joint_count; j++) p.trans_mm[j] = sk->joints[j].offset_mm;
+            for (int j = 1; j < sk->joint_count; j++)
+                p.trans_mm[j] = sk->joints[j].offset_mm;
             p.trans_mm[2].y = (int32_t)((200 + 20 * sin(t * 3)) * 65536);
         }
         assert_int_equal(cub_motion_clip_set_frame(c, f, &p), CUB_OK);
@@ -260,11 +265,13 @@ static void test_real_clips(void **state)
             printf("# %s: %s (skipped)\n", path, d.msg);
             continue;
         }
-        if (m.clip.frame_count > 200) m.clip.frame_count = 200; /* seconds, not minutes, under qemu */
+        if (m.clip.frame_count > 200)
+            m.clip.frame_count = 200; /* seconds, not minutes, under qemu */
         static cub_keys k;
         size_t len;
         free(round_trip(&m.clip, BOUND_MM, &len, &k));
-        printf("# %s: %d frames, %zu bytes within %.2f mm\n", files[i], m.clip.frame_count, len, BOUND_MM);
+        printf("# %s: %d frames, %zu bytes within %.2f mm\n", files[i], m.clip.frame_count, len,
+               BOUND_MM);
         cub_io_motion_free(&m);
     }
 }
@@ -283,7 +290,8 @@ static void refused(const uint8_t *s, size_t len, const char *what)
 static void reseal(uint8_t *s, size_t len)
 {
     uint32_t crc = codec_crc32(s, len - 4);
-    for (int b = 0; b < 4; b++) s[len - 4 + b] = (uint8_t)(crc >> (8 * b));
+    for (int b = 0; b < 4; b++)
+        s[len - 4 + b] = (uint8_t)(crc >> (8 * b));
 }
 
 static void test_bad_streams(void **state)
@@ -315,7 +323,8 @@ static void test_bad_streams(void **state)
         static cub_pose p;
         cub_codec_problem why = {NULL, 0};
         if (cub_keys_open(t, len, &skel, &k2, &why) == CUB_OK) {
-            for (int f = 0; f < k2.frame_count; f++) assert_int_equal(cub_keys_pose(&k2, f, &p), CUB_OK);
+            for (int f = 0; f < k2.frame_count; f++)
+                assert_int_equal(cub_keys_pose(&k2, f, &p), CUB_OK);
         } else {
             assert_non_null(why.what);
             refusals++;
@@ -330,12 +339,9 @@ static void test_bad_streams(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_sqrt_is_exact),
-        cmocka_unit_test(test_bear_library),
-        cmocka_unit_test(test_any_order),
-        cmocka_unit_test(test_synthetic),
-        cmocka_unit_test(test_real_clips),
-        cmocka_unit_test(test_bad_streams),
+        cmocka_unit_test(test_sqrt_is_exact), cmocka_unit_test(test_bear_library),
+        cmocka_unit_test(test_any_order),     cmocka_unit_test(test_synthetic),
+        cmocka_unit_test(test_real_clips),    cmocka_unit_test(test_bad_streams),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }
