@@ -1,12 +1,13 @@
 /* The cubkeys encoder (cub/codec_enc.h). Per track: the default, a
- * constant, or keys: the largest step 2^shift whose rounding holds the
- * track's tolerance, and up to three finer ones, each with greedy key
- * removal (extend a linear run while every frame inside stays within the
- * tolerance), the cheapest kept. Tolerances: a rotation of joint j may be
- * off by s * bound / lever_j radians, lever_j being the longest reach from
- * j to a virtual vertex below it; a translation by s * bound mm. The scale s
- * is searched on the real decoder's measured error. Doubles only pick
- * candidates; the bound is checked on the integer decode. */
+ * constant, or keys: the coarsest steps 2^shift (per component) whose
+ * rounding holds the track's tolerance, and up to three finer ones, each
+ * with greedy key removal (extend a linear run while every frame inside
+ * stays within the tolerance), the cheapest in bits kept. A track's error
+ * is in mm where it lands: a rotation's, at every bone below its joint and
+ * the 3 cm shell; a translation's, its distance. Tolerance: s * bound, then
+ * per track loosened while the whole still holds. The scale s is searched
+ * on the real decoder's measured error. Doubles only pick candidates; the
+ * bound is checked on the integer decode. */
 #include "cub/codec_enc.h"
 
 #include <math.h>
@@ -208,7 +209,7 @@ static int place_keys(const src_track *s, int n, const enc_track *t, const uint3
     return keys;
 }
 
-/* ---- segments: range reduction per 64 frames ------------------------- */
+/* ---- segments: range reduction per CUB_KEYS_SEGMENT frames ---------- */
 
 static int bit_len(uint64_t v)
 {
@@ -224,13 +225,15 @@ typedef struct seg_enc {
     int bits[3], keys;
 } seg_enc;
 
+#define SEG CUB_KEYS_SEGMENT
+
 static void seg_of(const enc_track *t, int n, int w, seg_enc *sg)
 {
     uint32_t mx[3] = {0, 0, 0};
     sg->keys = 0;
     for (int c = 0; c < 3; c++)
         sg->min[c] = UINT32_MAX;
-    for (int f = w * 64; f < n && f < w * 64 + 64; f++) {
+    for (int f = w * SEG; f < n && f < w * SEG + SEG; f++) {
         if (!t->key[f]) continue;
         sg->keys++;
         for (int c = 0; c < 3; c++) {
@@ -249,7 +252,7 @@ static void seg_of(const enc_track *t, int n, int w, seg_enc *sg)
 static void range_bits(const enc_track *t, int n, int rb[3])
 {
     uint32_t top[3] = {0, 0, 0};
-    for (int w = 0; w * 64 < n; w++) {
+    for (int w = 0; w * SEG < n; w++) {
         seg_enc sg;
         seg_of(t, n, w, &sg);
         for (int c = 0; c < 3; c++)
@@ -264,15 +267,15 @@ static long track_cost(const enc_track *t, int n)
 {
     if (t->kind == CUB_KEYS_DEFAULT) return 8;
     if (t->kind == CUB_KEYS_CONSTANT) return 8 + 96;
-    long bits = 8 * (1 + 6 + 12 + 4), words = (n + 63) / 64;
+    long bits = 8 * (1 + 6 + 12 + 4), words = (n + 63) / 64, segs = (n + SEG - 1) / SEG;
     int rb[3];
     range_bits(t, n, rb);
-    for (int w = 0; w < words; w++) {
+    for (int w = 0; w < segs; w++) {
         seg_enc sg;
         seg_of(t, n, w, &sg);
         bits += (long)sg.keys * (sg.bits[0] + sg.bits[1] + sg.bits[2]);
     }
-    return bits + words * (64 + 32 + 18 + rb[0] + rb[1] + rb[2]);
+    return bits + words * 64 + segs * (32 + 18 + rb[0] + rb[1] + rb[2]);
 }
 
 /* ---- one track ---------------------------------------------------------- */
@@ -420,14 +423,14 @@ static void flush_bits(bitw *b)
 
 static void write_keys(writer *w, const enc_track *t, int n)
 {
-    int words = (n + 63) / 64, rb[3];
+    int words = (n + 63) / 64, segs = (n + SEG - 1) / SEG, rb[3];
     range_bits(t, n, rb);
     for (int c = 0; c < 3; c++)
         put_u8(w, (unsigned)rb[c]);
     for (int c = 0; c < 3; c++)
         put_u32(w, (uint32_t)t->base[c]);
     uint64_t code_bits = 0;
-    for (int wd = 0; wd < words; wd++) {
+    for (int wd = 0; wd < segs; wd++) {
         seg_enc sg;
         seg_of(t, n, wd, &sg);
         code_bits += (uint64_t)sg.keys * (sg.bits[0] + sg.bits[1] + sg.bits[2]);
@@ -440,14 +443,14 @@ static void write_keys(writer *w, const enc_track *t, int n)
         put_u64(w, bits);
     }
     uint32_t at = 0;
-    for (int wd = 0; wd < words; wd++) {
+    for (int wd = 0; wd < segs; wd++) {
         seg_enc sg;
         seg_of(t, n, wd, &sg);
         put_u32(w, at);
         at += (uint32_t)(sg.keys * (sg.bits[0] + sg.bits[1] + sg.bits[2]));
     }
     bitw b = {w, 0, 0};
-    for (int wd = 0; wd < words; wd++) {
+    for (int wd = 0; wd < segs; wd++) {
         seg_enc sg;
         seg_of(t, n, wd, &sg);
         for (int c = 0; c < 3; c++)
@@ -456,10 +459,10 @@ static void write_keys(writer *w, const enc_track *t, int n)
             put_bits(&b, sg.min[c], rb[c]);
     }
     flush_bits(&b);
-    for (int wd = 0; wd < words; wd++) {
+    for (int wd = 0; wd < segs; wd++) {
         seg_enc sg;
         seg_of(t, n, wd, &sg);
-        for (int f = wd * 64; f < n && f < wd * 64 + 64; f++)
+        for (int f = wd * SEG; f < n && f < wd * SEG + SEG; f++)
             for (int c = 0; c < 3 && t->key[f]; c++)
                 put_bits(&b, t->code[3 * (size_t)f + c] - sg.min[c], sg.bits[c]);
     }
@@ -699,7 +702,7 @@ static double attempt(enc *e, double s, double bound, writer *w)
 }
 
 /* Loosen one track at a time by `factor` while the measured error holds:
- * the lever split is conservative (errors down a chain rarely add up). */
+ * the equal split is conservative (errors down a chain rarely add up). */
 static void refine(enc *e, double s, double bound, double factor, writer *w, double *err)
 {
     for (int i = 0; i < e->count; i++) {
@@ -765,7 +768,7 @@ cub_err cub_keys_encode(const cub_clip *clip, double bound_mm, cub_keys_result *
         if (lo == 0 && s < 1e-6) break;
     }
     if (!rc && best_err <= bound_mm) {
-        static const double factors[] = {2.0, 1.41, 1.19};
+        static const double factors[] = {2.0, 1.41, 1.19, 1.41, 1.19, 1.09};
         attempt(e, lo, bound_mm, &w); /* the tracks as they held */
         for (size_t f = 0; f < sizeof factors / sizeof *factors; f++)
             refine(e, lo, bound_mm, factors[f], &w, &best_err);

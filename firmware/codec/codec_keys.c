@@ -8,7 +8,7 @@
  *           then (flag bit 0) the translation of every other such joint:
  *           u8 kind; a constant: 3 x i32; keys: 3 x u8 shift, 3 x u8 range
  *           bits, 3 x i32 base, u32 code bytes; the key frames as W =
- *           ceil(n / 64) u64 bit words (a segment per word); per segment the
+ *           ceil(n / 64) u64 bit words; per segment (CUB_KEYS_SEGMENT frames) the
  *           u32 bit offset of its first code; per segment a header of 3 x 6
  *           bits (its widths) and 3 x range bits (its minimum), packed;
  *           then the codes, each key's three components LSB first, packed
@@ -22,6 +22,8 @@
 #define KEYS_HEADER_BYTES 24
 #define KEYS_FLAG_TRANS 1u
 #define Q30_ONE (INT32_C(1) << 30)
+#define SEG_FRAMES CUB_KEYS_SEGMENT
+#define SEG_SHIFT (SEG_FRAMES == 16 ? 4 : SEG_FRAMES == 32 ? 5 : 6)
 
 static uint64_t le64(const uint8_t *p)
 {
@@ -172,18 +174,21 @@ static void track_value(const cub_keys *k, const cub_keys_track *t, int f, int32
         a = (wa << 6) + 63 - __builtin_clzll(prev);
         ia = pop64(prev) - 1;
     }
+    /* ia counted a's word up to a: count from its segment's start instead */
+    uint64_t word_a = wa == w ? word : le64(set + 8 * wa);
+    int start = (a & 63) & ~(SEG_FRAMES - 1);
+    ia -= pop64(word_a & ((UINT64_C(1) << start) - 1));
     seg sa, sb;
-    seg_read(k, t, wa, &sa);
+    seg_read(k, t, a >> SEG_SHIFT, &sa);
     seg_key(k, t, &sa, ia, v);
     if (a == f) return;
     int32_t vb[3];
-    if (above) {
-        b = (w << 6) + __builtin_ctzll(above);
-        if (wa != w) seg_read(k, t, w, &sb);
-        seg_key(k, t, wa == w ? &sa : &sb, wa == w ? ia + 1 : 0, vb);
-    } else {
-        b = ((w + 1) << 6) + __builtin_ctzll(le64(set + 8 * (w + 1)));
-        seg_read(k, t, w + 1, &sb);
+    b = above ? (w << 6) + __builtin_ctzll(above)
+              : ((w + 1) << 6) + __builtin_ctzll(le64(set + 8 * (w + 1)));
+    if (b >> SEG_SHIFT == a >> SEG_SHIFT) {
+        seg_key(k, t, &sa, ia + 1, vb);
+    } else { /* b is the first key of its segment */
+        seg_read(k, t, b >> SEG_SHIFT, &sb);
         seg_key(k, t, &sb, 0, vb);
     }
     for (int c = 0; c < 3; c++)
@@ -276,8 +281,8 @@ static int fits(int32_t base, uint64_t top, int shift)
 static cub_err check_segments(const reader *r, const cub_keys *k, const cub_keys_track *t,
                               cub_codec_problem *why)
 {
-    int words = (k->frame_count + 63) >> 6;
-    for (int w = 0; w < words; w++) {
+    int segs = (k->frame_count + SEG_FRAMES - 1) >> SEG_SHIFT;
+    for (int w = 0; w < segs; w++) {
         seg s;
         seg_read(k, t, w, &s);
         size_t at = t->segs + (size_t)w * t->seg_bits / 8;
@@ -285,7 +290,10 @@ static cub_err check_segments(const reader *r, const cub_keys *k, const cub_keys
             if (s.bits[c] > 32 ||
                 !fits(t->base[c], s.min[c] + ((UINT64_C(1) << s.bits[c]) - 1), t->shift[c]))
                 return refuse(why, "a segment's width or minimum is out of range", at);
-        int keys = pop64(le64(r->p + t->keyset + 8 * (size_t)w));
+        uint64_t word = le64(r->p + t->keyset + 8 * (size_t)(w * SEG_FRAMES >> 6));
+        int from = (w * SEG_FRAMES) & 63;
+        uint64_t mask = SEG_FRAMES == 64 ? ~UINT64_C(0) : ((UINT64_C(1) << SEG_FRAMES) - 1) << from;
+        int keys = pop64(word & mask);
         if (s.at + (uint64_t)keys * s.key_bits > (uint64_t)t->code_bytes * 8)
             return refuse(why, "a segment's codes run past the track's", t->segoff + 4 * (size_t)w);
     }
@@ -310,8 +318,9 @@ static cub_err read_keys(reader *r, cub_keys *k, cub_keys_track *t, size_t at,
         return refuse(why, "track shift or range width past 31 / 32", at + 1);
     t->seg_bits = (uint8_t)(18 + t->range_bits[0] + t->range_bits[1] + t->range_bits[2]);
     size_t words = (size_t)(k->frame_count + 63) >> 6;
-    uint64_t keyset = r->pos, segoff = keyset + 8 * words, segs = segoff + 4 * words;
-    uint64_t codes = segs + (words * t->seg_bits + 7) / 8, end = codes + t->code_bytes;
+    size_t nseg = (size_t)(k->frame_count + SEG_FRAMES - 1) >> SEG_SHIFT;
+    uint64_t keyset = r->pos, segoff = keyset + 8 * words, segs = segoff + 4 * nseg;
+    uint64_t codes = segs + (nseg * t->seg_bits + 7) / 8, end = codes + t->code_bytes;
     if (end > r->len) return refuse(why, "stream ends inside a track's keys", r->pos);
     t->keyset = (uint32_t)keyset, t->segoff = (uint32_t)segoff;
     t->segs = (uint32_t)segs, t->codes = (uint32_t)codes;

@@ -203,17 +203,20 @@ def bits_le(fields):
     return bytes(out)
 
 
+KEYS_SEGMENT = 32  # CUB_KEYS_SEGMENT
+
+
 def keys_track(values, every, shift, rotation):
     """An animated track: values [frame][3] (ints), a key every `every`
-    frames (and the last), codes above each 64-frame segment's minimum."""
+    frames (and the last), codes above each segment's minimum."""
     n = len(values)
     keys = [f for f in range(n) if f % every == 0 or f == n - 1]
     base = [min(v[c] for v in values) for c in range(3)]
     code = {f: [(values[f][c] - base[c] + (1 << shift >> 1)) >> shift for c in range(3)] for f in keys}
     words = (n + 63) // 64
     segs = []
-    for w in range(words):
-        ks = [f for f in keys if f // 64 == w]
+    for w in range((n + KEYS_SEGMENT - 1) // KEYS_SEGMENT):
+        ks = [f for f in keys if f // KEYS_SEGMENT == w]
         mins = [min(code[f][c] for f in ks) for c in range(3)]
         widths = [max(code[f][c] - mins[c] for f in ks).bit_length() for c in range(3)]
         segs.append((ks, mins, widths))

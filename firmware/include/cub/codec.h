@@ -148,7 +148,7 @@ cub_err cub_codec_encode(const cub_codec_enc *in, void *buf, size_t cap, size_t 
  * clips that animate them, the joints' translations are tracks. A track is
  * either its default (identity, or the skeleton's offset), a constant, or
  * keys: the frames the encoder kept (the first, the last, and never more
- * than CUB_KEYS_MAX_GAP apart), each a code above its 64-frame segment's
+ * than CUB_KEYS_MAX_GAP apart), each a code above its segment's (32 frames)
  * minimum at that segment's bit width per component, in steps of 2^shift
  * (a shift per component)
  * (range reduction per segment); between keys
@@ -162,6 +162,7 @@ cub_err cub_codec_encode(const cub_codec_enc *in, void *buf, size_t cap, size_t 
 
 #define CUB_KEYS_VERSION 1
 #define CUB_KEYS_MAX_GAP 64 /* frames between two keys of a track, at most */
+#define CUB_KEYS_SEGMENT 32 /* frames of a segment (range reduction): 16, 32 or 64 */
 #define CUB_KEYS_MAX_TRACKS (2 * CUB_MOTION_MAX_JOINTS)
 
 typedef enum cub_keys_kind {
@@ -172,7 +173,7 @@ typedef enum cub_keys_kind {
 } cub_keys_kind;
 
 /* One track of an opened stream: where its parts start in the stream. The
- * keys of each 64-frame segment are coded above the segment's own minimum
+ * keys of each segment are coded above the segment's own minimum
  * (range reduction), at the segment's own bit widths. */
 typedef struct cub_keys_track {
     uint8_t kind, shift[3], rotation;  /* steps 2^shift; rotation: keys clamped to +-1 (Q2.30) */
