@@ -15,6 +15,7 @@
 #include <string.h>
 
 #include "cub/codec.h"
+#include "pack_internal.h" /* pack_crc32 */
 
 #define Q30 1073741824.0
 #define Q16 65536.0
@@ -483,17 +484,6 @@ static void write_track(writer *w, const enc_track *t, int n)
         put_u32(w, (uint32_t)t->base[c]);
 }
 
-static uint32_t crc32_of(const uint8_t *p, size_t len)
-{
-    uint32_t c = 0xFFFFFFFFu;
-    for (size_t i = 0; i < len; i++) {
-        c ^= p[i];
-        for (int k = 0; k < 8; k++)
-            c = (c >> 1) ^ (0xEDB88320u & (0u - (c & 1)));
-    }
-    return ~c;
-}
-
 static int write_stream(const enc *e, writer *w)
 {
     const cub_clip *clip = e->clip;
@@ -514,7 +504,7 @@ static int write_stream(const enc *e, writer *w)
     uint32_t total = (uint32_t)(w->len + 4);
     for (int b = 0; b < 4; b++)
         w->p[20 + b] = (uint8_t)(total >> (8 * b));
-    put_u32(w, crc32_of(w->p, w->len));
+    put_u32(w, pack_crc32(w->p, w->len) /* the same CRC-32 (IEEE) */);
     return w->bad ? -1 : 0;
 }
 

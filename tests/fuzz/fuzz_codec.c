@@ -15,12 +15,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    if (size < 1) return 0;
-    size_t n = size - 1;
-    uint8_t *s = malloc(n ? n : 1); /* exactly the stream's size */
+    size_t n;
+    uint8_t *s = fuzz_stream(data, size, &n);
     if (!s) return 0;
-    memcpy(s, data + 1, n);
-    if (data[0] & 1) fuzz_mend_stream(s, n);
     static cub_skeleton skel;
     cub_clip clip;
     cub_codec_info info;
