@@ -148,11 +148,11 @@ cub_err cub_codec_encode(const cub_codec_enc *in, void *buf, size_t cap, size_t 
  * clips that animate them, the joints' translations are tracks. A track is
  * either its default (identity, or the skeleton's offset), a constant, or
  * keys: the frames the encoder kept (the first, the last, and never more
- * than CUB_KEYS_MAX_GAP apart), each a code above its segment's (32 frames)
- * minimum at that segment's bit width per component, in steps of 2^shift
- * (a shift per component)
- * (range reduction per segment); between keys
- * the value is linear in the frame number. The encoder (cub/keys_enc.h)
+ * than CUB_KEYS_MAX_GAP apart), each a code above its segment's minimum
+ * (a segment is CUB_KEYS_SEGMENT frames: range reduction) at that segment's
+ * bit width per component, in steps of 2^shift (a shift per component);
+ * between keys the value is linear in the frame number. The encoder
+ * (cub/codec_enc.h)
  * drops keys and bits until the error at virtual vertices 3 cm from every
  * bone, in object space, would pass its bound. One pose is decoded at a
  * time, from any frame (random access): a bit set of key frames per track
@@ -162,7 +162,7 @@ cub_err cub_codec_encode(const cub_codec_enc *in, void *buf, size_t cap, size_t 
 
 #define CUB_KEYS_VERSION 1
 #define CUB_KEYS_MAX_GAP 64 /* frames between two keys of a track, at most */
-#define CUB_KEYS_SEGMENT 32 /* frames of a segment (range reduction): 16, 32 or 64 */
+#define CUB_KEYS_SEGMENT 32 /* frames of a segment (part of the format; 16, 32 or 64 build) */
 #define CUB_KEYS_MAX_TRACKS (2 * CUB_MOTION_MAX_JOINTS)
 
 typedef enum cub_keys_kind {
