@@ -693,9 +693,26 @@ static double attempt(enc *e, double s, double bound, writer *w)
 
 /* Loosen one track at a time by `factor` while the measured error holds:
  * the equal split is conservative (errors down a chain rarely add up). */
-static void refine(enc *e, double s, double bound, double factor, writer *w, double *err)
+/* The tracks, the costliest first: the slack goes where it saves most. */
+static void by_cost(const enc *e, int *order)
 {
     for (int i = 0; i < e->count; i++) {
+        long c = track_cost(&e->trk[i], e->n);
+        int at = i;
+        while (at > 0 && track_cost(&e->trk[order[at - 1]], e->n) < c) {
+            order[at] = order[at - 1];
+            at--;
+        }
+        order[at] = i;
+    }
+}
+
+static void refine(enc *e, double s, double bound, double factor, writer *w, double *err)
+{
+    int order[CUB_KEYS_MAX_TRACKS];
+    by_cost(e, order);
+    for (int o = 0; o < e->count; o++) {
+        int i = order[o];
         if (e->trk[i].kind != CUB_KEYS_ANIMATED) continue;
         e->scale[i] *= factor;
         encode_track(e, i, tolerance(e, i, s, bound), &e->spare);
