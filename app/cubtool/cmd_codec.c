@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "codec_host.h"
+#include "cub/codec_enc.h"
 #include "commands.h"
 #include "tool_util.h"
 
@@ -12,11 +13,14 @@ static void encode_usage(FILE *f)
 {
     fprintf(f, "usage: cubtool encode CLIP.bvh --out X.cubseed\n"
                "       cubtool encode LIB.cubclips --clip NAME --out X.cubseed\n"
+               "       cubtool encode ... --keys [--bound CM] --out X.cubkeys\n"
                "\n"
                "Compresses a clip with the folk-dance seed's codec (docs/codec.md): every\n"
                "4th frame and 6 at each end kept, 16-bit numbers, IK flags for the feet\n"
-               "and hands. Prints frames, joints, bytes and the ratio against raw\n"
-               "(10 float32 per bone per sample).\n");
+               "and hands. With --keys, with our error-bounded codec instead: every\n"
+               "virtual vertex 3 cm from each bone within CM (default 0.01 cm, ACL's\n"
+               "threshold) of the source, in object space. Prints frames, joints, bytes\n"
+               "and the ratio against raw (10 float32 per bone per sample).\n");
 }
 
 static int write_file(const char *path, const codec_blob *b)
@@ -30,11 +34,19 @@ static int write_file(const char *path, const codec_blob *b)
 
 int cub_cmd_encode(int argc, char **argv)
 {
-    const char *in = NULL, *out = NULL, *clip = NULL;
-    const cub_tool_opt opts[] = {{"--out", &out, NULL}, {"--clip", &clip, NULL}};
-    cub_tool_parsed p = cub_tool_parse_opts(argc, argv, opts, 2, &in, 1);
+    const char *in = NULL, *out = NULL, *clip = NULL, *bound = "0.01";
+    int keys = 0;
+    const cub_tool_opt opts[] = {{"--out", &out, NULL}, {"--clip", &clip, NULL}, {"--keys", NULL, &keys},
+                                 {"--bound", &bound, NULL}};
+    cub_tool_parsed p = cub_tool_parse_opts(argc, argv, opts, 4, &in, 1);
     if (p == CUB_TOOL_HELP) encode_usage(stdout);
     if (p != CUB_TOOL_RUN) return p == CUB_TOOL_HELP ? 0 : 2;
+    char *end;
+    double bound_cm = strtod(bound, &end);
+    if (*end || !(bound_cm > 0 && bound_cm < 100)) {
+        fprintf(stderr, "cubtool encode: --bound is a length in cm above 0, not '%s'\n", bound);
+        return 2;
+    }
     if (!in || !out) {
         encode_usage(stderr);
         return 2;
@@ -42,7 +54,8 @@ int cub_cmd_encode(int argc, char **argv)
     codec_source src;
     codec_blob blob = {0};
     if (codec_source_load(in, clip, &src)) return 1;
-    int rc = codec_host_encode(src.clip, &blob, in) || write_file(out, &blob) ? 1 : 0;
+    int rc = keys ? codec_host_encode_keys(src.clip, 10.0 * bound_cm, &blob, in) : codec_host_encode(src.clip, &blob, in);
+    rc = rc || write_file(out, &blob) ? 1 : 0;
     if (!rc)
         printf("%s: %d frames, %d joints, %zu bytes, %.2f : 1 against raw\n", out,
                src.clip->frame_count, src.clip->skel->joint_count, blob.len,
@@ -56,9 +69,12 @@ static void decode_usage(FILE *f)
 {
     fprintf(f, "usage: cubtool decode X.cubseed --out Y.bvh [--method squad|slerp|catmull]\n"
                "                      [--ik stream|off|all]\n"
+               "       cubtool decode X.cubkeys --out Y.bvh\n"
                "\n"
                "Decodes a .cubseed stream as the box does (fixed point; Squad and the\n"
-               "stream's IK flags by default) and writes it as BVH in centimetres.\n"
+               "stream's IK flags by default), or a .cubkeys one (our error-bounded\n"
+               "codec, one pose at a time; told apart by their first bytes), and writes\n"
+               "it as BVH in centimetres.\n"
                "A damaged stream is refused with the byte and the reason.\n");
 }
 
@@ -115,7 +131,8 @@ int cub_cmd_decode(int argc, char **argv)
     codec_blob blob;
     codec_decoded d;
     if (codec_blob_read(in, &blob)) return 1;
-    int rc = codec_host_decode(&blob, &o, &d, in) ? 1 : 0;
+    int is_keys = blob.len >= 7 && !memcmp(blob.data, "CUBKEYS", 7);
+    int rc = (is_keys ? codec_host_decode_keys(&blob, &d, in) : codec_host_decode(&blob, &o, &d, in)) ? 1 : 0;
     if (!rc) {
         rc = save_bvh(&d, out) ? 1 : 0;
         if (!rc) printf("%s: %d frames, %d joints\n", out, d.clip.frame_count, d.skel->joint_count);

@@ -13,7 +13,6 @@
  * and the sizes: the stream against raw (10 float32 per bone per sample, as
  * ACL counts) and against the seed's own raw (4 floats per joint + 3 for the
  * root per frame). Every frame of every clip counts; nothing is tuned here. */
-#include <dirent.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -223,36 +222,10 @@ static int run_clip(const cub_clip *clip, const char *name, set_figs *s, int per
     return rc;
 }
 
-static int by_name(const void *a, const void *b)
-{
-    return strcmp(*(char *const *)a, *(char *const *)b);
-}
-
-/* Every .bvh in dir (and, with depth, in its subfolders), sorted. */
-static int list_bvh(const char *dir, int depth, char **out, int n)
-{
-    DIR *d = opendir(dir);
-    if (!d) return n;
-    struct dirent *e;
-    while ((e = readdir(d)) && n < MAX_FILES) {
-        if (e->d_name[0] == '.') continue;
-        char path[1024];
-        snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
-        size_t len = strlen(e->d_name);
-        if (len > 4 && !strcmp(e->d_name + len - 4, ".bvh"))
-            out[n++] = strdup(path);
-        else if (depth > 0)
-            n = list_bvh(path, depth - 1, out, n);
-    }
-    closedir(d);
-    return n;
-}
-
 static int run_bvh_set(const char *dir, int depth, set_figs *s, int per_clip)
 {
     char *files[MAX_FILES];
-    int n = list_bvh(dir, depth, files, 0), rc = 0;
-    qsort(files, (size_t)n, sizeof *files, by_name);
+    int n = cub_io_list_bvh(dir, depth, files, MAX_FILES), rc = 0;
     if (n == 0) fprintf(stderr, "codec-figures: no BVH under %s (set skipped)\n", dir);
     for (int i = 0; i < n; i++) {
         codec_source src;

@@ -1,6 +1,8 @@
 /* The heap and the messages around firmware/codec for cubtool. */
 #include "codec_host.h"
 
+#include "cub/codec_enc.h"
+
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -29,6 +31,15 @@ int codec_host_encode(const cub_clip *clip, codec_blob *out, const char *name)
     return 0;
 }
 
+/* Say why a stream was not decoded. */
+static void report(cub_err e, const cub_codec_problem *why, const char *name)
+{
+    if (e == CUB_ERR_FORMAT)
+        fprintf(stderr, "%s: byte %zu: %s\n", name, why->offset, why->what);
+    else if (e)
+        fprintf(stderr, "%s: cannot decode: %s\n", name, cub_err_str(e));
+}
+
 int codec_host_decode(const codec_blob *in, const cub_codec_opts *opts, codec_decoded *out,
                       const char *name)
 {
@@ -43,10 +54,50 @@ int codec_host_decode(const codec_blob *in, const cub_codec_opts *opts, codec_de
         e = out->skel && out->mem ? cub_codec_decode(in->data, in->len, opts, &dst, &why)
                                   : CUB_ERR_NOMEM;
     }
-    if (e == CUB_ERR_FORMAT)
-        fprintf(stderr, "%s: byte %zu: %s\n", name, why.offset, why.what);
-    else if (e)
-        fprintf(stderr, "%s: cannot decode: %s\n", name, cub_err_str(e));
+    report(e, &why, name);
+    if (e) codec_decoded_free(out);
+    return e ? -1 : 0;
+}
+
+int codec_host_encode_keys(const cub_clip *clip, double bound_mm, codec_blob *out, const char *name)
+{
+    cub_keys_result r;
+    memset(out, 0, sizeof *out);
+    cub_err e = cub_keys_encode(clip, bound_mm, &r);
+    if (e) {
+        fprintf(stderr, "%s: encoding failed: %s\n", name, cub_err_str(e));
+        return -1;
+    }
+    out->data = r.data;
+    out->len = r.len;
+    return 0;
+}
+
+/* Every frame, one pose at a time, into a heap clip. */
+static cub_err keys_to_clip(const cub_keys *k, codec_decoded *out)
+{
+    static cub_pose pose;
+    size_t mem = cub_motion_clip_mem_size(k->joint_count, k->frame_count, k->has_trans);
+    out->mem = malloc(mem);
+    if (!out->mem) return CUB_ERR_NOMEM;
+    cub_err e = cub_motion_clip_init(&out->clip, out->skel, k->frame_count, k->frame_ns, k->has_trans,
+                                     out->mem, mem);
+    for (int f = 0; f < k->frame_count && !e; f++) {
+        e = cub_keys_pose(k, f, &pose);
+        if (!e) e = cub_motion_clip_set_frame(&out->clip, f, &pose);
+    }
+    return e;
+}
+
+int codec_host_decode_keys(const codec_blob *in, codec_decoded *out, const char *name)
+{
+    static cub_keys k;
+    cub_codec_problem why = {"", 0};
+    memset(out, 0, sizeof *out);
+    out->skel = malloc(sizeof *out->skel);
+    cub_err e = out->skel ? cub_keys_open(in->data, in->len, out->skel, &k, &why) : CUB_ERR_NOMEM;
+    if (!e) e = keys_to_clip(&k, out);
+    report(e, &why, name);
     if (e) codec_decoded_free(out);
     return e ? -1 : 0;
 }

@@ -36,6 +36,9 @@ int codec_host_encode(const cub_clip *clip, codec_blob *out, const char *name);
 int codec_host_decode(const codec_blob *in, const cub_codec_opts *opts, codec_decoded *out,
                       const char *name);
 void codec_decoded_free(codec_decoded *d);
+/* The same with our error-bounded codec (cubkeys) within bound_mm. */
+int codec_host_encode_keys(const cub_clip *clip, double bound_mm, codec_blob *out, const char *name);
+int codec_host_decode_keys(const codec_blob *in, codec_decoded *out, const char *name);
 /* Load path (a .bvh, or a .cubclips with clip_name). 0 ok. */
 int codec_source_load(const char *path, const char *clip_name, codec_source *src);
 void codec_source_free(codec_source *src);

@@ -25,6 +25,7 @@ static const command commands[] = {
     {"encode", cub_cmd_encode, "compress a clip with the folk-dance seed's codec (.cubseed)"},
     {"decode", cub_cmd_decode, "decode a .cubseed stream as the box does, to BVH"},
     {"codec-figures", cub_cmd_codec_figures, "the seed's codec: Squad vs Slerp vs Catmull-Rom, IK, ratio"},
+    {"bench-codec", cub_cmd_bench_codec, "ours vs ACL vs the seed's codec: ratio, error, decode"},
     {"trc-info", cub_cmd_trc_info, "a TRC marker file: its markers, frames, rate, lost markers"},
 };
 

@@ -3,28 +3,7 @@
 #include <string.h>
 
 #include "codec_internal.h"
-
-typedef struct reader {
-    const uint8_t *p;
-    size_t len, pos;
-} reader;
-
-static uint8_t rd_u8(reader *r)
-{
-    return r->pos < r->len ? r->p[r->pos++] : 0;
-}
-
-static uint16_t rd_u16(reader *r)
-{
-    uint16_t lo = rd_u8(r);
-    return (uint16_t)(lo | (uint16_t)rd_u8(r) << 8);
-}
-
-static uint32_t rd_u32(reader *r)
-{
-    uint32_t lo = rd_u16(r);
-    return lo | (uint32_t)rd_u16(r) << 16;
-}
+#include "codec_reader.h"
 
 static cub_q16 rd_split(reader *r)
 {
@@ -49,15 +28,6 @@ static cub_quat rd_quat(reader *r)
     q.y = cub_codec_dequant_unit(rd_u16(r));
     q.z = cub_codec_dequant_unit(rd_u16(r));
     return cub_fx_quat_normalize(q);
-}
-
-static cub_err refuse(cub_codec_problem *why, const char *what, size_t offset)
-{
-    if (why) {
-        why->what = what;
-        why->offset = offset;
-    }
-    return CUB_ERR_FORMAT;
 }
 
 typedef struct header {
@@ -90,16 +60,21 @@ static cub_err read_header(reader *r, header *h, cub_codec_problem *why)
     /* End sites store nothing, so a short stream could ask for a huge clip. */
     if ((int64_t)h->frames * h->joints > CODEC_MAX_JOINT_FRAMES)
         return refuse(why, "more than 2^24 joint-frames", 12);
-    if (h->length != r->len) return refuse(why, "stream length differs from the header's (truncated?)", 20);
+    return codec_check_crc(r, h->length, why);
+}
+
+cub_err codec_check_crc(reader *r, uint32_t length, cub_codec_problem *why)
+{
+    if (length != r->len) return refuse(why, "stream length differs from the header's (truncated?)", 20);
     size_t body = r->len - CODEC_CRC_BYTES;
     reader crc = {r->p, r->len, body};
     if (rd_u32(&crc) != codec_crc32(r->p, body)) return refuse(why, "CRC mismatch (damaged stream)", body);
     return CUB_OK;
 }
 
-static cub_err read_joint(reader *r, cub_skeleton *skel, int j, cub_codec_problem *why)
+cub_err codec_read_joint(reader *r, cub_skeleton *skel, int j, int exact, cub_codec_problem *why)
 {
-    size_t at = r->pos;
+    size_t at = r->pos, end = r->len - (exact ? 0 : CODEC_CRC_BYTES);
     char name[CUB_MOTION_NAME_LEN];
     unsigned n = rd_u8(r);
     if (n < 1 || n >= CUB_MOTION_NAME_LEN) return refuse(why, "joint name length outside 1..31", at);
@@ -111,8 +86,15 @@ static cub_err read_joint(reader *r, cub_skeleton *skel, int j, cub_codec_proble
     name[n] = '\0';
     int parent = (int)rd_u8(r) - 1;
     unsigned end_site = rd_u8(r);
-    cub_vec3 off = rd_vec3(r);
-    if (r->pos > r->len - CODEC_CRC_BYTES) return refuse(why, "stream ends inside the joints", at);
+    cub_vec3 off;
+    if (exact) {
+        off.x = (int32_t)rd_u32(r);
+        off.y = (int32_t)rd_u32(r);
+        off.z = (int32_t)rd_u32(r);
+    } else {
+        off = rd_vec3(r);
+    }
+    if (r->pos > end) return refuse(why, "stream ends inside the joints", at);
     if ((j == 0) != (parent < 0) || parent >= j)
         return refuse(why, "joint parent is not an earlier joint (or a second root)", at + 1 + n);
     if (end_site > 1) return refuse(why, "end-site byte is not 0 or 1", at + 2 + n);
@@ -149,7 +131,7 @@ static cub_err read_skeleton(reader *r, const header *h, cub_skeleton *skel, cub
 {
     cub_motion_skeleton_reset(skel);
     for (int j = 0; j < h->joints; j++) {
-        cub_err e = read_joint(r, skel, j, why);
+        cub_err e = codec_read_joint(r, skel, j, 0, why);
         if (e) return e;
     }
     return check_size(r, h, codec_animated(skel), why);

@@ -27,7 +27,7 @@ SHARED_DATA = os.environ.get("CUB_DATA_DIR") or os.path.join(SRC, "..", "shared"
 FONT = "/usr/share/fonts/truetype/dejavu/DejaVuSans-Bold.ttf"
 SOUNDFONT = "/usr/share/sounds/sf2/TimGM6mb.sf2"
 SANITIZER = re.compile(rb"AddressSanitizer|LeakSanitizer|runtime error:|MemorySanitizer")
-BINARY = {"midi", "soundfont", "library", "font", "frame", "track_frame", "cubseed", "voice"}
+BINARY = {"midi", "soundfont", "library", "font", "frame", "track_frame", "cubseed", "cubkeys", "voice"}
 TEXT_ONLY = {"nan", "inf", "crlf", "bom", "badutf8"}
 
 
@@ -133,6 +133,8 @@ def base_of(kind, d, shared, build=""):
         return bear_bvh, "bad.bvh"
     if kind == "cubseed":  # the seed's codec stream, made by tests/fuzz/make_seeds.py
         return read(os.path.join(SRC, "tests", "fuzz", "seeds_codec", "leg.cubseed")), "bad.cubseed"
+    if kind == "cubkeys":  # our error-bounded codec's stream, made by tests/fuzz/make_seeds.py
+        return read(os.path.join(SRC, "tests", "fuzz", "seeds_keys", "arm.cubkeys")), "bad.cubkeys"
     if kind == "trc":  # a small marker file, made by tests/fuzz/make_seeds.py
         return read(os.path.join(SRC, "tests", "fuzz", "seeds_trc", "small_mm.trc")), "bad.trc"
     if kind == "jtrack":  # a joint track of three frames (the format: cub/synth.h)

@@ -9,26 +9,15 @@
 #include <string.h>
 
 #include "codec_internal.h" /* codec_crc32: the stream's own CRC */
+#include "fuzz_mend.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
-static void put_u32(uint8_t *p, uint32_t v)
-{
-    for (int i = 0; i < 4; i++)
-        p[i] = (uint8_t)(v >> (8 * i));
-}
-
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    if (size < 1) return 0;
-    size_t n = size - 1;
-    uint8_t *s = malloc(n ? n : 1); /* exactly the stream's size */
+    size_t n;
+    uint8_t *s = fuzz_stream(data, size, &n);
     if (!s) return 0;
-    memcpy(s, data + 1, n);
-    if ((data[0] & 1) && n >= 28) {
-        put_u32(s + 20, (uint32_t)n);
-        put_u32(s + n - 4, codec_crc32(s, n - 4));
-    }
     static cub_skeleton skel;
     cub_clip clip;
     cub_codec_info info;

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Write the fuzz targets' small seed inputs (issue 18) into tests/fuzz/:
 seeds_dump/ (fuzz_fakenect_dump, fuzz_track_dump), seeds_synth/,
-seeds_cli/, seeds_font/, seeds_map/, seeds_codec/, seeds_voice/, seeds_trc/. Everything is made
+seeds_cli/, seeds_font/, seeds_map/, seeds_codec/, seeds_keys/, seeds_voice/, seeds_trc/. Everything is made
 here from the formats' rules, nothing copied from the shared data; run it again
 after changing a format:
 
@@ -189,11 +189,89 @@ def cubseed(frames=23, frame_ns=33333333):
     return data + struct.pack("<I", zlib.crc32(data))
 
 
+# ---- our error-bounded codec (firmware/codec/codec_keys.c, docs/codec.md): .cubkeys
+def bits_le(fields):
+    """(value, width) pairs packed LSB first into bytes."""
+    acc, have, out = 0, 0, bytearray()
+    for v, w in fields:
+        acc |= (v & ((1 << w) - 1)) << have
+        have += w
+        while have >= 8:
+            out.append(acc & 0xFF)
+            acc >>= 8
+            have -= 8
+    if have:
+        out.append(acc & 0xFF)
+    return bytes(out)
+
+
+KEYS_SEGMENT = 32  # CUB_KEYS_SEGMENT
+
+
+def keys_track(values, every, shift, rotation):
+    """An animated track: values [frame][3] (ints), a key every `every`
+    frames (and the last), codes above each segment's minimum."""
+    n = len(values)
+    keys = [f for f in range(n) if f % every == 0 or f == n - 1]
+    base = [min(v[c] for v in values) for c in range(3)]
+    code = {f: [(values[f][c] - base[c] + (1 << shift >> 1)) >> shift for c in range(3)] for f in keys}
+    words = (n + 63) // 64
+    segs = []
+    for w in range((n + KEYS_SEGMENT - 1) // KEYS_SEGMENT):
+        ks = [f for f in keys if f // KEYS_SEGMENT == w]
+        mins = [min(code[f][c] for f in ks) for c in range(3)]
+        widths = [max(code[f][c] - mins[c] for f in ks).bit_length() for c in range(3)]
+        segs.append((ks, mins, widths))
+    rb = [max(sg[1][c] for sg in segs).bit_length() for c in range(3)]
+    offs, at, codes = [], 0, []
+    for ks, mins, widths in segs:
+        offs.append(at)
+        for f in ks:
+            codes += [(code[f][c] - mins[c], widths[c]) for c in range(3)]
+        at += len(ks) * sum(widths)
+    code_bytes = bits_le(codes)
+    out = struct.pack("<B3B3B3iI", 2, shift, shift, shift, *rb, *base, len(code_bytes))
+    for w in range(words):
+        out += struct.pack("<Q", sum(1 << (f - 64 * w) for f in keys if f // 64 == w))
+    out += b"".join(struct.pack("<I", o) for o in offs)
+    headers = []
+    for _, mins, widths in segs:
+        headers += [(wd, 6) for wd in widths] + list(zip(mins, rb))
+    out += bits_le(headers)
+    return out + code_bytes
+
+
+def cubkeys(frames=70, frame_ns=33333333):
+    # name, parent, end site, offset mm: an arm; the hand is an end site
+    joints = [("Hips", -1, 0, (0, 0, 0)), ("Arm", 0, 0, (150, 400, 0)),
+              ("Elbow", 1, 0, (280, 0, 0)), ("Hand", 2, 1, (250, 0, 0))]
+    body = b""
+    for name, parent, end, off in joints:
+        body += struct.pack("<B", len(name)) + name.encode() + struct.pack("<BB", parent + 1, end)
+        body += struct.pack("<3i", *(round(c * 65536) for c in off))
+    def rot(f, j):
+        a = 0.3 * j + 0.6 * math.sin(f / 6 + j)
+        return [round(math.sin(a / 2) * (1 << 30)), round(0.1 * math.sin(f / 9) * (1 << 30)), 0]
+    body += keys_track([rot(f, 0) for f in range(frames)], 3, 12, True)    # Hips: keys
+    body += struct.pack("<B3i", 1, round(0.2 * (1 << 30)), 0, 0)            # Arm: a constant
+    body += keys_track([rot(f, 2) for f in range(frames)], 1, 14, True)    # Elbow: every frame
+    root = [[round(10 * f * 65536), round(900 * 65536), 0] for f in range(frames)]
+    body += keys_track(root, 5, 8, False)                                   # the root's position
+    total = 24 + len(body) + 4
+    head = b"CUBKEYS" + struct.pack("<BHBBIII", 1, len(joints), 0, 0, frames, frame_ns, total)
+    data = head + body
+    return data + struct.pack("<I", zlib.crc32(data))
+
+
 def codec_seeds():
     # byte 0 of a fuzz input: bit 0 mends length and CRC, bits 1-2 the method, 3-4 the IK mode
     put("seeds_codec", "leg.cubseed", cubseed())
     put("seeds_codec", "leg_fixed", b"\x01" + cubseed(frames=40))
     put("seeds_codec", "short_fixed", b"\x0b" + cubseed(frames=9))
+    # byte 0 of a fuzz_codec_keys input: bit 0 mends length and CRC
+    put("seeds_keys", "arm.cubkeys", cubkeys())
+    put("seeds_keys", "arm_fixed", b"\x01" + cubkeys(frames=130))
+    put("seeds_keys", "short_fixed", b"\x01" + cubkeys(frames=2))
 # ---- voice packs (cub/voicepack.h): phrases of a few samples each
 def fnv1a(text):
     h = 2166136261

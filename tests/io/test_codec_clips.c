@@ -16,6 +16,7 @@
 #include <string.h>
 
 #include "cub/codec.h"
+#include "bear_library.h"
 #include "cub/pack.h"
 
 #ifndef M_PI
@@ -32,15 +33,7 @@ static cub_library lib;
 static int setup(void **state)
 {
     (void)state;
-    const char *src = getenv("CUB_SOURCE_DIR");
-    char path[1024];
-    snprintf(path, sizeof path, "%s/assets/clips/bear.cubclips", src ? src : ".");
-    cub_diag d = {0};
-    if (cub_pack_read(path, &lib, &d)) {
-        fprintf(stderr, "cannot read %s: %s\n", path, d.msg);
-        return -1;
-    }
-    return 0;
+    return support_bear_library(&lib);
 }
 
 static int teardown(void **state)

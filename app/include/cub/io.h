@@ -51,6 +51,9 @@ cub_err cub_io_load_bvh(const char *path, const cub_io_desc *desc, cub_io_motion
                         cub_diag *diag);
 cub_err cub_io_parse_bvh(const char *text, size_t len, const char *name,
                          const cub_io_desc *desc, cub_io_motion *out, cub_diag *diag);
+/* Up to max paths of the .bvh files in dir (and, depth > 0, that many
+ * folders below), sorted; each a heap string for the caller to free. */
+int cub_io_list_bvh(const char *dir, int depth, char **out, int max);
 /* ASF skeleton + AMC motion (CMU format). */
 cub_err cub_io_load_asf_amc(const char *asf_path, const char *amc_path,
                             const cub_io_desc *desc, cub_io_motion *out, cub_diag *diag);

@@ -141,4 +141,74 @@ size_t cub_codec_encode_work_size(const cub_clip *clip, int effector_count);
  * buf or work, CUB_ERR_ARG for a bad clip or effector. */
 cub_err cub_codec_encode(const cub_codec_enc *in, void *buf, size_t cap, size_t *out_len);
 
+/* ---- the error-bounded stream ("cubkeys", issue 21 § 2) ------------------
+ *
+ * Every joint's local rotation (x y z of the quaternion put on w >= 0; w is
+ * restored as sqrt(1 - x^2 - y^2 - z^2)), the root's position and, for
+ * clips that animate them, the joints' translations are tracks. A track is
+ * either its default (identity, or the skeleton's offset), a constant, or
+ * keys: the frames the encoder kept (the first, the last, and never more
+ * than CUB_KEYS_MAX_GAP apart), each a code above its segment's minimum
+ * (a segment is CUB_KEYS_SEGMENT frames: range reduction) at that segment's
+ * bit width per component, in steps of 2^shift (a shift per component);
+ * between keys the value is linear in the frame number. The encoder
+ * (cub/codec_enc.h)
+ * drops keys and bits until the error at virtual vertices 3 cm from every
+ * bone, in object space, would pass its bound. One pose is decoded at a
+ * time, from any frame (random access): a bit set of key frames per track
+ * and each segment's code offset find the two keys around it.
+ * docs/codec.md describes the byte layout. Integer only, no heap:
+ * bit-identical on every CPU (test_codec_keys). */
+
+#define CUB_KEYS_VERSION 1
+#define CUB_KEYS_MAX_GAP 64 /* frames between two keys of a track, at most */
+#define CUB_KEYS_SEGMENT 32 /* frames of a segment (part of the format; 16, 32 or 64 build) */
+#define CUB_KEYS_MAX_TRACKS (2 * CUB_MOTION_MAX_JOINTS)
+
+typedef enum cub_keys_kind {
+    CUB_KEYS_DEFAULT = 0, /* identity rotation, or the skeleton's offset */
+    CUB_KEYS_CONSTANT,    /* one value, 3 x i32 */
+    CUB_KEYS_ANIMATED,    /* keys */
+    CUB_KEYS_KIND_COUNT_
+} cub_keys_kind;
+
+/* One track of an opened stream: where its parts start in the stream. The
+ * keys of each segment are coded above the segment's own minimum
+ * (range reduction), at the segment's own bit widths. */
+typedef struct cub_keys_track {
+    uint8_t kind, shift[3], rotation;  /* steps 2^shift; rotation: keys clamped to +-1 (Q2.30) */
+    uint8_t range_bits[3], seg_bits;   /* widths of a segment's minimum; its header's */
+    int32_t base[3];                   /* the constant, or the codes' zero */
+    uint32_t keyset, segoff, segs, codes, code_bytes; /* byte offsets (animated only) */
+} cub_keys_track;
+
+/* An opened, fully checked stream; it points into the caller's bytes,
+ * which must outlive it. */
+typedef struct cub_keys {
+    const uint8_t *data;
+    size_t len;
+    int joint_count, frame_count, has_trans;
+    uint32_t frame_ns;
+    int16_t rot_track[CUB_MOTION_MAX_JOINTS];   /* -1 for end sites */
+    int16_t trans_track[CUB_MOTION_MAX_JOINTS]; /* the root's: its position; -1: none */
+    cub_vec3 offsets[CUB_MOTION_MAX_JOINTS];    /* the skeleton's, for default tracks */
+    int track_count;
+    cub_keys_track tracks[CUB_KEYS_MAX_TRACKS];
+} cub_keys;
+
+/* The value at frame f between keys a < b of values va, vb: va + (vb - va)
+ * * floor((f - a) * 2^16 / (b - a)) / 2^16 (the decoder's own arithmetic,
+ * for the encoder to measure with). */
+int32_t cub_keys_lerp(int32_t va, int32_t vb, int a, int b, int f);
+/* A key's value: base + code * 2^shift, a rotation's clamped to +-1. */
+int32_t cub_keys_key(int32_t base, uint64_t code, int shift, int rotation);
+/* A rotation from its x y z (Q2.30) on w >= 0. */
+cub_quat cub_keys_quat(int32_t x, int32_t y, int32_t z);
+/* Check a whole stream (header, skeleton, every track, CRC) and open it;
+ * fills skel. CUB_ERR_FORMAT with *why for anything malformed. */
+cub_err cub_keys_open(const void *data, size_t len, cub_skeleton *skel, cub_keys *out,
+                      cub_codec_problem *why);
+/* Decode frame f (0 .. frame_count - 1) of an opened stream into out. */
+cub_err cub_keys_pose(const cub_keys *k, int frame, cub_pose *out);
+
 #endif
