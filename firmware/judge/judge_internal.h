@@ -48,6 +48,7 @@ typedef struct consumed_keys {
 typedef struct clap_state {
     int64_t t_us[JUDGE_HIST];
     int32_t gap_mm[JUDGE_HIST];
+    int32_t hand_mm[JUDGE_HIST][2][3]; /* left and right hand, x y z */
     int32_t n, head;  /* entries held, next slot */
     int met;          /* hands met, waiting for them to part */
     int64_t met_us;

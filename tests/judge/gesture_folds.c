@@ -4,10 +4,11 @@
  * skeletons under $CUB_DATA_DIR/skeletons, and per fold the precision and
  * recall of claps, waves and the leg-out key on that person alone.
  *
- *   gesture_folds [--check P] [--only SET]
+ *   gesture_folds [--check P] [--only SET] [--list]
  *
  * --check P fails (exit 1) when a fold's clap precision or recall is below
- * P, or a set lacks data the protocol needs; --only msr|utk runs one set.
+ * P, or a set lacks data the protocol needs; --only msr|utk runs one set;
+ * --list prints each clap or wave outside its action and each MSR clap miss.
  * Exit 77 (skip) when the data is absent. */
 #define _POSIX_C_SOURCE 200809L
 #include <stdint.h>
@@ -40,14 +41,16 @@ typedef struct fold {
 } fold;
 
 static _Alignas(16) unsigned char judge_mem[8192];
+static int list_misses;      /* --list: print every wrong event and missed positive */
+static cub_judge_desc g_desc; /* the judge's parameters (zero: its defaults) */
 
 /* A fresh judge over s at fps (rep, when given, spans the file). */
 static void run_judge(const kinect_seq *s, int fps, const cub_judge_rep *rep, events *ev)
 {
     cub_judge *j;
     ev->n = ev->right = 0;
-    if (cub_judge_mem_size(NULL) > sizeof judge_mem ||
-        cub_judge_init(NULL, judge_mem, sizeof judge_mem, &j) != CUB_OK)
+    if (cub_judge_mem_size(&g_desc) > sizeof judge_mem ||
+        cub_judge_init(&g_desc, judge_mem, sizeof judge_mem, &j) != CUB_OK)
         exit(2);
     if (rep) {
         cub_judge_rep r = *rep;
@@ -115,8 +118,17 @@ static int msr_fold(const char *dir, int subj, fold *f)
             }
             files++;
             run_judge(&s, 15, NULL, &ev);
-            msr_score(&f->clap, act == 10, 0, count_kind(&ev, CUB_JUDGE_CLAP) > 0);
-            msr_score(&f->wave, act == 1 || act == 11, act == 2, count_kind(&ev, CUB_JUDGE_WAVE) > 0);
+            int clap = count_kind(&ev, CUB_JUDGE_CLAP) > 0;
+            if (list_misses && clap != (act == 10))
+                printf("miss: clap %s a%02d_s%02d_e%02d%s\n", clap ? "fired on" : "missed", act, subj,
+                       e, clap ? " (frames listed below)" : "");
+            for (int k = 0; list_misses && act != 10 && k < ev.n; k++)
+                if (ev.kind[k] == CUB_JUDGE_CLAP) printf("miss:   clap at frame %d\n", ev.frame[k]);
+            msr_score(&f->clap, act == 10, 0, clap);
+            int wave = count_kind(&ev, CUB_JUDGE_WAVE) > 0;
+            if (list_misses && act != 2 && wave != (act == 1 || act == 11))
+                printf("miss: wave %s a%02d_s%02d_e%02d\n", wave ? "fired on" : "missed", act, subj, e);
+            msr_score(&f->wave, act == 1 || act == 11, act == 2, wave);
             run_judge(&s, 15, &out_r, &ev);
             int leg = ev.right;
             run_judge(&s, 15, &out_l, &ev);
@@ -154,10 +166,14 @@ static void utk_score(pr *p, const events *ev, int kind, const char *action,
     int slack = kind == CUB_JUDGE_CLAP ? LABEL_SLACK : 0;
     for (int e = 0; e < ev->n; e++) {
         if (ev->kind[e] != kind) continue;
-        if (inside(iv, n, action, ev->frame[e], 0))
+        if (inside(iv, n, action, ev->frame[e], 0)) {
             p->tp_ev++;
-        else if (!inside(iv, n, action, ev->frame[e], slack))
+        } else if (!inside(iv, n, action, ev->frame[e], slack)) {
             p->fp_ev++;
+            if (list_misses)
+                printf("miss: %s outside %s at %s frame %d\n", kind == CUB_JUDGE_CLAP ? "clap" : "wave",
+                       action, iv[0].run, ev->frame[e]);
+        }
     }
 }
 
@@ -226,7 +242,7 @@ static void add(pr *a, const pr *b)
     a->pos_hit += b->pos_hit;
 }
 
-static void print_row(const fold *f)
+static void print_row(const fold *f, const char *extra)
 {
     if (f->subject)
         printf("| %s | s%02d", f->set, f->subject);
@@ -235,7 +251,7 @@ static void print_row(const fold *f)
     print_pr(&f->clap);
     print_pr(&f->wave);
     print_pr(&f->leg);
-    printf(" |\n");
+    printf(" |%s\n", extra);
 }
 
 static int below(const pr *p, double floor)
@@ -243,17 +259,93 @@ static int below(const pr *p, double floor)
     return (p->pos > 0 || p->tp_ev + p->fp_ev > 0) && (prec(p) < floor || rec(p) < floor);
 }
 
+#define FOLDS 10
+
+/* Every fold with the judge's parameters in g_desc; 0 when a set lacks
+ * its data. */
+static int run_folds(const char *msr, const char *utk, const utk_interval *iv, int n,
+                     fold folds[FOLDS])
+{
+    static const int msr_subj[] = {1, 3, 5, 7, 9};
+    int ok = 1;
+    for (int i = 0; i < FOLDS; i++) {
+        fold *f = &folds[i];
+        memset(f, 0, sizeof *f);
+        f->set = i < 5 ? "msr" : "utk";
+        f->subject = i < 5 ? msr_subj[i] : i - 4;
+        if (i < 5 && msr)
+            ok &= msr_fold(msr, f->subject, f) > 0;
+        else if (i >= 5 && utk)
+            ok &= utk_fold(utk, iv, n, f->subject, f) > 0;
+    }
+    return ok;
+}
+
+static double f1(const pr *p)
+{
+    double a = prec(p), b = rec(p);
+    return a + b > 0 ? 2 * a * b / (a + b) : 0;
+}
+
+/* The clap parameters --loso chooses from, per fold, on the nine others:
+ * closing speed (shoulder widths a second) and the meet's slack. The first
+ * is the judge's default. */
+static const struct {
+    int speed_tenths, slack_pct;
+} grid[] = {{30, 0},  {20, 0},  {40, 0},  {50, 0},  {60, 0},
+            {20, 50}, {30, 50}, {40, 50}, {50, 50}, {60, 50}};
+#define GRID (int)(sizeof grid / sizeof grid[0])
+
+static void set_grid(int g)
+{
+    memset(&g_desc, 0, sizeof g_desc);
+    g_desc.clap_speed = (cub_q16)((int64_t)grid[g].speed_tenths * CUB_Q16_ONE / 10);
+    g_desc.clap_slack = grid[g].slack_pct * CUB_Q16_ONE / 100;
+}
+
+/* Leave one subject out for the clap's parameters: for each fold, the
+ * grid point with the best clap F1 pooled over the nine other folds (ties:
+ * the earlier point), then that fold scored with it. */
+static void loso(const char *msr, const char *utk, const utk_interval *iv, int n,
+                 fold out[FOLDS], int chosen[FOLDS])
+{
+    static fold by_grid[GRID][FOLDS];
+    for (int g = 0; g < GRID; g++) {
+        set_grid(g);
+        run_folds(msr, utk, iv, n, by_grid[g]);
+    }
+    for (int i = 0; i < FOLDS; i++) {
+        double best = -1;
+        for (int g = 0; g < GRID; g++) {
+            pr train = {0};
+            for (int k = 0; k < FOLDS; k++)
+                if (k != i) add(&train, &by_grid[g][k].clap);
+            if (f1(&train) > best) {
+                best = f1(&train);
+                chosen[i] = g;
+            }
+        }
+        out[i] = by_grid[chosen[i]][i];
+    }
+    memset(&g_desc, 0, sizeof g_desc);
+}
+
 int main(int argc, char **argv)
 {
     double check = -1;
     const char *only = NULL;
+    int by_fold = 0;
     for (int i = 1; i < argc; i++) {
         if (strcmp(argv[i], "--check") == 0 && i + 1 < argc)
             check = atof(argv[++i]);
+        else if (strcmp(argv[i], "--list") == 0)
+            list_misses = 1;
+        else if (strcmp(argv[i], "--loso") == 0)
+            by_fold = 1;
         else if (strcmp(argv[i], "--only") == 0 && i + 1 < argc)
             only = argv[++i];
         else {
-            fprintf(stderr, "usage: gesture_folds [--check P] [--only msr|utk]\n");
+            fprintf(stderr, "usage: gesture_folds [--check P] [--only msr|utk] [--list] [--loso]\n");
             return 2;
         }
     }
@@ -274,29 +366,28 @@ int main(int argc, char **argv)
             return 2;
         }
     }
+    fold folds[FOLDS];
+    int chosen[FOLDS] = {0};
+    int bad = !run_folds(want_msr ? msr : NULL, want_utk ? utk : NULL, iv, n, folds);
+    if (by_fold) loso(want_msr ? msr : NULL, want_utk ? utk : NULL, iv, n, folds, chosen);
     printf("| set | held-out subject | clap precision | clap recall | wave precision | "
-           "wave recall | leg-out precision | leg-out recall |\n");
-    printf("|---|---|---|---|---|---|---|---|\n");
+           "wave recall | leg-out precision | leg-out recall |%s\n",
+           by_fold ? " clap speed, slack (chosen on the other folds) |" : "");
+    printf("|---|---|---|---|---|---|---|---|%s\n", by_fold ? "---|" : "");
     fold total = {.set = "all"};
-    int bad = 0;
-    static const int msr_subj[] = {1, 3, 5, 7, 9};
-    for (int i = 0; want_msr && i < 5; i++) {
-        fold f = {.set = "msr", .subject = msr_subj[i]};
-        bad |= msr_fold(msr, f.subject, &f) == 0;
-        print_row(&f);
-        bad |= check >= 0 && below(&f.clap, check);
-        add(&total.clap, &f.clap);
-        add(&total.wave, &f.wave);
-        add(&total.leg, &f.leg);
+    for (int i = 0; i < FOLDS; i++) {
+        fold *f = &folds[i];
+        if ((i < 5 && !want_msr) || (i >= 5 && !want_utk)) continue;
+        char extra[64] = "";
+        if (by_fold)
+            snprintf(extra, sizeof extra, " %.1f, %.2f |", grid[chosen[i]].speed_tenths / 10.0,
+                     grid[chosen[i]].slack_pct / 100.0);
+        print_row(f, extra);
+        bad |= check >= 0 && below(&f->clap, check);
+        add(&total.clap, &f->clap);
+        add(&total.wave, &f->wave);
+        add(&total.leg, &f->leg);
     }
-    for (int subj = 1; want_utk && subj <= 5; subj++) {
-        fold f = {.set = "utk", .subject = subj};
-        bad |= utk_fold(utk, iv, n, subj, &f) == 0;
-        print_row(&f);
-        bad |= check >= 0 && below(&f.clap, check);
-        add(&total.clap, &f.clap);
-        add(&total.wave, &f.wave);
-    }
-    print_row(&total);
+    print_row(&total, by_fold ? " |" : "");
     return bad;
 }

@@ -27,6 +27,7 @@ static cub_vec3 mm(int x, int y, int z)
 typedef struct pose {
     int bend[2];      /* elbow bent 90 degrees, forearm forward: 0 left, 1 right */
     int clap_gap;     /* > 0: hands in front of the chest, this far apart (mm) */
+    int one_hand;     /* with clap_gap: the left hand still at x -300, the right moves */
     int wave_dx;      /* right hand raised above the head, shifted sideways (mm) */
     int waving;       /* use wave_dx */
     int arms_up;      /* both arms straight up */
@@ -60,7 +61,7 @@ static cub_track_skeleton child(pose p)
             j[sh + 3] = mm(180 * sx, 1640, z);
         }
         if (p.clap_gap > 0) {
-            int hx = p.clap_gap / 2 * sx;
+            int hx = p.one_hand ? (side ? p.clap_gap - 300 : -300) : p.clap_gap / 2 * sx;
             j[sh + 1] = mm(190 * sx, 880, z - 50);
             j[sh + 2] = mm((190 * sx + hx) / 2, 930, z - 250);
             j[sh + 3] = mm(hx, 950, z - 300);
@@ -160,7 +161,7 @@ static cub_judge_rep rep_rhe(int rep, int from, int to)
     return r;
 }
 
-static const pose STILL = {{0, 0}, 0, 0, 0, 0, CUB_TRACK_OK};
+static const pose STILL = {{0, 0}, 0, 0, 0, 0, 0, CUB_TRACK_OK};
 
 static pose bent_right(void)
 {
@@ -833,6 +834,42 @@ static void test_claps_in_a_row_and_held_hands(void **state)
     assert_int_equal(count(&r, CUB_JUDGE_CLAP), 3);
 }
 
+/* A hand brought to a still one (a punch across the body, a hand to a
+ * held box) closes the gap as fast as a clap, but only one hand moves. */
+static void test_clap_needs_both_hands(void **state)
+{
+    (void)state;
+    rec r;
+    rec_init(&r, NULL);
+    for (int f = 0; f < 40; f++) {
+        pose p = STILL;
+        p.clap_gap = clap_gap_at(f - 20);
+        p.one_hand = 1;
+        feed(&r, f, p);
+    }
+    assert_int_equal(count(&r, CUB_JUDGE_CLAP), 0);
+}
+
+/* Hands that meet slowly are no clap: 400 mm closed to 30 in 400 ms is
+ * 0.93 m/s, 2.7 shoulder widths (340 mm) a second, under clap_speed (3);
+ * the same closing at 3.5 widths a second is one. */
+static void test_clap_needs_a_fast_approach(void **state)
+{
+    (void)state;
+    for (int fast = 0; fast < 2; fast++) {
+        rec r;
+        rec_init(&r, NULL);
+        int frames = fast ? 9 : 12; /* 300 or 400 ms from 400 mm to 30 */
+        for (int f = 0; f < 60; f++) {
+            pose p = STILL;
+            int k = f - 10;
+            p.clap_gap = k < 0 ? 400 : k <= frames ? 400 - 370 * k / frames : k < frames + 4 ? 30 : 400;
+            feed(&r, f, p);
+        }
+        assert_int_equal(count(&r, CUB_JUDGE_CLAP), fast);
+    }
+}
+
 static void test_wave_needs_two_reversals(void **state)
 {
     (void)state;
@@ -973,6 +1010,8 @@ int main(void)
         cmocka_unit_test(test_expected_pose_must_be_near),
         cmocka_unit_test(test_one_clap_one_event),
         cmocka_unit_test(test_claps_in_a_row_and_held_hands),
+        cmocka_unit_test(test_clap_needs_both_hands),
+        cmocka_unit_test(test_clap_needs_a_fast_approach),
         cmocka_unit_test(test_wave_needs_two_reversals),
         cmocka_unit_test(test_presence_hysteresis),
         cmocka_unit_test(test_same_input_same_events),

@@ -73,8 +73,14 @@
  *   coach abandoned them).
  *
  * Clap: the hands (HAND_L/R) come together fast and meet in front of the
- * body, then part. Meet: hand gap < clap_meet of the shoulder width, the
- * gap having been >= clap_open of it within the last clap_approach_ms, the
+ * body, then part; every length is a share of the shoulder width (a
+ * child's clap is an adult's, scaled). Meet: hand gap < clap_meet of the
+ * width (plus clap_slack of the last frame's closing: a contact between
+ * two frames), the gap having been >= clap_open of it within the last
+ * clap_approach_ms and closed from its widest there at clap_speed widths a
+ * second or faster on average, both hands moving in (each at least a
+ * quarter of the closing, along the line between them: a punch across the
+ * body or a hand brought to a still one is no clap), the
  * hands in front of the trunk with the forearms reaching forward (see
  * clap_pose in firmware/judge/judge_gesture.c for the exact bounds, from
  * hip to a bit above shoulder height; hands meeting overhead with the
@@ -123,6 +129,10 @@ typedef struct cub_judge_desc {
     cub_q16 clap_meet;         /* 0.55 of the shoulder width: hands meet */
     cub_q16 clap_open;         /* 1.0: the gap before the approach */
     int32_t clap_approach_ms;  /* 400 */
+    cub_q16 clap_speed;        /* 3.0 shoulder widths a second: the least mean
+                                  closing speed from the open gap to the meet */
+    cub_q16 clap_slack;        /* 0 (none): of the last frame's closing, allowed
+                                  on top of clap_meet (contact between frames) */
     cub_q16 clap_part;         /* 0.25: the gap growth that ends a clap */
     int32_t clap_part_ms;      /* 600 */
     int32_t clap_refractory_ms;/* 200 */
