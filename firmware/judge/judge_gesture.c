@@ -172,24 +172,48 @@ static void clap_step(cub_judge *j, int64_t t_us, const cub_track_skeleton *s, i
     clap_push(c, t_us, gap, s);
 }
 
-static void wave_restart(wave_state *w, int64_t t_us, int32_t x)
+static void wave_restart(wave_state *w, int64_t t_us, int32_t x, int32_t y)
 {
     w->active = 1;
     w->dir = 0;
     w->reversals = 0;
     w->fired = 0;
-    w->lo_mm = w->hi_mm = w->extreme_mm = x;
+    w->lo_mm = w->hi_mm = w->extreme_mm = w->from_mm = x;
+    w->ylo_mm = w->yhi_mm = y;
     w->last_us = t_us;
 }
 
-/* Direction changes of the hand's x with hysteresis `swing`. */
-static void wave_track(wave_state *w, int64_t t_us, int32_t x, int32_t swing)
+/* A swing ended at a reversal: it counts when it was sideways. A wave
+ * swings the hand about the elbow (or the shoulder) across the body's
+ * front: over a pivot of up to +-90 degrees the hand rises at most half
+ * its sideways travel; drawing a circle, throwing or serving moves it up
+ * and down as much as across. A swing whose rise exceeds its sideways
+ * travel restarts the count. */
+static void wave_swing_done(wave_state *w, int32_t x, int32_t y)
 {
+    int32_t across = w->extreme_mm - w->from_mm;
+    if (across < 0) across = -across;
+    if (w->yhi_mm - w->ylo_mm > across)
+        w->reversals = 0;
+    else
+        w->reversals++;
+    w->from_mm = w->extreme_mm;
+    w->extreme_mm = x;
+    w->ylo_mm = w->yhi_mm = y;
+}
+
+/* Direction changes of the hand's x with hysteresis `swing`; y the hand's
+ * height for wave_swing_done. */
+static void wave_track(wave_state *w, int64_t t_us, int32_t x, int32_t y, int32_t swing)
+{
+    if (y < w->ylo_mm) w->ylo_mm = y;
+    if (y > w->yhi_mm) w->yhi_mm = y;
     if (w->dir == 0) {
         if (x < w->lo_mm) w->lo_mm = x;
         if (x > w->hi_mm) w->hi_mm = x;
         if (x - w->lo_mm >= swing || w->hi_mm - x >= swing) {
             w->dir = x - w->lo_mm >= swing ? 1 : -1;
+            w->from_mm = w->dir > 0 ? w->lo_mm : w->hi_mm;
             w->extreme_mm = x;
             w->last_us = t_us;
         }
@@ -199,8 +223,7 @@ static void wave_track(wave_state *w, int64_t t_us, int32_t x, int32_t swing)
         w->extreme_mm = x;
     } else if ((w->extreme_mm - x) * w->dir >= swing) {
         w->dir = -w->dir;
-        w->extreme_mm = x;
-        w->reversals++;
+        wave_swing_done(w, x, y);
         w->last_us = t_us;
     }
 }
@@ -216,10 +239,11 @@ static void wave_step(cub_judge *j, int64_t t_us, const cub_track_skeleton *s, i
     int raised = p[hand[side]].y > p[elbow[side]].y && p[hand[side]].y > p[shoulder[side]].y &&
                  s->confidence[hand[side]] > 0;
     int32_t x = judge_mm(p[hand[side]].x) - judge_mm(p[shoulder[side]].x);
+    int32_t y = judge_mm(p[hand[side]].y) - judge_mm(p[shoulder[side]].y);
     if (!raised) return; /* a big wave dips below the shoulder: wave_gap_ms ends it */
     if (!w->active || t_us - w->last_us > (int64_t)j->d.wave_gap_ms * 1000)
-        wave_restart(w, t_us, x);
-    wave_track(w, t_us, x, part_of(j->d.wave_swing, width_mm));
+        wave_restart(w, t_us, x, y);
+    wave_track(w, t_us, x, y, part_of(j->d.wave_swing, width_mm));
     if (w->fired || w->reversals < j->d.wave_reversals) return;
     w->fired = 1;
     cub_judge_event e = {

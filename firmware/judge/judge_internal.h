@@ -61,6 +61,8 @@ typedef struct wave_state {
     int active, dir, fired;
     int32_t reversals;
     int32_t lo_mm, hi_mm, extreme_mm;
+    int32_t from_mm;           /* x where the current swing began */
+    int32_t ylo_mm, yhi_mm;    /* the hand's height range during it */
     int64_t last_us;  /* the last direction change */
 } wave_state;
 
