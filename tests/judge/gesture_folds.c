@@ -8,7 +8,7 @@
  *
  * --check P fails (exit 1) when a fold's clap precision or recall is below
  * P, or a set lacks data the protocol needs; --only msr|utk runs one set;
- * --list prints each clap or wave outside its action and each MSR clap miss.
+ * --list prints each clap or wave outside its action and each MSR miss.
  * Exit 77 (skip) when the data is absent. */
 #define _POSIX_C_SOURCE 200809L
 #include <stdint.h>
@@ -132,7 +132,11 @@ static int msr_fold(const char *dir, int subj, fold *f)
             run_judge(&s, 15, &out_r, &ev);
             int leg = ev.right;
             run_judge(&s, 15, &out_l, &ev);
-            msr_score(&f->leg, act == 15, 0, leg || ev.right);
+            leg |= ev.right;
+            if (list_misses && leg != (act == 15))
+                printf("miss: leg-out %s a%02d_s%02d_e%02d\n", leg ? "fired on" : "missed", act, subj,
+                       e);
+            msr_score(&f->leg, act == 15, 0, leg);
             kinect_free(&s);
         }
     return files;
