@@ -30,8 +30,8 @@ typedef struct events {
 
 /* Precision and recall counts of one detector in one fold. */
 typedef struct pr {
-    long tp_ev, fp_ev;     /* events (UTKinect) or files (MSR) right / wrong */
-    long pos, pos_hit;     /* labelled positives, those found */
+    long tp_ev, fp_ev; /* events (UTKinect) or files (MSR) right / wrong */
+    long pos, pos_hit; /* labelled positives, those found */
 } pr;
 
 typedef struct fold {
@@ -41,7 +41,7 @@ typedef struct fold {
 } fold;
 
 static _Alignas(16) unsigned char judge_mem[8192];
-static int list_misses;      /* --list: print every wrong event and missed positive */
+static int list_misses;       /* --list: print every wrong event and missed positive */
 static cub_judge_desc g_desc; /* the judge's parameters (zero: its defaults) */
 
 /* A fresh judge over s at fps (rep, when given, spans the file). */
@@ -120,22 +120,23 @@ static int msr_fold(const char *dir, int subj, fold *f)
             run_judge(&s, 15, NULL, &ev);
             int clap = count_kind(&ev, CUB_JUDGE_CLAP) > 0;
             if (list_misses && clap != (act == 10))
-                printf("miss: clap %s a%02d_s%02d_e%02d%s\n", clap ? "fired on" : "missed", act, subj,
-                       e, clap ? " (frames listed below)" : "");
+                printf("miss: clap %s a%02d_s%02d_e%02d%s\n", clap ? "fired on" : "missed", act,
+                       subj, e, clap ? " (frames listed below)" : "");
             for (int k = 0; list_misses && act != 10 && k < ev.n; k++)
                 if (ev.kind[k] == CUB_JUDGE_CLAP) printf("miss:   clap at frame %d\n", ev.frame[k]);
             msr_score(&f->clap, act == 10, 0, clap);
             int wave = count_kind(&ev, CUB_JUDGE_WAVE) > 0;
             if (list_misses && act != 2 && wave != (act == 1 || act == 11))
-                printf("miss: wave %s a%02d_s%02d_e%02d\n", wave ? "fired on" : "missed", act, subj, e);
+                printf("miss: wave %s a%02d_s%02d_e%02d\n", wave ? "fired on" : "missed", act, subj,
+                       e);
             msr_score(&f->wave, act == 1 || act == 11, act == 2, wave);
             run_judge(&s, 15, &out_r, &ev);
             int leg = ev.right;
             run_judge(&s, 15, &out_l, &ev);
             leg |= ev.right;
             if (list_misses && leg != (act == 15))
-                printf("miss: leg-out %s a%02d_s%02d_e%02d\n", leg ? "fired on" : "missed", act, subj,
-                       e);
+                printf("miss: leg-out %s a%02d_s%02d_e%02d\n", leg ? "fired on" : "missed", act,
+                       subj, e);
             msr_score(&f->leg, act == 15, 0, leg);
             kinect_free(&s);
         }
@@ -156,8 +157,8 @@ static int inside(const utk_interval *iv, int n, const char *action, int frame, 
 /* Events of one kind in one run: inside an interval of `action` right,
  * anywhere else wrong (claps within LABEL_SLACK of a clapHands label count
  * neither way: the labels' edges are approximate); recall per interval. */
-static void utk_score(pr *p, const events *ev, int kind, const char *action,
-                      const utk_interval *iv, int n)
+static void utk_score(pr *p, const events *ev, int kind, const char *action, const utk_interval *iv,
+                      int n)
 {
     for (int i = 0; i < n; i++) {
         if (strcmp(iv[i].action, action) != 0) continue;
@@ -175,8 +176,8 @@ static void utk_score(pr *p, const events *ev, int kind, const char *action,
         } else if (!inside(iv, n, action, ev->frame[e], slack)) {
             p->fp_ev++;
             if (list_misses)
-                printf("miss: %s outside %s at %s frame %d\n", kind == CUB_JUDGE_CLAP ? "clap" : "wave",
-                       action, iv[0].run, ev->frame[e]);
+                printf("miss: %s outside %s at %s frame %d\n",
+                       kind == CUB_JUDGE_CLAP ? "clap" : "wave", action, iv[0].run, ev->frame[e]);
         }
     }
 }
@@ -310,8 +311,8 @@ static void set_grid(int g)
 /* Leave one subject out for the clap's parameters: for each fold, the
  * grid point with the best clap F1 pooled over the nine other folds (ties:
  * the earlier point), then that fold scored with it. */
-static void loso(const char *msr, const char *utk, const utk_interval *iv, int n,
-                 fold out[FOLDS], int chosen[FOLDS])
+static void loso(const char *msr, const char *utk, const utk_interval *iv, int n, fold out[FOLDS],
+                 int chosen[FOLDS])
 {
     static fold by_grid[GRID][FOLDS];
     for (int g = 0; g < GRID; g++) {
@@ -349,7 +350,8 @@ int main(int argc, char **argv)
         else if (strcmp(argv[i], "--only") == 0 && i + 1 < argc)
             only = argv[++i];
         else {
-            fprintf(stderr, "usage: gesture_folds [--check P] [--only msr|utk] [--list] [--loso]\n");
+            fprintf(stderr,
+                    "usage: gesture_folds [--check P] [--only msr|utk] [--list] [--loso]\n");
             return 2;
         }
     }

@@ -91,8 +91,10 @@
  * Wave: a hand above its elbow and its shoulder moves side to side (x,
  * relative to its shoulder) with at least wave_reversals reversals, each
  * swing at least wave_swing of the shoulder width, reversals at most
- * wave_gap_ms apart. Frames with the hand lower pause the count (a big
- * two-arm wave dips below the shoulders); a clap clears it. One event per
+ * wave_gap_ms apart; a swing counts only when the hand rises during it no
+ * more than it crosses (a loop, a throw or a serve restarts the count).
+ * Frames with the hand lower pause the count (a big two-arm wave dips
+ * below the shoulders); a clap clears it. One event per
  * waving episode (an episode ends when wave_gap_ms passes without a
  * reversal).
  * Presence: in view after present_frames CUB_TRACK_OK frames in a row, out
