@@ -20,6 +20,7 @@ static void fill_defaults(cub_judge_desc *d)
     if (!d->clap_meet) d->clap_meet = PCT(55);
     if (!d->clap_open) d->clap_open = PCT(100);
     if (!d->clap_approach_ms) d->clap_approach_ms = 400;
+    if (!d->clap_speed) d->clap_speed = CUB_Q16_INT(3);
     if (!d->clap_part) d->clap_part = PCT(25);
     if (!d->clap_part_ms) d->clap_part_ms = 600;
     if (!d->clap_refractory_ms) d->clap_refractory_ms = 200;
@@ -35,7 +36,7 @@ static int desc_ok(const cub_judge_desc *d)
     for (size_t i = 0; i < sizeof ms / sizeof ms[0]; i++)
         if (ms[i] < 0 || ms[i] > 60000) return 0;
     const cub_q16 ratio[] = {d->pose_d_max, d->clap_meet, d->clap_open, d->clap_part,
-                             d->wave_swing};
+                             d->wave_swing, d->clap_speed, d->clap_slack};
     for (size_t i = 0; i < sizeof ratio / sizeof ratio[0]; i++)
         if (ratio[i] < 0 || ratio[i] > CUB_Q16_INT(8)) return 0;
     return d->key_mu <= CUB_FUZZY_ONE && d->present_frames > 0 && d->present_frames <= 1000 &&

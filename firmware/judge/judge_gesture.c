@@ -23,24 +23,89 @@ void judge_gestures_reset(cub_judge *j)
     memset(j->wave, 0, sizeof j->wave);
 }
 
-static void clap_push(clap_state *c, int64_t t_us, int32_t gap_mm)
+static void hand_at(const cub_track_skeleton *s, int32_t out[2][3])
+{
+    static const int hand[2] = {CUB_KJ_HAND_L, CUB_KJ_HAND_R};
+    for (int h = 0; h < 2; h++) {
+        out[h][0] = judge_mm(s->joint_mm[hand[h]].x);
+        out[h][1] = judge_mm(s->joint_mm[hand[h]].y);
+        out[h][2] = judge_mm(s->joint_mm[hand[h]].z);
+    }
+}
+
+static void clap_push(clap_state *c, int64_t t_us, int32_t gap_mm, const cub_track_skeleton *s)
 {
     c->t_us[c->head] = t_us;
     c->gap_mm[c->head] = gap_mm;
+    hand_at(s, c->hand_mm[c->head]);
     c->head = (c->head + 1) % JUDGE_HIST;
     if (c->n < JUDGE_HIST) c->n++;
 }
 
-/* The widest hand gap of the frames since t_us. */
-static int32_t clap_widest_since(const clap_state *c, int64_t t_us)
+/* The widest hand gap of the frames since t_us, and when it was. */
+static int32_t clap_widest_since(const clap_state *c, int64_t t_us, int *slot)
 {
     int32_t widest = 0;
+    *slot = -1;
     for (int i = 0; i < c->n; i++) {
         int k = (c->head - 1 - i + 2 * JUDGE_HIST) % JUDGE_HIST;
         if (c->t_us[k] < t_us) break;
-        if (c->gap_mm[k] > widest) widest = c->gap_mm[k];
+        if (c->gap_mm[k] > widest) {
+            widest = c->gap_mm[k];
+            *slot = k;
+        }
     }
     return widest;
+}
+
+/* Both hands did a share of the closing: each moved toward the other by
+ * at least a quarter of their closing along the line between them at the
+ * open gap. A clap brings both hands in; a punch across the body, or a
+ * hand brought to a still one, moves one. */
+static int clap_both_hands(const int32_t from[2][3], const int32_t now[2][3])
+{
+    int64_t toward_r = 0, toward_l = 0; /* displacements dotted with the L->R line */
+    for (int a = 0; a < 3; a++) {
+        int64_t line = (int64_t)from[1][a] - from[0][a];
+        toward_r += ((int64_t)now[0][a] - from[0][a]) * line;
+        toward_l -= ((int64_t)now[1][a] - from[1][a]) * line;
+    }
+    int64_t closing = toward_r + toward_l;
+    return closing > 0 && 4 * toward_r >= closing && 4 * toward_l >= closing;
+}
+
+/* The hands meet: the gap is under clap_meet of the width, or would have
+ * been between two frames. At the closing speed of a clap the hands
+ * travel up to a shoulder width between two Kinect frames (15 fps), so the
+ * sampled gap nearest the contact can be up to half that frame's closing
+ * above it: clap_slack of it is allowed on top of clap_meet (off by
+ * default: at 1/2 it found one more clap and two false ones on the shared
+ * skeletons, docs/gestures_eval.md). */
+static int clap_meets(const clap_state *c, int32_t gap, int32_t meet_mm, cub_q16 slack)
+{
+    int32_t closing = 0;
+    if (c->n > 0) closing = c->gap_mm[(c->head - 1 + JUDGE_HIST) % JUDGE_HIST] - gap;
+    return gap < meet_mm + (closing > 0 ? part_of(slack, closing) : 0);
+}
+
+/* The hands came together like a clap: open by clap_open of the width
+ * within clap_approach_ms, and closed from there at clap_speed widths a
+ * second or faster on average (a clap, not hands brought together to hold
+ * something). */
+static int clap_approached(const cub_judge *j, int64_t t_us, const cub_track_skeleton *s,
+                           int32_t gap, int32_t width_mm)
+{
+    const cub_judge_desc *d = &j->d;
+    const clap_state *c = &j->clap;
+    int k;
+    int32_t widest = clap_widest_since(c, t_us - (int64_t)d->clap_approach_ms * 1000, &k);
+    if (k < 0 || widest < part_of(d->clap_open, width_mm)) return 0;
+    int32_t now[2][3];
+    hand_at(s, now);
+    /* closed mm / elapsed s >= speed mm/s, in integers: mm * 1e6 >= speed * us */
+    return (int64_t)(widest - gap) * 1000000 >=
+               (int64_t)part_of(d->clap_speed, width_mm) * (t_us - c->t_us[k]) &&
+           clap_both_hands(c->hand_mm[k], now);
 }
 
 /* Hands in clapping position, from their height h (0 at hip-centre, 1 at
@@ -97,36 +162,58 @@ static void clap_step(cub_judge *j, int64_t t_us, const cub_track_skeleton *s, i
         } else if (t_us - c->met_us > (int64_t)d->clap_part_ms * 1000) {
             c->met = 0; /* hands held together: no clap */
         }
-    } else if (gap < part_of(d->clap_meet, width_mm) &&
+    } else if (clap_meets(c, gap, part_of(d->clap_meet, width_mm), d->clap_slack) &&
                (!c->clapped || t_us - c->last_clap_us >= (int64_t)d->clap_refractory_ms * 1000) &&
-               clap_widest_since(c, t_us - (int64_t)d->clap_approach_ms * 1000) >=
-                   part_of(d->clap_open, width_mm) &&
-               clap_pose(s, width_mm)) {
+               clap_approached(j, t_us, s, gap, width_mm) && clap_pose(s, width_mm)) {
         c->met = 1;
         c->met_us = t_us;
         c->min_gap_mm = gap;
     }
-    clap_push(c, t_us, gap);
+    clap_push(c, t_us, gap, s);
 }
 
-static void wave_restart(wave_state *w, int64_t t_us, int32_t x)
+static void wave_restart(wave_state *w, int64_t t_us, int32_t x, int32_t y)
 {
     w->active = 1;
     w->dir = 0;
     w->reversals = 0;
     w->fired = 0;
-    w->lo_mm = w->hi_mm = w->extreme_mm = x;
+    w->lo_mm = w->hi_mm = w->extreme_mm = w->from_mm = x;
+    w->ylo_mm = w->yhi_mm = y;
     w->last_us = t_us;
 }
 
-/* Direction changes of the hand's x with hysteresis `swing`. */
-static void wave_track(wave_state *w, int64_t t_us, int32_t x, int32_t swing)
+/* A swing ended at a reversal: it counts when it was sideways. A wave
+ * swings the hand about the elbow (or the shoulder) across the body's
+ * front: over a pivot of up to +-90 degrees the hand rises at most half
+ * its sideways travel; drawing a circle, throwing or serving moves it up
+ * and down as much as across. A swing whose rise exceeds its sideways
+ * travel restarts the count. */
+static void wave_swing_done(wave_state *w, int32_t x, int32_t y)
 {
+    int32_t across = w->extreme_mm - w->from_mm;
+    if (across < 0) across = -across;
+    if (w->yhi_mm - w->ylo_mm > across)
+        w->reversals = 0;
+    else
+        w->reversals++;
+    w->from_mm = w->extreme_mm;
+    w->extreme_mm = x;
+    w->ylo_mm = w->yhi_mm = y;
+}
+
+/* Direction changes of the hand's x with hysteresis `swing`; y the hand's
+ * height for wave_swing_done. */
+static void wave_track(wave_state *w, int64_t t_us, int32_t x, int32_t y, int32_t swing)
+{
+    if (y < w->ylo_mm) w->ylo_mm = y;
+    if (y > w->yhi_mm) w->yhi_mm = y;
     if (w->dir == 0) {
         if (x < w->lo_mm) w->lo_mm = x;
         if (x > w->hi_mm) w->hi_mm = x;
         if (x - w->lo_mm >= swing || w->hi_mm - x >= swing) {
             w->dir = x - w->lo_mm >= swing ? 1 : -1;
+            w->from_mm = w->dir > 0 ? w->lo_mm : w->hi_mm;
             w->extreme_mm = x;
             w->last_us = t_us;
         }
@@ -136,8 +223,7 @@ static void wave_track(wave_state *w, int64_t t_us, int32_t x, int32_t swing)
         w->extreme_mm = x;
     } else if ((w->extreme_mm - x) * w->dir >= swing) {
         w->dir = -w->dir;
-        w->extreme_mm = x;
-        w->reversals++;
+        wave_swing_done(w, x, y);
         w->last_us = t_us;
     }
 }
@@ -153,10 +239,11 @@ static void wave_step(cub_judge *j, int64_t t_us, const cub_track_skeleton *s, i
     int raised = p[hand[side]].y > p[elbow[side]].y && p[hand[side]].y > p[shoulder[side]].y &&
                  s->confidence[hand[side]] > 0;
     int32_t x = judge_mm(p[hand[side]].x) - judge_mm(p[shoulder[side]].x);
+    int32_t y = judge_mm(p[hand[side]].y) - judge_mm(p[shoulder[side]].y);
     if (!raised) return; /* a big wave dips below the shoulder: wave_gap_ms ends it */
     if (!w->active || t_us - w->last_us > (int64_t)j->d.wave_gap_ms * 1000)
-        wave_restart(w, t_us, x);
-    wave_track(w, t_us, x, part_of(j->d.wave_swing, width_mm));
+        wave_restart(w, t_us, x, y);
+    wave_track(w, t_us, x, y, part_of(j->d.wave_swing, width_mm));
     if (w->fired || w->reversals < j->d.wave_reversals) return;
     w->fired = 1;
     cub_judge_event e = {

@@ -48,6 +48,7 @@ typedef struct consumed_keys {
 typedef struct clap_state {
     int64_t t_us[JUDGE_HIST];
     int32_t gap_mm[JUDGE_HIST];
+    int32_t hand_mm[JUDGE_HIST][2][3]; /* left and right hand, x y z */
     int32_t n, head;  /* entries held, next slot */
     int met;          /* hands met, waiting for them to part */
     int64_t met_us;
@@ -60,6 +61,8 @@ typedef struct wave_state {
     int active, dir, fired;
     int32_t reversals;
     int32_t lo_mm, hi_mm, extreme_mm;
+    int32_t from_mm;           /* x where the current swing began */
+    int32_t ylo_mm, yhi_mm;    /* the hand's height range during it */
     int64_t last_us;  /* the last direction change */
 } wave_state;
 

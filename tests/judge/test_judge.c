@@ -27,7 +27,9 @@ static cub_vec3 mm(int x, int y, int z)
 typedef struct pose {
     int bend[2];      /* elbow bent 90 degrees, forearm forward: 0 left, 1 right */
     int clap_gap;     /* > 0: hands in front of the chest, this far apart (mm) */
+    int one_hand;     /* with clap_gap: the left hand still at x -300, the right moves */
     int wave_dx;      /* right hand raised above the head, shifted sideways (mm) */
+    int wave_dy;      /* and up (mm) */
     int waving;       /* use wave_dx */
     int arms_up;      /* both arms straight up */
     int status;       /* cub_track_status */
@@ -60,15 +62,15 @@ static cub_track_skeleton child(pose p)
             j[sh + 3] = mm(180 * sx, 1640, z);
         }
         if (p.clap_gap > 0) {
-            int hx = p.clap_gap / 2 * sx;
+            int hx = p.one_hand ? (side ? p.clap_gap - 300 : -300) : p.clap_gap / 2 * sx;
             j[sh + 1] = mm(190 * sx, 880, z - 50);
             j[sh + 2] = mm((190 * sx + hx) / 2, 930, z - 250);
             j[sh + 3] = mm(hx, 950, z - 300);
         }
         if (p.waving && side == 1) {
             j[sh + 1] = mm(260, 1150, z);
-            j[sh + 2] = mm(260 + p.wave_dx, 1380, z);
-            j[sh + 3] = mm(260 + p.wave_dx, 1450, z);
+            j[sh + 2] = mm(260 + p.wave_dx, 1380 + p.wave_dy, z);
+            j[sh + 3] = mm(260 + p.wave_dx, 1450 + p.wave_dy, z);
         }
         j[hip] = mm(80 * sx, 780, z);
         j[hip + 1] = mm(85 * sx, 450, z);
@@ -160,7 +162,7 @@ static cub_judge_rep rep_rhe(int rep, int from, int to)
     return r;
 }
 
-static const pose STILL = {{0, 0}, 0, 0, 0, 0, CUB_TRACK_OK};
+static const pose STILL = {{0, 0}, 0, 0, 0, 0, 0, 0, CUB_TRACK_OK};
 
 static pose bent_right(void)
 {
@@ -799,6 +801,17 @@ static int clap_gap_at(int f)
     return f >= 0 && f < 10 ? gap[f] : 600;
 }
 
+/* Events of one kind over 60 frames of a fresh judge, the child doing
+ * at(f, variant) in frame f. */
+static int events_over(int kind, pose (*at)(int f, int variant), int variant)
+{
+    rec r;
+    rec_init(&r, NULL);
+    for (int f = 0; f < 60; f++)
+        feed(&r, f, at(f, variant));
+    return count(&r, kind);
+}
+
 static void test_one_clap_one_event(void **state)
 {
     (void)state;
@@ -831,6 +844,66 @@ static void test_claps_in_a_row_and_held_hands(void **state)
         feed(&r, f, p);
     }
     assert_int_equal(count(&r, CUB_JUDGE_CLAP), 3);
+}
+
+/* The clap of clap_gap_at from frame 20; one_hand: the left hand still,
+ * the right brought to it. */
+static pose clap_at(int f, int one_hand)
+{
+    pose p = STILL;
+    p.clap_gap = clap_gap_at(f - 20);
+    p.one_hand = one_hand;
+    return p;
+}
+
+/* A hand brought to a still one (a punch across the body, a hand to a
+ * held box) closes the gap as fast as a clap, but only one hand moves. */
+static void test_clap_needs_both_hands(void **state)
+{
+    (void)state;
+    assert_int_equal(events_over(CUB_JUDGE_CLAP, clap_at, 1), 0);
+    assert_int_equal(events_over(CUB_JUDGE_CLAP, clap_at, 0), 1);
+}
+
+/* Hands closing from 400 mm to 30 in 12 frames (400 ms, slow = 1) or 9
+ * (300 ms), from frame 10, held 4 frames, then open. */
+static pose closing_at(int f, int slow)
+{
+    pose p = STILL;
+    int k = f - 10, frames = slow ? 12 : 9;
+    p.clap_gap = k < 0 ? 400 : k <= frames ? 400 - 370 * k / frames : k < frames + 4 ? 30 : 400;
+    return p;
+}
+
+/* Hands that meet slowly are no clap: 400 mm closed to 30 in 400 ms is
+ * 0.93 m/s, 2.7 shoulder widths (340 mm) a second, under clap_speed (3);
+ * the same closing in 300 ms (3.6 widths a second) is one. */
+static void test_clap_needs_a_fast_approach(void **state)
+{
+    (void)state;
+    assert_int_equal(events_over(CUB_JUDGE_CLAP, closing_at, 1), 0);
+    assert_int_equal(events_over(CUB_JUDGE_CLAP, closing_at, 0), 1);
+}
+
+/* The right hand looping above the head for 36 frames: three times as far
+ * up and down as across (tall = 1), or a third as far. */
+static pose loop_at(int f, int tall)
+{
+    static const int dx[] = {0, 75, 130, 150, 130, 75, 0, -75, -130, -150, -130, -75};
+    pose p = STILL;
+    p.waving = f < 36;
+    p.wave_dx = dx[f % 12];
+    p.wave_dy = (tall ? dx[(f + 3) % 12] * 3 : dx[(f + 3) % 12] / 3) + 460;
+    return p;
+}
+
+/* A tall loop (as in drawing or a throw) is no wave; the same loop
+ * flattened is one. */
+static void test_wave_swings_sideways(void **state)
+{
+    (void)state;
+    assert_int_equal(events_over(CUB_JUDGE_WAVE, loop_at, 1), 0);
+    assert_int_equal(events_over(CUB_JUDGE_WAVE, loop_at, 0), 1);
 }
 
 static void test_wave_needs_two_reversals(void **state)
@@ -973,6 +1046,9 @@ int main(void)
         cmocka_unit_test(test_expected_pose_must_be_near),
         cmocka_unit_test(test_one_clap_one_event),
         cmocka_unit_test(test_claps_in_a_row_and_held_hands),
+        cmocka_unit_test(test_clap_needs_both_hands),
+        cmocka_unit_test(test_clap_needs_a_fast_approach),
+        cmocka_unit_test(test_wave_swings_sideways),
         cmocka_unit_test(test_wave_needs_two_reversals),
         cmocka_unit_test(test_presence_hysteresis),
         cmocka_unit_test(test_same_input_same_events),

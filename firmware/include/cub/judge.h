@@ -73,8 +73,14 @@
  *   coach abandoned them).
  *
  * Clap: the hands (HAND_L/R) come together fast and meet in front of the
- * body, then part. Meet: hand gap < clap_meet of the shoulder width, the
- * gap having been >= clap_open of it within the last clap_approach_ms, the
+ * body, then part; every length is a share of the shoulder width (a
+ * child's clap is an adult's, scaled). Meet: hand gap < clap_meet of the
+ * width (plus clap_slack of the last frame's closing: a contact between
+ * two frames), the gap having been >= clap_open of it within the last
+ * clap_approach_ms and closed from its widest there at clap_speed widths a
+ * second or faster on average, both hands moving in (each at least a
+ * quarter of the closing, along the line between them: a punch across the
+ * body or a hand brought to a still one is no clap), the
  * hands in front of the trunk with the forearms reaching forward (see
  * clap_pose in firmware/judge/judge_gesture.c for the exact bounds, from
  * hip to a bit above shoulder height; hands meeting overhead with the
@@ -85,8 +91,10 @@
  * Wave: a hand above its elbow and its shoulder moves side to side (x,
  * relative to its shoulder) with at least wave_reversals reversals, each
  * swing at least wave_swing of the shoulder width, reversals at most
- * wave_gap_ms apart. Frames with the hand lower pause the count (a big
- * two-arm wave dips below the shoulders); a clap clears it. One event per
+ * wave_gap_ms apart; a swing counts only when the hand rises during it no
+ * more than it crosses (a loop, a throw or a serve restarts the count).
+ * Frames with the hand lower pause the count (a big two-arm wave dips
+ * below the shoulders); a clap clears it. One event per
  * waving episode (an episode ends when wave_gap_ms passes without a
  * reversal).
  * Presence: in view after present_frames CUB_TRACK_OK frames in a row, out
@@ -123,6 +131,10 @@ typedef struct cub_judge_desc {
     cub_q16 clap_meet;         /* 0.55 of the shoulder width: hands meet */
     cub_q16 clap_open;         /* 1.0: the gap before the approach */
     int32_t clap_approach_ms;  /* 400 */
+    cub_q16 clap_speed;        /* 3.0 shoulder widths a second: the least mean
+                                  closing speed from the open gap to the meet */
+    cub_q16 clap_slack;        /* 0 (none): of the last frame's closing, allowed
+                                  on top of clap_meet (contact between frames) */
     cub_q16 clap_part;         /* 0.25: the gap growth that ends a clap */
     int32_t clap_part_ms;      /* 600 */
     int32_t clap_refractory_ms;/* 200 */

@@ -1,0 +1,399 @@
+/* gesture_folds — the judge's gestures, leave one subject out
+ * (docs/gestures_eval.md has the protocol): one fold per person of the
+ * shared MSR Action3D (subjects 1 3 5 7 9) and UTKinect (subjects 1-5)
+ * skeletons under $CUB_DATA_DIR/skeletons, and per fold the precision and
+ * recall of claps, waves and the leg-out key on that person alone.
+ *
+ *   gesture_folds [--check P] [--only SET] [--list]
+ *
+ * --check P fails (exit 1) when a fold's clap precision or recall is below
+ * P, or a set lacks data the protocol needs; --only msr|utk runs one set;
+ * --list prints each clap or wave outside its action and each MSR miss.
+ * Exit 77 (skip) when the data is absent. */
+#define _POSIX_C_SOURCE 200809L
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "cub/judge.h"
+#include "kinect_read.h"
+
+#define LABEL_SLACK 30 /* UTKinect frames around a clapHands label that count neither way */
+#define MAX_EVENTS 4096
+
+typedef struct events {
+    int n, right;
+    int kind[MAX_EVENTS], frame[MAX_EVENTS];
+} events;
+
+/* Precision and recall counts of one detector in one fold. */
+typedef struct pr {
+    long tp_ev, fp_ev; /* events (UTKinect) or files (MSR) right / wrong */
+    long pos, pos_hit; /* labelled positives, those found */
+} pr;
+
+typedef struct fold {
+    const char *set;
+    int subject;
+    pr clap, wave, leg;
+} fold;
+
+static _Alignas(16) unsigned char judge_mem[8192];
+static int list_misses;       /* --list: print every wrong event and missed positive */
+static cub_judge_desc g_desc; /* the judge's parameters (zero: its defaults) */
+
+/* A fresh judge over s at fps (rep, when given, spans the file). */
+static void run_judge(const kinect_seq *s, int fps, const cub_judge_rep *rep, events *ev)
+{
+    cub_judge *j;
+    ev->n = ev->right = 0;
+    if (cub_judge_mem_size(&g_desc) > sizeof judge_mem ||
+        cub_judge_init(&g_desc, judge_mem, sizeof judge_mem, &j) != CUB_OK)
+        exit(2);
+    if (rep) {
+        cub_judge_rep r = *rep;
+        r.start_us = (int64_t)s->frame_no[0] * 1000000 / fps;
+        r.end_us = (int64_t)(s->frame_no[s->count - 1] + 1) * 1000000 / fps;
+        if (cub_judge_begin_rep(j, &r) != CUB_OK) exit(2);
+    }
+    for (int i = 0; i <= s->count; i++) {
+        int last = i == s->count;
+        int no = last ? s->frame_no[s->count - 1] + 1 : s->frame_no[i];
+        cub_track_skeleton k = {.status = last ? CUB_TRACK_NO_PLAYER : CUB_TRACK_OK,
+                                .player_id = 1};
+        for (int jt = 0; jt < CUB_KJ_COUNT && !last; jt++) {
+            k.joint_mm[jt] = s->joint[i][jt];
+            k.confidence[jt] = CUB_Q16_ONE;
+        }
+        cub_judge_out out;
+        if (cub_judge_frame(j, (int64_t)no * 1000000 / fps, &k, &out) != CUB_OK) exit(2);
+        for (int e = 0; e < out.count && ev->n < MAX_EVENTS; e++) {
+            ev->kind[ev->n] = out.events[e].kind;
+            ev->frame[ev->n++] = no;
+            ev->right |= out.events[e].kind == CUB_JUDGE_VERDICT && out.events[e].ev.b;
+        }
+    }
+}
+
+static int count_kind(const events *f, int kind)
+{
+    int n = 0;
+    for (int i = 0; i < f->n; i++)
+        n += f->kind[i] == kind;
+    return n;
+}
+
+/* ---- MSR Action3D: one file, one unit ----------------------------------- */
+
+/* Positives per detector: clap a10; wave a01 (high arm wave) and a11 (two
+ * hand wave), a02 (horizontal arm wave, hand at shoulder height) counts
+ * neither way; leg-out a15 (side kick). Every other file is a negative. */
+static void msr_score(pr *p, int positive, int neutral, int fired)
+{
+    if (neutral) return;
+    p->pos += positive;
+    p->pos_hit += positive && fired;
+    p->tp_ev += positive && fired;
+    p->fp_ev += !positive && fired;
+}
+
+static int msr_fold(const char *dir, int subj, fold *f)
+{
+    static const cub_judge_rep out_r = {.move = 0, .key_count = 1, .keys = {{CUB_FUZZY_RF, 1}}};
+    static const cub_judge_rep out_l = {.move = 1, .key_count = 1, .keys = {{CUB_FUZZY_LF, 1}}};
+    static events ev;
+    char path[2048], err[2600];
+    int files = 0;
+    for (int act = 1; act <= 20; act++)
+        for (int e = 1; e <= 3; e++) {
+            snprintf(path, sizeof path, "%s/a%02d_s%02d_e%02d_skeleton3D.txt", dir, act, subj, e);
+            struct stat st;
+            kinect_seq s;
+            if (stat(path, &st) != 0) continue;
+            if (kinect_read_msr(path, &s, err, sizeof err)) {
+                fprintf(stderr, "gesture_folds: skipped %s\n", err);
+                continue;
+            }
+            files++;
+            run_judge(&s, 15, NULL, &ev);
+            int clap = count_kind(&ev, CUB_JUDGE_CLAP) > 0;
+            if (list_misses && clap != (act == 10))
+                printf("miss: clap %s a%02d_s%02d_e%02d%s\n", clap ? "fired on" : "missed", act,
+                       subj, e, clap ? " (frames listed below)" : "");
+            for (int k = 0; list_misses && act != 10 && k < ev.n; k++)
+                if (ev.kind[k] == CUB_JUDGE_CLAP) printf("miss:   clap at frame %d\n", ev.frame[k]);
+            msr_score(&f->clap, act == 10, 0, clap);
+            int wave = count_kind(&ev, CUB_JUDGE_WAVE) > 0;
+            if (list_misses && act != 2 && wave != (act == 1 || act == 11))
+                printf("miss: wave %s a%02d_s%02d_e%02d\n", wave ? "fired on" : "missed", act, subj,
+                       e);
+            msr_score(&f->wave, act == 1 || act == 11, act == 2, wave);
+            run_judge(&s, 15, &out_r, &ev);
+            int leg = ev.right;
+            run_judge(&s, 15, &out_l, &ev);
+            leg |= ev.right;
+            if (list_misses && leg != (act == 15))
+                printf("miss: leg-out %s a%02d_s%02d_e%02d\n", leg ? "fired on" : "missed", act,
+                       subj, e);
+            msr_score(&f->leg, act == 15, 0, leg);
+            kinect_free(&s);
+        }
+    return files;
+}
+
+/* ---- UTKinect: events against labelled intervals ------------------------ */
+
+static int inside(const utk_interval *iv, int n, const char *action, int frame, int slack)
+{
+    for (int i = 0; i < n; i++)
+        if ((!action || strcmp(iv[i].action, action) == 0) && frame >= iv[i].first - slack &&
+            frame <= iv[i].last + slack)
+            return 1;
+    return 0;
+}
+
+/* Events of one kind in one run: inside an interval of `action` right,
+ * anywhere else wrong (claps within LABEL_SLACK of a clapHands label count
+ * neither way: the labels' edges are approximate); recall per interval. */
+static void utk_score(pr *p, const events *ev, int kind, const char *action, const utk_interval *iv,
+                      int n)
+{
+    for (int i = 0; i < n; i++) {
+        if (strcmp(iv[i].action, action) != 0) continue;
+        int hit = 0;
+        for (int e = 0; e < ev->n; e++)
+            hit |= ev->kind[e] == kind && ev->frame[e] >= iv[i].first && ev->frame[e] <= iv[i].last;
+        p->pos++;
+        p->pos_hit += hit;
+    }
+    int slack = kind == CUB_JUDGE_CLAP ? LABEL_SLACK : 0;
+    for (int e = 0; e < ev->n; e++) {
+        if (ev->kind[e] != kind) continue;
+        if (inside(iv, n, action, ev->frame[e], 0)) {
+            p->tp_ev++;
+        } else if (!inside(iv, n, action, ev->frame[e], slack)) {
+            p->fp_ev++;
+            if (list_misses)
+                printf("miss: %s outside %s at %s frame %d\n",
+                       kind == CUB_JUDGE_CLAP ? "clap" : "wave", action, iv[0].run, ev->frame[e]);
+        }
+    }
+}
+
+static int utk_fold(const char *dir, const utk_interval *iv, int n, int subj, fold *f)
+{
+    static events ev;
+    char path[2048], err[2600], run[16];
+    int runs = 0;
+    for (int e = 1; e <= 2; e++) {
+        snprintf(run, sizeof run, "s%02d_e%02d", subj, e);
+        int first = 0;
+        while (first < n && strcmp(iv[first].run, run) != 0)
+            first++;
+        int k = first;
+        while (k < n && strcmp(iv[k].run, run) == 0)
+            k++;
+        if (k == first) continue;
+        kinect_seq s;
+        snprintf(path, sizeof path, "%.1023s/joints_%s.txt", dir, run);
+        if (kinect_read_utkinect(path, &s, err, sizeof err)) {
+            fprintf(stderr, "gesture_folds: %s\n", err);
+            exit(2);
+        }
+        runs++;
+        run_judge(&s, 30, NULL, &ev);
+        utk_score(&f->clap, &ev, CUB_JUDGE_CLAP, "clapHands", iv + first, k - first);
+        utk_score(&f->wave, &ev, CUB_JUDGE_WAVE, "waveHands", iv + first, k - first);
+        kinect_free(&s);
+    }
+    return runs;
+}
+
+/* ---- the table ---------------------------------------------------------- */
+
+static double prec(const pr *p)
+{
+    return p->tp_ev + p->fp_ev ? (double)p->tp_ev / (double)(p->tp_ev + p->fp_ev) : 1.0;
+}
+
+static double rec(const pr *p)
+{
+    return p->pos ? (double)p->pos_hit / (double)p->pos : 1.0;
+}
+
+static void print_pr(const pr *p)
+{
+    if (p->pos == 0 && p->tp_ev + p->fp_ev == 0) {
+        printf(" | - | -");
+        return;
+    }
+    if (p->tp_ev + p->fp_ev)
+        printf(" | %.2f (%ld/%ld)", prec(p), p->tp_ev, p->tp_ev + p->fp_ev);
+    else
+        printf(" | - (0/0)");
+    if (p->pos)
+        printf(" | %.2f (%ld/%ld)", rec(p), p->pos_hit, p->pos);
+    else
+        printf(" | - (0/0)");
+}
+
+static void add(pr *a, const pr *b)
+{
+    a->tp_ev += b->tp_ev;
+    a->fp_ev += b->fp_ev;
+    a->pos += b->pos;
+    a->pos_hit += b->pos_hit;
+}
+
+static void print_row(const fold *f, const char *extra)
+{
+    if (f->subject)
+        printf("| %s | s%02d", f->set, f->subject);
+    else
+        printf("| %s | -", f->set);
+    print_pr(&f->clap);
+    print_pr(&f->wave);
+    print_pr(&f->leg);
+    printf(" |%s\n", extra);
+}
+
+static int below(const pr *p, double floor)
+{
+    return (p->pos > 0 || p->tp_ev + p->fp_ev > 0) && (prec(p) < floor || rec(p) < floor);
+}
+
+#define FOLDS 10
+
+/* Every fold with the judge's parameters in g_desc; 0 when a set lacks
+ * its data. */
+static int run_folds(const char *msr, const char *utk, const utk_interval *iv, int n,
+                     fold folds[FOLDS])
+{
+    static const int msr_subj[] = {1, 3, 5, 7, 9};
+    int ok = 1;
+    for (int i = 0; i < FOLDS; i++) {
+        fold *f = &folds[i];
+        memset(f, 0, sizeof *f);
+        f->set = i < 5 ? "msr" : "utk";
+        f->subject = i < 5 ? msr_subj[i] : i - 4;
+        if (i < 5 && msr)
+            ok &= msr_fold(msr, f->subject, f) > 0;
+        else if (i >= 5 && utk)
+            ok &= utk_fold(utk, iv, n, f->subject, f) > 0;
+    }
+    return ok;
+}
+
+static double f1(const pr *p)
+{
+    double a = prec(p), b = rec(p);
+    return a + b > 0 ? 2 * a * b / (a + b) : 0;
+}
+
+/* The clap parameters --loso chooses from, per fold, on the nine others:
+ * closing speed (shoulder widths a second) and the meet's slack. The first
+ * is the judge's default. */
+static const struct {
+    int speed_tenths, slack_pct;
+} grid[] = {{30, 0},  {20, 0},  {40, 0},  {50, 0},  {60, 0},
+            {20, 50}, {30, 50}, {40, 50}, {50, 50}, {60, 50}};
+#define GRID (int)(sizeof grid / sizeof grid[0])
+
+static void set_grid(int g)
+{
+    memset(&g_desc, 0, sizeof g_desc);
+    g_desc.clap_speed = (cub_q16)((int64_t)grid[g].speed_tenths * CUB_Q16_ONE / 10);
+    g_desc.clap_slack = grid[g].slack_pct * CUB_Q16_ONE / 100;
+}
+
+/* Leave one subject out for the clap's parameters: for each fold, the
+ * grid point with the best clap F1 pooled over the nine other folds (ties:
+ * the earlier point), then that fold scored with it. */
+static void loso(const char *msr, const char *utk, const utk_interval *iv, int n, fold out[FOLDS],
+                 int chosen[FOLDS])
+{
+    static fold by_grid[GRID][FOLDS];
+    for (int g = 0; g < GRID; g++) {
+        set_grid(g);
+        run_folds(msr, utk, iv, n, by_grid[g]);
+    }
+    for (int i = 0; i < FOLDS; i++) {
+        double best = -1;
+        for (int g = 0; g < GRID; g++) {
+            pr train = {0};
+            for (int k = 0; k < FOLDS; k++)
+                if (k != i) add(&train, &by_grid[g][k].clap);
+            if (f1(&train) > best) {
+                best = f1(&train);
+                chosen[i] = g;
+            }
+        }
+        out[i] = by_grid[chosen[i]][i];
+    }
+    memset(&g_desc, 0, sizeof g_desc);
+}
+
+int main(int argc, char **argv)
+{
+    double check = -1;
+    const char *only = NULL;
+    int by_fold = 0;
+    for (int i = 1; i < argc; i++) {
+        if (strcmp(argv[i], "--check") == 0 && i + 1 < argc)
+            check = atof(argv[++i]);
+        else if (strcmp(argv[i], "--list") == 0)
+            list_misses = 1;
+        else if (strcmp(argv[i], "--loso") == 0)
+            by_fold = 1;
+        else if (strcmp(argv[i], "--only") == 0 && i + 1 < argc)
+            only = argv[++i];
+        else {
+            fprintf(stderr,
+                    "usage: gesture_folds [--check P] [--only msr|utk] [--list] [--loso]\n");
+            return 2;
+        }
+    }
+    char msr[1024], utk[1024], path[2048], err[2600];
+    int want_msr = !only || strcmp(only, "msr") == 0, want_utk = !only || strcmp(only, "utk") == 0;
+    if ((want_msr && !kinect_data_dir("msr-action3d", msr, sizeof msr)) ||
+        (want_utk && !kinect_data_dir("utkinect", utk, sizeof utk))) {
+        printf("gesture_folds: no $CUB_DATA_DIR/skeletons data, skipping\n");
+        return 77;
+    }
+    static utk_interval iv[200];
+    int n = 0;
+    if (want_utk) {
+        snprintf(path, sizeof path, "%s/actionLabel.txt", utk);
+        n = kinect_read_utk_labels(path, iv, 200, err, sizeof err);
+        if (n < 0) {
+            fprintf(stderr, "gesture_folds: %s\n", err);
+            return 2;
+        }
+    }
+    fold folds[FOLDS];
+    int chosen[FOLDS] = {0};
+    int bad = !run_folds(want_msr ? msr : NULL, want_utk ? utk : NULL, iv, n, folds);
+    if (by_fold) loso(want_msr ? msr : NULL, want_utk ? utk : NULL, iv, n, folds, chosen);
+    printf("| set | held-out subject | clap precision | clap recall | wave precision | "
+           "wave recall | leg-out precision | leg-out recall |%s\n",
+           by_fold ? " clap speed, slack (chosen on the other folds) |" : "");
+    printf("|---|---|---|---|---|---|---|---|%s\n", by_fold ? "---|" : "");
+    fold total = {.set = "all"};
+    for (int i = 0; i < FOLDS; i++) {
+        fold *f = &folds[i];
+        if ((i < 5 && !want_msr) || (i >= 5 && !want_utk)) continue;
+        char extra[64] = "";
+        if (by_fold)
+            snprintf(extra, sizeof extra, " %.1f, %.2f |", grid[chosen[i]].speed_tenths / 10.0,
+                     grid[chosen[i]].slack_pct / 100.0);
+        print_row(f, extra);
+        bad |= check >= 0 && below(&f->clap, check);
+        add(&total.clap, &f->clap);
+        add(&total.wave, &f->wave);
+        add(&total.leg, &f->leg);
+    }
+    print_row(&total, by_fold ? " |" : "");
+    return bad;
+}
