@@ -761,7 +761,8 @@ def print_latency(lat):
 
 
 def cmd_score(expect_path, log_path):
-    """Every window the coach opened: its verdict against the plan. A
+    """Every window the coach opened: its verdict against the plan (a
+    slower demonstration opens none: the child watches it). A
     window gets the first unclaimed verdict of its move and repetition
     from its start to its end + 2 beats; one with none was cancelled when a
     correction began inside it (else: unjudged, a failure). Fails when a
@@ -775,11 +776,16 @@ def cmd_score(expect_path, log_path):
     verdicts, corrections = read_judging(log_path)
     claimed = set()
     n = {"caught": 0, "missed": 0, "right": 0, "false": 0, "unseen": 0, "cancelled": 0,
-         "unjudged": 0}
+         "unjudged": 0, "watched": 0}
     print("%7s %4s %4s %-14s %-7s %-16s %-8s %s" % ("t_s", "move", "rep", "clip", "led_as",
                                                     "planted", "verdict", "detail"))
     for k, (tc, clip, reason, mi, r) in enumerate(want):
         if tags[k] == "-":
+            continue
+        if reason == "demo":  # the child only watches it (SEEDS.md § 000): no window
+            n["watched"] += 1
+            print("%7.2f %4d %4d %-14s %-7s %-16s %-8s %s" % (tc, mi, r, clip, reason, "-", "-",
+                                                              "watched, not judged"))
             continue
         end = want[k + 1][0] if k + 1 < len(want) else tc + 10
         v = next((j for j, x in enumerate(verdicts) if j not in claimed and x[1:3] == (mi, r)
@@ -815,9 +821,9 @@ def cmd_score(expect_path, log_path):
     planted = sum(1 for t in tags if t.startswith("wrong")) + len(unled)
     print("e2e: planted mistakes caught=%d missed=%d of %d; repetitions done right: judged "
           "right=%d, wrongly corrected=%d, judged wrong without a correction=%d, cancelled by "
-          "a correction=%d, without a verdict=%d"
+          "a correction=%d, without a verdict=%d; slower demonstrations watched=%d"
           % (n["caught"], n["missed"], planted, n["right"], n["false"], n["unseen"],
-             n["cancelled"], n["unjudged"]))
+             n["cancelled"], n["unjudged"], n["watched"]))
     if n["unseen"]:
         print("e2e: NOTE: %d repetition(s) done right were judged wrong (not recognised) where "
               "the coach did not correct (it had moved on): not a failure of the acceptance "

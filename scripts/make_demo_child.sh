@@ -9,11 +9,12 @@
 #
 # The grid moves the rendered depth's noise (the Kinect model draws its
 # jitter pixel after pixel, so one pixel's change shifts the rest), so the
-# box's log from the track is not e2e_child.sh's from the clips: the coach
-# resumes boxing 0.17 s sooner, and the child, cut for the committed cues,
-# then starts it 0.17 s late (judged right all the same). What the coach
-# does with the track is scripts/child/twinkle_demo.cues, which the demo
-# scores against; after a change of the box, renew it from a demo run:
+# box's log from the track need not be e2e_child.sh's from the clips (it
+# once resumed boxing 0.17 s sooner; since the slower demonstration is
+# watched the requests are the same). What the coach does with the track
+# is scripts/child/twinkle_demo.cues, which the demo scores against; after
+# a change of the box (and of twinkle.cues: rebuild this file first),
+# renew it from a demo run:
 #   scripts/demo.sh && grep ' coach request ' out/demo/events.log \
 #       > scripts/child/twinkle_demo.cues
 #

@@ -57,6 +57,20 @@ void cub_event_log_line(void *user, const char *line, size_t len)
         lost(lf, errno);
         return;
     }
+    /* Move the log before a line that would pass the cap, not after one
+     * that reached it: the newest file then always ends with the last
+     * line written (a run's `app end`), wherever the cap falls. */
+    if (lf->max_bytes > 0 && lf->bytes > 0 && lf->bytes + (long)len + 1 > lf->max_bytes &&
+        lf->f != stderr) {
+        fflush(lf->f);
+        keep_as_older(lf->path); /* the open stream follows the file to its new name */
+        lf->f = open_path(lf->path, lf->f);
+        lf->bytes = 0;
+        if (!lf->f) {
+            lost(lf, errno);
+            return;
+        }
+    }
     /* Line-buffered: the newline writes the line, and fails if it cannot. */
     errno = 0;
     if (fwrite(line, 1, len, lf->f) != len || fputc('\n', lf->f) == EOF || ferror(lf->f)) {
@@ -65,12 +79,6 @@ void cub_event_log_line(void *user, const char *line, size_t len)
         return;
     }
     lf->bytes += (long)len + 1;
-    if (lf->max_bytes > 0 && lf->bytes >= lf->max_bytes && lf->f != stderr) {
-        fflush(lf->f);
-        keep_as_older(lf->path); /* the open stream follows the file to its new name */
-        lf->f = open_path(lf->path, lf->f);
-        lf->bytes = 0;
-    }
 }
 
 int cub_event_log_close(cub_event_log_file *lf)

@@ -1,6 +1,7 @@
 /* event_log — the file the event log's lines go to. Under systemd the box
- * runs for weeks and restarts after a failure: at max_bytes the file is
- * moved to <path>.1 (replacing the older one) and a new one begins, so the
+ * runs for weeks and restarts after a failure: before a line that would
+ * take it past max_bytes the file is moved to <path>.1 (replacing the
+ * older one) and a new one begins with that line, so the
  * log never holds more than twice that; and a capped log that already has
  * lines when the program starts (the run before a restart, whose last
  * lines say why it ended) is moved to <path>.1 first instead of being

@@ -1,14 +1,18 @@
 /* The coach's state machine (ARCHITECTURE.md "Coach states"):
  *
  *   idle --START/clap--> wake --wake_up done--> dance --wrong--> correct
- *   correct: correcting clip, then the move at demo speed, again and again
- *            (a wrong verdict's fault, "The other arm!", is the hint
- *            meanwhile; the move's own words come back with the dance)
- *            --right--> dance (inside the same move's span, found from the
- *            music clock); N wrong in a row --> worried --done--> correct;
- *            a demonstration ending after the music has left the move's
- *            span --> dance with the music (a child who does not get it
- *            is not held on one move for the rest of the song)
+ *   correct: correcting clip, then the move at demo speed (a wrong
+ *            verdict's fault, "The other arm!", is the hint meanwhile; the
+ *            move's own words come back with the dance). The child only
+ *            watches the demonstration (SEEDS.md § 000): its verdicts are
+ *            logged as watched, never acted on; when it ends --> dance
+ *            where the music is, and that attempt is judged as usual
+ *            (wrong: corrected again, so the demonstration repeats until
+ *            the child gets it; N wrong in a row --> worried --done-->
+ *            correct). A right verdict during the correcting clip -->
+ *            dance (inside the same move's span, found from the music
+ *            clock); a correcting clip ending after the music has left
+ *            the move's span --> dance with the music
  *   dance --song end--> cheer --done--> idle
  *   dance/correct/worried --camera lost--> paused --camera back--> dance
  *            (the music holds meanwhile; the dance resumes where it is)
@@ -346,6 +350,10 @@ static void on_verdict(cub_coach *c, const cub_event *ev, int32_t music_ms)
         coach_out_ignore(c, ev);
         return;
     }
+    if (c->phase == COACH_PH_DEMO) { /* the child watches; the attempt after counts */
+        coach_out_watched(c, ev);
+        return;
+    }
     if (!ev->b && just_left(c, ev->a)) {
         /* back to it: corrected like any other, and shown again once
          * though its music is over (then the dance goes on where the
@@ -403,8 +411,10 @@ static void on_clip_done(cub_coach *c, const cub_event *ev, int32_t music_ms)
         else
             go_outro(c);
         break;
-    case CUB_COACH_CORRECT: /* after the correcting clip, and again */
-        if (music_left_move(c, music_ms) && !c->show_again)
+    case CUB_COACH_CORRECT:
+        if (c->phase == COACH_PH_DEMO) /* watched: now the attempt, with the music */
+            resume(c, music_ms, CUB_COACH_WHY_WATCHED);
+        else if (music_left_move(c, music_ms) && !c->show_again)
             resume(c, music_ms, CUB_COACH_WHY_MOVED_ON);
         else
             demo(c);

@@ -28,6 +28,8 @@ void coach_out_hint(cub_coach *c, int32_t hint, int32_t reason);
 void coach_out_fault_hint(cub_coach *c, int32_t hint, int32_t fault, int32_t reason);
 /* A log line without an action (events the coach set aside). */
 void coach_out_ignore(cub_coach *c, const cub_event *ev);
+/* A verdict about the slower demonstration: the child watched it. */
+void coach_out_watched(cub_coach *c, const cub_event *ev);
 
 /* Note the music clock (starts the rate measurement); call on every input. */
 void coach_sync_observe(cub_coach *c, int32_t music_ms);

@@ -14,7 +14,7 @@ static const char *const reason_names[CUB_COACH_WHY_COUNT] = {
     "init",  "start", "clap",     "stop",  "woke",    "intro",   "move",   "rep",
     "wrong", "right", "correct",  "demo",  "misses",  "worried", "calmed", "resume",
     "sync",  "outro", "song_end", "cheer", "cheered", "quiet",   "player", "idle",
-    "camera", "moved_on", "away",
+    "camera", "moved_on", "away", "watched",
 };
 
 const char *cub_coach_state_name(int32_t state)
@@ -198,4 +198,10 @@ void coach_out_ignore(cub_coach *c, const cub_event *ev)
     cub_log_event(c->desc.log, c->now_us, "coach", "ignore", "event=%s a=%d b=%d state=%s move=%d",
                   cub_loop_event_name(ev->type), ev->a, ev->b, cub_coach_state_name(c->state),
                   c->move);
+}
+
+void coach_out_watched(cub_coach *c, const cub_event *ev)
+{
+    cub_log_event(c->desc.log, c->now_us, "coach", "watched", "move=%d result=%s fault=%d",
+                  ev->a, ev->b ? "right" : "wrong", ev->c);
 }

@@ -102,9 +102,11 @@ static cub_err plan_correction(cub_director *d, const cub_coach_action *a, cub_b
 /* ---- the judge's windows ------------------------------------------------- */
 
 /* Tell the judge what the child should do now: a repetition of a move
- * (danced, resumed or demonstrated) opens a window as long as the clip
- * plays at its speed, plus a beat for a late child; anything else the
- * coach asks for (a correction, the idle clip) closes what was open. */
+ * (danced or resumed) opens a window as long as the clip plays at its
+ * speed, plus a beat for a late child; anything else the coach asks for
+ * (a correction, the idle clip) closes what was open. The slower
+ * demonstration is watched, not judged (SEEDS.md § 000): it closes them
+ * too, and the attempt after it (a resume) is judged. */
 static void judge_clip(cub_director *d, const cub_coach_action *a, int64_t t_us,
                        const cub_bridge_plan *plan)
 {
@@ -114,8 +116,10 @@ static void judge_clip(cub_director *d, const cub_coach_action *a, int64_t t_us,
     const bool is_rep = enters_at_start(a->reason) && m >= 0 && m < d->desc.coach.move_count &&
                         d->moves[m].clip == a->clip;
     const cub_director_keys *k = is_rep && d->desc.keys ? &d->desc.keys[m] : NULL;
-    if (!k || k->count <= 0) {
+    if (!k || k->count <= 0 || a->reason == CUB_COACH_WHY_DEMO) {
         cub_judge_cancel_reps(j);
+        if (k && k->count > 0)
+            cub_log_event(dlog(d), t_us, "judge", "watch", "move=%d rep=%d", m, a->rep);
         return;
     }
     const cub_clip *clip = clip_of(d, a->clip);

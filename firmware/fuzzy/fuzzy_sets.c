@@ -136,10 +136,12 @@ uint32_t cub_fuzzy_crisp_class(const cub_fuzzy_frame *f)
 }
 
 /* Default weights S_k, before normalisation. The seed (with its fix) ranks
- * them: arms and Posture largest and equal, Trunk between, legs smallest.
- * 3 : 2 : 1 keeps that order with clear steps; the arms carry the dance
- * moves the child copies, while the Kinect's leg joints are the noisiest,
- * so a leg difference should count least. Sum 21. */
+ * them: arms largest, the body features (Posture and Trunk) equal to the
+ * arms, legs smallest. 3 : 1 keeps that with clear steps; the arms carry
+ * the dance moves the child copies, while the Kinect's leg joints are the
+ * noisiest, so a leg difference should count least. Trunk stays at 2 (sum
+ * 21): Trunk at 3 gave the same bench-bridge figures and would move every
+ * link (README, "Trunk's weight"). */
 static const int default_weight[CUB_FUZZY_FEATURE_COUNT] = {
     [CUB_FUZZY_RH] = 3,      [CUB_FUZZY_RHE] = 3,   [CUB_FUZZY_LH] = 3, [CUB_FUZZY_LHE] = 3,
     [CUB_FUZZY_POSTURE] = 3, [CUB_FUZZY_TRUNK] = 2, [CUB_FUZZY_RF] = 1, [CUB_FUZZY_RFK] = 1,

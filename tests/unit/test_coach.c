@@ -43,7 +43,7 @@ static const cub_coach_move song[3] = {
 };
 
 #define MAX_LINES 400
-#define SESSION_LOG_FNV 0x63133209u /* the scripted session's whole log, pinned */
+#define SESSION_LOG_FNV 0x27bdcbe9u /* the scripted session's whole log, pinned */
 typedef struct recorder {
     char lines[MAX_LINES][160];
     int n;
@@ -315,24 +315,36 @@ static void test_last_repetition_wrong_after_the_next_move_began(void **s)
     assert_int_equal(c.rep, 1);
 }
 
-static void test_correction_repeats_until_right_then_resumes_same_move(void **s)
+/* The slower demonstration is watched, not judged (SEEDS.md § 000): a
+ * verdict during it, wrong or right, is logged and changes nothing; when it
+ * ends the dance resumes where the music is and that attempt is judged as
+ * usual: wrong corrects again (so the demonstration repeats until the
+ * child gets it), right dances on. */
+static void test_demonstration_is_watched_and_the_attempt_counts(void **s)
 {
     cub_coach c;
     start_dancing(&c, 1000);
     send(&c, 2000, CUB_EV_VERDICT, 0, 0, 1000);
     send(&c, 3000, CUB_EV_CLIP_DONE, C_SHAKE, 0, 2000);
-    const cub_q16 demo = 45875;   /* 0.7 */
-    for (int i = 0; i < 3; i++) { /* the demonstration again and again */
-        expect_clip(&c, C_CLAP, demo, false, CUB_COACH_WHY_DEMO);
-        assert_int_equal(c.state, CUB_COACH_CORRECT);
-        send(&c, 4000 + 2800 * i, CUB_EV_CLIP_DONE, C_CLAP, 0, 2000 + 1000 * i);
-    }
-    /* Right at music 5.1 s: move 0 (0..8 s, 2 s a rep) at its rep 3 (6 s)
-     * is nearest; the dance resumes there at the sync factor of the moment
-     * and, once the player shows its first frame (the music tag), slower:
-     * the music is behind that repetition's tag. */
+    const cub_q16 demo = 45875; /* 0.7 */
+    expect_clip(&c, C_CLAP, demo, false, CUB_COACH_WHY_DEMO);
+    send(&c, 3500, CUB_EV_VERDICT, 0, 0, 2500); /* wrong while watching */
+    assert_int_equal(c.action_count, 0);
+    assert_int_equal(c.state, CUB_COACH_CORRECT);
+    assert_int_equal(c.misses, 1);
+    assert_true(logged("t=3.500 coach watched move=0 result=wrong fault=0"));
+    send(&c, 4000, CUB_EV_VERDICT, 0, 1, 3000); /* right while watching */
+    assert_int_equal(c.action_count, 0);
+    assert_int_equal(c.state, CUB_COACH_CORRECT);
+    assert_int_equal(c.misses, 1);
+    assert_true(logged("t=4.000 coach watched move=0 result=right fault=0"));
+
+    /* The demonstration ends at music 5.1 s: move 0 (0..8 s, 2 s a rep) at
+     * its rep 3 (6 s) is nearest; the attempt resumes there at the sync
+     * factor of the moment and, once the player shows its first frame (the
+     * music tag), slower: the music is behind that repetition's tag. */
     const cub_q16 factor = c.sync_q16;
-    send(&c, 12000, CUB_EV_VERDICT, 0, 1, 5100);
+    send(&c, 6000, CUB_EV_CLIP_DONE, C_CLAP, 0, 5100);
     assert_int_equal(c.state, CUB_COACH_DANCE);
     assert_int_equal(c.move, 0);
     assert_int_equal(c.rep, 3);
@@ -340,18 +352,35 @@ static void test_correction_repeats_until_right_then_resumes_same_move(void **s)
     assert_int_equal(a->clip, C_CLAP);
     assert_int_equal(a->reason, CUB_COACH_WHY_RESUME);
     assert_int_equal(a->speed_q16, factor);
-    assert_true(logged("coach state from=correct to=dance reason=right move=0 rep=3"));
-    send(&c, 12030, CUB_EV_MUSIC_TAG, 0, 6000, 5130);
+    assert_true(logged("coach state from=correct to=dance reason=watched move=0 rep=3"));
+    send(&c, 6030, CUB_EV_MUSIC_TAG, 0, 6000, 5130);
     a = act(&c, CUB_COACH_ACT_SPEED, 0);
     assert_non_null(a);
     assert_int_equal(a->speed_q16, cub_coach_sync_speed(6000, 5130, 2000, c.rate_q16, 0));
     assert_true(a->speed_q16 < CUB_Q16_ONE);
 
+    /* The attempt is wrong: corrected again (watch_me in turn), and the
+     * demonstration again; one ending past clap's span hands over to sway,
+     * whose attempt is right: dance on. */
+    send(&c, 7000, CUB_EV_VERDICT, 0, 0, 6100);
+    assert_int_equal(c.state, CUB_COACH_CORRECT);
+    assert_int_equal(c.misses, 2);
+    expect_clip(&c, C_WATCH, CUB_Q16_ONE, false, CUB_COACH_WHY_CORRECT);
+    send(&c, 8000, CUB_EV_CLIP_DONE, C_WATCH, 0, 7000);
+    expect_clip(&c, C_CLAP, demo, false, CUB_COACH_WHY_DEMO);
+    send(&c, 10000, CUB_EV_CLIP_DONE, C_CLAP, 0, 8600);
+    assert_int_equal(c.state, CUB_COACH_DANCE);
+    assert_int_equal(c.move, 1);
+    assert_int_equal(c.rep, 0);
+    expect_clip(&c, C_SWAY, 0, false, CUB_COACH_WHY_RESUME);
+    send(&c, 11000, CUB_EV_VERDICT, 1, 1, 9600);
+    assert_int_equal(c.state, CUB_COACH_DANCE);
+    assert_int_equal(c.misses, 0);
+    assert_null(act(&c, CUB_COACH_ACT_CLIP, 0));
+
     /* The demonstration of sway runs at 0.7 of the move's own speed 1.25. */
-    send(&c, 13000, CUB_EV_CLIP_DONE, C_CLAP, 0, 8000);
-    expect_clip(&c, C_SWAY, 0, false, CUB_COACH_WHY_MOVE);
-    send(&c, 13500, CUB_EV_VERDICT, 1, 0, 8500);
-    send(&c, 14000, CUB_EV_CLIP_DONE, C_WATCH, 0, 9000); /* the second correction: watch_me */
+    send(&c, 11500, CUB_EV_VERDICT, 1, 0, 10000);
+    send(&c, 12000, CUB_EV_CLIP_DONE, C_SHAKE, 0, 10500);
     expect_clip(&c, C_SWAY, cub_fx_mul(81920, demo), false, CUB_COACH_WHY_DEMO);
 }
 
@@ -376,6 +405,12 @@ static void test_fault_is_the_hint_while_its_correction_runs(void **s)
     send(&c, 3000, CUB_EV_CLIP_DONE, C_SHAKE, 0, 2000);
     expect_clip(&c, C_CLAP, 0, false, CUB_COACH_WHY_DEMO);
     assert_null(act(&c, CUB_COACH_ACT_HINT, 0)); /* the fault stays */
+    ev = (cub_event){.t_us = 3500000, .type = CUB_EV_VERDICT, .a = 0, .b = 0, .c = 111};
+    assert_int_equal(cub_coach_handle(&c, &ev, 2500), CUB_OK); /* watched: no new hint */
+    assert_null(act(&c, CUB_COACH_ACT_HINT, 0));
+    assert_true(logged("coach watched move=0 result=wrong fault=111"));
+    send(&c, 3800, CUB_EV_CLIP_DONE, C_CLAP, 0, 2800); /* the attempt: clap's words */
+    assert_int_equal(c.state, CUB_COACH_DANCE);
     ev = (cub_event){.t_us = 4000000, .type = CUB_EV_VERDICT, .a = 0, .b = 0, .c = 111};
     assert_int_equal(cub_coach_handle(&c, &ev, 3000), CUB_OK);
     assert_int_equal(act(&c, CUB_COACH_ACT_HINT, 0)->fault, 111);
@@ -383,8 +418,7 @@ static void test_fault_is_the_hint_while_its_correction_runs(void **s)
     assert_int_equal(act(&c, CUB_COACH_ACT_HINT, 0)->hint, CUB_COACH_HINT_COME_CLOSER);
     send(&c, 4600, CUB_EV_PLAYER, 1, 0, 3600);
     assert_int_equal(act(&c, CUB_COACH_ACT_HINT, 0)->fault, 111);
-    send(&c, 5000, CUB_EV_CLIP_DONE, C_WATCH, 0, 4000);
-    send(&c, 6000, CUB_EV_VERDICT, 0, 1, 4100);
+    send(&c, 6000, CUB_EV_VERDICT, 0, 1, 4100); /* right during watch_me */
     assert_int_equal(c.state, CUB_COACH_DANCE);
     h = act(&c, CUB_COACH_ACT_HINT, 0);
     assert_non_null(h);
@@ -452,16 +486,14 @@ static void test_camera_loss_pauses_the_song_and_resumes_it(void **s)
 }
 
 /* A child who does not get it is not held on one move for the rest of
- * the song: a demonstration that ends after the music has left the move's
+ * the song: a correcting clip that ends after the music has left the move's
  * span hands over to the dance where the music is. */
 static void test_correction_gives_way_when_the_music_moves_on(void **s)
 {
     cub_coach c;
     start_dancing(&c, 1000);
-    send(&c, 7000, CUB_EV_VERDICT, 0, 0, 6000);
-    send(&c, 8000, CUB_EV_CLIP_DONE, C_SHAKE, 0, 7000); /* still in clap's span: demo */
-    expect_clip(&c, C_CLAP, 45875, false, CUB_COACH_WHY_DEMO);
-    send(&c, 11000, CUB_EV_CLIP_DONE, C_CLAP, 0, 8600); /* music in sway's span now */
+    send(&c, 7000, CUB_EV_VERDICT, 0, 0, 7500);
+    send(&c, 8000, CUB_EV_CLIP_DONE, C_SHAKE, 0, 8600); /* music in sway's span now */
     assert_int_equal(c.state, CUB_COACH_DANCE);
     assert_int_equal(c.move, 1);
     assert_int_equal(c.rep, 0);
@@ -563,7 +595,12 @@ static void test_worried_after_n_misses_then_back_to_correcting(void **s)
     expect_clip(&c, C_WATCH, CUB_Q16_ONE, false, CUB_COACH_WHY_CORRECT); /* in turn */
     send(&c, 2800, CUB_EV_CLIP_DONE, C_WATCH, 0, 1800);
     expect_clip(&c, C_CLAP, 45875, false, CUB_COACH_WHY_DEMO);
-    send(&c, 3000, CUB_EV_VERDICT, 0, 0, 2000); /* wrong during the demo: correct again */
+    send(&c, 3000, CUB_EV_VERDICT, 0, 0, 2000); /* wrong during the demo: watched */
+    assert_null(act(&c, CUB_COACH_ACT_CLIP, 0));
+    assert_int_equal(c.misses, 1);
+    send(&c, 3200, CUB_EV_CLIP_DONE, C_CLAP, 0, 2200); /* the attempt */
+    assert_int_equal(c.state, CUB_COACH_DANCE);
+    send(&c, 3300, CUB_EV_VERDICT, 0, 0, 2300); /* wrong: correct again */
     expect_clip(&c, C_SHAKE, CUB_Q16_ONE, false, CUB_COACH_WHY_CORRECT);
     assert_int_equal(c.state, CUB_COACH_CORRECT);
     send(&c, 4000, CUB_EV_VERDICT, 0, 0, 3000);
@@ -575,8 +612,13 @@ static void test_worried_after_n_misses_then_back_to_correcting(void **s)
     send(&c, 5000, CUB_EV_CLIP_DONE, C_WORRIED, 0, 4000);
     assert_int_equal(c.state, CUB_COACH_CORRECT);
     expect_clip(&c, C_CLAP, 45875, false, CUB_COACH_WHY_DEMO);
-    /* The count starts again: two more misses correct, the third worries. */
+    /* The count starts again: the attempt after the demonstration is
+     * wrong, corrected; right during the head shake resets it. */
+    send(&c, 5600, CUB_EV_CLIP_DONE, C_CLAP, 0, 4600);
+    assert_int_equal(c.state, CUB_COACH_DANCE);
     send(&c, 6000, CUB_EV_VERDICT, 0, 0, 5000);
+    assert_int_equal(c.state, CUB_COACH_CORRECT);
+    assert_int_equal(c.misses, 1);
     send(&c, 6500, CUB_EV_VERDICT, 0, 0, 5500);
     assert_int_equal(c.state, CUB_COACH_CORRECT);
     send(&c, 7000, CUB_EV_VERDICT, 0, 1, 6000); /* right resets it */
@@ -979,7 +1021,8 @@ static uint32_t log_hash(void)
 static const script_ev session_script[] = {
     {3000, CUB_EV_VERDICT, -1, 1},
     {4500, CUB_EV_VERDICT, -1, 0},  /* head_shake, then the slow demo */
-    {7000, CUB_EV_VERDICT, -1, 1},  /* right: back into the same move */
+    {7000, CUB_EV_VERDICT, -1, 1},  /* right while the demo plays: watched, not judged */
+    {9200, CUB_EV_VERDICT, -1, 1},  /* the attempt after it (sway, where the music is) */
     {9500, CUB_EV_VERDICT, -1, 0},  /* watch_me this time, then the demo */
     {12000, CUB_EV_PLAYER, 0, 0},   /* the child steps out of view ... */
     {12500, CUB_EV_VERDICT, -1, 1}, /* (the judge's last word: nobody to credit) */
@@ -987,7 +1030,7 @@ static const script_ev session_script[] = {
     {15000, CUB_EV_VERDICT, -1, 0},
     {15100, CUB_EV_VERDICT, -1, 0},
     {15200, CUB_EV_VERDICT, -1, 0}, /* three in a row: worried */
-    {17500, CUB_EV_VERDICT, -1, 1},
+    {17500, CUB_EV_VERDICT, -1, 1}, /* during robot's demonstration: watched */
 };
 
 /* The state changes of the scripted session, in order. */
@@ -995,15 +1038,16 @@ static const char *const session_states[] = {
     "coach state from=idle to=wake reason=start",
     "coach state from=wake to=dance reason=woke move=0 rep=0",
     "coach state from=dance to=correct reason=wrong move=0 rep=1",
-    "coach state from=correct to=dance reason=right move=0 rep=3", /* the same move */
+    /* the demonstration watched, the attempt where the music is: sway */
+    "coach state from=correct to=dance reason=watched move=1 rep=0",
     "coach state from=dance to=correct reason=wrong move=1 rep=0",
-    /* the right verdict while the child was out of view is set aside: the
-     * correction runs on until the music leaves the move */
-    "coach state from=correct to=dance reason=moved_on move=2 rep=0",
+    /* the right verdict while the child was out of view is set aside; the
+     * demonstration ends past sway's span: the attempt is robot's */
+    "coach state from=correct to=dance reason=watched move=2 rep=0",
     "coach state from=dance to=correct reason=wrong move=2 rep=0",
     "coach state from=correct to=worried reason=misses move=2 rep=0",
     "coach state from=worried to=correct reason=calmed move=2 rep=0",
-    "coach state from=correct to=dance reason=right move=2",
+    "coach state from=correct to=dance reason=watched move=2 rep=2",
     "coach state from=dance to=cheer reason=song_end",
     "coach state from=cheer to=idle reason=cheered",
 };
@@ -1029,8 +1073,8 @@ static void test_scripted_session_gives_the_same_log_every_time(void **s)
 
     int k = 0;
     const int want = (int)(sizeof session_states / sizeof session_states[0]);
+    for (int i = 0; i < rec.n; i++) printf("coach trace: %s\n", rec.lines[i]);
     for (int i = 0; i < rec.n; i++) {
-        printf("coach trace: %s\n", rec.lines[i]);
         if (!strstr(rec.lines[i], " coach state ")) continue;
         assert_true(k < want);
         assert_non_null(strstr(rec.lines[i], session_states[k]));
@@ -1049,7 +1093,7 @@ int main(void)
         cmocka_unit_test(test_init_idles_and_start_wakes_into_the_dance),
         cmocka_unit_test(test_clap_wakes_from_idle_attract_and_doze),
         cmocka_unit_test(test_wrong_verdict_corrects_in_the_same_call),
-        cmocka_unit_test(test_correction_repeats_until_right_then_resumes_same_move),
+        cmocka_unit_test(test_demonstration_is_watched_and_the_attempt_counts),
         cmocka_unit_test(test_fault_is_the_hint_while_its_correction_runs),
         cmocka_unit_test(test_last_repetition_wrong_after_the_next_move_began),
         cmocka_unit_test(test_resume_follows_the_music_past_the_move),

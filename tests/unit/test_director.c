@@ -442,6 +442,29 @@ static void test_other_requests_close_the_windows(void **s)
     assert_int_equal(first_verdict_us(j, 1100 * 1000, 10 * 1000 * 1000, &move), -1);
 }
 
+/* The slower demonstration is watched, not judged (SEEDS.md § 000): its
+ * request closes the windows and opens none, and says so; the attempt
+ * after it (the dance resumed where the music is) is judged as usual. */
+static void test_demonstration_is_watched_the_attempt_judged(void **s)
+{
+    (void)s;
+    cub_judge *j = judge();
+    start(v_high, j);
+    to_dance(1000);
+    send(1200, CUB_EV_VERDICT, 0, 0, 200); /* wrong: the correcting clip */
+    assert_int_equal(dir.coach.state, CUB_COACH_CORRECT);
+    send(2000, CUB_EV_CLIP_DONE, dir.coach.clip, 0, 1000);
+    assert_int_equal(dir.coach.clip, C_CLAP); /* the demonstration */
+    assert_true(logged("judge watch move=0 rep=0"));
+    int32_t move = -1;
+    assert_int_equal(first_verdict_us(j, 2000 * 1000, 6000 * 1000, &move), -1);
+    send(6000, CUB_EV_CLIP_DONE, C_CLAP, 0, 1600); /* watched: the attempt, clap's rep 1 */
+    assert_int_equal(dir.coach.state, CUB_COACH_DANCE);
+    assert_int_equal(dir.coach.rep, 1);
+    assert_true(first_verdict_us(j, 6000 * 1000 + 1000, 10 * 1000 * 1000, &move) > 0);
+    assert_int_equal(move, 0);
+}
+
 /* ---- music tags -------------------------------------------------------------- */
 
 /* Entering move 0's clip: its tag, the song time of the frame entered. */
@@ -504,6 +527,7 @@ int main(void)
         cmocka_unit_test(test_move_after_a_gap_begins_early_by_its_entry_lead),
         cmocka_unit_test(test_repetition_window_spans_the_clip_at_its_speed_and_a_beat),
         cmocka_unit_test(test_other_requests_close_the_windows),
+        cmocka_unit_test(test_demonstration_is_watched_the_attempt_judged),
         cmocka_unit_test(test_entering_a_move_posts_its_music_tag),
         cmocka_unit_test(test_scripted_verdict_is_about_the_move_taught_now),
     };

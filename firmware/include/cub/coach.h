@@ -43,7 +43,8 @@ typedef enum cub_coach_state {
     CUB_COACH_IDLE = 0, /* waiting for a clap or START */
     CUB_COACH_WAKE,     /* the wake_up clip plays, then the song starts */
     CUB_COACH_DANCE,    /* leading the song, move by move */
-    CUB_COACH_CORRECT,  /* correcting clip, then the move again, slower */
+    CUB_COACH_CORRECT,  /* correcting clip, then the move again, slower (watched,
+                           not judged); the attempt after it is danced again */
     CUB_COACH_WORRIED,  /* several misses in a row: worried-but-cute, never scold */
     CUB_COACH_ATTRACT,  /* nobody interacted for a while: wave */
     CUB_COACH_DOZE,     /* nobody for longer: doze */
@@ -82,6 +83,7 @@ typedef enum cub_coach_reason {
     CUB_COACH_WHY_CAMERA,  /* the camera went or came back */
     CUB_COACH_WHY_MOVED_ON, /* the music left the corrected move: dance on with it */
     CUB_COACH_WHY_AWAY,     /* the child has been out of view mid-song for a while */
+    CUB_COACH_WHY_WATCHED,  /* the slower demonstration was watched: the attempt now */
     CUB_COACH_WHY_COUNT
 } cub_coach_reason;
 
@@ -208,6 +210,8 @@ cub_err cub_coach_init(cub_coach *c, const cub_coach_desc *desc, int64_t now_us)
  *   VERDICT     a = move, b = 1 right / 0 wrong, c = a wrong one's fault
  *               (shown as the hint through the correction it starts, until
  *               the dance resumes; 0 = the move's own words stay);
+ *               during the slower demonstration: watched, not acted on
+ *               (logged "coach watched"; the attempt after it counts);
  *               about another move: ignored,
  *               except a wrong one about the move just left while the next
  *               one's first repetition plays or is waited for (the last

@@ -56,8 +56,9 @@ typedef struct cub_fuzzy_frame {
 } cub_fuzzy_frame;
 
 /* Weights S_k of the distance and the switch threshold. Zero-initialised =
- * defaults: arms and Posture largest, Trunk between, legs smallest (seed
- * with its fix), normalised to sum 1; threshold 0.4. */
+ * defaults: arms and Posture largest, Trunk between (the seed, with its
+ * fix, has it equal to the arms: measured, README "Trunk's weight"), legs
+ * smallest, normalised to sum 1; threshold 0.4. */
 typedef struct cub_fuzzy_config {
     cub_q16 weight[CUB_FUZZY_FEATURE_COUNT]; /* all zero = defaults */
     cub_q16 threshold;                       /* 0 = default 0.4 */
