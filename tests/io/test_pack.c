@@ -136,6 +136,20 @@ static void expect_bad(const uint8_t *b, size_t len, const char *words)
     if (!strstr(d.msg, words)) fail_msg("message '%s' lacks '%s'", d.msg, words);
 }
 
+/* Every truncation is refused without an overread. */
+static void expect_truncations_refused(const uint8_t *good, size_t n)
+{
+    for (size_t k = 0; k < n; k++) {
+        cub_library lib;
+        cub_diag d = {0};
+        uint8_t *copy = malloc(k ? k : 1);
+        memcpy(copy, good, k);
+        assert_int_equal(cub_pack_parse(copy, k, "t", &lib, &d), CUB_ERR_FORMAT);
+        assert_true(d.msg[0] != '\0');
+        free(copy);
+    }
+}
+
 static void test_bad_packs_are_refused(void **state)
 {
     (void)state;
@@ -196,16 +210,7 @@ static void test_bad_packs_are_refused(void **state)
     b[q + 1] = 0xC0; /* w = -16384 */
     fix_crc(b, n);
     expect_bad(b, n, "w >= 0");
-    /* Every truncation is refused without an overread. */
-    for (size_t k = 0; k < n; k++) {
-        cub_library lib;
-        cub_diag d = {0};
-        uint8_t *copy = malloc(k ? k : 1);
-        memcpy(copy, good, k);
-        assert_int_equal(cub_pack_parse(copy, k, "t", &lib, &d), CUB_ERR_FORMAT);
-        assert_true(d.msg[0] != '\0');
-        free(copy);
-    }
+    expect_truncations_refused(good, n);
     cub_library lib;
     cub_diag d = {0};
     assert_int_equal(cub_pack_read("/nonexistent/x.cubclips", &lib, &d), CUB_ERR_IO);
@@ -241,15 +246,7 @@ static void test_bad_v2_packs_are_refused(void **state)
     RESET();
     put_u32(b + AT_CLIPS, 1000);
     expect_bad(b, n, "clips cannot fit");
-    for (size_t k = 0; k < n; k++) {
-        cub_library lib;
-        cub_diag d = {0};
-        uint8_t *copy = malloc(k ? k : 1);
-        memcpy(copy, good, k);
-        assert_int_equal(cub_pack_parse(copy, k, "t", &lib, &d), CUB_ERR_FORMAT);
-        assert_true(d.msg[0] != '\0');
-        free(copy);
-    }
+    expect_truncations_refused(good, n);
     free(b);
     free(good);
 }
