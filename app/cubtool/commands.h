@@ -18,6 +18,7 @@ int cub_cmd_encode(int argc, char **argv);       /* a clip -> the seed's codec s
 int cub_cmd_decode(int argc, char **argv);       /* a codec stream -> BVH, as the box decodes */
 int cub_cmd_codec_figures(int argc, char **argv); /* the seed's codec: errors and ratio */
 int cub_cmd_bench_codec(int argc, char **argv);   /* ours, the seed's and ACL, side by side */
+int cub_cmd_ase_export(int argc, char **argv);   /* a clip as a 3ds Max ASCII export */
 int cub_cmd_trc_info(int argc, char **argv);     /* a TRC marker file: markers, frames, rate */
 
 #endif

@@ -27,6 +27,7 @@ static const command commands[] = {
     {"codec-figures", cub_cmd_codec_figures, "the seed's codec: Squad vs Slerp vs Catmull-Rom, IK, ratio"},
     {"bench-codec", cub_cmd_bench_codec, "ours vs ACL vs the seed's codec: ratio, error, decode"},
     {"trc-info", cub_cmd_trc_info, "a TRC marker file: its markers, frames, rate, lost markers"},
+    {"ase-export", cub_cmd_ase_export, "a clip (BVH, ASF+AMC, ASE) as a 3ds Max ASCII export"},
 };
 
 static void usage(FILE *f)

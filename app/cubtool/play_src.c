@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cub/ase.h"
 #include "cub/retarget.h"
 
 static int ends_with(const char *s, const char *tail)
@@ -57,8 +58,14 @@ static int load_file(play_src *s)
         fprintf(stderr, "cubtool play: %s: an ASF skeleton needs its .amc motion after it\n", s->path);
         return 1;
     }
+    if (ends_with(s->path, ".ase")) {
+        if (cub_ase_load(s->path, NULL, &s->motion, &d)) return fail(&d);
+        s->clip = &s->motion.clip;
+        return 0;
+    }
     if (!ends_with(s->path, ".bvh") && !ends_with(s->path, ".asf")) {
-        fprintf(stderr, "cubtool play: %s: not a .bvh, an .asf + .amc pair or PACK.cubclips:CLIP\n",
+        fprintf(stderr,
+                "cubtool play: %s: not a .bvh, an .ase, an .asf + .amc pair or PACK.cubclips:CLIP\n",
                 s->path);
         return 1;
     }

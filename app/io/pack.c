@@ -134,6 +134,29 @@ static int name_ok(const char *s, size_t cap)
     return 1;
 }
 
+/* Norm squared within 2% of one (in Q.22, so the sum fits 64 bits). */
+static int q30_roughly_unit(cub_quat q)
+{
+    const int64_t c[4] = {q.w / 256, q.x / 256, q.y / 256, q.z / 256};
+    int64_t n2 = c[0] * c[0] + c[1] * c[1] + c[2] * c[2] + c[3] * c[3];
+    const int64_t one = (int64_t)1 << 44, tol = one / 50;
+    return n2 >= one - tol && n2 <= one + tol;
+}
+
+/* Quaternions that are not near unit length are a bug upstream: refuse. */
+static cub_err check_unit(const cub_library_clip *lc, const char *file, cub_diag *diag)
+{
+    const cub_clip *c = &lc->clip;
+    int jn = c->skel->joint_count;
+    for (int f = 0; f < c->frame_count; f++)
+        for (int j = 0; j < jn; j++)
+            if (!q30_roughly_unit(c->rot[(size_t)f * (size_t)jn + (size_t)j]))
+                return cub_diag_fail(diag, CUB_ERR_ARG, file, 0,
+                                     "clip '%s' frame %d joint %d: not a unit quaternion",
+                                     lc->name, f, j);
+    return CUB_OK;
+}
+
 static cub_err check_library(const cub_library *lib, const char *file, cub_diag *diag)
 {
     int jn = lib->skel.joint_count;
@@ -159,6 +182,8 @@ static cub_err check_library(const cub_library *lib, const char *file, cub_diag 
         for (int k = 0; k < i; k++)
             if (!strcmp(lib->clips[k].name, lc->name))
                 return cub_diag_fail(diag, CUB_ERR_ARG, file, 0, "two clips are named '%s'", lc->name);
+        cub_err err = check_unit(lc, file, diag);
+        if (err) return err;
     }
     return CUB_OK;
 }
@@ -179,16 +204,7 @@ static uint8_t *put_joints(uint8_t *p, const cub_skeleton *skel)
     return p;
 }
 
-/* Norm squared within 2% of one (in Q.22, so the sum fits 64 bits). */
-static int q30_roughly_unit(cub_quat q)
-{
-    const int64_t c[4] = {q.w / 256, q.x / 256, q.y / 256, q.z / 256};
-    int64_t n2 = c[0] * c[0] + c[1] * c[1] + c[2] * c[2] + c[3] * c[3];
-    const int64_t one = (int64_t)1 << 44, tol = one / 50;
-    return n2 >= one - tol && n2 <= one + tol;
-}
-
-/* Quaternions that are not near unit length are a bug upstream: refuse. */
+/* check_unit passed; the Q1.14 form is checked too. */
 static uint8_t *put_clip(uint8_t *p, const cub_library_clip *lc, int jn, const char *file,
                          cub_diag *diag, cub_err *err)
 {
@@ -221,31 +237,73 @@ static uint8_t *put_clip(uint8_t *p, const cub_library_clip *lc, int jn, const c
     return p;
 }
 
-cub_err pack_encode(const cub_library *lib, const char *file, uint8_t **out, size_t *out_len,
-                    cub_diag *diag)
+/* Version 2's clip: the header, the stream's length, the stream. */
+static uint8_t *put_keys_clip(uint8_t *p, const cub_library_clip *lc, const cub_keys_result *k)
 {
-    *out = NULL;
-    *out_len = 0;
-    cub_err err = check_library(lib, file, diag);
-    if (err) return err;
-    size_t jn = (size_t)lib->skel.joint_count;
-    size_t size = PACK_HEADER_BYTES + jn * PACK_JOINT_BYTES + PACK_CRC_BYTES;
-    for (int i = 0; i < lib->clip_count; i++)
-        size += PACK_CLIP_HEADER_BYTES + (size_t)lib->clips[i].clip.frame_count * (12 + 8 * jn);
-    uint8_t *buf = malloc(size), *p = buf;
-    if (!buf) return cub_diag_fail(diag, CUB_ERR_NOMEM, file, 0, "out of memory for %zu bytes", size);
+    memset(p, 0, PACK_CLIP_HEADER_BYTES);
+    memcpy(p, lc->name, strlen(lc->name));
+    memcpy(p + 32, lc->kind, strlen(lc->kind));
+    put_u32(p + 48, lc->clip.frame_ns);
+    put_u32(p + 52, (uint32_t)lc->clip.frame_count);
+    put_u32(p + PACK_CLIP_HEADER_BYTES, (uint32_t)k->len);
+    p += PACK_CLIP_HEADER_BYTES + PACK_KEYS_LEN_BYTES;
+    memcpy(p, k->data, k->len);
+    return p + k->len;
+}
+
+static size_t clip_bytes(const cub_library *lib, int i, const cub_keys_result *keys)
+{
+    if (keys) return PACK_CLIP_HEADER_BYTES + PACK_KEYS_LEN_BYTES + keys[i].len;
+    return PACK_CLIP_HEADER_BYTES +
+           (size_t)lib->clips[i].clip.frame_count * (12 + 8 * (size_t)lib->skel.joint_count);
+}
+
+static cub_err lay_out(const cub_library *lib, const char *file, uint32_t version,
+                       const cub_keys_result *keys, uint8_t *buf, size_t size, cub_diag *diag)
+{
+    cub_err err = CUB_OK;
+    uint8_t *p = buf;
     memcpy(p, PACK_MAGIC, 8);
-    put_u32(p + 8, PACK_VERSION);
-    put_u32(p + 12, (uint32_t)jn);
+    put_u32(p + 8, version);
+    put_u32(p + 12, (uint32_t)lib->skel.joint_count);
     put_u32(p + 16, (uint32_t)lib->clip_count);
     p = put_joints(p + PACK_HEADER_BYTES, &lib->skel);
     for (int i = 0; !err && i < lib->clip_count; i++)
-        p = put_clip(p, &lib->clips[i], (int)jn, file, diag, &err);
+        p = keys ? put_keys_clip(p, &lib->clips[i], &keys[i])
+                 : put_clip(p, &lib->clips[i], lib->skel.joint_count, file, diag, &err);
+    if (!err) put_u32(p, pack_crc32(buf, size - PACK_CRC_BYTES));
+    return err;
+}
+
+cub_err pack_encode(const cub_library *lib, const char *file, uint32_t version, uint8_t **out,
+                    size_t *out_len, cub_diag *diag)
+{
+    *out = NULL;
+    *out_len = 0;
+    if (version != PACK_VERSION_RAW && version != PACK_VERSION_KEYS)
+        return cub_diag_fail(diag, CUB_ERR_ARG, file, 0, "no pack version %u", version);
+    cub_err err = check_library(lib, file, diag);
+    if (err) return err;
+    cub_keys_result *keys = NULL;
+    if (version == PACK_VERSION_KEYS) {
+        keys = calloc((size_t)lib->clip_count + 1, sizeof(*keys));
+        if (!keys) return cub_diag_fail(diag, CUB_ERR_NOMEM, file, 0, "out of memory");
+        err = pack_keys_encode_all(lib, file, keys, diag);
+    }
+    size_t size = PACK_HEADER_BYTES + (size_t)lib->skel.joint_count * PACK_JOINT_BYTES +
+                  PACK_CRC_BYTES;
+    for (int i = 0; !err && i < lib->clip_count; i++)
+        size += clip_bytes(lib, i, keys);
+    uint8_t *buf = err ? NULL : malloc(size);
+    if (!err && !buf)
+        err = cub_diag_fail(diag, CUB_ERR_NOMEM, file, 0, "out of memory for %zu bytes", size);
+    if (!err) err = lay_out(lib, file, version, keys, buf, size, diag);
+    pack_keys_free(keys, lib->clip_count);
+    free(keys);
     if (err) {
         free(buf);
         return err;
     }
-    put_u32(p, pack_crc32(buf, size - PACK_CRC_BYTES));
     *out = buf;
     *out_len = size;
     return CUB_OK;
@@ -253,11 +311,17 @@ cub_err pack_encode(const cub_library *lib, const char *file, uint8_t **out, siz
 
 cub_err cub_pack_write(const char *path, const cub_library *lib, cub_diag *diag)
 {
+    return cub_pack_write_version(path, lib, CUB_PACK_VERSION, diag);
+}
+
+cub_err cub_pack_write_version(const char *path, const cub_library *lib, int version,
+                               cub_diag *diag)
+{
     const char *file = path ? path : "(null)";
     if (!path || !lib) return cub_diag_fail(diag, CUB_ERR_ARG, file, 0, "no path or no library");
     uint8_t *bytes = NULL;
     size_t len = 0;
-    cub_err err = pack_encode(lib, file, &bytes, &len, diag);
+    cub_err err = pack_encode(lib, file, (uint32_t)version, &bytes, &len, diag);
     if (err) return err;
     FILE *f = fopen(path, "wb");
     if (!f) {

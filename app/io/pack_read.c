@@ -18,6 +18,8 @@ typedef struct pack_reader {
     cub_diag *diag;
     cub_library *out;
     size_t *clip_at; /* offset of each clip's header, from pass one */
+    uint32_t version;
+    cub_keys *keys; /* version 2: the stream being checked or decoded */
 } pack_reader;
 
 static cub_err bad(const pack_reader *r, size_t at, const char *fmt, ...)
@@ -42,6 +44,14 @@ static size_t frame_bytes(int joints)
     return 12 + 8 * (size_t)joints;
 }
 
+/* The fewest bytes a clip of this version takes: its header and one frame,
+ * or its header and a stream's length. */
+static size_t min_clip_bytes(uint32_t version, int joints)
+{
+    return PACK_CLIP_HEADER_BYTES +
+           (version == PACK_VERSION_RAW ? frame_bytes(joints) : PACK_KEYS_LEN_BYTES);
+}
+
 static cub_err read_header(pack_reader *r, uint32_t *joints, uint32_t *clips)
 {
     if (r->len < PACK_HEADER_BYTES + PACK_JOINT_BYTES + PACK_CRC_BYTES)
@@ -51,17 +61,18 @@ static cub_err read_header(pack_reader *r, uint32_t *joints, uint32_t *clips)
     uint32_t version = pack_get_u32(r->data + 8);
     *joints = pack_get_u32(r->data + 12);
     *clips = pack_get_u32(r->data + 16);
-    if (version != PACK_VERSION)
-        return bad(r, 8, "version %u; this reader knows version %u", version, PACK_VERSION);
+    if (version != PACK_VERSION_RAW && version != PACK_VERSION_KEYS)
+        return bad(r, 8, "version %u; this reader knows versions %u and %u", version,
+                   PACK_VERSION_RAW, PACK_VERSION_KEYS);
+    r->version = version;
     if (*joints < 1 || *joints > CUB_MOTION_MAX_JOINTS)
         return bad(r, 12, "joint count %u is not in 1..%d", *joints, CUB_MOTION_MAX_JOINTS);
     r->pos = PACK_HEADER_BYTES;
     if (left(r) < PACK_CRC_BYTES + *joints * (size_t)PACK_JOINT_BYTES)
         return bad(r, 12, "%u joints need %zu bytes, only %zu left", *joints,
                    *joints * (size_t)PACK_JOINT_BYTES, left(r) - PACK_CRC_BYTES);
-    /* Every clip takes at least its header and one frame. */
     size_t body = left(r) - PACK_CRC_BYTES - *joints * (size_t)PACK_JOINT_BYTES;
-    if (*clips > body / (PACK_CLIP_HEADER_BYTES + frame_bytes((int)*joints)))
+    if (*clips > body / min_clip_bytes(version, (int)*joints))
         return bad(r, 16, "%u clips cannot fit in the %zu bytes left", *clips, body);
     return CUB_OK;
 }
@@ -97,11 +108,45 @@ static cub_err read_joint(pack_reader *r, int j)
     return CUB_OK;
 }
 
+/* Version 1: the frames are all there. */
+static cub_err skip_frames(pack_reader *r, int i, const char *name, uint32_t frames)
+{
+    int jn = r->out->skel.joint_count;
+    size_t room = left(r) - PACK_CRC_BYTES;
+    if (frames > room / frame_bytes(jn))
+        return bad(r, r->pos, "clip %d '%s': %u frames need %.0f bytes, only %zu left", i, name,
+                   frames, (double)frames * (double)frame_bytes(jn), room);
+    r->pos += frames * frame_bytes(jn);
+    return CUB_OK;
+}
+
+/* Version 2: the stream is all there, whole and the pack's own. */
+static cub_err check_stream(pack_reader *r, int i, const char *name, uint32_t frames,
+                            uint32_t frame_ns)
+{
+    size_t room = left(r) - PACK_CRC_BYTES;
+    if (room < PACK_KEYS_LEN_BYTES)
+        return bad(r, r->pos, "clip %d '%s': the stream's length is cut off", i, name);
+    uint32_t n = pack_get_u32(r->data + r->pos);
+    if (n > room - PACK_KEYS_LEN_BYTES)
+        return bad(r, r->pos, "clip %d '%s': a stream of %u bytes, only %zu left", i, name, n,
+                   room - PACK_KEYS_LEN_BYTES);
+    r->pos += PACK_KEYS_LEN_BYTES;
+    cub_codec_problem why;
+    cub_err err = pack_keys_check(r->data + r->pos, n, &r->out->skel, (int)frames, frame_ns,
+                                  r->keys, &why);
+    if (err == CUB_ERR_NOMEM)
+        return cub_diag_fail(r->diag, err, r->file, 0, "out of memory for a stream");
+    if (err)
+        return bad(r, r->pos + why.offset, "clip %d '%s': cubkeys stream: %s", i, name, why.what);
+    r->pos += n;
+    return CUB_OK;
+}
+
 /* Pass one over clip i: its header, and that its frames are all there. */
 static cub_err scan_clip(pack_reader *r, int i, size_t *mem_total)
 {
     const uint8_t *p = r->data + r->pos;
-    int jn = r->out->skel.joint_count;
     if (left(r) < PACK_CLIP_HEADER_BYTES + PACK_CRC_BYTES)
         return bad(r, r->pos, "clip %d: the header is cut off", i);
     if (!pack_name_field_ok(p, CUB_MOTION_NAME_LEN) ||
@@ -120,11 +165,10 @@ static cub_err scan_clip(pack_reader *r, int i, size_t *mem_total)
             return bad(r, r->pos, "clip %d: the name '%s' appears twice", i, name);
     r->clip_at[i] = r->pos;
     r->pos += PACK_CLIP_HEADER_BYTES;
-    size_t room = left(r) - PACK_CRC_BYTES;
-    if (frames > room / frame_bytes(jn))
-        return bad(r, r->pos, "clip %d '%s': %u frames need %.0f bytes, only %zu left", i, name,
-                   frames, (double)frames * (double)frame_bytes(jn), room);
-    r->pos += frames * frame_bytes(jn);
+    cub_err err = r->version == PACK_VERSION_RAW ? skip_frames(r, i, name, frames)
+                                                 : check_stream(r, i, name, frames, frame_ns);
+    if (err) return err;
+    int jn = r->out->skel.joint_count;
     size_t need = (cub_motion_clip_mem_size(jn, (int)frames, 0) + 7) & ~(size_t)7;
     *mem_total += need;
     if (*mem_total > IO_MEM_CAP_BYTES)
@@ -146,6 +190,25 @@ static cub_err check_crc(pack_reader *r)
     return CUB_OK;
 }
 
+/* Version 2: every frame of the stream at p (its length first), checked
+ * in pass one, into the clip. */
+static cub_err decode_stream(pack_reader *r, cub_library_clip *lc, const uint8_t *p)
+{
+    cub_skeleton *own = malloc(sizeof(*own));
+    cub_pose *pose = malloc(sizeof(*pose));
+    cub_err err = own && pose ? CUB_OK : CUB_ERR_NOMEM;
+    if (!err) err = cub_keys_open(p + PACK_KEYS_LEN_BYTES, pack_get_u32(p), own, r->keys, NULL);
+    for (int f = 0; !err && f < lc->clip.frame_count; f++) {
+        err = cub_keys_pose(r->keys, f, pose);
+        if (!err) err = cub_motion_clip_set_frame(&lc->clip, f, pose);
+    }
+    free(own);
+    free(pose);
+    if (err == CUB_ERR_NOMEM)
+        return cub_diag_fail(r->diag, err, r->file, 0, "out of memory decoding '%s'", lc->name);
+    return err ? bad(r, (size_t)(p - r->data), "clip '%s': cannot decode", lc->name) : CUB_OK;
+}
+
 /* Pass two over clip i: lay out its frames in mem and decode them. */
 static cub_err decode_clip(pack_reader *r, int i, uint8_t *mem, size_t size)
 {
@@ -160,6 +223,7 @@ static cub_err decode_clip(pack_reader *r, int i, uint8_t *mem, size_t size)
     if (cub_motion_clip_init(&lc->clip, skel, frames, pack_get_u32(p + 48), 0, mem, size))
         return bad(r, at, "clip %d '%s': cannot lay out %d frames", i, lc->name, frames);
     p += PACK_CLIP_HEADER_BYTES;
+    if (r->version == PACK_VERSION_KEYS) return decode_stream(r, lc, p);
     for (int f = 0; f < frames; f++) {
         lc->clip.root_mm[f] = (cub_vec3){pack_get_i32(p), pack_get_i32(p + 4), pack_get_i32(p + 8)};
         p += 12;
@@ -216,9 +280,11 @@ cub_err cub_pack_parse(const void *data, size_t len, const char *name, cub_libra
         return cub_diag_fail(diag, CUB_ERR_ARG, file, 0, "no data or no output");
     memset(out, 0, sizeof(*out));
     cub_motion_skeleton_reset(&out->skel);
-    pack_reader r = {data, len, 0, file, diag, out, NULL};
-    cub_err err = read_all(&r);
+    pack_reader r = {data, len, 0, file, diag, out, NULL, 0, malloc(sizeof(cub_keys))};
+    cub_err err = r.keys ? read_all(&r)
+                         : cub_diag_fail(diag, CUB_ERR_NOMEM, file, 0, "out of memory");
     free(r.clip_at);
+    free(r.keys);
     if (err) cub_library_free(out);
     return err;
 }

@@ -135,6 +135,8 @@ def base_of(kind, d, shared, build=""):
         return read(os.path.join(SRC, "tests", "fuzz", "seeds_codec", "leg.cubseed")), "bad.cubseed"
     if kind == "cubkeys":  # our error-bounded codec's stream, made by tests/fuzz/make_seeds.py
         return read(os.path.join(SRC, "tests", "fuzz", "seeds_keys", "arm.cubkeys")), "bad.cubkeys"
+    if kind == "ase":  # a small 3ds Max ASCII export, made by tests/fuzz/make_seeds.py
+        return read(os.path.join(SRC, "tests", "fuzz", "seeds_ase", "small.ase")), "bad.ase"
     if kind == "trc":  # a small marker file, made by tests/fuzz/make_seeds.py
         return read(os.path.join(SRC, "tests", "fuzz", "seeds_trc", "small_mm.trc")), "bad.trc"
     if kind == "jtrack":  # a joint track of three frames (the format: cub/synth.h)

@@ -7,7 +7,7 @@
  *   'U': a button timeline (board/common/buttons_script.h).
  *   'G': the box's config file (cub/boxconf.h; also fuzz_boxconf on its own).
  *   'X': a character (XML, cub_character_parse).
- *   'P': a clip pack as is; 'Q': a clip pack whose last 4 bytes the harness
+ *   'P': a clip pack (version 1 or 2) as is; 'Q': a clip pack whose last 4 bytes the harness
  *        replaces by the right CRC, so mutations get past the CRC check.
  *   'K': a keyframe text clip on a fixed six-joint skeleton.
  *   any other even byte (e.g. 'B'): BVH; bit 1 set: a fixed unit instead of

@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Write the fuzz targets' small seed inputs (issue 18) into tests/fuzz/:
 seeds_dump/ (fuzz_fakenect_dump, fuzz_track_dump), seeds_synth/,
-seeds_cli/, seeds_font/, seeds_map/, seeds_codec/, seeds_keys/, seeds_voice/, seeds_trc/. Everything is made
+seeds_cli/, seeds_font/, seeds_map/, seeds_codec/, seeds_keys/, seeds_voice/, seeds_trc/,
+seeds_ase/. Everything is made
 here from the formats' rules, nothing copied from the shared data; run it again
 after changing a format:
 
@@ -325,7 +326,53 @@ def trc_seeds():
     put("seeds_trc", "lost_m.trc", trc("m", 100, metres, ["Head"]))
 
 
+# ---- ASE (3ds Max ASCII): a scene, nodes with rest transforms, sampled
+# position and rotation tracks (axis, angle), one sample a frame.
+def ase_node(name, parent, pos, quat=None, rows=None, pos_track=None, rot_track=None, dummy=False):
+    out = '*HELPEROBJECT {\n\t*NODE_NAME "%s"\n' % name
+    if parent:
+        out += '\t*NODE_PARENT "%s"\n' % parent
+    out += '\t*HELPER_CLASS "%s"\n\t*NODE_TM {\n' % ("Dummy" if dummy else "Bone")
+    for i, row in enumerate(rows or []):
+        out += "\t\t*TM_ROW%d %g %g %g\n" % ((i,) + tuple(row))
+    out += "\t\t*TM_POS %g %g %g\n" % tuple(pos)
+    if quat:
+        out += "\t\t*TM_QUATERNION %g %g %g %g\n" % tuple(quat)
+    out += "\t}\n"
+    if pos_track or rot_track:
+        out += "\t*TM_ANIMATION {\n"
+        if pos_track:
+            out += "\t\t*CONTROL_POS_TRACK {\n"
+            out += "".join("\t\t\t*CONTROL_POS_SAMPLE %d %g %g %g\n" % ((160 * k,) + tuple(p))
+                           for k, p in enumerate(pos_track))
+            out += "\t\t}\n"
+        if rot_track:
+            out += "\t\t*CONTROL_ROT_TRACK {\n"
+            out += "".join("\t\t\t*CONTROL_ROT_SAMPLE %d %g %g %g %.9f\n" % ((160 * k,) + tuple(r))
+                           for k, r in enumerate(rot_track))
+            out += "\t\t}\n"
+        out += "\t}\n"
+    return out + "}\n"
+
+
+def ase_seeds():
+    head = "*3DSMAX_ASCIIEXPORT\t200\n*COMMENT \"seed\"\n*SCENE {\n\t*SCENE_FIRSTFRAME 0\n"
+    head += "\t*SCENE_LASTFRAME 2\n\t*SCENE_FRAMESPEED 30\n\t*SCENE_TICKSPERFRAME 160\n}\n"
+    body = ase_node("Hips", None, (0, 900, 0), quat=(0, 0, 0, 1),
+                    pos_track=[(0, 900, 0), (5, 905, 0), (10, 900, 2)],
+                    rot_track=[(0, 1, 0, 0.3), (0, 1, 0, 0.1), (0, 0, 0, 0)])
+    body += ase_node("Spine", "Hips", (0, 1100, 0), rows=[(1, 0, 0), (0, 1, 0), (0, 0, 1)],
+                     rot_track=[(1, 0, 0, 0.2), (0, 0, 1, -0.05), (1, 0, 0, 0.01)])
+    body += ase_node("Head", "Spine", (0, 1500, 0), quat=(0, 0, 0.7071068, 0.7071068))
+    body += ase_node("Head_end", "Head", (0, 1650, 0), dummy=True)
+    put("seeds_ase", "small.ase", (head + body).encode())
+    one = "*3DSMAX_ASCIIEXPORT 200\n*SCENE {\n*SCENE_LASTFRAME 0\n*SCENE_FRAMESPEED 24\n}\n"
+    one += "*MATERIAL_LIST {\n\t*MATERIAL_COUNT 0\n}\n" + ase_node("root", None, (1, 2, 3))
+    put("seeds_ase", "one_node.ase", one.encode())
+
+
 def main():
+    ase_seeds()
     trc_seeds()
     codec_seeds()
     map_seeds()

@@ -32,9 +32,10 @@
 
 /* FNV-1a over every stream and decoded pose of the bear's library at
  * BOUND_MM, recorded on x86-64; aarch64 must give the same. A change of
- * the codec changes it on purpose: re-record it from this test's output. */
-#define DECODED_HASH UINT64_C(0xa053d71cb0669c2f)
-#define DECODED_HASH_QUICK UINT64_C(0x57e58c3afbe219ce)
+ * the codec, or of the shipped library (pack version 2 since issue 21),
+ * changes it on purpose: re-record it from this test's output. */
+#define DECODED_HASH UINT64_C(0xac199d5dc61ce6fe)
+#define DECODED_HASH_QUICK UINT64_C(0x8517e7b701842522)
 #define BOUND_MM 0.1
 /* The bound holds in the encoder's doubles; the firmware's Q16.16 forward
  * kinematics, used here, rounds each joint to 1.5e-5 mm: 0.001 mm covers a
