@@ -200,7 +200,11 @@ static int check_glyph(font *f, unsigned gi, int depth)
             unsigned e = u16(&in, ends + 2 * (uint64_t)c, &ok);
             if (c && e < prev)
                 return bad(f, "glyph %u has its contours out of order", gi, 0);
-            last_start = c ? prev + 1 : 0;
+            /* An empty contour (its end repeats the last one's) starts
+             * nothing: stb_truetype's last start is the last non-empty one. */
+            unsigned start = c ? prev + 1 : 0;
+            if (e >= start)
+                last_start = start;
             prev = e;
         }
         unsigned ins = u16(&in, ends + 2 * (uint64_t)contours, &ok);
