@@ -18,7 +18,10 @@
  * frame); --correct asks only for the correcting clips, as the box does
  * when a move went wrong (entry anywhere in their front half, and within
  * the reaction at the closest frame when nothing nearer comes). Each run
- * also counts the switches whose ends are not both bridge frames. */
+ * also counts the switches whose ends are not both bridge frames. --tween
+ * routes through the seed's tween clip where today's planner chains
+ * through other clips; either way a "routes" line measures those
+ * switches: reaction, arrival in the wanted clip, every switch's jump. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
