@@ -6,7 +6,9 @@
  *   direct         A's end blended into B's start, every joint at once;
  *   direct+feet    the same, the legs one at a time (the other planted);
  *   searched-all   through C, every joint at once at both seams;
- *   searched       the seed's: through C, the legs one at a time. */
+ *   searched       the seed's: through C, the legs one at a time;
+ *   bridge(box)    today's box: the firmware's planner and player switch
+ *                  from A (looping) into B's first frames (join_bridge.c). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -15,6 +17,7 @@
 
 #include "commands.h"
 #include "cub/join.h"
+#include "join_bridge.h"
 #include "join_src.h"
 #include "tool_util.h"
 
@@ -135,9 +138,10 @@ static void row(const char *name, cub_tool_series *slide, cub_tool_series *jump)
            cub_tool_series_pct(jump, 0.95), cub_tool_series_pct(jump, 1.0));
 }
 
-static int join_all(join_src *src, int verbose)
+static int join_all(join_src *src, join_bridge *jb, int verbose)
 {
     const cub_join_db *db = &src->db;
+    cub_tool_series bslide = {0}, bjump = {0}, bms = {0};
     cub_tool_series slide[METHODS] = {{0}}, jump[METHODS] = {{0}}, dd = {0}, ds = {0};
     int pairs = 0, better = 0, self_c = 0;
     struct timespec t0, t1;
@@ -163,6 +167,13 @@ static int join_all(join_src *src, int verbose)
                 cub_tool_series_add(&slide[m], fig[m].slide_cm, "join");
                 cub_tool_series_add(&jump[m], fig[m].jump_cm, "join");
             }
+            cub_join_figures bf = {0, 0};
+            double ms = 0;
+            if (jb && !join_bridge_measure(jb, db, a, b, &bf, &ms)) {
+                cub_tool_series_add(&bslide, bf.slide_cm, "join");
+                cub_tool_series_add(&bjump, bf.jump_cm, "join");
+                cub_tool_series_add(&bms, ms, "join");
+            }
             if (verbose)
                 printf("join pair %s -> %s: C=%s@%d-%d rms direct %.2f searched %.2f+%.2f cm; "
                        "slide direct %.2f searched %.2f cm; jump direct %.2f searched %.2f\n",
@@ -181,8 +192,15 @@ static int join_all(join_src *src, int verbose)
            cub_tool_series_pct(&ds, 0.5), cub_tool_series_pct(&ds, 0.95), better, pairs, self_c);
     for (int m = 0; m < METHODS; m++)
         row(METHOD_NAME[m], &slide[m], &jump[m]);
-    printf("join --all: %-13s not measured here (the box's tween of bridge frames: "
-           "`cubtool bench-bridge`)\n",
+    if (bslide.n) {
+        row("bridge(box)", &bslide, &bjump);
+        printf("join --all: bridge(box) measured on %zu pairs; request to first switch median=%.0f "
+               "p95=%.0f max=%.0f ms\n",
+               bslide.n, cub_tool_series_pct(&bms, 0.5), cub_tool_series_pct(&bms, 0.95),
+               cub_tool_series_pct(&bms, 1.0));
+    }
+    printf("join --all: %-13s not measured here (the seed's tween clip of bridge frames is "
+           "another branch's, i21b)\n",
            "tween");
     printf("join --all: the dance clips' own velocity change p99=%.2f cm/f2\n",
            own_jump_p99(db, src));
@@ -190,7 +208,7 @@ static int join_all(join_src *src, int verbose)
             (double)(t1.tv_sec - t0.tv_sec) + (double)(t1.tv_nsec - t0.tv_nsec) * 1e-9);
     for (int m = 0; m < METHODS; m++)
         free(slide[m].v), free(jump[m].v);
-    free(dd.v), free(ds.v);
+    free(dd.v), free(ds.v), free(bslide.v), free(bjump.v), free(bms.v);
     return 0;
 }
 
@@ -198,20 +216,21 @@ static int usage(FILE *f, int code)
 {
     fprintf(f,
             "usage: cubtool join A B [--lib LIB.cubclips] [--db CLIPS]... [--out C.bvh]\n"
-            "       cubtool join --all [--lib LIB.cubclips] [--db CLIPS]... [--pairs]\n"
+            "       cubtool join --all [--assets DIR] [--db CLIPS]... [--pairs]\n"
             "  A, B      clip names in the database, or .bvh files on its skeleton\n"
             "  --lib     the library (default: the shipped assets/clips/bear.cubclips)\n"
             "  --db      more clips to search (a .cubclips or a .bvh; repeatable)\n"
             "  --out     write the seed's join (searched, legs one at a time) as BVH,\n"
             "            and the direct one as C.bvh.direct.bvh\n"
-            "  --all     every ordered pair of the library's dance clips: the table\n"
+            "  --all     every ordered pair of the library's dance clips: the table, with\n"
+            "            today's box switch (bridge planner + player) from --assets DIR\n"
             "  --pairs   with --all, a line per pair\n");
     return code;
 }
 
 int cub_cmd_join(int argc, char **argv)
 {
-    const char *lib = CUB_ASSETS_DIR "/clips/bear.cubclips", *out = NULL, *pos[2] = {NULL, NULL};
+    const char *lib = NULL, *assets = CUB_ASSETS_DIR, *out = NULL, *pos[2] = {NULL, NULL};
     const char *db_files[JOIN_SRC_MAX];
     int ndb = 0, all = 0, verbose = 0, npos = 0;
     for (int i = 1; i < argc; i++) {
@@ -222,6 +241,8 @@ int cub_cmd_join(int argc, char **argv)
             verbose = 1;
         } else if (argv[i][0] == '-' && i + 1 < argc && !strcmp(argv[i], "--lib")) {
             lib = argv[++i];
+        } else if (argv[i][0] == '-' && i + 1 < argc && !strcmp(argv[i], "--assets")) {
+            assets = argv[++i];
         } else if (argv[i][0] == '-' && i + 1 < argc && !strcmp(argv[i], "--out")) {
             out = argv[++i];
         } else if (argv[i][0] == '-' && i + 1 < argc && !strcmp(argv[i], "--db") &&
@@ -236,11 +257,16 @@ int cub_cmd_join(int argc, char **argv)
     }
     if (all ? npos != 0 : npos != 2) return usage(stderr, 2);
     static join_src src;
+    static join_bridge jb;
+    char lib_path[4096];
+    snprintf(lib_path, sizeof lib_path, "%s/clips/bear.cubclips", assets);
     cub_join_cfg cfg = {0};
-    int rc = join_src_add(&src, lib, &cfg) ? 1 : 0;
+    int rc = join_src_add(&src, lib ? lib : lib_path, &cfg) ? 1 : 0;
     for (int i = 0; !rc && i < ndb; i++)
         rc = join_src_add(&src, db_files[i], &cfg) ? 1 : 0;
-    if (!rc) rc = all ? join_all(&src, verbose) : join_one(&src, pos[0], pos[1], out, &cfg);
+    int have_jb = !rc && all && !join_bridge_open(&jb, assets, &src.db);
+    if (!rc) rc = all ? join_all(&src, have_jb ? &jb : NULL, verbose) : join_one(&src, pos[0], pos[1], out, &cfg);
+    if (have_jb) join_bridge_close(&jb);
     join_src_free(&src);
     return rc;
 }
