@@ -72,11 +72,19 @@ const char *cub_join_support_name(unsigned mask, char *buf, size_t size)
     return buf;
 }
 
-/* Joint index by "Left"/"Right" + base name, or by the exact name. */
-static int find_side(const cub_skeleton *s, int side, const char *base)
+/* Joint index of a side's limb joint under the usual namings: CMU and the
+ * bear ("LeftUpLeg", "LeftLeg", "LeftFoot", "LeftHand") and Bandai's
+ * ("UpperLeg_L", "LowerLeg_L", "Foot_L", "Hand_L"). -1 when none. */
+static int find_side(const cub_skeleton *s, int side, int limb)
 {
+    static const char *const cmu[4] = {"UpLeg", "Leg", "Foot", "Hand"};
+    static const char *const bandai[4] = {"UpperLeg", "LowerLeg", "Foot", "Hand"};
     char name[CUB_MOTION_NAME_LEN];
-    snprintf(name, sizeof name, "%s%s", side ? "Right" : "Left", base);
+    snprintf(name, sizeof name, "%s%s", side ? "Right" : "Left", cmu[limb]);
+    int j = cub_motion_skeleton_find(s, name);
+    if (j >= 0)
+        return j;
+    snprintf(name, sizeof name, "%s_%c", bandai[limb], side ? 'R' : 'L');
     return cub_motion_skeleton_find(s, name);
 }
 
@@ -108,13 +116,16 @@ cub_err cub_join_body_find(const cub_skeleton *skel, cub_join_body *out, cub_dia
     int idx[2][4];
     for (int side = 0; side < 2; side++)
         for (int i = 0; i < 4; i++) {
-            idx[side][i] = find_side(skel, side, need[i]);
+            idx[side][i] = find_side(skel, side, i);
             if (idx[side][i] < 0)
                 return cub_diag_fail(diag, CUB_ERR_FORMAT, "skeleton", 0,
                                      "no joint %s%s: the join needs legs and hands",
                                      side ? "Right" : "Left", need[i]);
         }
-    out->hips = 0;
+    /* The pelvis: "Hips" where there is one (Bandai's root is a joint on
+     * the floor below it), else the root. */
+    out->hips = cub_motion_skeleton_find(skel, "Hips");
+    out->hips = out->hips < 0 ? 0 : out->hips;
     for (int side = 0; side < 2; side++) {
         out->leg[side] = (cub_join_leg){idx[side][0], idx[side][1], idx[side][2]};
         part_from(skel, idx[side][2], out->part[CUB_JOIN_LFOOT + side]);

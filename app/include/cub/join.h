@@ -72,7 +72,7 @@ typedef struct cub_join_leg {
 
 #define CUB_JOIN_PART_JOINTS 4
 typedef struct cub_join_body {
-    int hips;                                    /* the root joint */
+    int hips;                                    /* the pelvis ("Hips", else the root) */
     cub_join_leg leg[2];                         /* left, right */
     int part[CUB_JOIN_PARTS][CUB_JOIN_PART_JOINTS]; /* joints of a part, -1 ends */
     double pad_mm[CUB_JOIN_PARTS]; /* the part's surface below its lowest joint */
