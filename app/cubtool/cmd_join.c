@@ -108,12 +108,22 @@ static int join_one(join_src *src, const char *an, const char *bn, const char *o
     return 0;
 }
 
-/* The library's own frame-to-frame velocity change (dance clips). */
+/* The clips --all pairs: the library's dance clips, or every clip when
+ * no file says which are dances (BVH files). */
+static int paired(const join_src *src, int c)
+{
+    for (int i = 0; i < src->db.count; i++)
+        if (!strcmp(src->kind[i], "dance"))
+            return !strcmp(src->kind[c], "dance");
+    return 1;
+}
+
+/* The paired clips' own frame-to-frame velocity change. */
 static double own_jump_p99(const cub_join_db *db, join_src *src)
 {
     cub_tool_series s = {0};
     for (int c = 0; c < db->count; c++) {
-        if (strcmp(src->kind[c], "dance"))
+        if (!paired(src, c))
             continue;
         int n = db->clips[c].clip->frame_count;
         double *j = malloc(sizeof(double) * (size_t)n);
@@ -148,7 +158,7 @@ static int join_all(join_src *src, join_bridge *jb, int verbose)
     clock_gettime(CLOCK_MONOTONIC, &t0);
     for (int a = 0; a < db->count; a++)
         for (int b = 0; b < db->count; b++) {
-            if (a == b || strcmp(src->kind[a], "dance") || strcmp(src->kind[b], "dance"))
+            if (a == b || !paired(src, a) || !paired(src, b))
                 continue;
             cub_join_pick pick;
             if (cub_join_search(db, a, b, &pick))
@@ -183,7 +193,7 @@ static int join_all(join_src *src, join_bridge *jb, int verbose)
                        fig[DIRECT].jump_cm, fig[SEARCHED].jump_cm);
         }
     clock_gettime(CLOCK_MONOTONIC, &t1);
-    printf("join --all: %d ordered pairs of dance clips, database %d clips, window %d frames, "
+    printf("join --all: %d ordered pairs of clips, database %d clips, window %d frames, "
            "C %d..%d frames\n",
            pairs, db->count, db->cfg.window_frames, db->cfg.min_frames, db->cfg.max_frames);
     printf("join --all: seam distance rms cm: direct median=%.2f p95=%.2f; searched (both "
@@ -202,7 +212,7 @@ static int join_all(join_src *src, join_bridge *jb, int verbose)
     printf("join --all: %-13s not measured here (the seed's tween clip of bridge frames is "
            "another branch's, i21b)\n",
            "tween");
-    printf("join --all: the dance clips' own velocity change p99=%.2f cm/f2\n",
+    printf("join --all: the paired clips' own velocity change p99=%.2f cm/f2\n",
            own_jump_p99(db, src));
     fprintf(stderr, "join --all: %.1f s\n",
             (double)(t1.tv_sec - t0.tv_sec) + (double)(t1.tv_nsec - t0.tv_nsec) * 1e-9);
@@ -218,7 +228,8 @@ static int usage(FILE *f, int code)
             "usage: cubtool join A B [--lib LIB.cubclips] [--db CLIPS]... [--out C.bvh]\n"
             "       cubtool join --all [--assets DIR] [--db CLIPS]... [--pairs]\n"
             "  A, B      clip names in the database, or .bvh files on its skeleton\n"
-            "  --lib     the library (default: the shipped assets/clips/bear.cubclips)\n"
+            "  --lib     the library (default: the shipped assets/clips/bear.cubclips), or\n"
+            "            a .bvh: then --all pairs every clip given\n"
             "  --db      more clips to search (a .cubclips or a .bvh; repeatable)\n"
             "  --out     write the seed's join (searched, legs one at a time) as BVH,\n"
             "            and the direct one as C.bvh.direct.bvh\n"

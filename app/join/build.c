@@ -18,10 +18,12 @@
 #define LIFT_MIN_MM 50.0 /* a step clears the floor: above the contact height (30 mm) */
 #define LIFT_MAX_MM 80.0 /* the step's highest lift (half its travel between the two) */
 
-/* One pose in doubles. */
+/* One pose in doubles; trans: each joint's local translation (its rest
+ * offset for clips that animate none). */
 typedef struct dpose {
     cub_dv3 root;
     cub_dq rot[CUB_MOTION_MAX_JOINTS];
+    cub_dv3 trans[CUB_MOTION_MAX_JOINTS];
 } dpose;
 
 /* Frame f of clip moved by t (NULL: as it is). */
@@ -29,8 +31,11 @@ static void get_frame(const cub_clip *clip, int f, const cub_join_align *t, dpos
 {
     int nj = clip->skel->joint_count;
     out->root = cub_dv3_from_fx(clip->root_mm[f]);
-    for (int j = 0; j < nj; j++)
+    for (int j = 0; j < nj; j++) {
         out->rot[j] = cub_dq_norm(cub_dq_from_fx(clip->rot[(size_t)f * nj + j]));
+        out->trans[j] = cub_dv3_from_fx(clip->trans_mm ? clip->trans_mm[(size_t)f * nj + j]
+                                                       : clip->skel->joints[j].offset_mm);
+    }
     if (t) {
         out->root = cub_join_apply(t, out->root);
         out->rot[0] = cub_dq_norm(cub_dq_mul(cub_join_align_rot(t), out->rot[0]));
@@ -41,8 +46,11 @@ static void put_frame(cub_clip *clip, int f, const dpose *p)
 {
     int nj = clip->skel->joint_count;
     clip->root_mm[f] = cub_dv3_to_fx(p->root);
-    for (int j = 0; j < nj; j++)
+    for (int j = 0; j < nj; j++) {
         clip->rot[(size_t)f * nj + j] = cub_dq_to_fx(p->rot[j]);
+        if (clip->trans_mm)
+            clip->trans_mm[(size_t)f * nj + j] = cub_dv3_to_fx(p->trans[j]);
+    }
 }
 
 static void pose_world(const cub_skeleton *s, const dpose *p, cub_dv3 *pos, cub_dq *rot)
@@ -52,8 +60,11 @@ static void pose_world(const cub_skeleton *s, const dpose *p, cub_dv3 *pos, cub_
     cub_quat r[CUB_MOTION_MAX_JOINTS];
     cub_motion_pose_rest(s, &fp);
     fp.root_mm = cub_dv3_to_fx(p->root);
-    for (int j = 0; j < s->joint_count; j++)
+    fp.has_trans = 1;
+    for (int j = 0; j < s->joint_count; j++) {
         fp.rot[j] = cub_dq_to_fx(p->rot[j]);
+        fp.trans_mm[j] = cub_dv3_to_fx(p->trans[j]);
+    }
     cub_motion_forward(s, &fp, w, r);
     for (int j = 0; j < s->joint_count; j++) {
         pos[j] = cub_dv3_from_fx(w[j]);
@@ -103,6 +114,21 @@ static void place_leg(const cub_join_db *db, const dpose *p, const dpose *q, dou
     cub_join_leg_ik(db->skel, leg, op, orr, &g, o->rot);
 }
 
+/* A root that is not the pelvis (Bandai's sits on the floor, the body
+ * walking away from it) makes a blend of its rotation swing the body
+ * through an arc: move the blended pose so the pelvis goes straight. */
+static void pelvis_on_path(const cub_join_db *db, const dpose *p, const dpose *q, double w,
+                           dpose *o)
+{
+    static cub_dv3 pp[CUB_MOTION_MAX_JOINTS], qp[CUB_MOTION_MAX_JOINTS], op[CUB_MOTION_MAX_JOINTS];
+    static cub_dq rr[CUB_MOTION_MAX_JOINTS];
+    int h = db->body.hips;
+    pose_world(db->skel, p, pp, rr);
+    pose_world(db->skel, q, qp, rr);
+    pose_world(db->skel, o, op, rr);
+    o->root = cub_dv3_add(o->root, cub_dv3_sub(cub_dv3_lerp(pp[h], qp[h], w), op[h]));
+}
+
 /* Bit s: foot s stands at frame f of db clip c. */
 static unsigned char feet_at(const cub_join_db *db, int c, int f)
 {
@@ -119,8 +145,12 @@ static void blend_seam(const cub_join_db *db, const seam *s, cub_join_result *r,
         get_frame(s->to, s->t0 + k, s->tt, &q);
         double u = (k + 1.0) / (s->n + 1.0), w = smooth(u);
         o.root = cub_dv3_lerp(p.root, q.root, w);
-        for (int j = 0; j < nj; j++)
+        for (int j = 0; j < nj; j++) {
             o.rot[j] = cub_dq_slerp(p.rot[j], q.rot[j], w);
+            o.trans[j] = cub_dv3_lerp(p.trans[j], q.trans[j], w);
+        }
+        if (db->body.hips != 0)
+            pelvis_on_path(db, &p, &q, w, &o);
         if (s->first_leg >= 0)
             for (int i = 0; i < 2; i++) {
                 int side = i ? 1 - s->first_leg : s->first_leg;
@@ -180,12 +210,15 @@ static cub_err alloc_out(const cub_join_db *db, const cub_clip *a, int frames,
                          cub_join_result *out)
 {
     memset(out, 0, sizeof *out);
-    size_t size = cub_motion_clip_mem_size(db->skel->joint_count, frames, 0);
+    int trans = 0; /* translations out when any clip animates them */
+    for (int c = 0; c < db->count; c++)
+        trans |= db->clips[c].clip->trans_mm != NULL;
+    size_t size = cub_motion_clip_mem_size(db->skel->joint_count, frames, trans);
     out->mem = malloc(size);
     out->stance = calloc((size_t)frames, 1);
     if (!out->mem || !out->stance)
         return CUB_ERR_NOMEM;
-    return cub_motion_clip_init(&out->clip, db->skel, frames, a->frame_ns, 0, out->mem, size);
+    return cub_motion_clip_init(&out->clip, db->skel, frames, a->frame_ns, trans, out->mem, size);
 }
 
 static cub_err build_direct(const cub_join_db *db, int a, int b, const cub_join_pick *pick,
