@@ -108,7 +108,7 @@ int cub_cmd_decode(int argc, char **argv)
     int is_keys = blob.len >= 7 && !memcmp(blob.data, "CUBKEYS", 7);
     int rc = (is_keys ? codec_host_decode_keys(&blob, &d, in) : codec_host_decode(&blob, &o, &d, in)) ? 1 : 0;
     if (!rc) {
-        rc = cub_tool_save_clip_bvh(&d.clip, out) ? 1 : 0;
+        rc = cub_tool_save_clip_bvh(d.skel, &d.clip, out) ? 1 : 0;
         if (!rc) printf("%s: %d frames, %d joints\n", out, d.clip.frame_count, d.skel->joint_count);
         codec_decoded_free(&d);
     }

@@ -97,7 +97,7 @@ static int join_one(join_src *src, const char *an, const char *bn, const char *o
         if (out && (m == SEARCHED || m == DIRECT)) {
             char path[4096];
             snprintf(path, sizeof path, "%s%s", out, m == DIRECT ? ".direct.bvh" : "");
-            if (cub_tool_save_clip_bvh(&r.clip, m == DIRECT ? path : out)) {
+            if (cub_tool_save_clip_bvh(r.clip.skel, &r.clip, m == DIRECT ? path : out)) {
                 cub_join_result_free(&r);
                 return 1;
             }

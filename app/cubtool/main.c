@@ -17,6 +17,7 @@ static const command commands[] = {
     {"build", cub_cmd_build, "rebuild the clip library from its recipe and ../shared/data"},
     {"tag", cub_cmd_tag, "tag bridge frames across a clip library; summary + contact sheets"},
     {"bench-bridge", cub_cmd_bench_bridge, "measure clip switching: reaction latency, joint jumps"},
+    {"tween", cub_cmd_tween, "the seed's tween clip from the library's bridge frames, as BVH"},
     {"eval-track", cub_cmd_eval_track, "the tracker on a depth dump: joint errors, statuses, fps"},
     {"bench-track", cub_cmd_bench_track, "the tracker's ms per frame and memory"},
     {"synth-depth", cub_cmd_synth_depth, "a synthetic child as Kinect v1 depth: fakenect dump + truth"},

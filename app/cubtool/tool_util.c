@@ -94,13 +94,11 @@ cub_tool_parsed cub_tool_parse_opts(int argc, char **argv, const cub_tool_opt *o
     return CUB_TOOL_RUN;
 }
 
-/* Root XYZ position + ZXY rotation per joint (and XYZ translations when the
- * clip has them), centimetres. */
-int cub_tool_save_clip_bvh(const cub_clip *clip, const char *path)
+int cub_tool_save_clip_bvh(const cub_skeleton *skel, const cub_clip *clip, const char *path)
 {
-    static cub_io_motion m;
+    static cub_io_motion m; /* static: large */
     memset(&m, 0, sizeof m);
-    m.skel = *clip->skel;
+    m.skel = *skel;
     m.clip = *clip;
     m.clip.skel = &m.skel;
     m.unit_mm = 10.0;

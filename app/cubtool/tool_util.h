@@ -41,8 +41,9 @@ void cub_tool_series_add(cub_tool_series *s, double x, const char *who);
 /* Nearest-rank percentile (q in 0..1; 1 is the largest), 0 when empty; sorts. */
 double cub_tool_series_pct(cub_tool_series *s, double q);
 
-/* Write clip as a BVH file (its skeleton, centimetres); 0 ok, -1 with
- * "file: problem" on stderr. */
-int cub_tool_save_clip_bvh(const cub_clip *clip, const char *path);
+/* A clip as a BVH file (centimetres; root XYZ position, every joint ZXY
+ * rotation, joint positions too when the clip animates them). 0 on
+ * success; -1 with the file's problem on stderr. */
+int cub_tool_save_clip_bvh(const cub_skeleton *skel, const cub_clip *clip, const char *path);
 
 #endif
