@@ -8,7 +8,9 @@
  *   searched-all   through C, every joint at once at both seams;
  *   searched       the seed's: through C, the legs one at a time;
  *   bridge(box)    today's box: the firmware's planner and player switch
- *                  from A (looping) into B's first frames (join_bridge.c). */
+ *                  from A (looping) into B's first frames (join_bridge.c);
+ *   tween(box)     the same with the seed's tween clip in the table: the
+ *                  planner routes through it where no direct switch is. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -148,10 +150,66 @@ static void row(const char *name, cub_tool_series *slide, cub_tool_series *jump)
            cub_tool_series_pct(jump, 0.95), cub_tool_series_pct(jump, 1.0));
 }
 
+/* Today's box (k = 0) and the box with the seed's tween (k = 1), over all
+ * pairs and (tween) over the pairs it routed through the tween. */
+typedef struct box_rows {
+    cub_tool_series slide[2], jump[2], ms[2], tslide, tjump, tms;
+} box_rows;
+
+static void box_measure(join_bridge *jb, const cub_join_db *db, int a, int b, box_rows *br)
+{
+    for (int k = 0; k < 2; k++) {
+        cub_join_figures f = {0, 0};
+        double ms = 0;
+        int tweened = 0;
+        if (!jb[k].cl.lib.clip_count || join_bridge_measure(&jb[k], db, a, b, &f, &ms, &tweened))
+            continue;
+        cub_tool_series_add(&br->slide[k], f.slide_cm, "join");
+        cub_tool_series_add(&br->jump[k], f.jump_cm, "join");
+        cub_tool_series_add(&br->ms[k], ms, "join");
+        if (!tweened)
+            continue;
+        cub_tool_series_add(&br->tslide, f.slide_cm, "join");
+        cub_tool_series_add(&br->tjump, f.jump_cm, "join");
+        cub_tool_series_add(&br->tms, ms, "join");
+    }
+}
+
+static void box_print(box_rows *br)
+{
+    static const char *const name[2] = {"bridge(box)", "tween(box)"};
+    for (int k = 0; k < 2; k++) {
+        if (!br->slide[k].n) {
+            printf("join --all: %-13s not measured (no assets)\n", name[k]);
+            continue;
+        }
+        row(name[k], &br->slide[k], &br->jump[k]);
+        printf("join --all: %-13s on %zu pairs; request to first switch median=%.0f p95=%.0f "
+               "max=%.0f ms\n",
+               name[k], br->slide[k].n, cub_tool_series_pct(&br->ms[k], 0.5),
+               cub_tool_series_pct(&br->ms[k], 0.95), cub_tool_series_pct(&br->ms[k], 1.0));
+    }
+    printf("join --all: tween(box) went through the tween clip on %zu pairs", br->tslide.n);
+    if (br->tslide.n)
+        printf(": slide median=%.2f max=%.2f cm, jump median=%.2f max=%.2f, first switch "
+               "median=%.0f max=%.0f ms",
+               cub_tool_series_pct(&br->tslide, 0.5), cub_tool_series_pct(&br->tslide, 1.0),
+               cub_tool_series_pct(&br->tjump, 0.5), cub_tool_series_pct(&br->tjump, 1.0),
+               cub_tool_series_pct(&br->tms, 0.5), cub_tool_series_pct(&br->tms, 1.0));
+    printf("\n");
+}
+
+static void box_free(box_rows *br)
+{
+    for (int k = 0; k < 2; k++)
+        free(br->slide[k].v), free(br->jump[k].v), free(br->ms[k].v);
+    free(br->tslide.v), free(br->tjump.v), free(br->tms.v);
+}
+
 static int join_all(join_src *src, join_bridge *jb, int verbose)
 {
     const cub_join_db *db = &src->db;
-    cub_tool_series bslide = {0}, bjump = {0}, bms = {0};
+    static box_rows br;
     cub_tool_series slide[METHODS] = {{0}}, jump[METHODS] = {{0}}, dd = {0}, ds = {0};
     int pairs = 0, better = 0, self_c = 0;
     struct timespec t0, t1;
@@ -177,13 +235,8 @@ static int join_all(join_src *src, join_bridge *jb, int verbose)
                 cub_tool_series_add(&slide[m], fig[m].slide_cm, "join");
                 cub_tool_series_add(&jump[m], fig[m].jump_cm, "join");
             }
-            cub_join_figures bf = {0, 0};
-            double ms = 0;
-            if (jb && !join_bridge_measure(jb, db, a, b, &bf, &ms)) {
-                cub_tool_series_add(&bslide, bf.slide_cm, "join");
-                cub_tool_series_add(&bjump, bf.jump_cm, "join");
-                cub_tool_series_add(&bms, ms, "join");
-            }
+            if (jb)
+                box_measure(jb, db, a, b, &br);
             if (verbose)
                 printf("join pair %s -> %s: C=%s@%d-%d rms direct %.2f searched %.2f+%.2f cm; "
                        "slide direct %.2f searched %.2f cm; jump direct %.2f searched %.2f\n",
@@ -202,23 +255,16 @@ static int join_all(join_src *src, join_bridge *jb, int verbose)
            cub_tool_series_pct(&ds, 0.5), cub_tool_series_pct(&ds, 0.95), better, pairs, self_c);
     for (int m = 0; m < METHODS; m++)
         row(METHOD_NAME[m], &slide[m], &jump[m]);
-    if (bslide.n) {
-        row("bridge(box)", &bslide, &bjump);
-        printf("join --all: bridge(box) measured on %zu pairs; request to first switch median=%.0f "
-               "p95=%.0f max=%.0f ms\n",
-               bslide.n, cub_tool_series_pct(&bms, 0.5), cub_tool_series_pct(&bms, 0.95),
-               cub_tool_series_pct(&bms, 1.0));
-    }
-    printf("join --all: %-13s not measured here (the seed's tween clip of bridge frames is "
-           "another branch's, i21b)\n",
-           "tween");
+    if (jb)
+        box_print(&br);
     printf("join --all: the paired clips' own velocity change p99=%.2f cm/f2\n",
            own_jump_p99(db, src));
     fprintf(stderr, "join --all: %.1f s\n",
             (double)(t1.tv_sec - t0.tv_sec) + (double)(t1.tv_nsec - t0.tv_nsec) * 1e-9);
     for (int m = 0; m < METHODS; m++)
         free(slide[m].v), free(jump[m].v);
-    free(dd.v), free(ds.v), free(bslide.v), free(bjump.v), free(bms.v);
+    free(dd.v), free(ds.v);
+    box_free(&br);
     return 0;
 }
 
@@ -268,16 +314,17 @@ int cub_cmd_join(int argc, char **argv)
     }
     if (all ? npos != 0 : npos != 2) return usage(stderr, 2);
     static join_src src;
-    static join_bridge jb;
+    static join_bridge jb[2];
     char lib_path[4096];
     snprintf(lib_path, sizeof lib_path, "%s/clips/bear.cubclips", assets);
     cub_join_cfg cfg = {0};
     int rc = join_src_add(&src, lib ? lib : lib_path, &cfg) ? 1 : 0;
     for (int i = 0; !rc && i < ndb; i++)
         rc = join_src_add(&src, db_files[i], &cfg) ? 1 : 0;
-    int have_jb = !rc && all && !join_bridge_open(&jb, assets, &src.db);
-    if (!rc) rc = all ? join_all(&src, have_jb ? &jb : NULL, verbose) : join_one(&src, pos[0], pos[1], out, &cfg);
-    if (have_jb) join_bridge_close(&jb);
+    int have_jb = !rc && all && !join_bridge_open(&jb[0], assets, &src.db, 0);
+    if (have_jb && join_bridge_open(&jb[1], assets, &src.db, 1)) memset(&jb[1], 0, sizeof jb[1]);
+    if (!rc) rc = all ? join_all(&src, have_jb ? jb : NULL, verbose) : join_one(&src, pos[0], pos[1], out, &cfg);
+    if (have_jb) join_bridge_close(&jb[0]), join_bridge_close(&jb[1]);
     join_src_free(&src);
     return rc;
 }
