@@ -20,12 +20,10 @@ static void print_class(const cub_join_db *db, const cub_join_graph *g, unsigned
     for (int c = 0; c < db->count; c++) {
         int max = db->clips[c].clip->frame_count;
         cub_join_segment *seg = malloc(sizeof *seg * (size_t)max);
-        if (!seg)
-            break;
+        if (!seg) break;
         int n = cub_join_segments(db, c, MIN_SEGMENT, seg, max);
         for (int i = 0; i < n && i < max; i++)
-            if (seg[i].mask == m)
-                printf(" %s@%d-%d", db->clips[c].name, seg[i].first, seg[i].last);
+            if (seg[i].mask == m) printf(" %s@%d-%d", db->clips[c].name, seg[i].first, seg[i].last);
         free(seg);
     }
     printf("\n");

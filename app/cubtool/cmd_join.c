@@ -32,11 +32,9 @@ static int run_method(const cub_join_db *db, int a, int b, const cub_join_pick *
                       cub_join_figures *fig, cub_join_result *keep)
 {
     cub_join_pick p = *pick;
-    if (m == DIRECT || m == DIRECT_FEET)
-        p.clip = -1;
+    if (m == DIRECT || m == DIRECT_FEET) p.clip = -1;
     cub_join_result r;
-    if (cub_join_build(db, a, b, &p, m == DIRECT_FEET || m == SEARCHED, &r))
-        return -1;
+    if (cub_join_build(db, a, b, &p, m == DIRECT_FEET || m == SEARCHED, &r)) return -1;
     *fig = cub_join_measure(db, &r);
     if (keep)
         *keep = r;
@@ -54,10 +52,9 @@ static void print_pick(const cub_join_db *db, int a, int b, const cub_join_pick 
 {
     char ea[64], sb[64], sc[64], ec[64];
     int na = db->clips[a].clip->frame_count;
-    printf("join: A=%s (%d frames, ends on %s) B=%s (%d frames, starts on %s)\n",
-           db->clips[a].name, na, cub_join_support_name(db->clips[a].support[na - 1], ea, 64),
-           db->clips[b].name, db->clips[b].clip->frame_count,
-           cub_join_support_name(db->clips[b].support[0], sb, 64));
+    printf("join: A=%s (%d frames, ends on %s) B=%s (%d frames, starts on %s)\n", db->clips[a].name,
+           na, cub_join_support_name(db->clips[a].support[na - 1], ea, 64), db->clips[b].name,
+           db->clips[b].clip->frame_count, cub_join_support_name(db->clips[b].support[0], sb, 64));
     printf("join: direct   D(A|B)=%.1f cm2 (rms %.2f cm), B turned %.1f deg\n",
            p->direct.d_mm2 / 100, rms_cm(p->direct.d_mm2), p->direct.theta_rad * 180 / CUB_VEC_PI);
     printf("join: searched C=%s@%d-%d (%d frames) D(A|C)=%.1f cm2 (rms %.2f cm) D(C|B)=%.1f cm2 "
@@ -73,8 +70,7 @@ static int join_one(join_src *src, const char *an, const char *bn, const char *o
                     const cub_join_cfg *cfg)
 {
     int a = join_src_find(src, an, cfg), b = a < 0 ? -1 : join_src_find(src, bn, cfg);
-    if (a < 0 || b < 0)
-        return 1;
+    if (a < 0 || b < 0) return 1;
     const cub_join_db *db = &src->db;
     cub_join_pick pick;
     if (cub_join_search(db, a, b, &pick)) {
@@ -93,8 +89,7 @@ static int join_one(join_src *src, const char *an, const char *bn, const char *o
         }
         printf("join: %-13s %9.2f %12.2f %d", METHOD_NAME[m], fig.slide_cm, fig.jump_cm,
                r.win_frames[0]);
-        if (r.windows > 1)
-            printf("+%d", r.win_frames[1]);
+        if (r.windows > 1) printf("+%d", r.win_frames[1]);
         printf(" (%d frames in all)\n", r.clip.frame_count);
         if (out && (m == SEARCHED || m == DIRECT)) {
             char path[4096];
@@ -115,8 +110,7 @@ static int join_one(join_src *src, const char *an, const char *bn, const char *o
 static int paired(const join_src *src, int c)
 {
     for (int i = 0; i < src->db.count; i++)
-        if (!strcmp(src->kind[i], "dance"))
-            return !strcmp(src->kind[c], "dance");
+        if (!strcmp(src->kind[i], "dance")) return !strcmp(src->kind[c], "dance");
     return 1;
 }
 
@@ -125,12 +119,10 @@ static double own_jump_p99(const cub_join_db *db, join_src *src)
 {
     cub_tool_series s = {0};
     for (int c = 0; c < db->count; c++) {
-        if (!paired(src, c))
-            continue;
+        if (!paired(src, c)) continue;
         int n = db->clips[c].clip->frame_count;
         double *j = malloc(sizeof(double) * (size_t)n);
-        if (!j)
-            break;
+        if (!j) break;
         cub_join_clip_jumps(db, c, j);
         for (int f = 2; f < n; f++)
             cub_tool_series_add(&s, j[f], "join");
@@ -167,8 +159,7 @@ static void box_measure(join_bridge *jb, const cub_join_db *db, int a, int b, bo
         cub_tool_series_add(&br->slide[k], f.slide_cm, "join");
         cub_tool_series_add(&br->jump[k], f.jump_cm, "join");
         cub_tool_series_add(&br->ms[k], ms, "join");
-        if (!tweened)
-            continue;
+        if (!tweened) continue;
         cub_tool_series_add(&br->tslide, f.slide_cm, "join");
         cub_tool_series_add(&br->tjump, f.jump_cm, "join");
         cub_tool_series_add(&br->tms, ms, "join");
@@ -216,11 +207,9 @@ static int join_all(join_src *src, join_bridge *jb, int verbose)
     clock_gettime(CLOCK_MONOTONIC, &t0);
     for (int a = 0; a < db->count; a++)
         for (int b = 0; b < db->count; b++) {
-            if (a == b || !paired(src, a) || !paired(src, b))
-                continue;
+            if (a == b || !paired(src, a) || !paired(src, b)) continue;
             cub_join_pick pick;
-            if (cub_join_search(db, a, b, &pick))
-                continue;
+            if (cub_join_search(db, a, b, &pick)) continue;
             pairs++;
             cub_tool_series_add(&dd, rms_cm(pick.direct.d_mm2), "join");
             cub_tool_series_add(&ds, rms_cm(pick.in.d_mm2 + pick.out.d_mm2), "join");
@@ -235,13 +224,12 @@ static int join_all(join_src *src, join_bridge *jb, int verbose)
                 cub_tool_series_add(&slide[m], fig[m].slide_cm, "join");
                 cub_tool_series_add(&jump[m], fig[m].jump_cm, "join");
             }
-            if (jb)
-                box_measure(jb, db, a, b, &br);
+            if (jb) box_measure(jb, db, a, b, &br);
             if (verbose)
                 printf("join pair %s -> %s: C=%s@%d-%d rms direct %.2f searched %.2f+%.2f cm; "
                        "slide direct %.2f searched %.2f cm; jump direct %.2f searched %.2f\n",
-                       db->clips[a].name, db->clips[b].name, db->clips[pick.clip].name,
-                       pick.first, pick.last, rms_cm(pick.direct.d_mm2), rms_cm(pick.in.d_mm2),
+                       db->clips[a].name, db->clips[b].name, db->clips[pick.clip].name, pick.first,
+                       pick.last, rms_cm(pick.direct.d_mm2), rms_cm(pick.in.d_mm2),
                        rms_cm(pick.out.d_mm2), fig[DIRECT].slide_cm, fig[SEARCHED].slide_cm,
                        fig[DIRECT].jump_cm, fig[SEARCHED].jump_cm);
         }
@@ -255,8 +243,7 @@ static int join_all(join_src *src, join_bridge *jb, int verbose)
            cub_tool_series_pct(&ds, 0.5), cub_tool_series_pct(&ds, 0.95), better, pairs, self_c);
     for (int m = 0; m < METHODS; m++)
         row(METHOD_NAME[m], &slide[m], &jump[m]);
-    if (jb)
-        box_print(&br);
+    if (jb) box_print(&br);
     printf("join --all: the paired clips' own velocity change p99=%.2f cm/f2\n",
            own_jump_p99(db, src));
     fprintf(stderr, "join --all: %.1f s\n",
@@ -270,18 +257,17 @@ static int join_all(join_src *src, join_bridge *jb, int verbose)
 
 static int usage(FILE *f, int code)
 {
-    fprintf(f,
-            "usage: cubtool join A B [--lib LIB.cubclips] [--db CLIPS]... [--out C.bvh]\n"
-            "       cubtool join --all [--assets DIR] [--db CLIPS]... [--pairs]\n"
-            "  A, B      clip names in the database, or .bvh files on its skeleton\n"
-            "  --lib     the library (default: the shipped assets/clips/bear.cubclips), or\n"
-            "            a .bvh: then --all pairs every clip given\n"
-            "  --db      more clips to search (a .cubclips or a .bvh; repeatable)\n"
-            "  --out     write the seed's join (searched, legs one at a time) as BVH,\n"
-            "            and the direct one as C.bvh.direct.bvh\n"
-            "  --all     every ordered pair of the library's dance clips: the table, with\n"
-            "            today's box switch (bridge planner + player) from --assets DIR\n"
-            "  --pairs   with --all, a line per pair\n");
+    fprintf(f, "usage: cubtool join A B [--lib LIB.cubclips] [--db CLIPS]... [--out C.bvh]\n"
+               "       cubtool join --all [--assets DIR] [--db CLIPS]... [--pairs]\n"
+               "  A, B      clip names in the database, or .bvh files on its skeleton\n"
+               "  --lib     the library (default: the shipped assets/clips/bear.cubclips), or\n"
+               "            a .bvh: then --all pairs every clip given\n"
+               "  --db      more clips to search (a .cubclips or a .bvh; repeatable)\n"
+               "  --out     write the seed's join (searched, legs one at a time) as BVH,\n"
+               "            and the direct one as C.bvh.direct.bvh\n"
+               "  --all     every ordered pair of the library's dance clips: the table, with\n"
+               "            today's box switch (bridge planner + player) from --assets DIR\n"
+               "  --pairs   with --all, a line per pair\n");
     return code;
 }
 
@@ -323,7 +309,9 @@ int cub_cmd_join(int argc, char **argv)
         rc = join_src_add(&src, db_files[i], &cfg) ? 1 : 0;
     int have_jb = !rc && all && !join_bridge_open(&jb[0], assets, &src.db, 0);
     if (have_jb && join_bridge_open(&jb[1], assets, &src.db, 1)) memset(&jb[1], 0, sizeof jb[1]);
-    if (!rc) rc = all ? join_all(&src, have_jb ? jb : NULL, verbose) : join_one(&src, pos[0], pos[1], out, &cfg);
+    if (!rc)
+        rc = all ? join_all(&src, have_jb ? jb : NULL, verbose)
+                 : join_one(&src, pos[0], pos[1], out, &cfg);
     if (have_jb) join_bridge_close(&jb[0]), join_bridge_close(&jb[1]);
     join_src_free(&src);
     return rc;

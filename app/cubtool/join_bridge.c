@@ -26,8 +26,8 @@ int join_bridge_open(join_bridge *jb, const char *assets, const cub_join_db *db,
         join_bridge_close(jb);
         return -1;
     }
-    cub_bridge_player_desc pd = {.table = &jb->cl.table, .smooth = CUB_BRIDGE_SMOOTH_INERTIAL,
-                                 .via_tween = via_tween};
+    cub_bridge_player_desc pd = {
+        .table = &jb->cl.table, .smooth = CUB_BRIDGE_SMOOTH_INERTIAL, .via_tween = via_tween};
     size_t ws = cub_bridge_player_mem_size(&pd);
     jb->work = malloc(ws);
     jb->db_of = malloc(sizeof(int) * (size_t)jb->cl.table.desc.clip_count);
@@ -51,8 +51,7 @@ int join_bridge_open(join_bridge *jb, const char *assets, const cub_join_db *db,
 static int lib_of(const join_bridge *jb, int db_clip)
 {
     for (int c = 0; c < jb->cl.lib.clip_count; c++)
-        if (jb->db_of[c] == db_clip)
-            return c;
+        if (jb->db_of[c] == db_clip) return c;
     return -1;
 }
 
@@ -65,8 +64,7 @@ static unsigned char stance_now(const join_bridge *jb, const cub_join_db *db)
     const cub_join_clip *jc = c >= 0 ? &db->clips[c] : NULL;
     if (jb->via_tween && p->clip == jb->cl.tween_index)
         jc = &jb->tween.clips[0]; /* two passes of the loop: frames modulo one */
-    if (!jc)
-        return 0;
+    if (!jc) return 0;
     int f = (int)((p->pos_q16 >> 16) % jc->clip->frame_count);
     return (unsigned char)(jc->foot[0][f] | jc->foot[1][f] << 1);
 }
@@ -94,19 +92,17 @@ static int play(join_bridge *jb, const cub_join_db *db, cub_join_result *r, doub
                 first = t;
                 *ms = ((t - 1) * (double)TICK_US + (double)ev[i].t_us) / 1000.0;
             }
-        if (first >= 0 && !cub_bridge_player_pending(p) && !p->blending)
-            break;
+        if (first >= 0 && !cub_bridge_player_pending(p) && !p->blending) break;
     }
     r->clip.frame_count = t <= MAX_TICKS ? t + 1 : MAX_TICKS + 1;
     return first;
 }
 
-int join_bridge_measure(join_bridge *jb, const cub_join_db *db, int a, int b,
-                        cub_join_figures *out, double *ms, int *tweened)
+int join_bridge_measure(join_bridge *jb, const cub_join_db *db, int a, int b, cub_join_figures *out,
+                        double *ms, int *tweened)
 {
     int la = lib_of(jb, a), lb = lib_of(jb, b);
-    if (la < 0 || lb < 0)
-        return -1;
+    if (la < 0 || lb < 0) return -1;
     int na = jb->cl.lib.clips[la].clip.frame_count, w = db->cfg.window_frames;
     cub_bridge_player_set_start_frames(&jb->player, START_FRAMES);
     cub_bridge_plan plan;
@@ -138,8 +134,7 @@ int join_bridge_measure(join_bridge *jb, const cub_join_db *db, int a, int b,
 void join_bridge_close(join_bridge *jb)
 {
     cub_coachlib_free(&jb->cl);
-    if (jb->via_tween)
-        cub_join_db_free(&jb->tween);
+    if (jb->via_tween) cub_join_db_free(&jb->tween);
     free(jb->work);
     free(jb->db_of);
     memset(jb, 0, sizeof *jb);

@@ -16,8 +16,8 @@ typedef struct join_bridge {
     cub_coachlib cl;
     cub_bridge_player player;
     void *work;
-    int *db_of;         /* table clip -> db clip, -1 when not in the db */
-    cub_join_db tween;  /* the tween clip's contacts (via_tween) */
+    int *db_of;        /* table clip -> db clip, -1 when not in the db */
+    cub_join_db tween; /* the tween clip's contacts (via_tween) */
     int via_tween;
 } join_bridge;
 
@@ -27,8 +27,8 @@ int join_bridge_open(join_bridge *jb, const char *assets, const cub_join_db *db,
 /* The figures of switching from db clip a to db clip b; -1 when either is
  * not in the library or no route exists. ms: request to first switch;
  * *tweened: the route passes the tween clip. */
-int join_bridge_measure(join_bridge *jb, const cub_join_db *db, int a, int b,
-                        cub_join_figures *out, double *ms, int *tweened);
+int join_bridge_measure(join_bridge *jb, const cub_join_db *db, int a, int b, cub_join_figures *out,
+                        double *ms, int *tweened);
 void join_bridge_close(join_bridge *jb);
 
 #endif

@@ -20,8 +20,9 @@ static int add_clip(join_src *s, const char *path, const char *name, const cub_c
     s->kind[s->db.count] = kind;
     cub_err e = cub_join_db_add(&s->db, name, clip, NULL);
     if (e == CUB_ERR_ARG) {
-        fprintf(stderr, "%s: clip '%s' is not on the skeleton of the first file, or shorter "
-                        "than two windows (%d frames)\n",
+        fprintf(stderr,
+                "%s: clip '%s' is not on the skeleton of the first file, or shorter "
+                "than two windows (%d frames)\n",
                 path, name, 2 * s->db.cfg.window_frames);
         return -1;
     }
@@ -36,8 +37,7 @@ static int add_clip(join_src *s, const char *path, const char *name, const cub_c
 static int start_db(join_src *s, const char *path, const cub_skeleton *skel,
                     const cub_join_cfg *cfg)
 {
-    if (s->db.skel)
-        return 0;
+    if (s->db.skel) return 0;
     cub_diag d = {0};
     char msg[600];
     if (cub_join_db_init(&s->db, skel, cfg, &d)) {
@@ -57,8 +57,7 @@ static int add_library(join_src *s, const char *path, const cub_join_cfg *cfg)
         return -1;
     }
     s->nlib++;
-    if (start_db(s, path, &lib->skel, cfg))
-        return -1;
+    if (start_db(s, path, &lib->skel, cfg)) return -1;
     for (int i = 0; i < lib->clip_count; i++)
         if (add_clip(s, path, lib->clips[i].name, &lib->clips[i].clip, lib->clips[i].kind))
             return -1;
@@ -77,8 +76,7 @@ static int add_bvh(join_src *s, const char *path, const cub_join_cfg *cfg)
         return -1;
     }
     s->bvh[s->nbvh++] = m;
-    if (start_db(s, path, &m->skel, cfg))
-        return -1;
+    if (start_db(s, path, &m->skel, cfg)) return -1;
     const char *base = strrchr(path, '/');
     return add_clip(s, path, base ? base + 1 : path, &m->clip, "bvh");
 }
@@ -89,10 +87,8 @@ int join_src_add(join_src *s, const char *path, const cub_join_cfg *cfg)
         fprintf(stderr, "%s: more than %d files\n", path, JOIN_SRC_MAX);
         return -1;
     }
-    if (ends_with(path, ".cubclips"))
-        return add_library(s, path, cfg);
-    if (ends_with(path, ".bvh"))
-        return add_bvh(s, path, cfg);
+    if (ends_with(path, ".cubclips")) return add_library(s, path, cfg);
+    if (ends_with(path, ".bvh")) return add_bvh(s, path, cfg);
     fprintf(stderr, "%s: not a clip library (.cubclips) or a BVH file\n", path);
     return -1;
 }
@@ -100,15 +96,14 @@ int join_src_add(join_src *s, const char *path, const cub_join_cfg *cfg)
 int join_src_find(join_src *s, const char *name_or_path, const cub_join_cfg *cfg)
 {
     for (int i = 0; i < s->db.count; i++)
-        if (!strcmp(s->db.clips[i].name, name_or_path))
-            return i;
+        if (!strcmp(s->db.clips[i].name, name_or_path)) return i;
     if (ends_with(name_or_path, ".bvh")) {
-        if (add_bvh(s, name_or_path, cfg))
-            return -1;
+        if (add_bvh(s, name_or_path, cfg)) return -1;
         return s->db.count - 1;
     }
-    fprintf(stderr, "join: no clip named '%s' in the database (a library clip's name, or a "
-                    ".bvh on its skeleton)\n",
+    fprintf(stderr,
+            "join: no clip named '%s' in the database (a library clip's name, or a "
+            ".bvh on its skeleton)\n",
             name_or_path);
     return -1;
 }

@@ -48,8 +48,7 @@ static void put_frame(cub_clip *clip, int f, const dpose *p)
     clip->root_mm[f] = cub_dv3_to_fx(p->root);
     for (int j = 0; j < nj; j++) {
         clip->rot[(size_t)f * nj + j] = cub_dq_to_fx(p->rot[j]);
-        if (clip->trans_mm)
-            clip->trans_mm[(size_t)f * nj + j] = cub_dv3_to_fx(p->trans[j]);
+        if (clip->trans_mm) clip->trans_mm[(size_t)f * nj + j] = cub_dv3_to_fx(p->trans[j]);
     }
 }
 
@@ -84,7 +83,7 @@ typedef struct seam {
     const cub_clip *from, *to;
     const cub_join_align *tf, *tt;
     int f0, t0, n;
-    int first_leg; /* the leg that goes over first; -1: blend the legs too */
+    int first_leg;          /* the leg that goes over first; -1: blend the legs too */
     int from_clip, to_clip; /* their db indices */
 } seam;
 
@@ -149,15 +148,15 @@ static void blend_seam(const cub_join_db *db, const seam *s, cub_join_result *r,
             o.rot[j] = cub_dq_slerp(p.rot[j], q.rot[j], w);
             o.trans[j] = cub_dv3_lerp(p.trans[j], q.trans[j], w);
         }
-        if (db->body.hips != 0)
-            pelvis_on_path(db, &p, &q, w, &o);
+        if (db->body.hips != 0) pelvis_on_path(db, &p, &q, w, &o);
         if (s->first_leg >= 0)
             for (int i = 0; i < 2; i++) {
                 int side = i ? 1 - s->first_leg : s->first_leg;
                 place_leg(db, &p, &q, 2 * u - i, side, &o);
             }
         put_frame(out, o0 + k, &o);
-        r->stance[o0 + k] = feet_at(db, s->from_clip, s->f0 + k) & feet_at(db, s->to_clip, s->t0 + k);
+        r->stance[o0 + k] =
+            feet_at(db, s->from_clip, s->f0 + k) & feet_at(db, s->to_clip, s->t0 + k);
     }
 }
 
@@ -189,8 +188,7 @@ static int first_leg(const cub_join_db *db, const seam *s)
 {
     const cub_join_clip *c = &db->clips[s->from_clip];
     int l = c->foot[0][s->f0], r = c->foot[1][s->f0];
-    if (l != r)
-        return l ? 1 : 0;
+    if (l != r) return l ? 1 : 0;
     static dpose p, q;
     static cub_dv3 pp[CUB_MOTION_MAX_JOINTS], qp[CUB_MOTION_MAX_JOINTS];
     static cub_dq rr[CUB_MOTION_MAX_JOINTS];
@@ -206,8 +204,7 @@ static int first_leg(const cub_join_db *db, const seam *s)
     return d[1] > d[0];
 }
 
-static cub_err alloc_out(const cub_join_db *db, const cub_clip *a, int frames,
-                         cub_join_result *out)
+static cub_err alloc_out(const cub_join_db *db, const cub_clip *a, int frames, cub_join_result *out)
 {
     memset(out, 0, sizeof *out);
     int trans = 0; /* translations out when any clip animates them */
@@ -216,8 +213,7 @@ static cub_err alloc_out(const cub_join_db *db, const cub_clip *a, int frames,
     size_t size = cub_motion_clip_mem_size(db->skel->joint_count, frames, trans);
     out->mem = malloc(size);
     out->stance = calloc((size_t)frames, 1);
-    if (!out->mem || !out->stance)
-        return CUB_ERR_NOMEM;
+    if (!out->mem || !out->stance) return CUB_ERR_NOMEM;
     return cub_motion_clip_init(&out->clip, db->skel, frames, a->frame_ns, trans, out->mem, size);
 }
 
@@ -228,11 +224,9 @@ static cub_err build_direct(const cub_join_db *db, int a, int b, const cub_join_
     int na = ca->frame_count, nb = cb->frame_count;
     int n = blend_frames(db, pick->direct.d_mm2, feet, na < nb ? na : nb);
     cub_err e = alloc_out(db, ca, na + nb - n, out);
-    if (e)
-        return e;
+    if (e) return e;
     seam s = {ca, cb, NULL, &pick->direct, na - n, 0, n, -1, a, b};
-    if (feet)
-        s.first_leg = first_leg(db, &s);
+    if (feet) s.first_leg = first_leg(db, &s);
     copy_run(db, a, 0, na - n, NULL, out, 0);
     blend_seam(db, &s, out, na - n);
     copy_run(db, b, n, nb - n, &pick->direct, out, na);
@@ -250,8 +244,7 @@ static cub_err build_searched(const cub_join_db *db, int a, int b, const cub_joi
     int n1 = blend_frames(db, pick->in.d_mm2, feet, na < nc / 2 ? na : nc / 2);
     int n2 = blend_frames(db, pick->out.d_mm2, feet, nb < nc / 2 ? nb : nc / 2);
     cub_err e = alloc_out(db, ca, na + nc + nb - n1 - n2, out);
-    if (e)
-        return e;
+    if (e) return e;
     seam s1 = {ca, cc, NULL, &pick->in, na - n1, pick->first, n1, -1, a, pick->clip};
     seam s2 = {cc, cb, &pick->in, &pick->out, pick->last - n2 + 1, 0, n2, -1, pick->clip, b};
     if (feet) {
@@ -288,8 +281,7 @@ cub_err cub_join_build(const cub_join_db *db, int a, int b, const cub_join_pick 
 
 void cub_join_result_free(cub_join_result *r)
 {
-    if (!r)
-        return;
+    if (!r) return;
     free(r->mem);
     free(r->stance);
     memset(r, 0, sizeof *r);

@@ -42,8 +42,7 @@ void cub_join_contacts(const cub_join_track *t, const cub_join_contact_cfg *cfg,
         int e = f;
         while (e < t->frames && out[e] == out[f])
             e++;
-        if (out[f] && e - f < run)
-            memset(out + f, 0, (size_t)(e - f));
+        if (out[f] && e - f < run) memset(out + f, 0, (size_t)(e - f));
         f = e;
     }
 }
@@ -54,8 +53,7 @@ static const char *const PART_NAMES[CUB_JOIN_PARTS] = {"LF", "RF", "LH", "RH", "
 
 const char *cub_join_support_name(unsigned mask, char *buf, size_t size)
 {
-    if (!size)
-        return buf;
+    if (!size) return buf;
     buf[0] = 0;
     size_t n = 0;
     /* Hip first, then hands, knees, feet: "HIP+LF+RF" reads as the seed's
@@ -67,8 +65,7 @@ const char *cub_join_support_name(unsigned mask, char *buf, size_t size)
         if (mask & (1u << order[i]))
             n += (size_t)snprintf(buf + (n < size ? n : size - 1), n < size ? size - n : 1, "%s%s",
                                   n ? "+" : "", PART_NAMES[order[i]]);
-    if (!buf[0])
-        snprintf(buf, size, "air");
+    if (!buf[0]) snprintf(buf, size, "air");
     return buf;
 }
 
@@ -82,8 +79,7 @@ static int find_side(const cub_skeleton *s, int side, int limb)
     char name[CUB_MOTION_NAME_LEN];
     snprintf(name, sizeof name, "%s%s", side ? "Right" : "Left", cmu[limb]);
     int j = cub_motion_skeleton_find(s, name);
-    if (j >= 0)
-        return j;
+    if (j >= 0) return j;
     snprintf(name, sizeof name, "%s_%c", bandai[limb], side ? 'R' : 'L');
     return cub_motion_skeleton_find(s, name);
 }
@@ -99,8 +95,7 @@ static void part_from(const cub_skeleton *s, int j, int *out)
         int a = k;
         while (a > j)
             a = s->joints[a].parent;
-        if (a == j)
-            out[n++] = k;
+        if (a == j) out[n++] = k;
     }
 }
 

@@ -8,32 +8,23 @@
 
 static void fill_defaults(cub_join_cfg *c)
 {
-    if (c->window_frames <= 0)
-        c->window_frames = 5;
-    if (c->min_frames <= 0)
-        c->min_frames = 3 * c->window_frames;
-    if (c->max_frames <= 0)
-        c->max_frames = 90;
-    if (c->blend_mm_per_frame <= 0)
-        c->blend_mm_per_frame = 10;
-    if (c->min_blend <= 0)
-        c->min_blend = 3;
-    if (c->max_blend <= 0)
-        c->max_blend = 20;
+    if (c->window_frames <= 0) c->window_frames = 5;
+    if (c->min_frames <= 0) c->min_frames = 3 * c->window_frames;
+    if (c->max_frames <= 0) c->max_frames = 90;
+    if (c->blend_mm_per_frame <= 0) c->blend_mm_per_frame = 10;
+    if (c->min_blend <= 0) c->min_blend = 3;
+    if (c->max_blend <= 0) c->max_blend = 20;
 }
 
 cub_err cub_join_db_init(cub_join_db *db, const cub_skeleton *skel, const cub_join_cfg *cfg,
                          cub_diag *diag)
 {
     memset(db, 0, sizeof *db);
-    if (!skel)
-        return CUB_ERR_ARG;
+    if (!skel) return CUB_ERR_ARG;
     cub_err e = cub_join_body_find(skel, &db->body, diag);
-    if (e)
-        return e;
+    if (e) return e;
     db->skel = skel;
-    if (cfg)
-        db->cfg = *cfg;
+    if (cfg) db->cfg = *cfg;
     fill_defaults(&db->cfg);
     return CUB_OK;
 }
@@ -52,8 +43,7 @@ void join_frame_world(const cub_clip *clip, int f, cub_dv3 *pos, cub_dq *rot)
     cub_motion_forward(clip->skel, &pose, w, r);
     for (int j = 0; j < clip->skel->joint_count; j++) {
         pos[j] = cub_dv3_from_fx(w[j]);
-        if (rot)
-            rot[j] = cub_dq_norm(cub_dq_from_fx(r[j]));
+        if (rot) rot[j] = cub_dq_norm(cub_dq_from_fx(r[j]));
     }
 }
 
@@ -65,8 +55,7 @@ static void part_track(const cub_join_db *db, const cub_join_clip *c, int part, 
         cub_dv3 low = {0, INFINITY, 0};
         for (int k = 0; k < CUB_JOIN_PART_JOINTS && db->body.part[part][k] >= 0; k++) {
             cub_dv3 p = c->pos[(size_t)f * nj + db->body.part[part][k]];
-            if (p.y < low.y)
-                low = p;
+            if (p.y < low.y) low = p;
         }
         low.y -= db->body.pad_mm[part];
         out[f] = low;
@@ -94,8 +83,7 @@ static cub_err find_supports(const cub_join_db *db, cub_join_clip *c)
         cub_join_contacts(&t, &db->cfg.contact, c->floor_mm, ct);
         for (int f = 0; f < frames; f++)
             c->support[f] |= (unsigned char)(ct[f] << part);
-        if (part <= CUB_JOIN_RFOOT)
-            memcpy(c->foot[part], ct, (size_t)frames);
+        if (part <= CUB_JOIN_RFOOT) memcpy(c->foot[part], ct, (size_t)frames);
     }
     free(tr), free(ct);
     return CUB_OK;
@@ -113,8 +101,7 @@ cub_err cub_join_db_add(cub_join_db *db, const char *name, const cub_clip *clip,
     if (db->count == db->cap) {
         int cap = db->cap ? db->cap * 2 : 16;
         cub_join_clip *m = realloc(db->clips, sizeof *m * (size_t)cap);
-        if (!m)
-            return CUB_ERR_NOMEM;
+        if (!m) return CUB_ERR_NOMEM;
         db->clips = m, db->cap = cap;
     }
     cub_join_clip *c = &db->clips[db->count];
@@ -136,8 +123,7 @@ cub_err cub_join_db_add(cub_join_db *db, const char *name, const cub_clip *clip,
         join_clip_free(c);
         return CUB_ERR_NOMEM;
     }
-    if (index)
-        *index = db->count;
+    if (index) *index = db->count;
     db->count++;
     return CUB_OK;
 }

@@ -11,8 +11,7 @@
 #include "cub/png.h"
 #include "join_internal.h"
 
-int cub_join_segments(const cub_join_db *db, int c, int min_frames, cub_join_segment *out,
-                      int max)
+int cub_join_segments(const cub_join_db *db, int c, int min_frames, cub_join_segment *out, int max)
 {
     const cub_join_clip *jc = &db->clips[c];
     int frames = jc->clip->frame_count, n = 0;
@@ -28,12 +27,10 @@ int cub_join_segments(const cub_join_db *db, int c, int min_frames, cub_join_seg
         else if (n > 0 && n - 1 < max && out[n - 1].mask == cur.mask)
             out[n - 1].last = cur.last;
         else {
-            if (n < max)
-                out[n] = cur;
+            if (n < max) out[n] = cur;
             n++;
         }
-        if (f < frames)
-            cur = (cub_join_segment){f, f, jc->support[f]};
+        if (f < frames) cur = (cub_join_segment){f, f, jc->support[f]};
     }
     /* A first segment too short joins the next. */
     if (n > 1 && max > 1 && out[0].last - out[0].first + 1 < min_frames) {
@@ -50,14 +47,12 @@ cub_err cub_join_graph_build(const cub_join_db *db, int min_frames, cub_join_gra
     for (int c = 0; c < db->count; c++) {
         int max = db->clips[c].clip->frame_count;
         cub_join_segment *seg = malloc(sizeof *seg * (size_t)max);
-        if (!seg)
-            return CUB_ERR_NOMEM;
+        if (!seg) return CUB_ERR_NOMEM;
         int n = cub_join_segments(db, c, min_frames, seg, max);
         for (int i = 0; i < n; i++) {
             g->frames[seg[i].mask] += seg[i].last - seg[i].first + 1;
             g->segments[seg[i].mask]++;
-            if (i)
-                g->edges[seg[i - 1].mask][seg[i].mask]++;
+            if (i) g->edges[seg[i - 1].mask][seg[i].mask]++;
         }
         free(seg);
     }
@@ -72,8 +67,7 @@ static void arrow(cub_png_canvas *c, const double xy[4], double r_to, int width,
 {
     static const uint8_t ink[3] = {90, 90, 110}, head[3] = {200, 80, 40}, text[3] = {20, 20, 20};
     double dx = xy[2] - xy[0], dy = xy[3] - xy[1], len = hypot(dx, dy);
-    if (len < 1)
-        return;
+    if (len < 1) return;
     /* Both directions of a pair would overlap: shift each to its right. */
     double nx = -dy / len * 6, ny = dx / len * 6;
     double l[4] = {xy[0] + nx, xy[1] + ny, xy[2] + nx - dx / len * r_to,
@@ -82,8 +76,8 @@ static void arrow(cub_png_canvas *c, const double xy[4], double r_to, int width,
     cub_png_dot(c, (int)lround(l[2]), (int)lround(l[3]), width + 4, head);
     char num[16];
     snprintf(num, sizeof num, "%d", count);
-    cub_png_text(c, (int)lround(l[0] + (l[2] - l[0]) * 0.6 + nx), (int)lround(l[1] + (l[3] - l[1]) * 0.6 + ny),
-                 2, num, text);
+    cub_png_text(c, (int)lround(l[0] + (l[2] - l[0]) * 0.6 + nx),
+                 (int)lround(l[1] + (l[3] - l[1]) * 0.6 + ny), 2, num, text);
 }
 
 static void draw(cub_png_canvas *c, const cub_join_graph *g, const int *cls, int n)
@@ -102,8 +96,7 @@ static void draw(cub_png_canvas *c, const cub_join_graph *g, const int *cls, int
     for (int i = 0; i < n; i++)
         for (int k = 0; k < n; k++) {
             int e = g->edges[cls[i]][cls[k]];
-            if (!e || i == k)
-                continue;
+            if (!e || i == k) continue;
             const double xy[4] = {x[i], y[i], x[k], y[k]};
             arrow(c, xy, r[k], 1 + (int)log2(1 + e), e);
         }
@@ -121,11 +114,9 @@ cub_err cub_join_graph_png(const cub_join_graph *g, const char *path)
 {
     int cls[CUB_JOIN_CLASSES], n = 0;
     for (int m = 0; m < CUB_JOIN_CLASSES; m++)
-        if (g->frames[m])
-            cls[n++] = m;
+        if (g->frames[m]) cls[n++] = m;
     cub_png_canvas c = {malloc((size_t)SIZE * SIZE * 4), SIZE, SIZE};
-    if (!c.px)
-        return CUB_ERR_NOMEM;
+    if (!c.px) return CUB_ERR_NOMEM;
     for (size_t i = 0; i < (size_t)SIZE * SIZE; i++)
         memcpy(c.px + i * 4, (const uint8_t[4]){248, 248, 244, 255}, 4);
     static const uint8_t title[3] = {40, 40, 40};

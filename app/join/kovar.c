@@ -31,8 +31,7 @@ cub_join_align cub_join_kovar(const cub_dv3 *p, const cub_dv3 *q, const double *
         sb += wi * (p[i].x * q[i].z - q[i].x * p[i].z);
     }
     cub_join_align t = {0, 0, 0, 0};
-    if (n <= 0 || ws <= 0)
-        return t;
+    if (n <= 0 || ws <= 0) return t;
     mx /= ws, mz /= ws, nx /= ws, nz /= ws, sa /= ws, sb /= ws;
     double A = sa - (mx * nx + mz * nz), B = sb - (mx * nz - nx * mz);
     t.theta_rad = atan2(B, A);

@@ -40,21 +40,19 @@ static void window(const cub_join_db *db, const cub_join_result *r, int f0, int 
     double floor_mm = r->floor_mm;
     int nj = db->skel->joint_count;
     cub_dv3 *p = malloc(sizeof(cub_dv3) * (size_t)nj * 3);
-    if (!p)
-        return;
+    if (!p) return;
     double h = db->cfg.contact.height_mm > 0 ? db->cfg.contact.height_mm : 30;
     for (int f = f0 - 2; f <= f1; f++) {
-        if (f < 0 || f >= clip->frame_count)
-            continue;
+        if (f < 0 || f >= clip->frame_count) continue;
         cub_dv3 *cur = p + (size_t)(f % 3) * nj;
         join_frame_world(clip, f, cur, NULL);
-        if (f < f0 || f < 1)
-            continue;
+        if (f < f0 || f < 1) continue;
         const cub_dv3 *prev = p + (size_t)((f + 2) % 3) * nj;
         for (int s = 0; s < 2; s++) {
             int aj = db->body.leg[s].ankle;
             int stance = r->stance[f - 1] & r->stance[f] & (1 << s);
-            if (stance && foot_low(db, prev, s) - floor_mm < h && foot_low(db, cur, s) - floor_mm < h)
+            if (stance && foot_low(db, prev, s) - floor_mm < h &&
+                foot_low(db, cur, s) - floor_mm < h)
                 slide_mm[s] += hypot(cur[aj].x - prev[aj].x, cur[aj].z - prev[aj].z);
         }
         if (f >= 2)

@@ -68,8 +68,7 @@ static double best_window(const cub_join_db *db, double **din, double **dout, cu
         for (int i = 0; i + w <= n; i++)
             for (int last = i + lo - 1; last < n && last <= i + hi - 1; last++) {
                 double d = din[c][i] + dout[c][last - w + 1];
-                if (d < best)
-                    best = d, out->clip = c, out->first = i, out->last = last;
+                if (d < best) best = d, out->clip = c, out->first = i, out->last = last;
             }
     }
     return best;
@@ -88,15 +87,13 @@ cub_err cub_join_search(const cub_join_db *db, int a, int b, cub_join_pick *out)
     distances(db, cloud(db, b, 0), dout);
     double best = best_window(db, din, dout, out);
     free_rows(db, din), free_rows(db, dout);
-    if (!isfinite(best))
-        return CUB_ERR_EMPTY;
+    if (!isfinite(best)) return CUB_ERR_EMPTY;
     /* C onto A's end, then B onto where C's end now is. */
     int n = cloud_n(db);
     out->in = cub_join_kovar(cloud(db, a, db->clips[a].clip->frame_count - w),
                              cloud(db, out->clip, out->first), NULL, n);
     cub_dv3 *moved = malloc(sizeof(cub_dv3) * (size_t)n);
-    if (!moved)
-        return CUB_ERR_NOMEM;
+    if (!moved) return CUB_ERR_NOMEM;
     const cub_dv3 *end = cloud(db, out->clip, out->last - w + 1);
     for (int i = 0; i < n; i++)
         moved[i] = cub_join_apply(&out->in, end[i]);

@@ -72,8 +72,7 @@ static void *stand_clip(cub_clip *clip, int frames, double abduct_deg)
             snprintf(up, 32, "%sUpLeg", side), snprintf(leg, 32, "%sLeg", side);
             snprintf(foot, 32, "%sFoot", side);
             cub_dq bend = cub_dq_axis_angle(xaxis, -20 * PI / 180);
-            if (s)
-                bend = cub_dq_mul(cub_dq_axis_angle(zaxis, -abduct_deg * PI / 180), bend);
+            if (s) bend = cub_dq_mul(cub_dq_axis_angle(zaxis, -abduct_deg * PI / 180), bend);
             r[cub_motion_skeleton_find(&skel, up)] = cub_dq_to_fx(bend);
             r[cub_motion_skeleton_find(&skel, leg)] =
                 cub_dq_to_fx(cub_dq_axis_angle(xaxis, 40 * PI / 180));
@@ -166,8 +165,7 @@ static void test_kovar_is_zero_for_a_turned_moved_copy(void **state)
 
 /* Brute force: every θ on a 0.01° grid, the translation that brings the
  * weighted means together for it (the optimum for a fixed θ). */
-static double brute_force(const cub_dv3 *p, const cub_dv3 *q, const double *w, int n,
-                          double *theta)
+static double brute_force(const cub_dv3 *p, const cub_dv3 *q, const double *w, int n, double *theta)
 {
     double best = INFINITY;
     for (int k = 0; k < 36000; k++) {
@@ -180,8 +178,7 @@ static double brute_force(const cub_dv3 *p, const cub_dv3 *q, const double *w, i
         }
         t.x0_mm = dx / ws, t.z0_mm = dz / ws;
         double c = cub_join_kovar_cost(p, q, w, n, &t);
-        if (c < best)
-            best = c, *theta = t.theta_rad;
+        if (c < best) best = c, *theta = t.theta_rad;
     }
     return best;
 }
@@ -238,10 +235,10 @@ static void test_support_names_read_as_the_seed(void **state)
     assert_string_equal(cub_join_support_name(0, b, sizeof b), "air");
     assert_string_equal(cub_join_support_name(1u << CUB_JOIN_LFOOT | 1u << CUB_JOIN_RFOOT, b, 64),
                         "LF+RF");
-    assert_string_equal(cub_join_support_name(1u << CUB_JOIN_HIP | 1u << CUB_JOIN_LFOOT |
-                                                   1u << CUB_JOIN_RFOOT,
-                                               b, 64),
-                        "HIP+LF+RF");
+    assert_string_equal(
+        cub_join_support_name(1u << CUB_JOIN_HIP | 1u << CUB_JOIN_LFOOT | 1u << CUB_JOIN_RFOOT, b,
+                              64),
+        "HIP+LF+RF");
     assert_string_equal(cub_join_support_name(1u << CUB_JOIN_LHAND | 1u << CUB_JOIN_RKNEE, b, 64),
                         "LH+RK");
     assert_string_equal(cub_join_support_name(0x7F, b, 6), "HIP+L"); /* cut, terminated */

@@ -72,10 +72,10 @@ typedef struct cub_join_leg {
 
 #define CUB_JOIN_PART_JOINTS 4
 typedef struct cub_join_body {
-    int hips;                                    /* the pelvis ("Hips", else the root) */
-    cub_join_leg leg[2];                         /* left, right */
+    int hips;                                       /* the pelvis ("Hips", else the root) */
+    cub_join_leg leg[2];                            /* left, right */
     int part[CUB_JOIN_PARTS][CUB_JOIN_PART_JOINTS]; /* joints of a part, -1 ends */
-    double pad_mm[CUB_JOIN_PARTS]; /* the part's surface below its lowest joint */
+    double pad_mm[CUB_JOIN_PARTS];                  /* the part's surface below its lowest joint */
 } cub_join_body;
 
 /* Find the parts by joint names (Hips; Left/Right UpLeg, Leg, Foot, Hand and
@@ -125,9 +125,9 @@ cub_dq cub_join_align_rot(const cub_join_align *t);
 /* Zero-initialised = the defaults in brackets. */
 typedef struct cub_join_cfg {
     cub_join_contact_cfg contact;
-    int window_frames;      /* frames in a compared point cloud [5] */
-    int min_frames;         /* shortest C [3 windows] */
-    int max_frames;         /* longest C [90] */
+    int window_frames;         /* frames in a compared point cloud [5] */
+    int min_frames;            /* shortest C [3 windows] */
+    int max_frames;            /* longest C [90] */
     double blend_mm_per_frame; /* a blend spreads the residual at this [10] */
     int min_blend, max_blend;  /* blend frames [3, 20] */
 } cub_join_cfg;
@@ -177,13 +177,13 @@ void cub_join_direct(const cub_join_db *db, int a, int b, cub_join_pick *out);
 /* ---- build and measure ----------------------------------------------------------- */
 
 typedef struct cub_join_result {
-    cub_clip clip;   /* A, [C,] B joined; frames owned (mem) */
+    cub_clip clip; /* A, [C,] B joined; frames owned (mem) */
     void *mem;
-    int windows;     /* blend windows: 1 (direct) or 2 */
+    int windows;                     /* blend windows: 1 (direct) or 2 */
     int win_first[2], win_frames[2]; /* each window's first output frame, length */
     double floor_mm;                 /* A's floor */
-    unsigned char *stance; /* [frames] bit s: foot s stands in the clip(s) a frame comes
-                              from (in a blend: in both); owned */
+    unsigned char *stance;           /* [frames] bit s: foot s stands in the clip(s) a frame comes
+                                        from (in a blend: in both); owned */
 } cub_join_result;
 
 /* Join A to B: through the pick's C when pick->clip >= 0, directly
@@ -194,8 +194,8 @@ cub_err cub_join_build(const cub_join_db *db, int a, int b, const cub_join_pick 
 void cub_join_result_free(cub_join_result *r);
 
 typedef struct cub_join_figures {
-    double slide_cm;  /* the most a stance foot moves on the floor across the windows */
-    double jump_cm;   /* peak change of a joint's velocity there, cm/frame per frame */
+    double slide_cm; /* the most a stance foot moves on the floor across the windows */
+    double jump_cm;  /* peak change of a joint's velocity there, cm/frame per frame */
 } cub_join_figures;
 
 /* The figures of a built join (positions by forward kinematics). */
@@ -217,8 +217,7 @@ typedef struct cub_join_segment {
 /* Up to max segments of clip c (runs shorter than min_frames are taken
  * into the run before them: a foot landing a frame after the other is one
  * change, not two). Returns how many there are (may exceed max). */
-int cub_join_segments(const cub_join_db *db, int c, int min_frames, cub_join_segment *out,
-                      int max);
+int cub_join_segments(const cub_join_db *db, int c, int min_frames, cub_join_segment *out, int max);
 
 /* The graph: per class (a support mask) its frames and segments, and per
  * ordered pair of classes how often a clip goes from one to the other. */
