@@ -197,62 +197,83 @@ static void box_free(box_rows *br)
     free(br->tslide.v), free(br->tjump.v), free(br->tms.v);
 }
 
+/* What --all gathers over the pairs. */
+typedef struct tally {
+    cub_tool_series slide[METHODS], jump[METHODS], dd, ds;
+    int pairs, better, self_c;
+} tally;
+
+/* Search, join by every method and measure one pair. 0 ok (or no C). */
+static int one_pair(const cub_join_db *db, int a, int b, int verbose, tally *t)
+{
+    cub_join_pick pick;
+    if (cub_join_search(db, a, b, &pick)) return 0;
+    t->pairs++;
+    cub_tool_series_add(&t->dd, rms_cm(pick.direct.d_mm2), "join");
+    cub_tool_series_add(&t->ds, rms_cm(pick.in.d_mm2 + pick.out.d_mm2), "join");
+    t->better += pick.in.d_mm2 + pick.out.d_mm2 < pick.direct.d_mm2;
+    t->self_c += pick.clip == a || pick.clip == b;
+    cub_join_figures fig[METHODS];
+    for (int m = 0; m < METHODS; m++) {
+        if (run_method(db, a, b, &pick, m, &fig[m], NULL)) {
+            fprintf(stderr, "join: out of memory\n");
+            return -1;
+        }
+        cub_tool_series_add(&t->slide[m], fig[m].slide_cm, "join");
+        cub_tool_series_add(&t->jump[m], fig[m].jump_cm, "join");
+    }
+    if (verbose)
+        printf("join pair %s -> %s: C=%s@%d-%d rms direct %.2f searched %.2f+%.2f cm; "
+               "slide direct %.2f searched %.2f cm; jump direct %.2f searched %.2f\n",
+               db->clips[a].name, db->clips[b].name, db->clips[pick.clip].name, pick.first,
+               pick.last, rms_cm(pick.direct.d_mm2), rms_cm(pick.in.d_mm2), rms_cm(pick.out.d_mm2),
+               fig[DIRECT].slide_cm, fig[SEARCHED].slide_cm, fig[DIRECT].jump_cm,
+               fig[SEARCHED].jump_cm);
+    return 0;
+}
+
+static void print_tally(const cub_join_db *db, tally *t)
+{
+    printf("join --all: %d ordered pairs of clips, database %d clips, window %d frames, "
+           "C %d..%d frames\n",
+           t->pairs, db->count, db->cfg.window_frames, db->cfg.min_frames, db->cfg.max_frames);
+    printf("join --all: seam distance rms cm: direct median=%.2f p95=%.2f; searched (both "
+           "seams) median=%.2f p95=%.2f; searched below direct in %d of %d; C from A or B in %d\n",
+           cub_tool_series_pct(&t->dd, 0.5), cub_tool_series_pct(&t->dd, 0.95),
+           cub_tool_series_pct(&t->ds, 0.5), cub_tool_series_pct(&t->ds, 0.95), t->better, t->pairs,
+           t->self_c);
+    for (int m = 0; m < METHODS; m++)
+        row(METHOD_NAME[m], &t->slide[m], &t->jump[m]);
+}
+
 static int join_all(join_src *src, join_bridge *jb, int verbose)
 {
     const cub_join_db *db = &src->db;
     static box_rows br;
-    cub_tool_series slide[METHODS] = {{0}}, jump[METHODS] = {{0}}, dd = {0}, ds = {0};
-    int pairs = 0, better = 0, self_c = 0;
+    static tally t;
+    int rc = 0;
     struct timespec t0, t1;
     clock_gettime(CLOCK_MONOTONIC, &t0);
-    for (int a = 0; a < db->count; a++)
-        for (int b = 0; b < db->count; b++) {
+    for (int a = 0; a < db->count && !rc; a++)
+        for (int b = 0; b < db->count && !rc; b++) {
             if (a == b || !paired(src, a) || !paired(src, b)) continue;
-            cub_join_pick pick;
-            if (cub_join_search(db, a, b, &pick)) continue;
-            pairs++;
-            cub_tool_series_add(&dd, rms_cm(pick.direct.d_mm2), "join");
-            cub_tool_series_add(&ds, rms_cm(pick.in.d_mm2 + pick.out.d_mm2), "join");
-            better += pick.in.d_mm2 + pick.out.d_mm2 < pick.direct.d_mm2;
-            self_c += pick.clip == a || pick.clip == b;
-            cub_join_figures fig[METHODS];
-            for (int m = 0; m < METHODS; m++) {
-                if (run_method(db, a, b, &pick, m, &fig[m], NULL)) {
-                    fprintf(stderr, "join: out of memory\n");
-                    return 1;
-                }
-                cub_tool_series_add(&slide[m], fig[m].slide_cm, "join");
-                cub_tool_series_add(&jump[m], fig[m].jump_cm, "join");
-            }
-            if (jb) box_measure(jb, db, a, b, &br);
-            if (verbose)
-                printf("join pair %s -> %s: C=%s@%d-%d rms direct %.2f searched %.2f+%.2f cm; "
-                       "slide direct %.2f searched %.2f cm; jump direct %.2f searched %.2f\n",
-                       db->clips[a].name, db->clips[b].name, db->clips[pick.clip].name, pick.first,
-                       pick.last, rms_cm(pick.direct.d_mm2), rms_cm(pick.in.d_mm2),
-                       rms_cm(pick.out.d_mm2), fig[DIRECT].slide_cm, fig[SEARCHED].slide_cm,
-                       fig[DIRECT].jump_cm, fig[SEARCHED].jump_cm);
+            rc = one_pair(db, a, b, verbose, &t);
+            if (jb && !rc) box_measure(jb, db, a, b, &br);
         }
     clock_gettime(CLOCK_MONOTONIC, &t1);
-    printf("join --all: %d ordered pairs of clips, database %d clips, window %d frames, "
-           "C %d..%d frames\n",
-           pairs, db->count, db->cfg.window_frames, db->cfg.min_frames, db->cfg.max_frames);
-    printf("join --all: seam distance rms cm: direct median=%.2f p95=%.2f; searched (both "
-           "seams) median=%.2f p95=%.2f; searched below direct in %d of %d; C from A or B in %d\n",
-           cub_tool_series_pct(&dd, 0.5), cub_tool_series_pct(&dd, 0.95),
-           cub_tool_series_pct(&ds, 0.5), cub_tool_series_pct(&ds, 0.95), better, pairs, self_c);
+    if (!rc) {
+        print_tally(db, &t);
+        if (jb) box_print(&br);
+        printf("join --all: the paired clips' own velocity change p99=%.2f cm/f2\n",
+               own_jump_p99(db, src));
+        fprintf(stderr, "join --all: %.1f s\n",
+                (double)(t1.tv_sec - t0.tv_sec) + (double)(t1.tv_nsec - t0.tv_nsec) * 1e-9);
+    }
     for (int m = 0; m < METHODS; m++)
-        row(METHOD_NAME[m], &slide[m], &jump[m]);
-    if (jb) box_print(&br);
-    printf("join --all: the paired clips' own velocity change p99=%.2f cm/f2\n",
-           own_jump_p99(db, src));
-    fprintf(stderr, "join --all: %.1f s\n",
-            (double)(t1.tv_sec - t0.tv_sec) + (double)(t1.tv_nsec - t0.tv_nsec) * 1e-9);
-    for (int m = 0; m < METHODS; m++)
-        free(slide[m].v), free(jump[m].v);
-    free(dd.v), free(ds.v);
+        free(t.slide[m].v), free(t.jump[m].v);
+    free(t.dd.v), free(t.ds.v);
     box_free(&br);
-    return 0;
+    return rc ? 1 : 0;
 }
 
 static int usage(FILE *f, int code)
