@@ -2,7 +2,7 @@
  * first window of frames should look like A's last, C's last window like
  * B's first, each compared by Kovar's distance (rotation about the
  * vertical and floor translation factored out). Exhaustive over every
- * clip and window of the database: the library is small (about 3000
+ * clip and window of the database: the library is small (2233
  * frames), so no precomputed graph is needed. */
 #include <math.h>
 #include <stdlib.h>
