@@ -357,6 +357,14 @@ static cub_judge_rep rep_rhe_keyed(int rep, int from, int to, int key_frames, in
     return r;
 }
 
+/* A fresh judge (defaults) with rep_rhe_keyed(0, 0, 60, key_frames, 0) open. */
+static void start_keyed(rec *r, int key_frames)
+{
+    rec_init(r, NULL);
+    cub_judge_rep rep = rep_rhe_keyed(0, 0, 60, key_frames, 0);
+    assert_int_equal(cub_judge_begin_rep(r->j, &rep), CUB_OK);
+}
+
 static void test_standing_still_is_wrong_a_lag_after_the_key(void **state)
 {
     (void)state;
@@ -410,9 +418,7 @@ static void test_early_deadline_leaves_time_for_a_sign(void **state)
     (void)state;
     for (int signed_ = 0; signed_ < 2; signed_++) {
         rec r;
-        rec_init(&r, NULL);
-        cub_judge_rep rep = rep_rhe_keyed(0, 0, 60, 0, 0);
-        assert_int_equal(cub_judge_begin_rep(r.j, &rep), CUB_OK);
+        start_keyed(&r, 0);
         /* bent in the lag (the previous repetition's tail: no sign), and
          * for the signed child again at frames 20-21, past the lag */
         for (int f = 0; f < 100; f++)
@@ -718,9 +724,7 @@ static void test_guessed_keys_are_unsure(void **state)
     (void)state;
     for (int guessed = 0; guessed < 2; guessed++) {
         rec r;
-        rec_init(&r, NULL);
-        cub_judge_rep rep = rep_rhe_keyed(0, 0, 60, 20, 0);
-        assert_int_equal(cub_judge_begin_rep(r.j, &rep), CUB_OK);
+        start_keyed(&r, 20);
         pose p = STILL;
         p.guess_right = guessed;
         play(&r, 100, 0, 100, p);
@@ -738,9 +742,7 @@ static void test_guessed_keys_are_unsure(void **state)
     /* guessed in a few frames only (a hanging arm the tracker loses now
      * and then): the seen frames decide */
     rec r;
-    rec_init(&r, NULL);
-    cub_judge_rep rep = rep_rhe_keyed(0, 0, 60, 20, 0);
-    assert_int_equal(cub_judge_begin_rep(r.j, &rep), CUB_OK);
+    start_keyed(&r, 20);
     pose p = STILL;
     p.guess_right = 1;
     for (int f = 0; f < 100; f++)
