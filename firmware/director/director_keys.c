@@ -24,9 +24,21 @@ static bool same_set(const cub_director_keys *a, const cub_director_keys *b)
     return true;
 }
 
-/* The moves whose keys the bear never shows in move m's clip: a child
- * holding them does another move (the previous one, or a guess), which is
- * a mistake at once. Logged when there are any. */
+/* Does set a rule set b out: a feature both name, in different sets (an arm
+ * up is not an arm half raised)? Keys on features b does not read (a knee
+ * bent, for a leg kicked out) may come with b's, in a child's own style. */
+static bool excludes(const cub_director_keys *a, const cub_director_keys *b)
+{
+    for (int i = 0; i < a->count; i++)
+        for (int k = 0; k < b->count; k++)
+            if (a->key[i].feature == b->key[k].feature && a->key[i].set != b->key[k].set)
+                return true;
+    return false;
+}
+
+/* The moves whose keys rule move m's out and that the bear never shows in
+ * m's clip: a child holding them does another move (the previous one, or
+ * a guess) instead, which is a mistake at once. Logged when there are any. */
 static void find_other_moves(cub_director *d, int m, const cub_fuzzy_frame *fr, int32_t n)
 {
     const cub_judge *j = d->desc.judge;
@@ -36,7 +48,8 @@ static void find_other_moves(cub_director *d, int m, const cub_fuzzy_frame *fr, 
     d->other_moves[m] = 0;
     for (int o = 0; o < d->desc.coach.move_count && o < 64; o++) {
         const cub_director_keys *k = &keys[o];
-        if (o == m || k->count <= 0 || k->count > CUB_JUDGE_MAX_KEYS || same_set(k, &keys[m]))
+        if (o == m || k->count <= 0 || k->count > CUB_JUDGE_MAX_KEYS || same_set(k, &keys[m]) ||
+            !excludes(k, &keys[m]))
             continue;
         if (cub_judge_first_match(j, k->key, k->count, fr, n) >= 0) continue;
         d->other_moves[m] |= 1ull << o;

@@ -56,7 +56,8 @@
  *   the mirror's joints seen, past the lag) while the keys are not, is a
  *   wrong verdict at once (why = mirror: the other arm or leg). And each
  *   of `other` (another move's keys, which the bear's clip of this move
- *   never shows), held S past the lag (frames with its joints seen, the
+ *   never shows and which rule this move's keys out: the director gives
+ *   those with a feature in a different set), held S past the lag (frames with its joints seen, the
  *   keys not matched) with no sign of the keys yet, is a wrong verdict at
  *   once (why = other: the child does another move; its fault is the
  *   keys' own, as for missed). Frames the
