@@ -262,7 +262,8 @@ static int second_spot(const cub_synth *s, double t_s, float *x, float *dz, floa
         return 1;
     }
     if (s->d.second_mode == CUB_SYNTH_SECOND_CROSS) {
-        double mid_s = s->total_s / 2;
+        /* mid-way, but from out of view: the child is there first */
+        double mid_s = s->total_s / 2 > CROSS_HALF_MM / speed ? s->total_s / 2 : CROSS_HALF_MM / speed;
         double x_mm = -(t_s - mid_s) * speed;
         *x += (float)(x_mm < -CROSS_HALF_MM ? -CROSS_HALF_MM : x_mm > CROSS_HALF_MM ? CROSS_HALF_MM : x_mm);
         *yaw = 90.0f;
