@@ -511,10 +511,11 @@ static int32_t choose_blob(cub_tracker *t, bool *same, bool *hidden)
     }
     *same = t->tracked && best >= 0 && best_score >= 0 && best_score < ID_FAR;
     if (*same) {
-        /* of the people within the gate, the one where the torso was */
+        /* two people about as near the prediction (within half the gate
+         * of each other): the one where the torso was */
         int32_t tb = torso_blob(t);
-        if (tb >= 0 && tb != best && person_like(&t->comps[tb]) && track_gap(t, pred, comp_centre(&t->comps[tb])) >= 0)
-            best = tb;
+        int32_t gap = tb >= 0 && tb != best && person_like(&t->comps[tb]) ? track_gap(t, pred, comp_centre(&t->comps[tb])) : -1;
+        if (gap >= 0 && gap - best_score <= ID_GATE_MM / 2) best = tb;
     }
     if (*same || !t->tracked || best_score < 0) return best;
     /* the track is alive: its pieces, or nobody, but no one else */
