@@ -356,12 +356,13 @@ static rep_slot *next_oldest(cub_judge *j, int64_t after)
     return best;
 }
 
-void judge_reps_frame(cub_judge *j, int64_t t_us, const cub_fuzzy_frame *f, cub_judge_out *out)
+void judge_reps_frame(cub_judge *j, int64_t t_us, const cub_fuzzy_frame *f, int too_close, cub_judge_out *out)
 {
     release_consumed(j, f);
     for (rep_slot *s = next_oldest(j, -1); s; s = next_oldest(j, s->seq)) {
+        if (too_close && t_us >= s->start_us) s->too_close = 1;
         if (t_us >= s->close_us) {
-            if (!s->right) {
+            if (!s->right && !s->too_close) {
                 cub_judge_event e = wrong(s, t_us, 0, j->d.key_mu);
                 judge_emit(j, out, &e);
             }
@@ -379,7 +380,7 @@ void judge_reps_frame(cub_judge *j, int64_t t_us, const cub_fuzzy_frame *f, cub_
             judge_emit(j, out, &e);
             continue;
         }
-        int32_t why = early_wrong(j, s, t_us, f);
+        int32_t why = s->too_close ? 0 : early_wrong(j, s, t_us, f);
         if (why) {
             /* missed early: told as the window's close would tell it */
             cub_judge_event e = wrong(s, t_us, why == CUB_JUDGE_WHY_MIRROR ? why : 0, j->d.key_mu);
