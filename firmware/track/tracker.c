@@ -15,7 +15,7 @@
  *   3. blobs by depth continuity                          trk_components
  *   4. player: the person-like blob on the player's track (its centre
  *      and velocity along the floor; nobody else takes over while the
- *      track lives, 1.5 s unseen); its hands before it merged back, a
+ *      track lives, 2 s unseen); its hands before it merged back, a
  *      blob joining it to another person split       trk_pick_player
  *   5. geodesic: root = the silhouette's thickest cell (the torso);
  *      Dijkstra over the player's cells with 3D steps, depth jumps
@@ -68,8 +68,8 @@
 
 #define TRK_DEFAULT_MIN_MM 500
 #define TRK_DEFAULT_MAX_MM 4500
-#define TRK_LOST_RESET 45 /* frames without the player before a new one may take over (1.5 s at 30 fps;
-                           * trk_pick_player holds 1.5 s by the frames' times) */
+#define TRK_LOST_RESET 60 /* frames without the player before a new one may take over (2 s at 30 fps;
+                           * trk_pick_player holds 2 s by the frames' times) */
 
 size_t cub_track_mem_size(const cub_track_desc *desc)
 {

@@ -391,7 +391,8 @@ static int64_t newcomer_score(trk_p3 cc) { return cc.z + 2 * trk_abs(cc.x); }
  * track is alive (unseen for less than ID_HOLD_US) nobody else becomes the
  * player; the player hidden but for pieces (an arm, the legs beside the
  * one in front) is those pieces at its depth. */
-#define ID_HOLD_US 1500000 /* a hidden player keeps its track this long */
+#define ID_HOLD_US 2000000 /* a hidden player keeps its track this long: an occlusion of 1.5 s and the
+                            * frames either side of it that show too little of the player */
 #define ID_GATE_MM 450     /* a blob's centre this near the prediction may be the player (a child moves 250 mm in 0.1 s) */
 #define ID_GATE_GROW 600   /* and this much farther per second unseen (mm/s) */
 #define ID_PART_DZ_MM 400  /* a piece of a hidden player: within this depth of the prediction */

@@ -333,6 +333,15 @@ static p3 occluder(int k)
     return (p3){0, 50, 1650};
 }
 
+/* frames 10..24 (1.5 s, the longest occlusion issue 20 asks the player to
+ * outlast): the same box */
+static p3 occluder_long(int k)
+{
+    if (k < 10 || k >= 25) return (p3){0, 0, 0};
+    box(-500, 500, 1700, 1600);
+    return (p3){0, 50, 1650};
+}
+
 /* a sibling of the child's height 650 mm to its side, 100 mm deeper */
 static p3 sibling(int k)
 {
@@ -373,6 +382,7 @@ static void test_player_keeps_its_identity(void **st)
     (void)st;
     expect_same_player(crosser, 0, 0, "crossing");
     expect_same_player(occluder, 0, 0, "occluded 1 s");
+    expect_same_player(occluder_long, 0, 0, "occluded 1.5 s");
     expect_same_player(sibling, -150, 20, "sibling");
 }
 
