@@ -4,7 +4,7 @@
 # every fold reported, in the scenes a child's room has (facing, turning,
 # travel, a second person, loose clothes).
 #
-#   scripts/eval_folds.sh BUILD_DIR [dev|heldout|all] [--quick] [--fold NAME] [--scene NAME] [--csv FILE]
+#   scripts/eval_folds.sh BUILD_DIR [dev|heldout|all] [--quick] [--identity] [--fold NAME] [--scene NAME] [--csv FILE]
 #   (also: scripts/eval_tracker.sh BUILD_DIR --folds ...)
 #
 # dev      the folds hand-set numbers may be chosen on (CMU subject groups,
@@ -15,6 +15,11 @@
 # --scene NAME  that scene's renders only (second: the second-person
 # renders, to work on identity without rendering the rest);
 # --fold NAME  that fold only; --csv FILE  every fold's rows for scripts
+# --identity  instead of the five scenes, the identity renders of issue 20
+#          point 2 (docs/tracker_eval.md): per fold one render per second
+#          person's mode (behind, walk-in, cross, sibling) with seed 2, half
+#          of them turning, plus a slow crossing (0.5 m/s: the child hidden
+#          about 1.5 s)
 #
 # Every render: cubtool synth-depth ... --seed 1 --frames 90 --fps 10 into
 # a temporary folder (EVAL_DUMPS=DIR keeps them for the next run), scored
@@ -25,7 +30,7 @@
 set -eu
 
 usage() {
-    echo "usage: scripts/eval_folds.sh BUILD_DIR [dev|heldout|all] [--quick] [--fold NAME] [--scene NAME] [--csv FILE]" >&2
+    echo "usage: scripts/eval_folds.sh BUILD_DIR [dev|heldout|all] [--quick] [--identity] [--fold NAME] [--scene NAME] [--csv FILE]" >&2
     exit 2
 }
 HERE=$(cd "$(dirname "$0")" && pwd)
@@ -59,11 +64,12 @@ fi
 [ $# -ge 1 ] || usage
 BUILD=$1
 shift
-SET=all QUICK=0 ONLY= CSV= SCENE=
+SET=all QUICK=0 ONLY= CSV= SCENE= IDENTITY=0
 while [ $# -gt 0 ]; do
     case $1 in
     dev | heldout | all) SET=$1 ;;
     --quick) QUICK=1 ;;
+    --identity) IDENTITY=1 ;;
     --fold) [ $# -ge 2 ] || usage; ONLY=$2; shift ;;
     --csv) [ $# -ge 2 ] || usage; CSV=$2; shift ;;
     --scene) [ $# -ge 2 ] || usage; SCENE=$2; shift ;;
@@ -123,6 +129,27 @@ scene_args() { # scene fold_index clip_index second_clip
     esac
 }
 
+# The identity renders of fold k (clips c_0..c_{n-1}, the next fold's
+# clips d_0..): for mode m of behind walk-in cross sibling, clip
+# c_{(k + 3m + 1) mod n} with d_m as the second person, turning every 1.5 s
+# when k + m is odd; and c_{(k + 2) mod n} crossed at 0.5 m/s by d_0.
+identity_jobs() { # fold set k clips next_clips
+    n=$(printf '%s\n' "$4" | tr ';' '\n' | wc -l)
+    nn=$(printf '%s\n' "$5" | tr ';' '\n' | wc -l)
+    m=0
+    for mode in $MODES slow; do
+        i=$((($3 + 3 * m + 1) % n)) sm=$m
+        [ "$mode" != slow ] || i=$((($3 + 2) % n)) sm=0
+        clip=$(printf '%s\n' "$4" | tr ';' '\n' | sed -n "$((i + 1))p")
+        other=$(printf '%s\n' "$5" | tr ';' '\n' | sed -n "$((sm % nn + 1))p" | cut -d' ' -f1)
+        extra="--second-mode $mode"
+        [ "$mode" != slow ] || extra="--second-mode cross --second-speed 500"
+        [ $((($3 + m) % 2)) = 0 ] || [ "$mode" = slow ] || extra="$extra --yaw-segments 1.5"
+        printf '%s|%s|i%d|identity|--clip %s --max-travel 700 --room --second-person %s %s\n' "$1" "$2" $m "$clip" "$other" "$extra"
+        m=$((m + 1))
+    done
+}
+
 # The job lines: the second person's clip is the next fold's first clip
 # (another source, never the fold's own).
 jobs() {
@@ -131,6 +158,13 @@ jobs() {
     k=0
     while IFS='|' read -r fold set clips; do
         next=$(sed -n "$(((k + 1) % nf + 1))p" "$RESULTS/folds" | cut -d'|' -f3 | cut -d';' -f1 | cut -d' ' -f1)
+        if [ "$IDENTITY" = 1 ]; then
+            if { [ "$SET" = all ] || [ "$SET" = "$set" ]; } && { [ -z "$ONLY" ] || [ "$ONLY" = "$fold" ]; }; then
+                identity_jobs "$fold" "$set" $k "$clips" "$(sed -n "$(((k + 1) % nf + 1))p" "$RESULTS/folds" | cut -d'|' -f3)"
+            fi
+            k=$((k + 1))
+            continue
+        fi
         if { [ "$SET" = all ] || [ "$SET" = "$set" ]; } && { [ -z "$ONLY" ] || [ "$ONLY" = "$fold" ]; } &&
             { [ "$QUICK" = 0 ] || [ "$fold" = cmu14 ] || [ "$fold" = animdraw ] || [ "$fold" = bandai_childish ]; }; then
             i=0
@@ -162,8 +196,9 @@ cleanup() { [ "$KEEP_RESULTS" = 1 ] || rm -rf "$RESULTS"; [ "$KEEP" = 1 ] || rm 
 trap cleanup EXIT INT TERM
 
 COMMON="--seed 1 --frames 90 --fps 10"
+[ "$IDENTITY" = 0 ] || COMMON="--seed 2 --frames 90 --fps 10"
 [ "$QUICK" = 0 ] || COMMON="--seed 1 --frames 8 --fps 10"
-echo "eval_folds: $SET folds$([ "$QUICK" = 0 ] || echo ' (quick sample)'), $COMMON, data $DATA"
+echo "eval_folds: $SET folds$([ "$QUICK" = 0 ] || echo ' (quick sample)')$([ "$IDENTITY" = 0 ] || echo ', identity renders'), $COMMON, data $DATA"
 jobs >"$RESULTS/jobs"
 [ -s "$RESULTS/jobs" ] || { echo "eval_folds: no fold matches" >&2; exit 1; }
 # each job line is one argument (tr: no xargs quoting inside)
@@ -216,8 +251,8 @@ awk -F, -v bands="yaw0-30 yaw30-60 yaw60-120 yaw120-180" '
         if (n["dev", "all"]) print row("dev folds", "dev", "dev")
         if (n["heldout", "all"]) print row("held-out folds", "heldout", "heldout")
         print row("all folds", "", "total")
-        split("facing turning travel second loose", sc, " ")
-        for (s = 1; s <= 5; s++) if (renders["scene " sc[s]]) print row("scene " sc[s], "", "scene " sc[s])
+        split("facing turning travel second loose identity", sc, " ")
+        for (s = 1; s <= 6; s++) if (renders["scene " sc[s]]) print row("scene " sc[s], "", "scene " sc[s])
         for (j = 1; j <= nj; j++) print row("joint " jorder[j], "", "joint " jorder[j])
     }' "$RESULTS/all.csv"
 [ "$FAILED" = 0 ] || { echo "eval_folds: some renders failed (above): the table lacks them" >&2; exit 1; }

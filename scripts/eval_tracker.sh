@@ -40,7 +40,7 @@
 # scripts/eval_folds.sh. The sets below are the history of rounds 1-10.
 set -eu
 
-usage() { echo "usage: scripts/eval_tracker.sh BUILD_DIR [--tuning|--heldout2|--heldout3] [--mirror] | BUILD_DIR --folds [dev|heldout|all] [--quick] [--fold NAME] [--csv FILE]" >&2; exit 2; }
+usage() { echo "usage: scripts/eval_tracker.sh BUILD_DIR [--tuning|--heldout2|--heldout3] [--mirror] | BUILD_DIR --folds [dev|heldout|all] [--quick] [--identity] [--fold NAME] [--scene NAME] [--csv FILE]" >&2; exit 2; }
 [ $# -ge 1 ] || usage
 if [ "${2:-}" = "--folds" ]; then
     B=$1

@@ -13,6 +13,7 @@ const char *cub_words_hint(const cub_song *song, int32_t hint)
     if (hint == CUB_COACH_HINT_COME_CLOSER) return "Come closer!";
     if (hint == CUB_COACH_HINT_CANT_SEE) return "I can't see you!";
     if (hint == CUB_COACH_HINT_WHERE) return "Where are you?";
+    if (hint == CUB_COACH_HINT_STEP_BACK) return "Step back";
     if (!song || hint < 0 || hint >= song->move_count) return NULL;
     return song->moves[hint].hint[0] ? song->moves[hint].hint : NULL;
 }

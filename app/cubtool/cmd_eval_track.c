@@ -164,24 +164,25 @@ static double dist3(const double a[3], const double b[3])
 /* Wrong person: a tracked player whose torso is nearer the second
  * person's true torso than the child's. In view: the child's true torso
  * joints are seen. */
-static void score_identity(eval_acc *acc, const cub_track_skeleton *s,
-                           const cub_synth_truth_frame *child, const cub_synth_truth_frame *other)
+static int score_identity(eval_acc *acc, const cub_track_skeleton *s,
+                          const cub_synth_truth_frame *child, const cub_synth_truth_frame *other)
 {
-    if (!child || !other || s->status == CUB_TRACK_NO_PLAYER) return;
+    if (!child || !other || s->status == CUB_TRACK_NO_PLAYER) return 0;
     double t[3], c[3], o[3];
     tracked_torso(s, t);
     truth_torso(child, c);
     truth_torso(other, o);
     acc->second_frames++;
-    if (dist3(t, o) >= dist3(t, c)) return;
+    if (dist3(t, o) >= dist3(t, c)) return 0;
     acc->wrong++;
     acc->wrong_in_view += child->visible[CUB_KJ_SPINE] || child->visible[CUB_KJ_SHOULDER_CENTRE];
+    return 1;
 }
 
 /* The joints of one frame into its band and the whole; one line of
- * --per-frame. */
+ * --per-frame (wrong: the player is the second person). */
 static void score_joints(eval_acc *acc, const cub_track_skeleton *s, const cub_synth_truth_frame *tr,
-                         double yaw_deg, int per_frame)
+                         double yaw_deg, int per_frame, int wrong)
 {
     int band = band_of(yaw_deg);
     double f_sum = 0;
@@ -204,8 +205,9 @@ static void score_joints(eval_acc *acc, const cub_track_skeleton *s, const cub_s
                      cub_kinect_joint_name(j), e);
     }
     if (per_frame)
-        printf("frame %d status=%d yaw=%.0f mean=%.0fmm off:%s\n", tr->frame, (int)s->status,
-               yaw_deg, f_n ? f_sum / f_n : 0.0, f_off);
+        printf("frame %d status=%d id=%d%s yaw=%.0f mean=%.0fmm off:%s\n", tr->frame,
+               (int)s->status, (int)s->player_id, wrong ? " WRONG-PERSON" : "", yaw_deg,
+               f_n ? f_sum / f_n : 0.0, f_off);
 }
 
 static tally sum_joints(const eval_acc *acc, int band)
@@ -306,8 +308,8 @@ static int parse_args(int argc, char **argv, eval_opts *o)
                 "the wrong person (its torso nearer the second person's than the child's).\n"
                 "The truth's gravity is given to the tracker unless --no-gravity.\n"
                 "--csv FILE: the same figures as kind,band,joint,n,within,mean_mm rows.\n"
-                "--per-frame: one line per frame (status, true yaw, mean error, the joints off by\n"
-                "more than 10 cm).\n");
+                "--per-frame: one line per frame (status, player id, WRONG-PERSON when the player\n"
+                "is the second person, true yaw, mean error, the joints off by more than 10 cm).\n");
             return 1;
         }
         if (!strcmp(argv[i], "--csv") && i + 1 < argc) o->csv = argv[++i];
@@ -349,8 +351,8 @@ static int run_frames(const eval_opts *o, const cub_tool_dump *d, const eval_tru
         if (o->print) print_frame(d->name[f], &s);
         const cub_synth_truth_frame *tr = truth_of(tt, have, f);
         if (!tr) continue;
-        score_joints(acc, &s, tr, truth_yaw_deg(tr, tt->gravity), o->per_frame);
-        score_identity(acc, &s, tr, truth_of(&tr_all->second, tr_all->have_second, f));
+        int wrong = score_identity(acc, &s, tr, truth_of(&tr_all->second, tr_all->have_second, f));
+        score_joints(acc, &s, tr, truth_yaw_deg(tr, tt->gravity), o->per_frame, wrong);
     }
     free(mem);
     return 0;

@@ -66,10 +66,13 @@ static void help(FILE *f)
                "                       that spot and stays; cross: walks across in front of\n"
                "                       the child (0.7 m nearer the camera), right to left,\n"
                "                       passing it mid-way; sibling: a child of similar height\n"
-               "                       (+8 %%) beside the child (0.65 m to its left)\n"
+               "                       (+8 %%) beside the child where it starts (0.65 m to\n"
+               "                       the side away from the image's centre)\n"
                "  --second-height MM   [1650; sibling: the child's + 8 %%]\n"
                "  --second-x MM, --second-dz MM   its offset right / farther [700, 900;\n"
-               "                       cross: 0, -700; sibling: -650, 100]\n"
+               "                       cross: 0, -700; sibling: +-650 from the child's start,\n"
+               "                       100]\n"
+               "  --second-speed MM_S  walk-in and cross walk this fast [1000]\n"
                "  --clean              no projector shadow, edge noise or holes\n"
                "                       (quantisation and the 0.5-4 m range stay)\n"
                "  --seed N             noise seed [1]; the same seed gives the same bytes\n"
@@ -178,6 +181,8 @@ static int parse_opt(opts *o, int argc, char **argv, int *i)
         o->d.second_x_mm = (float)x;
     else if (!strcmp(a, "--second-dz") && (ok = num(a, v, -5000, 5000, &x)))
         o->d.second_dz_mm = (float)x;
+    else if (!strcmp(a, "--second-speed") && (ok = num(a, v, 100, 5000, &x)))
+        o->d.second_speed_mm_s = (float)x;
     else {
         used = 0;
         if (!strcmp(a, "--mirror"))

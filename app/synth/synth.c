@@ -35,6 +35,8 @@ struct cub_synth {
     double total_s;
     seg second;
     int has_second;
+    float start_x, start_z;   /* the child's hips at the start (player frame): a sibling's spot */
+    float sib_own_x, sib_own_z; /* the sibling's own clip's hips at the start, about its spot */
     cub_fv3 second_pts[SP_COUNT]; /* of the frame last rendered */
     int last_frame;
     float *yaws;                  /* per yaw segment, degrees */
@@ -61,7 +63,9 @@ static void defaults(cub_synth_desc *d)
     int sib = d->second_mode == CUB_SYNTH_SECOND_SIBLING;
     int cross = d->second_mode == CUB_SYNTH_SECOND_CROSS;
     if (d->second_height_mm <= 0) d->second_height_mm = sib ? d->height_mm * 1.08f : 1650;
-    if (d->second_x_mm == 0) d->second_x_mm = sib ? -650 : cross ? 0 : 700;
+    if (d->second_speed_mm_s <= 0) d->second_speed_mm_s = WALK_MM_S;
+    /* a sibling's x stays 0 here: its side is chosen where the child starts */
+    if (d->second_x_mm == 0 && !sib) d->second_x_mm = cross ? 0 : 700;
     if (d->second_dz_mm == 0) d->second_dz_mm = sib ? 100 : cross ? -700 : 900;
 }
 
@@ -238,18 +242,29 @@ static void player_points(const cub_synth *s, double t_s, cub_fv3 out[SP_COUNT])
 static int second_spot(const cub_synth *s, double t_s, float *x, float *dz, float *yaw)
 {
     *x = s->d.second_x_mm, *dz = s->d.second_dz_mm, *yaw = 0;
+    double speed = s->d.second_speed_mm_s;
+    if (s->d.second_mode == CUB_SYNTH_SECOND_SIBLING) {
+        /* beside the child where it starts (a clip that travels starts
+         * off the spot), on the side away from the image's centre unless
+         * told: the child, in the middle, is the one the box plays with */
+        float side = s->start_x > 0 ? 650.0f : -650.0f;
+        *x = s->start_x - s->sib_own_x + (s->d.second_x_mm != 0 ? s->d.second_x_mm : side);
+        *dz += s->start_z - s->sib_own_z;
+        return 0;
+    }
     if (s->d.second_mode == CUB_SYNTH_SECOND_WALK_IN) {
-        double walked = (t_s - WALK_IN_FROM_S) * WALK_MM_S;
+        double walked = (t_s - WALK_IN_FROM_S) * speed;
         walked = walked < 0 ? 0 : walked > WALK_IN_MM ? WALK_IN_MM : walked;
         *x += WALK_IN_MM - (float)walked;
-        double arrived_s = t_s - WALK_IN_FROM_S - WALK_IN_MM / WALK_MM_S;
+        double arrived_s = t_s - WALK_IN_FROM_S - WALK_IN_MM / speed;
         /* walking to -x: facing its left (+90), then turning to the camera */
         *yaw = 90.0f * (1 - smooth01((float)arrived_s / YAW_TURN_S));
         return 1;
     }
     if (s->d.second_mode == CUB_SYNTH_SECOND_CROSS) {
-        double mid_s = s->total_s / 2;
-        double x_mm = -(t_s - mid_s) * WALK_MM_S;
+        /* mid-way, but from out of view: the child is there first */
+        double mid_s = s->total_s / 2 > CROSS_HALF_MM / speed ? s->total_s / 2 : CROSS_HALF_MM / speed;
+        double x_mm = -(t_s - mid_s) * speed;
         *x += (float)(x_mm < -CROSS_HALF_MM ? -CROSS_HALF_MM : x_mm > CROSS_HALF_MM ? CROSS_HALF_MM : x_mm);
         *yaw = 90.0f;
         return 1;
@@ -354,9 +369,20 @@ cub_err cub_synth_open(const cub_synth_desc *desc, const cub_synth_segment *segs
     }
     if (s->d.track) s->total_s = s->d.track->frame_count / (double)s->d.track->fps;
     if (!err && draw_yaws(s)) err = CUB_ERR_NOMEM;
+    if (!err && (s->nseg > 0 || s->d.track)) {
+        cub_fv3 p[SP_COUNT];
+        player_points(s, 0, p);
+        s->start_x = p[CUB_KJ_HIP_CENTRE].x, s->start_z = p[CUB_KJ_HIP_CENTRE].z;
+    }
     if (!err && s->d.second_clip) {
         err = load_segment(s, &s->second, s->d.second_clip, s->d.second_height_mm, 0, 0, 0, diag);
         s->has_second = !err;
+    }
+    if (!err && s->has_second) {
+        cub_fv3 q[SP_COUNT];
+        segment_points(&s->second, s->second.from_s, q);
+        limit_travel(q, s->d.max_travel_mm, s->d.pin);
+        s->sib_own_x = q[CUB_KJ_HIP_CENTRE].x, s->sib_own_z = q[CUB_KJ_HIP_CENTRE].z;
     }
     if (err) {
         cub_synth_close(s);

@@ -447,6 +447,13 @@ static void on_music_tag(cub_coach *c, const cub_event *ev, int32_t music_ms)
     coach_out_speed(c, move_speed(c, c->move, factor), CUB_COACH_WHY_SYNC);
 }
 
+/* Out of view: nobody (come closer) or a child too close to be seen
+ * whole (step back: the judge told so, CUB_EV_PLAYER b = 1). */
+static int32_t away_hint(const cub_coach *c)
+{
+    return c->too_close ? CUB_COACH_HINT_STEP_BACK : CUB_COACH_HINT_COME_CLOSER;
+}
+
 /* The camera (why CAMERA) or the child (AWAY) went mid-song: hold the
  * music and the dance, say so. The outro (every move danced, the music
  * playing to its end) pauses for the camera too. */
@@ -459,7 +466,8 @@ static void pause_song(cub_coach *c, int32_t why)
     c->phase = COACH_PH_NONE;
     c->tag_pending = false;
     coach_out_clip(c, c->desc.roles.idle, CUB_Q16_ONE, true, why);
-    coach_out_hint(c, why == CUB_COACH_WHY_AWAY ? CUB_COACH_HINT_WHERE : CUB_COACH_HINT_CANT_SEE,
+    coach_out_hint(c, why == CUB_COACH_WHY_AWAY ? (c->too_close ? CUB_COACH_HINT_STEP_BACK : CUB_COACH_HINT_WHERE)
+                                                : CUB_COACH_HINT_CANT_SEE,
                    why);
 }
 
@@ -467,7 +475,7 @@ static void resume_song(cub_coach *c, int32_t music_ms, int32_t why)
 {
     coach_music_pause(c, false, why);
     c->away_since_us = c->now_us; /* a child still missing gets the grace again */
-    coach_out_hint(c, c->player_in_view ? CUB_COACH_HINT_NONE : CUB_COACH_HINT_COME_CLOSER, why);
+    coach_out_hint(c, c->player_in_view ? CUB_COACH_HINT_NONE : away_hint(c), why);
     if (c->paused_phase == COACH_PH_OUTRO) {
         coach_out_state(c, CUB_COACH_DANCE, why);
         go_outro(c);
@@ -484,20 +492,24 @@ static bool away_too_long(const cub_coach *c)
            c->now_us - c->away_since_us >= (int64_t)CUB_COACH_AWAY_PAUSE_MS * 1000;
 }
 
-static void on_player(cub_coach *c, bool in_view, int32_t music_ms)
+static void on_player(cub_coach *c, bool in_view, bool too_close, int32_t music_ms)
 {
+    bool was_away = !c->player_in_view;
     c->player_in_view = in_view;
+    c->too_close = !in_view && too_close;
     if (!in_view) {
-        c->away_since_us = c->now_us;
+        if (!was_away) c->away_since_us = c->now_us;
         if (c->state != CUB_COACH_PAUSED)
-            coach_out_hint(c, CUB_COACH_HINT_COME_CLOSER, CUB_COACH_WHY_PLAYER);
+            coach_out_hint(c, away_hint(c), CUB_COACH_WHY_PLAYER);
+        else if (c->paused_for == CUB_COACH_WHY_AWAY)
+            coach_out_hint(c, c->too_close ? CUB_COACH_HINT_STEP_BACK : CUB_COACH_HINT_WHERE, CUB_COACH_WHY_PLAYER);
         return;
     }
     if (c->state == CUB_COACH_PAUSED && c->paused_for == CUB_COACH_WHY_AWAY) {
         resume_song(c, music_ms, CUB_COACH_WHY_PLAYER);
         return;
     }
-    if (c->hint == CUB_COACH_HINT_COME_CLOSER)
+    if (c->hint == CUB_COACH_HINT_COME_CLOSER || c->hint == CUB_COACH_HINT_STEP_BACK)
         coach_out_fault_hint(c, in_song(c) ? c->move : CUB_COACH_HINT_NONE,
                              correcting(c) ? c->fix : 0, CUB_COACH_WHY_PLAYER);
     if (c->state == CUB_COACH_DOZE)
@@ -574,7 +586,7 @@ cub_err cub_coach_handle(cub_coach *c, const cub_event *ev, int32_t music_ms)
         if (resting(c)) go_wake(c, CUB_COACH_WHY_CLAP);
         break;
     case CUB_EV_VERDICT: on_verdict(c, ev, music_ms); break;
-    case CUB_EV_PLAYER: on_player(c, ev->a != 0, music_ms); break;
+    case CUB_EV_PLAYER: on_player(c, ev->a != 0, ev->b != 0, music_ms); break;
     case CUB_EV_CLIP_DONE: on_clip_done(c, ev, music_ms); break;
     case CUB_EV_MUSIC_TAG: on_music_tag(c, ev, music_ms); break;
     case CUB_EV_SONG_END: on_song_end(c); break;

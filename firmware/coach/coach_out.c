@@ -159,6 +159,7 @@ static const char *hint_name(int32_t hint)
     return hint == CUB_COACH_HINT_COME_CLOSER ? "come_closer"
            : hint == CUB_COACH_HINT_CANT_SEE  ? "cant_see"
            : hint == CUB_COACH_HINT_WHERE     ? "where"
+           : hint == CUB_COACH_HINT_STEP_BACK ? "step_back"
                                               : "none";
 }
 

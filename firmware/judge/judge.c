@@ -94,17 +94,22 @@ void judge_emit(cub_judge *j, cub_judge_out *out, const cub_judge_event *e)
 }
 
 /* Presence with hysteresis over frames. */
-static void presence(cub_judge *j, int64_t t_us, int ok, cub_judge_out *out)
+static void presence(cub_judge *j, int64_t t_us, int32_t status, cub_judge_out *out)
 {
+    int ok = status == CUB_TRACK_OK;
     j->ok_run = ok ? j->ok_run + 1 : 0;
     j->bad_run = ok ? 0 : j->bad_run + 1;
-    int flip = j->in_view ? j->bad_run >= j->d.absent_frames : j->ok_run >= j->d.present_frames;
+    /* other statuses between too-close frames (the child nearer than
+     * the Kinect reads) do not end the episode; an OK frame does */
+    j->close_run = ok ? 0 : j->close_run + (status == CUB_TRACK_TOO_CLOSE);
+    int close = j->close_run == j->d.present_frames && status == CUB_TRACK_TOO_CLOSE;
+    int flip = close || (j->in_view ? j->bad_run >= j->d.absent_frames : j->ok_run >= j->d.present_frames);
     if (!flip) return;
-    j->in_view = !j->in_view;
+    j->in_view = close ? 0 : !j->in_view;
     cub_judge_event e = {
-        .ev = {.t_us = t_us, .type = CUB_EV_PLAYER, .a = j->in_view},
+        .ev = {.t_us = t_us, .type = CUB_EV_PLAYER, .a = j->in_view, .b = close},
         .kind = CUB_JUDGE_PLAYER,
-        .why = j->in_view ? CUB_JUDGE_WHY_IN_VIEW : CUB_JUDGE_WHY_OUT_OF_VIEW,
+        .why = close ? CUB_JUDGE_WHY_TOO_CLOSE : j->in_view ? CUB_JUDGE_WHY_IN_VIEW : CUB_JUDGE_WHY_OUT_OF_VIEW,
         .move = -1, .rep = -1, .feature = -1, .set = -1, .side = -1,
         .value = j->in_view ? CUB_Q16_ONE : 0,
     };
@@ -201,7 +206,7 @@ cub_err cub_judge_frame(cub_judge *j, int64_t t_us, const cub_track_skeleton *sk
     j->have_t = 1;
     j->last_t_us = t_us;
     int ok = skel->status == CUB_TRACK_OK;
-    presence(j, t_us, ok, out);
+    presence(j, t_us, skel->status, out);
     const cub_fuzzy_frame *f = NULL;
     uint32_t sure = 0;
     if (ok) {
@@ -212,7 +217,7 @@ cub_err cub_judge_frame(cub_judge *j, int64_t t_us, const cub_track_skeleton *sk
     } else {
         judge_gestures_reset(j);
     }
-    judge_reps_frame(j, t_us, f, sure, out);
+    judge_reps_frame(j, t_us, f, sure, skel->status == CUB_TRACK_TOO_CLOSE, out);
     return CUB_OK;
 }
 
@@ -223,7 +228,7 @@ const cub_fuzzy_frame *cub_judge_last_features(const cub_judge *j)
 
 static const char *const why_names[] = {
     "?", "keys", "missed", "pose", "no_player", "clap", "wave", "in_view", "out_of_view", "mirror",
-    "unsure", "other",
+    "unsure", "other", "too_close",
 };
 
 const char *cub_judge_why_name(int32_t why)

@@ -17,6 +17,7 @@ typedef struct rep_slot {
     int has_expected;
     cub_fuzzy_frame expected;
     int right;          /* a right verdict was issued */
+    int too_close;      /* the child stood too close in the window: not judged */
     int seen;           /* an OK frame fell in the window */
     int keys_held;      /* the keys alone were held once (for why=pose) */
     int run_on;         /* in a run of matching frames */
@@ -78,6 +79,7 @@ struct cub_judge {
     int have_t;
     int in_view;
     int32_t ok_run, bad_run;
+    int32_t close_run;  /* TOO_CLOSE frames since the last OK one */
     int calibrated;     /* floor and standing CoG known */
     cub_fuzzy_body body;
     cub_fuzzy_frame last;
@@ -106,8 +108,9 @@ void judge_gestures(cub_judge *j, int64_t t_us, const cub_track_skeleton *s, cub
 void judge_gestures_reset(cub_judge *j);
 
 /* judge_reps.c: the repetitions' verdicts for one frame; f NULL when the
- * frame is not OK; sure: bit f when feature f's joints were all seen. */
+ * frame is not OK; sure: bit f when feature f's joints were all seen;
+ * too_close: the child stands too close this frame. */
 void judge_reps_frame(cub_judge *j, int64_t t_us, const cub_fuzzy_frame *f, uint32_t sure,
-                      cub_judge_out *out);
+                      int too_close, cub_judge_out *out);
 
 #endif

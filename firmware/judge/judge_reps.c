@@ -430,12 +430,13 @@ static cub_judge_event closing(const cub_judge *j, const rep_slot *s, int64_t t_
 }
 
 void judge_reps_frame(cub_judge *j, int64_t t_us, const cub_fuzzy_frame *f, uint32_t sure,
-                      cub_judge_out *out)
+                      int too_close, cub_judge_out *out)
 {
     release_consumed(j, f);
     for (rep_slot *s = next_oldest(j, -1); s; s = next_oldest(j, s->seq)) {
+        if (too_close && t_us >= s->start_us) s->too_close = 1;
         if (t_us >= s->close_us) {
-            if (!s->right) {
+            if (!s->right && !s->too_close) {
                 cub_judge_event e = closing(j, s, t_us);
                 judge_emit(j, out, &e);
             }
@@ -453,7 +454,7 @@ void judge_reps_frame(cub_judge *j, int64_t t_us, const cub_fuzzy_frame *f, uint
             judge_emit(j, out, &e);
             continue;
         }
-        int32_t why = early_wrong(j, s, t_us, f, sure);
+        int32_t why = s->too_close ? 0 : early_wrong(j, s, t_us, f, sure);
         if (why) {
             /* missed early: told as the window's close would tell it */
             cub_judge_event e = wrong(s, t_us, why == CUB_JUDGE_WHY_MISSED ? 0 : why, j->d.key_mu);

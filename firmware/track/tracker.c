@@ -15,7 +15,7 @@
  *   3. blobs by depth continuity                          trk_components
  *   4. player: the person-like blob on the player's track (its centre
  *      and velocity along the floor; nobody else takes over while the
- *      track lives, 1.5 s unseen); its hands before it merged back, a
+ *      track lives, 2 s unseen); its hands before it merged back, a
  *      blob joining it to another person split       trk_pick_player
  *   5. geodesic: root = the silhouette's thickest cell (the torso);
  *      Dijkstra over the player's cells with 3D steps, depth jumps
@@ -59,14 +59,17 @@
  * (test_trk_resolvers), then the folds (docs/tracker_eval.md).
  *
  * Defaults: min_mm 500, max_mm 4500 (readings outside are ignored). Status:
- * TOO_CLOSE when the player's centre is nearer than 1000 mm, TOO_FAR beyond
- * 3500 mm, PARTLY_OUT when the body touches the image's edge. */
+ * TOO_CLOSE when the player's centre is nearer than 1000 mm or any body
+ * that near fills an eighth of the view (with or without a player: a
+ * child bent over at 0.6 m is no person-like blob, and whoever stands
+ * behind it is not the player to judge), TOO_FAR beyond 3500 mm,
+ * PARTLY_OUT when the body touches the image's edge. */
 #include "trk_internal.h"
 
 #define TRK_DEFAULT_MIN_MM 500
 #define TRK_DEFAULT_MAX_MM 4500
-#define TRK_LOST_RESET 45 /* frames without the player before a new one may take over (1.5 s at 30 fps;
-                           * trk_pick_player holds 1.5 s by the frames' times) */
+#define TRK_LOST_RESET 60 /* frames without the player before a new one may take over (2 s at 30 fps;
+                           * trk_pick_player holds 2 s by the frames' times) */
 
 size_t cub_track_mem_size(const cub_track_desc *desc)
 {
@@ -107,6 +110,33 @@ static int32_t status_of(const cub_tracker *t, int32_t comp)
     return border > 2 ? CUB_TRACK_PARTLY_OUT : CUB_TRACK_OK;
 }
 
+/* A body nearer than the play range fills a good part of the view (an
+ * eighth of the grid: a child at 0.6-0.9 m, even bent so far that it is
+ * no person-like blob): the camera cannot see the player whole, whoever
+ * else it sees behind. */
+#define CLOSE_BODY_CELLS (TRK_CELLS / 8)
+static bool body_too_close(const cub_tracker *t)
+{
+    for (int32_t k = 0; k < t->ncomps; k++) {
+        const trk_comp *c = &t->comps[k];
+        if (c->n >= CLOSE_BODY_CELLS && c->sz / c->n < TRK_CLOSE_MM) return true;
+    }
+    return false;
+}
+
+/* The player was too close last time it was seen, and where it was the
+ * camera now reads nothing in most cells: it came nearer than the
+ * Kinect's 0.5 m (a child bending toward the box), it did not leave. */
+static bool still_too_close(const cub_tracker *t)
+{
+    if (!t->have_prev || t->prev.status != CUB_TRACK_TOO_CLOSE || t->lost_frames > TRK_LOST_RESET) return false;
+    int32_t blank = 0, cells = 0;
+    for (int32_t gy = 0; gy < TRK_GH; gy++)
+        for (int32_t gx = t->seen_gx0; gx <= t->seen_gx1 && gx < TRK_GW; gx++)
+            cells++, blank += t->z[gy * TRK_GW + gx] == 0;
+    return cells > 0 && blank * 2 >= cells;
+}
+
 static void no_player(cub_tracker *t, cub_track_skeleton *out)
 {
     if (++t->lost_frames > TRK_LOST_RESET) t->tracked = false;
@@ -132,13 +162,16 @@ cub_err cub_track_frame(cub_tracker *t, const uint16_t *raw, int64_t t_us, const
     trk_components(t);
     int32_t comp = trk_pick_player(t);
     int32_t root = comp >= 0 ? trk_root_cell(t) : -1;
+    bool close = body_too_close(t);
     if (root < 0) {
+        if (!close) close = still_too_close(t);
         no_player(t, out);
+        if (close) out->status = CUB_TRACK_TOO_CLOSE;
         return CUB_OK;
     }
     int32_t ext[TRK_MAX_EXTREMA];
     int32_t n = trk_extrema(t, root, 150, ext, TRK_MAX_EXTREMA);
-    out->status = status_of(t, comp);
+    out->status = close ? CUB_TRACK_TOO_CLOSE : status_of(t, comp);
     out->player_id = t->player_id;
     trk_fit_skeleton(t, root, ext, n, out);
     trk_smooth(t, out);

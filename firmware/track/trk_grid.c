@@ -1,6 +1,7 @@
 /* The tracker's first stages on the 160x120 grid: depth per cell, the
  * floor, connected blobs, and which blob is the player. */
 #include "trk_internal.h"
+#include "trk_body.h"
 
 int32_t trk_len(int32_t dx, int32_t dy, int32_t dz)
 {
@@ -250,8 +251,29 @@ static void merge_cut_off(cub_tracker *t, int32_t pid, int32_t pz, const uint8_t
     }
 }
 
+/* A piece next to someone who stands before the player (its box within
+ * 2 cells of that person's), at that person's depth, is that person's:
+ * a crosser's arm reaching past the child, the crosser's body cut by its
+ * own arm, not the child's hand. */
+#define ID_FRONT_MM 350   /* a blob this much nearer than the player (or its prediction) is someone in front */
+#define OTHERS_PART_DZ 300 /* a piece this near in depth to someone in front is theirs */
+static bool part_of_someone_in_front(const cub_tracker *t, int32_t pid, int32_t pz, const trk_comp *c)
+{
+    int32_t cz = (int32_t)(c->sz / c->n);
+    for (int32_t k = 0; k < t->ncomps; k++) {
+        const trk_comp *o = &t->comps[k];
+        if (k == pid || o == c || !person_like(o)) continue;
+        int32_t oz = (int32_t)(o->sz / o->n);
+        if (oz >= pz - ID_FRONT_MM || trk_abs(cz - oz) > OTHERS_PART_DZ) continue;
+        if (c->gx1 < o->gx0 - 2 || c->gx0 > o->gx1 + 2 || c->gy1 < o->gy0 - 2 || c->gy0 > o->gy1 + 2) continue;
+        return true;
+    }
+    return false;
+}
+
 /* Small blobs in front of the player and overlapping it in the image are
- * its own hands and forearms (a hand before the chest is a depth jump). */
+ * its own hands and forearms (a hand before the chest is a depth jump),
+ * unless they are someone else's who stands in front. */
 static void merge_front_parts(cub_tracker *t, int32_t pid)
 {
     const trk_comp *p = &t->comps[pid];
@@ -264,6 +286,7 @@ static void merge_front_parts(cub_tracker *t, int32_t pid)
         if (c->gx1 < p->gx0 - 2 || c->gx0 > p->gx1 + 2 || c->gy1 < p->gy0 - 2 || c->gy0 > p->gy1 + 2) continue;
         trk_p3 cc = comp_centre(c);
         if (cc.z > pz + 100 || cc.z < pz - 900 || trk_abs(cc.x - pc.x) > 1000) continue;
+        if (part_of_someone_in_front(t, pid, pz, c)) continue;
         front[k] = 1;
         for (int32_t i = 0; i < TRK_CELLS; i++)
             if (t->label[i] == k) t->mask[i] = 1;
@@ -368,10 +391,10 @@ static int64_t newcomer_score(trk_p3 cc) { return cc.z + 2 * trk_abs(cc.x); }
  * track is alive (unseen for less than ID_HOLD_US) nobody else becomes the
  * player; the player hidden but for pieces (an arm, the legs beside the
  * one in front) is those pieces at its depth. */
-#define ID_HOLD_US 1500000 /* a hidden player keeps its track this long */
+#define ID_HOLD_US 2000000 /* a hidden player keeps its track this long: an occlusion of 1.5 s and the
+                            * frames either side of it that show too little of the player */
 #define ID_GATE_MM 450     /* a blob's centre this near the prediction may be the player (a child moves 250 mm in 0.1 s) */
 #define ID_GATE_GROW 600   /* and this much farther per second unseen (mm/s) */
-#define ID_FRONT_MM 350    /* a blob this much nearer than the prediction is someone in front */
 #define ID_PART_DZ_MM 400  /* a piece of a hidden player: within this depth of the prediction */
 #define ID_PART_CELLS 12   /* and no smaller */
 #define ID_MAX_SPEED 2500  /* mm/s: a child's run; faster is a wrong centre, not motion */
@@ -436,8 +459,41 @@ static int32_t player_part(const cub_tracker *t, trk_p3 pred)
         if (c->n < ID_PART_CELLS || (best >= 0 && c->n <= t->comps[best].n)) continue;
         trk_p3 cc = comp_centre(c);
         if (trk_abs(cc.z - pred.z) > ID_PART_DZ_MM || track_gap(t, pred, cc) < 0) continue;
+        if (part_of_someone_in_front(t, -1, pred.z, c)) continue; /* the hider's own arm */
         best = k;
     }
+    return best;
+}
+
+/* The blob holding last frame's torso (the skeleton's hip centre, spine
+ * and shoulder centre) moved on at the track's velocity: the cells within
+ * TORSO_WIN cells of where it projects, within TORSO_DZ of its depth, by
+ * blob; the blob with most, -1 none. When the player's blob splits (two
+ * children who stood touching part), the piece where the body was is the
+ * player, not the piece nearer the blob's old centre (the other child
+ * and the furniture pulled that centre their way). */
+#define TORSO_WIN 4
+#define TORSO_DZ 300
+static int32_t torso_blob(const cub_tracker *t)
+{
+    static const int part[3] = {CUB_KJ_HIP_CENTRE, CUB_KJ_SPINE, CUB_KJ_SHOULDER_CENTRE};
+    if (!t->have_prev || t->prev.status == CUB_TRACK_NO_PLAYER) return -1;
+    trk_p3 p = {0, 0, 0};
+    for (int k = 0; k < 3; k++)
+        p.x += (t->prev.joint_mm[part[k]].x >> 16) / 3, p.y += (t->prev.joint_mm[part[k]].y >> 16) / 3,
+            p.z += (t->prev.joint_mm[part[k]].z >> 16) / 3;
+    int32_t u = unseen_us(t);
+    p.x += per_s(t->vel.x, u), p.y += per_s(t->vel.y, u), p.z += per_s(t->vel.z, u);
+    if (p.z <= 0) return -1;
+    int32_t gx0, gy0, count[TRK_MAX_COMPS] = {0}, best = -1;
+    grid_of(p, &gx0, &gy0);
+    for (int32_t gy = gy0 - TORSO_WIN; gy <= gy0 + TORSO_WIN; gy++)
+        for (int32_t gx = gx0 - TORSO_WIN; gx <= gx0 + TORSO_WIN; gx++) {
+            if (!on_grid(gx, gy)) continue;
+            int32_t i = gy * TRK_GW + gx, l = t->label[i];
+            if (l < 0 || trk_abs(t->z[i] - p.z) > TORSO_DZ) continue;
+            if (++count[l] > (best >= 0 ? count[best] : 0)) best = l;
+        }
     return best;
 }
 
@@ -455,6 +511,13 @@ static int32_t choose_blob(cub_tracker *t, bool *same, bool *hidden)
         if (score < best_score) best_score = score, best = k;
     }
     *same = t->tracked && best >= 0 && best_score >= 0 && best_score < ID_FAR;
+    if (*same) {
+        /* two people about as near the prediction (within half the gate
+         * of each other): the one where the torso was */
+        int32_t tb = torso_blob(t);
+        int32_t gap = tb >= 0 && tb != best && person_like(&t->comps[tb]) ? track_gap(t, pred, comp_centre(&t->comps[tb])) : -1;
+        if (gap >= 0 && gap - best_score <= ID_GATE_MM / 2) best = tb;
+    }
     if (*same || !t->tracked || best_score < 0) return best;
     /* the track is alive: its pieces, or nobody, but no one else */
     int32_t part = *hidden ? player_part(t, pred) : -1;
@@ -465,7 +528,8 @@ static int32_t choose_blob(cub_tracker *t, bool *same, bool *hidden)
 /* The track follows the blob seen: its centre, and the velocity along the
  * floor from the last sighting (people walk on it). A player with someone
  * in front shows pieces whose centre is not the body's: the centre goes
- * half-way to them from the prediction, the velocity and columns stay. */
+ * half-way to them from the prediction (a mere piece: across the image
+ * only), the velocity and columns stay. */
 static void track_update(cub_tracker *t, int32_t blob, bool same, bool hidden)
 {
     trk_p3 c = comp_centre(&t->comps[blob]), pred = predicted(t);
@@ -473,7 +537,11 @@ static void track_update(cub_tracker *t, int32_t blob, bool same, bool hidden)
     if (!same) {
         t->vel = (trk_p3){0, 0, 0};
     } else if (hidden) {
-        c = (trk_p3){(c.x + pred.x) / 2, (c.y + pred.y) / 2, (c.z + pred.z) / 2};
+        /* a piece (not a whole body) says little of the body's depth: a
+         * hand reaching forward would pull the track toward whoever hides
+         * the player, frame after frame */
+        int32_t z = person_like(&t->comps[blob]) ? (c.z + pred.z) / 2 : pred.z;
+        c = (trk_p3){(c.x + pred.x) / 2, (c.y + pred.y) / 2, z};
     } else if (u > 0 && u <= 200000) {
         trk_p3 v = {(int32_t)((int64_t)(c.x - t->centre.x) * 1000000 / u),
                     (int32_t)((int64_t)(c.y - t->centre.y) * 1000000 / u),

@@ -31,6 +31,7 @@ static void test_each_coach_hint_has_its_words(void **state)
     assert_string_equal(cub_words_hint(&song, CUB_COACH_HINT_COME_CLOSER), "Come closer!");
     assert_string_equal(cub_words_hint(&song, CUB_COACH_HINT_CANT_SEE), "I can't see you!");
     assert_string_equal(cub_words_hint(&song, CUB_COACH_HINT_WHERE), "Where are you?");
+    assert_string_equal(cub_words_hint(&song, CUB_COACH_HINT_STEP_BACK), "Step back");
     assert_string_equal(cub_words_hint(&song, 0), "Clap with me!");
     assert_null(cub_words_hint(&song, CUB_COACH_HINT_NONE));
     assert_null(cub_words_hint(&song, 1)); /* a move without words shows none */
@@ -41,7 +42,7 @@ static void test_a_hint_outside_the_song_has_no_words(void **state)
     (void)state;
     cub_song song = two_moves();
     assert_null(cub_words_hint(&song, 2));
-    assert_null(cub_words_hint(&song, -5));
+    assert_null(cub_words_hint(&song, -6));
     assert_null(cub_words_hint(NULL, 0));
     /* The coach's own hints need no song. */
     assert_string_equal(cub_words_hint(NULL, CUB_COACH_HINT_CANT_SEE), "I can't see you!");

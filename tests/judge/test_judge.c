@@ -1068,6 +1068,45 @@ static void test_presence_hysteresis(void **state)
     assert_int_equal(r.ev[1].ev.t_us, (int64_t)(f - 1) * FRAME_US);
 }
 
+/* A child too close (issue 20 point 9): out of view at once with b = 1
+ * (the coach says "Step back"), and a repetition whose window saw it too
+ * close gets no verdict, wrong or right (the same window without the
+ * tracker is wrong: test_no_player_is_wrong_and_not_in_view). Frames the
+ * tracker cannot read at all between the too-close ones do not end it. */
+static void test_too_close_is_step_back_never_a_verdict(void **state)
+{
+    (void)state;
+    rec r;
+    rec_init(&r, NULL);
+    pose close = bent_right(), blank = STILL;
+    close.status = CUB_TRACK_TOO_CLOSE;
+    blank.status = CUB_TRACK_NO_PLAYER;
+    int f = 0;
+    for (; f < 10; f++)
+        feed(&r, f, STILL); /* in view at frame 4 */
+    cub_judge_rep rep = rep_rhe(0, 10, 70);
+    assert_int_equal(cub_judge_begin_rep(r.j, &rep), CUB_OK);
+    for (; f < 120; f++)
+        feed(&r, f, f % 4 == 3 ? blank : close);
+    assert_int_equal(count(&r, CUB_JUDGE_VERDICT), 0);
+    assert_int_equal(count(&r, CUB_JUDGE_PLAYER), 2);
+    const cub_judge_event *e = nth(&r, CUB_JUDGE_PLAYER, 1);
+    assert_int_equal(e->ev.a, 0);
+    assert_int_equal(e->ev.b, 1);
+    assert_int_equal(e->why, CUB_JUDGE_WHY_TOO_CLOSE);
+    /* the 5th too-close frame: 10, 12, 13, 14, 16 (11 and 15 read nothing) */
+    assert_int_equal(e->ev.t_us, 16LL * FRAME_US);
+    /* stepping back: in view again, and judged again */
+    cub_judge_rep next = rep_rhe(1, 130, 190);
+    for (; f < 130; f++)
+        feed(&r, f, STILL);
+    assert_int_equal(cub_judge_begin_rep(r.j, &next), CUB_OK);
+    for (; f < 260; f++)
+        feed(&r, f, STILL);
+    assert_int_equal(count(&r, CUB_JUDGE_VERDICT), 1);
+    assert_int_equal(nth(&r, CUB_JUDGE_PLAYER, 2)->ev.a, 1);
+}
+
 /* ---- determinism -------------------------------------------------------- */
 
 static void log_sink(void *user, const char *line, size_t len)
@@ -1158,6 +1197,7 @@ int main(void)
         cmocka_unit_test(test_wave_swings_sideways),
         cmocka_unit_test(test_wave_needs_two_reversals),
         cmocka_unit_test(test_presence_hysteresis),
+        cmocka_unit_test(test_too_close_is_step_back_never_a_verdict),
         cmocka_unit_test(test_same_input_same_events),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -256,8 +256,9 @@ static cub_synth *open_second(int mode, const char *clip)
 /* behind: there from the start, right of the child (+x) and farther.
  * walk-in: out of view at the start, in view once arrived (after 3.4 s).
  * cross: out of view at the ends, nearer than the child mid-way and
- * passing the image's centre. sibling: the child's height + 8 %, on its
- * left (the image's left; the same clip as the child, so the same pose).
+ * passing the image's centre. sibling: the child's height + 8 %, 650 mm
+ * beside where the child starts, away from the image's centre (the same
+ * clip as the child, so the same pose).
  * Each with its own truth. */
 static void test_second_person_modes(void **state)
 {
@@ -295,7 +296,14 @@ static void test_second_person_modes(void **state)
                      fmin(f->truth.joint_mm[CUB_KJ_FOOT_L][1], f->truth.joint_mm[CUB_KJ_FOOT_R][1]);
     printf("synth: sibling: head above feet %.0f mm (the child %.0f), column %.0f\n", v.height_mm,
            child_h, v.mean_u);
-    assert_true(v.pixels > 2000 && v.mean_u < W / 2 && v.visible > 10);
+    /* beside the child where it starts, on the side away from the centre */
+    double cx = f->truth.joint_mm[CUB_KJ_HIP_CENTRE][0], cz = f->truth.joint_mm[CUB_KJ_HIP_CENTRE][2];
+    cub_synth_truth_frame sib;
+    assert_int_equal(cub_synth_second_truth(s, &sib), CUB_OK);
+    double sx = sib.joint_mm[CUB_KJ_HIP_CENTRE][0] - cx, sz = sib.joint_mm[CUB_KJ_HIP_CENTRE][2] - cz;
+    printf("synth: sibling: %.0f mm beside the child's start (x %.0f), %.0f mm deeper\n", sx, cx, sz);
+    assert_true(fabs(fabs(sx) - 650) < 30 && sx * (cx > 0 ? 1 : -1) > 0 && fabs(sz - 100) < 30);
+    assert_true(v.pixels > 2000 && v.visible > 10);
     assert_true(v.height_mm > 1.0 * child_h && v.height_mm < 1.2 * child_h);
     cub_synth_close(s);
 }

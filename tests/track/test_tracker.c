@@ -333,6 +333,15 @@ static p3 occluder(int k)
     return (p3){0, 50, 1650};
 }
 
+/* frames 10..24 (1.5 s, the longest occlusion issue 20 asks the player to
+ * outlast): the same box */
+static p3 occluder_long(int k)
+{
+    if (k < 10 || k >= 25) return (p3){0, 0, 0};
+    box(-500, 500, 1700, 1600);
+    return (p3){0, 50, 1650};
+}
+
 /* a sibling of the child's height 650 mm to its side, 100 mm deeper */
 static p3 sibling(int k)
 {
@@ -373,7 +382,35 @@ static void test_player_keeps_its_identity(void **st)
     (void)st;
     expect_same_player(crosser, 0, 0, "crossing");
     expect_same_player(occluder, 0, 0, "occluded 1 s");
+    expect_same_player(occluder_long, 0, 0, "occluded 1.5 s");
     expect_same_player(sibling, -150, 20, "sibling");
+}
+
+/* ---- too close (issue 20 point 9) --------------------------------------- */
+
+/* A body 0.65 m from the camera fills the view: TOO_CLOSE, whoever stands
+ * behind it (an adult at 2.4 m is not the player to judge); bending nearer
+ * than the Kinect reads (0.4 m: no readings where it was), still
+ * TOO_CLOSE, not NO_PLAYER ("Come closer" would be the wrong words). */
+static void test_too_close_is_told(void **st)
+{
+    (void)st;
+    cub_tracker *t = new_tracker();
+    cub_track_skeleton s;
+    cub_vec3 g = {0, -1000 * 65536, 0};
+    for (int k = 0; k < 6; k++) {
+        int32_t z = k < 3 ? 650 : 400;
+        clear_scene(800);
+        p3 b[CUB_KJ_COUNT];
+        child_pose(-700, 2400, 0, 1400, b);
+        for (int jj = 0; jj < CUB_KJ_COUNT; jj++) b[jj].y += 800 * 400 / 1000 - 320;
+        draw_child(b, 1400);
+        box(-250, 250, 1100, z);
+        to_raw();
+        cub_track_frame(t, frame, (int64_t)k * 100000, &g, &s);
+        printf("track too close: body at %d mm: status %d\n", z, s.status);
+        assert_int_equal(s.status, CUB_TRACK_TOO_CLOSE);
+    }
 }
 
 /* ---- the real frames against the hand labels --------------------------- */
@@ -400,8 +437,26 @@ static int joint_by_name(const char *n)
     return -1;
 }
 
-/* A label's 3D point: the median depth around the pixel, plus 40 mm. */
-static int label_point(const uint16_t *raw, int u, int v, double *p)
+/* How far a joint's centre lies behind the body's surface facing the
+ * camera, for the adult of the real frames (tests/labels/README.md: half
+ * the part's front-to-back depth): the head about 190 mm deep, the
+ * shoulder about 100, the elbow 70, the hand 30. The tracker's joints are
+ * centres too, so a label's point is the surface plus this. */
+static double centre_depth_mm(int j)
+{
+    switch (j) {
+    case CUB_KJ_HEAD: return 95;
+    case CUB_KJ_SHOULDER_L:
+    case CUB_KJ_SHOULDER_R: return 50;
+    case CUB_KJ_ELBOW_L:
+    case CUB_KJ_ELBOW_R: return 35;
+    default: return 15;
+    }
+}
+
+/* A label's 3D point: the median depth around the pixel (the surface),
+ * plus the joint's depth behind it. */
+static int label_point(const uint16_t *raw, int u, int v, int j, double *p)
 {
     int zs[121], n = 0;
     for (int dv = -5; dv <= 5; dv++)
@@ -417,7 +472,7 @@ static int label_point(const uint16_t *raw, int u, int v, double *p)
             int tmp = zs[b];
             zs[b] = zs[b - 1], zs[b - 1] = tmp;
         }
-    double z = zs[n / 2] + 40;
+    double z = zs[n / 2] + centre_depth_mm(j);
     p[0] = (u - CUB_KINECT_CX) * z / F, p[1] = (CUB_KINECT_CY - v) * z / F, p[2] = z;
     return 0;
 }
@@ -437,7 +492,7 @@ static void test_real_frames_against_hand_labels(void **st)
         skip();
     }
     cub_tracker *t = new_tracker();
-    char line[512], cur[256] = "";
+    char line[512], cur[256] = "", printed[256] = "";
     cub_track_skeleton s = {0};
     int first_id = -1, n = 0, in = 0, nkey = 0, inkey = 0;
     double esum[CUB_KJ_COUNT] = {0};
@@ -455,15 +510,18 @@ static void test_real_frames_against_hand_labels(void **st)
         }
         int j = joint_by_name(jn);
         double p[3];
-        if (j < 0 || us[0] == '-' || label_point(frame, atoi(us), atoi(vs), p)) continue;
+        if (j < 0 || us[0] == '-' || label_point(frame, atoi(us), atoi(vs), j, p)) continue;
         double dx = s.joint_mm[j].x / 65536.0 - p[0], dy = s.joint_mm[j].y / 65536.0 - p[1],
                dz = s.joint_mm[j].z / 65536.0 - p[2];
         double e = sqrt(dx * dx + dy * dy + dz * dz);
         esum[j] += e, ecount[j]++;
         n++, in += e <= 100;
         if (j != CUB_KJ_ELBOW_L && j != CUB_KJ_ELBOW_R) nkey++, inkey += e <= 100;
-        if (e > 100) printf("track real: %s %s off by %.0f mm\n", fname, jn, e);
+        /* one line per frame: each joint's error (mm) and its depth part */
+        if (strcmp(fname, printed)) printf("%strack real: %s", printed[0] ? "\n" : "", fname), snprintf(printed, sizeof printed, "%s", fname);
+        printf(" %s=%.0f(dz%+.0f)", jn, e, dz);
     }
+    printf("\n");
     fclose(lf);
     printf("track real:");
     for (int j = 0; j < CUB_KJ_COUNT; j++)
@@ -512,6 +570,7 @@ int main(void)
         cmocka_unit_test(test_capsule_child_joints_within_10cm),
         cmocka_unit_test(test_second_person_never_becomes_the_player),
         cmocka_unit_test(test_player_keeps_its_identity),
+        cmocka_unit_test(test_too_close_is_told),
         cmocka_unit_test(test_real_frames_against_hand_labels),
         cmocka_unit_test(test_output_hash_is_pinned),
     };

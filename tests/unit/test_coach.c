@@ -707,6 +707,29 @@ static void test_player_away_shows_come_closer(void **s)
     assert_int_equal(act(&c, CUB_COACH_ACT_HINT, 0)->hint, 0);
 }
 
+/* A child too close (the judge's CUB_EV_PLAYER a = 0, b = 1): "Step back",
+ * not "Come closer!"; still too close when the song pauses, "Step back"
+ * again instead of "Where are you?"; the judge's verdicts are none (see
+ * test_judge), and one that came would be set aside. Back in view: the
+ * move's words. */
+static void test_too_close_shows_step_back(void **s)
+{
+    cub_coach c;
+    start_dancing(&c, 0);
+    send(&c, 2000, CUB_EV_PLAYER, 0, 1, 1000);
+    assert_int_equal(act(&c, CUB_COACH_ACT_HINT, 0)->hint, CUB_COACH_HINT_STEP_BACK);
+    assert_true(logged("t=2.000 coach hint show=step_back reason=player"));
+    send(&c, 2500, CUB_EV_VERDICT, 0, 0, 1500);
+    assert_int_equal(c.state, CUB_COACH_DANCE); /* nobody corrected */
+    tick(&c, 2000 + CUB_COACH_AWAY_PAUSE_MS, 1000 + CUB_COACH_AWAY_PAUSE_MS);
+    assert_int_equal(c.state, CUB_COACH_PAUSED);
+    assert_int_equal(c.hint, CUB_COACH_HINT_STEP_BACK); /* not "Where are you?" */
+    send(&c, 8000, CUB_EV_PLAYER, 1, 0, 1000 + CUB_COACH_AWAY_PAUSE_MS);
+    assert_int_equal(c.state, CUB_COACH_DANCE);
+    assert_true(act(&c, CUB_COACH_ACT_HINT, 0)->hint != CUB_COACH_HINT_STEP_BACK);
+    assert_false(c.too_close);
+}
+
 /* A child who steps out of view mid-song: "Come closer!" at once, the
  * music on for CUB_COACH_AWAY_PAUSE_MS; then the song pauses with "Where
  * are you?". Verdicts meanwhile are set aside, a right one included (no
@@ -1104,6 +1127,7 @@ int main(void)
         cmocka_unit_test(test_song_end_cheers_then_idles),
         cmocka_unit_test(test_stop_returns_to_idle_from_every_state),
         cmocka_unit_test(test_player_away_shows_come_closer),
+        cmocka_unit_test(test_too_close_shows_step_back),
         cmocka_unit_test(test_child_gone_briefly_pauses_then_resumes),
         cmocka_unit_test(test_child_gone_long_attracts_then_dozes),
         cmocka_unit_test(test_sync_speed_behind_ahead_and_bounded),

@@ -50,9 +50,9 @@ typedef struct cub_synth_segment {
 /* Where the second person is (cub_synth_desc.second_mode). */
 typedef enum cub_synth_second_mode {
     CUB_SYNTH_SECOND_BEHIND = 0, /* stands at second_x, second_dz the whole time */
-    CUB_SYNTH_SECOND_WALK_IN,    /* walks in from the right (1 m/s, from 1 s) to that spot */
+    CUB_SYNTH_SECOND_WALK_IN,    /* walks in from the right (second_speed, from 1 s) to that spot */
     CUB_SYNTH_SECOND_CROSS,      /* crosses in front of the child, right to left, mid-way */
-    CUB_SYNTH_SECOND_SIBLING,    /* a child of similar height beside the child */
+    CUB_SYNTH_SECOND_SIBLING,    /* a child of similar height beside the child where it starts */
 } cub_synth_second_mode;
 
 /* Zero-initialised fields take the defaults in brackets. */
@@ -88,9 +88,11 @@ typedef struct cub_synth_desc {
     const char *second_clip;         /* another person (NULL: none) */
     int second_mode;                 /* cub_synth_second_mode [BEHIND] */
     float second_height_mm;          /* [1650; SIBLING: the child's height + 8 %] */
-    /* beside / behind the player [700, 900; CROSS: 0, -700 (in front);
-     * SIBLING: -650, 100]; WALK_IN walks to this spot */
+    /* beside / behind the player's spot [700, 900; CROSS: 0, -700 (in
+     * front); SIBLING: from where the child starts, 650 mm to the side away
+     * from the image's centre, 100]; WALK_IN walks to this spot */
     float second_x_mm, second_dz_mm;
+    float second_speed_mm_s;         /* WALK_IN and CROSS walk this fast [1000] */
 } cub_synth_desc;
 
 typedef struct cub_synth cub_synth;

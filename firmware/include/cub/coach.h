@@ -102,6 +102,7 @@ typedef enum cub_coach_action_kind {
 #define CUB_COACH_HINT_COME_CLOSER (-2) /* nobody in view: "come closer" */
 #define CUB_COACH_HINT_CANT_SEE (-3)    /* the camera is gone: "I can't see you" */
 #define CUB_COACH_HINT_WHERE (-4)       /* the child left mid-song: "Where are you?" */
+#define CUB_COACH_HINT_STEP_BACK (-5)   /* the child stands too close: "Step back" */
 
 typedef struct cub_coach_action {
     int32_t kind;      /* cub_coach_action_kind */
@@ -182,6 +183,7 @@ typedef struct cub_coach {
     int32_t paused_for;   /* why it paused: CUB_COACH_WHY_CAMERA or _AWAY */
     uint32_t corrections; /* correcting clips played (they alternate) */
     bool music_on, tag_pending, player_in_view;
+    bool too_close; /* out of view because the child stands too close (CUB_EV_PLAYER b = 1) */
     bool show_again; /* correcting the move just left: demonstrate it once */
     int32_t hint; /* the hint last shown */
     int32_t fault; /* ... and its fault (0: none) */

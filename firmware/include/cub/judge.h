@@ -114,7 +114,12 @@
  * Presence: in view after present_frames CUB_TRACK_OK frames in a row, out
  * of view after absent_frames non-OK frames in a row (any other tracker
  * status counts as not seen). Starts out of view. A CUB_EV_PLAYER on each
- * change.
+ * change. A child too close (present_frames CUB_TRACK_TOO_CLOSE frames
+ * with no OK frame between) is out of view at once, told by a
+ * CUB_EV_PLAYER with a = 0, b = 1 (why too_close: the coach says "Step
+ * back"), even when it was out of view already; a repetition whose window
+ * saw a TOO_CLOSE frame gets no verdict (the child was not seen whole:
+ * neither right nor wrong).
  *
  * Posture keys (sit, jump) read the CoG over the floor: desc floor_y_mm and
  * stand_cog_mm when known, else estimated online (floor from the lower
@@ -213,6 +218,7 @@ typedef enum cub_judge_why {
     CUB_JUDGE_WHY_MIRROR,   /* wrong: the keys' mirror held (the other arm) */
     CUB_JUDGE_WHY_UNSURE,   /* no verdict to act on: the keys' joints were guessed */
     CUB_JUDGE_WHY_OTHER,    /* wrong: another move's keys held instead */
+    CUB_JUDGE_WHY_TOO_CLOSE,/* out of view: the child stands too close (CUB_EV_PLAYER b = 1) */
 } cub_judge_why;
 
 /* What a wrong verdict says to fix: which key failed and how. */
