@@ -16,14 +16,11 @@
 #include <cmocka.h>
 
 #include "cub/forest_train.h"
+#include "synth_data.h"
 
 static const char *data_dir(void)
 {
-    const char *d = getenv("CUB_DATA_DIR");
-    static char probe[600];
-    if (!d) return NULL;
-    snprintf(probe, sizeof(probe), "%s/mocap/cmu/14_14.bvh", d);
-    return access(probe, R_OK) == 0 ? d : NULL;
+    return synth_data_dir("14_14");
 }
 
 static void load(cub_ft_set *set, const char *fold, int frames, uint64_t seed)
