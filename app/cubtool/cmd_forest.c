@@ -199,6 +199,20 @@ int cub_cmd_train_forest(int argc, char **argv)
     return rc;
 }
 
+/* Per true part (rows) the share named each part (columns), per mille. */
+static void confusion(const cub_ft_score *s)
+{
+    printf("named as (per mille of the row's pixels):\n%-12s", "");
+    for (int q = 1; q < CUB_PART_COUNT; q++)
+        printf(" %5.5s", cub_synth_part_name(q));
+    for (int p = 1; p < CUB_PART_COUNT; p++) {
+        printf("\n%-12s", cub_synth_part_name(p));
+        for (int q = 1; q < CUB_PART_COUNT; q++)
+            printf(" %5ld", s->n[p] ? 1000 * s->named[p][q] / s->n[p] : 0);
+    }
+    printf("\n");
+}
+
 static void report(const cub_ft_score *s)
 {
     long n = 0, right = 0, most = 0;
@@ -211,6 +225,9 @@ static void report(const cub_ft_score *s)
     }
     printf("%-12s %8ld %6.1f%%   (one part for every pixel: %.1f%%)\n", "all", n,
            n ? 100.0 * right / n : 0.0, n ? 100.0 * most / n : 0.0);
+    printf("ties: %.1f%% of the pixels (the lower part, so the left side, wins)\n",
+           n ? 100.0 * s->ties / n : 0.0);
+    confusion(s);
 }
 
 int cub_cmd_eval_forest(int argc, char **argv)

@@ -132,7 +132,13 @@ void cub_ft_score_set(const cub_forest *f, const cub_ft_set *set, int stride, cu
         for (int i = 0, seen = 0; i < NPIX; i++) {
             if (!fr->mm[i] || !fr->part[i] || seen++ % stride) continue;
             int c = cub_forest_classify(f, &im, i % CUB_KINECT_WIDTH, i / CUB_KINECT_WIDTH, score);
+            for (int q = 0; q < f->classes; q++)
+                if (q != c && score[q] == score[c]) {
+                    s->ties++;
+                    break;
+                }
             s->n[fr->part[i]]++;
+            s->named[fr->part[i]][c < CUB_PART_COUNT ? c : 0]++;
             s->right[fr->part[i]] += c == fr->part[i];
         }
     }

@@ -67,6 +67,8 @@ cub_err cub_ft_train(const cub_ft_set *set, const cub_ft_params *p, uint8_t **as
 
 typedef struct cub_ft_score {
     long n[CUB_PART_COUNT], right[CUB_PART_COUNT];
+    long named[CUB_PART_COUNT][CUB_PART_COUNT]; /* [true part][the forest's] */
+    long ties; /* pixels whose best score another part equals (the lower part wins) */
 } cub_ft_score;
 
 /* Every stride-th player pixel of every frame classified; counts added. */
