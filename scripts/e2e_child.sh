@@ -3,8 +3,11 @@
 # mistakes, is rendered as Kinect depth, and replayed through fakenect into
 # the real cubdance binary, headless; then every verdict is scored.
 #
-#   scripts/e2e_child.sh BUILD_DIR [--child planted|late|sloppy] [--remake [--from CUES]] [--keep DIR]
+#   scripts/e2e_child.sh BUILD_DIR [--song NAME] [--child planted|late|sloppy] [--remake [--from CUES]] [--keep DIR]
 #
+# --song: twinkle (default) or old_macdonald (a song held out from the
+# early verdicts' tuning: README "Early verdicts"); its plan is
+# scripts/child/NAME.plan, its cues NAME.cues (NAME_late.cues, ...).
 # --child: planted (default) makes the planted mistakes; late follows the
 # bear 0.5 s late all song long and sloppy does every move right at half
 # amplitude on the joints that are not the move's keys (neither makes a
@@ -29,14 +32,15 @@
 # depth dump is 614 KB a frame (about 2 GB for the song); it is written to
 # a temporary folder (or DIR with --keep) and deleted at the end.
 set -euo pipefail
-usage() { echo "usage: scripts/e2e_child.sh BUILD_DIR [--child planted|late|sloppy] [--remake [--from CUES]] [--keep DIR]" >&2; exit 2; }
+usage() { echo "usage: scripts/e2e_child.sh BUILD_DIR [--song NAME] [--child planted|late|sloppy] [--remake [--from CUES]] [--keep DIR]" >&2; exit 2; }
 [ $# -ge 1 ] || usage
 build=$1
 shift
-remake=0 keep="" from="" child=planted
+remake=0 keep="" from="" child=planted name=twinkle
 while [ $# -gt 0 ]; do
     case $1 in
         --child) [ $# -ge 2 ] || usage; child=$2; shift ;;
+        --song) [ $# -ge 2 ] || usage; name=$2; shift ;;
         --remake) remake=1 ;;
         --from) [ $# -ge 2 ] || usage; from=$2; shift ;;
         --keep) [ $# -ge 2 ] || usage; keep=$2; shift ;;
@@ -49,11 +53,12 @@ root=$(cd "$here/.." && pwd)
 data=${CUB_DATA_DIR:-$root/../shared/data}
 tool=$build/app/cubtool/cubtool
 box=$build/app/cubdance/cubdance
-song=$root/assets/songs/twinkle.song.xml
-plan=$here/child/twinkle.plan
+song=$root/assets/songs/$name.song.xml
+plan=$here/child/$name.plan
+[ -f "$song" ] && [ -f "$plan" ] || { echo "e2e_child: no $song or $plan" >&2; exit 2; }
 case $child in
-    planted) cues=$here/child/twinkle.cues ;;
-    late | sloppy) cues=$here/child/twinkle_$child.cues ;;
+    planted) cues=$here/child/$name.cues ;;
+    late | sloppy) cues=$here/child/${name}_$child.cues ;;
     *) usage ;;
 esac
 for f in "$tool" "$box"; do
@@ -92,7 +97,7 @@ round() {
     echo "+ cubtool synth-depth --sequence $work/child.seq --out $work/dump"
     "$tool" synth-depth --sequence "$work/child.seq" --data "$data" --out "$work/dump" 2>/dev/null |
         tail -n 1
-    echo "+ cubdance --replay $work/dump --clock virtual --song twinkle --log $work/events.log"
+    echo "+ cubdance --replay $work/dump --clock virtual --song $name --log $work/events.log"
     FAKENECT_PATH="$work/dump" LD_LIBRARY_PATH="$fakenect${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" \
         EGL_PLATFORM=surfaceless SDL_AUDIODRIVER=dummy \
         "${preload[@]}" "$box" --headless --size 64x48 --replay "$work/dump" --clock virtual \

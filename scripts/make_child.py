@@ -743,13 +743,18 @@ def print_latency(lat):
     if not lat:
         return True
     print("\n| planted mistake | repetition began | mistake shows | verdict | "
-          "first correcting frame | latency | inside |")
-    print("|---|---|---|---|---|---|---|")
+          "first correcting frame | latency | judge's wait | switch | inside |")
+    print("|---|---|---|---|---|---|---|---|---|")
     fmt = lambda v: "-" if v is None else "%.2f s" % v
     for label, tc, shows, vt, first, lat_s, inside in lat:
-        print("| %s | %s | %s | %s | %s | %s | %s |" % (label, fmt(tc), fmt(shows), fmt(vt),
-                                                     fmt(first), fmt(lat_s),
-                                                     "yes" if inside else "NO"))
+        # where the latency goes: the judge's wait (shows -> verdict: the
+        # lag and the time left for a sign) and the switch (verdict -> the
+        # correcting clip's first frame: the coach, the planner, the player)
+        wait = vt - shows if shows is not None else None
+        switch = first - vt if first is not None else None
+        print("| %s | %s | %s | %s | %s | %s | %s | %s | %s |"
+              % (label, fmt(tc), fmt(shows), fmt(vt), fmt(first), fmt(lat_s), fmt(wait),
+                 fmt(switch), "yes" if inside else "NO"))
     vals = sorted(x[5] for x in lat if x[5] is not None)
     med = vals[len(vals) // 2] if len(vals) % 2 else sum(vals[len(vals) // 2 - 1:][:2]) / 2
     inside = sum(1 for x in lat if x[6])

@@ -18,7 +18,10 @@
  * frame); --correct asks only for the correcting clips, as the box does
  * when a move went wrong (entry anywhere in their front half, and within
  * the reaction at the closest frame when nothing nearer comes). Each run
- * also counts the switches whose ends are not both bridge frames. */
+ * also counts the switches whose ends are not both bridge frames. --tween
+ * routes through the seed's tween clip where today's planner chains
+ * through other clips; either way a "routes" line measures those
+ * switches: reaction, arrival in the wanted clip, every switch's jump. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -94,8 +97,12 @@ typedef struct run {
     int ok, tween, steps;
     cub_bridge_step first;
     double latency_ms;  /* request -> first switch */
+    double arrive_ms;   /* request -> the switch into the wanted clip */
     double jump_cm;     /* across the first switch's frame */
     double blend_cm;    /* most joint speed the smoothing adds, first switch to blend end */
+    int switches;       /* carried out, up to CUB_BRIDGE_MAX_STEPS: */
+    cub_bridge_step step[CUB_BRIDGE_MAX_STEPS];
+    double step_jump_cm[CUB_BRIDGE_MAX_STEPS]; /* across each switch's frame */
 } run;
 
 /* Play one switch: clip a from frame m (looping), request b at once. */
@@ -139,9 +146,16 @@ static run play(const cub_coachlib *cl, cub_bridge_player *p, int a, int m, int 
         int cut = 0;
         for (int i = 0; i < n; i++) {
             cut |= ev[i].type == CUB_BRIDGE_EV_SWITCH || (ev[i].type == CUB_BRIDGE_EV_DONE);
-            if (ev[i].type == CUB_BRIDGE_EV_SWITCH && first_tick < 0) {
+            if (ev[i].type != CUB_BRIDGE_EV_SWITCH) continue;
+            double at_ms = ((t - 1) * (double)TICK_US + (double)ev[i].t_us) / 1000.0;
+            if (r.switches < CUB_BRIDGE_MAX_STEPS) {
+                r.step[r.switches] = ev[i].step;
+                r.step_jump_cm[r.switches++] = mv;
+            }
+            if (ev[i].step.to_clip == b) r.arrive_ms = at_ms;
+            if (first_tick < 0) {
                 first_tick = t;
-                r.latency_ms = ((t - 1) * (double)TICK_US + (double)ev[i].t_us) / 1000.0;
+                r.latency_ms = at_ms;
                 r.jump_cm = mv;
             }
         }
@@ -173,6 +187,67 @@ static void set_entry(cub_bridge_player *p, const cub_coachlib *cl, int correct,
     cub_bridge_player_set_reach_frames(p, CUB_DIRECTOR_REACT_FRAMES);
 }
 
+/* Routes: the switches no direct switch served (a chain through other
+ * clips, or the tween), every switch of the route counted. */
+typedef struct routes {
+    stats react, arrive, jump;
+    long count, jumps, over_p99;
+} routes;
+
+static void add_route(routes *rt, const run *r, const double *p99)
+{
+    if (!r->tween) return;
+    rt->count++;
+    push(&rt->react, r->latency_ms);
+    push(&rt->arrive, r->arrive_ms);
+    for (int i = 0; i < r->switches; i++) {
+        const cub_bridge_step *st = &r->step[i];
+        double own = p99[st->from_clip] > p99[st->to_clip] ? p99[st->from_clip] : p99[st->to_clip];
+        push(&rt->jump, r->step_jump_cm[i]);
+        rt->jumps++;
+        rt->over_p99 += r->step_jump_cm[i] > own;
+    }
+}
+
+static void print_routes(routes *rt, int via_tween)
+{
+    printf("bench-bridge: routes (%s) %ld: reaction median=%.0f p95=%.0f max=%.0f ms; "
+           "in the wanted clip median=%.0f p95=%.0f p99=%.0f max=%.0f ms; jumps at their %ld switches "
+           "max=%.2f p95=%.2f cm/frame, over own p99: %ld (%.1f%%)\n",
+           via_tween ? "through the tween clip" : "chains through other clips", rt->count,
+           pct(&rt->react, 0.5), pct(&rt->react, 0.95), pct(&rt->react, 1.0),
+           pct(&rt->arrive, 0.5), pct(&rt->arrive, 0.95), pct(&rt->arrive, 0.99),
+           pct(&rt->arrive, 1.0), rt->jumps,
+           pct(&rt->jump, 1.0), pct(&rt->jump, 0.95), rt->over_p99,
+           rt->jumps ? 100.0 * (double)rt->over_p99 / (double)rt->jumps : 0.0);
+    free(rt->react.v);
+    free(rt->arrive.v);
+    free(rt->jump.v);
+}
+
+/* The tween clip's own fastest-joint speed (its p99 joins the others'). */
+static void tween_speeds(const cub_coachlib *cl, double *p99, double *top)
+{
+    static cub_pose pose;
+    static cub_vec3 w0[CUB_MOTION_MAX_JOINTS], w1[CUB_MOTION_MAX_JOINTS];
+    const cub_clip *clip = &cl->tween_clip;
+    stats s = {0};
+    for (int f = 0; f < clip->frame_count; f++) {
+        cub_motion_clip_get_frame(clip, f, &pose);
+        cub_motion_forward(&cl->lib.skel, &pose, w0, NULL);
+        cub_motion_clip_get_frame(clip, (f + 1) % clip->frame_count, &pose);
+        cub_motion_forward(&cl->lib.skel, &pose, w1, NULL);
+        push(&s, max_move_cm(w0, w1, cl->lib.skel.joint_count));
+    }
+    *p99 = pct(&s, 0.99);
+    *top = pct(&s, 1.0);
+    printf("bench-bridge: tween clip: %d keys of %d bridge frames, %d frames (%.1f s a loop), "
+           "its own fastest joint p99=%.2f max=%.2f cm/frame\n",
+           cl->tween.key_count, cl->table.desc.bridge_total - 2 * clip->frame_count,
+           clip->frame_count, clip->frame_count * TICK_US / 1e6, *p99, *top);
+    free(s.v);
+}
+
 typedef struct mode {
     const char *name;
     cub_bridge_smooth smooth;
@@ -183,7 +258,7 @@ typedef struct mode {
 static int usage(FILE *f, int code)
 {
     fprintf(f, "usage: cubtool bench-bridge [--assets DIR] [--step N] [--blend N] [--window N] "
-               "[--wait MM] [--strict] [--correct]\n"
+               "[--wait MM] [--strict] [--correct] [--tween]\n"
                "  Measure clip switching over every ordered clip pair of the library,\n"
                "  switching at every N'th frame (default 5) of the playing clip.\n"
                "  --blend N   shortest smoothing in frames (default %d)\n"
@@ -191,15 +266,22 @@ static int usage(FILE *f, int code)
                "  --wait MM   what a frame of waiting costs against body distance, mm\n"
                "              (default -1: the soonest frame within the threshold)\n"
                "  --strict    the seed's rule: both ends of every switch are bridge frames\n"
-               "  --correct   ask only for the correcting clips, entered as the box does\n",
-            CUB_BRIDGE_BLEND_FRAMES, CUB_BRIDGE_WINDOW_FRAMES);
+               "  --correct   ask only for the correcting clips, entered as the box does\n"
+               "  --tween     route through the seed's tween clip (built from the bridge\n"
+               "              frames) where no direct switch serves, instead of chains\n"
+               "              through other clips\n"
+               "  --tween-cover D  the tween's keys at least this far apart (fuzzy d;\n"
+               "              default half the threshold)\n"
+               "  --tween-speed MM the tween's fastest joint, mm per frame (default %d)\n",
+            CUB_BRIDGE_BLEND_FRAMES, CUB_BRIDGE_WINDOW_FRAMES, CUB_BRIDGE_TWEEN_SPEED_MM >> 16);
     return code;
 }
 
 int cub_cmd_bench_bridge(int argc, char **argv)
 {
     const char *assets = CUB_ASSETS_DIR;
-    int step = 5, blend = 0, window = 0, wait_mm = -1, strict = 0, correct = 0;
+    int step = 5, blend = 0, window = 0, wait_mm = -1, strict = 0, correct = 0, via_tween = 0;
+    cub_bridge_tween_config tcfg = {0};
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--help")) return usage(stdout, 0);
         if (!strcmp(argv[i], "--strict")) {
@@ -208,6 +290,10 @@ int cub_cmd_bench_bridge(int argc, char **argv)
         }
         if (!strcmp(argv[i], "--correct")) {
             correct = 1;
+            continue;
+        }
+        if (!strcmp(argv[i], "--tween")) {
+            via_tween = 1;
             continue;
         }
         if (i + 1 >= argc) return usage(stderr, 2);
@@ -221,22 +307,31 @@ int cub_cmd_bench_bridge(int argc, char **argv)
             window = atoi(argv[++i]);
         else if (!strcmp(argv[i], "--wait"))
             wait_mm = atoi(argv[++i]);
+        else if (!strcmp(argv[i], "--tween-cover"))
+            tcfg.cover_d = (cub_q16)(atof(argv[++i]) * 65536.0);
+        else if (!strcmp(argv[i], "--tween-speed"))
+            tcfg.speed_mm = CUB_Q16_INT(atoi(argv[++i]));
         else
             return usage(stderr, 2);
     }
-    if (step < 1 || blend < 0 || window < 0 || wait_mm < -1 || wait_mm > 30000)
+    if (step < 1 || blend < 0 || window < 0 || wait_mm < -1 || wait_mm > 30000 ||
+        tcfg.cover_d < 0 || tcfg.cover_d > CUB_Q16_ONE || tcfg.speed_mm < 0 ||
+        tcfg.speed_mm > CUB_Q16_INT(1000))
         return usage(stderr, 2);
     static cub_coachlib cl;
     cub_diag d = {0};
     char buf[600];
-    if (cub_coachlib_load_assets(assets, &cl, &d)) {
+    /* The tween is built either way: both runs plan over the same table. */
+    if (cub_coachlib_load_assets(assets, &cl, &d) || cub_coachlib_add_tween(&cl, &tcfg, &d)) {
         fprintf(stderr, "bench-bridge: %s\n", cub_diag_str(&d, buf, sizeof buf));
         return 1;
     }
     int nc = cl.lib.clip_count;
-    double *p99 = calloc((size_t)nc, sizeof *p99), *top = calloc((size_t)nc, sizeof *top);
+    double *p99 = calloc((size_t)nc + 1, sizeof *p99), *top = calloc((size_t)nc + 1, sizeof *top);
     stats all = {0}, joints = {0}, ours = {0}, base = {0};
+    routes rt = {0};
     clip_speeds(&cl, p99, top, &all, &joints);
+    tween_speeds(&cl, &p99[nc], &top[nc]);
     double lib_p99 = pct(&all, 0.99), lib_max = all.n ? all.v[all.n - 1] : 0;
     double lib_joint_p99 = pct(&joints, 0.99), lib_median = pct(&all, 0.5);
 
@@ -249,7 +344,7 @@ int cub_cmd_bench_bridge(int argc, char **argv)
         cub_bridge_player_desc pd = {.table = &cl.table, .smooth = modes[k].smooth,
                                      .blend_frames = blend, .window_frames = window,
                                      .wait_cost_mm = wait_mm < 0 ? 0 : CUB_Q16_INT(wait_mm),
-                                     .strict = strict};
+                                     .strict = strict, .via_tween = via_tween};
         size_t ws = cub_bridge_player_mem_size(&pd);
         work[k] = malloc(ws);
         if (!work[k] || cub_bridge_player_init(&players[k], &pd, work[k], ws)) {
@@ -284,6 +379,7 @@ int cub_cmd_bench_bridge(int argc, char **argv)
                     double own = p99[a] > p99[to] ? p99[a] : p99[to];
                     modes[k].over_p99 += r.jump_cm > own;
                     if (k) continue;
+                    add_route(&rt, &r, p99);
                     switches++;
                     loose_ends += !cub_bridge_is_bridge(&cl.table, r.first.from_clip, r.first.from_frame) ||
                                   !cub_bridge_is_bridge(&cl.table, r.first.to_clip, r.first.to_frame);
@@ -297,11 +393,11 @@ int cub_cmd_bench_bridge(int argc, char **argv)
     clock_gettime(CLOCK_MONOTONIC, &t1);
     double secs = (double)(t1.tv_sec - t0.tv_sec) + (double)(t1.tv_nsec - t0.tv_nsec) * 1e-9;
     printf("bench-bridge: clips=%d pairs=%d switches=%ld direct=%ld tween=%ld (mean steps %.2f) "
-           "unreachable=%ld window=%d min_blend=%d frames, step=%d%s%s\n",
+           "unreachable=%ld window=%d min_blend=%d frames, step=%d%s%s%s\n",
            nc, nc * nc, switches, switches - tweens, tweens,
            switches ? (double)steps / (double)switches : 0.0, unreachable,
            players[0].desc.window_frames, blend_frames, step, strict ? ", strict" : "",
-           correct ? ", corrections only" : "");
+           correct ? ", corrections only" : "", via_tween ? ", via the tween clip" : "");
     printf("bench-bridge: first switches with an end that is not a bridge frame: %ld of %ld "
            "(%.1f%%)\n",
            loose_ends, switches, switches ? 100.0 * (double)loose_ends / (double)switches : 0.0);
@@ -322,6 +418,7 @@ int cub_cmd_bench_bridge(int argc, char **argv)
                md->jump.n ? 100.0 * md->over_p99 / (double)md->jump.n : 0.0, bm,
                pct(&md->blend, 0.95));
     }
+    print_routes(&rt, via_tween);
     const cub_bridge_step *w = &worst.first;
     printf("bench-bridge: worst blend: %s@%d requested %s: first switch %s@%d -> %s@%d d=%.3f "
            "%s, jump %.2f, during blend %.2f cm/frame\n",

@@ -85,32 +85,6 @@ static int parse_choice(const char *s, const char *const *names, int n)
     return -1;
 }
 
-/* The decoded clip as a BVH motion: root XYZ position + ZXY rotation. */
-static int save_bvh(const codec_decoded *d, const char *path)
-{
-    cub_io_motion m;
-    memset(&m, 0, sizeof m);
-    m.skel = *d->skel;
-    m.clip = d->clip;
-    m.clip.skel = &m.skel;
-    m.unit_mm = 10.0;
-    for (int j = 0; j < m.skel.joint_count; j++) {
-        if (m.skel.joints[j].is_end_site) continue;
-        int pos = j == 0 || d->clip.trans_mm != NULL;
-        m.channels[j].count = (unsigned char)(pos ? 6 : 3);
-        m.channels[j].has_pos = (unsigned char)pos;
-        memcpy(m.channels[j].rot_order, "ZXY", 4);
-        memcpy(m.channels[j].pos_order, pos ? "XYZ" : "", pos ? 4 : 1);
-    }
-    cub_diag diag = {0};
-    char msg[600];
-    if (cub_io_save_bvh(path, &m, &diag)) {
-        fprintf(stderr, "%s\n", cub_diag_str(&diag, msg, sizeof msg));
-        return -1;
-    }
-    return 0;
-}
-
 int cub_cmd_decode(int argc, char **argv)
 {
     static const char *const methods[] = {"squad", "slerp", "catmull"};
@@ -134,7 +108,7 @@ int cub_cmd_decode(int argc, char **argv)
     int is_keys = blob.len >= 7 && !memcmp(blob.data, "CUBKEYS", 7);
     int rc = (is_keys ? codec_host_decode_keys(&blob, &d, in) : codec_host_decode(&blob, &o, &d, in)) ? 1 : 0;
     if (!rc) {
-        rc = save_bvh(&d, out) ? 1 : 0;
+        rc = cub_tool_save_clip_bvh(d.skel, &d.clip, out) ? 1 : 0;
         if (!rc) printf("%s: %d frames, %d joints\n", out, d.clip.frame_count, d.skel->joint_count);
         codec_decoded_free(&d);
     }

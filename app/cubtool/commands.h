@@ -9,6 +9,7 @@ int cub_cmd_retarget(int argc, char **argv); /* a human clip -> the bear */
 int cub_cmd_build(int argc, char **argv);    /* rebuild the clip library from its recipe */
 int cub_cmd_tag(int argc, char **argv);      /* tag bridge frames across a library */
 int cub_cmd_bench_bridge(int argc, char **argv); /* measure clip switching */
+int cub_cmd_tween(int argc, char **argv);        /* the seed's tween clip, as BVH */
 int cub_cmd_eval_track(int argc, char **argv);  /* the tracker on a depth dump: accuracy */
 int cub_cmd_bench_track(int argc, char **argv); /* the tracker: ms per frame, memory */
 int cub_cmd_synth_depth(int argc, char **argv); /* a synthetic child as Kinect depth */
@@ -22,5 +23,7 @@ int cub_cmd_ase_export(int argc, char **argv);   /* a clip as a 3ds Max ASCII ex
 int cub_cmd_trc_info(int argc, char **argv);     /* a TRC marker file: markers, frames, rate */
 int cub_cmd_train_forest(int argc, char **argv); /* the body-part forest from synth renders */
 int cub_cmd_eval_forest(int argc, char **argv);  /* its per-part accuracy on renders */
+int cub_cmd_join(int argc, char **argv);         /* join two clips without sliding feet */
+int cub_cmd_graph(int argc, char **argv);        /* the motion graph by support points */
 
 #endif

@@ -17,6 +17,7 @@ static const command commands[] = {
     {"build", cub_cmd_build, "rebuild the clip library from its recipe and ../shared/data"},
     {"tag", cub_cmd_tag, "tag bridge frames across a clip library; summary + contact sheets"},
     {"bench-bridge", cub_cmd_bench_bridge, "measure clip switching: reaction latency, joint jumps"},
+    {"tween", cub_cmd_tween, "the seed's tween clip from the library's bridge frames, as BVH"},
     {"eval-track", cub_cmd_eval_track, "the tracker on a depth dump: joint errors, statuses, fps"},
     {"bench-track", cub_cmd_bench_track, "the tracker's ms per frame and memory"},
     {"synth-depth", cub_cmd_synth_depth, "a synthetic child as Kinect v1 depth: fakenect dump + truth"},
@@ -29,6 +30,8 @@ static const command commands[] = {
     {"codec-figures", cub_cmd_codec_figures, "the seed's codec: Squad vs Slerp vs Catmull-Rom, IK, ratio"},
     {"bench-codec", cub_cmd_bench_codec, "ours vs ACL vs the seed's codec: ratio, error, decode"},
     {"trc-info", cub_cmd_trc_info, "a TRC marker file: its markers, frames, rate, lost markers"},
+    {"join", cub_cmd_join, "join two clips through a searched transition, feet planted; --all: the table"},
+    {"graph", cub_cmd_graph, "the motion graph by support points (feet, hands, knees, hip); --png"},
     {"ase-export", cub_cmd_ase_export, "a clip (BVH, ASF+AMC, ASE) as a 3ds Max ASCII export"},
 };
 

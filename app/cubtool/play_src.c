@@ -1,6 +1,7 @@
 /* play_src — loading what `cubtool play` shows (see play_src.h). */
 #include "play_src.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -65,7 +66,8 @@ static int load_file(play_src *s)
     }
     if (!ends_with(s->path, ".bvh") && !ends_with(s->path, ".asf")) {
         fprintf(stderr,
-                "cubtool play: %s: not a .bvh, an .ase, an .asf + .amc pair or PACK.cubclips:CLIP\n",
+                "cubtool play: %s: not a .bvh, an .ase, a .trc, an .asf + .amc pair or "
+                "PACK.cubclips:CLIP\n",
                 s->path);
         return 1;
     }
@@ -152,6 +154,63 @@ static int pick_figure(play_src *s, play_figure want, const cub_character *bear,
     return 0;
 }
 
+/* A .trc: markers only, as points; its height from the first frame. */
+static int load_trc(play_src *s)
+{
+    cub_diag d = {0};
+    const char *base = strrchr(s->path, '/');
+    snprintf(s->name, sizeof s->name, "%s", base ? base + 1 : s->path);
+    if (cub_trc_load(s->path, &s->trc, &d)) return fail(&d);
+    float lo = 0.0f, hi = 0.0f;
+    int any = 0;
+    for (int m = 0; m < s->trc.markers; m++) {
+        if (!s->trc.present[m]) continue;
+        float y = s->trc.pos[3 * m + 1];
+        lo = !any || y < lo ? y : lo;
+        hi = !any || y > hi ? y : hi;
+        any = 1;
+    }
+    s->height_mm = hi - lo > 1.0f ? hi - lo : 1700.0f;
+    return 0;
+}
+
+double play_src_seconds(const play_src *s)
+{
+    if (!s->clip) return s->trc.frames > 1 ? (s->trc.frames - 1) / s->trc.rate : 0.0;
+    return (double)cub_motion_clip_duration_us(s->clip) * 1e-6;
+}
+
+/* Markers at t_s: the frame before t (no blending: a marker lost in the
+ * next frame would have nothing to blend with). */
+static int sample_trc(const cub_trc *t, double t_s, int once, float *xyz)
+{
+    long f = lround(floor(t_s * t->rate));
+    if (once)
+        f = f < 0 ? 0 : f >= t->frames ? t->frames - 1 : f;
+    else
+        f = ((f % t->frames) + t->frames) % t->frames;
+    for (int m = 0; m < t->markers; m++) {
+        size_t i = (size_t)f * (size_t)t->markers + (size_t)m;
+        for (int k = 0; k < 3; k++)
+            xyz[3 * m + k] = t->present[i] ? t->pos[3 * i + (size_t)k] : NAN;
+    }
+    return t->markers;
+}
+
+int play_src_sample(const play_src *s, double t_s, int once, float *xyz)
+{
+    if (!s->clip) return sample_trc(&s->trc, t_s, once, xyz);
+    static cub_pose pose;
+    static cub_vec3 world[CUB_MOTION_MAX_JOINTS];
+    int64_t t_us = (int64_t)llround(t_s * 1e6);
+    /* World positions by the seed's M_i = M_parent T_i R_i (cub_motion_forward). */
+    if (cub_motion_sample(s->clip, t_us, once ? CUB_MOTION_CLAMP : CUB_MOTION_LOOP, &pose) ||
+        cub_motion_forward(s->clip->skel, &pose, world, NULL))
+        return 0;
+    cub_motion_world_to_float(world, s->clip->skel->joint_count, xyz);
+    return s->clip->skel->joint_count;
+}
+
 int play_src_load(play_src *s, const char *spec, const char *amc, play_figure want,
                   const cub_character *bear, const char *map_path)
 {
@@ -160,6 +219,7 @@ int play_src_load(play_src *s, const char *spec, const char *amc, play_figure wa
     memset(s, 0, sizeof *s);
     s->path = spec;
     s->amc_path = amc;
+    if (ends_with(spec, ".trc")) return load_trc(s);
     int rc = split_pack(spec, pack, sizeof pack, &clip) ? load_pack_clip(s, pack, clip) : load_file(s);
     if (!rc && s->clip->frame_count < 1) {
         fprintf(stderr, "cubtool play: %s: the clip has no frames\n", spec);
@@ -172,6 +232,7 @@ int play_src_load(play_src *s, const char *spec, const char *amc, play_figure wa
 
 void play_src_free(play_src *s)
 {
+    cub_trc_free(&s->trc);
     cub_library_free(&s->lib);
     cub_io_motion_free(&s->motion);
 }

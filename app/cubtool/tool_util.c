@@ -6,6 +6,8 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "cub/io.h"
+
 int cub_tool_make_dir(const char *dir, const char *who)
 {
     char path[4096];
@@ -90,4 +92,29 @@ cub_tool_parsed cub_tool_parse_opts(int argc, char **argv, const cub_tool_opt *o
         }
     }
     return CUB_TOOL_RUN;
+}
+
+int cub_tool_save_clip_bvh(const cub_skeleton *skel, const cub_clip *clip, const char *path)
+{
+    static cub_io_motion m; /* static: large */
+    memset(&m, 0, sizeof m);
+    m.skel = *skel;
+    m.clip = *clip;
+    m.clip.skel = &m.skel;
+    m.unit_mm = 10.0;
+    for (int j = 0; j < m.skel.joint_count; j++) {
+        if (m.skel.joints[j].is_end_site) continue;
+        int pos = j == 0 || clip->trans_mm != NULL;
+        m.channels[j].count = (unsigned char)(pos ? 6 : 3);
+        m.channels[j].has_pos = (unsigned char)pos;
+        memcpy(m.channels[j].rot_order, "ZXY", 4);
+        memcpy(m.channels[j].pos_order, pos ? "XYZ" : "", pos ? 4 : 1);
+    }
+    cub_diag diag = {0};
+    char msg[600];
+    if (cub_io_save_bvh(path, &m, &diag)) {
+        fprintf(stderr, "%s\n", cub_diag_str(&diag, msg, sizeof msg));
+        return -1;
+    }
+    return 0;
 }

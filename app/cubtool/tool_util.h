@@ -4,6 +4,8 @@
 
 #include <stddef.h>
 
+#include "cub/motion.h"
+
 /* Create dir and its missing parents (like mkdir -p). 0 on success; -1 with
  * a message "<who>: cannot create <dir>: <reason>" on stderr. */
 int cub_tool_make_dir(const char *dir, const char *who);
@@ -38,5 +40,10 @@ typedef struct cub_tool_series {
 void cub_tool_series_add(cub_tool_series *s, double x, const char *who);
 /* Nearest-rank percentile (q in 0..1; 1 is the largest), 0 when empty; sorts. */
 double cub_tool_series_pct(cub_tool_series *s, double q);
+
+/* A clip as a BVH file (centimetres; root XYZ position, every joint ZXY
+ * rotation, joint positions too when the clip animates them). 0 on
+ * success; -1 with the file's problem on stderr. */
+int cub_tool_save_clip_bvh(const cub_skeleton *skel, const cub_clip *clip, const char *path);
 
 #endif

@@ -123,6 +123,7 @@ cub_err cub_coachlib_load(const char *library_path, const char *tags_path,
     if (!e) e = cub_pack_read(library_path, &out->lib, diag);
     if (!e) e = cub_tags_read(tags_path, &out->lib, &out->tags, diag);
     if (!e) e = build_table(out, library_path, tags_path, bear_path, diag);
+    out->tween_index = -1;
     if (e) cub_coachlib_free(out);
     return e;
 }
@@ -148,5 +149,6 @@ void cub_coachlib_free(cub_coachlib *cl)
     cub_tags_free(&cl->tags);
     cub_library_free(&cl->lib);
     free(cl->table_mem);
+    free(cl->tween_mem);
     memset(cl, 0, sizeof *cl);
 }

@@ -9,9 +9,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cub/join.h"
 #include "rt_ctx.h"
 
-#define MIN_CONTACT_FRAMES 3 /* shorter "contacts" are a foot passing low */
 #define BLEND_FRAMES 4       /* IK eases in/out over this many frames */
 
 void rt_target_world(const rt_ctx *c, int f, cub_dv3 *pos, cub_dq *rot)
@@ -41,29 +41,13 @@ static void shift_root(rt_ctx *c, cub_dv3 by)
 }
 
 /* Contacts of one foot from the source ankle (scaled): low and slow, runs
- * of at least MIN_CONTACT_FRAMES. */
+ * of at least 3 frames (the rule cub_join_contacts shares). */
 static void find_contacts(rt_ctx *c, int side)
 {
     int l = c->link_of[c->foot[side]];
-    unsigned char *ct = c->contact[side];
-    double low = INFINITY;
-    for (int f = 0; f < c->frames; f++)
-        low = fmin(low, c->lpos[(size_t)f * c->links + l].y * c->k);
-    for (int f = 0; f < c->frames; f++) {
-        int a = f > 0 ? f - 1 : f, b = f + 1 < c->frames ? f + 1 : f;
-        cub_dv3 pa = c->lpos[(size_t)a * c->links + l], pb = c->lpos[(size_t)b * c->links + l];
-        double v = b > a ? cub_dv3_len(cub_dv3_sub(pb, pa)) * c->k / ((b - a) * c->dt_s) : 0;
-        double h = c->lpos[(size_t)f * c->links + l].y * c->k - low;
-        ct[f] = h < c->d.contact_height_mm && v < c->d.contact_speed_mm_s;
-    }
-    for (int f = 0; f < c->frames;) {
-        int e = f;
-        while (e < c->frames && ct[e] == ct[f])
-            e++;
-        if (ct[f] && e - f < MIN_CONTACT_FRAMES)
-            memset(ct + f, 0, (size_t)(e - f));
-        f = e;
-    }
+    cub_join_track t = {c->lpos + l, (size_t)c->links, c->k, c->frames, c->dt_s};
+    cub_join_contact_cfg cfg = {c->d.contact_height_mm, c->d.contact_speed_mm_s, 0};
+    cub_join_contacts(&t, &cfg, cub_join_track_lowest(&t), c->contact[side]);
 }
 
 /* Move the leg of `side` in frame f so its ankle reaches target; the knee
@@ -74,37 +58,9 @@ static void leg_ik(rt_ctx *c, int f, int side, cub_dv3 target, cub_dq foot_w)
     cub_dv3 pos[CUB_MOTION_MAX_JOINTS];
     cub_dq rot[CUB_MOTION_MAX_JOINTS];
     rt_target_world(c, f, pos, rot);
-    int hj = c->up_leg[side], kj = c->leg[side], aj = c->foot[side];
-    cub_dv3 H = pos[hj], K = pos[kj], A = pos[aj];
-    double l1 = cub_dv3_len(cub_dv3_sub(K, H)), l2 = cub_dv3_len(cub_dv3_sub(A, K));
-    cub_dv3 ht = cub_dv3_sub(target, H);
-    double d = cub_dv3_len(ht);
-    cub_dv3 u = cub_dv3_norm(ht, cub_dv3_make(0, -1, 0));
-    d = fmax(fabs(l1 - l2) + 1e-3, fmin(d, (l1 + l2) * 0.9999));
-    cub_dv3 hk = cub_dv3_sub(K, H);
-    /* The knee's bend direction: where it bends now, plus a little of the
-     * hips' forward so a nearly straight leg does not pick a plane from
-     * noise (and flip from frame to frame). */
-    cub_dv3 fw = cub_dq_rotate(rot[c->hips], cub_dv3_make(0, 0, 1));
-    cub_dv3 b = cub_dv3_add(hk, cub_dv3_scale(fw, 0.1 * l1));
-    b = cub_dv3_sub(b, cub_dv3_scale(u, cub_dv3_dot(b, u)));
-    b = cub_dv3_norm(b, cub_dv3_make(0, 0, 1));
-    double ca = (l1 * l1 + d * d - l2 * l2) / (2 * l1 * d);
-    ca = fmax(-1, fmin(1, ca));
-    cub_dv3 K2 = cub_dv3_add(
-        H, cub_dv3_add(cub_dv3_scale(u, l1 * ca), cub_dv3_scale(b, l1 * sqrt(1 - ca * ca))));
-    cub_dv3 A2 = cub_dv3_add(H, cub_dv3_scale(u, d));
-
-    cub_dq wu = cub_dq_mul(cub_dq_arc(hk, cub_dv3_sub(K2, H)), rot[hj]);
-    cub_dq *local = c->local + (size_t)f * c->tj;
-    cub_dq wl = cub_dq_mul(wu, local[kj]);
-    cub_dv3 shin = cub_dq_rotate(wl, cub_dv3_from_fx(c->tgt->joints[aj].offset_mm));
-    wl = cub_dq_mul(cub_dq_arc(shin, cub_dv3_sub(A2, K2)), wl);
-    int hp = c->tgt->joints[hj].parent;
-    cub_dq parent = hp >= 0 ? rot[hp] : cub_dq_identity();
-    local[hj] = cub_dq_norm(cub_dq_mul(cub_dq_conj(parent), wu));
-    local[kj] = cub_dq_norm(cub_dq_mul(cub_dq_conj(wu), wl));
-    local[aj] = cub_dq_norm(cub_dq_mul(cub_dq_conj(wl), foot_w));
+    cub_join_leg leg = {c->up_leg[side], c->leg[side], c->foot[side]};
+    cub_join_goal goal = {target, foot_w, cub_dq_rotate(rot[c->hips], cub_dv3_make(0, 0, 1))};
+    cub_join_leg_ik(c->tgt, &leg, pos, rot, &goal, c->local + (size_t)f * c->tj);
 }
 
 /* The foot's world rotation in frame f. */

@@ -13,30 +13,13 @@
 #define CELL_W 200
 #define CELL_H 240
 
-typedef struct canvas {
-    uint8_t *px;
-    int w, h;
-} canvas;
-
-static void dot(canvas *c, int x, int y, int r, const uint8_t rgb[3])
-{
-    for (int dy = -r; dy <= r; dy++)
-        for (int dx = -r; dx <= r; dx++) {
-            int px = x + dx, py = y + dy;
-            if (dx * dx + dy * dy > r * r || px < 0 || py < 0 || px >= c->w || py >= c->h)
-                continue;
-            memcpy(c->px + ((size_t)py * c->w + px) * 4, rgb, 3);
-        }
-}
+typedef cub_png_canvas canvas;
 
 static void line(canvas *c, double x0, double y0, double x1, double y1, int r,
                  const uint8_t rgb[3])
 {
-    int n = (int)(fmax(fabs(x1 - x0), fabs(y1 - y0))) + 1;
-    for (int i = 0; i <= n; i++) {
-        double t = (double)i / n;
-        dot(c, (int)lround(x0 + (x1 - x0) * t), (int)lround(y0 + (y1 - y0) * t), r, rgb);
-    }
+    const double xy[4] = {x0, y0, x1, y1};
+    cub_png_line(c, xy, r, rgb);
 }
 
 static const uint8_t *bone_colour(const cub_skeleton *s, int j)

@@ -132,6 +132,18 @@ static int enter_ok(const cub_bridge_table *t, const cub_bridge_query *q, int c,
     return !q->strict || cub_bridge_is_bridge(t, c, b);
 }
 
+/* The current clip's k-th upcoming frame, if a switch may leave there:
+ * its features, its frame (*gf) and its unwrapped position (*at). NULL
+ * when it may not; *gf < 0 past the end of a clip that does not loop. */
+static const cub_fuzzy_frame *leaving(const cub_bridge_table *t, const cub_bridge_query *q,
+                                      int64_t g0, int k, int *gf, int64_t *at)
+{
+    int nf = frames_of(t, q->from_clip);
+    *gf = upcoming(q, nf, g0, k, at);
+    if (*gf < 0 || at_pass_start(q, nf, g0, k) || !leave_ok(t, q, *gf)) return NULL;
+    return features(t, q->from_clip, *gf);
+}
+
 typedef struct hit {
     int k, frame;
     int64_t at, cost;
@@ -149,10 +161,10 @@ static int direct_search(const cub_bridge_table *t, const cub_bridge_query *q, i
     int found = 0;
     for (int k = 0; k < window; k++) {
         int64_t at;
-        int gf = upcoming(q, nf, g0, k, &at);
+        int gf;
+        const cub_fuzzy_frame *now = leaving(t, q, g0, k, &gf, &at);
         if (gf < 0) break;
-        if (at_pass_start(q, nf, g0, k) || !leave_ok(t, q, gf)) continue;
-        const cub_fuzzy_frame *now = features(t, q->from_clip, gf);
+        if (!now) continue;
         for (int i = 0; i < to->bridge_count; i++) {
             int b = bridges[i];
             if ((2 * b >= nt) != back) continue;
@@ -184,10 +196,10 @@ static int scan_starts(const cub_bridge_table *t, const cub_bridge_query *q, con
     int found = 0;
     for (int k = 0; k < s->window; k++) {
         int64_t at;
-        int gf = upcoming(q, nf, s->g0, k, &at);
+        int gf;
+        const cub_fuzzy_frame *now = leaving(t, q, s->g0, k, &gf, &at);
         if (gf < 0) break;
-        if (at_pass_start(q, nf, s->g0, k) || !leave_ok(t, q, gf)) continue;
-        const cub_fuzzy_frame *now = features(t, q->from_clip, gf);
+        if (!now) continue;
         for (int b = 0; b < s->starts; b++) {
             if (!jump_ok(q->from_clip == q->to_clip, gf, b, nf) || !enter_ok(t, q, q->to_clip, b))
                 continue;
@@ -226,15 +238,14 @@ static void seed_nodes(const cub_bridge_table *t, const cub_bridge_query *q, int
             nodes[cx->first_bridge + i] = (node){INT64_MAX, NO_DIST, -1, 0, 0, 0, 0,
                                                  (int16_t)x, 0, 0};
     }
-    int nf = frames_of(t, q->from_clip);
     for (int k = 0; k < window; k++) {
         int64_t at;
-        int gf = upcoming(q, nf, g0, k, &at);
+        int gf;
+        const cub_fuzzy_frame *now = leaving(t, q, g0, k, &gf, &at);
         if (gf < 0) break;
-        if (at_pass_start(q, nf, g0, k) || !leave_ok(t, q, gf)) continue;
-        const cub_fuzzy_frame *now = features(t, q->from_clip, gf);
+        if (!now) continue;
         for (int x = 0; x < t->desc.clip_count; x++) {
-            if (x == q->from_clip || x == q->to_clip) continue;
+            if (x == q->from_clip || x == q->to_clip || x == t->tween_clip) continue;
             const cub_bridge_clip *cx = &t->clips[x];
             for (int i = 0; i < cx->bridge_count; i++) {
                 int v = cx->first_bridge + i;
@@ -374,6 +385,116 @@ static int tween_search(const cub_bridge_table *t, const cub_bridge_query *q, in
     return 0;
 }
 
+
+/* ---- the route through the tween clip ------------------------------ */
+
+/* Per frame e of the tween's first pass: the best entry into it; per frame
+ * x of both passes: the next frame from x on that can leave it. Laid over
+ * the nodes' memory (a plan uses one or the other). */
+typedef struct slot {
+    int64_t cost, at; /* entry: switch_cost, the current clip's unwrapped frame */
+    int32_t k;        /* entry: frames from now; NO_DIST: none */
+    int32_t exit_b;   /* exit (first pass): the wanted clip's frame; -1: none */
+    int32_t next;     /* the first frame >= x that can leave; -1: none */
+    cub_q16 entry_d, exit_d;
+} slot;
+_Static_assert(sizeof(slot) <= sizeof(node), "slots lie over the nodes");
+
+/* What a route must enter: the wanted clip's bridge frames in half `back`,
+ * or (starts > 0) one of its first `starts` frames. */
+typedef struct target {
+    int back, starts;
+} target;
+
+/* Tween frame x leaves for the wanted clip at the closest (by body; by d
+ * for a start) frame within the threshold (exit_b -1: none). */
+static void tween_exit(const cub_bridge_table *t, const cub_bridge_query *q, const target *tg,
+                       int x, slot *s)
+{
+    int tw = t->tween_clip, nt = frames_of(t, q->to_clip), joints = t->desc.skel->joint_count;
+    const cub_fuzzy_frame *fx = features(t, tw, x);
+    const cub_bridge_clip *to = &t->clips[q->to_clip];
+    const cub_vec3 *body = t->bridge_body_mm + (size_t)(t->clips[tw].first_bridge + x) * joints;
+    int64_t best = INT64_MAX;
+    s->exit_b = -1;
+    int count = tg->starts ? (tg->starts < nt ? tg->starts : nt) : to->bridge_count;
+    for (int i = 0; i < count; i++) {
+        int b = tg->starts ? i : t->bridges[to->first_bridge + i];
+        if (tg->starts ? !enter_ok(t, q, q->to_clip, b) : (2 * b >= nt) != tg->back) continue;
+        cub_q16 d = cub_fuzzy_distance(fx, features(t, q->to_clip, b), &t->desc.fuzzy);
+        if (d >= t->desc.fuzzy.threshold) continue;
+        int64_t cost = tg->starts ? d
+                                  : cub_bridge_shape_dist_mm(
+                                        body, t->bridge_body_mm + (size_t)(to->first_bridge + i) * joints,
+                                        joints);
+        if (cost < best) best = cost, s->exit_b = b, s->exit_d = d;
+    }
+}
+
+/* The best entry into each frame of the tween's first pass from the next
+ * `window` upcoming frames: the soonest, then the closest body. */
+static void tween_entries(const cub_bridge_table *t, const cub_bridge_query *q, int64_t g0,
+                          int window, scratch *w, slot *s)
+{
+    int tw = t->tween_clip, pass = t->tween_pass;
+    for (int e = 0; e < pass; e++)
+        s[e].k = NO_DIST;
+    for (int k = 0; k < window; k++) {
+        int64_t at;
+        int gf;
+        const cub_fuzzy_frame *now = leaving(t, q, g0, k, &gf, &at);
+        if (gf < 0) break;
+        if (!now) continue;
+        for (int e = 0; e < pass; e++) {
+            if (s[e].k != NO_DIST && s[e].k < k) continue;
+            cub_q16 d = cub_fuzzy_distance(now, features(t, tw, e), &t->desc.fuzzy);
+            if (d >= t->desc.fuzzy.threshold) continue;
+            int64_t cost = switch_cost(t, q, gf, k, t->clips[tw].first_bridge + e, w);
+            if (s[e].k == NO_DIST || cost < s[e].cost) {
+                s[e].k = k, s[e].cost = cost, s[e].at = at, s[e].entry_d = d;
+            }
+        }
+    }
+}
+
+/* Enter the tween, play it at least MIN_DWELL_FRAMES and at most one pass,
+ * leave it for the target: the route that arrives first within max_total
+ * frames (then the closest entry). 0 if there is none. */
+static int tween_route(const cub_bridge_table *t, const cub_bridge_query *q, int64_t g0,
+                       int window, const target *tg, int max_total, scratch *w,
+                       cub_bridge_plan *out)
+{
+    int tw = t->tween_clip, pass = t->tween_pass;
+    if (tw < 0 || tw == q->from_clip || tw == q->to_clip) return 0;
+    slot *s = (slot *)w->nodes;
+    tween_entries(t, q, g0, window, w, s);
+    for (int x = 0; x < pass; x++)
+        tween_exit(t, q, tg, x, &s[x]);
+    for (int x = 2 * pass - 1, next = -1; x >= 0; x--) {
+        if (s[x % pass].exit_b >= 0) next = x; /* the second pass repeats the first */
+        s[x].next = next;
+    }
+    int best = -1, best_x = 0, best_total = max_total + 1;
+    for (int e = 0; e < pass; e++) {
+        int x = s[e].k == NO_DIST ? -1 : s[e + MIN_DWELL_FRAMES].next;
+        if (x < 0 || x - e > pass) continue;
+        int total = s[e].k + (x - e);
+        if (total < best_total || (best >= 0 && total == best_total && s[e].cost < s[best].cost))
+            best = e, best_x = x, best_total = total;
+    }
+    if (best < 0) return 0;
+    const slot *en = &s[best], *ex = &s[best_x % pass];
+    int nf = frames_of(t, q->from_clip);
+    out->step_count = 2;
+    out->step[0] = (cub_bridge_step){q->from_clip, (int)(en->at % nf), tw, best, en->entry_d,
+                                     CUB_BRIDGE_TWEEN, en->at << 16};
+    out->step[1] = (cub_bridge_step){tw, best_x, q->to_clip, ex->exit_b, ex->exit_d,
+                                     CUB_BRIDGE_TWEEN, (int64_t)best_x << 16};
+    out->wait_frames = en->k;
+    out->total_frames = best_total;
+    return 1;
+}
+
 /* ---- the plan -------------------------------------------------------- */
 
 /* A plan of one direct switch: play on h.k frames, then into h.frame. */
@@ -393,7 +514,7 @@ static int query_ok(const cub_bridge_table *t, const cub_bridge_query *q)
     return q->from_clip >= 0 && q->from_clip < n && q->to_clip >= 0 && q->to_clip < n &&
            q->pos_q16 >= 0 && q->pos_q16 < ((int64_t)1 << 46) && q->window_frames >= 0 &&
            q->wait_cost_mm >= 0 && q->start_frames >= 0 && q->reach_frames >= 0 &&
-           (q->strict == 0 || q->strict == 1);
+           (q->strict == 0 || q->strict == 1) && (q->via_tween == 0 || q->via_tween == 1);
 }
 
 /* The first frame still to come; a clip that does not loop holds its
@@ -419,6 +540,19 @@ static int reach_search(const cub_bridge_table *t, const cub_bridge_query *q, in
 
 static cub_err plan_within(const cub_bridge_table *t, const cub_bridge_query *q,
                            cub_bridge_plan *out, void *work);
+
+/* No direct switch: a chain through other clips, or (via_tween) a route
+ * through the tween clip, the wanted clip's front half first. */
+static int route_search(const cub_bridge_table *t, const cub_bridge_query *q, int64_t g0,
+                        int window, scratch *w, cub_bridge_plan *out)
+{
+    if (!q->via_tween) return tween_search(t, q, g0, window, w, out);
+    for (int back = 0; back <= 1; back++) {
+        target tg = {back, 0};
+        if (tween_route(t, q, g0, window, &tg, INT32_MAX - 1, w, out)) return 1;
+    }
+    return 0;
+}
 
 cub_err cub_bridge_plan_switch(const cub_bridge_table *t, const cub_bridge_query *q,
                                cub_bridge_plan *out, void *work, size_t work_size)
@@ -452,8 +586,15 @@ static cub_err plan_within(const cub_bridge_table *t, const cub_bridge_query *q,
         return CUB_OK;
     }
     if (q->start_frames > 0 && t->desc.bridge_total > 0) {
-        seed_nodes(t, q, g0, first, w);
-        if (start_tween(t, q, 2 * first, w, out)) {
+        target tg = {0, q->start_frames};
+        int found = 0;
+        if (q->via_tween) {
+            found = tween_route(t, q, g0, first, &tg, 2 * first, w, out);
+        } else {
+            seed_nodes(t, q, g0, first, w);
+            found = start_tween(t, q, 2 * first, w, out);
+        }
+        if (found) {
             out->window_frames = window;
             return CUB_OK;
         }
@@ -465,7 +606,7 @@ static cub_err plan_within(const cub_bridge_table *t, const cub_bridge_query *q,
             write_direct(q, nf, &h, window, out);
             return CUB_OK;
         }
-        if (t->desc.bridge_total > 0 && tween_search(t, q, g0, window, w, out)) {
+        if (t->desc.bridge_total > 0 && route_search(t, q, g0, window, w, out)) {
             out->window_frames = window;
             return CUB_OK;
         }

@@ -41,7 +41,7 @@ cub_err cub_bridge_player_init(cub_bridge_player *p, const cub_bridge_player_des
     if (desc->blend_frames < 0 || desc->blend_frames > CUB_BRIDGE_MAX_BLEND_FRAMES ||
         desc->window_frames < 0 || desc->wait_cost_mm < 0 || desc->blend_speed_mm < 0 ||
         desc->smooth < CUB_BRIDGE_SMOOTH_INERTIAL ||
-        desc->smooth > CUB_BRIDGE_SMOOTH_CROSSFADE)
+        desc->smooth > CUB_BRIDGE_SMOOTH_CROSSFADE || desc->via_tween < 0 || desc->via_tween > 1)
         return CUB_ERR_ARG;
     if (mem_size < cub_bridge_player_mem_size(desc)) return CUB_ERR_NOMEM;
     memset(p, 0, sizeof *p);
@@ -90,7 +90,7 @@ cub_err cub_bridge_player_request(cub_bridge_player *p, int clip, cub_q16 speed_
     if (clip < 0 || clip >= p->desc.table->desc.clip_count) return CUB_ERR_ARG;
     cub_bridge_query q = {p->clip, p->pos_q16, p->loop, clip, p->desc.window_frames,
                           p->desc.wait_cost_mm, p->desc.start_frames, p->desc.reach_frames,
-                          p->desc.strict};
+                          p->desc.strict, p->desc.via_tween};
     cub_bridge_plan plan;
     cub_err e = cub_bridge_plan_switch(p->desc.table, &q, &plan, p->work, p->work_size);
     if (e) return e;
@@ -116,6 +116,7 @@ cub_err cub_bridge_player_preview(cub_bridge_player *p, const cub_bridge_query *
     if (!here.window_frames) here.window_frames = p->desc.window_frames;
     if (!here.wait_cost_mm) here.wait_cost_mm = p->desc.wait_cost_mm;
     here.strict |= p->desc.strict;
+    here.via_tween |= p->desc.via_tween;
     return cub_bridge_plan_switch(p->desc.table, &here, out, p->work, p->work_size);
 }
 

@@ -95,6 +95,7 @@ cub_err cub_bridge_table_init(cub_bridge_table *t, const cub_bridge_table_desc *
     memset(t->clips, 0, n * sizeof(cub_bridge_clip));
     for (size_t i = 0; i < n * n; i++)
         t->pairs[i] = (cub_bridge_pair){0, -1};
+    t->tween_clip = -1;
     return CUB_OK;
 }
 
@@ -197,6 +198,18 @@ cub_err cub_bridge_table_set_links(cub_bridge_table *t, int from, int to,
     memcpy(t->links + t->links_used, links, (size_t)count * sizeof *links);
     *pair = (cub_bridge_pair){t->links_used, count};
     t->links_used += count;
+    return CUB_OK;
+}
+
+cub_err cub_bridge_table_set_tween(cub_bridge_table *t, int c, int pass_frames)
+{
+    if (!t || !t->clips || t->tween_clip >= 0 || c < 0 || c >= t->clips_added) return CUB_ERR_ARG;
+    const cub_bridge_clip *tc = &t->clips[c];
+    if (pass_frames < 2 || tc->clip.frame_count != 2 * pass_frames ||
+        tc->bridge_count != tc->clip.frame_count)
+        return CUB_ERR_ARG; /* bridges ascend in range, so all frames are bridges */
+    t->tween_clip = c;
+    t->tween_pass = pass_frames;
     return CUB_OK;
 }
 

@@ -21,7 +21,7 @@ void director_entry_leads(cub_director *d);
 /* director_keys.c: each move's key frame in its own clip and whether its
  * keys' mirror is a mistake (logged); at init, after the judge is known. */
 void director_find_keys(cub_director *d);
-/* Fill r's key moment (has_key, key_us, mirror_wrong) for a repetition of
+/* Fill r's key moment (has_key, key_us, mirror_wrong, other) for a repetition of
  * move entered at entry_frame of its clip after wait_frames, at speed. */
 void director_key_moment(const cub_director *d, int move, int32_t entry_frame, int32_t wait_frames,
                          cub_q16 speed, cub_judge_rep *r);

@@ -27,6 +27,8 @@ static void fill_defaults(cub_judge_desc *d)
     if (!d->wave_swing) d->wave_swing = PCT(25);
     if (!d->wave_reversals) d->wave_reversals = 2;
     if (!d->wave_gap_ms) d->wave_gap_ms = 2000;
+    if (!d->lag_ms) d->lag_ms = 500;
+    if (!d->sign_ms) d->sign_ms = 250;
 }
 
 static int desc_ok(const cub_judge_desc *d)
@@ -42,7 +44,7 @@ static int desc_ok(const cub_judge_desc *d)
     return d->key_mu <= CUB_FUZZY_ONE && d->present_frames > 0 && d->present_frames <= 1000 &&
            d->absent_frames > 0 && d->absent_frames <= 1000 && d->wave_reversals > 0 &&
            d->wave_reversals <= 100 && d->stand_cog_mm >= 0 && d->lag_ms >= 0 &&
-           d->lag_ms <= 60000;
+           d->lag_ms <= 60000 && d->sign_ms >= 0 && d->sign_ms <= 60000;
 }
 
 size_t cub_judge_mem_size(const cub_judge_desc *desc)
@@ -150,6 +152,45 @@ static cub_err arm_aware_features(cub_judge *j, const cub_track_skeleton *skel)
     return CUB_OK;
 }
 
+/* The joints each feature reads (the fuzzy body's, Kinect indices). */
+static uint32_t feature_joints(const cub_fuzzy_body *b, int32_t f)
+{
+    int side = f == CUB_FUZZY_RH || f == CUB_FUZZY_RHE || f == CUB_FUZZY_RF || f == CUB_FUZZY_RFK;
+    uint32_t m = 0;
+    switch (f) {
+    case CUB_FUZZY_RH:
+    case CUB_FUZZY_RHE:
+    case CUB_FUZZY_LH:
+    case CUB_FUZZY_LHE:
+        return 1u << b->shoulder[side] | 1u << b->elbow[side] | 1u << b->wrist[side];
+    case CUB_FUZZY_RF:
+    case CUB_FUZZY_RFK:
+    case CUB_FUZZY_LF:
+    case CUB_FUZZY_LFK: return 1u << b->hip[side] | 1u << b->knee[side] | 1u << b->ankle[side];
+    case CUB_FUZZY_TRUNK:
+        return 1u << b->shoulder_centre | 1u << b->hip_centre | 1u << b->knee[0] | 1u << b->knee[1];
+    default: /* Posture: the centre of gravity, most of it trunk and legs */
+        m = 1u << b->shoulder_centre | 1u << b->hip_centre;
+        for (int k = 0; k < 2; k++)
+            m |= 1u << b->hip[k] | 1u << b->knee[k] | 1u << b->ankle[k];
+        return m;
+    }
+}
+
+/* Bit f set when every joint feature f reads was seen (confidence > 0:
+ * the tracker did not guess it). */
+static uint32_t sure_features(const cub_judge *j, const cub_track_skeleton *skel)
+{
+    uint32_t seen = 0, sure = 0;
+    for (int k = 0; k < CUB_KJ_COUNT; k++)
+        if (skel->confidence[k] > 0) seen |= 1u << k;
+    for (int32_t f = 0; f < CUB_FUZZY_FEATURE_COUNT; f++) {
+        uint32_t need = feature_joints(&j->body, f);
+        if ((seen & need) == need) sure |= 1u << f;
+    }
+    return sure;
+}
+
 cub_err cub_judge_frame(cub_judge *j, int64_t t_us, const cub_track_skeleton *skel,
                         cub_judge_out *out)
 {
@@ -162,14 +203,16 @@ cub_err cub_judge_frame(cub_judge *j, int64_t t_us, const cub_track_skeleton *sk
     int ok = skel->status == CUB_TRACK_OK;
     presence(j, t_us, ok, out);
     const cub_fuzzy_frame *f = NULL;
+    uint32_t sure = 0;
     if (ok) {
+        sure = sure_features(j, skel);
         calibrate(j, skel);
         if (arm_aware_features(j, skel) == CUB_OK) f = &j->last;
         judge_gestures(j, t_us, skel, out);
     } else {
         judge_gestures_reset(j);
     }
-    judge_reps_frame(j, t_us, f, out);
+    judge_reps_frame(j, t_us, f, sure, out);
     return CUB_OK;
 }
 
@@ -180,6 +223,7 @@ const cub_fuzzy_frame *cub_judge_last_features(const cub_judge *j)
 
 static const char *const why_names[] = {
     "?", "keys", "missed", "pose", "no_player", "clap", "wave", "in_view", "out_of_view", "mirror",
+    "unsure", "other",
 };
 
 const char *cub_judge_why_name(int32_t why)
@@ -215,6 +259,11 @@ size_t cub_judge_describe(const cub_judge_event *e, char *buf, size_t size)
                                   "verdict move=%d rep=%d result=%s why=%s key=%s=%s %s=%q",
                                   e->move, e->rep, e->ev.b ? "right" : "wrong", why, key, set,
                                   what, e->value);
+        if (e->why == CUB_JUDGE_WHY_UNSURE) /* no result the coach acts on */
+            return cub_log_format(buf, size,
+                                  "verdict move=%d rep=%d result=unsure why=unsure key=%s=%s "
+                                  "sure=%q",
+                                  e->move, e->rep, key, set, e->value);
         return e->ev.b ? n : n + describe_fix(cub_judge_fault_of(e->ev.c), buf + n, size - n);
     }
     case CUB_JUDGE_CLAP:

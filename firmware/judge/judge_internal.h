@@ -31,6 +31,12 @@ typedef struct rep_slot {
     int has_mirror;     /* the mirrored keys held instead are wrong at once */
     cub_judge_key mirror[CUB_JUDGE_MAX_KEYS];
     int mirror_run_on;
+    int32_t other_count;
+    cub_judge_keyset other[CUB_JUDGE_MAX_OTHER];
+    int other_run_on[CUB_JUDGE_MAX_OTHER];
+    int64_t other_run_first_us[CUB_JUDGE_MAX_OTHER];
+    int32_t sure_frames, unsure_frames; /* OK frames with the keys' joints seen, or guessed */
+    int32_t sure_after_lag, unsure_after_lag; /* the same, past the child's lag */
     int64_t mirror_run_first_us;
 } rep_slot;
 
@@ -100,7 +106,8 @@ void judge_gestures(cub_judge *j, int64_t t_us, const cub_track_skeleton *s, cub
 void judge_gestures_reset(cub_judge *j);
 
 /* judge_reps.c: the repetitions' verdicts for one frame; f NULL when the
- * frame is not OK. */
-void judge_reps_frame(cub_judge *j, int64_t t_us, const cub_fuzzy_frame *f, cub_judge_out *out);
+ * frame is not OK; sure: bit f when feature f's joints were all seen. */
+void judge_reps_frame(cub_judge *j, int64_t t_us, const cub_fuzzy_frame *f, uint32_t sure,
+                      cub_judge_out *out);
 
 #endif

@@ -6,14 +6,24 @@
 #include "cub/judge.h"
 #include "judge_internal.h"
 
+static int set_valid(const cub_judge_key *keys, int32_t n)
+{
+    if (n < 1 || n > CUB_JUDGE_MAX_KEYS) return 0;
+    for (int k = 0; k < n; k++) {
+        int32_t f = keys[k].feature;
+        if (f < 0 || f >= CUB_FUZZY_FEATURE_COUNT) return 0;
+        if (keys[k].set < 0 || keys[k].set >= cub_fuzzy_set_count(f)) return 0;
+    }
+    return 1;
+}
+
 static int keys_valid(const cub_judge_rep *r)
 {
-    if (r->key_count < 1 || r->key_count > CUB_JUDGE_MAX_KEYS) return 0;
-    for (int k = 0; k < r->key_count; k++) {
-        int32_t f = r->keys[k].feature;
-        if (f < 0 || f >= CUB_FUZZY_FEATURE_COUNT) return 0;
-        if (r->keys[k].set < 0 || r->keys[k].set >= cub_fuzzy_set_count(f)) return 0;
-    }
+    if (!set_valid(r->keys, r->key_count)) return 0;
+    if (!r->has_key) return 1; /* the others are read only with a key moment */
+    if (r->other_count < 0 || r->other_count > CUB_JUDGE_MAX_OTHER) return 0;
+    for (int i = 0; i < r->other_count; i++)
+        if (!set_valid(r->other[i].key, r->other[i].count)) return 0;
     return 1;
 }
 
@@ -48,6 +58,14 @@ int cub_judge_mirror_keys(const cub_judge_key *keys, int32_t key_count, cub_judg
         differs |= !has_key(keys, key_count, mirror[i]);
     }
     return differs;
+}
+
+/* Were the joints of every key seen (not guessed by the tracker)? */
+static int keys_sure(const cub_judge_key *keys, int32_t n, uint32_t sure)
+{
+    for (int k = 0; k < n; k++)
+        if (!(sure >> keys[k].feature & 1u)) return 0;
+    return 1;
 }
 
 /* Do all keys reach their sets in f? */
@@ -92,24 +110,28 @@ int32_t cub_judge_key_moment(const cub_judge *j, const cub_judge_key *keys, int3
     return -1; /* not reached: peak >= clear */
 }
 
-/* The early deadline: the coach's key moment plus a child's lag, never
- * before two beats into the repetition. */
+/* How long after a repetition's start the child may still be in the one
+ * before: its lag (desc lag_ms). */
+static int64_t lag_us(const cub_judge *j)
+{
+    return (int64_t)j->d.lag_ms * 1000;
+}
+
+/* The early deadline: the coach's key moment plus the child's lag, and at
+ * least sign_ms after that lag (the child's own time to show the keys, which
+ * a move may leave for a moment: a punch straightens the elbow). */
 static void set_due(const cub_judge *j, rep_slot *s, const cub_judge_rep *r)
 {
     if (!r->has_key || r->key_us < 0) return;
-    int64_t lag = j->d.lag_ms > 0 ? (int64_t)j->d.lag_ms * 1000 : r->beat_us;
-    int64_t hold = (int64_t)j->d.hold_ms * 1000;
-    /* Not before two beats: the first is the previous repetition's tail
-     * (a late child still does it), the second the child's lag for a key
-     * the bear shows from its clip's start. */
-    int64_t due = r->key_us + lag, first = 2 * r->beat_us;
-    if (first < r->beat_us + hold) first = r->beat_us + hold;
-    if (due < first) due = first;
+    int64_t sign = (int64_t)j->d.sign_ms * 1000;
+    int64_t due = lag_us(j) + (r->key_us > sign ? r->key_us : sign);
     if (due > INT64_MAX - r->start_us) return;
     s->has_due = 1;
     s->due_us = r->start_us + due;
     if (r->mirror_wrong)
         s->has_mirror = cub_judge_mirror_keys(s->keys, s->key_count, s->mirror);
+    s->other_count = r->other_count;
+    memcpy(s->other, r->other, sizeof s->other);
 }
 
 cub_err cub_judge_begin_rep(cub_judge *j, const cub_judge_rep *r)
@@ -276,7 +298,7 @@ static cub_judge_event wrong(const rep_slot *s, int64_t t_us, int32_t early_why,
     if (why == CUB_JUDGE_WHY_MIRROR)
         e.ev.c = cub_judge_fault_code(
             (cub_judge_fault){CUB_JUDGE_HOW_MIRROR, e.feature, e.set, limb_bit(s->keys[k])});
-    else if (why == CUB_JUDGE_WHY_MISSED)
+    else if (why == CUB_JUDGE_WHY_MISSED || why == CUB_JUDGE_WHY_OTHER)
         e.ev.c = cub_judge_fault_code(
             (cub_judge_fault){CUB_JUDGE_HOW_MISSED, e.feature, e.set, missed_limbs(s, key_mu)});
     return e;
@@ -284,13 +306,22 @@ static cub_judge_event wrong(const rep_slot *s, int64_t t_us, int32_t early_why,
 
 /* One frame of one open repetition inside its window; 1 when it is now
  * right. */
-static int rep_step(cub_judge *j, rep_slot *s, int64_t t_us, const cub_fuzzy_frame *f)
+static int rep_step(cub_judge *j, rep_slot *s, int64_t t_us, const cub_fuzzy_frame *f,
+                    uint32_t sure)
 {
     if (!f) {
         s->run_on = s->keys_run_on = 0;
         return 0;
     }
     s->seen = 1;
+    int past_lag = t_us >= s->start_us + lag_us(j);
+    if (keys_sure(s->keys, s->key_count, sure)) {
+        s->sure_frames++;
+        s->sure_after_lag += past_lag;
+    } else {
+        s->unsure_frames++;
+        s->unsure_after_lag += past_lag;
+    }
     for (int k = 0; k < s->key_count; k++) {
         uint16_t mu = f->mu[s->keys[k].feature][s->keys[k].set];
         if (mu > s->best_mu[k]) s->best_mu[k] = mu;
@@ -301,8 +332,9 @@ static int rep_step(cub_judge *j, rep_slot *s, int64_t t_us, const cub_fuzzy_fra
     uint16_t th = s->keys_run_on ? (uint16_t)(j->d.key_mu - j->d.key_mu / 5) : j->d.key_mu;
     int keys = keys_match(s->keys, s->key_count, f, th);
     /* A sign of the move, even too short or taken by the previous
-     * repetition: no early wrong verdict then, only the close's. */
-    if (t_us >= s->start_us + s->beat_us) /* the first beat is the previous one's tail */
+     * repetition: no early wrong verdict then, only the close's. Not in
+     * the child's lag: there it may still be ending the one before. */
+    if (t_us >= s->start_us + lag_us(j))
         s->sign |= keys_match(s->keys, s->key_count, f, (uint16_t)(j->d.key_mu - j->d.key_mu / 5));
     int close = 1;
     if (keys && s->has_expected) {
@@ -323,26 +355,52 @@ static int rep_step(cub_judge *j, rep_slot *s, int64_t t_us, const cub_fuzzy_fra
            t_us >= s->start_us + s->beat_us;
 }
 
+/* Is one of the other moves' keys held instead of s's: sign_ms past the
+ * child's lag, its joints seen, s's keys not matched? */
+static int other_held(const cub_judge *j, rep_slot *s, int64_t t_us, const cub_fuzzy_frame *f,
+                      uint32_t sure)
+{
+    int held = 0;
+    int64_t from = s->start_us + lag_us(j);
+    for (int i = 0; i < s->other_count; i++) {
+        const cub_judge_keyset *o = &s->other[i];
+        int on = keys_sure(o->key, o->count, sure) &&
+                 keys_match(o->key, o->count, f, j->d.key_mu) &&
+                 !keys_match(s->keys, s->key_count, f, j->d.key_mu);
+        if (on && !s->other_run_on[i]) s->other_run_first_us[i] = t_us;
+        s->other_run_on[i] = on;
+        int64_t since = s->other_run_first_us[i] > from ? s->other_run_first_us[i] : from;
+        held |= on && t_us - since >= (int64_t)j->d.sign_ms * 1000;
+    }
+    return held;
+}
+
 /* The evidence against a repetition not yet right, in an OK frame f:
- * CUB_JUDGE_WHY_MIRROR when its keys' mirror has been held past the first
- * beat, CUB_JUDGE_WHY_MISSED when its deadline passed with no sign of its
- * keys in the window; else 0. */
-static int32_t early_wrong(const cub_judge *j, rep_slot *s, int64_t t_us, const cub_fuzzy_frame *f)
+ * CUB_JUDGE_WHY_MIRROR when its keys' mirror has been held past the
+ * child's lag, CUB_JUDGE_WHY_MISSED when its deadline passed with no sign
+ * of its keys after the lag; else 0. */
+static int32_t early_wrong(const cub_judge *j, rep_slot *s, int64_t t_us, const cub_fuzzy_frame *f,
+                           uint32_t sure)
 {
     if (!f) {
         s->mirror_run_on = 0;
+        memset(s->other_run_on, 0, sizeof s->other_run_on);
         return 0;
     }
     if (s->has_mirror) {
-        int on = keys_match(s->mirror, s->key_count, f, j->d.key_mu) &&
+        int on = keys_sure(s->mirror, s->key_count, sure) &&
+                 keys_match(s->mirror, s->key_count, f, j->d.key_mu) &&
                  !keys_match(s->keys, s->key_count, f, j->d.key_mu);
         if (on && !s->mirror_run_on) s->mirror_run_first_us = t_us;
         s->mirror_run_on = on;
         if (on && t_us - s->mirror_run_first_us >= (int64_t)j->d.hold_ms * 1000 &&
-            t_us >= s->start_us + s->beat_us)
+            t_us >= s->start_us + lag_us(j))
             return CUB_JUDGE_WHY_MIRROR;
     }
-    return s->has_due && t_us >= s->due_us && !s->sign ? CUB_JUDGE_WHY_MISSED : 0;
+    if (!s->sign && other_held(j, s, t_us, f, sure)) return CUB_JUDGE_WHY_OTHER;
+    return s->has_due && t_us >= s->due_us && !s->sign && s->unsure_after_lag <= s->sure_after_lag
+               ? CUB_JUDGE_WHY_MISSED
+               : 0;
 }
 
 /* The open slot with the lowest seq above `after` (after = -1: any). */
@@ -356,20 +414,36 @@ static rep_slot *next_oldest(cub_judge *j, int64_t after)
     return best;
 }
 
-void judge_reps_frame(cub_judge *j, int64_t t_us, const cub_fuzzy_frame *f, cub_judge_out *out)
+/* A closed window's wrong verdict, unless the keys' joints were guessed in
+ * most of its frames: then unsure, logged and not posted (nothing to
+ * correct on a guess). */
+static cub_judge_event closing(const cub_judge *j, const rep_slot *s, int64_t t_us)
+{
+    cub_judge_event e = wrong(s, t_us, 0, j->d.key_mu);
+    if (!s->seen || s->unsure_frames <= s->sure_frames) return e;
+    e.why = CUB_JUDGE_WHY_UNSURE;
+    e.ev.type = CUB_EV_NONE;
+    e.ev.c = 0;
+    e.value =
+        (cub_q16)((int64_t)s->sure_frames * CUB_Q16_ONE / (s->sure_frames + s->unsure_frames));
+    return e;
+}
+
+void judge_reps_frame(cub_judge *j, int64_t t_us, const cub_fuzzy_frame *f, uint32_t sure,
+                      cub_judge_out *out)
 {
     release_consumed(j, f);
     for (rep_slot *s = next_oldest(j, -1); s; s = next_oldest(j, s->seq)) {
         if (t_us >= s->close_us) {
             if (!s->right) {
-                cub_judge_event e = wrong(s, t_us, 0, j->d.key_mu);
+                cub_judge_event e = closing(j, s, t_us);
                 judge_emit(j, out, &e);
             }
             s->used = 0;
             continue;
         }
         if (s->right || t_us < s->start_us) continue;
-        if (rep_step(j, s, t_us, f)) {
+        if (rep_step(j, s, t_us, f, sure)) {
             s->right = 1;
             consume(j, s, t_us);
             cub_judge_event e = verdict(s, t_us, 1, CUB_JUDGE_WHY_KEYS);
@@ -379,10 +453,10 @@ void judge_reps_frame(cub_judge *j, int64_t t_us, const cub_fuzzy_frame *f, cub_
             judge_emit(j, out, &e);
             continue;
         }
-        int32_t why = early_wrong(j, s, t_us, f);
+        int32_t why = early_wrong(j, s, t_us, f, sure);
         if (why) {
             /* missed early: told as the window's close would tell it */
-            cub_judge_event e = wrong(s, t_us, why == CUB_JUDGE_WHY_MIRROR ? why : 0, j->d.key_mu);
+            cub_judge_event e = wrong(s, t_us, why == CUB_JUDGE_WHY_MISSED ? 0 : why, j->d.key_mu);
             judge_emit(j, out, &e);
             s->used = 0;
         }

@@ -1,8 +1,12 @@
 /* cubtool's viewer and renderer bench, run as the real binary (argv[1])
  * headless: bench-render prints its figures in the promised shape, and
  * play writes frames that move, fill both halves side by side, follow the
- * speed, and refuses bad files by name. No timed assertions: the bench's
- * numbers are only checked for sign and for adding up. */
+ * speed, and refuses bad files by name; its scene (the seed's Motion
+ * Player), driven by a key script, moves the selected character and only
+ * it, zooms, draws bone numbers in points mode and a TRC's markers as
+ * numbered points. No timed assertions: the bench's numbers are only
+ * checked for sign and for adding up. */
+#include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -136,7 +140,7 @@ static void test_play_pack_clip_on_the_bear_moves(void **state)
     static char out[16384];
     char dir[4096];
     out_dir(dir, sizeof dir, "pack");
-    assert_int_equal(run_tool(out, sizeof out, "play '%s/clips/bear.cubclips:jumping_jacks' --frames '%s' "
+    assert_int_equal(run_tool(out, sizeof out, "play '%s/clips/bear.cubclips:jumping_jacks' --side-by-side --frames '%s' "
                                                "--size 160x90 --frame-count 12",
                               CUB_ASSETS_DIR, dir),
                      0);
@@ -168,8 +172,8 @@ static void test_play_side_by_side_has_a_figure_in_each_half(void **state)
     static char out[16384];
     char dir[4096];
     out_dir(dir, sizeof dir, "two");
-    assert_int_equal(run_tool(out, sizeof out, "play '%s/clips/hello.bvh' '%s/clips/hello.bvh' --stick --frames '%s' "
-                                               "--size 320x120 --frame-count 1",
+    assert_int_equal(run_tool(out, sizeof out, "play '%s/clips/hello.bvh' '%s/clips/hello.bvh' --side-by-side --stick "
+                                               "--frames '%s' --size 320x120 --frame-count 1",
                               CUB_ASSETS_DIR, CUB_ASSETS_DIR, dir),
                      0);
     image im = load_frame(dir, 0);
@@ -223,6 +227,127 @@ static void test_play_bad_file_fails_naming_it(void **state)
     assert_non_null(strstr(out, "bear.cubclips: no clip named 'no_such_move'"));
 }
 
+/* ---- play: the scene ------------------------------------------------------ */
+
+/* Where the pixels of one kind lie: how many, and their mean column and row. */
+typedef struct blob {
+    int n;
+    double x, y;
+} blob;
+
+typedef int (*pixel_kind)(const uint8_t *p);
+
+/* The colours render_player.c draws: A blue, B orange, the selection ring
+ * yellow, the bone numbers white (sky, floor and grid are none of these). */
+static int is_blue(const uint8_t *p) { return p[2] > 200 && p[0] < 140 && p[1] > 120 && p[1] < 210; }
+static int is_orange(const uint8_t *p) { return p[0] > 200 && p[1] > 100 && p[1] < 180 && p[2] < 90; }
+static int is_yellow(const uint8_t *p) { return p[0] > 200 && p[1] > 190 && p[2] < 80; }
+static int is_white(const uint8_t *p) { return p[0] > 235 && p[1] > 235 && p[2] > 235; }
+
+static blob find(const image *im, pixel_kind kind)
+{
+    blob b = {0};
+    for (int y = 0; y < im->h; y++)
+        for (int x = 0; x < im->w; x++)
+            if (kind(im->rgba + ((size_t)y * im->w + x) * 4)) b.n++, b.x += x, b.y += y;
+    if (b.n) b.x /= b.n, b.y /= b.n;
+    return b;
+}
+
+static blob find_in(const char *dir, int frame, pixel_kind kind)
+{
+    image im = load_frame(dir, frame);
+    blob b = find(&im, kind);
+    free(im.rgba);
+    return b;
+}
+
+static void write_file(const char *path, const char *text)
+{
+    FILE *f = fopen(path, "w");
+    assert_non_null(f);
+    fputs(text, f);
+    fclose(f);
+}
+
+static void test_play_scene_keys_select_move_zoom_and_number(void **state)
+{
+    (void)state;
+    static char out[65536];
+    char dir[4096], keys[4096];
+    out_dir(dir, sizeof dir, "scene");
+    snprintf(keys, sizeof keys, "%s/scene.keys", g_out);
+    write_file(keys, "# pause, select B, move it right, numbers, zoom in\n"
+                     "0 Space\n2 2 L L L L L\n4 N\n6 Up Up Up\n");
+    assert_int_equal(run_tool(out, sizeof out,
+                              "play '%s/clips/hello.bvh' '%s/clips/bear.cubclips:jumping_jacks' "
+                              "--frames '%s' --size 480x270 --frame-count 8 --keys '%s'",
+                              CUB_ASSETS_DIR, CUB_ASSETS_DIR, dir, keys),
+                     0);
+    assert_non_null(strstr(out, "play: frame 2 key L: selected=2 move1=0,0 size1=1.000 "
+                                "move2=500,0"));
+    assert_non_null(strstr(out, "play: frame 4 key N: "));
+    assert_non_null(strstr(out, "zoom=1.331"));
+    /* Frames 1 and 3: before and after the moves, paused, sticks. */
+    blob a1 = find_in(dir, 1, is_blue), b1 = find_in(dir, 1, is_orange);
+    blob a3 = find_in(dir, 3, is_blue), b3 = find_in(dir, 3, is_orange);
+    assert_true(a1.n > 100 && b1.n > 100);
+    assert_true(b3.x - b1.x > 10.0);            /* B went right */
+    assert_true(fabs(a3.x - a1.x) < 0.5 && a3.n == a1.n); /* A stayed as it was */
+    /* The ring went from A's feet to B's. */
+    blob r1 = find_in(dir, 1, is_yellow), r3 = find_in(dir, 3, is_yellow);
+    assert_true(r1.n > 20 && r3.n > 20);
+    assert_true(fabs(r1.x - a1.x) < fabs(r1.x - b1.x));
+    assert_true(fabs(r3.x - b3.x) < fabs(r3.x - a3.x));
+    /* Numbers only in points mode. */
+    assert_int_equal(find_in(dir, 3, is_white).n, 0);
+    blob w5 = find_in(dir, 5, is_white);
+    assert_true(w5.n > 50);
+    /* Zoomed in: the two characters stand farther apart on the screen. */
+    blob a5 = find_in(dir, 5, is_blue), b5 = find_in(dir, 5, is_orange);
+    blob a7 = find_in(dir, 7, is_blue), b7 = find_in(dir, 7, is_orange);
+    assert_true((b7.x - a7.x) > 1.15 * (b5.x - a5.x));
+}
+
+static void test_play_trc_markers_are_numbered_points(void **state)
+{
+    (void)state;
+    static char out[16384];
+    char dir[4096];
+    out_dir(dir, sizeof dir, "trc");
+    assert_int_equal(run_tool(out, sizeof out,
+                              "play '%s/../tests/fuzz/seeds_trc/small_mm.trc' --frames '%s' "
+                              "--size 480x270 --frame-count 2",
+                              CUB_ASSETS_DIR, dir),
+                     0);
+    assert_non_null(strstr(out, "markers,"));
+    assert_non_null(strstr(out, "as points"));
+    image im = load_frame(dir, 0);
+    blob pts = find(&im, is_blue), nums = find(&im, is_white);
+    free(im.rgba);
+    assert_true(pts.n > 10);
+    assert_true(nums.n > 10); /* markers have no bones: numbered points */
+}
+
+static void test_play_bad_key_script_names_the_line(void **state)
+{
+    (void)state;
+    static char out[16384];
+    char dir[4096], keys[4096];
+    out_dir(dir, sizeof dir, "badkeys");
+    snprintf(keys, sizeof keys, "%s/bad.keys", g_out);
+    write_file(keys, "0 Space\n# fine so far\n3 L Shift\n");
+    assert_int_equal(run_tool(out, sizeof out, "play '%s/clips/hello.bvh' --frames '%s' --keys '%s'",
+                              CUB_ASSETS_DIR, dir, keys),
+                     1);
+    assert_non_null(strstr(out, "bad.keys:3: unknown key \"Shift\""));
+    write_file(keys, "5 L\n2 J\n");
+    assert_int_equal(run_tool(out, sizeof out, "play '%s/clips/hello.bvh' --frames '%s' --keys '%s'",
+                              CUB_ASSETS_DIR, dir, keys),
+                     1);
+    assert_non_null(strstr(out, "bad.keys:2: frame 2 after frame 5"));
+}
+
 int main(int argc, char **argv)
 {
     if (argc < 2) {
@@ -237,6 +362,9 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_play_bvh_moves),
         cmocka_unit_test(test_play_side_by_side_has_a_figure_in_each_half),
         cmocka_unit_test(test_play_speed_two_plays_through_in_half_the_frames),
+        cmocka_unit_test(test_play_scene_keys_select_move_zoom_and_number),
+        cmocka_unit_test(test_play_trc_markers_are_numbered_points),
+        cmocka_unit_test(test_play_bad_key_script_names_the_line),
         cmocka_unit_test(test_bench_render_prints_positive_parts_that_add_up),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

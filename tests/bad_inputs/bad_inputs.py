@@ -142,6 +142,9 @@ def base_of(kind, d, shared, build=""):
         return read(os.path.join(SRC, "tests", "fuzz", "seeds_forest", "two_trees.cubforest")), "bad.forest"
     if kind == "trc":  # a small marker file, made by tests/fuzz/make_seeds.py
         return read(os.path.join(SRC, "tests", "fuzz", "seeds_trc", "small_mm.trc")), "bad.trc"
+    if kind == "keyscript":  # cubtool play's scripted keys (the format: cub/keyscript.h)
+        write(os.path.join(d, "hello.bvh"), bear_bvh)
+        return b"# pause, select B, move it, numbers, zoom\n0 Space\n2 2 L L\n4 N\n6 Up Up\n", "bad.keys"
     if kind == "jtrack":  # a joint track of three frames (the format: cub/synth.h)
         head = b"# every point at one spot, then moving\ncub-jtrack 1\nfps 30\nunit_mm 0.5\nframes 3\n"
         frames = b"(100)(2000)(-50)" * 21 + b"\n" + b"`__" * 21 + b"\n" + b"___" * 21 + b"\n"

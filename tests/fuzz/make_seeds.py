@@ -2,7 +2,7 @@
 """Write the fuzz targets' small seed inputs (issue 18) into tests/fuzz/:
 seeds_dump/ (fuzz_fakenect_dump, fuzz_track_dump), seeds_synth/,
 seeds_cli/, seeds_font/, seeds_forest/, seeds_map/, seeds_codec/, seeds_keys/, seeds_voice/, seeds_trc/,
-seeds_ase/. Everything is made
+seeds_ase/, seeds_keyscript/. Everything is made
 here from the formats' rules, nothing copied from the shared data; run it again
 after changing a format:
 
@@ -390,8 +390,18 @@ def forest_seeds():
     put("seeds_forest", "many_classes.cubforest", forest(classes=16))
 
 
+def keyscript_seeds():
+    """cubtool play's scripted keys (app/include/cub/keyscript.h)."""
+    put("seeds_keyscript", "scene.keys",
+        b"# pause, select B, move it, numbers, zoom\n0 Space\n2 2 L L L\n4 N\n6 Up Up\n")
+    put("seeds_keyscript", "every_key.keys",
+        b"0 tab 1 2 I J K L W A S D up down pageup PageDown N\n"
+        b"10 Plus minus C V F G Space Home Left Right Esc\n")
+
+
 def main():
     forest_seeds()
+    keyscript_seeds()
     ase_seeds()
     trc_seeds()
     codec_seeds()

@@ -33,6 +33,7 @@ typedef struct pose {
     int waving;       /* use wave_dx */
     int arms_up;      /* both arms straight up */
     int status;       /* cub_track_status */
+    int guess_right;  /* the tracker guessed the right arm (confidence 0) */
 } pose;
 
 static cub_track_skeleton child(pose p)
@@ -79,6 +80,8 @@ static cub_track_skeleton child(pose p)
     }
     for (int k = 0; k < CUB_KJ_COUNT; k++)
         s.confidence[k] = CUB_Q16_ONE;
+    for (int k = CUB_KJ_ELBOW_R; p.guess_right && k <= CUB_KJ_HAND_R; k++)
+        s.confidence[k] = 0;
     return s;
 }
 
@@ -162,7 +165,7 @@ static cub_judge_rep rep_rhe(int rep, int from, int to)
     return r;
 }
 
-static const pose STILL = {{0, 0}, 0, 0, 0, 0, 0, 0, CUB_TRACK_OK};
+static const pose STILL = {{0, 0}, 0, 0, 0, 0, 0, 0, CUB_TRACK_OK, 0};
 
 static pose bent_right(void)
 {
@@ -354,7 +357,15 @@ static cub_judge_rep rep_rhe_keyed(int rep, int from, int to, int key_frames, in
     return r;
 }
 
-static void test_standing_still_is_wrong_a_beat_after_the_key(void **state)
+/* A fresh judge (defaults) with rep_rhe_keyed(0, 0, 60, key_frames, 0) open. */
+static void start_keyed(rec *r, int key_frames)
+{
+    rec_init(r, NULL);
+    cub_judge_rep rep = rep_rhe_keyed(0, 0, 60, key_frames, 0);
+    assert_int_equal(cub_judge_begin_rep(r->j, &rep), CUB_OK);
+}
+
+static void test_standing_still_is_wrong_a_lag_after_the_key(void **state)
 {
     (void)state;
     rec r;
@@ -363,8 +374,9 @@ static void test_standing_still_is_wrong_a_beat_after_the_key(void **state)
     assert_int_equal(cub_judge_begin_rep(r.j, &rep), CUB_OK);
     play(&r, 100, 0, 0, STILL);
     assert_int_equal(count(&r, CUB_JUDGE_VERDICT), 1);
-    /* key at 20 + a beat of 15: wrong in frame 35, not at the close (75) */
-    assert_verdict(&r, 0, 0, 0, 35);
+    /* key at 20 frames + the lag's 500 ms: wrong in frame 36 (the first at
+     * or past 1.1667 s), not at the close (75) */
+    assert_verdict(&r, 0, 0, 0, 36);
     assert_int_equal(first(&r, CUB_JUDGE_VERDICT)->why, CUB_JUDGE_WHY_MISSED);
 }
 
@@ -376,7 +388,7 @@ static void test_child_a_beat_late_is_still_right(void **state)
     cub_judge_rep rep = rep_rhe_keyed(0, 0, 60, 20, 0);
     assert_int_equal(cub_judge_begin_rep(r.j, &rep), CUB_OK);
     /* reached at 34 (14 frames late), held at 38: the sign before the
-     * deadline (35) leaves it the window's whole time */
+     * deadline (36) leaves it the window's whole time */
     play(&r, 100, 34, 45, bent_right());
     assert_int_equal(count(&r, CUB_JUDGE_VERDICT), 1);
     assert_verdict(&r, 0, 0, 1, 38);
@@ -398,16 +410,29 @@ static void test_lag_is_a_tunable(void **state)
     assert_int_equal(cub_judge_init(&d, mem, sizeof mem, &j), CUB_ERR_ARG);
 }
 
-static void test_early_deadline_not_before_the_first_beat(void **state)
+/* A key the bear shows from its clip's start: the deadline is the lag plus
+ * sign_ms (250 ms), the child's time to show it; a sign in that time (the
+ * elbow bent again after a punch) is enough. */
+static void test_early_deadline_leaves_time_for_a_sign(void **state)
 {
     (void)state;
+    for (int signed_ = 0; signed_ < 2; signed_++) {
+        rec r;
+        start_keyed(&r, 0);
+        /* bent in the lag (the previous repetition's tail: no sign), and
+         * for the signed child again at frames 20-21, past the lag */
+        for (int f = 0; f < 100; f++)
+            feed(&r, f, f < 10 || (signed_ && f >= 20 && f < 22) ? bent_right() : STILL);
+        /* 500 + 250 ms: frame 23; the signed child gets the close (75) */
+        assert_verdict(&r, 0, 0, 0, signed_ ? 75 : 23);
+    }
+    cub_judge_desc d = {.lag_ms = 33, .sign_ms = 100};
     rec r;
-    cub_judge_desc d = {.lag_ms = 33}; /* shorter than a beat: the beat + hold bounds it */
     rec_init(&r, &d);
     cub_judge_rep rep = rep_rhe_keyed(0, 0, 60, 0, 0);
     assert_int_equal(cub_judge_begin_rep(r.j, &rep), CUB_OK);
     play(&r, 100, 0, 0, STILL);
-    assert_verdict(&r, 0, 0, 0, 30); /* two beats of 15 frames */
+    assert_verdict(&r, 0, 0, 0, 4); /* 33 + 100 ms: frame 4 (133.3 ms) */
 }
 
 static void test_mirrored_key_is_wrong_at_once(void **state)
@@ -421,9 +446,9 @@ static void test_mirrored_key_is_wrong_at_once(void **state)
     left.bend[0] = 1;
     play(&r, 100, 5, 60, left);
     assert_int_equal(count(&r, CUB_JUDGE_VERDICT), 1);
-    /* held from 5, but not in the first beat: wrong at 15, long before the
-     * key's deadline (55) */
-    assert_verdict(&r, 0, 0, 0, 15);
+    /* held from 5, but not in the child's lag (500 ms): wrong at 16, long
+     * before the key's deadline (56) */
+    assert_verdict(&r, 0, 0, 0, 16);
     const cub_judge_event *v = first(&r, CUB_JUDGE_VERDICT);
     assert_int_equal(v->why, CUB_JUDGE_WHY_MIRROR);
     char line[160];
@@ -434,7 +459,7 @@ static void test_mirrored_key_is_wrong_at_once(void **state)
     rep = rep_rhe_keyed(0, 0, 60, 40, 0);
     assert_int_equal(cub_judge_begin_rep(r.j, &rep), CUB_OK);
     play(&r, 100, 5, 60, left);
-    assert_verdict(&r, 0, 0, 0, 55);
+    assert_verdict(&r, 0, 0, 0, 56);
 }
 
 /* ---- what a wrong verdict says to fix ------------------------------------ */
@@ -445,6 +470,51 @@ static void assert_fault(const cub_judge_event *v, int32_t how, int32_t feature,
     assert_int_equal(f.how, how);
     assert_int_equal(f.feature, feature);
     assert_int_equal(f.set, set);
+}
+
+/* Another move's keys (both arms up) held instead of this one's (the right
+ * elbow bent), which the bear's clip never shows: wrong once they have
+ * been held sign_ms past the lag, long before the key's deadline; not when
+ * the child showed this move's keys first, nor when nobody said they are
+ * another move's. */
+static void test_another_moves_keys_held_are_wrong_at_once(void **state)
+{
+    (void)state;
+    pose up = STILL;
+    up.arms_up = 1;
+    for (int c = 0; c < 3; c++) {
+        rec r;
+        rec_init(&r, NULL);
+        cub_judge_rep rep = rep_rhe_keyed(0, 0, 60, 40, 0);
+        if (c != 2) {
+            rep.other_count = 1;
+            rep.other[0] = (cub_judge_keyset){2, {{CUB_FUZZY_RH, 2}, {CUB_FUZZY_LH, 2}}};
+        }
+        assert_int_equal(cub_judge_begin_rep(r.j, &rep), CUB_OK);
+        for (int f = 0; f < 100; f++)
+            feed(&r, f, c == 1 && f >= 16 && f < 18 ? bent_right() : f < 60 ? up : STILL);
+        assert_int_equal(count(&r, CUB_JUDGE_VERDICT), 1);
+        const cub_judge_event *v = first(&r, CUB_JUDGE_VERDICT);
+        /* 500 + 250 ms: frame 23; the key's deadline 1333 + 500 ms: 56;
+         * the signed child waits for the close (75) */
+        assert_verdict(&r, 0, 0, 0, c == 0 ? 23 : c == 1 ? 75 : 56);
+        assert_int_equal(v->why, c == 0 ? CUB_JUDGE_WHY_OTHER : CUB_JUDGE_WHY_MISSED);
+        if (c == 0) {
+            assert_fault(v, CUB_JUDGE_HOW_MISSED, CUB_FUZZY_RHE, 1);
+            char line[192];
+            cub_judge_describe(v, line, sizeof line);
+            assert_non_null(strstr(line, "result=wrong why=other key=RHE=true"));
+        }
+    }
+    /* a bad set among the others is refused */
+    rec r;
+    rec_init(&r, NULL);
+    cub_judge_rep bad = rep_rhe_keyed(0, 0, 60, 40, 0);
+    bad.other_count = 1;
+    bad.other[0] = (cub_judge_keyset){1, {{CUB_FUZZY_RH, 7}}};
+    assert_int_equal(cub_judge_begin_rep(r.j, &bad), CUB_ERR_ARG);
+    bad.other_count = CUB_JUDGE_MAX_OTHER + 1;
+    assert_int_equal(cub_judge_begin_rep(r.j, &bad), CUB_ERR_ARG);
 }
 
 /* Standing still past the key's moment: missed RHE=true, the right arm to
@@ -630,7 +700,7 @@ static void test_the_previous_repetitions_tail_is_no_sign(void **state)
     cub_judge_rep rep = rep_rhe_keyed(0, 0, 60, 20, 0);
     assert_int_equal(cub_judge_begin_rep(r.j, &rep), CUB_OK);
     play(&r, 100, 0, 10, bent_right()); /* a late child ending the one before */
-    assert_verdict(&r, 0, 0, 0, 35);
+    assert_verdict(&r, 0, 0, 0, 36);
 }
 
 static void test_no_early_verdict_without_the_tracker(void **state)
@@ -644,6 +714,41 @@ static void test_no_early_verdict_without_the_tracker(void **state)
     lost.status = CUB_TRACK_PARTLY_OUT;
     play(&r, 100, 30, 45, lost); /* not sure of the child around the deadline */
     assert_verdict(&r, 0, 0, 0, 45); /* the first sure frame after it */
+}
+
+/* The right arm guessed by the tracker (confidence 0) while the key is its
+ * elbow: no early verdict and, at the close, unsure: logged, never posted
+ * to the coach. The same arm seen is wrong early. */
+static void test_guessed_keys_are_unsure(void **state)
+{
+    (void)state;
+    for (int guessed = 0; guessed < 2; guessed++) {
+        rec r;
+        start_keyed(&r, 20);
+        pose p = STILL;
+        p.guess_right = guessed;
+        play(&r, 100, 0, 100, p);
+        assert_int_equal(count(&r, CUB_JUDGE_VERDICT), 1);
+        const cub_judge_event *v = first(&r, CUB_JUDGE_VERDICT);
+        assert_verdict(&r, 0, 0, 0, guessed ? 75 : 36);
+        assert_int_equal(v->why, guessed ? CUB_JUDGE_WHY_UNSURE : CUB_JUDGE_WHY_MISSED);
+        assert_int_equal(v->ev.type, guessed ? CUB_EV_NONE : CUB_EV_VERDICT);
+        char line[192];
+        cub_judge_describe(v, line, sizeof line);
+        if (guessed)
+            assert_string_equal(line, "verdict move=3 rep=0 result=unsure why=unsure "
+                                      "key=RHE=true sure=0.000");
+    }
+    /* guessed in a few frames only (a hanging arm the tracker loses now
+     * and then): the seen frames decide */
+    rec r;
+    start_keyed(&r, 20);
+    pose p = STILL;
+    p.guess_right = 1;
+    for (int f = 0; f < 100; f++)
+        feed(&r, f, f % 3 == 0 ? p : STILL);
+    assert_verdict(&r, 0, 0, 0, 36);
+    assert_int_equal(first(&r, CUB_JUDGE_VERDICT)->why, CUB_JUDGE_WHY_MISSED);
 }
 
 static void test_mirror_keys(void **state)
@@ -1024,13 +1129,15 @@ int main(void)
         cmocka_unit_test(test_child_later_than_a_beat_is_wrong_at_the_close),
         cmocka_unit_test(test_wrong_arm_is_wrong_naming_the_key),
         cmocka_unit_test(test_standing_still_is_wrong),
-        cmocka_unit_test(test_standing_still_is_wrong_a_beat_after_the_key),
+        cmocka_unit_test(test_standing_still_is_wrong_a_lag_after_the_key),
         cmocka_unit_test(test_child_a_beat_late_is_still_right),
         cmocka_unit_test(test_lag_is_a_tunable),
-        cmocka_unit_test(test_early_deadline_not_before_the_first_beat),
+        cmocka_unit_test(test_early_deadline_leaves_time_for_a_sign),
         cmocka_unit_test(test_mirrored_key_is_wrong_at_once),
         cmocka_unit_test(test_the_previous_repetitions_tail_is_no_sign),
         cmocka_unit_test(test_no_early_verdict_without_the_tracker),
+        cmocka_unit_test(test_guessed_keys_are_unsure),
+        cmocka_unit_test(test_another_moves_keys_held_are_wrong_at_once),
         cmocka_unit_test(test_mirror_keys),
         cmocka_unit_test(test_missed_key_is_the_fault),
         cmocka_unit_test(test_missed_fault_marks_the_limbs_that_never_came),

@@ -26,6 +26,11 @@ typedef struct cub_coachlib {
     cub_tags tags;
     cub_bridge_table table; /* finished; clips in library order */
     void *table_mem;        /* owned */
+    /* after cub_coachlib_add_tween: */
+    cub_bridge_tween tween; /* its keys (the bridge frames it passes) */
+    cub_clip tween_clip;    /* one pass of the loop, on lib.skel (frame_count 0: none) */
+    int tween_index;        /* the table's clip holding it unrolled (two passes), -1: none */
+    void *tween_mem;        /* owned */
 } cub_coachlib;
 
 /* Load the three files and build the table. out is zeroed first; on
@@ -35,6 +40,14 @@ cub_err cub_coachlib_load(const char *library_path, const char *tags_path,
 /* The same from an assets folder: <dir>/clips/bear.cubclips,
  * <dir>/clips/bear.tags.xml, <dir>/bear/bear.xml. */
 cub_err cub_coachlib_load_assets(const char *assets_dir, cub_coachlib *out, cub_diag *diag);
+/* Build the seed's tween from the table's bridge frames (cub/bridge.h, "the
+ * tween clip"; cfg NULL = defaults) and rebuild the table with it appended
+ * as clip lib.clip_count (table.tween_clip), so that a player with
+ * via_tween can route through it. The clips of the library keep their
+ * indices; tween_clip is the loop itself, for tools that play or measure
+ * it. Once per coachlib; on failure the table is as it was. */
+cub_err cub_coachlib_add_tween(cub_coachlib *cl, const cub_bridge_tween_config *cfg,
+                               cub_diag *diag);
 /* Index of a clip by name, or -1. */
 int cub_coachlib_find(const cub_coachlib *cl, const char *name);
 /* Free what it owns; the struct is zeroed. NULL is fine. */

@@ -119,4 +119,36 @@ cub_err cub_render_frame(cub_render *r, const cub_render_scene *scene);
  * frame above the root; the background and the depth inset stay put. */
 void cub_render_set_view(cub_render *r, const cub_render_view *view);
 
+/* ---- the motion player's scene (cubtool play, SEEDS.md § 002) ----------- */
+
+#define CUB_RENDER_PLAYER_MAX_POINTS 256 /* joints or markers of one character */
+
+/* One character: joints (or markers) in world mm, y up. */
+typedef struct cub_render_player_figure {
+    int joint_count;           /* 0..CUB_RENDER_PLAYER_MAX_POINTS */
+    const int16_t *parent;     /* [joint_count], -1 for a root; NULL: markers, always
+                                  drawn as numbered points */
+    const float *world_xyz_mm; /* 3 floats per joint; a NaN x: not there (a lost marker) */
+    float rgb[3];
+    float ground_mm[2];        /* x, z of its spot on the floor (the selection ring's centre) */
+    int selected;              /* a ring on the floor around its spot */
+} cub_render_player_figure;
+
+typedef struct cub_render_player_scene {
+    const cub_render_player_figure *figures;
+    int figure_count;
+    int points;           /* 1: every joint a point with its number beside it; 0: sticks */
+    float floor_mm;       /* the square floor's side, centred on the origin; 0 = none */
+    float target_mm[3];   /* what the camera looks at */
+    float yaw_deg;        /* the camera's orbit about the target: + turns it to the right */
+    float pitch_deg;      /* + looks down from above; -89..89 */
+    float distance_mm;    /* from the target; > 0 */
+} cub_render_player_scene;
+
+/* Draw one frame of the motion player into the renderer's viewport: a
+ * dark sky, the floor as a grid of 10 x 10 cells, the figures in one
+ * perspective view (40 degrees high), and in points mode each joint's
+ * index beside it. CUB_ERR_ARG for a bad scene (nothing drawn). */
+cub_err cub_render_player_frame(cub_render *r, const cub_render_player_scene *scene);
+
 #endif

@@ -11,7 +11,9 @@
  *            half, and take a frame within the threshold (d < 0.4) that
  *            the current clip reaches soon (see below). None: a TWEEN,
  *            the quickest chain of tagged links through other clips
- *            (Dijkstra on play time over the bridge frames; fixed memory).
+ *            (Dijkstra on play time over the bridge frames; fixed memory),
+ *            or, with via_tween, a route through the seed's tween clip
+ *            (below; measured in the README, not used by the box).
  *            The search looks 6 frames (200 ms) ahead first and widens the
  *            window (x2) up to one whole clip only when nothing is found.
  *   player   plays the coach: advances time, switches exactly at the
@@ -123,6 +125,8 @@ typedef struct cub_bridge_table {
                                    joint positions, root x and z taken off */
     int clips_added, frames_used, bridges_used, links_used;
     int finished;
+    int tween_clip; /* the seed's tween (cub_bridge_table_set_tween), -1: none */
+    int tween_pass; /* its loop's length in frames (the clip holds two passes) */
 } cub_bridge_table;
 
 /* Bytes the table needs; 0 if the desc is impossible (counts < 0, no clip). */
@@ -145,6 +149,14 @@ cub_err cub_bridge_table_set_links(cub_bridge_table *t, int from, int to,
                                    const cub_bridge_link *links, int count);
 /* Is frame f of clip c one of its bridge frames? (0 for a bad c or f.) */
 int cub_bridge_is_bridge(const cub_bridge_table *t, int c, int f);
+/* Clip c (already added, every frame a bridge frame) is the seed's tween
+ * (see "the tween clip" below), its loop unrolled: two passes of
+ * pass_frames each, so a route enters it in the first pass and leaves it
+ * within one pass without wrapping. Routes through it are planned with
+ * cub_bridge_query.via_tween; chains through other clips never pass it.
+ * CUB_ERR_ARG (bad c, not two passes, a frame that is not a bridge frame,
+ * set twice). */
+cub_err cub_bridge_table_set_tween(cub_bridge_table *t, int c, int pass_frames);
 /* All clips added? Pairs never set have no links. CUB_ERR_RANGE if not. */
 cub_err cub_bridge_table_finish(cub_bridge_table *t);
 
@@ -197,6 +209,11 @@ typedef struct cub_bridge_query {
                           of its own, enter only at one of the wanted
                           clip's, start and reach entries included). 0:
                           leave at any upcoming frame (the default) */
+    int via_tween;     /* 1: when no direct switch is found, route through the
+                          table's tween clip (enter it at its frame closest
+                          to an upcoming one, play it on, leave it for the
+                          wanted clip: two steps). 0: chains of tagged links
+                          through other clips (the default) */
 } cub_bridge_query;
 
 /* Scratch memory the planner needs for this table (the tween search). */
@@ -206,6 +223,55 @@ size_t cub_bridge_plan_work_size(const cub_bridge_table *t);
  * here by any chain of links (out->step_count is 0). */
 cub_err cub_bridge_plan_switch(const cub_bridge_table *t, const cub_bridge_query *q,
                                cub_bridge_plan *out, void *work, size_t work_size);
+
+/* ---- the tween clip ---------------------------------------------------- */
+
+/* The seed's tween (SEEDS.md § 000, "Switching"): one looping clip made of
+ * the library's bridge frames, so that it can join any two clips. Built
+ * from a finished table without a tween:
+ *   keys   the bridge frames, in table order, each kept unless a kept one
+ *          is within cover_d of it (fuzzy d): every bridge frame is then
+ *          within cover_d of a key;
+ *   order  a closed tour of the keys, shortest in frames (nearest neighbour,
+ *          then 2-opt; cost = the in-between frames of each leg);
+ *   legs   from each key to the next, every joint's local rotation by slerp
+ *          and the root's height by lerp, eased (smoothstep: the body
+ *          settles on each key), over as many frames as keep the fastest
+ *          joint within speed_mm per frame (bound: each ancestor's turn
+ *          times the bone chain below it). The root stands at x = z = 0.
+ * The last frame leads into the first: played as a loop it never stops.
+ * Fixed point, deterministic; the same table gives the same clip on every
+ * CPU. */
+#define CUB_BRIDGE_TWEEN_MAX_KEYS 256
+#define CUB_BRIDGE_TWEEN_SPEED_MM CUB_Q16_INT(30) /* 3 cm/frame: the library's median is 2.2 */
+#define CUB_BRIDGE_TWEEN_MAX_LEG 120              /* frames between two keys at most */
+
+typedef struct cub_bridge_tween_config {
+    cub_q16 cover_d;  /* 0 = half the table's threshold (a frame within that
+                         of a bridge frame is within the threshold of a key) */
+    cub_q16 speed_mm; /* 0 = CUB_BRIDGE_TWEEN_SPEED_MM */
+} cub_bridge_tween_config;
+
+typedef struct cub_bridge_tween {
+    int key_count;
+    int frame_count; /* one pass of the loop */
+    int16_t key_clip[CUB_BRIDGE_TWEEN_MAX_KEYS];  /* the bridge frames passed, in play order */
+    int16_t key_frame[CUB_BRIDGE_TWEEN_MAX_KEYS];
+    int16_t key_at[CUB_BRIDGE_TWEEN_MAX_KEYS];    /* the tween frame that shows it exactly */
+} cub_bridge_tween;
+
+/* Scratch memory cub_bridge_tween_plan needs for this table. */
+size_t cub_bridge_tween_work_size(const cub_bridge_table *t);
+/* Choose the keys, their order and each leg's length. CUB_ERR_ARG
+ * (unfinished table, or one with a tween), CUB_ERR_NOMEM, CUB_ERR_RANGE (no
+ * bridge frame), CUB_ERR_FULL (more keys than CUB_BRIDGE_TWEEN_MAX_KEYS). */
+cub_err cub_bridge_tween_plan(const cub_bridge_table *t, const cub_bridge_tween_config *cfg,
+                              cub_bridge_tween *out, void *work, size_t work_size);
+/* Write the tween's frames into clip (on the table's skeleton, laid out by
+ * cub_motion_clip_init): frame i is the tween's frame i modulo its
+ * frame_count, so a clip of two passes holds the loop unrolled. */
+cub_err cub_bridge_tween_fill(const cub_bridge_table *t, const cub_bridge_tween *tw,
+                              cub_clip *clip);
 
 /* ---- the player -------------------------------------------------------- */
 
@@ -227,6 +293,7 @@ typedef struct cub_bridge_player_desc {
     int start_frames;     /* the planner's, see cub_bridge_query; 0 = off */
     int reach_frames;     /* the planner's, see cub_bridge_query; 0 = off */
     int strict;           /* the planner's, see cub_bridge_query; 0 = off */
+    int via_tween;        /* the planner's, see cub_bridge_query; 0 = off */
 } cub_bridge_player_desc;
 
 typedef enum cub_bridge_event_type {

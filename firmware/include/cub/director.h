@@ -115,6 +115,8 @@ typedef struct cub_director {
     int64_t lead_pos_q16;
     int32_t key_frame[CUB_DIRECTOR_MAX_MOVES]; /* the bear's key moment in each move's clip; -1 */
     bool mirror_wrong[CUB_DIRECTOR_MAX_MOVES]; /* the keys' mirror is a mistake (never shown) */
+    uint64_t other_moves[CUB_DIRECTOR_MAX_MOVES]; /* bit o: move o's keys, never shown in this
+                                                     move's clip, are a mistake here */
     cub_director_out out[CUB_DIRECTOR_MAX_OUT]; /* this call's output */
     int32_t out_count;
 } cub_director;

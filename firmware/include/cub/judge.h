@@ -39,24 +39,38 @@
  *   child's pose at the start of the next repetition counts for the late
  *   one, not for both).
  * - Early verdicts, from the coach's own clip (has_key, key_us: the bear's
- *   key moment, cub_judge_key_moment, measured from start_us):
- *   the deadline is start_us + key_us + lag (lag = desc lag_ms, else the
- *   repetition's beat_us: children follow a leader late), never before
- *   start_us + 2 beat_us (the first beat is the previous repetition's
- *   tail, the second a late child's for a key the bear shows from its
- *   clip's start; and never before beat_us + hold_ms). The first OK frame
- *   at or past it, the repetition still not right and no sign of its keys
- *   after its first beat (every key at 4/5 of key_mu in one frame, held or
- *   not, credited to the previous repetition or not: that child is doing
- *   the move, late or briefly, and gets the window's whole time), gives
- *   the wrong verdict at once
- *   (why = missed). And with mirror_wrong (the keys' left/right mirror is a
- *   different set that the bear's clip never shows), the mirrored keys held
- *   (a run of hold_ms, past the first beat) while the keys are not, is a
- *   wrong verdict at once (why = mirror: the other arm or leg). Frames the
+ *   key moment, cub_judge_key_moment, measured from start_us), with the
+ *   child's lag L (desc lag_ms: children follow a leader late) and S (desc
+ *   sign_ms): a SIGN is a frame past start_us + L (before it the child may
+ *   still be ending the previous repetition) where every key is at 4/5 of
+ *   key_mu, held or not, credited to the previous repetition or not. The
+ *   deadline is start_us + L + max(key_us, S): the key's moment plus the
+ *   lag, and never less than S after the lag (a key the bear shows from
+ *   its clip's start still needs the child's time to show it, and a move
+ *   may leave its keys for a moment: a punch straightens the elbow). The
+ *   first OK frame at or past it, the repetition still not right, no sign
+ *   seen and the keys' joints seen (below) in most OK frames past the lag,
+ *   gives the wrong verdict at once (why = missed). And with mirror_wrong
+ *   (the keys' left/right mirror is a different set that the bear's clip
+ *   never shows), the mirrored keys held (a run of hold_ms of frames with
+ *   the mirror's joints seen, past the lag) while the keys are not, is a
+ *   wrong verdict at once (why = mirror: the other arm or leg). And each
+ *   of `other` (another move's keys, which the bear's clip of this move
+ *   never shows and which rule this move's keys out: the director gives
+ *   those with a feature in a different set), held S past the lag (frames with its joints seen, the
+ *   keys not matched) with no sign of the keys yet, is a wrong verdict at
+ *   once (why = other: the child does another move; its fault is the
+ *   keys' own, as for missed). Frames the
  *   tracker is not sure of (not CUB_TRACK_OK) never give an early verdict.
+ * - Guessed joints: a key's joints are SEEN in a frame when the tracker's
+ *   confidence of each joint its feature reads is > 0 (cub/track.h: 0 =
+ *   a guess, the limb's extremity not found). A window whose OK frames had
+ *   the keys' joints guessed more often than seen gets, instead of a wrong
+ *   verdict at its close, an unsure one (why = unsure, ev.type
+ *   CUB_EV_NONE: logged, never posted, so never corrected; value: the
+ *   share of frames seen).
  * - A wrong verdict's fault (ev.c, cub_judge_fault_code) says what to fix:
- *   why = missed: how = missed, the key named (the weakest), and as the
+ *   why = missed or other: how = missed, the key named (the weakest), and as the
  *   limbs to move those of the keys that never reached key_mu in the
  *   window, or of every key when each did, alone (the keys never came
  *   together: the whole move is missing); why = mirror: how = mirror, the
@@ -120,6 +134,7 @@
 #define CUB_JUDGE_MAX_KEYS 4   /* key points per move (cub_song allows 4) */
 #define CUB_JUDGE_MAX_OPEN 4   /* repetitions open at once (incl. late tails) */
 #define CUB_JUDGE_MAX_EVENTS 8 /* events one frame can produce */
+#define CUB_JUDGE_MAX_OTHER 4  /* other moves' key sets a repetition looks for */
 
 /* Zero-initialised fields take the defaults shown. Ratios are Q16.16. */
 typedef struct cub_judge_desc {
@@ -143,9 +158,12 @@ typedef struct cub_judge_desc {
     int32_t wave_gap_ms;       /* 2000 */
     cub_q16 floor_y_mm;        /* with stand_cog_mm > 0: fixed calibration */
     cub_q16 stand_cog_mm;      /* 0: estimate online */
-    int32_t lag_ms;            /* 0: one beat (each repetition's beat_us): how long
-                                  after the coach's key moment a child may still
-                                  reach the keys before the early wrong verdict */
+    int32_t lag_ms;            /* 500: how late a child may follow the coach: the
+                                  previous repetition's tail (no sign counts in it)
+                                  and the time after the coach's key moment the keys
+                                  may still come (measured: README "Early verdicts") */
+    int32_t sign_ms;           /* 250: the least time after the lag in which a sign
+                                  of the keys is looked for before an early verdict */
     cub_log *log;              /* optional: one line per event */
 } cub_judge_desc;
 
@@ -154,6 +172,12 @@ typedef struct cub_judge_key {
     int32_t feature; /* cub_fuzzy_feature */
     int32_t set;     /* index of the set (cub_fuzzy_set_name) */
 } cub_judge_key;
+
+/* A move's keys, all together. */
+typedef struct cub_judge_keyset {
+    int32_t count; /* 1..CUB_JUDGE_MAX_KEYS */
+    cub_judge_key key[CUB_JUDGE_MAX_KEYS];
+} cub_judge_keyset;
 
 typedef struct cub_judge_rep {
     int32_t move, rep; /* song move index (the verdict's a) and repetition */
@@ -165,6 +189,9 @@ typedef struct cub_judge_rep {
     int has_key;     /* key_us is known: an early verdict is possible */
     int64_t key_us;  /* the coach's clip reaches every key this long after start_us, >= 0 */
     int mirror_wrong;/* the keys' mirror held instead is a wrong verdict at once */
+    int32_t other_count; /* 0..CUB_JUDGE_MAX_OTHER (with has_key) */
+    cub_judge_keyset other[CUB_JUDGE_MAX_OTHER]; /* other moves' keys the bear's clip
+                                                   never shows: held instead, wrong */
 } cub_judge_rep;
 
 typedef enum cub_judge_kind {
@@ -184,6 +211,8 @@ typedef enum cub_judge_why {
     CUB_JUDGE_WHY_IN_VIEW,
     CUB_JUDGE_WHY_OUT_OF_VIEW,
     CUB_JUDGE_WHY_MIRROR,   /* wrong: the keys' mirror held (the other arm) */
+    CUB_JUDGE_WHY_UNSURE,   /* no verdict to act on: the keys' joints were guessed */
+    CUB_JUDGE_WHY_OTHER,    /* wrong: another move's keys held instead */
 } cub_judge_why;
 
 /* What a wrong verdict says to fix: which key failed and how. */
@@ -215,7 +244,7 @@ typedef enum cub_judge_limb {
 } cub_judge_limb;
 
 typedef struct cub_judge_event {
-    cub_event ev;     /* ready to post (type CUB_EV_NONE for a wave) */
+    cub_event ev;     /* ready to post (type CUB_EV_NONE for a wave or an unsure verdict) */
     int32_t kind;     /* cub_judge_kind */
     int32_t why;      /* cub_judge_why */
     int32_t move, rep;/* verdicts; -1 otherwise */

@@ -1,0 +1,339 @@
+/* cubtool join — joining two clips without sliding feet (seed 002, § 5;
+ * issue 21 § 3; docs/join.md). `join A B` searches the database for the
+ * transition C, prints the distances, the chosen C and the join's figures
+ * for each method, and writes the joins as BVH; `join --all` measures every
+ * ordered pair of the library's dance clips and prints the table:
+ *   direct         A's end blended into B's start, every joint at once;
+ *   direct+feet    the same, the legs one at a time (the other planted);
+ *   searched-all   through C, every joint at once at both seams;
+ *   searched       the seed's: through C, the legs one at a time;
+ *   bridge(box)    today's box: the firmware's planner and player switch
+ *                  from A (looping) into B's first frames (join_bridge.c);
+ *   tween(box)     the same with the seed's tween clip in the table: the
+ *                  planner routes through it where no direct switch is. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "commands.h"
+#include "cub/join.h"
+#include "join_bridge.h"
+#include "join_src.h"
+#include "tool_util.h"
+
+enum { DIRECT, DIRECT_FEET, SEARCHED_ALL, SEARCHED, METHODS };
+static const char *const METHOD_NAME[METHODS] = {"direct", "direct+feet", "searched-all",
+                                                 "searched"};
+
+/* Build and measure one method; the join in *keep when not NULL. */
+static int run_method(const cub_join_db *db, int a, int b, const cub_join_pick *pick, int m,
+                      cub_join_figures *fig, cub_join_result *keep)
+{
+    cub_join_pick p = *pick;
+    if (m == DIRECT || m == DIRECT_FEET) p.clip = -1;
+    cub_join_result r;
+    if (cub_join_build(db, a, b, &p, m == DIRECT_FEET || m == SEARCHED, &r)) return -1;
+    *fig = cub_join_measure(db, &r);
+    if (keep)
+        *keep = r;
+    else
+        cub_join_result_free(&r);
+    return 0;
+}
+
+static double rms_cm(double d_mm2)
+{
+    return sqrt(d_mm2) / 10.0;
+}
+
+static void print_pick(const cub_join_db *db, int a, int b, const cub_join_pick *p)
+{
+    char ea[64], sb[64], sc[64], ec[64];
+    int na = db->clips[a].clip->frame_count;
+    printf("join: A=%s (%d frames, ends on %s) B=%s (%d frames, starts on %s)\n", db->clips[a].name,
+           na, cub_join_support_name(db->clips[a].support[na - 1], ea, 64), db->clips[b].name,
+           db->clips[b].clip->frame_count, cub_join_support_name(db->clips[b].support[0], sb, 64));
+    printf("join: direct   D(A|B)=%.1f cm2 (rms %.2f cm), B turned %.1f deg\n",
+           p->direct.d_mm2 / 100, rms_cm(p->direct.d_mm2), p->direct.theta_rad * 180 / CUB_VEC_PI);
+    printf("join: searched C=%s@%d-%d (%d frames) D(A|C)=%.1f cm2 (rms %.2f cm) D(C|B)=%.1f cm2 "
+           "(rms %.2f cm), C turned %.1f deg moved (%.0f, %.0f) mm, %s to %s\n",
+           db->clips[p->clip].name, p->first, p->last, p->last - p->first + 1, p->in.d_mm2 / 100,
+           rms_cm(p->in.d_mm2), p->out.d_mm2 / 100, rms_cm(p->out.d_mm2),
+           p->in.theta_rad * 180 / CUB_VEC_PI, p->in.x0_mm, p->in.z0_mm,
+           cub_join_support_name(db->clips[p->clip].support[p->first], sc, 64),
+           cub_join_support_name(db->clips[p->clip].support[p->last], ec, 64));
+}
+
+static int join_one(join_src *src, const char *an, const char *bn, const char *out,
+                    const cub_join_cfg *cfg)
+{
+    int a = join_src_find(src, an, cfg), b = a < 0 ? -1 : join_src_find(src, bn, cfg);
+    if (a < 0 || b < 0) return 1;
+    const cub_join_db *db = &src->db;
+    cub_join_pick pick;
+    if (cub_join_search(db, a, b, &pick)) {
+        fprintf(stderr, "join: no clip in the database is long enough for C (%d frames)\n",
+                db->cfg.min_frames);
+        return 1;
+    }
+    print_pick(db, a, b, &pick);
+    printf("join: %-13s %9s %12s %s\n", "method", "slide cm", "jump cm/f2", "blend frames");
+    for (int m = 0; m < METHODS; m++) {
+        cub_join_figures fig;
+        cub_join_result r;
+        if (run_method(db, a, b, &pick, m, &fig, &r)) {
+            fprintf(stderr, "join: out of memory\n");
+            return 1;
+        }
+        printf("join: %-13s %9.2f %12.2f %d", METHOD_NAME[m], fig.slide_cm, fig.jump_cm,
+               r.win_frames[0]);
+        if (r.windows > 1) printf("+%d", r.win_frames[1]);
+        printf(" (%d frames in all)\n", r.clip.frame_count);
+        if (out && (m == SEARCHED || m == DIRECT)) {
+            char path[4096];
+            snprintf(path, sizeof path, "%s%s", out, m == DIRECT ? ".direct.bvh" : "");
+            if (cub_tool_save_clip_bvh(r.clip.skel, &r.clip, m == DIRECT ? path : out)) {
+                cub_join_result_free(&r);
+                return 1;
+            }
+            printf("join: wrote %s (%s)\n", m == DIRECT ? path : out, METHOD_NAME[m]);
+        }
+        cub_join_result_free(&r);
+    }
+    return 0;
+}
+
+/* The clips --all pairs: the library's dance clips, or every clip when
+ * no file says which are dances (BVH files). */
+static int paired(const join_src *src, int c)
+{
+    for (int i = 0; i < src->db.count; i++)
+        if (!strcmp(src->kind[i], "dance")) return !strcmp(src->kind[c], "dance");
+    return 1;
+}
+
+/* The paired clips' own frame-to-frame velocity change. */
+static double own_jump_p99(const cub_join_db *db, join_src *src)
+{
+    cub_tool_series s = {0};
+    for (int c = 0; c < db->count; c++) {
+        if (!paired(src, c)) continue;
+        int n = db->clips[c].clip->frame_count;
+        double *j = malloc(sizeof(double) * (size_t)n);
+        if (!j) break;
+        cub_join_clip_jumps(db, c, j);
+        for (int f = 2; f < n; f++)
+            cub_tool_series_add(&s, j[f], "join");
+        free(j);
+    }
+    double p = cub_tool_series_pct(&s, 0.99);
+    free(s.v);
+    return p;
+}
+
+static void row(const char *name, cub_tool_series *slide, cub_tool_series *jump)
+{
+    printf("join --all: %-13s slide cm median=%.2f p95=%.2f max=%.2f | jump cm/f2 median=%.2f "
+           "p95=%.2f max=%.2f\n",
+           name, cub_tool_series_pct(slide, 0.5), cub_tool_series_pct(slide, 0.95),
+           cub_tool_series_pct(slide, 1.0), cub_tool_series_pct(jump, 0.5),
+           cub_tool_series_pct(jump, 0.95), cub_tool_series_pct(jump, 1.0));
+}
+
+/* Today's box (k = 0) and the box with the seed's tween (k = 1), over all
+ * pairs and (tween) over the pairs it routed through the tween. */
+typedef struct box_rows {
+    cub_tool_series slide[2], jump[2], ms[2], tslide, tjump, tms;
+} box_rows;
+
+static void box_measure(join_bridge *jb, const cub_join_db *db, int a, int b, box_rows *br)
+{
+    for (int k = 0; k < 2; k++) {
+        cub_join_figures f = {0, 0};
+        double ms = 0;
+        int tweened = 0;
+        if (!jb[k].cl.lib.clip_count || join_bridge_measure(&jb[k], db, a, b, &f, &ms, &tweened))
+            continue;
+        cub_tool_series_add(&br->slide[k], f.slide_cm, "join");
+        cub_tool_series_add(&br->jump[k], f.jump_cm, "join");
+        cub_tool_series_add(&br->ms[k], ms, "join");
+        if (!tweened) continue;
+        cub_tool_series_add(&br->tslide, f.slide_cm, "join");
+        cub_tool_series_add(&br->tjump, f.jump_cm, "join");
+        cub_tool_series_add(&br->tms, ms, "join");
+    }
+}
+
+static void box_print(box_rows *br)
+{
+    static const char *const name[2] = {"bridge(box)", "tween(box)"};
+    for (int k = 0; k < 2; k++) {
+        if (!br->slide[k].n) {
+            printf("join --all: %-13s not measured (no assets)\n", name[k]);
+            continue;
+        }
+        row(name[k], &br->slide[k], &br->jump[k]);
+        printf("join --all: %-13s on %zu pairs; request to first switch median=%.0f p95=%.0f "
+               "max=%.0f ms\n",
+               name[k], br->slide[k].n, cub_tool_series_pct(&br->ms[k], 0.5),
+               cub_tool_series_pct(&br->ms[k], 0.95), cub_tool_series_pct(&br->ms[k], 1.0));
+    }
+    printf("join --all: tween(box) went through the tween clip on %zu pairs", br->tslide.n);
+    if (br->tslide.n)
+        printf(": slide median=%.2f max=%.2f cm, jump median=%.2f max=%.2f, first switch "
+               "median=%.0f max=%.0f ms",
+               cub_tool_series_pct(&br->tslide, 0.5), cub_tool_series_pct(&br->tslide, 1.0),
+               cub_tool_series_pct(&br->tjump, 0.5), cub_tool_series_pct(&br->tjump, 1.0),
+               cub_tool_series_pct(&br->tms, 0.5), cub_tool_series_pct(&br->tms, 1.0));
+    printf("\n");
+}
+
+static void box_free(box_rows *br)
+{
+    for (int k = 0; k < 2; k++)
+        free(br->slide[k].v), free(br->jump[k].v), free(br->ms[k].v);
+    free(br->tslide.v), free(br->tjump.v), free(br->tms.v);
+}
+
+/* What --all gathers over the pairs. */
+typedef struct tally {
+    cub_tool_series slide[METHODS], jump[METHODS], dd, ds;
+    int pairs, better, self_c;
+} tally;
+
+/* Search, join by every method and measure one pair. 0 ok (or no C). */
+static int one_pair(const cub_join_db *db, int a, int b, int verbose, tally *t)
+{
+    cub_join_pick pick;
+    if (cub_join_search(db, a, b, &pick)) return 0;
+    t->pairs++;
+    cub_tool_series_add(&t->dd, rms_cm(pick.direct.d_mm2), "join");
+    cub_tool_series_add(&t->ds, rms_cm(pick.in.d_mm2 + pick.out.d_mm2), "join");
+    t->better += pick.in.d_mm2 + pick.out.d_mm2 < pick.direct.d_mm2;
+    t->self_c += pick.clip == a || pick.clip == b;
+    cub_join_figures fig[METHODS];
+    for (int m = 0; m < METHODS; m++) {
+        if (run_method(db, a, b, &pick, m, &fig[m], NULL)) {
+            fprintf(stderr, "join: out of memory\n");
+            return -1;
+        }
+        cub_tool_series_add(&t->slide[m], fig[m].slide_cm, "join");
+        cub_tool_series_add(&t->jump[m], fig[m].jump_cm, "join");
+    }
+    if (verbose)
+        printf("join pair %s -> %s: C=%s@%d-%d rms direct %.2f searched %.2f+%.2f cm; "
+               "slide direct %.2f searched %.2f cm; jump direct %.2f searched %.2f\n",
+               db->clips[a].name, db->clips[b].name, db->clips[pick.clip].name, pick.first,
+               pick.last, rms_cm(pick.direct.d_mm2), rms_cm(pick.in.d_mm2), rms_cm(pick.out.d_mm2),
+               fig[DIRECT].slide_cm, fig[SEARCHED].slide_cm, fig[DIRECT].jump_cm,
+               fig[SEARCHED].jump_cm);
+    return 0;
+}
+
+static void print_tally(const cub_join_db *db, tally *t)
+{
+    printf("join --all: %d ordered pairs of clips, database %d clips, window %d frames, "
+           "C %d..%d frames\n",
+           t->pairs, db->count, db->cfg.window_frames, db->cfg.min_frames, db->cfg.max_frames);
+    printf("join --all: seam distance rms cm: direct median=%.2f p95=%.2f; searched (both "
+           "seams) median=%.2f p95=%.2f; searched below direct in %d of %d; C from A or B in %d\n",
+           cub_tool_series_pct(&t->dd, 0.5), cub_tool_series_pct(&t->dd, 0.95),
+           cub_tool_series_pct(&t->ds, 0.5), cub_tool_series_pct(&t->ds, 0.95), t->better, t->pairs,
+           t->self_c);
+    for (int m = 0; m < METHODS; m++)
+        row(METHOD_NAME[m], &t->slide[m], &t->jump[m]);
+}
+
+static int join_all(join_src *src, join_bridge *jb, int verbose)
+{
+    const cub_join_db *db = &src->db;
+    static box_rows br;
+    static tally t;
+    int rc = 0;
+    struct timespec t0, t1;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    for (int a = 0; a < db->count && !rc; a++)
+        for (int b = 0; b < db->count && !rc; b++) {
+            if (a == b || !paired(src, a) || !paired(src, b)) continue;
+            rc = one_pair(db, a, b, verbose, &t);
+            if (jb && !rc) box_measure(jb, db, a, b, &br);
+        }
+    clock_gettime(CLOCK_MONOTONIC, &t1);
+    if (!rc) {
+        print_tally(db, &t);
+        if (jb) box_print(&br);
+        printf("join --all: the paired clips' own velocity change p99=%.2f cm/f2\n",
+               own_jump_p99(db, src));
+        fprintf(stderr, "join --all: %.1f s\n",
+                (double)(t1.tv_sec - t0.tv_sec) + (double)(t1.tv_nsec - t0.tv_nsec) * 1e-9);
+    }
+    for (int m = 0; m < METHODS; m++)
+        free(t.slide[m].v), free(t.jump[m].v);
+    free(t.dd.v), free(t.ds.v);
+    box_free(&br);
+    return rc ? 1 : 0;
+}
+
+static int usage(FILE *f, int code)
+{
+    fprintf(f, "usage: cubtool join A B [--lib LIB.cubclips] [--db CLIPS]... [--out C.bvh]\n"
+               "       cubtool join --all [--assets DIR] [--db CLIPS]... [--pairs]\n"
+               "  A, B      clip names in the database, or .bvh files on its skeleton\n"
+               "  --lib     the library (default: the shipped assets/clips/bear.cubclips), or\n"
+               "            a .bvh: then --all pairs every clip given\n"
+               "  --db      more clips to search (a .cubclips or a .bvh; repeatable)\n"
+               "  --out     write the seed's join (searched, legs one at a time) as BVH,\n"
+               "            and the direct one as C.bvh.direct.bvh\n"
+               "  --all     every ordered pair of the library's dance clips: the table, with\n"
+               "            today's box switch (bridge planner + player) from --assets DIR\n"
+               "  --pairs   with --all, a line per pair\n");
+    return code;
+}
+
+int cub_cmd_join(int argc, char **argv)
+{
+    const char *lib = NULL, *assets = CUB_ASSETS_DIR, *out = NULL, *pos[2] = {NULL, NULL};
+    const char *db_files[JOIN_SRC_MAX];
+    int ndb = 0, all = 0, verbose = 0, npos = 0;
+    for (int i = 1; i < argc; i++) {
+        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) return usage(stdout, 0);
+        if (!strcmp(argv[i], "--all")) {
+            all = 1;
+        } else if (!strcmp(argv[i], "--pairs")) {
+            verbose = 1;
+        } else if (argv[i][0] == '-' && i + 1 < argc && !strcmp(argv[i], "--lib")) {
+            lib = argv[++i];
+        } else if (argv[i][0] == '-' && i + 1 < argc && !strcmp(argv[i], "--assets")) {
+            assets = argv[++i];
+        } else if (argv[i][0] == '-' && i + 1 < argc && !strcmp(argv[i], "--out")) {
+            out = argv[++i];
+        } else if (argv[i][0] == '-' && i + 1 < argc && !strcmp(argv[i], "--db") &&
+                   ndb < JOIN_SRC_MAX - 1) {
+            db_files[ndb++] = argv[++i];
+        } else if (argv[i][0] != '-' && npos < 2) {
+            pos[npos++] = argv[i];
+        } else {
+            fprintf(stderr, "cubtool join: unexpected '%s'\n", argv[i]);
+            return usage(stderr, 2);
+        }
+    }
+    if (all ? npos != 0 : npos != 2) return usage(stderr, 2);
+    static join_src src;
+    static join_bridge jb[2];
+    char lib_path[4096];
+    snprintf(lib_path, sizeof lib_path, "%s/clips/bear.cubclips", assets);
+    cub_join_cfg cfg = {0};
+    int rc = join_src_add(&src, lib ? lib : lib_path, &cfg) ? 1 : 0;
+    for (int i = 0; !rc && i < ndb; i++)
+        rc = join_src_add(&src, db_files[i], &cfg) ? 1 : 0;
+    int have_jb = !rc && all && !join_bridge_open(&jb[0], assets, &src.db, 0);
+    if (have_jb && join_bridge_open(&jb[1], assets, &src.db, 1)) memset(&jb[1], 0, sizeof jb[1]);
+    if (!rc)
+        rc = all ? join_all(&src, have_jb ? jb : NULL, verbose)
+                 : join_one(&src, pos[0], pos[1], out, &cfg);
+    if (have_jb) join_bridge_close(&jb[0]), join_bridge_close(&jb[1]);
+    join_src_free(&src);
+    return rc;
+}
