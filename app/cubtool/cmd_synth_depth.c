@@ -76,6 +76,9 @@ static void help(FILE *f)
                "  --clean              no projector shadow, edge noise or holes\n"
                "                       (quantisation and the 0.5-4 m range stay)\n"
                "  --seed N             noise seed [1]; the same seed gives the same bytes\n"
+               "  --parts              also DIR/p-<time>-<timestamp>.pgm beside each depth\n"
+               "                       frame: 8-bit body-part labels of the clean render\n"
+               "                       (0 none, 1 head ... 15 right foot: cub/synth.h)\n"
                "\n"
                "  --out DIR            the dump folder (created)\n"
                "  --data DIR           the shared data [$CUB_DATA_DIR or the build's default]\n"
@@ -90,7 +93,7 @@ typedef struct opts {
     int have_clip;
     const char *sequence, *out, *track, *write_track;
     double track_unit;
-    int frames;
+    int frames, parts;
 } opts;
 
 static int num(const char *opt, const char *v, double lo, double hi, double *out)
@@ -197,6 +200,8 @@ static int parse_opt(opts *o, int argc, char **argv, int *i)
             o->d.room = 1;
         else if (!strcmp(a, "--clean"))
             o->d.clean = 1;
+        else if (!strcmp(a, "--parts"))
+            o->parts = 1;
         else {
             /* not when a number was refused above: that said why */
             if (ok) fprintf(stderr, "synth-depth: unknown option or missing value: %s\n", a);
@@ -303,7 +308,8 @@ int cub_cmd_synth_depth(int argc, char **argv)
     struct timespec t0, t1;
     cub_diag diag;
     clock_gettime(CLOCK_MONOTONIC, &t0);
-    cub_err err = cub_synth_write_dump(s, o.out, frames, 1, &diag);
+    cub_err err = cub_synth_write_dump(
+        s, o.out, frames, CUB_SYNTH_DUMP_VERBOSE | (o.parts ? CUB_SYNTH_DUMP_PARTS : 0), &diag);
     clock_gettime(CLOCK_MONOTONIC, &t1);
     cub_synth_close(s);
     cub_synth_jtrack_free(&track);

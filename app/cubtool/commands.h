@@ -21,6 +21,8 @@ int cub_cmd_codec_figures(int argc, char **argv); /* the seed's codec: errors an
 int cub_cmd_bench_codec(int argc, char **argv);   /* ours, the seed's and ACL, side by side */
 int cub_cmd_ase_export(int argc, char **argv);   /* a clip as a 3ds Max ASCII export */
 int cub_cmd_trc_info(int argc, char **argv);     /* a TRC marker file: markers, frames, rate */
+int cub_cmd_train_forest(int argc, char **argv); /* the body-part forest from synth renders */
+int cub_cmd_eval_forest(int argc, char **argv);  /* its per-part accuracy on renders */
 int cub_cmd_join(int argc, char **argv);         /* join two clips without sliding feet */
 int cub_cmd_graph(int argc, char **argv);        /* the motion graph by support points */
 

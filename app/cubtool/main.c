@@ -21,6 +21,8 @@ static const command commands[] = {
     {"eval-track", cub_cmd_eval_track, "the tracker on a depth dump: joint errors, statuses, fps"},
     {"bench-track", cub_cmd_bench_track, "the tracker's ms per frame and memory"},
     {"synth-depth", cub_cmd_synth_depth, "a synthetic child as Kinect v1 depth: fakenect dump + truth"},
+    {"train-forest", cub_cmd_train_forest, "the body-part forest, trained on synth-depth renders"},
+    {"eval-forest", cub_cmd_eval_forest, "the body-part forest's per-part accuracy on renders"},
     {"bench-render", cub_cmd_bench_render, "the renderer's CPU per frame: own work vs the GL driver"},
     {"play", cub_cmd_play, "play clips or BVHs on the bear or a stick figure, side by side"},
     {"encode", cub_cmd_encode, "compress a clip with the folk-dance seed's codec (.cubseed)"},

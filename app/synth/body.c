@@ -108,29 +108,41 @@ int synth_body_prims(const synth_body_shape *s, const cub_fv3 p[SP_COUNT], uint8
     frame_of(cub_fv3_sub(p[CUB_KJ_HEAD], p[CUB_KJ_SHOULDER_CENTRE]),
              cub_fv3_sub(p[CUB_KJ_SHOULDER_L], p[CUB_KJ_SHOULDER_R]), ax);
     out[n++] = ellipsoid(p[CUB_KJ_HEAD], ax, 0.064f * h, HEAD_UP_F * h, 0.078f * h, owner);
+    out[n - 1].part = CUB_PART_HEAD;
     out[n++] = capsule(p[CUB_KJ_SHOULDER_CENTRE], p[CUB_KJ_HEAD], 0.03f * h * b, owner);
+    out[n - 1].part = CUB_PART_TORSO_UPPER;
 
     frame_of(cub_fv3_sub(p[CUB_KJ_SHOULDER_CENTRE], p[CUB_KJ_HIP_CENTRE]),
              cub_fv3_sub(p[CUB_KJ_SHOULDER_L], p[CUB_KJ_SHOULDER_R]), ax);
     float wide = loose_add(s, 0.02f) + baggy_add(s, 0.015f);
     out[n++] = ellipsoid(cub_fv3_lerp(p[CUB_KJ_SPINE], p[CUB_KJ_SHOULDER_CENTRE], 0.35f), ax,
                          0.095f * h * b + wide, 0.15f * h, 0.06f * h * b + wide, owner);
+    out[n - 1].part = CUB_PART_TORSO_UPPER;
     out[n++] = ellipsoid(cub_fv3_lerp(p[CUB_KJ_HIP_CENTRE], p[CUB_KJ_SPINE], 0.2f), ax,
                          0.09f * h * b + wide, 0.12f * h, 0.058f * h * b + wide, owner);
+    out[n - 1].part = CUB_PART_TORSO_LOWER;
     out[n++] = capsule(p[CUB_KJ_SHOULDER_L], p[CUB_KJ_SHOULDER_R], 0.038f * h * b, owner);
+    out[n - 1].part = CUB_PART_TORSO_UPPER;
     out[n++] = capsule(p[CUB_KJ_HIP_L], p[CUB_KJ_HIP_R], 0.05f * h * b, owner);
+    out[n - 1].part = CUB_PART_TORSO_LOWER;
     for (int side = 0; side < 2; side++) {
         int sh = side ? CUB_KJ_SHOULDER_R : CUB_KJ_SHOULDER_L;
+        int arm = side ? CUB_PART_UPPER_ARM_R : CUB_PART_UPPER_ARM_L;
         out[n++] = capsule(p[sh], p[sh + 1], 0.03f * h * b + baggy_add(s, 0.015f), owner);
         out[n++] = capsule(p[sh + 1], p[sh + 2], 0.025f * h * b + baggy_add(s, 0.012f), owner);
         cub_fv3 tip = cub_fv3_lerp(p[sh + 2], p[sh + 3], 2.0f);
         out[n++] = capsule(p[sh + 2], tip, 0.021f * h, owner);
+        for (int k = 0; k < 3; k++)
+            out[n - 3 + k].part = (uint8_t)(arm + k);
         int hip = side ? CUB_KJ_HIP_R : CUB_KJ_HIP_L;
+        int leg = side ? CUB_PART_THIGH_R : CUB_PART_THIGH_L;
         out[n++] = capsule(p[hip], p[hip + 1], 0.05f * h * b + loose_add(s, 0.015f), owner);
         out[n++] = capsule(p[hip + 1], p[hip + 2], 0.036f * h * b + baggy_add(s, 0.012f), owner);
         cub_fv3 heel, toe;
         synth_body_foot_ends(p[hip + 2], p[hip + 3], &heel, &toe);
         out[n++] = capsule(heel, toe, FOOT_R_F * h, owner);
+        for (int k = 0; k < 3; k++)
+            out[n - 3 + k].part = (uint8_t)(leg + k);
     }
     if (s->loose) {
         cub_fv3 hips = cub_fv3_lerp(p[CUB_KJ_HIP_L], p[CUB_KJ_HIP_R], 0.5f);
@@ -139,7 +151,8 @@ int synth_body_prims(const synth_body_shape *s, const cub_fv3 p[SP_COUNT], uint8
                         .owner = owner,
                         .a = cub_fv3_lerp(p[CUB_KJ_HIP_CENTRE], p[CUB_KJ_SPINE], 0.3f),
                         .b = cub_fv3_lerp(hips, knees, 0.55f),
-                        .r = 0.115f * h * b};
+                        .r = 0.115f * h * b,
+                        .part = CUB_PART_TORSO_LOWER};
         out[n++] = c;
     }
     for (int i = 0; i < n; i++)

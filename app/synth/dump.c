@@ -3,7 +3,9 @@
  * fakenect-record writes and ../shared/data/depth/skeltrack holds), each
  * followed by the accelerometer as fakenect-record writes it
  * (a-<time>-<timestamp>.dump, the scene's gravity), and truth.txt beside
- * them (truth_second.txt too when there is a second person). */
+ * them (truth_second.txt too when there is a second person), and on request
+ * the body-part labels p-<time>-<timestamp>.pgm (not in INDEX.txt: fakenect
+ * plays only d- and a- files). */
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -81,6 +83,19 @@ static int write_accel(const char *path, const float down[3])
     return (fclose(f) == 0 && ok) ? 0 : -1;
 }
 
+/* The part labels beside a depth frame: p-<time>-<timestamp>.pgm. */
+static int write_parts(cub_synth *s, const char *dir, const char *name, char *path, size_t size)
+{
+    static uint8_t part[CUB_KINECT_WIDTH * CUB_KINECT_HEIGHT];
+    if (cub_synth_parts(s, part) != CUB_OK) return -1;
+    snprintf(path, size, "%s/p-%s", dir, name + 2);
+    FILE *f = fopen(path, "wb");
+    if (!f) return -1;
+    int ok = fprintf(f, "P5 %d %d 255\n", CUB_KINECT_WIDTH, CUB_KINECT_HEIGHT) > 0 &&
+             fwrite(part, 1, sizeof(part), f) == sizeof(part);
+    return (fclose(f) == 0 && ok) ? 0 : -1;
+}
+
 /* One frame's two files and INDEX lines: the depth, then the accelerometer
  * under the frame's name, as fakenect-record orders them. */
 static int write_frame(const char *dir, FILE *index, const char *name, const uint16_t *raw,
@@ -126,8 +141,9 @@ static FILE *open_out(const char *dir, const char *name, const float *g, cub_dia
     return f;
 }
 
-cub_err cub_synth_write_dump(cub_synth *s, const char *dir, int frames, int verbose, cub_diag *diag)
+cub_err cub_synth_write_dump(cub_synth *s, const char *dir, int frames, int flags, cub_diag *diag)
 {
+    int verbose = flags & CUB_SYNTH_DUMP_VERBOSE;
     if (!s || !dir) return CUB_ERR_ARG;
     int total = cub_synth_frame_count(s);
     if (frames <= 0 || frames > total) frames = total;
@@ -150,7 +166,8 @@ cub_err cub_synth_write_dump(cub_synth *s, const char *dir, int frames, int verb
         err = cub_synth_render(s, i, raw, &t, NULL, NULL);
         if (err) break;
         cub_synth_frame_name(i, synth_fps(s), name, sizeof(name), NULL, NULL);
-        if (write_frame(dir, index, name, raw, g, path, sizeof(path)) != 0) {
+        if (write_frame(dir, index, name, raw, g, path, sizeof(path)) != 0 ||
+            ((flags & CUB_SYNTH_DUMP_PARTS) && write_parts(s, dir, name, path, sizeof(path)) != 0)) {
             err = io_fail(diag, path, "cannot write");
             break;
         }

@@ -182,13 +182,14 @@ static int screen_rect(const synth_camera *cam, const synth_prim *p, int r[4])
     return 1;
 }
 
-void synth_raycast(const synth_camera *cam, const synth_prim *prims, int n, float *depth_mm,
-                   uint8_t *owner, int clear)
+/* Where a cast writes: depth always, owner and part when not NULL. */
+typedef struct cast_out {
+    float *depth_mm;
+    uint8_t *owner, *part;
+} cast_out;
+
+static void cast(const synth_camera *cam, const synth_prim *prims, int n, const cast_out *o)
 {
-    for (int i = 0; i < W * H && clear; i++) {
-        depth_mm[i] = 0;
-        if (owner) owner[i] = OWNER_NONE;
-    }
     for (int k = 0; k < n; k++) {
         const synth_prim *p = &prims[k];
         int r[4];
@@ -198,12 +199,32 @@ void synth_raycast(const synth_camera *cam, const synth_prim *prims, int n, floa
             for (int u = r[0]; u <= r[2]; u++) {
                 cub_fv3 d = cub_fv3_add(row, cub_fv3_scale(cam->x, (u - CUB_KINECT_CX) / F));
                 float t = hit(p, cam->origin, d, cub_fv3_dot(d, d));
-                float *z = &depth_mm[v * W + u];
+                int i = v * W + u;
+                float *z = &o->depth_mm[i];
                 if (t > NEAR_MM && (*z == 0 || t < *z)) {
                     *z = t;
-                    if (owner) owner[v * W + u] = p->owner;
+                    if (o->owner) o->owner[i] = p->owner;
+                    if (o->part) o->part[i] = p->part;
                 }
             }
         }
     }
+}
+
+void synth_raycast(const synth_camera *cam, const synth_prim *prims, int n, float *depth_mm,
+                   uint8_t *owner, int clear)
+{
+    for (int i = 0; i < W * H && clear; i++) {
+        depth_mm[i] = 0;
+        if (owner) owner[i] = OWNER_NONE;
+    }
+    cast_out o = {depth_mm, owner, NULL};
+    cast(cam, prims, n, &o);
+}
+
+void synth_raycast_parts(const synth_camera *cam, const synth_prim *prims, int n, float *depth_mm,
+                         uint8_t *owner, uint8_t *part)
+{
+    cast_out o = {depth_mm, owner, part};
+    cast(cam, prims, n, &o);
 }

@@ -46,7 +46,7 @@ struct cub_synth {
     synth_prim room[32];
     int nroom;
     float *depth, *proj_depth;
-    uint8_t *owner;
+    uint8_t *owner, *part;
     /* the room does not move: rendered once, copied under every frame */
     float *room_depth, *room_proj_depth;
     uint8_t *room_owner;
@@ -349,10 +349,11 @@ cub_err cub_synth_open(const cub_synth_desc *desc, const cub_synth_segment *segs
     s->depth = malloc(NPIX * sizeof(float));
     s->proj_depth = malloc(NPIX * sizeof(float));
     s->owner = malloc(NPIX);
+    s->part = calloc(NPIX, 1);
     s->room_depth = malloc(NPIX * sizeof(float));
     s->room_proj_depth = malloc(NPIX * sizeof(float));
     s->room_owner = malloc(NPIX);
-    cub_err err = (s->segs && s->depth && s->proj_depth && s->owner && s->room_depth &&
+    cub_err err = (s->segs && s->depth && s->proj_depth && s->owner && s->part && s->room_depth &&
                    s->room_proj_depth && s->room_owner)
                       ? CUB_OK
                       : CUB_ERR_NOMEM;
@@ -403,6 +404,7 @@ void cub_synth_close(cub_synth *s)
     free(s->depth);
     free(s->proj_depth);
     free(s->owner);
+    free(s->part);
     free(s->room_depth);
     free(s->room_proj_depth);
     free(s->room_owner);
@@ -465,7 +467,8 @@ cub_err cub_synth_render(cub_synth *s, int frame, uint16_t *raw, cub_synth_truth
     }
     memcpy(s->depth, s->room_depth, NPIX * sizeof(float));
     memcpy(s->owner, s->room_owner, NPIX);
-    synth_raycast(&s->cam, prims, n, s->depth, s->owner, 0);
+    memset(s->part, CUB_PART_NONE, NPIX);
+    synth_raycast_parts(&s->cam, prims, n, s->depth, s->owner, s->part);
     if (!s->d.clean) {
         memcpy(s->proj_depth, s->room_proj_depth, NPIX * sizeof(float));
         synth_raycast(&s->proj, prims, n, s->proj_depth, NULL, 0);
@@ -496,4 +499,20 @@ cub_err cub_synth_second_truth(const cub_synth *s, cub_synth_truth_frame *truth)
     cub_synth_frame_name(s->last_frame, s->d.fps, NULL, 0, &truth->t_s, &truth->ts);
     truth_of(s, s->second_pts, &s->second_shape, OWNER_SECOND, truth);
     return CUB_OK;
+}
+
+cub_err cub_synth_parts(const cub_synth *s, uint8_t *part)
+{
+    if (!s || !part) return CUB_ERR_ARG;
+    memcpy(part, s->part, NPIX);
+    return CUB_OK;
+}
+
+const char *cub_synth_part_name(int part)
+{
+    static const char *names[CUB_PART_COUNT] = {
+        "none",   "head",   "torso_upper", "torso_lower", "upper_arm_l", "forearm_l",
+        "hand_l", "upper_arm_r", "forearm_r", "hand_r", "thigh_l",     "shin_l",
+        "foot_l", "thigh_r",     "shin_r",    "foot_r"};
+    return part >= 0 && part < CUB_PART_COUNT ? names[part] : "?";
 }

@@ -30,6 +30,7 @@ enum { OWNER_NONE = 0, OWNER_PLAYER = 1, OWNER_SECOND = 2, OWNER_ROOM = 3 };
 
 typedef struct synth_prim {
     uint8_t kind, owner;
+    uint8_t part;       /* cub_synth_part of a body's primitive; 0 for the room */
     cub_fv3 a, b;       /* capsule/cylinder ends; ellipsoid centre (a); box min/max */
     float r;        /* capsule/cylinder radius */
     cub_fv3 axis[3];    /* ellipsoid: unit axes */
@@ -47,6 +48,9 @@ typedef struct synth_camera {
  * buffers hold (the static room) and draws over it. */
 void synth_raycast(const synth_camera *cam, const synth_prim *prims, int n, float *depth_mm,
                    uint8_t *owner, int clear);
+/* The same over what the buffers hold, also writing each hit's part. */
+void synth_raycast_parts(const synth_camera *cam, const synth_prim *prims, int n, float *depth_mm,
+                         uint8_t *owner, uint8_t *part);
 void synth_prim_bound(synth_prim *p);
 
 /* ---- body (body.c) ---------------------------------------------------- */

@@ -27,7 +27,8 @@ SHARED_DATA = os.environ.get("CUB_DATA_DIR") or os.path.join(SRC, "..", "shared"
 FONT = "/usr/share/fonts/truetype/dejavu/DejaVuSans-Bold.ttf"
 SOUNDFONT = "/usr/share/sounds/sf2/TimGM6mb.sf2"
 SANITIZER = re.compile(rb"AddressSanitizer|LeakSanitizer|runtime error:|MemorySanitizer")
-BINARY = {"midi", "soundfont", "library", "font", "frame", "track_frame", "cubseed", "cubkeys", "voice"}
+BINARY = {"midi", "soundfont", "library", "font", "frame", "track_frame", "cubseed", "cubkeys", "voice",
+          "forest"}
 TEXT_ONLY = {"nan", "inf", "crlf", "bom", "badutf8"}
 
 
@@ -137,6 +138,8 @@ def base_of(kind, d, shared, build=""):
         return read(os.path.join(SRC, "tests", "fuzz", "seeds_keys", "arm.cubkeys")), "bad.cubkeys"
     if kind == "ase":  # a small 3ds Max ASCII export, made by tests/fuzz/make_seeds.py
         return read(os.path.join(SRC, "tests", "fuzz", "seeds_ase", "small.ase")), "bad.ase"
+    if kind == "forest":  # a two-tree body-part forest, made by tests/fuzz/make_seeds.py
+        return read(os.path.join(SRC, "tests", "fuzz", "seeds_forest", "two_trees.cubforest")), "bad.forest"
     if kind == "trc":  # a small marker file, made by tests/fuzz/make_seeds.py
         return read(os.path.join(SRC, "tests", "fuzz", "seeds_trc", "small_mm.trc")), "bad.trc"
     if kind == "keyscript":  # cubtool play's scripted keys (the format: cub/keyscript.h)

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Write the fuzz targets' small seed inputs (issue 18) into tests/fuzz/:
 seeds_dump/ (fuzz_fakenect_dump, fuzz_track_dump), seeds_synth/,
-seeds_cli/, seeds_font/, seeds_map/, seeds_codec/, seeds_keys/, seeds_voice/, seeds_trc/,
+seeds_cli/, seeds_font/, seeds_forest/, seeds_map/, seeds_codec/, seeds_keys/, seeds_voice/, seeds_trc/,
 seeds_ase/, seeds_keyscript/. Everything is made
 here from the formats' rules, nothing copied from the shared data; run it again
 after changing a format:
@@ -371,6 +371,25 @@ def ase_seeds():
     put("seeds_ase", "one_node.ase", one.encode())
 
 
+# ---- the body-part forest (cub/forest.h): header, roots, 28-byte nodes, u16 leaves
+def forest(classes=3):
+    nodes = [(100000, 0, 0, 0, 500, 1, 0x80000000 | 1),       # node 0: left to node 1
+             (0, -80000, 30000, 0, -200, 0x80000000, 0x80000000 | 2)]
+    leaves = [[(i * 7919 + c * 104729) % 65536 for c in range(classes)] for i in range(3)]
+    body = b"CUBFRST1" + struct.pack("<HHHHII", 1, classes, 2, 0, len(nodes), len(leaves))
+    body += struct.pack("<II", 0, 0x80000000 | 2)
+    for n in nodes:
+        body += struct.pack("<iiiiiII", *n)
+    for leaf in leaves:
+        body += struct.pack("<%dH" % classes, *leaf)
+    return body
+
+
+def forest_seeds():
+    put("seeds_forest", "two_trees.cubforest", forest())
+    put("seeds_forest", "many_classes.cubforest", forest(classes=16))
+
+
 def keyscript_seeds():
     """cubtool play's scripted keys (app/include/cub/keyscript.h)."""
     put("seeds_keyscript", "scene.keys",
@@ -381,6 +400,7 @@ def keyscript_seeds():
 
 
 def main():
+    forest_seeds()
     keyscript_seeds()
     ase_seeds()
     trc_seeds()

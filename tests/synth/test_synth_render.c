@@ -21,6 +21,7 @@
 
 #include "cub/kinect.h"
 #include "cub/synth.h"
+#include "synth_data.h"
 
 #define W CUB_KINECT_WIDTH
 #define H CUB_KINECT_HEIGHT
@@ -28,11 +29,7 @@
 
 static const char *data_dir(void)
 {
-    const char *d = getenv("CUB_DATA_DIR");
-    static char probe[600];
-    if (!d) return NULL;
-    snprintf(probe, sizeof(probe), "%s/mocap/cmu/13_29.bvh", d);
-    return access(probe, R_OK) == 0 ? d : NULL;
+    return synth_data_dir("13_29");
 }
 
 #define NEED_DATA()                                                                                \

@@ -19,6 +19,7 @@
 
 #include "cub/kinect.h"
 #include "cub/synth.h"
+#include "synth_data.h"
 
 #define W CUB_KINECT_WIDTH
 #define H CUB_KINECT_HEIGHT
@@ -27,11 +28,7 @@
 
 static const char *data_dir(void)
 {
-    const char *d = getenv("CUB_DATA_DIR");
-    static char probe[600];
-    if (!d) return NULL;
-    snprintf(probe, sizeof(probe), "%s/mocap/cmu/02_01.bvh", d);
-    return access(probe, R_OK) == 0 ? d : NULL;
+    return synth_data_dir("02_01");
 }
 
 #define NEED_DATA()                                                                                \

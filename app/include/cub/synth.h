@@ -128,6 +128,36 @@ cub_err cub_synth_render(cub_synth *s, int frame, uint16_t *raw, cub_synth_truth
 int cub_synth_has_second(const cub_synth *s);
 cub_err cub_synth_second_truth(const cub_synth *s, cub_synth_truth_frame *truth);
 
+/* Body parts painted per pixel (the classes of a body-part classifier, see
+ * docs/forest.md): by the body's own side (the player's left arm is
+ * ARM_L whichever way the player faces; a mirrored segment swaps them, as
+ * it swaps the joints). 0: not a body (room, floor, nothing). */
+typedef enum cub_synth_part {
+    CUB_PART_NONE = 0,
+    CUB_PART_HEAD,
+    CUB_PART_TORSO_UPPER, /* chest, the shoulder bar and the neck (the head and
+                           * chest hide it: alone it is almost never seen) */
+    CUB_PART_TORSO_LOWER, /* belly, the hip bar, a skirt hem */
+    CUB_PART_UPPER_ARM_L,
+    CUB_PART_FOREARM_L,
+    CUB_PART_HAND_L,
+    CUB_PART_UPPER_ARM_R,
+    CUB_PART_FOREARM_R,
+    CUB_PART_HAND_R,
+    CUB_PART_THIGH_L,
+    CUB_PART_SHIN_L,
+    CUB_PART_FOOT_L,
+    CUB_PART_THIGH_R,
+    CUB_PART_SHIN_R,
+    CUB_PART_FOOT_R,
+    CUB_PART_COUNT
+} cub_synth_part;
+
+/* The part of every pixel in the frame last rendered (w*h bytes), on
+ * either person; tell them apart by cub_synth_render's owner. */
+cub_err cub_synth_parts(const cub_synth *s, uint8_t *part);
+const char *cub_synth_part_name(int part);
+
 /* The Kinect's mapping, both ways (raw 0..2046; out of range -> 2047). */
 uint16_t cub_synth_mm_to_raw(double mm);
 double cub_synth_raw_to_mm(uint16_t raw);
@@ -137,9 +167,11 @@ double cub_synth_raw_to_mm(uint16_t raw);
 void cub_synth_frame_name(int frame, float fps, char *buf, size_t size, double *t_s, uint32_t *ts);
 /* Write frames [0, frames) (frames <= 0: all) as a fakenect dump in dir
  * (created if needed): INDEX.txt, d-*.pgm, truth.txt, and with a second
- * person truth_second.txt (its joints, same format). Progress to stderr
- * when verbose. */
-cub_err cub_synth_write_dump(cub_synth *s, const char *dir, int frames, int verbose,
+ * person truth_second.txt (its joints, same format); flags below. */
+#define CUB_SYNTH_DUMP_VERBOSE 1 /* progress to stderr */
+#define CUB_SYNTH_DUMP_PARTS 2   /* also p-<time>-<timestamp>.pgm beside each depth
+                                  * frame: "P5 640 480 255", one cub_synth_part a byte */
+cub_err cub_synth_write_dump(cub_synth *s, const char *dir, int frames, int flags,
                              cub_diag *diag);
 
 /* ---- segments file: `clip from_s to_s [mirror]` per line, # comments --- */

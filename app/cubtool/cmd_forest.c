@@ -1,0 +1,262 @@
+/* cubtool train-forest / eval-forest: the body-part forest (cub/forest.h)
+ * trained on and scored against synth-depth renders (cub/forest_train.h);
+ * docs/forest.md has the commands, the folds and the figures. */
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "commands.h"
+#include "cub/forest_train.h"
+#include "cub/text.h"
+
+#define MAX_CLIPS 96
+
+typedef struct forest_opts {
+    const char *clips[MAX_CLIPS];
+    int nclips;
+    const char *out, *forest, *except;
+    cub_ft_render r;
+    cub_ft_params p;
+    int stride;
+} forest_opts;
+
+static void help(FILE *f, const char *who)
+{
+    if (!strcmp(who, "train-forest"))
+        fprintf(f, "usage: cubtool train-forest (--clip C ... | --fold F ... | --all-but F | --all)\n"
+                   "                            --out FOREST [options]\n"
+                   "Trains the body-part forest (cub/forest.h) on synth-depth renders of\n"
+                   "shippable motion only (CMU, AnimatedDrawings: Bandai and the dog refused),\n"
+                   "rendered turning (a new yaw every 1.5 s) and moving about (+-0.7 m).\n"
+                   "  --trees N [3]  --depth N [16]  --features N [200]  --thresholds N [20]\n"
+                   "  --pixels N     body pixels a frame for each tree [300]\n"
+                   "  --min N        a node with fewer pixels is a leaf [20]\n"
+                   "  --offset PXMM  probe offsets within +-PXMM pixel·mm [120000]\n");
+    else
+        fprintf(f, "usage: cubtool eval-forest --forest FOREST (--clip C ... | --fold F ...)\n"
+                   "                           [--stride N] [options]\n"
+                   "Per-part share of the player's pixels the forest names right, on\n"
+                   "renders made as train-forest makes them (any clip: measuring only).\n"
+                   "  --stride N     every N-th body pixel [7]\n");
+    fprintf(f, "clips and folds:\n"
+               "  --clip C       a clip short name or path, 'C@S' from S seconds\n"
+               "  --fold F       the clips of a fold: cmu13 cmu14 cmu_walks cmu_dance_sport\n"
+               "                 animdraw (docs/tracker_eval.md)\n"
+               "  --all-but F    every shippable fold but F (leave one source out)\n"
+               "  --all          every shippable fold\n"
+               "  --frames N     frames a clip [20]   --step N  every N-th frame [8]\n"
+               "  --seed N       [1]   --data DIR   [$CUB_DATA_DIR or the build's]\n");
+}
+
+static int add_fold(forest_opts *o, const char *name, const char *who)
+{
+    const char *const *c = cub_ft_fold(name);
+    if (!c) {
+        fprintf(stderr, "%s: no fold '%s' (cmu13 cmu14 cmu_walks cmu_dance_sport animdraw)\n", who,
+                name);
+        return 0;
+    }
+    for (; *c && o->nclips < MAX_CLIPS; c++)
+        o->clips[o->nclips++] = *c;
+    return 1;
+}
+
+static int num(const char *who, const char *a, const char *v, double lo, double hi, double *x)
+{
+    char *end;
+    *x = v ? strtod(v, &end) : 0;
+    if (v && *v && !*end && *x >= lo && *x <= hi) return 1;
+    fprintf(stderr, "%s: %s needs a number in [%g, %g], got '%s'\n", who, a, lo, hi, v ? v : "");
+    return 0;
+}
+
+static int parse_number(forest_opts *o, const char *who, const char *a, const char *v)
+{
+    static const struct {
+        const char *name;
+        double lo, hi;
+        size_t at;
+        int u64;
+    } nums[] = {
+        {"--trees", 1, CUB_FOREST_MAX_TREES, offsetof(forest_opts, p.trees), 0},
+        {"--depth", 1, 30, offsetof(forest_opts, p.depth), 0},
+        {"--features", 1, 100000, offsetof(forest_opts, p.features), 0},
+        {"--thresholds", 1, 10000, offsetof(forest_opts, p.thresholds), 0},
+        {"--pixels", 1, 100000, offsetof(forest_opts, p.pixels_per_frame), 0},
+        {"--min", 2, 1e9, offsetof(forest_opts, p.min_samples), 0},
+        {"--offset", 1, CUB_FOREST_MAX_OFFSET, offsetof(forest_opts, p.max_offset), 0},
+        {"--frames", 1, 100000, offsetof(forest_opts, r.frames), 0},
+        {"--step", 1, 10000, offsetof(forest_opts, r.step), 0},
+        {"--stride", 1, 1e6, offsetof(forest_opts, stride), 0},
+        {"--seed", 0, 1e15, offsetof(forest_opts, p.seed), 1},
+    };
+    for (size_t k = 0; k < sizeof(nums) / sizeof(nums[0]); k++) {
+        if (strcmp(a, nums[k].name)) continue;
+        double x;
+        if (!num(who, a, v, nums[k].lo, nums[k].hi, &x)) return 0;
+        if (nums[k].u64) *(uint64_t *)((char *)o + nums[k].at) = (uint64_t)x;
+        else *(int32_t *)((char *)o + nums[k].at) = (int32_t)x;
+        return 1;
+    }
+    fprintf(stderr, "%s: unknown option or missing value: %s\n", who, a);
+    return 0;
+}
+
+static int parse(forest_opts *o, int argc, char **argv, const char *who)
+{
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+        int ok = 1;
+        if (!strcmp(a, "--all")) {
+            for (int k = 0; cub_ft_fold_name(k) && ok; k++)
+                ok = add_fold(o, cub_ft_fold_name(k), who);
+            continue;
+        }
+        if (!v) return parse_number(o, who, a, v);
+        if (!strcmp(a, "--clip") && o->nclips < MAX_CLIPS) o->clips[o->nclips++] = v;
+        else if (!strcmp(a, "--fold")) ok = add_fold(o, v, who);
+        else if (!strcmp(a, "--all-but")) o->except = v;
+        else if (!strcmp(a, "--out")) o->out = v;
+        else if (!strcmp(a, "--forest")) o->forest = v;
+        else if (!strcmp(a, "--data")) o->r.data_dir = v;
+        else ok = parse_number(o, who, a, v);
+        if (!ok) return 0;
+        i++;
+    }
+    if (o->except) {
+        if (!cub_ft_fold(o->except)) return add_fold(o, o->except, who);
+        for (int k = 0; cub_ft_fold_name(k); k++)
+            if (strcmp(cub_ft_fold_name(k), o->except) && !add_fold(o, cub_ft_fold_name(k), who))
+                return 0;
+    }
+    return 1;
+}
+
+static int load_clips(forest_opts *o, cub_ft_set *set, const char *who)
+{
+    o->r.seed = o->p.seed;
+    for (int i = 0; i < o->nclips; i++) {
+        cub_diag diag;
+        char buf[700];
+        if (cub_ft_add_clip(set, &o->r, o->clips[i], &diag)) {
+            fprintf(stderr, "%s: %s\n", who, cub_diag_str(&diag, buf, sizeof(buf)));
+            return 0;
+        }
+    }
+    fprintf(stderr, "%s: %d clips, %d frames\n", who, o->nclips, set->n);
+    return set->n > 0;
+}
+
+static int setup(forest_opts *o, int argc, char **argv, const char *who)
+{
+    *o = (forest_opts){.r = {.frames = 20, .step = 8},
+                       .p = {.trees = 3, .depth = 16, .features = 200, .thresholds = 20,
+                             .pixels_per_frame = 300, .min_samples = 20, .max_offset = 120000,
+                             .seed = 1},
+                       .stride = 7};
+    for (int i = 1; i < argc; i++)
+        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
+            help(stdout, who);
+            return 0;
+        }
+    if (!parse(o, argc, argv, who)) return 2;
+    if (!o->nclips) {
+        fprintf(stderr, "%s: give --clip, --fold, --all-but or --all (see --help)\n", who);
+        return 2;
+    }
+    if (!o->r.data_dir)
+        o->r.data_dir = getenv("CUB_DATA_DIR") ? getenv("CUB_DATA_DIR") : CUB_DATA_DIR_DEFAULT;
+    return -1;
+}
+
+int cub_cmd_train_forest(int argc, char **argv)
+{
+    forest_opts o;
+    int rc = setup(&o, argc, argv, "train-forest");
+    if (rc >= 0) return rc;
+    if (!o.out) return fprintf(stderr, "train-forest: --out FOREST needed\n"), 2;
+    for (int i = 0; i < o.nclips; i++)
+        if (!cub_ft_shippable(o.clips[i])) {
+            fprintf(stderr, "train-forest: %s: its licence forbids shipping what derives from it "
+                            "(Bandai, the dog): measure on it with eval-forest, never train\n",
+                    o.clips[i]);
+            return 2;
+        }
+    cub_ft_set set = {0};
+    uint8_t *asset = NULL;
+    size_t len = 0;
+    rc = load_clips(&o, &set, "train-forest") ? 0 : 1;
+    if (!rc && cub_ft_train(&set, &o.p, &asset, &len)) rc = 1;
+    cub_ft_set_free(&set);
+    FILE *f = rc ? NULL : fopen(o.out, "wb");
+    if (!rc && (!f || fwrite(asset, 1, len, f) != len || fclose(f) != 0)) {
+        fprintf(stderr, "train-forest: cannot write %s\n", o.out);
+        rc = 1;
+    }
+    if (!rc) printf("train-forest: %d trees, %zu bytes -> %s\n", o.p.trees, len, o.out);
+    free(asset);
+    return rc;
+}
+
+/* Per true part (rows) the share named each part (columns), per mille. */
+static void confusion(const cub_ft_score *s)
+{
+    printf("named as (per mille of the row's pixels):\n%-12s", "");
+    for (int q = 1; q < CUB_PART_COUNT; q++)
+        printf(" %5.5s", cub_synth_part_name(q));
+    for (int p = 1; p < CUB_PART_COUNT; p++) {
+        printf("\n%-12s", cub_synth_part_name(p));
+        for (int q = 1; q < CUB_PART_COUNT; q++)
+            printf(" %5ld", s->n[p] ? 1000 * s->named[p][q] / s->n[p] : 0);
+    }
+    printf("\n");
+}
+
+static void report(const cub_ft_score *s)
+{
+    long n = 0, right = 0, most = 0;
+    printf("%-12s %8s %7s\n", "part", "pixels", "right");
+    for (int p = 1; p < CUB_PART_COUNT; p++) {
+        n += s->n[p], right += s->right[p];
+        if (s->n[p] > most) most = s->n[p];
+        printf("%-12s %8ld %6.1f%%\n", cub_synth_part_name(p), s->n[p],
+               s->n[p] ? 100.0 * s->right[p] / s->n[p] : 0.0);
+    }
+    printf("%-12s %8ld %6.1f%%   (one part for every pixel: %.1f%%)\n", "all", n,
+           n ? 100.0 * right / n : 0.0, n ? 100.0 * most / n : 0.0);
+    printf("ties: %.1f%% of the pixels (the lower part, so the left side, wins)\n",
+           n ? 100.0 * s->ties / n : 0.0);
+    confusion(s);
+}
+
+int cub_cmd_eval_forest(int argc, char **argv)
+{
+    forest_opts o;
+    int rc = setup(&o, argc, argv, "eval-forest");
+    if (rc >= 0) return rc;
+    if (!o.forest) return fprintf(stderr, "eval-forest: --forest FOREST needed\n"), 2;
+    char *bytes = NULL, buf[700];
+    size_t len = 0;
+    cub_diag diag = {0};
+    cub_text_src src = {o.forest, "forest", CUB_TEXT_MAX_CLIPS};
+    if (cub_text_read(&src, &bytes, &len, &diag)) {
+        fprintf(stderr, "eval-forest: %s\n", cub_diag_str(&diag, buf, sizeof(buf)));
+        return 1;
+    }
+    cub_forest f;
+    cub_forest_problem why = {0};
+    if (cub_forest_open(bytes, len, &f, &why)) {
+        fprintf(stderr, "eval-forest: %s: offset %zu: %s\n", o.forest, why.offset, why.what);
+        free(bytes);
+        return 1;
+    }
+    cub_ft_set set = {0};
+    cub_ft_score s = {0};
+    rc = load_clips(&o, &set, "eval-forest") ? 0 : 1;
+    if (!rc) cub_ft_score_set(&f, &set, o.stride, &s);
+    if (!rc) report(&s);
+    cub_ft_set_free(&set);
+    free(bytes);
+    return rc;
+}

@@ -1,0 +1,92 @@
+/* forest — a randomized decision forest that names the body part under a
+ * depth pixel (Shotton et al., CVPR 2011: the Kinect's own method), in
+ * integers. docs/forest.md: the training (cubtool train-forest), the
+ * figures, what is next.
+ *
+ * A split node compares two probes around pixel p = (x, y) of depth d(p)
+ * in mm: f = d(p + u / d(p)) - d(p + v / d(p)). The offsets u, v are in
+ * pixel·mm, so they shrink with distance and touch the same spot of a body
+ * whether it stands near or far; u / d(p) divides each coordinate in C's
+ * integer division (truncating towards zero). A probe off the image or on
+ * no reading (0) reads CUB_FOREST_FAR_MM (p on no reading: f = 0). f < threshold
+ * (mm) goes to the left child. A leaf holds the probability of every
+ * class, Q0.16 (65535 ~ 1); a pixel's score per class is the sum over the
+ * trees, its class the highest score (the lowest class on a tie).
+ *
+ * The asset (little-endian; docs/forest.md shows it):
+ *   header, 24 bytes: "CUBFRST1", u16 version (1), u16 classes (1..64),
+ *     u16 trees (1..64), u16 reserved (0), u32 nodes, u32 leaves
+ *   u32 root[trees]      a child reference each
+ *   node[nodes], 28 bytes each: i32 ux uy vx vy (pixel·mm, |.| <= 2^24),
+ *     i32 threshold (mm), u32 left, right (child references)
+ *   u16 leaf[leaves][classes]
+ *   and nothing after.
+ * A child reference below 2^31 is a node index, one with bit 31 set a leaf
+ * index (the low bits). A node's children come after it (left, right >
+ * its own index), so every path ends at a leaf: no cycle, depth <= nodes.
+ *
+ * The forest is a view of the caller's bytes: no copy, no heap; the bytes
+ * must outlive it. Integer only: bit-identical on every CPU.
+ */
+#ifndef CUB_FOREST_H
+#define CUB_FOREST_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "cub/err.h"
+
+#define CUB_FOREST_VERSION 1
+#define CUB_FOREST_MAX_CLASSES 64
+#define CUB_FOREST_MAX_TREES 64
+#define CUB_FOREST_MAX_OFFSET (1 << 24)       /* |u|, |v| in pixel·mm */
+#define CUB_FOREST_FAR_MM 10000               /* what a probe off the body reads */
+#define CUB_FOREST_LEAF_BIT 0x80000000u
+#define CUB_FOREST_HEADER_BYTES 24
+#define CUB_FOREST_NODE_BYTES 28
+
+typedef struct cub_forest {
+    const uint8_t *roots, *nodes, *leaves;
+    int classes, trees;
+    uint32_t node_count, leaf_count;
+} cub_forest;
+
+/* One split node, decoded. */
+typedef struct cub_forest_node {
+    int32_t u[2], v[2]; /* probe offsets (x right, y down), pixel·mm */
+    int32_t threshold_mm;
+    uint32_t left, right; /* child references */
+} cub_forest_node;
+
+/* Why an asset was refused: what, and the byte offset where. */
+typedef struct cub_forest_problem {
+    const char *what;
+    size_t offset;
+} cub_forest_problem;
+
+/* A depth image in mm (0 = no reading), row-major, w x h. */
+typedef struct cub_forest_image {
+    const uint16_t *mm;
+    int w, h;
+} cub_forest_image;
+
+/* Check the whole asset and make f a view of it. CUB_ERR_FORMAT with why
+ * filled when the bytes are not a forest; CUB_ERR_ARG on NULL. */
+cub_err cub_forest_open(const void *data, size_t len, cub_forest *f, cub_forest_problem *why);
+/* Node i (< node_count) of an opened forest. */
+cub_forest_node cub_forest_node_at(const cub_forest *f, uint32_t i);
+
+/* The depth a probe at p + off / d(p) reads (CUB_FOREST_FAR_MM off the
+ * image or on no reading); d_mm is d(p), > 0. */
+int32_t cub_forest_probe(const cub_forest_image *im, int x, int y, int32_t d_mm,
+                         const int32_t off[2]);
+/* The split feature f of a node at p (p on no reading: both probes read far). */
+int32_t cub_forest_feature(const cub_forest_image *im, int x, int y, const cub_forest_node *n);
+/* The leaf reference tree t reaches from p. */
+uint32_t cub_forest_descend(const cub_forest *f, int t, const cub_forest_image *im, int x, int y);
+/* Scores of every class at p (score[classes]: sums of Q0.16 leaf
+ * probabilities over the trees); returns the class with the highest. */
+int cub_forest_classify(const cub_forest *f, const cub_forest_image *im, int x, int y,
+                        uint32_t *score);
+
+#endif
