@@ -160,6 +160,10 @@ static cub_err read_scene(ase_reader *r, const io_tok *key)
     io_tok t;
     long last = LONG_MIN, first = 0, tpf = CUB_ASE_TICKS_PER_FRAME;
     double fps = 0;
+    /* the tracks already read were sized and checked by the first scene */
+    if (r->scene_line)
+        return io_fail(&r->lx, key->line, "a second *SCENE block (the first is at line %d)",
+                       r->scene_line);
     cub_err err = expect_open(r, key);
     while (!err && next_key(r, key->line, &t, &err)) {
         if (io_tok_is(&t, "*SCENE_FIRSTFRAME")) err = read_long(r, &t, -1000000, 1000000, &first);

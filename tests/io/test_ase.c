@@ -210,6 +210,11 @@ static const bad_case bad_cases[] = {
      12, "beyond"},
     {SCENE "*HELPEROBJECT {\n*NODE_NAME \"r\"\n*NODE_TM {\n*TM_QUATERNION 0 0 0 3\n}\n}\n", 9,
      "has length 3"},
+    /* a second scene would resize the frames after the tracks were read */
+    {SCENE ROOT_OPEN "*TM_ANIMATION {\n*CONTROL_ROT_TRACK {\n*CONTROL_ROT_SAMPLE 0 0 0 1 0.5\n"
+     "*CONTROL_ROT_SAMPLE 160 0 0 1 0.5\n}\n}\n}\n*SCENE {\n*SCENE_LASTFRAME 5\n"
+     "*SCENE_FRAMESPEED 30\n}\n",
+     18, "a second *SCENE block (the first is at line 2)"},
     {SCENE "stray\n", 6, "expected a *KEYWORD"},
     {SCENE "*HELPEROBJECT\n", 6, "expected '{'"},
 };
