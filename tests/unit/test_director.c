@@ -1,8 +1,9 @@
 /* director: the tick's policy on a synthetic clip library. Bad input
  * first, then how requests enter their clips (a move at its first frames,
  * a correction anywhere in its front half, the other correcting clip when
- * it is sooner), the leads, the judge's windows, the music tags and clip
- * ends the player posts, and the scripted verdict's move.
+ * it is sooner), the leads, the judge's windows and the other moves they
+ * look for, the music tags and clip ends the player posts, and the
+ * scripted verdict's move.
  *
  * Every synthetic frame is one number v in [0, 1]: its fuzzy features are
  * (1 - v, v) in two sets of every feature, so d(v1, v2) = |v1 - v2|, and
@@ -19,6 +20,7 @@
 #include <cmocka.h>
 
 #include "cub/director.h"
+#include "director_internal.h" /* director_key_moment: a window's other key sets */
 
 #define JOINTS 16
 #define FRAMES 40
@@ -54,7 +56,6 @@ static struct {
     cub_bridge_table table;
     uint8_t table_mem[1 << 18];
     uint8_t mem[1 << 16];
-    uint8_t judge_mem[1 << 16];
     cub_event slots[64];
     cub_loop loop;
     char log[64][160];
@@ -63,6 +64,8 @@ static struct {
 } F;
 
 static cub_director dir;
+/* Outside F: build_table clears F after the judge is made. */
+static uint8_t judge_mem[1 << 16];
 
 /* ---- the fixture ----------------------------------------------------------- */
 
@@ -389,8 +392,8 @@ static void test_move_after_a_gap_begins_early_by_its_entry_lead(void **s)
 static cub_judge *judge(void)
 {
     cub_judge *j = NULL;
-    assert_true(cub_judge_mem_size(NULL) <= sizeof F.judge_mem);
-    assert_int_equal(cub_judge_init(NULL, F.judge_mem, sizeof F.judge_mem, &j), CUB_OK);
+    assert_true(cub_judge_mem_size(NULL) <= sizeof judge_mem);
+    assert_int_equal(cub_judge_init(NULL, judge_mem, sizeof judge_mem, &j), CUB_OK);
     return j;
 }
 
@@ -465,6 +468,123 @@ static void test_demonstration_is_watched_the_attempt_judged(void **s)
     assert_int_equal(move, 0);
 }
 
+/* ---- the other moves a window looks for ----------------------------------- */
+
+/* A song of n moves (2 reps, a second apart) on the given clips and keys,
+ * with a judge: the director finds each move's other moves at init. */
+static void start_song(const int *clips, const cub_director_keys *k, int n)
+{
+    static cub_coach_move mv[8];
+    assert_true(n <= 8);
+    for (int i = 0; i < n; i++)
+        mv[i] = (cub_coach_move){.clip = clips[i], .reps = 2, .tag_ms = 1000 * i, .span_ms = 1000};
+    cub_judge *j = judge();
+    build_table(v_high);
+    cub_director_desc d = make_desc(j);
+    d.keys = k;
+    d.coach.moves = mv;
+    d.coach.move_count = n;
+    assert_true(cub_director_mem_size(&d) <= sizeof F.mem);
+    assert_int_equal(cub_director_init(&dir, &d, F.mem, sizeof F.mem, 0), CUB_OK);
+}
+
+#define KEY1(f, s) {.count = 1, .key = {{.feature = (f), .set = (s)}}}
+#define KEY2(f, s, g, t) {.count = 2, .key = {{.feature = (f), .set = (s)}, {.feature = (g), .set = (t)}}}
+
+/* Move 1's keys rule move 0's out (the right arm half raised, not down) but
+ * move 0's clap clip shows them (its frame 0 is at 0.9): no mistake to look
+ * for. Move 1's sway clip (0.9 throughout) never shows move 0's keys, so
+ * there the rule lists it. */
+static void test_other_move_the_clip_shows_is_not_listed(void **s)
+{
+    (void)s;
+    static const cub_director_keys k[2] = {KEY1(CUB_FUZZY_RH, 0), KEY1(CUB_FUZZY_RH, 1)};
+    const int clips[2] = {C_CLAP, C_SWAY};
+    start_song(clips, k, 2);
+    assert_int_equal(dir.other_moves[0], 0);
+    assert_false(logged("judge other move=0"));
+    assert_int_equal(dir.other_moves[1], 1u << 0);
+    assert_true(logged("judge other move=1 moves=0"));
+}
+
+/* Move 1's keys (the left arm down) are never shown in move 0's sway clip
+ * either, but move 0 reads the right arm only: a child may do both, so
+ * they rule nothing out. Move 2's right arm down does. */
+static void test_other_move_on_other_features_is_not_listed(void **s)
+{
+    (void)s;
+    static const cub_director_keys k[3] = {KEY1(CUB_FUZZY_RH, 1), KEY1(CUB_FUZZY_LH, 0),
+                                           KEY1(CUB_FUZZY_RH, 0)};
+    const int clips[3] = {C_SWAY, C_SWAY, C_SWAY};
+    start_song(clips, k, 3);
+    assert_int_equal(dir.other_moves[0], 1u << 2);
+    assert_true(logged("judge other move=0 moves=2"));
+}
+
+/* Keys that share a feature with move 0's in another set (the right arm up,
+ * not half raised; the left elbow straight, not bent), never shown in move
+ * 0's sway clip (no set 0 or 2 there), are listed, and its window looks for
+ * them in song order. */
+static void test_other_move_that_rules_out_and_never_shows_is_listed(void **s)
+{
+    (void)s;
+    static const cub_director_keys k[3] = {KEY2(CUB_FUZZY_RH, 1, CUB_FUZZY_LHE, 1),
+                                           KEY1(CUB_FUZZY_RH, 2),
+                                           KEY2(CUB_FUZZY_LH, 1, CUB_FUZZY_LHE, 0)};
+    const int clips[3] = {C_SWAY, C_SWAY, C_SWAY};
+    start_song(clips, k, 3);
+    assert_int_equal(dir.other_moves[0], (1u << 1) | (1u << 2));
+    assert_true(logged("judge other move=0 moves=1,2"));
+    cub_judge_rep r = {0};
+    director_key_moment(&dir, 0, 0, 0, CUB_Q16_ONE, &r);
+    assert_int_equal(r.has_key, 1);
+    assert_int_equal(r.other_count, 2);
+    assert_int_equal(r.other[0].count, 1);
+    assert_int_equal(r.other[0].key[0].feature, CUB_FUZZY_RH);
+    assert_int_equal(r.other[0].key[0].set, 2);
+    assert_int_equal(r.other[1].count, 2);
+    assert_int_equal(r.other[1].key[1].feature, CUB_FUZZY_LHE);
+    assert_int_equal(r.other[1].key[1].set, 0);
+}
+
+/* Six other moves rule move 0 out and all are listed; a window looks for the
+ * first four distinct key sets in song order (move 2 repeats move 1's set in
+ * another order and takes no place), so move 6's is not looked for (it
+ * stays listed in the log line and the bit mask). */
+static void test_other_window_takes_the_first_four_distinct_sets(void **s)
+{
+    (void)s;
+    static const cub_director_keys k[7] = {
+        KEY1(CUB_FUZZY_RH, 1),
+        KEY2(CUB_FUZZY_RH, 0, CUB_FUZZY_LH, 1),
+        KEY2(CUB_FUZZY_LH, 1, CUB_FUZZY_RH, 0),
+        KEY1(CUB_FUZZY_RH, 2),
+        KEY2(CUB_FUZZY_RH, 0, CUB_FUZZY_LHE, 1),
+        KEY1(CUB_FUZZY_RH, 0),
+        KEY2(CUB_FUZZY_RH, 2, CUB_FUZZY_LH, 1),
+    };
+    const int clips[7] = {C_SWAY, C_SWAY, C_SWAY, C_SWAY, C_SWAY, C_SWAY, C_SWAY};
+    start_song(clips, k, 7);
+    assert_int_equal(dir.other_moves[0], 0x7Eu);
+    assert_true(logged("judge other move=0 moves=1,2,3,4,5,6"));
+    cub_judge_rep r = {0};
+    director_key_moment(&dir, 0, 0, 0, CUB_Q16_ONE, &r);
+    assert_int_equal(r.other_count, CUB_JUDGE_MAX_OTHER);
+    const int from[CUB_JUDGE_MAX_OTHER] = {1, 3, 4, 5};
+    for (int i = 0; i < CUB_JUDGE_MAX_OTHER; i++) {
+        const cub_director_keys *want = &k[from[i]];
+        assert_int_equal(r.other[i].count, want->count);
+        assert_memory_equal(r.other[i].key, want->key, sizeof want->key[0] * (size_t)want->count);
+    }
+    /* the judge takes the window as it is */
+    r.move = 0;
+    r.key_count = 1;
+    r.keys[0] = k[0].key[0];
+    r.start_us = 0;
+    r.end_us = 1000 * 1000;
+    assert_int_equal(cub_judge_begin_rep(dir.desc.judge, &r), CUB_OK);
+}
+
 /* ---- music tags -------------------------------------------------------------- */
 
 /* Entering move 0's clip: its tag, the song time of the frame entered. */
@@ -528,6 +648,10 @@ int main(void)
         cmocka_unit_test(test_repetition_window_spans_the_clip_at_its_speed_and_a_beat),
         cmocka_unit_test(test_other_requests_close_the_windows),
         cmocka_unit_test(test_demonstration_is_watched_the_attempt_judged),
+        cmocka_unit_test(test_other_move_the_clip_shows_is_not_listed),
+        cmocka_unit_test(test_other_move_on_other_features_is_not_listed),
+        cmocka_unit_test(test_other_move_that_rules_out_and_never_shows_is_listed),
+        cmocka_unit_test(test_other_window_takes_the_first_four_distinct_sets),
         cmocka_unit_test(test_entering_a_move_posts_its_music_tag),
         cmocka_unit_test(test_scripted_verdict_is_about_the_move_taught_now),
     };
