@@ -6,6 +6,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include <cmocka.h>
@@ -149,12 +150,144 @@ static void loader_refuses_broken_assets(void **state)
     assert_int_equal(cub_forest_open(NULL, len, &f, &why), CUB_ERR_ARG);
 }
 
+/* ---- part proposals ---- */
+
+#define LW 640
+#define LH 480
+#define MAXPTS 20000
+
+static int32_t pts_mm[MAXPTS][3];
+static uint16_t pts_prob[MAXPTS * 3];
+
+/* A disc of `label` (prob q) of radius r px around (cu, cv) at depth z
+ * painted into a label image and a depth image. */
+static void disc(uint8_t *label, uint16_t *mm, int cu, int cv, int r, int lab, uint16_t z)
+{
+    for (int v = cv - r; v <= cv + r; v++)
+        for (int u = cu - r; u <= cu + r; u++)
+            if ((u - cu) * (u - cu) + (v - cv) * (v - cv) <= r * r)
+                label[v * LW + u] = (uint8_t)lab, mm[v * LW + u] = z;
+}
+
+/* The points of a label image: every stride-th labelled pixel, its label's
+ * probability q, the rest shared by class 0 (3 classes). */
+static cub_forest_points label_points(const uint8_t *label, const uint16_t *mm, int stride,
+                                      uint16_t q)
+{
+    cub_forest_points p = {pts_mm, pts_prob, 0, MAXPTS, 3, stride};
+    for (int v = 0; v < LH; v += stride)
+        for (int u = 0; u < LW; u += stride) {
+            if (!label[v * LW + u] || p.n == MAXPTS) continue;
+            uint16_t *pr = pts_prob + 3 * p.n;
+            pr[0] = (uint16_t)(65535 - q), pr[1] = pr[2] = 0;
+            pr[label[v * LW + u]] = q;
+            cub_forest_point_at(u, v, mm[v * LW + u], pts_mm[p.n++]);
+        }
+    return p;
+}
+
+static void points_are_the_camera_model(void **state)
+{
+    (void)state;
+    int32_t m[3];
+    cub_forest_point_at(320 + 58, 240 - 29, 2000, m); /* 58 px at 2 m: 200 mm */
+    assert_int_equal(m[0], 200);
+    assert_int_equal(m[1], 100);
+    assert_int_equal(m[2], 2000);
+    cub_forest_point_at(320 - 1, 240, 579, m); /* truncated towards zero */
+    assert_int_equal(m[0], 0);
+}
+
+/* Two discs of one part: the larger surface wins, the proposal sits at its
+ * centre pushed back, its share and area say how much voted for it. */
+static void the_largest_mode_wins_pushed_back(void **state)
+{
+    (void)state;
+    static uint8_t label[LW * LH];
+    static uint16_t mm[LW * LH];
+    memset(label, 0, sizeof(label)), memset(mm, 0, sizeof(mm));
+    disc(label, mm, 200, 200, 30, 1, 2000);
+    disc(label, mm, 450, 300, 12, 1, 2000);
+    disc(label, mm, 320, 100, 15, 2, 1500);
+    cub_forest_points p = label_points(label, mm, 2, 65535);
+    cub_forest_shift sh = {150, 6554, 40};
+    cub_forest_proposal pr;
+    cub_forest_propose(&p, 1, &sh, &pr);
+    int32_t c[3];
+    cub_forest_point_at(200, 200, 2000, c);
+    assert_int_equal(pr.found, 1);
+    assert_true(abs(pr.mm[0] - c[0]) <= 4 && abs(pr.mm[1] - c[1]) <= 4);
+    assert_int_equal(pr.mm[2], 2000 + 40);
+    /* a 30 px disc at 2 m is about pi (30 * 2000 / 580)^2 = 33600 mm^2 */
+    assert_in_range(pr.area_mm2, 31000, 36000);
+    /* the small disc holds (12/30)^2 of the big one's weight: the mode 900/1044 */
+    assert_in_range(pr.share, CUB_Q16_ONE * 80 / 100, CUB_Q16_ONE * 90 / 100);
+    /* the other part, at its own disc */
+    cub_forest_propose(&p, 2, &sh, &pr);
+    cub_forest_point_at(320, 100, 1500, c);
+    assert_true(abs(pr.mm[0] - c[0]) <= 4 && abs(pr.mm[1] - c[1]) <= 4);
+    /* below the probability floor, nothing is proposed */
+    cub_forest_points weak = label_points(label, mm, 2, 5000);
+    cub_forest_propose(&weak, 1, &sh, &pr);
+    assert_int_equal(pr.found, 0);
+    sh.min_prob = 0;
+    cub_forest_propose(&weak, 1, &sh, &pr);
+    assert_int_equal(pr.found, 1);
+}
+
+/* A pixel far away covers more of the body than one near: with as many
+ * pixels near as far... fewer pixels far still win when their surface is
+ * larger (z^2 weighting), as the body's real size decides. */
+static void depth_squared_weighs_the_surface(void **state)
+{
+    (void)state;
+    static uint8_t label[LW * LH];
+    static uint16_t mm[LW * LH];
+    memset(label, 0, sizeof(label)), memset(mm, 0, sizeof(mm));
+    disc(label, mm, 150, 240, 20, 1, 1500); /* more pixels, 1.5 m */
+    disc(label, mm, 450, 240, 17, 1, 2500); /* fewer pixels, 2.5 m: more surface */
+    cub_forest_points p = label_points(label, mm, 1, 65535);
+    cub_forest_shift sh = {200, 0, 0};
+    cub_forest_proposal pr;
+    cub_forest_propose(&p, 1, &sh, &pr);
+    int32_t c[3];
+    cub_forest_point_at(450, 240, 2500, c);
+    assert_true(abs(pr.mm[0] - c[0]) <= 4 && abs(pr.mm[2] - c[2]) <= 4);
+}
+
+/* gather: every stride-th pixel with a reading, the trees' mean. */
+static void gather_keeps_the_trees_mean(void **state)
+{
+    (void)state;
+    static uint8_t b[200];
+    static uint16_t mm[IW * IH];
+    size_t len = make_forest(b);
+    cub_forest f;
+    cub_forest_problem why = {0};
+    assert_int_equal(cub_forest_open(b, len, &f, &why), CUB_OK);
+    cub_forest_image im = box_image(mm, 1000, 50, 200);
+    cub_forest_points p = {pts_mm, pts_prob, 0, MAXPTS, 3, 0};
+    assert_int_equal(cub_forest_gather(&f, &im, 5, &p), 30 * 20);
+    assert_int_equal(p.stride, 5);
+    /* the first point: (50, 50), probe at x 150 on the box: leaf 0 + leaf 2 */
+    assert_int_equal(pts_prob[0], 31000 / 2);
+    assert_int_equal(pts_prob[1], 60000 / 2);
+    p.capacity = 7;
+    assert_int_equal(cub_forest_gather(&f, &im, 5, &p), 7);
+    p.classes = 2;
+    assert_int_equal(cub_forest_gather(&f, &im, 5, &p), 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(probes_scale_with_depth),
         cmocka_unit_test(trees_add_up),
         cmocka_unit_test(loader_refuses_broken_assets),
+        cmocka_unit_test(points_are_the_camera_model),
+        cmocka_unit_test(the_largest_mode_wins_pushed_back),
+        cmocka_unit_test(depth_squared_weighs_the_surface),
+        cmocka_unit_test(gather_keeps_the_trees_mean),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -35,6 +35,7 @@
 #include <stdint.h>
 
 #include "cub/err.h"
+#include "cub/fx.h"
 
 #define CUB_FOREST_VERSION 1
 #define CUB_FOREST_MAX_CLASSES 64
@@ -88,5 +89,54 @@ uint32_t cub_forest_descend(const cub_forest *f, int t, const cub_forest_image *
  * probabilities over the trees); returns the class with the highest. */
 int cub_forest_classify(const cub_forest *f, const cub_forest_image *im, int x, int y,
                         uint32_t *score);
+
+/* ---- part proposals (Shotton et al. 2011, section 4: joint proposals) ----
+ *
+ * The classified pixels become 3D points in camera space (cub/kinect.h:
+ * x = (u - CX) z / F, y = (CY - v) z / F, C's integer division), each with
+ * every class's probability (the trees' mean, Q0.16). A part's proposal is
+ * the strongest mode of a weighted mean shift over the points: a point
+ * weighs its probability times z^2 (the surface a pixel covers grows with
+ * the square of its depth, so a near hand does not outvote a far one by
+ * its pixel count), the kernel is (1 - d^2/r^2) within radius r. Starts:
+ * the heaviest point, then the heaviest point farther than r from every
+ * mode found so far, up to CUB_FOREST_STARTS. The mode found is on the
+ * body's surface; the proposal is pushed back along z by the part's push
+ * (the joint lies inside the body). Integers only: bit-identical on every
+ * CPU. */
+#define CUB_FOREST_STARTS 4
+#define CUB_FOREST_SHIFT_STEPS 12
+
+/* Caller-owned scratch: up to capacity points, prob[capacity * classes]. */
+typedef struct cub_forest_points {
+    int32_t (*mm)[3];
+    uint16_t *prob; /* Q0.16, point i's class c at [i * classes + c] */
+    int n, capacity, classes;
+    int stride; /* the pixel step the points were sampled at (for areas) */
+} cub_forest_points;
+
+/* How one part is proposed. */
+typedef struct cub_forest_shift {
+    int32_t radius_mm; /* the kernel's radius, > 0 */
+    uint16_t min_prob; /* points below this probability (Q0.16) are left out */
+    int32_t push_mm;   /* the joint's depth behind the mode */
+} cub_forest_shift;
+
+typedef struct cub_forest_proposal {
+    int32_t found;     /* 0: no point of the part */
+    int32_t mm[3];     /* camera space, pushed back */
+    int32_t area_mm2;  /* the surface voting within r of the mode: sum of prob x pixel area */
+    cub_q16 share;     /* the part's weight within r of the mode over its whole weight, Q16.16 */
+} cub_forest_proposal;
+
+/* Pixel (u, v) at z mm (> 0) in camera space, mm. */
+void cub_forest_point_at(int u, int v, int32_t z_mm, int32_t out[3]);
+/* Classify every stride-th pixel (in x and y) with a reading and keep it in
+ * pts (up to its capacity; pts->classes must equal f's). Returns pts->n. */
+int cub_forest_gather(const cub_forest *f, const cub_forest_image *im, int stride,
+                      cub_forest_points *pts);
+/* The proposal of class `part` from the points. */
+void cub_forest_propose(const cub_forest_points *pts, int part, const cub_forest_shift *sh,
+                        cub_forest_proposal *out);
 
 #endif
