@@ -19,6 +19,7 @@ typedef struct forest_opts {
     cub_ft_render r;
     cub_ft_params p;
     int stride;
+    int vs_tracker, every, pixel_step; /* eval-forest --vs-tracker */
 } forest_opts;
 
 static void help(FILE *f, const char *who)
@@ -38,7 +39,13 @@ static void help(FILE *f, const char *who)
                    "                           [--stride N] [options]\n"
                    "Per-part share of the player's pixels the forest names right, on\n"
                    "renders made as train-forest makes them (any clip: measuring only).\n"
-                   "  --stride N     every N-th body pixel [7]\n");
+                   "  --stride N     every N-th body pixel [7]\n"
+                   "  --vs-tracker   instead: per joint, the share within 10 cm of the forest's\n"
+                   "                 part proposals (mean shift, cub/forest.h), of the tracker\n"
+                   "                 (firmware/track) and of the two combined, on the same renders\n"
+                   "                 (10 fps, frames x step / 30 s a clip; tracker on every frame)\n"
+                   "  --every N      --vs-tracker: score every N-th frame [2]\n"
+                   "  --pixel-step N --vs-tracker: the forest reads every N-th pixel in x and y [2]\n");
     fprintf(f, "clips and folds:\n"
                "  --clip C       a clip short name or path, 'C@S' from S seconds\n"
                "  --fold F       the clips of a fold: cmu13 cmu14 cmu_walks cmu_dance_sport\n"
@@ -46,6 +53,7 @@ static void help(FILE *f, const char *who)
                "  --all-but F    every shippable fold but F (leave one source out)\n"
                "  --all          every shippable fold\n"
                "  --frames N     frames a clip [20]   --step N  every N-th frame [8]\n"
+               "  --no-turn      the clips' own facing, no new yaw every 1.5 s (facing known)\n"
                "  --seed N       [1]   --data DIR   [$CUB_DATA_DIR or the build's]\n");
 }
 
@@ -90,6 +98,8 @@ static int parse_number(forest_opts *o, const char *who, const char *a, const ch
         {"--step", 1, 10000, offsetof(forest_opts, r.step), 0},
         {"--stride", 1, 1e6, offsetof(forest_opts, stride), 0},
         {"--seed", 0, 1e15, offsetof(forest_opts, p.seed), 1},
+        {"--every", 1, 1000, offsetof(forest_opts, every), 0},
+        {"--pixel-step", 1, 64, offsetof(forest_opts, pixel_step), 0},
     };
     for (size_t k = 0; k < sizeof(nums) / sizeof(nums[0]); k++) {
         if (strcmp(a, nums[k].name)) continue;
@@ -108,6 +118,10 @@ static int parse(forest_opts *o, int argc, char **argv, const char *who)
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         int ok = 1;
+        if (!strcmp(a, "--vs-tracker") || !strcmp(a, "--no-turn")) {
+            *(a[2] == 'v' ? &o->vs_tracker : &o->r.no_turn) = 1;
+            continue;
+        }
         if (!strcmp(a, "--all")) {
             for (int k = 0; cub_ft_fold_name(k) && ok; k++)
                 ok = add_fold(o, cub_ft_fold_name(k), who);
@@ -154,7 +168,9 @@ static int setup(forest_opts *o, int argc, char **argv, const char *who)
                        .p = {.trees = 3, .depth = 16, .features = 200, .thresholds = 20,
                              .pixels_per_frame = 300, .min_samples = 20, .max_offset = 120000,
                              .seed = 1},
-                       .stride = 7};
+                       .stride = 7,
+                       .every = 2,
+                       .pixel_step = 2};
     for (int i = 1; i < argc; i++)
         if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
             help(stdout, who);
@@ -230,6 +246,70 @@ static void report(const cub_ft_score *s)
     confusion(s);
 }
 
+static double pc(long a, long n)
+{
+    return n ? 100.0 * a / n : 0.0;
+}
+
+#define VS_COLS 8
+
+static void vs_row(const char *name, const long r[VS_COLS])
+{
+    printf("%-15s %6ld %7.1f%% %7.1f%% %7.1f%% %7.1f%% %7.1f%% %7.1f%% %7.1f%%\n", name, r[0],
+           pc(r[1], r[0]), pc(r[2], r[0]), pc(r[3], r[0]), pc(r[4], r[0]), pc(r[5], r[0]),
+           pc(r[6], r[0]), pc(r[7], r[6]));
+}
+
+/* One row a joint, and "vs" rows (counts) that scripts/forest_folds.sh
+ * adds up over the folds. */
+static void vs_report(const cub_ft_vs *v)
+{
+    printf("%-15s %6s %8s %8s %8s %8s %8s %8s %8s\n", "joint", "n", "tracker", "forest",
+           "combined", "override", "guessed", "f.conf", "f.conf+");
+    long all[VS_COLS] = {0}, own[VS_COLS] = {0};
+    for (int j = 0; j < CUB_KJ_COUNT; j++) {
+        long r[VS_COLS] = {v->n[j],        v->tracker[j], v->forest[j],    v->combined[j],
+                           v->override[j], v->guessed[j], v->confident[j], v->confident_right[j]};
+        vs_row(cub_kinect_joint_name(j), r);
+        printf("vs %s", cub_kinect_joint_name(j));
+        for (int k = 0; k < VS_COLS; k++) {
+            printf(" %ld", r[k]);
+            all[k] += r[k];
+            own[k] += v->have[j] ? r[k] : 0;
+        }
+        printf("\n");
+    }
+    vs_row("forest's", own);
+    vs_row("all", all);
+    printf("(%ld frames) columns: share within 10 cm of the joints in view: tracker; forest\n"
+           "proposals (head, hands, feet: their parts' centres; elbows, knees: between two\n"
+           "segments; 0 for the other joints); combined: a tracker joint of confidence < 1/2\n"
+           "taken from a confident forest joint; override: every confident forest joint\n"
+           "taken; guessed: tracker confidence < 1/2; f.conf: the forest's confident joints;\n"
+           "f.conf+: of those, the share within 10 cm. forest's: the joints the forest gives.\n",
+           v->frames);
+}
+
+static int vs_tracker(forest_opts *o, const cub_forest *f)
+{
+    cub_ft_compare c = {o->r.data_dir, (double)o->r.frames * o->r.step / 30.0, o->every,
+                        o->pixel_step, o->p.seed};
+    cub_ft_vs *v = calloc(1, sizeof(*v));
+    if (!v) return 1;
+    for (int i = 0; i < o->nclips; i++) {
+        cub_diag diag = {0};
+        char buf[700];
+        if (cub_ft_compare_clip(f, &c, o->clips[i], v, &diag)) {
+            fprintf(stderr, "eval-forest: %s\n", cub_diag_str(&diag, buf, sizeof(buf)));
+            free(v);
+            return 1;
+        }
+    }
+    vs_report(v);
+    free(v);
+    return 0;
+}
+
 int cub_cmd_eval_forest(int argc, char **argv)
 {
     forest_opts o;
@@ -250,6 +330,11 @@ int cub_cmd_eval_forest(int argc, char **argv)
         fprintf(stderr, "eval-forest: %s: offset %zu: %s\n", o.forest, why.offset, why.what);
         free(bytes);
         return 1;
+    }
+    if (o.vs_tracker) {
+        rc = vs_tracker(&o, &f);
+        free(bytes);
+        return rc;
     }
     cub_ft_set set = {0};
     cub_ft_score s = {0};

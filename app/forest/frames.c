@@ -94,7 +94,8 @@ cub_err cub_ft_add_clip(cub_ft_set *set, const cub_ft_render *r, const char *spe
     char *at = strchr(seg.clip, '@');
     if (at) *at = 0, seg.from_s = atof(at + 1);
     seg.to_s = seg.from_s + (double)r->frames * r->step / 30.0;
-    cub_synth_desc d = {.data_dir = r->data_dir, .seed = r->seed, .yaw_segment_s = 1.5f,
+    cub_synth_desc d = {.data_dir = r->data_dir, .seed = r->seed,
+                        .yaw_segment_s = r->no_turn ? 0.0f : 1.5f,
                         .max_travel_mm = 700};
     cub_synth *s = NULL;
     cub_err err = cub_synth_open(&d, &seg, 1, &s, diag);

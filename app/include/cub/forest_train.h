@@ -23,6 +23,7 @@
 #include "cub/err.h"
 #include "cub/forest.h"
 #include "cub/io.h"
+#include "cub/kinect.h"
 #include "cub/synth.h"
 
 typedef struct cub_ft_frame {
@@ -41,6 +42,7 @@ typedef struct cub_ft_render {
     int frames; /* per clip */
     int step;   /* every step-th frame at 30 fps */
     uint64_t seed;
+    int no_turn; /* 1: the clip's own facing (no new yaw every 1.5 s): facing known */
 } cub_ft_render;
 
 /* A clip "name" or "name@from_s": its frames appended to set. */
@@ -73,5 +75,47 @@ typedef struct cub_ft_score {
 
 /* Every stride-th player pixel of every frame classified; counts added. */
 void cub_ft_score_set(const cub_forest *f, const cub_ft_set *set, int stride, cub_ft_score *s);
+
+/* ---- proposals against the heuristic tracker (issue 20 point 4) ---- */
+
+/* Every part's proposal from gathered points (cub/forest.h), with the
+ * per-part radius, push and probability floor of app/forest/compare.c. */
+void cub_ft_propose_all(const cub_forest_points *pts, cub_forest_proposal prop[CUB_PART_COUNT]);
+
+/* The joints the proposals give: head, hands and feet are their parts'
+ * centres; elbows and knees the midpoint of the two segments' centres.
+ * confident: share >= 1/2 and enough surface (both segments for a joint
+ * between two). */
+typedef struct cub_ft_joints {
+    int32_t mm[CUB_KJ_COUNT][3];
+    uint8_t have[CUB_KJ_COUNT], confident[CUB_KJ_COUNT];
+} cub_ft_joints;
+void cub_ft_joints_of(const cub_forest_proposal prop[CUB_PART_COUNT], cub_ft_joints *out);
+
+/* How a clip is compared: rendered at 10 fps for `seconds` (turning and
+ * moving about as train-forest renders, seed), the tracker on every frame,
+ * both scored on every `every`-th; the forest on every stride-th pixel. */
+typedef struct cub_ft_compare {
+    const char *data_dir;
+    double seconds;
+    int every, stride;
+    uint64_t seed;
+} cub_ft_compare;
+
+/* Per joint, over the frames scored: the true joints in view (n), those
+ * within 10 cm for the tracker, the forest, two combinations (combined: a
+ * tracker joint of confidence < 1/2 replaced by a confident forest joint;
+ * override: every confident forest joint replaces the tracker's); the
+ * forest's confident joints and those within 10 cm; the tracker's guessed
+ * joints (confidence < 1/2). */
+typedef struct cub_ft_vs {
+    long n[CUB_KJ_COUNT], tracker[CUB_KJ_COUNT], forest[CUB_KJ_COUNT], combined[CUB_KJ_COUNT];
+    long override[CUB_KJ_COUNT], have[CUB_KJ_COUNT]; /* have: the forest gave the joint */
+    long confident[CUB_KJ_COUNT], confident_right[CUB_KJ_COUNT], guessed[CUB_KJ_COUNT];
+    long frames;
+} cub_ft_vs;
+
+cub_err cub_ft_compare_clip(const cub_forest *f, const cub_ft_compare *c, const char *spec,
+                            cub_ft_vs *vs, cub_diag *diag);
 
 #endif
