@@ -15,7 +15,7 @@
 typedef struct forest_opts {
     const char *clips[MAX_CLIPS];
     int nclips;
-    const char *out, *forest, *except;
+    const char *out, *forest, *except, *real, *labels;
     cub_ft_render r;
     cub_ft_params p;
     int stride;
@@ -45,7 +45,9 @@ static void help(FILE *f, const char *who)
                    "                 (firmware/track) and of the two combined, on the same renders\n"
                    "                 (10 fps, frames x step / 30 s a clip; tracker on every frame)\n"
                    "  --every N      --vs-tracker: score every N-th frame [2]\n"
-                   "  --pixel-step N --vs-tracker: the forest reads every N-th pixel in x and y [2]\n");
+                   "  --pixel-step N --vs-tracker: the forest reads every N-th pixel in x and y [2]\n"
+                   "  --real DIR --labels FILE  the same table on real frames (fakenect .pgm in\n"
+                   "                 DIR) against hand labels (tests/labels/skeltrack_labels.txt)\n");
     fprintf(f, "clips and folds:\n"
                "  --clip C       a clip short name or path, 'C@S' from S seconds\n"
                "  --fold F       the clips of a fold: cmu13 cmu14 cmu_walks cmu_dance_sport\n"
@@ -133,6 +135,8 @@ static int parse(forest_opts *o, int argc, char **argv, const char *who)
         else if (!strcmp(a, "--all-but")) o->except = v;
         else if (!strcmp(a, "--out")) o->out = v;
         else if (!strcmp(a, "--forest")) o->forest = v;
+        else if (!strcmp(a, "--real")) o->real = v;
+        else if (!strcmp(a, "--labels")) o->labels = v;
         else if (!strcmp(a, "--data")) o->r.data_dir = v;
         else ok = parse_number(o, who, a, v);
         if (!ok) return 0;
@@ -177,7 +181,7 @@ static int setup(forest_opts *o, int argc, char **argv, const char *who)
             return 0;
         }
     if (!parse(o, argc, argv, who)) return 2;
-    if (!o->nclips) {
+    if (!o->nclips && !(o->real && o->labels)) {
         fprintf(stderr, "%s: give --clip, --fold, --all-but or --all (see --help)\n", who);
         return 2;
     }
@@ -310,6 +314,23 @@ static int vs_tracker(forest_opts *o, const cub_forest *f)
     return 0;
 }
 
+static int vs_real(forest_opts *o, const cub_forest *f)
+{
+    char *text = NULL, buf[700];
+    size_t len = 0;
+    cub_diag diag = {0};
+    cub_text_src src = {o->labels, "labels", CUB_TEXT_MAX_CLIPS};
+    cub_ft_labels *lab = malloc(sizeof(*lab));
+    cub_ft_vs *v = calloc(1, sizeof(*v));
+    int rc = !lab || !v || cub_text_read(&src, &text, &len, &diag) ||
+             cub_ft_labels_parse(text, len, o->labels, lab, &diag) ||
+             cub_ft_compare_real(f, o->real, lab, o->pixel_step, v, &diag);
+    if (rc) fprintf(stderr, "eval-forest: %s\n", cub_diag_str(&diag, buf, sizeof(buf)));
+    else vs_report(v);
+    free(text), free(lab), free(v);
+    return rc;
+}
+
 int cub_cmd_eval_forest(int argc, char **argv)
 {
     forest_opts o;
@@ -331,8 +352,8 @@ int cub_cmd_eval_forest(int argc, char **argv)
         free(bytes);
         return 1;
     }
-    if (o.vs_tracker) {
-        rc = vs_tracker(&o, &f);
+    if (o.vs_tracker || o.real) {
+        rc = o.real ? vs_real(&o, &f) : vs_tracker(&o, &f);
         free(bytes);
         return rc;
     }

@@ -92,8 +92,8 @@ static int near_mm(const float t[3], double x, double y, double z)
 /* One frame scored: the tracker, the forest, the tracker with its guessed
  * joints (confidence < 1/2) taken from a confident forest joint, and with
  * every joint the forest is confident of taken from the forest. */
-static void score(const cub_track_skeleton *s, const cub_ft_joints *fj,
-                  const cub_synth_truth_frame *tr, cub_ft_vs *vs)
+void cub_ft_score_joints(const cub_track_skeleton *s, const cub_ft_joints *fj,
+                         const cub_synth_truth_frame *tr, cub_ft_vs *vs)
 {
     vs->frames++;
     for (int j = 0; j < CUB_KJ_COUNT; j++) {
@@ -178,7 +178,7 @@ static cub_err run_clip(cub_synth *s, const cub_forest *f, const cub_ft_compare 
         cub_ft_joints fj;
         cub_ft_propose_all(&b->pts, prop);
         cub_ft_joints_of(prop, &fj);
-        score(&sk, &fj, &tr, vs);
+        cub_ft_score_joints(&sk, &fj, &tr, vs);
     }
     return err;
 }

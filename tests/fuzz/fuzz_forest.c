@@ -2,7 +2,8 @@
  * load it, then every pixel of a small depth image (made from the input's
  * first bytes) classified by it. Seeds: seeds_forest/ (make_seeds.py).
  * Whatever the bytes: no crash, no read past the asset, a refusal always
- * has a reason and an offset inside it, and a class within the forest's. */
+ * has a reason and an offset inside it, a class within the forest's, and
+ * part proposals from those pixels within their bounds. */
 #include <stdint.h>
 #include <stdlib.h>
 
@@ -30,5 +31,17 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             int c = cub_forest_classify(&f, &im, x, y, score);
             if (c < 0 || c >= f.classes) abort();
         }
+    /* the part proposals over the same pixels: every class, a mode inside
+     * the points' box, a share within [0, 1] */
+    static int32_t pmm[IW * IH][3];
+    static uint16_t prob[IW * IH * CUB_FOREST_MAX_CLASSES];
+    cub_forest_points pts = {pmm, prob, 0, IW * IH, f.classes, 1};
+    cub_forest_gather(&f, &im, 1 + data[0] % 3, &pts);
+    for (int c = 0; c < f.classes; c++) {
+        cub_forest_shift sh = {1 + data[size - 1] * 4, (uint16_t)(data[c % size] * 64), 50};
+        cub_forest_proposal pr;
+        cub_forest_propose(&pts, c, &sh, &pr);
+        if (pr.found && (pr.share < 0 || pr.share > 65536 || pr.area_mm2 < 0)) abort();
+    }
     return 0;
 }

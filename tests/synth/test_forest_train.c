@@ -115,6 +115,38 @@ static void proposals_become_joints(void **state)
     assert_false(j.confident[CUB_KJ_HEAD]);
 }
 
+/* Hand labels: kept joint by joint; a bad line refused with its number. */
+static void labels_parse_or_name_the_line(void **state)
+{
+    (void)state;
+    static cub_ft_labels lab;
+    cub_diag d = {0};
+    const char *good = "# comment\nd-1.pgm head 305 160\n\nd-1.pgm hand_r - -\nd-2.pgm elbow_l 0 479";
+    assert_int_equal(cub_ft_labels_parse(good, strlen(good), "l.txt", &lab, &d), CUB_OK);
+    assert_int_equal(lab.n, 3);
+    assert_string_equal(lab.l[0].frame, "d-1.pgm");
+    assert_int_equal(lab.l[0].joint, CUB_KJ_HEAD);
+    assert_int_equal(lab.l[0].u, 305);
+    assert_int_equal(lab.l[1].u, -1);
+    assert_int_equal(lab.l[2].v, 479);
+    const struct {
+        const char *text, *msg;
+        int line;
+    } bad[] = {
+        {"d-1.pgm head 305 160\nd-1.pgm nose 1 2\n", "no joint 'nose'", 2},
+        {"d-1.pgm head 640 160\n", "not in the 640x480 image", 1},
+        {"d-1.pgm head 30x 160\n", "not in the 640x480 image", 1},
+        {"\n\nd-1.pgm head 305\n", "got 3 fields", 3},
+        {"d-1.pgm head 1 2 3\n", "got 5 fields", 1},
+    };
+    for (size_t k = 0; k < sizeof(bad) / sizeof(bad[0]); k++) {
+        assert_int_equal(cub_ft_labels_parse(bad[k].text, strlen(bad[k].text), "l.txt", &lab, &d),
+                         CUB_ERR_FORMAT);
+        assert_int_equal(d.line, bad[k].line);
+        assert_non_null(strstr(d.msg, bad[k].msg));
+    }
+}
+
 static void only_shippable_motion_trains(void **state)
 {
     (void)state;
@@ -133,6 +165,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(only_shippable_motion_trains),
         cmocka_unit_test(proposals_become_joints),
+        cmocka_unit_test(labels_parse_or_name_the_line),
         cmocka_unit_test(beats_chance_on_an_unseen_source),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

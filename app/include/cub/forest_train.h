@@ -25,6 +25,7 @@
 #include "cub/io.h"
 #include "cub/kinect.h"
 #include "cub/synth.h"
+#include "cub/track.h"
 
 typedef struct cub_ft_frame {
     uint16_t *mm;  /* 640x480, player only, 0 elsewhere */
@@ -117,5 +118,30 @@ typedef struct cub_ft_vs {
 
 cub_err cub_ft_compare_clip(const cub_forest *f, const cub_ft_compare *c, const char *spec,
                             cub_ft_vs *vs, cub_diag *diag);
+/* One frame's tracker skeleton and forest joints scored against a truth
+ * (its visible joints) into vs. */
+void cub_ft_score_joints(const cub_track_skeleton *s, const cub_ft_joints *fj,
+                         const cub_synth_truth_frame *tr, cub_ft_vs *vs);
+
+/* Hand labels of real frames (tests/labels/skeltrack_labels.txt): lines
+ * `frame joint u v` ('#' comments; u v `- -` when not in view). */
+#define CUB_FT_MAX_LABELS 256
+typedef struct cub_ft_label {
+    char frame[64];
+    int joint, u, v; /* u = v = -1: not in view */
+} cub_ft_label;
+typedef struct cub_ft_labels {
+    cub_ft_label l[CUB_FT_MAX_LABELS];
+    int n;
+} cub_ft_labels;
+/* Errors name name:line and the problem (CUB_ERR_FORMAT). */
+cub_err cub_ft_labels_parse(const char *text, size_t len, const char *name, cub_ft_labels *out,
+                            cub_diag *diag);
+/* The labelled frames of dir (fakenect .pgm) in the labels' order: the
+ * tracker on each, the forest on the readings within 600 mm of the
+ * tracker's spine (every stride-th pixel), both scored against the labels
+ * (their 3D points made as test_tracker makes them). */
+cub_err cub_ft_compare_real(const cub_forest *f, const char *dir, const cub_ft_labels *lab,
+                            int stride, cub_ft_vs *vs, cub_diag *diag);
 
 #endif

@@ -1,0 +1,184 @@
+/* The forest beside the tracker on real Kinect frames with hand labels
+ * (tests/labels/: a joint's pixel, its 3D point the median surface depth
+ * around it plus the joint's depth behind the surface, as test_tracker
+ * makes it). */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cub/forest_train.h"
+#include "cub/track.h"
+
+#define W CUB_KINECT_WIDTH
+#define H CUB_KINECT_HEIGHT
+#define NPIX (W * H)
+#define HALF_Q16 32768
+
+static int joint_named(const char *n)
+{
+    for (int j = 0; j < CUB_KJ_COUNT; j++)
+        if (!strcmp(cub_kinect_joint_name(j), n)) return j;
+    return -1;
+}
+
+/* One line `frame joint u v` (u, v may be `-`); 0 = kept, 1 = skipped. */
+static cub_err parse_line(const char *line, const char *name, int ln, cub_ft_labels *out,
+                          cub_diag *diag)
+{
+    char frame[64], joint[32], us[16], vs[16], extra;
+    int k = sscanf(line, "%63s %31s %15s %15s %c", frame, joint, us, vs, &extra);
+    if (k <= 0 || frame[0] == '#') return CUB_OK;
+    if (k != 4)
+        return cub_diag_fail(diag, CUB_ERR_FORMAT, name, ln,
+                             "want `frame joint u v` (u v may be `-`), got %d fields", k);
+    int j = joint_named(joint);
+    if (j < 0) return cub_diag_fail(diag, CUB_ERR_FORMAT, name, ln, "no joint '%s'", joint);
+    cub_ft_label l = {{0}, j, -1, -1};
+    snprintf(l.frame, sizeof(l.frame), "%s", frame);
+    if (strcmp(us, "-") || strcmp(vs, "-")) {
+        char *e1, *e2;
+        long u = strtol(us, &e1, 10), v = strtol(vs, &e2, 10);
+        if (*e1 || *e2 || u < 0 || u >= W || v < 0 || v >= H)
+            return cub_diag_fail(diag, CUB_ERR_FORMAT, name, ln,
+                                 "pixel '%s %s' not in the 640x480 image (or `- -`)", us, vs);
+        l.u = (int)u, l.v = (int)v;
+    }
+    if (out->n == CUB_FT_MAX_LABELS)
+        return cub_diag_fail(diag, CUB_ERR_FORMAT, name, ln, "more than %d labels",
+                             CUB_FT_MAX_LABELS);
+    out->l[out->n++] = l;
+    return CUB_OK;
+}
+
+cub_err cub_ft_labels_parse(const char *text, size_t len, const char *name, cub_ft_labels *out,
+                            cub_diag *diag)
+{
+    out->n = 0;
+    char line[256];
+    size_t at = 0;
+    for (int ln = 1; at < len; ln++) {
+        size_t end = at;
+        while (end < len && text[end] != '\n')
+            end++;
+        if (end - at >= sizeof(line))
+            return cub_diag_fail(diag, CUB_ERR_FORMAT, name, ln, "line longer than %zu bytes",
+                                 sizeof(line) - 1);
+        memcpy(line, text + at, end - at);
+        line[end - at] = 0;
+        if (memchr(line, 0, end - at))
+            return cub_diag_fail(diag, CUB_ERR_FORMAT, name, ln, "a NUL byte in the line");
+        cub_err e = parse_line(line, name, ln, out, diag);
+        if (e) return e;
+        at = end + 1;
+    }
+    return CUB_OK;
+}
+
+/* A raw frame as fakenect writes it: 640x480 little-endian u16 at the
+ * file's end (after the PGM header). */
+static cub_err load_raw(const char *dir, const char *frame, uint16_t *raw, cub_diag *diag)
+{
+    char path[4096];
+    snprintf(path, sizeof(path), "%s/%s", dir, frame);
+    FILE *f = fopen(path, "rb");
+    static uint8_t buf[NPIX * 2];
+    size_t got = 0;
+    if (f && !fseek(f, -(long)sizeof(buf), SEEK_END)) got = fread(buf, 1, sizeof(buf), f);
+    if (f) fclose(f);
+    if (got != sizeof(buf))
+        return cub_diag_fail(diag, CUB_ERR_IO, path, 0, "not a 640x480 16-bit depth frame");
+    for (int i = 0; i < NPIX; i++)
+        raw[i] = (uint16_t)(buf[2 * i] | buf[2 * i + 1] << 8);
+    return CUB_OK;
+}
+
+/* The joint's depth behind the surface for the adult of the real frames
+ * (tests/labels/README.md). */
+static int behind_mm(int j)
+{
+    if (j == CUB_KJ_HEAD) return 95;
+    if (j == CUB_KJ_SHOULDER_L || j == CUB_KJ_SHOULDER_R) return 50;
+    if (j == CUB_KJ_ELBOW_L || j == CUB_KJ_ELBOW_R) return 35;
+    return 15;
+}
+
+static int cmp_int(const void *a, const void *b)
+{
+    return *(const int *)a - *(const int *)b;
+}
+
+/* The label's 3D point: the median depth of the 11x11 pixels around it. */
+static int label_point(const uint16_t *raw, const cub_ft_label *l, float out[3])
+{
+    int zs[121], n = 0;
+    for (int v = l->v - 5; v <= l->v + 5; v++)
+        for (int u = l->u - 5; u <= l->u + 5; u++)
+            if (u >= 0 && v >= 0 && u < W && v < H && cub_track_raw_to_mm_int(raw[v * W + u]))
+                zs[n++] = cub_track_raw_to_mm_int(raw[v * W + u]);
+    if (!n) return 0;
+    qsort(zs, (size_t)n, sizeof(int), cmp_int);
+    float z = (float)(zs[n / 2] + behind_mm(l->joint));
+    out[0] = (float)(l->u - CUB_KINECT_CX) * z / CUB_KINECT_FOCAL_PX;
+    out[1] = (float)(CUB_KINECT_CY - l->v) * z / CUB_KINECT_FOCAL_PX;
+    out[2] = z;
+    return 1;
+}
+
+/* The player for the forest: the readings within `band` mm of the
+ * tracker's spine (the tracker found the player; the frames have no
+ * floor or room, a second person stands 0.6 m behind). */
+static void player_band(const uint16_t *raw, const cub_track_skeleton *s, int band, uint16_t *mm)
+{
+    int32_t zc = s->joint_mm[CUB_KJ_SPINE].z >> 16;
+    for (int i = 0; i < NPIX; i++) {
+        int32_t z = cub_track_raw_to_mm_int(raw[i]);
+        mm[i] = (uint16_t)(z && z > zc - band && z < zc + band ? z : 0);
+    }
+}
+
+/* The truth frame of one labelled frame (labels [from, to)). */
+static void truth_of(const uint16_t *raw, const cub_ft_labels *lab, int from, int to,
+                     cub_synth_truth_frame *tr)
+{
+    memset(tr, 0, sizeof(*tr));
+    for (int k = from; k < to; k++)
+        if (lab->l[k].u >= 0)
+            tr->visible[lab->l[k].joint] =
+                (uint8_t)label_point(raw, &lab->l[k], tr->joint_mm[lab->l[k].joint]);
+}
+
+cub_err cub_ft_compare_real(const cub_forest *f, const char *dir, const cub_ft_labels *lab,
+                            int stride, cub_ft_vs *vs, cub_diag *diag)
+{
+    cub_track_desc td = {0};
+    size_t sz = (cub_track_mem_size(&td) + 15) / 16 * 16;
+    int cap = NPIX / (stride * stride) + W;
+    uint16_t *raw = malloc(NPIX * 2), *mm = malloc(NPIX * 2);
+    cub_forest_points pts = {malloc((size_t)cap * sizeof(*pts.mm)),
+                             malloc((size_t)cap * (size_t)f->classes * 2), 0, cap, f->classes,
+                             stride};
+    void *mem = aligned_alloc(16, sz);
+    cub_tracker *t = NULL;
+    cub_err err = raw && mm && pts.mm && pts.prob && mem ? cub_track_init(&td, mem, sz, &t)
+                                                          : CUB_ERR_NOMEM;
+    for (int k = 0, next, frame = 0; k < lab->n && !err; k = next, frame++) {
+        for (next = k; next < lab->n && !strcmp(lab->l[next].frame, lab->l[k].frame); next++) {
+        }
+        err = load_raw(dir, lab->l[k].frame, raw, diag);
+        if (err) break;
+        cub_track_skeleton s;
+        cub_synth_truth_frame tr;
+        cub_track_frame(t, raw, (int64_t)frame * 33333, NULL, &s);
+        player_band(raw, &s, 600, mm);
+        cub_forest_image im = {mm, W, H};
+        cub_forest_gather(f, &im, stride, &pts);
+        cub_forest_proposal prop[CUB_PART_COUNT];
+        cub_ft_joints fj;
+        cub_ft_propose_all(&pts, prop);
+        cub_ft_joints_of(prop, &fj);
+        truth_of(raw, lab, k, next, &tr);
+        cub_ft_score_joints(&s, &fj, &tr, vs);
+    }
+    free(raw), free(mm), free(pts.mm), free(pts.prob), free(mem);
+    return err;
+}
