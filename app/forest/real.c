@@ -12,67 +12,6 @@
 #define W CUB_KINECT_WIDTH
 #define H CUB_KINECT_HEIGHT
 #define NPIX (W * H)
-#define HALF_Q16 32768
-
-static int joint_named(const char *n)
-{
-    for (int j = 0; j < CUB_KJ_COUNT; j++)
-        if (!strcmp(cub_kinect_joint_name(j), n)) return j;
-    return -1;
-}
-
-/* One line `frame joint u v` (u, v may be `-`); 0 = kept, 1 = skipped. */
-static cub_err parse_line(const char *line, const char *name, int ln, cub_ft_labels *out,
-                          cub_diag *diag)
-{
-    char frame[64], joint[32], us[16], vs[16], extra;
-    int k = sscanf(line, "%63s %31s %15s %15s %c", frame, joint, us, vs, &extra);
-    if (k <= 0 || frame[0] == '#') return CUB_OK;
-    if (k != 4)
-        return cub_diag_fail(diag, CUB_ERR_FORMAT, name, ln,
-                             "want `frame joint u v` (u v may be `-`), got %d fields", k);
-    int j = joint_named(joint);
-    if (j < 0) return cub_diag_fail(diag, CUB_ERR_FORMAT, name, ln, "no joint '%s'", joint);
-    cub_ft_label l = {{0}, j, -1, -1};
-    snprintf(l.frame, sizeof(l.frame), "%s", frame);
-    if (strcmp(us, "-") || strcmp(vs, "-")) {
-        char *e1, *e2;
-        long u = strtol(us, &e1, 10), v = strtol(vs, &e2, 10);
-        if (*e1 || *e2 || u < 0 || u >= W || v < 0 || v >= H)
-            return cub_diag_fail(diag, CUB_ERR_FORMAT, name, ln,
-                                 "pixel '%s %s' not in the 640x480 image (or `- -`)", us, vs);
-        l.u = (int)u, l.v = (int)v;
-    }
-    if (out->n == CUB_FT_MAX_LABELS)
-        return cub_diag_fail(diag, CUB_ERR_FORMAT, name, ln, "more than %d labels",
-                             CUB_FT_MAX_LABELS);
-    out->l[out->n++] = l;
-    return CUB_OK;
-}
-
-cub_err cub_ft_labels_parse(const char *text, size_t len, const char *name, cub_ft_labels *out,
-                            cub_diag *diag)
-{
-    out->n = 0;
-    char line[256];
-    size_t at = 0;
-    for (int ln = 1; at < len; ln++) {
-        size_t end = at;
-        while (end < len && text[end] != '\n')
-            end++;
-        if (end - at >= sizeof(line))
-            return cub_diag_fail(diag, CUB_ERR_FORMAT, name, ln, "line longer than %zu bytes",
-                                 sizeof(line) - 1);
-        memcpy(line, text + at, end - at);
-        line[end - at] = 0;
-        if (memchr(line, 0, end - at))
-            return cub_diag_fail(diag, CUB_ERR_FORMAT, name, ln, "a NUL byte in the line");
-        cub_err e = parse_line(line, name, ln, out, diag);
-        if (e) return e;
-        at = end + 1;
-    }
-    return CUB_OK;
-}
 
 /* A raw frame as fakenect writes it: 640x480 little-endian u16 at the
  * file's end (after the PGM header). */
