@@ -49,6 +49,17 @@ static size_t make_forest(uint8_t *b)
     return (size_t)(l + 18 - b);
 }
 
+/* make_forest's bytes, opened (static: the view outlives the call). */
+static cub_forest made_forest(void)
+{
+    static uint8_t b[200];
+    size_t len = make_forest(b);
+    cub_forest f;
+    cub_forest_problem why = {0};
+    assert_int_equal(cub_forest_open(b, len, &f, &why), CUB_OK);
+    return f;
+}
+
 /* A box of depth mm over columns [x0, x1), rows 50..149; no reading elsewhere. */
 static cub_forest_image box_image(uint16_t *mm, uint16_t depth, int x0, int x1)
 {
@@ -79,12 +90,8 @@ static void probes_scale_with_depth(void **state)
 static void trees_add_up(void **state)
 {
     (void)state;
-    static uint8_t b[200];
     static uint16_t mm[IW * IH];
-    size_t len = make_forest(b);
-    cub_forest f;
-    cub_forest_problem why = {0};
-    assert_int_equal(cub_forest_open(b, len, &f, &why), CUB_OK);
+    cub_forest f = made_forest();
     uint32_t score[3];
     cub_forest_image near = box_image(mm, 1000, 50, 200);
     /* probe 100 px right: on the box from x 60, off it from x 150 */
@@ -158,6 +165,16 @@ static void loader_refuses_broken_assets(void **state)
 
 static int32_t pts_mm[MAXPTS][3];
 static uint16_t pts_prob[MAXPTS * 3];
+static uint8_t lab_img[LW * LH];
+static uint16_t lmm[LW * LH];
+
+/* The proposal lies within 4 mm (x, y) of pixel (u, v) at z. */
+static int at_pixel(const cub_forest_proposal *pr, int u, int v, int32_t z)
+{
+    int32_t c[3];
+    cub_forest_point_at(u, v, z, c);
+    return pr->found && abs(pr->mm[0] - c[0]) <= 4 && abs(pr->mm[1] - c[1]) <= 4;
+}
 
 /* A disc of `label` (prob q) of radius r px around (cu, cv) at depth z
  * painted into a label image and a depth image. */
@@ -203,20 +220,15 @@ static void points_are_the_camera_model(void **state)
 static void the_largest_mode_wins_pushed_back(void **state)
 {
     (void)state;
-    static uint8_t label[LW * LH];
-    static uint16_t mm[LW * LH];
-    memset(label, 0, sizeof(label)), memset(mm, 0, sizeof(mm));
-    disc(label, mm, 200, 200, 30, 1, 2000);
-    disc(label, mm, 450, 300, 12, 1, 2000);
-    disc(label, mm, 320, 100, 15, 2, 1500);
-    cub_forest_points p = label_points(label, mm, 2, 65535);
+    memset(lab_img, 0, sizeof(lab_img)), memset(lmm, 0, sizeof(lmm));
+    disc(lab_img, lmm, 200, 200, 30, 1, 2000);
+    disc(lab_img, lmm, 450, 300, 12, 1, 2000);
+    disc(lab_img, lmm, 320, 100, 15, 2, 1500);
+    cub_forest_points p = label_points(lab_img, lmm, 2, 65535);
     cub_forest_shift sh = {150, 6554, 40};
     cub_forest_proposal pr;
     cub_forest_propose(&p, 1, &sh, &pr);
-    int32_t c[3];
-    cub_forest_point_at(200, 200, 2000, c);
-    assert_int_equal(pr.found, 1);
-    assert_true(abs(pr.mm[0] - c[0]) <= 4 && abs(pr.mm[1] - c[1]) <= 4);
+    assert_true(at_pixel(&pr, 200, 200, 2000));
     assert_int_equal(pr.mm[2], 2000 + 40);
     /* a 30 px disc at 2 m is about pi (30 * 2000 / 580)^2 = 33600 mm^2 */
     assert_in_range(pr.area_mm2, 31000, 36000);
@@ -224,10 +236,9 @@ static void the_largest_mode_wins_pushed_back(void **state)
     assert_in_range(pr.share, CUB_Q16_ONE * 80 / 100, CUB_Q16_ONE * 90 / 100);
     /* the other part, at its own disc */
     cub_forest_propose(&p, 2, &sh, &pr);
-    cub_forest_point_at(320, 100, 1500, c);
-    assert_true(abs(pr.mm[0] - c[0]) <= 4 && abs(pr.mm[1] - c[1]) <= 4);
+    assert_true(at_pixel(&pr, 320, 100, 1500));
     /* below the probability floor, nothing is proposed */
-    cub_forest_points weak = label_points(label, mm, 2, 5000);
+    cub_forest_points weak = label_points(lab_img, lmm, 2, 5000);
     cub_forest_propose(&weak, 1, &sh, &pr);
     assert_int_equal(pr.found, 0);
     sh.min_prob = 0;
@@ -235,36 +246,28 @@ static void the_largest_mode_wins_pushed_back(void **state)
     assert_int_equal(pr.found, 1);
 }
 
-/* A pixel far away covers more of the body than one near: with as many
- * pixels near as far... fewer pixels far still win when their surface is
- * larger (z^2 weighting), as the body's real size decides. */
+/* A pixel far away covers more of the body than one near: fewer pixels
+ * far win when their surface is larger (z^2 weighting), as the body's
+ * real size decides, not its pixel count. */
 static void depth_squared_weighs_the_surface(void **state)
 {
     (void)state;
-    static uint8_t label[LW * LH];
-    static uint16_t mm[LW * LH];
-    memset(label, 0, sizeof(label)), memset(mm, 0, sizeof(mm));
-    disc(label, mm, 150, 240, 20, 1, 1500); /* more pixels, 1.5 m */
-    disc(label, mm, 450, 240, 17, 1, 2500); /* fewer pixels, 2.5 m: more surface */
-    cub_forest_points p = label_points(label, mm, 1, 65535);
+    memset(lab_img, 0, sizeof(lab_img)), memset(lmm, 0, sizeof(lmm));
+    disc(lab_img, lmm, 150, 240, 20, 1, 1500); /* more pixels, 1.5 m */
+    disc(lab_img, lmm, 450, 240, 17, 1, 2500); /* fewer pixels, 2.5 m: more surface */
+    cub_forest_points p = label_points(lab_img, lmm, 1, 65535);
     cub_forest_shift sh = {200, 0, 0};
     cub_forest_proposal pr;
     cub_forest_propose(&p, 1, &sh, &pr);
-    int32_t c[3];
-    cub_forest_point_at(450, 240, 2500, c);
-    assert_true(abs(pr.mm[0] - c[0]) <= 4 && abs(pr.mm[2] - c[2]) <= 4);
+    assert_true(at_pixel(&pr, 450, 240, 2500) && abs(pr.mm[2] - 2500) <= 4);
 }
 
 /* gather: every stride-th pixel with a reading, the trees' mean. */
 static void gather_keeps_the_trees_mean(void **state)
 {
     (void)state;
-    static uint8_t b[200];
     static uint16_t mm[IW * IH];
-    size_t len = make_forest(b);
-    cub_forest f;
-    cub_forest_problem why = {0};
-    assert_int_equal(cub_forest_open(b, len, &f, &why), CUB_OK);
+    cub_forest f = made_forest();
     cub_forest_image im = box_image(mm, 1000, 50, 200);
     cub_forest_points p = {pts_mm, pts_prob, 0, MAXPTS, 3, 0};
     assert_int_equal(cub_forest_gather(&f, &im, 5, &p), 30 * 20);
