@@ -8,6 +8,7 @@
 # With --vs-tracker, every fold's forest is instead scored joint by joint
 # against the heuristic tracker on the same renders (eval-forest
 # --vs-tracker), and one table adds up all five folds.
+# FOREST_REUSE=1 keeps the forests already in OUT_DIR (scoring again only).
 # e.g. scripts/forest_folds.sh build/release /tmp/forest --trees 3 --depth 16
 set -eu
 [ $# -ge 1 ] || { echo "usage: scripts/forest_folds.sh BUILD_DIR [OUT_DIR] [--vs-tracker] [train-forest options]" >&2; exit 2; }

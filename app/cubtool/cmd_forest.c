@@ -292,6 +292,10 @@ static void vs_report(const cub_ft_vs *v)
            "taken; guessed: tracker confidence < 1/2; f.conf: the forest's confident joints;\n"
            "f.conf+: of those, the share within 10 cm. forest's: the joints the forest gives.\n",
            v->frames);
+    if (v->tracker_frames && v->frames)
+        printf("time, this build, one core: forest %.2f ms a scored frame (classify every\n"
+               "--pixel-step-th pixel, proposals, joints), tracker %.2f ms a frame\n",
+               1e3 * v->forest_s / v->frames, 1e3 * v->tracker_s / v->tracker_frames);
 }
 
 static int vs_tracker(forest_opts *o, const cub_forest *f)

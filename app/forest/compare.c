@@ -4,9 +4,11 @@
  * every `every`-th. The forest reads the player's pixels as the render's
  * owner image gives them (a perfect player mask: the tracker finds its
  * player itself). */
+#define _POSIX_C_SOURCE 200809L /* clock_gettime */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "cub/forest_train.h"
 #include "cub/kinect.h"
@@ -156,6 +158,13 @@ static cub_err vs_alloc(vs_buf *b, const cub_forest *f, int stride)
     return CUB_OK;
 }
 
+static double now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + ts.tv_nsec * 1e-9;
+}
+
 static cub_err run_clip(cub_synth *s, const cub_forest *f, const cub_ft_compare *c, vs_buf *b,
                         cub_ft_vs *vs)
 {
@@ -169,15 +178,19 @@ static cub_err run_clip(cub_synth *s, const cub_forest *f, const cub_ft_compare 
         cub_track_skeleton sk;
         err = cub_synth_render(s, k, b->raw, &tr, NULL, b->owner);
         if (err) break;
+        double t0 = now_s();
         cub_track_frame(b->trk, b->raw, (int64_t)k * 100000, &grav, &sk);
+        vs->tracker_s += now_s() - t0, vs->tracker_frames++;
         if (k % c->every) continue;
         player_mm(b->raw, b->owner, b->mm);
+        t0 = now_s();
         cub_forest_image im = {b->mm, CUB_KINECT_WIDTH, CUB_KINECT_HEIGHT};
         cub_forest_gather(f, &im, c->stride, &b->pts);
         cub_forest_proposal prop[CUB_PART_COUNT];
         cub_ft_joints fj;
         cub_ft_propose_all(&b->pts, prop);
         cub_ft_joints_of(prop, &fj);
+        vs->forest_s += now_s() - t0;
         cub_ft_score_joints(&sk, &fj, &tr, vs);
     }
     return err;

@@ -113,7 +113,8 @@ typedef struct cub_ft_vs {
     long n[CUB_KJ_COUNT], tracker[CUB_KJ_COUNT], forest[CUB_KJ_COUNT], combined[CUB_KJ_COUNT];
     long override[CUB_KJ_COUNT], have[CUB_KJ_COUNT]; /* have: the forest gave the joint */
     long confident[CUB_KJ_COUNT], confident_right[CUB_KJ_COUNT], guessed[CUB_KJ_COUNT];
-    long frames;
+    long frames, tracker_frames;
+    double forest_s, tracker_s; /* wall time: gather + proposals + joints; the tracker */
 } cub_ft_vs;
 
 cub_err cub_ft_compare_clip(const cub_forest *f, const cub_ft_compare *c, const char *spec,
