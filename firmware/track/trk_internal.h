@@ -126,4 +126,7 @@ void trk_fit_skeleton(cub_tracker *t, int32_t root, int32_t *ext, int32_t next,
                       cub_track_skeleton *out);
 void trk_smooth(cub_tracker *t, cub_track_skeleton *out);
 
+/* trk_conf.c */
+void trk_confidence(const cub_tracker *t, cub_track_skeleton *s);
+
 #endif
