@@ -256,7 +256,7 @@ awk -F, -v bands="yaw0-30 yaw30-60 yaw60-120 yaw120-180" '
         for (j = 1; j <= nj; j++) print row("joint " jorder[j], "", "joint " jorder[j])
     }' "$RESULTS/all.csv"
 # Is the confidence honest (cubtool eval-track: confident = confidence >=
-# CUB_TRACK_CONFIDENT, what the judge reads)? One table per fold, per
+# CUB_TRACK_CONFIDENT, cub/track.h)? One table per fold, per
 # joint and all: the share of joints reported confident, the share within
 # 10 cm of those and of the others; then the folds' totals by set.
 awk -F, '

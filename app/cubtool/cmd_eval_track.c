@@ -31,7 +31,7 @@ static const char *const band_name[EVAL_BANDS] = {"yaw0-30", "yaw30-60", "yaw60-
 typedef struct tally {
     double err_sum;
     int n, within;
-    int sure_n, sure_within; /* of those, reported confident (CUB_TRACK_CONFIDENT) */
+    int sure_n, sure_within; /* of those, reported confident (>= CUB_TRACK_CONFIDENT) */
 } tally;
 
 typedef struct eval_acc {
@@ -204,8 +204,8 @@ static void score_joints(eval_acc *acc, const cub_track_skeleton *s, const cub_s
             t->sure_n += sure, t->sure_within += sure && e <= WITHIN_MM;
         }
         if (joints_out)
-            fprintf(joints_out, "%d,%s,%d,%d,%.0f,%.0f\n", tr->frame, cub_kinect_joint_name(j),
-                    (int)s->status, (int)s->confidence[j], yaw_deg, e);
+            fprintf(joints_out, "%d,%s,%d,%d,%.0f,%.0f,%d\n", tr->frame, cub_kinect_joint_name(j),
+                    (int)s->status, (int)s->confidence[j], yaw_deg, e, e <= WITHIN_MM);
         f_sum += e, f_n++;
         if (e > WITHIN_MM && strlen(f_off) < sizeof f_off - 32)
             snprintf(f_off + strlen(f_off), sizeof f_off - strlen(f_off), " %s=%.0f",
@@ -343,15 +343,15 @@ static int parse_args(int argc, char **argv, eval_opts *o)
                 "prints per joint the mean error and the share within 10 cm, overall and per\n"
                 "facing band (the body's true yaw to the camera: |yaw| <= 30, 30-60, 60-120,\n"
                 "> 120 degrees), status counts, fps; and whether the confidence is honest: per\n"
-                "joint the share reported confident (confidence >= CUB_TRACK_CONFIDENT, what the\n"
-                "judge reads), the share of those within 10 cm, and of the others. With DUMP_DIR/truth_second.txt (a second\n"
+                "joint the share reported confident (confidence >= CUB_TRACK_CONFIDENT, what this\n"
+                "eval says honest), the share of those within 10 cm, and of the others. With DUMP_DIR/truth_second.txt (a second\n"
                 "person, cubtool synth-depth --second-person) also the frames whose player is\n"
                 "the wrong person (its torso nearer the second person's than the child's).\n"
                 "The truth's gravity is given to the tracker unless --no-gravity.\n"
                 "--csv FILE: the same figures as kind,band,joint,n,within,mean_mm rows (kind\n"
                 "confident: the joints reported confident).\n"
                 "--joints FILE: one row per scored joint: frame,joint,status,confidence (Q16),\n"
-                "true yaw, error (mm).\n"
+                "true yaw, error (mm), within 10 cm (1/0).\n"
                 "--per-frame: one line per frame (status, player id, WRONG-PERSON when the player\n"
                 "is the second person, true yaw, mean error, the joints off by more than 10 cm).\n");
             return 1;
@@ -388,7 +388,7 @@ static int run_frames(const eval_opts *o, const cub_tool_dump *d, const eval_tru
         fprintf(stderr, "eval-track: %s: cannot write: %s\n", o->joints, strerror(errno));
         return -1;
     }
-    if (jf) fprintf(jf, "frame,joint,status,confidence,yaw,err_mm\n");
+    if (jf) fprintf(jf, "frame,joint,status,confidence,yaw,err_mm,within\n");
     void *mem = NULL;
     cub_tracker *t = cub_tool_tracker_new(&mem, "eval-track");
     if (!t) {
