@@ -1,5 +1,5 @@
 /* The joints' confidence from the evidence the tracker has per joint
- * (docs/tracker_eval.md "Confidence" has the figures and how the numbers
+ * (docs/tracker_eval.md, "the confidence", has the figures and how the numbers
  * were chosen, on the dev folds only). The fit writes what it knows of a
  * joint's source (0: guessed, a quarter: an arm hanging by the thigh,
  * more: found on an extremity's path or on the torso); this step keeps a

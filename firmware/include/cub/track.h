@@ -28,7 +28,7 @@ typedef enum cub_track_status {
  * [0, 1] Q16.16 per joint: 0 = not seen (its position is a guess), above
  * 0 = found, CUB_TRACK_CONFIDENT and above = confident: the depth backs it
  * (track/trk_conf.c), what `cubtool eval-track` checks is honest
- * (docs/tracker_eval.md "Confidence": of the confident joints, the share
+ * (docs/tracker_eval.md, "the confidence": of the confident joints, the share
  * within 10 cm). The judge still reads "found" (> 0): read at
  * CUB_TRACK_CONFIDENT it caught none of the e2e song's planted mistakes
  * (docs/tracker_eval.md says why). */
