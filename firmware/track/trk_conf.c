@@ -1,15 +1,16 @@
 /* The joints' confidence from the evidence the tracker has per joint
- * (docs/tracker_eval.md, "the confidence", has the figures and how the numbers
- * were chosen, on the dev folds only). The fit writes what it knows of a
- * joint's source (0: guessed, a quarter: an arm hanging by the thigh,
+ * (docs/tracker_eval.md, "the confidence", has the figures and how the
+ * numbers were chosen, on the dev folds only). The fit writes what it
+ * knows of a joint's source (0: guessed, a quarter: an arm hanging by the thigh,
  * more: found on an extremity's path or on the torso); this step keeps a
  * joint CUB_TRACK_CONFIDENT only when the depth backs it:
  *   - the player is whole in view (status OK), on the same track as last
  *     frame;
  *   - the fit found the joint (not guessed, not hung);
- *   - the cell the joint projects to is the player's, its surface 25 mm
- *     before the joint to 100 mm behind it (not hidden by a nearer part,
- *     not off the silhouette), and enough of the 5x5 cells around agree;
+ *   - the cell the joint projects to is the player's, its surface from
+ *     100 mm before the joint (a part's radius and more) to 25 mm behind
+ *     it (not hidden by a nearer part, not off the silhouette), and
+ *     enough of the 5x5 cells around agree;
  *   - the body faces the camera: the shoulders' and hips' depths differ
  *     little (side-on the far limbs hide, and which side is which
  *     becomes a guess); and, for the joints named left or right, it was
@@ -28,8 +29,8 @@
 
 enum {
     CONF_SEEN = CUB_Q16_ONE / 4, /* found, not confident */
-    CONF_FRONT_MM = 25,          /* the surface may lie this far behind the joint's depth... */
-    CONF_BEHIND_MM = 100,        /* ...and this far before it (the part's radius and more) */
+    CONF_FRONT_MM = 25,          /* the joint may lie this far before its cell's surface... */
+    CONF_BEHIND_MM = 100,        /* ...and this far behind it (the part's radius and more) */
     CONF_NEAR_MM = 100,          /* a neighbour cell agrees within this of the joint's surface */
     CONF_NEAR_R = 40,            /* the surface expected this far before the joint */
     CONF_SIDE_ON_MM = 100,       /* the depth asymmetry of a body side-on */
@@ -80,7 +81,8 @@ static int32_t depth_support(const cub_tracker *t, trk_p3 p)
     for (int32_t dy = -2; dy <= 2; dy++)
         for (int32_t dx = -2; dx <= 2; dx++) {
             int32_t c = (gy + dy) * TRK_GW + gx + dx;
-            n += on_grid(gx + dx, gy + dy) && t->mask[c] && trk_abs(p.z - t->z[c] - CONF_NEAR_R) <= CONF_NEAR_MM;
+            n += on_grid(gx + dx, gy + dy) && t->mask[c] &&
+                 trk_abs(p.z - t->z[c] - CONF_NEAR_R) <= CONF_NEAR_MM;
         }
     return n;
 }
@@ -88,7 +90,8 @@ static int32_t depth_support(const cub_tracker *t, trk_p3 p)
 /* A joint named left or right (not on the body's middle line). */
 static bool conf_sided(int j)
 {
-    return j != CUB_KJ_HEAD && j != CUB_KJ_SHOULDER_CENTRE && j != CUB_KJ_SPINE && j != CUB_KJ_HIP_CENTRE;
+    return j != CUB_KJ_HEAD && j != CUB_KJ_SHOULDER_CENTRE && j != CUB_KJ_SPINE &&
+           j != CUB_KJ_HIP_CENTRE;
 }
 
 /* The newest kept frame of this player 90-300 ms before t_us, or -1. */
@@ -97,7 +100,9 @@ static int32_t past_frame(const cub_tracker *t, int64_t t_us, int32_t id)
     int32_t best = -1;
     for (int32_t k = 0; k < TRK_PAST; k++) {
         int64_t age = t_us - t->past[k].t_us;
-        if (!t->past[k].used || t->past[k].id != id || age < CONF_SPAN_MIN_US || age > CONF_SPAN_MAX_US) continue;
+        if (!t->past[k].used || t->past[k].id != id || age < CONF_SPAN_MIN_US ||
+            age > CONF_SPAN_MAX_US)
+            continue;
         if (best < 0 || t->past[k].t_us > t->past[best].t_us) best = k;
     }
     return best;
@@ -116,8 +121,10 @@ void trk_confidence(cub_tracker *t, int64_t t_us, cub_track_skeleton *s)
     trk_p3 sl = got(s, CUB_KJ_SHOULDER_L), sr = got(s, CUB_KJ_SHOULDER_R);
     trk_p3 hl = got(s, CUB_KJ_HIP_L), hr = got(s, CUB_KJ_HIP_R);
     int32_t face = trk_abs(sl.z - sr.z) + trk_abs(hl.z - hr.z);
-    if (face >= CONF_SIDE_ON_MM) t->side_on_us = t_us, t->side_on_id = s->player_id, t->side_on_seen = true;
-    bool turned = t->side_on_seen && t->side_on_id == s->player_id && t_us - t->side_on_us <= CONF_TURN_US;
+    if (face >= CONF_SIDE_ON_MM)
+        t->side_on_us = t_us, t->side_on_id = s->player_id, t->side_on_seen = true;
+    bool turned = t->side_on_seen && t->side_on_id == s->player_id &&
+                  t_us - t->side_on_us <= CONF_TURN_US;
     int32_t past = past_frame(t, t_us, s->player_id);
     bool go_on = s->status == CUB_TRACK_OK && t->have_prev && t->lost_frames == 0 &&
                  t->prev.player_id == s->player_id && past >= 0;
@@ -126,7 +133,8 @@ void trk_confidence(cub_tracker *t, int64_t t_us, cub_track_skeleton *s)
         if (s->confidence[j] == 0) continue;
         const conf_limits *l = &conf_group[conf_group_of(j)];
         trk_p3 p = got(s, j);
-        bool sure = go_on && s->confidence[j] >= CUB_Q16_ONE / 2 && face < l->face_mm && !(turned && conf_sided(j)) &&
+        bool sure = go_on && s->confidence[j] >= CUB_Q16_ONE / 2 && face < l->face_mm &&
+                    !(turned && conf_sided(j)) &&
                     (int64_t)dist3(t->past[past].j[j], p) * 100000 < (int64_t)l->move_mm * span &&
                     depth_support(t, p) >= l->cells;
         s->confidence[j] = sure ? CUB_Q16_ONE : CONF_SEEN;
