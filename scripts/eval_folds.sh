@@ -255,4 +255,40 @@ awk -F, -v bands="yaw0-30 yaw30-60 yaw60-120 yaw120-180" '
         for (s = 1; s <= 6; s++) if (renders["scene " sc[s]]) print row("scene " sc[s], "", "scene " sc[s])
         for (j = 1; j <= nj; j++) print row("joint " jorder[j], "", "joint " jorder[j])
     }' "$RESULTS/all.csv"
+# Is the confidence honest (cubtool eval-track: confident = confidence >=
+# CUB_TRACK_CONFIDENT, cub/track.h)? One table per fold, per
+# joint and all: the share of joints reported confident, the share within
+# 10 cm of those and of the others; then the folds' totals by set.
+awk -F, '
+    function pc(a, b) { return b ? sprintf("%9.1f%%", 100 * a / b) : sprintf("%10s", "-") }
+    function line(name, k) {
+        return sprintf("  %-16s %7d %s %s %s", name, n[k], pc(cn[k], n[k]), pc(cw[k], cn[k]), pc(w[k] - cw[k], n[k] - cn[k]))
+    }
+    function add(k, nn, ww) { n[k] += nn; w[k] += ww }
+    function addc(k, nn, ww) { cn[k] += nn; cw[k] += ww }
+    $5 != "all" { next }
+    {
+        fold = $1; set = $2; kind = $4; joint = $6
+        if (!(fold in fset)) { order[++nf] = fold; fset[fold] = set }
+        if (kind == "joint" && joint != "all") {
+            if (!(joint in jseen)) { jorder[++nj] = joint; jseen[joint] = 1 }
+            add(fold SUBSEP joint, $7, $8); add(fold, $7, $8); add(set, $7, $8); add("total", $7, $8)
+        } else if (kind == "confident" && joint != "all") {
+            addc(fold SUBSEP joint, $7, $8); addc(fold, $7, $8); addc(set, $7, $8); addc("total", $7, $8)
+        }
+    }
+    END {
+        if (!nf) exit
+        h = sprintf("  %-16s %7s %10s %10s %10s", "joint", "n", "confident", "<=10cm|c", "<=10cm|not")
+        for (f = 1; f <= nf; f++) {
+            print ""; print "confidence, fold " order[f] " (" fset[order[f]] ")"; print h
+            for (j = 1; j <= nj; j++) print line(jorder[j], order[f] SUBSEP jorder[j])
+            print line("all", order[f])
+        }
+        print ""; print "confidence by fold (all joints)"; print h
+        for (f = 1; f <= nf; f++) print line(order[f], order[f])
+        if (n["dev"]) print line("dev folds", "dev")
+        if (n["heldout"]) print line("held-out folds", "heldout")
+        print line("all folds", "total")
+    }' "$RESULTS/all.csv"
 [ "$FAILED" = 0 ] || { echo "eval_folds: some renders failed (above): the table lacks them" >&2; exit 1; }

@@ -31,6 +31,7 @@ static const char *const band_name[EVAL_BANDS] = {"yaw0-30", "yaw30-60", "yaw60-
 typedef struct tally {
     double err_sum;
     int n, within;
+    int sure_n, sure_within; /* of those, reported confident (>= CUB_TRACK_CONFIDENT) */
 } tally;
 
 typedef struct eval_acc {
@@ -180,9 +181,10 @@ static int score_identity(eval_acc *acc, const cub_track_skeleton *s,
 }
 
 /* The joints of one frame into its band and the whole; one line of
- * --per-frame (wrong: the player is the second person). */
+ * --per-frame (wrong: the player is the second person); one row per
+ * joint into joints_out (--joints) when not NULL. */
 static void score_joints(eval_acc *acc, const cub_track_skeleton *s, const cub_synth_truth_frame *tr,
-                         double yaw_deg, int per_frame, int wrong)
+                         double yaw_deg, int per_frame, int wrong, FILE *joints_out)
 {
     int band = band_of(yaw_deg);
     double f_sum = 0;
@@ -195,10 +197,15 @@ static void score_joints(eval_acc *acc, const cub_track_skeleton *s, const cub_s
                dy = s->joint_mm[j].y / 65536.0 - tr->joint_mm[j][1],
                dz = s->joint_mm[j].z / 65536.0 - tr->joint_mm[j][2];
         double e = sqrt(dx * dx + dy * dy + dz * dz);
+        int sure = s->confidence[j] >= CUB_TRACK_CONFIDENT;
         for (int b = 0; b < 2; b++) {
             tally *t = &acc->joint[b ? EVAL_BANDS : band][j];
             t->err_sum += e, t->n++, t->within += e <= WITHIN_MM;
+            t->sure_n += sure, t->sure_within += sure && e <= WITHIN_MM;
         }
+        if (joints_out)
+            fprintf(joints_out, "%d,%s,%d,%d,%.0f,%.0f,%d\n", tr->frame, cub_kinect_joint_name(j),
+                    (int)s->status, (int)s->confidence[j], yaw_deg, e, e <= WITHIN_MM);
         f_sum += e, f_n++;
         if (e > WITHIN_MM && strlen(f_off) < sizeof f_off - 32)
             snprintf(f_off + strlen(f_off), sizeof f_off - strlen(f_off), " %s=%.0f",
@@ -216,6 +223,7 @@ static tally sum_joints(const eval_acc *acc, int band)
     for (int j = 0; j < CUB_KJ_COUNT; j++) {
         const tally *t = &acc->joint[band][j];
         all.err_sum += t->err_sum, all.n += t->n, all.within += t->within;
+        all.sure_n += t->sure_n, all.sure_within += t->sure_within;
     }
     return all;
 }
@@ -253,8 +261,34 @@ static void print_table(const eval_acc *acc)
                all.within, all.n);
 }
 
-/* One row per (band or "all", joint or "all"): n, within, mean error; then
- * the identity and status rows. */
+/* One row of the confidence table: the share reported confident, the
+ * share within 10 cm of those, and of the others. */
+static void print_sure_row(const char *name, const tally *t)
+{
+    int un = t->n - t->sure_n, uw = t->within - t->sure_within;
+    printf("%-15s %6d %9.1f%% %9.1f%% %9.1f%%\n", name, t->n, pct(t->sure_n, t->n),
+           pct(t->sure_within, t->sure_n), pct(uw, un));
+}
+
+/* Is the confidence honest? Per joint and overall (every band). */
+static void print_sure_table(const eval_acc *acc)
+{
+    printf("%-15s %6s %10s %10s %10s   (confident: confidence >= %.2f)\n", "joint", "n",
+           "confident", "<=10cm|c", "<=10cm|not", CUB_TRACK_CONFIDENT / 65536.0);
+    for (int j = 0; j < CUB_KJ_COUNT; j++)
+        if (acc->joint[EVAL_BANDS][j].n) print_sure_row(cub_kinect_joint_name(j), &acc->joint[EVAL_BANDS][j]);
+    tally all = sum_joints(acc, EVAL_BANDS);
+    print_sure_row("all", &all);
+    int un = all.n - all.sure_n, uw = all.within - all.sure_within;
+    printf("eval-track: %.1f%% of joints confident (%d of %d), %.1f%% of them within 10 cm "
+           "(%d); not confident: %.1f%% within 10 cm (%d of %d)\n",
+           pct(all.sure_n, all.n), all.sure_n, all.n, pct(all.sure_within, all.sure_n),
+           all.sure_within, pct(uw, un), uw, un);
+}
+
+/* One row per (band or "all", joint or "all"): n, within, mean error, and
+ * the same of the joints reported confident (kind confident, no mean);
+ * then the identity and status rows. */
 static int write_csv(const char *path, const eval_acc *acc, int frames)
 {
     FILE *f = fopen(path, "w");
@@ -270,8 +304,13 @@ static int write_csv(const char *path, const eval_acc *acc, int frames)
             fprintf(f, "joint,%s,%s,%d,%d,%.1f\n", bn, cub_kinect_joint_name(j), t->n, t->within,
                     t->n ? t->err_sum / t->n : 0.0);
         }
+        for (int j = 0; j < CUB_KJ_COUNT; j++) {
+            const tally *t = &acc->joint[b][j];
+            fprintf(f, "confident,%s,%s,%d,%d,\n", bn, cub_kinect_joint_name(j), t->sure_n, t->sure_within);
+        }
         tally t = sum_joints(acc, b);
         fprintf(f, "joint,%s,all,%d,%d,%.1f\n", bn, t.n, t.within, t.n ? t.err_sum / t.n : 0.0);
+        fprintf(f, "confident,%s,all,%d,%d,\n", bn, t.sure_n, t.sure_within);
         if (b < EVAL_BANDS) fprintf(f, "frames,%s,all,%d,,\n", bn, acc->band_frames[b]);
     }
     fprintf(f, "frames,all,all,%d,,\n", frames);
@@ -283,7 +322,7 @@ static int write_csv(const char *path, const eval_acc *acc, int frames)
 }
 
 typedef struct eval_opts {
-    const char *dir, *truth, *csv;
+    const char *dir, *truth, *csv, *joints;
     int print, no_gravity, per_frame;
 } eval_opts;
 
@@ -299,20 +338,26 @@ static int parse_args(int argc, char **argv, eval_opts *o)
         if (!strcmp(argv[i], "--help")) {
             printf(
                 "usage: cubtool eval-track DUMP_DIR [TRUTH] [--csv FILE] [--print] [--per-frame]\n"
-                "                          [--no-gravity]\n"
+                "                          [--no-gravity] [--joints FILE]\n"
                 "Runs the tracker over a fakenect dump; with TRUTH (default DUMP_DIR/truth.txt)\n"
                 "prints per joint the mean error and the share within 10 cm, overall and per\n"
                 "facing band (the body's true yaw to the camera: |yaw| <= 30, 30-60, 60-120,\n"
-                "> 120 degrees), status counts, fps. With DUMP_DIR/truth_second.txt (a second\n"
+                "> 120 degrees), status counts, fps; and whether the confidence is honest: per\n"
+                "joint the share reported confident (confidence >= CUB_TRACK_CONFIDENT, what this\n"
+                "eval says honest), the share of those within 10 cm, and of the others. With DUMP_DIR/truth_second.txt (a second\n"
                 "person, cubtool synth-depth --second-person) also the frames whose player is\n"
                 "the wrong person (its torso nearer the second person's than the child's).\n"
                 "The truth's gravity is given to the tracker unless --no-gravity.\n"
-                "--csv FILE: the same figures as kind,band,joint,n,within,mean_mm rows.\n"
+                "--csv FILE: the same figures as kind,band,joint,n,within,mean_mm rows (kind\n"
+                "confident: the joints reported confident).\n"
+                "--joints FILE: one row per scored joint: frame,joint,status,confidence (Q16),\n"
+                "true yaw, error (mm), within 10 cm (1/0).\n"
                 "--per-frame: one line per frame (status, player id, WRONG-PERSON when the player\n"
                 "is the second person, true yaw, mean error, the joints off by more than 10 cm).\n");
             return 1;
         }
         if (!strcmp(argv[i], "--csv") && i + 1 < argc) o->csv = argv[++i];
+        else if (!strcmp(argv[i], "--joints") && i + 1 < argc) o->joints = argv[++i];
         else if (!strcmp(argv[i], "--print")) o->print = 1;
         else if (!strcmp(argv[i], "--per-frame")) o->per_frame = 1;
         else if (!strcmp(argv[i], "--no-gravity")) o->no_gravity = 1;
@@ -338,9 +383,18 @@ static int run_frames(const eval_opts *o, const cub_tool_dump *d, const eval_tru
     cub_vec3 grav = {(cub_q16)(tt->gravity[0] * 65536), (cub_q16)(tt->gravity[1] * 65536),
                      (cub_q16)(tt->gravity[2] * 65536)};
     int have_grav = have && !o->no_gravity;
+    FILE *jf = NULL;
+    if (o->joints && !(jf = fopen(o->joints, "w"))) {
+        fprintf(stderr, "eval-track: %s: cannot write: %s\n", o->joints, strerror(errno));
+        return -1;
+    }
+    if (jf) fprintf(jf, "frame,joint,status,confidence,yaw,err_mm,within\n");
     void *mem = NULL;
     cub_tracker *t = cub_tool_tracker_new(&mem, "eval-track");
-    if (!t) return -1;
+    if (!t) {
+        if (jf) fclose(jf);
+        return -1;
+    }
     for (int f = 0; f < d->n; f++) {
         cub_track_skeleton s;
         double t0 = now_s();
@@ -352,9 +406,13 @@ static int run_frames(const eval_opts *o, const cub_tool_dump *d, const eval_tru
         const cub_synth_truth_frame *tr = truth_of(tt, have, f);
         if (!tr) continue;
         int wrong = score_identity(acc, &s, tr, truth_of(&tr_all->second, tr_all->have_second, f));
-        score_joints(acc, &s, tr, truth_yaw_deg(tr, tt->gravity), o->per_frame, wrong);
+        score_joints(acc, &s, tr, truth_yaw_deg(tr, tt->gravity), o->per_frame, wrong, jf);
     }
     free(mem);
+    if (jf && fclose(jf) != 0) {
+        fprintf(stderr, "eval-track: %s: cannot write\n", o->joints);
+        return -1;
+    }
     return 0;
 }
 
@@ -380,7 +438,7 @@ int cub_cmd_eval_track(int argc, char **argv)
     rc = !acc || cub_tool_dump_load(o.dir, &d, EVAL_MAX_FRAMES, "eval-track") ? 1 : 0;
     if (!rc) {
         rc = run_frames(&o, &d, &tr, acc, &secs) ? 1 : 0;
-        if (!rc && tr.have_child) print_table(acc);
+        if (!rc && tr.have_child) print_table(acc), print_sure_table(acc);
         if (!rc && !tr.have_child)
             printf("eval-track: no truth at %s (status and speed only)\n", o.truth);
         if (!rc && tr.have_second)

@@ -47,6 +47,11 @@
  *                                     trk_fit.c trk_fit_skeleton
  *  11. smoothing: jitter averaged, real motion (limits per 100 ms)
  *      passed through                                trk_smooth
+ *  12. confidence: a found joint is confident only when the depth backs
+ *      it (its cell the player's at its depth, the cells around agreeing,
+ *      the body facing the camera and, left or right, not side-on in the
+ *      last 2 s, little motion since last frame)
+ *                                          trk_conf.c trk_confidence
  *
  * Units: mm in camera space (x right, y up, z away; the image is
  * mirrored, TRK_LEFT_SIGN); thresholds of the body in per mille of the
@@ -175,6 +180,7 @@ cub_err cub_track_frame(cub_tracker *t, const uint16_t *raw, int64_t t_us, const
     out->player_id = t->player_id;
     trk_fit_skeleton(t, root, ext, n, out);
     trk_smooth(t, out);
+    trk_confidence(t, t_us, out);
     t->lost_frames = 0;
     t->prev = *out;
     t->have_prev = true;

@@ -43,6 +43,7 @@ typedef struct trk_comp {
 } trk_comp;
 
 #define TRK_MAX_COMPS 256
+#define TRK_PAST 4 /* frames of joints kept for the confidence's motion (100 ms at 30 fps) */
 
 struct cub_tracker {
     int32_t min_mm, max_mm;
@@ -80,6 +81,18 @@ struct cub_tracker {
      * player, as bodies differ from the proportions */
     int32_t reach_mm[4];
     int32_t shoulder_half_mm; /* the shoulder joints' half width, learnt per player, 0 unknown */
+    int64_t side_on_us;       /* when the player (side_on_id) was last seen side-on (trk_conf.c) */
+    /* the last frames' joints, to measure motion over 100 ms whatever the
+     * frame rate (trk_conf.c) */
+    struct {
+        trk_p3 j[CUB_KJ_COUNT];
+        int64_t t_us;
+        int32_t id;
+        bool used;
+    } past[TRK_PAST];
+    int32_t past_next;
+    int32_t side_on_id;
+    bool side_on_seen;
     cub_track_skeleton prev;
     bool have_prev;
     int64_t prev_t_us; /* last frame's time, and the time since it as the */
@@ -125,5 +138,8 @@ int32_t trk_fit_head(cub_tracker *t, int32_t root, int32_t *ext, int32_t *next, 
 void trk_fit_skeleton(cub_tracker *t, int32_t root, int32_t *ext, int32_t next,
                       cub_track_skeleton *out);
 void trk_smooth(cub_tracker *t, cub_track_skeleton *out);
+
+/* trk_conf.c */
+void trk_confidence(cub_tracker *t, int64_t t_us, cub_track_skeleton *s);
 
 #endif

@@ -2,7 +2,8 @@
 # The held-out protocol's quick sample (scripts/eval_folds.sh --quick: 3
 # folds x 5 scenes x 8 frames) runs end to end and prints every fold, the
 # dev and held-out totals, every scene and every joint, each with a share
-# within 10 cm (skipped, 77, without the shared mocap):
+# within 10 cm, and the confidence tables (skipped, 77, without the shared
+# mocap):
 #   check_eval_folds.sh SOURCE_DIR BUILD_DIR DATA_DIR
 set -eu
 SRC=$1 BUILD=$2 DATA=$3
@@ -17,3 +18,10 @@ for r in "cmu14  *dev  *5  *40 " "animdraw  *dev  *5  *40 " "bandai_childish  *h
 done
 # the second-person renders: one per fold, 8 frames each with a player
 echo "$out" | grep -Eq "^scene second .* [0-9]+/24 *$" || fail "the second-person scene does not count 24 frames"
+# the confidence: a table per fold and the summary by fold and set
+for f in cmu14 animdraw bandai_childish; do
+    echo "$out" | grep -q "^confidence, fold $f " || fail "no confidence table for fold $f"
+done
+for r in "hand_l" "all" "dev folds" "held-out folds" "all folds"; do
+    echo "$out" | grep -Eq "^  $r  *[0-9]+ .*%" || fail "no confidence row '$r'"
+done

@@ -6,7 +6,8 @@
 #   turned by 45 in yaw30-60, and the band rows add up to the whole;
 # - with a sibling (truth_second.txt), the frames whose player is the wrong
 #   person plus those counted with the two truths swapped are exactly the
-#   frames with a tracked player: each frame is the one person or the other.
+#   frames with a tracked player: each frame is the one person or the other;
+# - the confidence table counts the joints --joints lists as confident.
 set -eu
 TOOL=$1 DATA=$2 OUT=$3
 [ -r "$DATA/mocap/cmu/13_29.bvh" ] || { echo "eval-track check: no CMU clips under $DATA, skipped"; exit 77; }
@@ -28,6 +29,22 @@ for case in "180 yaw120-180" "45 yaw30-60"; do
     grep -q "wrong person" "$OUT/yaw$1.txt" && fail "yaw $1: a wrong-person count without a second person"
     echo "eval-track check: yaw $1: 6 frames in $2"
 done
+
+# the confidence table: the confident joints it counts are those --joints
+# lists at confidence >= CUB_TRACK_CONFIDENT (half, 32768), and so are
+# their joints within 10 cm; a child facing the camera on the spot has some
+d=$OUT/facing
+"$TOOL" synth-depth --clip 13_29 --frames 6 --fps 10 --clean --pin --data "$DATA" --out "$d" >/dev/null 2>&1
+"$TOOL" eval-track "$d" --csv "$OUT/facing.csv" --joints "$OUT/facing_joints.csv" >"$OUT/facing.txt"
+grep "of joints confident" "$OUT/facing.txt" || fail "facing: no confidence line"
+cn=$(row "$OUT/facing.csv" confident all all)
+cw=$(awk -F, '$1 == "confident" && $2 == "all" && $3 == "all" { print $5 }' "$OUT/facing.csv")
+jn=$(awk -F, 'NR > 1 && $4 >= 32768' "$OUT/facing_joints.csv" | wc -l)
+jw=$(awk -F, 'NR > 1 && $4 >= 32768 && $7 == 1' "$OUT/facing_joints.csv" | wc -l)
+[ "$cn" = "$jn" ] && [ "$cw" = "$jw" ] || fail "facing: confident $cn ($cw within) in the csv, $jn ($jw) in --joints"
+[ "$cn" -gt 0 ] || fail "facing: no joint confident"
+[ "$(awk -F, 'NR > 1' "$OUT/facing_joints.csv" | wc -l)" = "$(row "$OUT/facing.csv" joint all all)" ] ||
+    fail "facing: --joints rows are not the joints scored"
 
 d=$OUT/sibling
 "$TOOL" synth-depth --clip 13_29 --frames 12 --fps 10 --clean --second-person 13_29 --second-mode sibling \

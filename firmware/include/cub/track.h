@@ -25,7 +25,14 @@ typedef enum cub_track_status {
 } cub_track_status;
 
 /* One frame's player. joint_mm in camera space (kinect.h); confidence in
- * [0, 1] Q16.16 per joint, 0 = not seen (its position is a guess). */
+ * [0, 1] Q16.16 per joint: 0 = not seen (its position is a guess), above
+ * 0 = found, CUB_TRACK_CONFIDENT and above = confident: the depth backs it
+ * (track/trk_conf.c), what `cubtool eval-track` checks is honest
+ * (docs/tracker_eval.md, "the confidence": of the confident joints, the share
+ * within 10 cm). The judge still reads "found" (> 0): read at
+ * CUB_TRACK_CONFIDENT it caught none of the e2e song's planted mistakes
+ * (docs/tracker_eval.md says why). */
+#define CUB_TRACK_CONFIDENT (CUB_Q16_ONE / 2)
 typedef struct cub_track_skeleton {
     int32_t status; /* cub_track_status */
     int32_t player_id; /* stays the same while the same person is tracked */
