@@ -219,11 +219,14 @@ typedef struct tally {
     /* pairs where the seed's join beats bridge(box): by slide, by more
      * than 1 cm of slide, by jump, by both */
     int box_pairs, beat_slide, beat_slide_1cm, beat_jump, beat_both, beat_excess;
+    int clear, clear_jump; /* searched's slide > 1 cm below the box's excess (and jump) */
+    double widest;         /* the widest such margin, cm */
+    char widest_pair[2 * CUB_MOTION_NAME_LEN + 8];
     cub_tool_series excess; /* bridge(box)'s slide beyond its clips' own, per pair */
 } tally;
 
 /* The route question, per pair: does the seed's searched join beat the box? */
-static void compare_box(tally *t, const box_rows *br)
+static void compare_box(tally *t, const box_rows *br, const char *a, const char *b)
 {
     const cub_join_figures *s = &t->last[SEARCHED], *x = &br->last[0];
     if (x->slide_cm < 0) return;
@@ -234,6 +237,14 @@ static void compare_box(tally *t, const box_rows *br)
     t->beat_both += s->slide_cm < x->slide_cm && s->jump_cm < x->jump_cm;
     double excess = x->slide_cm - br->last_own[0].slide_cm;
     t->beat_excess += s->slide_cm < excess;
+    if (s->slide_cm < excess - 1.0) {
+        t->clear++;
+        t->clear_jump += s->jump_cm < x->jump_cm;
+        if (excess - s->slide_cm > t->widest) {
+            t->widest = excess - s->slide_cm;
+            snprintf(t->widest_pair, sizeof t->widest_pair, "%s -> %s", a, b);
+        }
+    }
     cub_tool_series_add(&t->excess, excess, "join");
 }
 
@@ -295,7 +306,7 @@ static int join_all(join_src *src, join_bridge *jb, int verbose)
             rc = one_pair(db, a, b, verbose, &t);
             if (!jb || rc) continue;
             box_measure(jb, db, a, b, &br);
-            compare_box(&t, &br);
+            compare_box(&t, &br, db->clips[a].name, db->clips[b].name);
             if (verbose && br.last[0].slide_cm >= 0)
                 printf("join pair %s -> %s: box slide %.2f cm (own %.2f) jump %.2f; no legs "
                        "slide %.2f jump %.2f\n",
@@ -316,6 +327,10 @@ static int join_all(join_src *src, join_bridge *jb, int verbose)
                    "median=%.2f p95=%.2f max=%.2f cm; searched's slide is below it on %d pairs\n",
                    cub_tool_series_pct(&t.excess, 0.5), cub_tool_series_pct(&t.excess, 0.95),
                    cub_tool_series_pct(&t.excess, 1.0), t.beat_excess);
+        if (t.box_pairs)
+            printf("join --all: searched's slide is more than 1 cm below that on %d pairs (its "
+                   "jump also below the box's on %d); the widest margin %.2f cm (%s)\n",
+                   t.clear, t.clear_jump, t.widest, t.clear ? t.widest_pair : "-");
         printf("join --all: the paired clips' own velocity change p99=%.2f cm/f2\n",
                own_jump_p99(db, src));
         fprintf(stderr, "join --all: %.1f s\n",

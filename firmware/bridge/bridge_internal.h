@@ -20,10 +20,10 @@ size_t cub_bridge_legs_mem_size(const cub_bridge_table *t);
 /* Find the legs and mark every frame's standing feet into mem (l->speed_mm
  * and l->min_frames set by the caller). */
 void cub_bridge_legs_init(cub_bridge_legs *l, const cub_bridge_table *t, void *mem);
-/* A cut: what was shown at it and a frame before, the frame of the clip
- * playing then, and the new clip's frame (its raw pose dst). */
+/* A cut: what was shown at it, the frame of the clip playing then, and
+ * the new clip's frame (its raw pose dst). */
 typedef struct cub_bridge_cut {
-    const cub_pose *src, *src_prev, *dst;
+    const cub_pose *src, *dst;
     int src_clip, src_frame, to_clip, to_frame;
 } cub_bridge_cut;
 /* At a cut: which feet are held, where, which leg goes first and for how

@@ -235,19 +235,16 @@ static int stands(const cub_bridge_legs *l, const cub_bridge_table *t, int clip,
     return (l->contact[c->first_frame + f] >> s) & 1;
 }
 
-/* Foot s stands on the shown side of the cut: in the clip's frame, or on
- * the screen (low over that clip's floor and slow since the frame before:
- * a cut during a blend shows what the offset and the legs make of it). */
+/* Foot s stands on the shown side of the cut: in the clip's frame, or low
+ * on the screen (within the contact height of that clip's floor: a cut
+ * during a blend shows what the offset and the legs make of the clip, and
+ * a foot low there, moving or not, would slide if the offset carried it). */
 static int stands_shown(cub_bridge_legs *l, const cub_bridge_table *t, const cub_bridge_cut *c,
                         int s)
 {
     if (stands(l, t, c->src_clip, c->src_frame, s)) return 1;
-    const cub_skeleton *sk = t->desc.skel;
-    cub_motion_forward(sk, c->src_prev, l->world[1], NULL);
-    cub_vec3 now = foot_low(l, l->world[0], s), before = foot_low(l, l->world[1], s);
-    int64_t moved = cub_fx_vec3_length(cub_fx_vec3_sub(now, before));
-    return (int64_t)now.y - l->floor_mm[c->src_clip] < CONTACT_HEIGHT_MM &&
-           slow(moved, 1, t->clips[c->src_clip].clip.frame_ns);
+    cub_vec3 now = foot_low(l, l->world[0], s);
+    return (int64_t)now.y - l->floor_mm[c->src_clip] < CONTACT_HEIGHT_MM;
 }
 
 /* How high a step lifts a foot that travels travel_mm. */

@@ -347,7 +347,7 @@ static cub_err begin_blend(cub_bridge_player *p, int64_t src_pos_q16, int to_cli
     carry_velocity(p, src_prev, src, dst, dst_next, cub_fx_div(p->speed_q16, new_speed_q16));
     int n = clip_of(p, p->clip)->frame_count;
     int64_t f = src_pos_q16 >> 16;
-    cub_bridge_cut cut = {src, src_prev, dst, p->clip, (int)(p->loop ? f % n : f < n ? f : n - 1),
+    cub_bridge_cut cut = {src, dst, p->clip, (int)(p->loop ? f % n : f < n ? f : n - 1),
                           to_clip, to_frame};
     cub_bridge_legs_begin(&p->legs, p->desc.table, &cut);
     return CUB_OK;

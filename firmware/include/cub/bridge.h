@@ -289,8 +289,8 @@ typedef enum cub_bridge_smooth {
  * than 20 mm to go steps (is lifted). Standing is app/join's contact rule
  * (within 30 mm of the clip's floor, slower than 180 mm/s, in runs of at
  * least 3 frames), marked for every frame at init; on the shown side a
- * foot also stands when the pose on screen has it low and slow (a cut
- * during a blend: the screen is not the clip). Each leg gets as many
+ * foot also stands when the pose on screen has it low (a cut during a
+ * blend: the screen is not the clip). Each leg gets as many
  * frames as keep its step within blend_speed_mm a frame, at least
  * blend_frames. */
 #define CUB_BRIDGE_FOOT_JOINTS 4
