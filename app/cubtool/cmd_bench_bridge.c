@@ -13,7 +13,13 @@
  *                     jump cannot hide in the frames after the switch. Ours
  *                     carries the old clip's velocity over the cut and lets
  *                     it fade; that counts here as added, though it is the
- *                     old clip's own motion going on.
+ *                     old clip's own motion going on;
+ *   stance-foot slide: cubtool join's measure (a foot the playing clip's
+ *                     frame stands on, low on the screen on both frames:
+ *                     its ankle's horizontal travel), from the frame before
+ *                     the first switch to the blend's end, with the
+ *                     player's contacts. "inertial,no-legs" is ours with
+ *                     the leg phase off (docs/join.md).
  * --strict plans by the seed's rule (both ends of every switch a bridge
  * frame); --correct asks only for the correcting clips, as the box does
  * when a move went wrong (entry anywhere in their front half, and within

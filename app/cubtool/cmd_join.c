@@ -354,7 +354,8 @@ static int usage(FILE *f, int code)
                "  --out     write the seed's join (searched, legs one at a time) as BVH,\n"
                "            and the direct one as C.bvh.direct.bvh\n"
                "  --all     every ordered pair of the library's dance clips: the table, with\n"
-               "            today's box switch (bridge planner + player) from --assets DIR\n"
+               "            the box's switch (bridge planner + player, with and without its\n"
+               "            leg phase) from --assets DIR\n"
                "  --pairs   with --all, a line per pair\n");
     return code;
 }

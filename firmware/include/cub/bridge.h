@@ -18,7 +18,8 @@
  *            window (x2) up to one whole clip only when nothing is found.
  *   player   plays the coach: advances time, switches exactly at the
  *            planned frame, reports switches and clip ends, and gives the
- *            pose with the cut smoothed.
+ *            pose with the cut smoothed, planted feet held (the leg phase,
+ *            cub_bridge_legs below).
  *
  * Choosing the frame: the soonest upcoming frame within the threshold;
  * at that frame, the bridge frame whose body (joint positions, the root's
