@@ -259,6 +259,20 @@ static cub_q16 horizontal_mm(cub_vec3 a, cub_vec3 b)
     return cub_fx_vec3_length((cub_vec3){a.x - b.x, 0, a.z - b.z});
 }
 
+/* Frames a leg gets for a step of far_mm. The step moves in 0.4 of its
+ * phase, smoothstep (slope 1.5): 3.75 x far / len a frame at most; its
+ * lift rises and falls as sin^2(pi u): pi x lift / len a frame at most.
+ * Both within speed_mm. */
+static int leg_frames(const cub_bridge_legs *l, cub_q16 far_mm)
+{
+    int64_t n = ((int64_t)far_mm * 15 / 4 + l->speed_mm - 1) / l->speed_mm;
+    int64_t up = far_mm > STEP_MM ? lift_mm(far_mm) : 0;
+    int64_t n_up = (up * CUB_Q16_PI / CUB_Q16_ONE + l->speed_mm - 1) / l->speed_mm;
+    n = n < n_up ? n_up : n;
+    n = n < l->min_frames ? l->min_frames : n;
+    return n > CUB_BRIDGE_MAX_BLEND_FRAMES ? CUB_BRIDGE_MAX_BLEND_FRAMES : (int)n;
+}
+
 void cub_bridge_legs_begin(cub_bridge_legs *l, const cub_bridge_table *t, const cub_bridge_cut *c)
 {
     const cub_skeleton *sk = t->desc.skel;
@@ -286,16 +300,7 @@ void cub_bridge_legs_begin(cub_bridge_legs *l, const cub_bridge_table *t, const 
      * farther to go. */
     int one = l->planted == 1 || l->planted == 2;
     l->first = one ? (l->planted & 1) : travel[1] > travel[0];
-    /* A step moves in 0.4 of its leg's phase, smoothstep (slope 1.5):
-     * 3.75 x travel / len a frame at most; its lift rises and falls as
-     * sin^2(pi u): pi x lift / len a frame at most. Both within speed_mm. */
-    cub_q16 far = travel[0] > travel[1] ? travel[0] : travel[1];
-    int64_t n = ((int64_t)far * 15 / 4 + l->speed_mm - 1) / l->speed_mm;
-    int64_t up = far > STEP_MM ? lift_mm(far) : 0;
-    int64_t n_up = (up * CUB_Q16_PI / CUB_Q16_ONE + l->speed_mm - 1) / l->speed_mm;
-    n = n < n_up ? n_up : n;
-    n = n < l->min_frames ? l->min_frames : n;
-    l->len = n > CUB_BRIDGE_MAX_BLEND_FRAMES ? CUB_BRIDGE_MAX_BLEND_FRAMES : (int)n;
+    l->len = leg_frames(l, travel[0] > travel[1] ? travel[0] : travel[1]);
     l->on = 1;
 }
 
