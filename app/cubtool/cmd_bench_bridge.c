@@ -13,7 +13,13 @@
  *                     jump cannot hide in the frames after the switch. Ours
  *                     carries the old clip's velocity over the cut and lets
  *                     it fade; that counts here as added, though it is the
- *                     old clip's own motion going on.
+ *                     old clip's own motion going on;
+ *   stance-foot slide: cubtool join's measure (a foot the playing clip's
+ *                     frame stands on, low on the screen on both frames:
+ *                     its ankle's horizontal travel), from the frame before
+ *                     the first switch to the blend's end, with the
+ *                     player's contacts. "inertial,no-legs" is ours with
+ *                     the leg phase off (docs/join.md).
  * --strict plans by the seed's rule (both ends of every switch a bridge
  * frame); --correct asks only for the correcting clips, as the box does
  * when a move went wrong (entry anywhere in their front half, and within
@@ -100,10 +106,28 @@ typedef struct run {
     double arrive_ms;   /* request -> the switch into the wanted clip */
     double jump_cm;     /* across the first switch's frame */
     double blend_cm;    /* most joint speed the smoothing adds, first switch to blend end */
+    double slide_cm;    /* stance-foot slide, the frame before the first switch to blend end */
     int switches;       /* carried out, up to CUB_BRIDGE_MAX_STEPS: */
     cub_bridge_step step[CUB_BRIDGE_MAX_STEPS];
     double step_jump_cm[CUB_BRIDGE_MAX_STEPS]; /* across each switch's frame */
 } run;
+
+/* The feet the playing clip's frame stands on (the player's contacts:
+ * app/join's rule), and which of them are low on the screen now. */
+static unsigned stance_low(const cub_bridge_player *p, const cub_vec3 *world)
+{
+    const cub_bridge_legs *l = &p->legs;
+    if (!l->ok) return 0;
+    const cub_bridge_clip *c = &p->desc.table->clips[p->clip];
+    unsigned bits = l->contact[c->first_frame + (int)((p->pos_q16 >> 16) % c->clip.frame_count)];
+    for (int s = 0; s < 2; s++) {
+        cub_q16 low = CUB_Q16_MAX;
+        for (int k = 0; k < CUB_BRIDGE_FOOT_JOINTS && l->foot[s][k] >= 0; k++)
+            if (world[l->foot[s][k]].y < low) low = world[l->foot[s][k]].y;
+        if ((int64_t)low - l->floor_mm[p->clip] >= CUB_Q16_INT(30)) bits &= ~(1u << s);
+    }
+    return bits;
+}
 
 /* Play one switch: clip a from frame m (looping), request b at once. */
 static run play(const cub_coachlib *cl, cub_bridge_player *p, int a, int m, int b, int blend)
@@ -124,6 +148,8 @@ static run play(const cub_coachlib *cl, cub_bridge_player *p, int a, int m, int 
     cub_motion_forward(sk, &pose, prev, NULL);
     memcpy(raw_prev, prev, sizeof raw_prev);
     int first_tick = -1, quiet_after = -1;
+    unsigned stance_prev = stance_low(p, prev);
+    double slide_mm[2] = {0, 0};
     for (int t = 1; t < MAX_TICKS; t++) {
         cub_bridge_event ev[8];
         int n = 0;
@@ -133,6 +159,16 @@ static run play(const cub_coachlib *cl, cub_bridge_player *p, int a, int m, int 
         cub_bridge_player_raw_pose(p, &pose);
         cub_motion_forward(sk, &pose, raw_cur, NULL);
         double mv = max_move_cm(prev, cur, sk->joint_count);
+        /* A foot that stands, low, on both frames slides by its ankle's
+         * horizontal travel (as cubtool join measures it). */
+        unsigned stance = stance_low(p, cur);
+        for (int s = 0; s < 2 && p->legs.ok; s++) {
+            int aj = p->legs.ankle[s];
+            if (stance & stance_prev & (1u << s))
+                slide_mm[s] += hypot((cur[aj].x - prev[aj].x) / 65536.0,
+                                     (cur[aj].z - prev[aj].z) / 65536.0);
+        }
+        stance_prev = stance;
         /* What the smoothing adds to the clip's own motion: the largest
          * joint's move beyond the same joint's move in the raw clip. */
         double added = 0;
@@ -160,6 +196,7 @@ static run play(const cub_coachlib *cl, cub_bridge_player *p, int a, int m, int 
             }
         }
         if (first_tick >= 0 && !cut && added > r.blend_cm) r.blend_cm = added;
+        if (first_tick < 0) slide_mm[0] = slide_mm[1] = 0; /* before the switch */
         /* The window: the first switch until the plan is done and the
          * blend over, at least `blend` frames after the last switch. */
         if (first_tick >= 0 && cub_bridge_player_pending(p)) quiet_after = -1;
@@ -167,6 +204,7 @@ static run play(const cub_coachlib *cl, cub_bridge_player *p, int a, int m, int 
             quiet_after = t + blend;
         if (quiet_after >= 0 && t >= quiet_after && !p->blending) break;
     }
+    r.slide_cm = (slide_mm[0] > slide_mm[1] ? slide_mm[0] : slide_mm[1]) / 10.0;
     return r;
 }
 
@@ -251,9 +289,11 @@ static void tween_speeds(const cub_coachlib *cl, double *p99, double *top)
 typedef struct mode {
     const char *name;
     cub_bridge_smooth smooth;
-    stats jump, blend;
+    int no_legs;
+    stats jump, blend, slide;
     int over_p99;
 } mode;
+#define MODES 4
 
 static int usage(FILE *f, int code)
 {
@@ -335,13 +375,16 @@ int cub_cmd_bench_bridge(int argc, char **argv)
     double lib_p99 = pct(&all, 0.99), lib_max = all.n ? all.v[all.n - 1] : 0;
     double lib_joint_p99 = pct(&joints, 0.99), lib_median = pct(&all, 0.5);
 
-    mode modes[3] = {{.name = "ours(inertial)", .smooth = CUB_BRIDGE_SMOOTH_INERTIAL},
-                     {.name = "crossfade", .smooth = CUB_BRIDGE_SMOOTH_CROSSFADE},
-                     {.name = "naive-cut", .smooth = CUB_BRIDGE_SMOOTH_NONE}};
-    static cub_bridge_player players[3];
-    void *work[3];
-    for (int k = 0; k < 3; k++) {
+    mode modes[MODES] = {{.name = "ours(inertial)", .smooth = CUB_BRIDGE_SMOOTH_INERTIAL},
+                         {.name = "inertial,no-legs", .smooth = CUB_BRIDGE_SMOOTH_INERTIAL,
+                          .no_legs = 1},
+                         {.name = "crossfade", .smooth = CUB_BRIDGE_SMOOTH_CROSSFADE},
+                         {.name = "naive-cut", .smooth = CUB_BRIDGE_SMOOTH_NONE}};
+    static cub_bridge_player players[MODES];
+    void *work[MODES];
+    for (int k = 0; k < MODES; k++) {
         cub_bridge_player_desc pd = {.table = &cl.table, .smooth = modes[k].smooth,
+                                     .no_legs = modes[k].no_legs,
                                      .blend_frames = blend, .window_frames = window,
                                      .wait_cost_mm = wait_mm < 0 ? 0 : CUB_Q16_INT(wait_mm),
                                      .strict = strict, .via_tween = via_tween};
@@ -356,6 +399,8 @@ int cub_cmd_bench_bridge(int argc, char **argv)
     long switches = 0, tweens = 0, unreachable = 0, steps = 0, loose_ends = 0;
     run worst = {0};
     int worst_m = 0, worst_b = 0;
+    run slidest = {0};
+    int slidest_m = 0, slidest_b = 0;
     struct timespec t0, t1;
     clock_gettime(CLOCK_MONOTONIC, &t0);
     for (int a = 0; a < nc; a++)
@@ -363,7 +408,7 @@ int cub_cmd_bench_bridge(int argc, char **argv)
             if (!wanted(&cl, correct, b)) continue;
             int n = cl.lib.clips[a].clip.frame_count;
             for (int m = 0; m < n; m += step) {
-                for (int k = 0; k < 3; k++) {
+                for (int k = 0; k < MODES; k++) {
                     set_entry(&players[k], &cl, correct, b);
                     run r = play(&cl, &players[k], a, m, b, blend_frames);
                     if (!r.ok) {
@@ -371,8 +416,11 @@ int cub_cmd_bench_bridge(int argc, char **argv)
                         continue;
                     }
                     if (k == 0 && r.blend_cm > worst.blend_cm) worst = r, worst_m = m, worst_b = b;
+                    if (k == 0 && r.slide_cm > slidest.slide_cm)
+                        slidest = r, slidest_m = m, slidest_b = b;
                     push(&modes[k].jump, r.jump_cm);
                     push(&modes[k].blend, r.blend_cm);
+                    push(&modes[k].slide, r.slide_cm);
                     /* The clips the first switch joins (a tween's first
                      * step enters a clip on the way, not b). */
                     int to = r.first.to_clip;
@@ -409,14 +457,16 @@ int cub_cmd_bench_bridge(int argc, char **argv)
            "max=%.2f over the library's frames (every joint's samples: p99=%.2f); a jump is "
            "'over own p99' when above the p99 of both clips it joins\n",
            lib_median, lib_p99, lib_max, lib_joint_p99);
-    for (int k = 0; k < 3; k++) {
+    for (int k = 0; k < MODES; k++) {
         mode *md = &modes[k];
         double jm = pct(&md->jump, 1.0), bm = pct(&md->blend, 1.0); /* the largest */
-        printf("bench-bridge: jump at switch %-15s max=%.2f p95=%.2f median=%.2f cm/frame, "
-               "over own p99: %d of %zu (%.1f%%); added during blend max=%.2f p95=%.2f\n",
+        printf("bench-bridge: jump at switch %-16s max=%.2f p95=%.2f median=%.2f cm/frame, "
+               "over own p99: %d of %zu (%.1f%%); added during blend max=%.2f p95=%.2f; "
+               "stance-foot slide median=%.2f p95=%.2f max=%.2f cm\n",
                md->name, jm, pct(&md->jump, 0.95), pct(&md->jump, 0.5), md->over_p99, md->jump.n,
                md->jump.n ? 100.0 * md->over_p99 / (double)md->jump.n : 0.0, bm,
-               pct(&md->blend, 0.95));
+               pct(&md->blend, 0.95), pct(&md->slide, 0.5), pct(&md->slide, 0.95),
+               pct(&md->slide, 1.0));
     }
     print_routes(&rt, via_tween);
     const cub_bridge_step *w = &worst.first;
@@ -426,10 +476,16 @@ int cub_cmd_bench_bridge(int argc, char **argv)
            cl.lib.clips[w->from_clip].name, w->from_frame, cl.lib.clips[w->to_clip].name,
            w->to_frame, w->d / 65536.0, worst.tween ? "tween" : "direct", worst.jump_cm,
            worst.blend_cm);
+    const cub_bridge_step *ws = &slidest.first;
+    printf("bench-bridge: worst slide (ours): %s@%d requested %s: first switch -> %s@%d, "
+           "%d switches, slide %.2f cm\n",
+           cl.lib.clips[ws->from_clip].name, slidest_m, cl.lib.clips[slidest_b].name,
+           cl.lib.clips[ws->to_clip].name, ws->to_frame, slidest.switches, slidest.slide_cm);
     fprintf(stderr, "bench-bridge: %.1f s\n", secs);
-    for (int k = 0; k < 3; k++) {
+    for (int k = 0; k < MODES; k++) {
         free(modes[k].jump.v);
         free(modes[k].blend.v);
+        free(modes[k].slide.v);
         free(work[k]);
     }
     free(ours.v);

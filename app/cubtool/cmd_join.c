@@ -7,10 +7,14 @@
  *   direct+feet    the same, the legs one at a time (the other planted);
  *   searched-all   through C, every joint at once at both seams;
  *   searched       the seed's: through C, the legs one at a time;
- *   bridge(box)    today's box: the firmware's planner and player switch
- *                  from A (looping) into B's first frames (join_bridge.c);
+ *   bridge(box)    the box: the firmware's planner and player switch from
+ *                  A (looping) into B's first frames (join_bridge.c), the
+ *                  player's leg phase holding planted feet;
  *   tween(box)     the same with the seed's tween clip in the table: the
- *                  planner routes through it where no direct switch is. */
+ *                  planner routes through it where no direct switch is;
+ *   box,no-legs    bridge(box) with the leg phase off (the box before it).
+ * Per pair, it counts where the seed's join (searched) beats bridge(box):
+ * the route question of docs/join.md. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -142,24 +146,30 @@ static void row(const char *name, cub_tool_series *slide, cub_tool_series *jump)
            cub_tool_series_pct(jump, 0.95), cub_tool_series_pct(jump, 1.0));
 }
 
-/* Today's box (k = 0) and the box with the seed's tween (k = 1), over all
- * pairs and (tween) over the pairs it routed through the tween. */
+/* The box (k = 0), the box with the seed's tween (k = 1) and the box
+ * without its leg phase (k = 2), over all pairs and (tween) over the pairs
+ * it routed through the tween. */
+#define BOXES 3
 typedef struct box_rows {
-    cub_tool_series slide[2], jump[2], ms[2], tslide, tjump, tms;
+    cub_tool_series slide[BOXES], jump[BOXES], ms[BOXES], own[BOXES], tslide, tjump, tms;
+    cub_join_figures last[BOXES], last_own[BOXES]; /* the pair just measured (-1: not) */
 } box_rows;
 
 static void box_measure(join_bridge *jb, const cub_join_db *db, int a, int b, box_rows *br)
 {
-    for (int k = 0; k < 2; k++) {
-        cub_join_figures f = {0, 0};
-        double ms = 0;
-        int tweened = 0;
-        if (!jb[k].cl.lib.clip_count || join_bridge_measure(&jb[k], db, a, b, &f, &ms, &tweened))
-            continue;
+    for (int k = 0; k < BOXES; k++) {
+        br->last[k] = (cub_join_figures){-1, -1};
+        join_bridge_fig jf;
+        if (!jb[k].cl.lib.clip_count || join_bridge_measure(&jb[k], db, a, b, &jf)) continue;
+        cub_join_figures f = jf.fig;
+        double ms = jf.ms;
+        cub_tool_series_add(&br->own[k], jf.own.slide_cm, "join");
+        br->last_own[k] = jf.own;
+        br->last[k] = f;
         cub_tool_series_add(&br->slide[k], f.slide_cm, "join");
         cub_tool_series_add(&br->jump[k], f.jump_cm, "join");
         cub_tool_series_add(&br->ms[k], ms, "join");
-        if (!tweened) continue;
+        if (!jf.tweened) continue;
         cub_tool_series_add(&br->tslide, f.slide_cm, "join");
         cub_tool_series_add(&br->tjump, f.jump_cm, "join");
         cub_tool_series_add(&br->tms, ms, "join");
@@ -168,8 +178,8 @@ static void box_measure(join_bridge *jb, const cub_join_db *db, int a, int b, bo
 
 static void box_print(box_rows *br)
 {
-    static const char *const name[2] = {"bridge(box)", "tween(box)"};
-    for (int k = 0; k < 2; k++) {
+    static const char *const name[BOXES] = {"bridge(box)", "tween(box)", "box,no-legs"};
+    for (int k = 0; k < BOXES; k++) {
         if (!br->slide[k].n) {
             printf("join --all: %-13s not measured (no assets)\n", name[k]);
             continue;
@@ -179,6 +189,10 @@ static void box_print(box_rows *br)
                "max=%.0f ms\n",
                name[k], br->slide[k].n, cub_tool_series_pct(&br->ms[k], 0.5),
                cub_tool_series_pct(&br->ms[k], 0.95), cub_tool_series_pct(&br->ms[k], 1.0));
+        printf("join --all: %-13s the clips' own slide over the same frames (unsmoothed) "
+               "median=%.2f p95=%.2f max=%.2f cm\n",
+               name[k], cub_tool_series_pct(&br->own[k], 0.5),
+               cub_tool_series_pct(&br->own[k], 0.95), cub_tool_series_pct(&br->own[k], 1.0));
     }
     printf("join --all: tween(box) went through the tween clip on %zu pairs", br->tslide.n);
     if (br->tslide.n)
@@ -192,8 +206,8 @@ static void box_print(box_rows *br)
 
 static void box_free(box_rows *br)
 {
-    for (int k = 0; k < 2; k++)
-        free(br->slide[k].v), free(br->jump[k].v), free(br->ms[k].v);
+    for (int k = 0; k < BOXES; k++)
+        free(br->slide[k].v), free(br->jump[k].v), free(br->ms[k].v), free(br->own[k].v);
     free(br->tslide.v), free(br->tjump.v), free(br->tms.v);
 }
 
@@ -201,7 +215,38 @@ static void box_free(box_rows *br)
 typedef struct tally {
     cub_tool_series slide[METHODS], jump[METHODS], dd, ds;
     int pairs, better, self_c;
+    cub_join_figures last[METHODS]; /* the pair just measured */
+    /* pairs where the seed's join beats bridge(box): by slide, by more
+     * than 1 cm of slide, by jump, by both */
+    int box_pairs, beat_slide, beat_slide_1cm, beat_jump, beat_both, beat_excess;
+    int clear, clear_jump; /* searched's slide > 1 cm below the box's excess (and jump) */
+    double widest;         /* the widest such margin, cm */
+    char widest_pair[2 * CUB_MOTION_NAME_LEN + 8];
+    cub_tool_series excess; /* bridge(box)'s slide beyond its clips' own, per pair */
 } tally;
+
+/* The route question, per pair: does the seed's searched join beat the box? */
+static void compare_box(tally *t, const box_rows *br, const char *a, const char *b)
+{
+    const cub_join_figures *s = &t->last[SEARCHED], *x = &br->last[0];
+    if (x->slide_cm < 0) return;
+    t->box_pairs++;
+    t->beat_slide += s->slide_cm < x->slide_cm;
+    t->beat_slide_1cm += s->slide_cm < x->slide_cm - 1.0;
+    t->beat_jump += s->jump_cm < x->jump_cm;
+    t->beat_both += s->slide_cm < x->slide_cm && s->jump_cm < x->jump_cm;
+    double excess = x->slide_cm - br->last_own[0].slide_cm;
+    t->beat_excess += s->slide_cm < excess;
+    if (s->slide_cm < excess - 1.0) {
+        t->clear++;
+        t->clear_jump += s->jump_cm < x->jump_cm;
+        if (excess - s->slide_cm > t->widest) {
+            t->widest = excess - s->slide_cm;
+            snprintf(t->widest_pair, sizeof t->widest_pair, "%s -> %s", a, b);
+        }
+    }
+    cub_tool_series_add(&t->excess, excess, "join");
+}
 
 /* Search, join by every method and measure one pair. 0 ok (or no C). */
 static int one_pair(const cub_join_db *db, int a, int b, int verbose, tally *t)
@@ -221,6 +266,7 @@ static int one_pair(const cub_join_db *db, int a, int b, int verbose, tally *t)
         }
         cub_tool_series_add(&t->slide[m], fig[m].slide_cm, "join");
         cub_tool_series_add(&t->jump[m], fig[m].jump_cm, "join");
+        t->last[m] = fig[m];
     }
     if (verbose)
         printf("join pair %s -> %s: C=%s@%d-%d rms direct %.2f searched %.2f+%.2f cm; "
@@ -258,12 +304,33 @@ static int join_all(join_src *src, join_bridge *jb, int verbose)
         for (int b = 0; b < db->count && !rc; b++) {
             if (a == b || !paired(src, a) || !paired(src, b)) continue;
             rc = one_pair(db, a, b, verbose, &t);
-            if (jb && !rc) box_measure(jb, db, a, b, &br);
+            if (!jb || rc) continue;
+            box_measure(jb, db, a, b, &br);
+            compare_box(&t, &br, db->clips[a].name, db->clips[b].name);
+            if (verbose && br.last[0].slide_cm >= 0)
+                printf("join pair %s -> %s: box slide %.2f cm (own %.2f) jump %.2f; no legs "
+                       "slide %.2f jump %.2f\n",
+                       db->clips[a].name, db->clips[b].name, br.last[0].slide_cm,
+                       br.last_own[0].slide_cm, br.last[0].jump_cm, br.last[2].slide_cm,
+                       br.last[2].jump_cm);
         }
     clock_gettime(CLOCK_MONOTONIC, &t1);
     if (!rc) {
         print_tally(db, &t);
         if (jb) box_print(&br);
+        if (t.box_pairs)
+            printf("join --all: searched (the seed's) beats bridge(box) on %d of %d pairs by "
+                   "slide (by more than 1 cm: %d), on %d by jump, on %d by both\n",
+                   t.beat_slide, t.box_pairs, t.beat_slide_1cm, t.beat_jump, t.beat_both);
+        if (t.box_pairs)
+            printf("join --all: bridge(box)'s slide beyond its clips' own over the same frames "
+                   "median=%.2f p95=%.2f max=%.2f cm; searched's slide is below it on %d pairs\n",
+                   cub_tool_series_pct(&t.excess, 0.5), cub_tool_series_pct(&t.excess, 0.95),
+                   cub_tool_series_pct(&t.excess, 1.0), t.beat_excess);
+        if (t.box_pairs)
+            printf("join --all: searched's slide is more than 1 cm below that on %d pairs (its "
+                   "jump also below the box's on %d); the widest margin %.2f cm (%s)\n",
+                   t.clear, t.clear_jump, t.widest, t.clear ? t.widest_pair : "-");
         printf("join --all: the paired clips' own velocity change p99=%.2f cm/f2\n",
                own_jump_p99(db, src));
         fprintf(stderr, "join --all: %.1f s\n",
@@ -271,7 +338,7 @@ static int join_all(join_src *src, join_bridge *jb, int verbose)
     }
     for (int m = 0; m < METHODS; m++)
         free(t.slide[m].v), free(t.jump[m].v);
-    free(t.dd.v), free(t.ds.v);
+    free(t.dd.v), free(t.ds.v), free(t.excess.v);
     box_free(&br);
     return rc ? 1 : 0;
 }
@@ -287,7 +354,8 @@ static int usage(FILE *f, int code)
                "  --out     write the seed's join (searched, legs one at a time) as BVH,\n"
                "            and the direct one as C.bvh.direct.bvh\n"
                "  --all     every ordered pair of the library's dance clips: the table, with\n"
-               "            today's box switch (bridge planner + player) from --assets DIR\n"
+               "            the box's switch (bridge planner + player, with and without its\n"
+               "            leg phase) from --assets DIR\n"
                "  --pairs   with --all, a line per pair\n");
     return code;
 }
@@ -321,19 +389,21 @@ int cub_cmd_join(int argc, char **argv)
     }
     if (all ? npos != 0 : npos != 2) return usage(stderr, 2);
     static join_src src;
-    static join_bridge jb[2];
+    static join_bridge jb[BOXES];
     char lib_path[4096];
     snprintf(lib_path, sizeof lib_path, "%s/clips/bear.cubclips", assets);
     cub_join_cfg cfg = {0};
     int rc = join_src_add(&src, lib ? lib : lib_path, &cfg) ? 1 : 0;
     for (int i = 0; !rc && i < ndb; i++)
         rc = join_src_add(&src, db_files[i], &cfg) ? 1 : 0;
-    int have_jb = !rc && all && !join_bridge_open(&jb[0], assets, &src.db, 0);
-    if (have_jb && join_bridge_open(&jb[1], assets, &src.db, 1)) memset(&jb[1], 0, sizeof jb[1]);
+    int have_jb = !rc && all && !join_bridge_open(&jb[0], assets, &src.db, 0, 1);
+    if (have_jb && join_bridge_open(&jb[1], assets, &src.db, 1, 1)) memset(&jb[1], 0, sizeof jb[1]);
+    if (have_jb && join_bridge_open(&jb[2], assets, &src.db, 0, 0)) memset(&jb[2], 0, sizeof jb[2]);
     if (!rc)
         rc = all ? join_all(&src, have_jb ? jb : NULL, verbose)
                  : join_one(&src, pos[0], pos[1], out, &cfg);
-    if (have_jb) join_bridge_close(&jb[0]), join_bridge_close(&jb[1]);
+    for (int k = 0; have_jb && k < BOXES; k++)
+        join_bridge_close(&jb[k]);
     join_src_free(&src);
     return rc;
 }

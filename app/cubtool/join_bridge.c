@@ -8,7 +8,8 @@
 #define MAX_TICKS 240
 #define START_FRAMES 4 /* the director's start_frames default */
 
-int join_bridge_open(join_bridge *jb, const char *assets, const cub_join_db *db, int via_tween)
+int join_bridge_open(join_bridge *jb, const char *assets, const cub_join_db *db, int via_tween,
+                     int legs)
 {
     cub_diag d = {0};
     char msg[600];
@@ -27,7 +28,8 @@ int join_bridge_open(join_bridge *jb, const char *assets, const cub_join_db *db,
         return -1;
     }
     cub_bridge_player_desc pd = {
-        .table = &jb->cl.table, .smooth = CUB_BRIDGE_SMOOTH_INERTIAL, .via_tween = via_tween};
+        .table = &jb->cl.table, .smooth = CUB_BRIDGE_SMOOTH_INERTIAL, .via_tween = via_tween,
+        .no_legs = !legs};
     size_t ws = cub_bridge_player_mem_size(&pd);
     jb->work = malloc(ws);
     jb->db_of = malloc(sizeof(int) * (size_t)jb->cl.table.desc.clip_count);
@@ -69,24 +71,36 @@ static unsigned char stance_now(const join_bridge *jb, const cub_join_db *db)
     return (unsigned char)(jc->foot[0][f] | jc->foot[1][f] << 1);
 }
 
-/* Play until the plan is done and the blend over; the shown poses into r
- * (frames allocated by the caller, MAX_TICKS + 1). Returns the first
- * switch's tick, or -1. */
-static int play(join_bridge *jb, const cub_join_db *db, cub_join_result *r, double *ms)
+/* The poses of one switch: shown (smoothed) and the clips' own (raw). */
+typedef struct played {
+    cub_join_result shown, raw;
+} played;
+
+static void put(join_bridge *jb, const cub_join_db *db, played *pl, int t, int cut)
 {
     static cub_pose pose;
+    cub_bridge_player_pose(&jb->player, &pose);
+    cub_motion_clip_set_frame(&pl->shown.clip, t, &pose);
+    cub_bridge_player_raw_pose(&jb->player, &pose);
+    cub_motion_clip_set_frame(&pl->raw.clip, t, &pose);
+    pl->shown.stance[t] = stance_now(jb, db);
+    /* The raw clips jump at a cut: no foot stands across it there. */
+    pl->raw.stance[t] = cut ? 0 : pl->shown.stance[t];
+}
+
+/* Play until the plan is done and the blend over, the poses into pl
+ * (frames allocated by the caller, MAX_TICKS + 1). Returns the first
+ * switch's tick, or -1. */
+static int play(join_bridge *jb, const cub_join_db *db, played *pl, double *ms)
+{
     cub_bridge_player *p = &jb->player;
     int first = -1, t = 0;
-    cub_bridge_player_pose(p, &pose);
-    cub_motion_clip_set_frame(&r->clip, 0, &pose);
-    r->stance[0] = stance_now(jb, db);
+    put(jb, db, pl, 0, 0);
     for (t = 1; t <= MAX_TICKS; t++) {
         cub_bridge_event ev[8];
         int n = 0;
         cub_bridge_player_advance(p, TICK_US, ev, 8, &n);
-        cub_bridge_player_pose(p, &pose);
-        cub_motion_clip_set_frame(&r->clip, t, &pose);
-        r->stance[t] = stance_now(jb, db);
+        put(jb, db, pl, t, n > 0);
         for (int i = 0; i < n; i++)
             if (ev[i].type == CUB_BRIDGE_EV_SWITCH && first < 0) {
                 first = t;
@@ -94,12 +108,31 @@ static int play(join_bridge *jb, const cub_join_db *db, cub_join_result *r, doub
             }
         if (first >= 0 && !cub_bridge_player_pending(p) && !p->blending) break;
     }
-    r->clip.frame_count = t <= MAX_TICKS ? t + 1 : MAX_TICKS + 1;
+    int frames = t <= MAX_TICKS ? t + 1 : MAX_TICKS + 1;
+    pl->shown.clip.frame_count = pl->raw.clip.frame_count = frames;
     return first;
 }
 
-int join_bridge_measure(join_bridge *jb, const cub_join_db *db, int a, int b, cub_join_figures *out,
-                        double *ms, int *tweened)
+static int alloc_result(const cub_join_db *db, cub_join_result *r)
+{
+    size_t size = cub_motion_clip_mem_size(db->skel->joint_count, MAX_TICKS + 1, 0);
+    r->mem = malloc(size);
+    r->stance = calloc(MAX_TICKS + 1, 1);
+    return r->mem && r->stance &&
+           !cub_motion_clip_init(&r->clip, db->skel, MAX_TICKS + 1, 33333333, 0, r->mem, size);
+}
+
+/* The join: from the frame before the switch to the blend's end. */
+static cub_join_figures measure(const cub_join_db *db, int a, int first, cub_join_result *r)
+{
+    r->windows = 1;
+    r->win_first[0] = first;
+    r->win_frames[0] = r->clip.frame_count - 1 - first;
+    r->floor_mm = db->clips[a].floor_mm;
+    return cub_join_measure(db, r);
+}
+
+int join_bridge_measure(join_bridge *jb, const cub_join_db *db, int a, int b, join_bridge_fig *out)
 {
     int la = lib_of(jb, a), lb = lib_of(jb, b);
     if (la < 0 || lb < 0) return -1;
@@ -109,25 +142,19 @@ int join_bridge_measure(join_bridge *jb, const cub_join_db *db, int a, int b, cu
     if (cub_bridge_player_start(&jb->player, la, na - w, 0, 1) ||
         cub_bridge_player_request(&jb->player, lb, 0, 0, &plan))
         return -1;
-    *tweened = 0;
+    memset(out, 0, sizeof *out);
     for (int i = 0; i < plan.step_count; i++)
-        *tweened |= jb->via_tween && plan.step[i].to_clip == jb->cl.tween_index;
-    cub_join_result r = {0};
-    size_t size = cub_motion_clip_mem_size(db->skel->joint_count, MAX_TICKS + 1, 0);
-    r.mem = malloc(size);
-    r.stance = calloc(MAX_TICKS + 1, 1);
-    int ok = r.mem && r.stance &&
-             !cub_motion_clip_init(&r.clip, db->skel, MAX_TICKS + 1, 33333333, 0, r.mem, size);
-    int first = ok ? play(jb, db, &r, ms) : -1;
+        out->tweened |= jb->via_tween && plan.step[i].to_clip == jb->cl.tween_index;
+    played pl;
+    memset(&pl, 0, sizeof pl);
+    int ok = alloc_result(db, &pl.shown) && alloc_result(db, &pl.raw);
+    int first = ok ? play(jb, db, &pl, &out->ms) : -1;
     if (first >= 0) {
-        /* The join: from the frame before the switch to the blend's end. */
-        r.windows = 1;
-        r.win_first[0] = first;
-        r.win_frames[0] = r.clip.frame_count - 1 - first;
-        r.floor_mm = db->clips[a].floor_mm;
-        *out = cub_join_measure(db, &r);
+        out->fig = measure(db, a, first, &pl.shown);
+        out->own = measure(db, a, first, &pl.raw);
     }
-    cub_join_result_free(&r);
+    cub_join_result_free(&pl.shown);
+    cub_join_result_free(&pl.raw);
     return first >= 0 ? 0 : -1;
 }
 

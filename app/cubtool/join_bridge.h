@@ -1,5 +1,5 @@
-/* join_bridge — today's box switch (firmware/bridge's planner and player,
- * inertial smoothing) on the same joins `cubtool join --all` measures:
+/* join_bridge — the box's switch (firmware/bridge's planner and player,
+ * inertial smoothing, with or without its leg phase) on the same joins `cubtool join --all` measures:
  * clip A playing (looped, as a move does) from its last window of frames,
  * then B asked for and entered at one of its first frames as the director
  * enters a move; the poses the player shows from the request until its
@@ -22,13 +22,21 @@ typedef struct join_bridge {
 } join_bridge;
 
 /* Load the shipped assets' library, tags and bear (and build the tween
- * when via_tween). 0 ok, -1 (stderr). */
-int join_bridge_open(join_bridge *jb, const char *assets, const cub_join_db *db, int via_tween);
+ * when via_tween); legs = 0 turns the player's leg phase off. 0 ok, -1
+ * (stderr). */
+int join_bridge_open(join_bridge *jb, const char *assets, const cub_join_db *db, int via_tween,
+                     int legs);
+typedef struct join_bridge_fig {
+    cub_join_figures fig; /* what the player shows */
+    cub_join_figures own; /* the clips it plays, unsmoothed, over the same frames
+                             (no foot counted across a cut): their own slide */
+    double ms;            /* request to first switch */
+    int tweened;          /* the route passes the tween clip */
+} join_bridge_fig;
+
 /* The figures of switching from db clip a to db clip b; -1 when either is
- * not in the library or no route exists. ms: request to first switch;
- * *tweened: the route passes the tween clip. */
-int join_bridge_measure(join_bridge *jb, const cub_join_db *db, int a, int b, cub_join_figures *out,
-                        double *ms, int *tweened);
+ * not in the library or no route exists. */
+int join_bridge_measure(join_bridge *jb, const cub_join_db *db, int a, int b, join_bridge_fig *out);
 void join_bridge_close(join_bridge *jb);
 
 #endif

@@ -31,7 +31,8 @@ static const cub_clip *clip_of(const cub_bridge_player *p, int c)
 
 size_t cub_bridge_player_mem_size(const cub_bridge_player_desc *desc)
 {
-    return desc ? cub_bridge_plan_work_size(desc->table) : 0;
+    if (!desc) return 0;
+    return cub_bridge_plan_work_size(desc->table) + cub_bridge_legs_mem_size(desc->table);
 }
 
 cub_err cub_bridge_player_init(cub_bridge_player *p, const cub_bridge_player_desc *desc,
@@ -41,7 +42,8 @@ cub_err cub_bridge_player_init(cub_bridge_player *p, const cub_bridge_player_des
     if (desc->blend_frames < 0 || desc->blend_frames > CUB_BRIDGE_MAX_BLEND_FRAMES ||
         desc->window_frames < 0 || desc->wait_cost_mm < 0 || desc->blend_speed_mm < 0 ||
         desc->smooth < CUB_BRIDGE_SMOOTH_INERTIAL ||
-        desc->smooth > CUB_BRIDGE_SMOOTH_CROSSFADE || desc->via_tween < 0 || desc->via_tween > 1)
+        desc->smooth > CUB_BRIDGE_SMOOTH_CROSSFADE || desc->via_tween < 0 || desc->via_tween > 1 ||
+        desc->no_legs < 0 || desc->no_legs > 1)
         return CUB_ERR_ARG;
     if (mem_size < cub_bridge_player_mem_size(desc)) return CUB_ERR_NOMEM;
     memset(p, 0, sizeof *p);
@@ -50,7 +52,13 @@ cub_err cub_bridge_player_init(cub_bridge_player *p, const cub_bridge_player_des
     if (!p->desc.window_frames) p->desc.window_frames = CUB_BRIDGE_WINDOW_FRAMES;
     if (!p->desc.blend_speed_mm) p->desc.blend_speed_mm = CUB_BRIDGE_BLEND_SPEED_MM;
     p->work = mem;
-    p->work_size = mem_size;
+    p->work_size = cub_bridge_plan_work_size(desc->table);
+    p->legs.speed_mm = p->desc.blend_speed_mm;
+    p->legs.min_frames = p->desc.blend_frames;
+    /* The contacts are marked either way (bench-bridge measures slides
+     * with them); the leg phase runs only on inertial cuts. */
+    p->legs.enabled = !desc->no_legs && desc->smooth == CUB_BRIDGE_SMOOTH_INERTIAL;
+    cub_bridge_legs_init(&p->legs, desc->table, (uint8_t *)mem + p->work_size);
     p->speed_q16 = CUB_Q16_ONE;
     p->clip = -1;
     return CUB_OK;
@@ -208,12 +216,14 @@ cub_err cub_bridge_player_pose(cub_bridge_player *p, cub_pose *out)
     int64_t progress = p->pos_q16 - p->blend_from_q16;
     cub_q16 w = fade_weight(progress, p->blend_len);
     cub_q16 w_xz = fade_weight(progress, p->root_len);
-    if (w == 0 && w_xz == 0) {
+    if (w == 0 && w_xz == 0 && progress >= (int64_t)cub_bridge_legs_frames(&p->legs) << 16) {
         p->blending = 0;
         return CUB_OK;
     }
     if (p->desc.smooth == CUB_BRIDGE_SMOOTH_INERTIAL) {
+        if (p->legs.on) p->legs.raw = *out;
         apply_offset(p, w, w_xz, vel_weight(progress, p->vel_len), out);
+        cub_bridge_legs_apply(&p->legs, p->desc.table->desc.skel, &p->legs.raw, progress, out);
         return CUB_OK;
     }
     e = sample(clip_of(p, p->old_clip), p->old_pos_q16, p->old_loop, &p->scratch[1],
@@ -335,6 +345,11 @@ static cub_err begin_blend(cub_bridge_player *p, int64_t src_pos_q16, int to_cli
         return CUB_OK;
     }
     carry_velocity(p, src_prev, src, dst, dst_next, cub_fx_div(p->speed_q16, new_speed_q16));
+    int n = clip_of(p, p->clip)->frame_count;
+    int64_t f = src_pos_q16 >> 16;
+    cub_bridge_cut cut = {src, dst, p->clip, (int)(p->loop ? f % n : f < n ? f : n - 1),
+                          to_clip, to_frame};
+    cub_bridge_legs_begin(&p->legs, p->desc.table, &cut);
     return CUB_OK;
 }
 

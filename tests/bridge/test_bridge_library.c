@@ -43,7 +43,11 @@ static int setup(void **state)
         fprintf(stderr, "bridge: %s\n", cub_diag_str(&d, buf, sizeof buf));
         return -1;
     }
-    g_work_size = cub_bridge_plan_work_size(&g_cl.table);
+    /* Enough for the planner alone and for the player (its contacts too). */
+    cub_bridge_player_desc pd = {.table = &g_cl.table};
+    g_work_size = cub_bridge_player_mem_size(&pd);
+    if (g_work_size < cub_bridge_plan_work_size(&g_cl.table))
+        g_work_size = cub_bridge_plan_work_size(&g_cl.table);
     g_work = malloc(g_work_size);
     *state = g_work ? &g_cl : NULL;
     return g_work ? 0 : -1;

@@ -18,7 +18,8 @@
  *            window (x2) up to one whole clip only when nothing is found.
  *   player   plays the coach: advances time, switches exactly at the
  *            planned frame, reports switches and clip ends, and gives the
- *            pose with the cut smoothed.
+ *            pose with the cut smoothed, planted feet held (the leg phase,
+ *            cub_bridge_legs below).
  *
  * Choosing the frame: the soonest upcoming frame within the threshold;
  * at that frame, the bridge frame whose body (joint positions, the root's
@@ -281,6 +282,43 @@ typedef enum cub_bridge_smooth {
     CUB_BRIDGE_SMOOTH_CROSSFADE,    /* nlerp old -> new clip (for measuring) */
 } cub_bridge_smooth;
 
+/* The player's leg phase (firmware/bridge/bridge_legs.c; docs/join.md): at
+ * an inertial cut where a foot stands (on the shown side, or in the new
+ * clip within its first blend_frames frames), a foot that stands on the
+ * shown side (a foot planted on both sides among them) is held where it
+ * stands by a two-bone leg IK while the offset fades, and the legs go over
+ * to where the new clip puts them one at a time (the free one first) while
+ * the other stays planted; a foot with more than 20 mm to go steps (is
+ * lifted). Standing is app/join's contact rule
+ * (within 30 mm of the clip's floor, slower than 180 mm/s, in runs of at
+ * least 3 frames), marked for every frame at init; on the shown side a
+ * foot also stands when the pose on screen has it low (a cut during a
+ * blend: the screen is not the clip). Each leg gets as many
+ * frames as keep its step within blend_speed_mm a frame, at least
+ * blend_frames. */
+#define CUB_BRIDGE_FOOT_JOINTS 4
+
+typedef struct cub_bridge_legs {
+    int ok;                         /* legs found (the fuzzy body's hip, knee, ankle) */
+    int enabled;                    /* the leg phase runs (inertial, not no_legs) */
+    int16_t hip[2], knee[2], ankle[2];
+    int16_t foot[2][CUB_BRIDGE_FOOT_JOINTS]; /* the ankle and what hangs below, -1 ends */
+    const uint8_t *contact;         /* [frame_total] bit s: foot s stands (player memory) */
+    const cub_q16 *floor_mm;        /* [clip_count] each clip's floor: its lowest foot point */
+    cub_q16 speed_mm;               /* a step moves at most this a frame (the blend's) */
+    int min_frames;                 /* each leg gets at least this (the shortest blend) */
+    /* this blend */
+    int on;                         /* a foot is held: the leg phase runs */
+    int first, len;                 /* the leg that goes first; frames each leg gets */
+    uint8_t planted;                /* bit s: foot s stands on both sides of the cut */
+    cub_vec3 hold_mm[2];            /* where a planted ankle stood at the cut */
+    cub_quat hold_rot[2];           /* and its world rotation */
+    /* scratch */
+    cub_pose raw;
+    cub_vec3 world[2][CUB_MOTION_MAX_JOINTS];
+    cub_quat wrot[2][CUB_MOTION_MAX_JOINTS];
+} cub_bridge_legs;
+
 typedef struct cub_bridge_player_desc {
     const cub_bridge_table *table; /* finished */
     cub_bridge_smooth smooth;
@@ -294,6 +332,8 @@ typedef struct cub_bridge_player_desc {
     int reach_frames;     /* the planner's, see cub_bridge_query; 0 = off */
     int strict;           /* the planner's, see cub_bridge_query; 0 = off */
     int via_tween;        /* the planner's, see cub_bridge_query; 0 = off */
+    int no_legs;          /* 1: no leg phase (for measuring); 0: inertial cuts hold
+                             planted feet (cub_bridge_legs) */
 } cub_bridge_player_desc;
 
 typedef enum cub_bridge_event_type {
@@ -341,9 +381,10 @@ typedef struct cub_bridge_player {
     int64_t old_pos_q16;
     cub_q16 old_speed_q16;
     cub_pose scratch[5];
+    cub_bridge_legs legs;
 } cub_bridge_player;
 
-/* Bytes of scratch memory the player needs (the planner's work). */
+/* Bytes of memory the player needs (the planner's work, the feet's contacts). */
 size_t cub_bridge_player_mem_size(const cub_bridge_player_desc *desc);
 /* CUB_ERR_ARG (no table, unfinished, bad blend), CUB_ERR_NOMEM. */
 cub_err cub_bridge_player_init(cub_bridge_player *p, const cub_bridge_player_desc *desc,
