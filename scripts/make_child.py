@@ -143,6 +143,23 @@ def cog_y(w):
     return s / sum(2 * k for k, _, _ in seg)
 
 
+def legs(w):
+    """The mean length of the two legs, hip-knee-ankle (the judge's unit of
+    a foot's lift)."""
+    n = sum(math.dist(w[J[a + s]], w[J[b + s]]) for s in ("_l", "_r")
+            for a, b in (("hip", "knee"), ("knee", "ankle")))
+    return max(n / 2, 1e-9)
+
+
+def key_membership(frame, feat, s):
+    """A key's membership as the judge reads it: a leg is out only as far
+    as its foot is lifted above the other (cub/judge.h, kick_lift 0.10)."""
+    m = membership(feat, s, frame[feat])
+    if feat in ("RF", "LF") and s == "outward":
+        m = min(m, ramp(frame[feat + "_lift"], 0.05, 0.15))
+    return m
+
+
 def features(w, floor_y, stand_cog):
     """The ten inputs of one frame (w: 20 joints, camera space, y up)."""
     f = {}
@@ -158,6 +175,7 @@ def features(w, floor_y, stand_cog):
         f[p + "F"] = 90 - angle(thigh, out)
         f[p + "FK"] = angle(sub(w[J["hip_" + side]], w[J["knee_" + side]]),
                             sub(w[J["ankle_" + side]], w[J["knee_" + side]]))
+        f[p + "F_lift"] = (w[J["ankle_" + side]][1] - w[J["ankle_" + other]][1]) / legs(w)
     f["Posture"] = 80 * (cog_y(w) - floor_y) / stand_cog
     thighs = tuple(a + b for a, b in zip(sub(w[J["knee_l"]], w[J["hip_l"]]),
                                          sub(w[J["knee_r"]], w[J["hip_r"]])))
@@ -619,7 +637,7 @@ def cmd_scan(truth, keys, t_from, t_to, every):
     step = max(1, int(round(every * fps)))
     for i in range(int(t_from * fps), min(len(feats), int(t_to * fps) + 1), step):
         f = feats[i]
-        mus = [membership(a, s, f[a]) for a, s in ks]
+        mus = [key_membership(f, a, s) for a, s in ks]
         print("%5.2f " % (i / fps) + " ".join("%9.2f" % m for m in mus) + "   " +
               " ".join("%s=%.0f" % (a, f[a]) for a, _ in ks))
 
@@ -638,10 +656,10 @@ def cmd_check(song_path, plan_path, truth, cues_path):
             continue
         i0, i1 = int(round(t0 * FPS)), min(len(feats), int(round((t1 + song["beat"]) * FPS)))
         keys = song["moves"][mi]["keys"]
-        cols = [(f + "=" + s, held([membership(f, s, feats[k][f]) for k in range(i0, i1)]))
+        cols = [(f + "=" + s, held([key_membership(feats[k], f, s) for k in range(i0, i1)]))
                 for f, s in keys]
         # the judge needs every key >= 0.5 in the same frames, held 100 ms
-        both = held([min(membership(f, s, feats[k][f]) for f, s in keys) for k in range(i0, i1)])
+        both = held([min(key_membership(feats[k], f, s) for f, s in keys) for k in range(i0, i1)])
         cols.append(("all", both))
         good = (both >= 0.5) == (tag == "right")
         ok &= good

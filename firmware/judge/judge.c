@@ -29,6 +29,7 @@ static void fill_defaults(cub_judge_desc *d)
     if (!d->wave_gap_ms) d->wave_gap_ms = 2000;
     if (!d->lag_ms) d->lag_ms = 500;
     if (!d->sign_ms) d->sign_ms = 250;
+    if (!d->kick_lift) d->kick_lift = PCT(10);
 }
 
 static int desc_ok(const cub_judge_desc *d)
@@ -38,7 +39,7 @@ static int desc_ok(const cub_judge_desc *d)
     for (size_t i = 0; i < sizeof ms / sizeof ms[0]; i++)
         if (ms[i] < 0 || ms[i] > 60000) return 0;
     const cub_q16 ratio[] = {d->pose_d_max, d->clap_meet, d->clap_open, d->clap_part,
-                             d->wave_swing, d->clap_speed, d->clap_slack};
+                             d->wave_swing, d->clap_speed, d->clap_slack, d->kick_lift};
     for (size_t i = 0; i < sizeof ratio / sizeof ratio[0]; i++)
         if (ratio[i] < 0 || ratio[i] > CUB_Q16_INT(8)) return 0;
     return d->key_mu <= CUB_FUZZY_ONE && d->present_frames > 0 && d->present_frames <= 1000 &&
@@ -157,6 +158,42 @@ static cub_err arm_aware_features(cub_judge *j, const cub_track_skeleton *skel)
     return CUB_OK;
 }
 
+/* How far a foot is lifted, 0..CUB_FUZZY_ONE: its ankle's height above the
+ * other ankle in lengths of the legs (their mean, hip-knee-ankle), 0 at
+ * kick_lift / 2 (a foot on the floor reads less: the Kinect's jitter and a
+ * raised heel), 1 at 3/2 kick_lift (a kick: a straight leg swung out 30
+ * degrees lifts its foot 0.13 of its length, 45 degrees 0.29). The other
+ * ankle is the body's lowest point while the foot is off the floor, so the
+ * floor need not be known, and a jump, which lifts both, lifts neither. */
+static uint16_t foot_lift(const cub_judge *j, const cub_vec3 *w, int side)
+{
+    const cub_fuzzy_body *b = &j->body;
+    int64_t legs = 0;
+    for (int k = 0; k < 2; k++)
+        legs += judge_dist_mm(w[b->hip[k]], w[b->knee[k]]) +
+                judge_dist_mm(w[b->knee[k]], w[b->ankle[k]]);
+    if (legs <= 0) return 0;
+    int64_t lift = (int64_t)judge_mm(w[b->ankle[side]].y) - judge_mm(w[b->ankle[1 - side]].y);
+    /* lift / (legs / 2) against [lo, hi] = kick_lift x [1/2, 3/2], in Q16 */
+    int64_t share = lift * 2 * CUB_Q16_ONE / legs;
+    int64_t lo = j->d.kick_lift / 2, span = j->d.kick_lift;
+    if (share <= lo) return 0;
+    if (share >= lo + span) return CUB_FUZZY_ONE;
+    return (uint16_t)(((share - lo) * CUB_FUZZY_ONE + span / 2) / span);
+}
+
+/* A leg is out only as far as its foot is lifted (cub/judge.h): the
+ * outward membership capped by the lift's. Inward is left as it is. */
+static void lifted_legs(cub_judge *j, const cub_track_skeleton *skel)
+{
+    static const int32_t feature[2] = {CUB_FUZZY_LF, CUB_FUZZY_RF}; /* body side 0 left */
+    for (int side = 0; side < 2; side++) {
+        uint16_t lift = foot_lift(j, skel->joint_mm, side);
+        uint16_t *out = &j->last.mu[feature[side]][1];
+        if (lift < *out) *out = lift;
+    }
+}
+
 /* The joints each feature reads (the fuzzy body's, Kinect indices). */
 static uint32_t feature_joints(const cub_fuzzy_body *b, int32_t f)
 {
@@ -169,8 +206,10 @@ static uint32_t feature_joints(const cub_fuzzy_body *b, int32_t f)
     case CUB_FUZZY_LHE:
         return 1u << b->shoulder[side] | 1u << b->elbow[side] | 1u << b->wrist[side];
     case CUB_FUZZY_RF:
+    case CUB_FUZZY_LF: /* and the other ankle: the lift is measured from it */
+        return 1u << b->hip[side] | 1u << b->knee[side] | 1u << b->ankle[side] |
+               1u << b->ankle[1 - side];
     case CUB_FUZZY_RFK:
-    case CUB_FUZZY_LF:
     case CUB_FUZZY_LFK: return 1u << b->hip[side] | 1u << b->knee[side] | 1u << b->ankle[side];
     case CUB_FUZZY_TRUNK:
         return 1u << b->shoulder_centre | 1u << b->hip_centre | 1u << b->knee[0] | 1u << b->knee[1];
@@ -212,7 +251,10 @@ cub_err cub_judge_frame(cub_judge *j, int64_t t_us, const cub_track_skeleton *sk
     if (ok) {
         sure = sure_features(j, skel);
         calibrate(j, skel);
-        if (arm_aware_features(j, skel) == CUB_OK) f = &j->last;
+        if (arm_aware_features(j, skel) == CUB_OK) {
+            lifted_legs(j, skel);
+            f = &j->last;
+        }
         judge_gestures(j, t_us, skel, out);
     } else {
         judge_gestures_reset(j);

@@ -34,7 +34,10 @@ typedef struct pose {
     int arms_up;      /* both arms straight up */
     int status;       /* cub_track_status */
     int guess_right;  /* the tracker guessed the right arm (confidence 0) */
+    int right_leg;    /* the right leg out: LEG_STANCE (foot on the floor) or LEG_KICK */
 } pose;
+
+enum { LEG_DOWN, LEG_STANCE, LEG_KICK };
 
 static cub_track_skeleton child(pose p)
 {
@@ -77,6 +80,16 @@ static cub_track_skeleton child(pose p)
         j[hip + 1] = mm(85 * sx, 450, z);
         j[hip + 2] = mm(85 * sx, 100, z);
         j[hip + 3] = mm(85 * sx, 30, z - 80);
+        if (side == 1 && p.right_leg == LEG_STANCE) { /* 24 degrees out, foot on the floor */
+            j[hip + 1] = mm(232, 440, z);
+            j[hip + 2] = mm(385, 100, z);
+            j[hip + 3] = mm(385, 30, z - 80);
+        }
+        if (side == 1 && p.right_leg == LEG_KICK) { /* 35 degrees out, straight: lifted */
+            j[hip + 1] = mm(269, 510, z);
+            j[hip + 2] = mm(470, 223, z);
+            j[hip + 3] = mm(490, 160, z - 80);
+        }
     }
     for (int k = 0; k < CUB_KJ_COUNT; k++)
         s.confidence[k] = CUB_Q16_ONE;
@@ -165,7 +178,7 @@ static cub_judge_rep rep_rhe(int rep, int from, int to)
     return r;
 }
 
-static const pose STILL = {{0, 0}, 0, 0, 0, 0, 0, 0, CUB_TRACK_OK, 0};
+static const pose STILL = {{0, 0}, 0, 0, 0, 0, 0, 0, CUB_TRACK_OK, 0, LEG_DOWN};
 
 static pose bent_right(void)
 {
@@ -343,6 +356,36 @@ static void test_standing_still_is_wrong(void **state)
     assert_int_equal(count(&r, CUB_JUDGE_VERDICT), 1);
     assert_int_equal(first(&r, CUB_JUDGE_VERDICT)->ev.b, 0);
     assert_int_equal(first(&r, CUB_JUDGE_VERDICT)->why, CUB_JUDGE_WHY_MISSED);
+}
+
+/* The leg-out key needs the foot lifted: a foot out on the floor (a wide
+ * stance) reads out by its angle alone, but is no kick. */
+static void test_leg_out_needs_the_foot_lifted(void **state)
+{
+    (void)state;
+    cub_judge_rep rep = rep_rhe(0, 0, 60);
+    rep.keys[0] = (cub_judge_key){CUB_FUZZY_RF, 1};
+    pose stance = STILL, kick = STILL;
+    stance.right_leg = LEG_STANCE;
+    kick.right_leg = LEG_KICK;
+    rec r;
+    rec_init(&r, NULL);
+    assert_int_equal(cub_judge_begin_rep(r.j, &rep), CUB_OK);
+    play(&r, 100, 20, 40, stance);
+    assert_int_equal(count(&r, CUB_JUDGE_VERDICT), 1);
+    assert_int_equal(first(&r, CUB_JUDGE_VERDICT)->ev.b, 0);
+    rec_init(&r, NULL);
+    assert_int_equal(cub_judge_begin_rep(r.j, &rep), CUB_OK);
+    play(&r, 100, 20, 40, kick);
+    assert_int_equal(count(&r, CUB_JUDGE_VERDICT), 1);
+    assert_verdict(&r, 0, 0, 1, 24);
+    /* the lift is what decides: the same kick (its foot 0.18 of the leg up)
+     * is no kick when a kick must lift it 0.35 */
+    cub_judge_desc d = {.kick_lift = CUB_Q16_ONE * 35 / 100};
+    rec_init(&r, &d);
+    assert_int_equal(cub_judge_begin_rep(r.j, &rep), CUB_OK);
+    play(&r, 100, 20, 40, kick);
+    assert_int_equal(first(&r, CUB_JUDGE_VERDICT)->ev.b, 0);
 }
 
 /* ---- early verdicts, from the coach's key moment ------------------------ */
@@ -1168,6 +1211,7 @@ int main(void)
         cmocka_unit_test(test_child_later_than_a_beat_is_wrong_at_the_close),
         cmocka_unit_test(test_wrong_arm_is_wrong_naming_the_key),
         cmocka_unit_test(test_standing_still_is_wrong),
+        cmocka_unit_test(test_leg_out_needs_the_foot_lifted),
         cmocka_unit_test(test_standing_still_is_wrong_a_lag_after_the_key),
         cmocka_unit_test(test_child_a_beat_late_is_still_right),
         cmocka_unit_test(test_lag_is_a_tunable),

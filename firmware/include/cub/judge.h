@@ -17,7 +17,13 @@
  * - The child's features are the fuzzy features of SEEDS.md, except that
  *   the arm raise (RH, LH) is read along the whole arm, shoulder to wrist:
  *   the tracker places elbows least well, and an arm is raised as far as
- *   its wrist is.
+ *   its wrist is; and a leg is out (RF, LF = outward) only as far as its
+ *   foot is lifted: the membership is the lower of the abduction's and
+ *   the lift's, the lift being the ankle's height above the other ankle
+ *   (the body's lowest point, so the floor need not be known and a jump
+ *   lifts both) in lengths of the legs (hip-knee-ankle, the mean of both),
+ *   0 at kick_lift / 2 and 1 at 3/2 kick_lift. A foot out with both feet
+ *   on the floor is a stance (golf, a bend, a throw), not a kick.
  * - A frame MATCHES r when the tracker says CUB_TRACK_OK, every key's
  *   membership mu(feature, set) >= key_mu, and, if r has an expected
  *   frame, cub_fuzzy_distance(child, expected) <= pose_d_max.
@@ -169,6 +175,9 @@ typedef struct cub_judge_desc {
                                   may still come (measured: README "Early verdicts") */
     int32_t sign_ms;           /* 250: the least time after the lag in which a sign
                                   of the keys is looked for before an early verdict */
+    cub_q16 kick_lift;         /* 0.10 of the leg's length: the lift of a foot above
+                                  the other at which a leg-out key is half reached
+                                  (a kick; a foot on the floor reads under 0.05) */
     cub_log *log;              /* optional: one line per event */
 } cub_judge_desc;
 
