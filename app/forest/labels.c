@@ -28,7 +28,7 @@ static cub_err parse_line(const char *line, const char *name, int ln, cub_ft_lab
                              "want `frame joint u v` (u v may be `-`), got %d fields", k);
     int j = joint_named(joint);
     if (j < 0) return cub_diag_fail(diag, CUB_ERR_FORMAT, name, ln, "no joint '%s'", joint);
-    cub_ft_label l = {{0}, j, -1, -1};
+    cub_ft_label l = {{0}, j, -1, -1, ln};
     snprintf(l.frame, sizeof(l.frame), "%s", frame);
     if (strcmp(us, "-") || strcmp(vs, "-")) {
         char *e1, *e2;
@@ -49,9 +49,11 @@ cub_err cub_ft_labels_parse(const char *text, size_t len, const char *name, cub_
                             cub_diag *diag)
 {
     out->n = 0;
+    out->name = name;
     char line[256];
-    size_t at = 0;
-    for (int ln = 1; at < len; ln++) {
+    size_t at = len >= 3 && !memcmp(text, "\xef\xbb\xbf", 3) ? 3 : 0; /* a BOM */
+    int ln = 1;
+    for (; at < len; ln++) {
         size_t end = at;
         while (end < len && text[end] != '\n')
             end++;
@@ -66,5 +68,8 @@ cub_err cub_ft_labels_parse(const char *text, size_t len, const char *name, cub_
         if (e) return e;
         at = end + 1;
     }
+    /* nothing to measure is a mistake (a wrong file), not a table of zeros */
+    if (!out->n) return cub_diag_fail(diag, CUB_ERR_FORMAT, name, ln > 1 ? ln - 1 : 1,
+                                      "lists no labels");
     return CUB_OK;
 }

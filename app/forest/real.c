@@ -15,17 +15,20 @@
 
 /* A raw frame as fakenect writes it: 640x480 little-endian u16 at the
  * file's end (after the PGM header). */
-static cub_err load_raw(const char *dir, const char *frame, uint16_t *raw, cub_diag *diag)
+/* The frame of label l; a frame that is not there names the label's line. */
+static cub_err load_raw(const char *dir, const cub_ft_labels *lab, const cub_ft_label *l,
+                        uint16_t *raw, cub_diag *diag)
 {
     char path[4096];
-    snprintf(path, sizeof(path), "%s/%s", dir, frame);
+    snprintf(path, sizeof(path), "%s/%s", dir, l->frame);
     FILE *f = fopen(path, "rb");
     static uint8_t buf[NPIX * 2];
     size_t got = 0;
     if (f && !fseek(f, -(long)sizeof(buf), SEEK_END)) got = fread(buf, 1, sizeof(buf), f);
     if (f) fclose(f);
     if (got != sizeof(buf))
-        return cub_diag_fail(diag, CUB_ERR_IO, path, 0, "not a 640x480 16-bit depth frame");
+        return cub_diag_fail(diag, CUB_ERR_IO, lab->name, l->line,
+                             "frame %s: not there or not a 640x480 16-bit depth frame", path);
     for (int i = 0; i < NPIX; i++)
         raw[i] = (uint16_t)(buf[2 * i] | buf[2 * i + 1] << 8);
     return CUB_OK;
@@ -103,7 +106,7 @@ cub_err cub_ft_compare_real(const cub_forest *f, const char *dir, const cub_ft_l
     for (int k = 0, next, frame = 0; k < lab->n && !err; k = next, frame++) {
         for (next = k; next < lab->n && !strcmp(lab->l[next].frame, lab->l[k].frame); next++) {
         }
-        err = load_raw(dir, lab->l[k].frame, raw, diag);
+        err = load_raw(dir, lab, &lab->l[k], raw, diag);
         if (err) break;
         cub_track_skeleton s;
         cub_synth_truth_frame tr;

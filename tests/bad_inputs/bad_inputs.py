@@ -140,6 +140,11 @@ def base_of(kind, d, shared, build=""):
         return read(os.path.join(SRC, "tests", "fuzz", "seeds_ase", "small.ase")), "bad.ase"
     if kind == "forest":  # a two-tree body-part forest, made by tests/fuzz/make_seeds.py
         return read(os.path.join(SRC, "tests", "fuzz", "seeds_forest", "two_trees.cubforest")), "bad.forest"
+    if kind == "labels":  # hand labels of the real frames, read in place; the fuzz seeds' small forest
+        os.symlink(os.path.join(SHARED_DATA, "depth", "skeltrack"), os.path.join(d, "real"))
+        shutil.copyfile(os.path.join(SRC, "tests", "fuzz", "seeds_forest", "two_trees.cubforest"),
+                        os.path.join(d, "two_trees.forest"))
+        return read(os.path.join(SRC, "tests", "labels", "skeltrack_labels.txt")), "bad_labels.txt"
     if kind == "trc":  # a small marker file, made by tests/fuzz/make_seeds.py
         return read(os.path.join(SRC, "tests", "fuzz", "seeds_trc", "small_mm.trc")), "bad.trc"
     if kind == "keyscript":  # cubtool play's scripted keys (the format: cub/keyscript.h)

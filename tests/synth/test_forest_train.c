@@ -117,13 +117,15 @@ static void proposals_become_joints(void **state)
     assert_false(j.confident[CUB_KJ_HEAD]);
 }
 
-/* Hand labels: kept joint by joint; a bad line refused with its number. */
+/* Hand labels: kept joint by joint (a BOM skipped); a bad line refused with
+ * its number, a file of no labels refused. */
 static void labels_parse_or_name_the_line(void **state)
 {
     (void)state;
     static cub_ft_labels lab;
     cub_diag d = {0};
-    const char *good = "# comment\nd-1.pgm head 305 160\n\nd-1.pgm hand_r - -\nd-2.pgm elbow_l 0 479";
+    const char *good =
+        "\xef\xbb\xbf# comment\nd-1.pgm head 305 160\n\nd-1.pgm hand_r - -\nd-2.pgm elbow_l 0 479";
     assert_int_equal(cub_ft_labels_parse(good, strlen(good), "l.txt", &lab, &d), CUB_OK);
     assert_int_equal(lab.n, 3);
     assert_string_equal(lab.l[0].frame, "d-1.pgm");
@@ -131,6 +133,7 @@ static void labels_parse_or_name_the_line(void **state)
     assert_int_equal(lab.l[0].u, 305);
     assert_int_equal(lab.l[1].u, -1);
     assert_int_equal(lab.l[2].v, 479);
+    assert_int_equal(lab.l[2].line, 5); /* a frame not found names this line */
     const struct {
         const char *text, *msg;
         int line;
@@ -140,6 +143,8 @@ static void labels_parse_or_name_the_line(void **state)
         {"d-1.pgm head 30x 160\n", "not in the 640x480 image", 1},
         {"\n\nd-1.pgm head 305\n", "got 3 fields", 3},
         {"d-1.pgm head 1 2 3\n", "got 5 fields", 1},
+        {"# a comment only\n\n", "lists no labels", 2},
+        {"", "lists no labels", 1},
     };
     for (size_t k = 0; k < sizeof(bad) / sizeof(bad[0]); k++) {
         assert_int_equal(cub_ft_labels_parse(bad[k].text, strlen(bad[k].text), "l.txt", &lab, &d),

@@ -130,12 +130,15 @@ void cub_ft_score_joints(const cub_track_skeleton *s, const cub_ft_joints *fj,
 typedef struct cub_ft_label {
     char frame[64];
     int joint, u, v; /* u = v = -1: not in view */
+    int line;        /* in the labels file, for errors about its frame */
 } cub_ft_label;
 typedef struct cub_ft_labels {
     cub_ft_label l[CUB_FT_MAX_LABELS];
     int n;
+    const char *name; /* the labels file (the parser's name, not copied) */
 } cub_ft_labels;
-/* Errors name name:line and the problem (CUB_ERR_FORMAT). */
+/* Errors name name:line and the problem (CUB_ERR_FORMAT); a UTF-8 BOM is
+ * skipped; a file of no labels is refused. */
 cub_err cub_ft_labels_parse(const char *text, size_t len, const char *name, cub_ft_labels *out,
                             cub_diag *diag);
 /* The labelled frames of dir (fakenect .pgm) in the labels' order: the
