@@ -94,6 +94,9 @@ cub_err cub_track_init(const cub_track_desc *desc, void *mem, size_t mem_size, c
         t->pitch_up[p] = (cub_vec3){0, cub_fx_cos(a), cub_fx_sin(a)};
     }
     t->up = t->pitch_up[TRK_PITCHES / 2];
+    trk_bg_reset(t);
+    t->bg_resets = 0;
+    for (int32_t i = 0; i < TRK_CELLS; i++) t->label_prev[i] = -1;
     *out = t;
     return CUB_OK;
 }
@@ -153,12 +156,15 @@ cub_err cub_track_frame(cub_tracker *t, const uint16_t *raw, int64_t t_us, const
     /* the time since the last frame scales the smoothing's limits: at
      * least 10 ms, a long gap 200 ms, unknown the Kinect's 33 ms */
     int64_t dt = t_us - t->prev_t_us;
+    int32_t learn_us = t->frame_no > 0 && dt > 0 ? (int32_t)(dt < 1000000 ? dt : 1000000) : 0;
     t->dt_us = t->have_prev && dt > 0 ? (int32_t)(dt < 10000 ? 10000 : dt < 200000 ? dt : 200000) : 33333;
     t->prev_t_us = t_us;
     t->frame_no++;
     trk_grid_fill(t, raw);
+    trk_bg_learn(t, learn_us);
     trk_floor_update(t, gravity_mm);
     trk_floor_remove(t);
+    trk_bg_remove(t);
     trk_components(t);
     int32_t comp = trk_pick_player(t);
     int32_t root = comp >= 0 ? trk_root_cell(t) : -1;
