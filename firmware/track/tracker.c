@@ -11,12 +11,15 @@
  *   1. depth: a 160x120 grid of 4x4-pixel cells, each the nearest valid
  *      reading, raw -> mm by table                   trk_grid.c trk_grid_fill
  *   2. floor: up from gravity, else the camera pitch whose heights have
- *      the densest low layer; floor cells go   trk_floor_update, _remove
+ *      the densest low layer; floor cells go   trk_floor_update, _remove;
+ *      the room's background (per cell the farthest depth that stayed
+ *      still, learnt over time, never stored): cells at it go   trk_bg.c
  *   3. blobs by depth continuity                          trk_components
  *   4. player: the person-like blob on the player's track (its centre
  *      and velocity along the floor; nobody else takes over while the
- *      track lives, 2 s unseen); its hands before it merged back, a
- *      blob joining it to another person split       trk_pick_player
+ *      track lives, 2 s unseen), chosen afresh once when the room becomes
+ *      known; its hands before it merged back, a blob joining it to
+ *      another person split                          trk_pick_player
  *   5. geodesic: root = the silhouette's thickest cell (the torso);
  *      Dijkstra over the player's cells with 3D steps, depth jumps
  *      costing extra; the extremities are the farthest points, one by

@@ -3,14 +3,15 @@
  * is not assumed empty; a cell's background is the farthest depth that
  * stayed still there:
  *  - a cell with no background yet takes the first depth that stays
- *    (within BG_TOL) for BG_LEARN_US;
+ *    (within bg_tol) for BG_LEARN_US; a frame with no reading there
+ *    restarts the count;
  *  - a farther depth that stays BG_REVEAL_US replaces it at once: what
  *    stood before the background has gone (a parent got up from the sofa);
  *  - a nearer depth that stays BG_NEAR_US becomes the background too:
  *    furniture moved in, a parent who sat down and stays;
  *  - a cell a person covered in the last BG_PERSON_HOLD_US (the player's,
- *    or any person-like blob's) takes BG_PERSON_US instead: a child who
- *    stands still is not absorbed into the room.
+ *    or a person-like blob's that moves) takes BG_PERSON_US instead: a
+ *    child who stands still is not absorbed into the room.
  * Most of the image changing at once (the camera bumped) forgets it all.
  * The model lives in the tracker's memory only: nothing is ever stored.
  * Learning needs time to pass between frames: frames with the same time
@@ -146,6 +147,7 @@ void trk_bg_learn(cub_tracker *t, int32_t dt_us)
     for (int32_t i = 0; i < TRK_CELLS; i++) {
         t->bg_person_age[i] = age_add(t->bg_person_age[i], units);
         if (t->z[i]) learn_cell(t, i, t->z[i], units);
+        else t->bg_cand_mm[i] = 0, t->bg_age[i] = 0; /* nothing seen: it did not stay */
     }
     update_room_known(t);
 }

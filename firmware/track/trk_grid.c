@@ -432,7 +432,8 @@ static void remember_who(cub_tracker *t)
  * were another person-like blob's at about the same depth, few were the
  * player's. The track's gate does not make it the player: the child who
  * merges for a moment with the sofa behind it does not become the adult
- * standing 400 mm away. */
+ * standing 400 mm away, the crosser joined to the hidden child's pieces
+ * stays the crosser. */
 #define WAS_OTHER_DZ 150
 static bool was_someone_else(const cub_tracker *t, int32_t k)
 {
@@ -597,7 +598,9 @@ static int32_t choose_blob(cub_tracker *t, bool *same, bool *hidden)
     for (int32_t k = 0; k < t->ncomps; k++) {
         if (!person_like(&t->comps[k])) continue;
         int64_t score = person_score(t, pred, comp_centre(&t->comps[k]));
-        if (t->tracked && score >= 0 && score < ID_FAR && was_someone_else(t, k))
+        /* not while the player waits to be chosen afresh: the blobs of
+         * the frame the room became known are not the frame before's */
+        if (t->tracked && t->room_known != 1 && score >= 0 && score < ID_FAR && was_someone_else(t, k))
             someone_else[k] = true, score = ID_FAR + newcomer_score(comp_centre(&t->comps[k]));
         if (score < best_score) best_score = score, best = k;
     }
