@@ -17,27 +17,7 @@
 
 #define FRAME_US 100000
 
-static void *mem;
-static cub_tracker *t;
-
-static int setup(void **st)
-{
-    (void)st;
-    cub_track_desc d = {0};
-    size_t sz = cub_track_mem_size(&d);
-    free(mem);
-    mem = aligned_alloc(16, (sz + 15) / 16 * 16);
-    if (!mem || cub_track_init(&d, mem, sz, &t) != CUB_OK) return -1;
-    return 0;
-}
-
-static int teardown(void **st)
-{
-    (void)st;
-    free(mem);
-    mem = NULL;
-    return 0;
-}
+#include "tracker_fixture.h"
 
 /* A wall at wall_mm everywhere, a box of cells gx0..gx1 x gy0..gy1 before
  * it at box_mm (0: none); no blobs, nobody's cells. */
@@ -119,7 +99,7 @@ static void test_still_player_is_not_absorbed(void **st)
     (void)st;
     for (int k = 0; k < 100; k++) assert_int_equal(frame(70, 2500, true), 10 * 51);
     assert_int_equal(left_anywhere(), 10 * 51);
-    setup(NULL);
+    tracker_fixture_open(NULL);
     for (int k = 0; k < 15; k++) frame(70, 2500, false);
     assert_int_equal(frame(70, 2500, false), 0);
 }
@@ -168,15 +148,18 @@ static void test_no_time_learns_nothing(void **st)
     }
 }
 
+/* Each test on a fresh tracker. */
+#define FRESH(f) cmocka_unit_test_setup_teardown(f, tracker_fixture_open, tracker_fixture_close)
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test_setup_teardown(test_still_object_becomes_background, setup, teardown),
-        cmocka_unit_test_setup_teardown(test_moving_child_is_not_background, setup, teardown),
-        cmocka_unit_test_setup_teardown(test_still_player_is_not_absorbed, setup, teardown),
-        cmocka_unit_test_setup_teardown(test_revealed_background_returns, setup, teardown),
-        cmocka_unit_test_setup_teardown(test_bump_forgets_the_room, setup, teardown),
-        cmocka_unit_test_setup_teardown(test_no_time_learns_nothing, setup, teardown),
+        FRESH(test_still_object_becomes_background),
+        FRESH(test_moving_child_is_not_background),
+        FRESH(test_still_player_is_not_absorbed),
+        FRESH(test_revealed_background_returns),
+        FRESH(test_bump_forgets_the_room),
+        FRESH(test_no_time_learns_nothing),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -23,25 +23,7 @@
 #define Z 2000     /* the body's depth */
 #define FLOOR -800 /* the floor's height (y) */
 
-static void *mem;
-static cub_tracker *t;
-
-static int setup(void **st)
-{
-    (void)st;
-    cub_track_desc d = {0};
-    size_t sz = cub_track_mem_size(&d);
-    mem = aligned_alloc(16, (sz + 15) / 16 * 16);
-    if (!mem || cub_track_init(&d, mem, sz, &t) != CUB_OK) return -1;
-    return 0;
-}
-
-static int teardown(void **st)
-{
-    (void)st;
-    free(mem);
-    return 0;
-}
+#include "tracker_fixture.h"
 
 /* An empty grid with a floor (up = +y). */
 static void new_scene(void)
@@ -533,5 +515,5 @@ int main(void)
         cmocka_unit_test(test_hand_before_torso),   cmocka_unit_test(test_fist_beyond_elbow),
         cmocka_unit_test(test_guard_fist),          cmocka_unit_test(test_hanging_arm),
     };
-    return cmocka_run_group_tests(tests, setup, teardown);
+    return cmocka_run_group_tests(tests, tracker_fixture_open, tracker_fixture_close);
 }
