@@ -303,13 +303,15 @@ typedef struct cub_bridge_legs {
     int enabled;                    /* the leg phase runs (inertial, not no_legs) */
     int16_t hip[2], knee[2], ankle[2];
     int16_t foot[2][CUB_BRIDGE_FOOT_JOINTS]; /* the ankle and what hangs below, -1 ends */
-    const uint8_t *contact;         /* [frame_total] bit s: foot s stands (player memory) */
+    const uint8_t *contact;         /* [frame_total] bit s: foot s stands; bit 2 of a clip's
+                                     * first frame: its loop is seamless (player memory) */
     const cub_q16 *floor_mm;        /* [clip_count] each clip's floor: its lowest foot point */
     cub_q16 speed_mm;               /* a step moves at most this a frame (the blend's) */
     int min_frames;                 /* each leg gets at least this (the shortest blend) */
     /* this blend */
     int on;                         /* a foot is held: the leg phase runs */
     int first, len;                 /* the leg that goes first; frames each leg gets */
+    int64_t from_q16;               /* the position (the clip's unwrapped time) it began at */
     uint8_t planted;                /* bit s: foot s stands on both sides of the cut */
     cub_vec3 hold_mm[2];            /* where a planted ankle stood at the cut */
     cub_quat hold_rot[2];           /* and its world rotation */
