@@ -296,6 +296,21 @@ static cub_q16 offset_path_mm(const cub_bridge_player *p, const cub_skeleton *sk
     return worst > INT32_MAX ? INT32_MAX : (cub_q16)worst;
 }
 
+/* A switch during a leg phase (a chain's next switch): a leg the phase is
+ * swinging would carry that swing on through the offset (a free foot
+ * leaves from where the offset puts it), flinging it: up to 21 cm a frame
+ * on the shipped library. The new phase puts the legs; they carry no
+ * velocity. (A wrap keeps it: a travelling loop's legs carry the walk.) */
+static void still_legs(cub_bridge_player *p)
+{
+    const cub_bridge_legs *l = &p->legs;
+    for (int s = 0; s < 2; s++) {
+        p->vel_angle[l->hip[s]] = p->vel_angle[l->knee[s]] = 0;
+        for (int k = 0; k < CUB_BRIDGE_FOOT_JOINTS && l->foot[s][k] >= 0; k++)
+            p->vel_angle[l->foot[s][k]] = 0;
+    }
+}
+
 /* The player's leg phase at a cut (bridge_legs.c) into frame to_frame of
  * to_clip, which starts at from_q16 on its time line. */
 static void begin_legs(cub_bridge_player *p, const cub_pose *src, const cub_pose *dst,
@@ -306,7 +321,9 @@ static void begin_legs(cub_bridge_player *p, const cub_pose *src, const cub_pose
     int src_frame = (int)(p->loop ? f % n : f < n ? f : n - 1);
     int wrap = p->loop && to_clip == p->clip && to_frame == 0 && src_frame == n - 1;
     cub_bridge_cut cut = {src, dst, p->clip, src_frame, to_clip, to_frame, from_q16, wrap, n};
+    int stepping = cub_bridge_legs_left_q16(&p->legs, src_pos_q16) > 0;
     cub_bridge_legs_begin(&p->legs, p->desc.table, &cut);
+    if (stepping && !wrap && p->legs.on) still_legs(p);
 }
 
 /* At a cut (a switch, or a looping clip's new pass): remember what was on

@@ -276,7 +276,7 @@ static void test_a_looping_clip_that_travels_ends_each_leg_phase(void **s)
     assert_int_equal(cub_motion_clip_get_frame(&F.clips[2], FRAMES - 2, &pose), CUB_OK);
     ankles(&pose, own);
     double worst_own = 0, worst_drift = 0;
-    int passes = 0, phases = 0, overrun = 0;
+    int passes = 0, phases = 0, overrun = -FRAMES;
     for (int t = 1; t <= 20 * FRAMES; t++) {
         cub_bridge_event ev[4];
         int n;
