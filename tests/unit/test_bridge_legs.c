@@ -248,6 +248,15 @@ static void test_no_legs_in_the_body_no_leg_phase(void **s)
     assert_int_equal(cub_bridge_player_init(&p, &pd, F.work, sizeof F.work), CUB_ERR_ARG);
 }
 
+/* A fresh table and a player with the leg phase, playing clip c in a loop. */
+static void play_looping(cub_bridge_player *p, int c)
+{
+    make_table();
+    cub_bridge_player_desc pd = {.table = &F.table};
+    assert_int_equal(cub_bridge_player_init(p, &pd, F.work, sizeof F.work), CUB_OK);
+    assert_int_equal(cub_bridge_player_start(p, c, 0, 0, 1), CUB_OK);
+}
+
 /* The ankles of pose (world). */
 static void ankles(const cub_pose *pose, cub_vec3 out[2])
 {
@@ -266,11 +275,8 @@ static void ankles(const cub_pose *pose, cub_vec3 out[2])
 static void test_a_looping_clip_that_travels_ends_each_leg_phase(void **s)
 {
     (void)s;
-    make_table();
     static cub_bridge_player p;
-    cub_bridge_player_desc pd = {.table = &F.table};
-    assert_int_equal(cub_bridge_player_init(&p, &pd, F.work, sizeof F.work), CUB_OK);
-    assert_int_equal(cub_bridge_player_start(&p, 2, 0, 0, 1), CUB_OK);
+    play_looping(&p, 2);
     static cub_pose pose;
     cub_vec3 own[2], shown[2], first[2] = {{0}};
     assert_int_equal(cub_motion_clip_get_frame(&F.clips[2], FRAMES - 2, &pose), CUB_OK);
@@ -312,11 +318,8 @@ static void test_a_looping_clip_that_travels_ends_each_leg_phase(void **s)
 static void test_a_seamless_loop_starts_no_leg_phase(void **s)
 {
     (void)s;
-    make_table();
     static cub_bridge_player p;
-    cub_bridge_player_desc pd = {.table = &F.table};
-    assert_int_equal(cub_bridge_player_init(&p, &pd, F.work, sizeof F.work), CUB_OK);
-    assert_int_equal(cub_bridge_player_start(&p, 0, 0, 0, 1), CUB_OK);
+    play_looping(&p, 0);
     int wraps = 0, phases = 0;
     for (int t = 0; t < 3 * FRAMES; t++) {
         cub_bridge_event ev[4];
