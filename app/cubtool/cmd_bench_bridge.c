@@ -119,7 +119,7 @@ static unsigned stance_low(const cub_bridge_player *p, const cub_vec3 *world)
     const cub_bridge_legs *l = &p->legs;
     if (!l->ok) return 0;
     const cub_bridge_clip *c = &p->desc.table->clips[p->clip];
-    unsigned bits = l->contact[c->first_frame + (int)((p->pos_q16 >> 16) % c->clip.frame_count)];
+    unsigned bits = 3u & l->contact[c->first_frame + (int)((p->pos_q16 >> 16) % c->clip.frame_count)];
     for (int s = 0; s < 2; s++) {
         cub_q16 low = CUB_Q16_MAX;
         for (int k = 0; k < CUB_BRIDGE_FOOT_JOINTS && l->foot[s][k] >= 0; k++)
@@ -230,6 +230,9 @@ static void set_entry(cub_bridge_player *p, const cub_coachlib *cl, int correct,
 typedef struct routes {
     stats react, arrive, jump;
     long count, jumps, over_p99;
+    double worst;                /* the largest jump at a route's switch, */
+    cub_bridge_step worst_step;  /* at this switch, */
+    int worst_index;             /* the route's worst_index'th */
 } routes;
 
 static void add_route(routes *rt, const run *r, const double *p99)
@@ -242,12 +245,14 @@ static void add_route(routes *rt, const run *r, const double *p99)
         const cub_bridge_step *st = &r->step[i];
         double own = p99[st->from_clip] > p99[st->to_clip] ? p99[st->from_clip] : p99[st->to_clip];
         push(&rt->jump, r->step_jump_cm[i]);
+        if (r->step_jump_cm[i] > rt->worst)
+            rt->worst = r->step_jump_cm[i], rt->worst_step = *st, rt->worst_index = i + 1;
         rt->jumps++;
         rt->over_p99 += r->step_jump_cm[i] > own;
     }
 }
 
-static void print_routes(routes *rt, int via_tween)
+static void print_routes(routes *rt, int via_tween, const char *const *names)
 {
     printf("bench-bridge: routes (%s) %ld: reaction median=%.0f p95=%.0f max=%.0f ms; "
            "in the wanted clip median=%.0f p95=%.0f p99=%.0f max=%.0f ms; jumps at their %ld switches "
@@ -258,6 +263,11 @@ static void print_routes(routes *rt, int via_tween)
            pct(&rt->arrive, 1.0), rt->jumps,
            pct(&rt->jump, 1.0), pct(&rt->jump, 0.95), rt->over_p99,
            rt->jumps ? 100.0 * (double)rt->over_p99 / (double)rt->jumps : 0.0);
+    if (rt->jumps)
+        printf("bench-bridge: routes' largest jump %.2f cm/frame at switch %d of its route: "
+               "%s@%d -> %s@%d\n",
+               rt->worst, rt->worst_index, names[rt->worst_step.from_clip],
+               rt->worst_step.from_frame, names[rt->worst_step.to_clip], rt->worst_step.to_frame);
     free(rt->react.v);
     free(rt->arrive.v);
     free(rt->jump.v);
@@ -468,7 +478,11 @@ int cub_cmd_bench_bridge(int argc, char **argv)
                pct(&md->blend, 0.95), pct(&md->slide, 0.5), pct(&md->slide, 0.95),
                pct(&md->slide, 1.0));
     }
-    print_routes(&rt, via_tween);
+    const char **names = calloc((size_t)nc + 1, sizeof *names);
+    for (int c = 0; names && c <= nc; c++)
+        names[c] = c < nc ? cl.lib.clips[c].name : "tween";
+    if (names) print_routes(&rt, via_tween, names);
+    free(names);
     const cub_bridge_step *w = &worst.first;
     printf("bench-bridge: worst blend: %s@%d requested %s: first switch %s@%d -> %s@%d d=%.3f "
            "%s, jump %.2f, during blend %.2f cm/frame\n",

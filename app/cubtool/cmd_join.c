@@ -47,6 +47,20 @@ static int run_method(const cub_join_db *db, int a, int b, const cub_join_pick *
     return 0;
 }
 
+/* Method m's windows played from the clips themselves, unblended (each seam
+ * cut at its middle): their own slide, cm; -1 when out of memory. */
+static double own_slide_cm(const cub_join_db *db, int a, int b, const cub_join_pick *pick, int m)
+{
+    cub_join_pick p = *pick;
+    if (m == DIRECT || m == DIRECT_FEET) p.clip = -1;
+    cub_join_result r;
+    int feet = m == DIRECT_FEET || m == SEARCHED;
+    if (cub_join_build(db, a, b, &p, feet | CUB_JOIN_CUT, &r)) return -1;
+    double own = cub_join_measure(db, &r).slide_cm;
+    cub_join_result_free(&r);
+    return own;
+}
+
 static double rms_cm(double d_mm2)
 {
     return sqrt(d_mm2) / 10.0;
@@ -146,12 +160,25 @@ static void row(const char *name, cub_tool_series *slide, cub_tool_series *jump)
            cub_tool_series_pct(jump, 0.95), cub_tool_series_pct(jump, 1.0));
 }
 
+/* A row's clips' own slide over its windows, and its slide beyond that,
+ * per pair: the same measure for every row. */
+static void own_rows(const char *name, cub_tool_series *own, cub_tool_series *beyond)
+{
+    printf("join --all: %-13s the clips' own slide over the same frames (unsmoothed) "
+           "median=%.2f p95=%.2f max=%.2f cm; slide beyond it, per pair, median=%.2f p95=%.2f "
+           "max=%.2f cm\n",
+           name, cub_tool_series_pct(own, 0.5), cub_tool_series_pct(own, 0.95),
+           cub_tool_series_pct(own, 1.0), cub_tool_series_pct(beyond, 0.5),
+           cub_tool_series_pct(beyond, 0.95), cub_tool_series_pct(beyond, 1.0));
+}
+
 /* The box (k = 0), the box with the seed's tween (k = 1) and the box
  * without its leg phase (k = 2), over all pairs and (tween) over the pairs
  * it routed through the tween. */
 #define BOXES 3
 typedef struct box_rows {
-    cub_tool_series slide[BOXES], jump[BOXES], ms[BOXES], own[BOXES], tslide, tjump, tms;
+    cub_tool_series slide[BOXES], jump[BOXES], ms[BOXES], own[BOXES], beyond[BOXES];
+    cub_tool_series tslide, tjump, tms;
     cub_join_figures last[BOXES], last_own[BOXES]; /* the pair just measured (-1: not) */
 } box_rows;
 
@@ -164,6 +191,7 @@ static void box_measure(join_bridge *jb, const cub_join_db *db, int a, int b, bo
         cub_join_figures f = jf.fig;
         double ms = jf.ms;
         cub_tool_series_add(&br->own[k], jf.own.slide_cm, "join");
+        cub_tool_series_add(&br->beyond[k], jf.fig.slide_cm - jf.own.slide_cm, "join");
         br->last_own[k] = jf.own;
         br->last[k] = f;
         cub_tool_series_add(&br->slide[k], f.slide_cm, "join");
@@ -189,10 +217,7 @@ static void box_print(box_rows *br)
                "max=%.0f ms\n",
                name[k], br->slide[k].n, cub_tool_series_pct(&br->ms[k], 0.5),
                cub_tool_series_pct(&br->ms[k], 0.95), cub_tool_series_pct(&br->ms[k], 1.0));
-        printf("join --all: %-13s the clips' own slide over the same frames (unsmoothed) "
-               "median=%.2f p95=%.2f max=%.2f cm\n",
-               name[k], cub_tool_series_pct(&br->own[k], 0.5),
-               cub_tool_series_pct(&br->own[k], 0.95), cub_tool_series_pct(&br->own[k], 1.0));
+        own_rows(name[k], &br->own[k], &br->beyond[k]);
     }
     printf("join --all: tween(box) went through the tween clip on %zu pairs", br->tslide.n);
     if (br->tslide.n)
@@ -207,25 +232,29 @@ static void box_print(box_rows *br)
 static void box_free(box_rows *br)
 {
     for (int k = 0; k < BOXES; k++)
-        free(br->slide[k].v), free(br->jump[k].v), free(br->ms[k].v), free(br->own[k].v);
+        free(br->slide[k].v), free(br->jump[k].v), free(br->ms[k].v), free(br->own[k].v),
+            free(br->beyond[k].v);
     free(br->tslide.v), free(br->tjump.v), free(br->tms.v);
 }
 
 /* What --all gathers over the pairs. */
 typedef struct tally {
-    cub_tool_series slide[METHODS], jump[METHODS], dd, ds;
+    cub_tool_series slide[METHODS], jump[METHODS], own[METHODS], beyond[METHODS], dd, ds;
     int pairs, better, self_c;
     cub_join_figures last[METHODS]; /* the pair just measured */
+    double last_own[METHODS];
     /* pairs where the seed's join beats bridge(box): by slide, by more
      * than 1 cm of slide, by jump, by both */
-    int box_pairs, beat_slide, beat_slide_1cm, beat_jump, beat_both, beat_excess;
-    int clear, clear_jump; /* searched's slide > 1 cm below the box's excess (and jump) */
+    int box_pairs, beat_slide, beat_slide_1cm, beat_jump, beat_both;
+    int beat_excess; /* slide beyond the clips' own: searched's below the box's */
+    int clear, clear_jump; /* searched's excess > 1 cm below the box's (and jump) */
     double widest;         /* the widest such margin, cm */
     char widest_pair[2 * CUB_MOTION_NAME_LEN + 8];
-    cub_tool_series excess; /* bridge(box)'s slide beyond its clips' own, per pair */
 } tally;
 
-/* The route question, per pair: does the seed's searched join beat the box? */
+/* The route question, per pair: does the seed's searched join beat the box?
+ * By raw slide, and like for like: each one's slide beyond the slide of
+ * the clips it plays over its own windows. */
 static void compare_box(tally *t, const box_rows *br, const char *a, const char *b)
 {
     const cub_join_figures *s = &t->last[SEARCHED], *x = &br->last[0];
@@ -236,16 +265,16 @@ static void compare_box(tally *t, const box_rows *br, const char *a, const char 
     t->beat_jump += s->jump_cm < x->jump_cm;
     t->beat_both += s->slide_cm < x->slide_cm && s->jump_cm < x->jump_cm;
     double excess = x->slide_cm - br->last_own[0].slide_cm;
-    t->beat_excess += s->slide_cm < excess;
-    if (s->slide_cm < excess - 1.0) {
+    double seed = s->slide_cm - t->last_own[SEARCHED];
+    t->beat_excess += seed < excess;
+    if (seed < excess - 1.0) {
         t->clear++;
         t->clear_jump += s->jump_cm < x->jump_cm;
-        if (excess - s->slide_cm > t->widest) {
-            t->widest = excess - s->slide_cm;
+        if (excess - seed > t->widest) {
+            t->widest = excess - seed;
             snprintf(t->widest_pair, sizeof t->widest_pair, "%s -> %s", a, b);
         }
     }
-    cub_tool_series_add(&t->excess, excess, "join");
 }
 
 /* Search, join by every method and measure one pair. 0 ok (or no C). */
@@ -264,9 +293,17 @@ static int one_pair(const cub_join_db *db, int a, int b, int verbose, tally *t)
             fprintf(stderr, "join: out of memory\n");
             return -1;
         }
+        double own = own_slide_cm(db, a, b, &pick, m);
+        if (own < 0) {
+            fprintf(stderr, "join: out of memory\n");
+            return -1;
+        }
         cub_tool_series_add(&t->slide[m], fig[m].slide_cm, "join");
         cub_tool_series_add(&t->jump[m], fig[m].jump_cm, "join");
+        cub_tool_series_add(&t->own[m], own, "join");
+        cub_tool_series_add(&t->beyond[m], fig[m].slide_cm - own, "join");
         t->last[m] = fig[m];
+        t->last_own[m] = own;
     }
     if (verbose)
         printf("join pair %s -> %s: C=%s@%d-%d rms direct %.2f searched %.2f+%.2f cm; "
@@ -288,8 +325,10 @@ static void print_tally(const cub_join_db *db, tally *t)
            cub_tool_series_pct(&t->dd, 0.5), cub_tool_series_pct(&t->dd, 0.95),
            cub_tool_series_pct(&t->ds, 0.5), cub_tool_series_pct(&t->ds, 0.95), t->better, t->pairs,
            t->self_c);
-    for (int m = 0; m < METHODS; m++)
+    for (int m = 0; m < METHODS; m++) {
         row(METHOD_NAME[m], &t->slide[m], &t->jump[m]);
+        own_rows(METHOD_NAME[m], &t->own[m], &t->beyond[m]);
+    }
 }
 
 static int join_all(join_src *src, join_bridge *jb, int verbose)
@@ -323,22 +362,20 @@ static int join_all(join_src *src, join_bridge *jb, int verbose)
                    "slide (by more than 1 cm: %d), on %d by jump, on %d by both\n",
                    t.beat_slide, t.box_pairs, t.beat_slide_1cm, t.beat_jump, t.beat_both);
         if (t.box_pairs)
-            printf("join --all: bridge(box)'s slide beyond its clips' own over the same frames "
-                   "median=%.2f p95=%.2f max=%.2f cm; searched's slide is below it on %d pairs\n",
-                   cub_tool_series_pct(&t.excess, 0.5), cub_tool_series_pct(&t.excess, 0.95),
-                   cub_tool_series_pct(&t.excess, 1.0), t.beat_excess);
-        if (t.box_pairs)
-            printf("join --all: searched's slide is more than 1 cm below that on %d pairs (its "
-                   "jump also below the box's on %d); the widest margin %.2f cm (%s)\n",
-                   t.clear, t.clear_jump, t.widest, t.clear ? t.widest_pair : "-");
+            printf("join --all: like for like, each one's slide beyond its clips' own over its "
+                   "windows: searched's is below bridge(box)'s on %d of %d pairs, by more than "
+                   "1 cm on %d (its jump also below the box's on %d); the widest margin %.2f cm "
+                   "(%s)\n",
+                   t.beat_excess, t.box_pairs, t.clear, t.clear_jump, t.widest,
+                   t.clear ? t.widest_pair : "-");
         printf("join --all: the paired clips' own velocity change p99=%.2f cm/f2\n",
                own_jump_p99(db, src));
         fprintf(stderr, "join --all: %.1f s\n",
                 (double)(t1.tv_sec - t0.tv_sec) + (double)(t1.tv_nsec - t0.tv_nsec) * 1e-9);
     }
     for (int m = 0; m < METHODS; m++)
-        free(t.slide[m].v), free(t.jump[m].v);
-    free(t.dd.v), free(t.ds.v), free(t.excess.v);
+        free(t.slide[m].v), free(t.jump[m].v), free(t.own[m].v), free(t.beyond[m].v);
+    free(t.dd.v), free(t.ds.v);
     box_free(&br);
     return rc ? 1 : 0;
 }

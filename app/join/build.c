@@ -85,6 +85,7 @@ typedef struct seam {
     int f0, t0, n;
     int first_leg;          /* the leg that goes over first; -1: blend the legs too */
     int from_clip, to_clip; /* their db indices */
+    int cut;                /* no blend: from to the middle, then to (CUB_JOIN_CUT) */
 } seam;
 
 /* Leg `side` of the blended pose o onto its target at leg phase u (0..1):
@@ -142,6 +143,13 @@ static void blend_seam(const cub_join_db *db, const seam *s, cub_join_result *r,
     for (int k = 0; k < s->n; k++) {
         get_frame(s->from, s->f0 + k, s->tf, &p);
         get_frame(s->to, s->t0 + k, s->tt, &q);
+        r->stance[o0 + k] =
+            feet_at(db, s->from_clip, s->f0 + k) & feet_at(db, s->to_clip, s->t0 + k);
+        if (s->cut) {
+            put_frame(out, o0 + k, k < s->n / 2 ? &p : &q);
+            if (k == s->n / 2) r->stance[o0 + k] = 0;
+            continue;
+        }
         double u = (k + 1.0) / (s->n + 1.0), w = smooth(u);
         o.root = cub_dv3_lerp(p.root, q.root, w);
         for (int j = 0; j < nj; j++) {
@@ -155,8 +163,6 @@ static void blend_seam(const cub_join_db *db, const seam *s, cub_join_result *r,
                 place_leg(db, &p, &q, 2 * u - i, side, &o);
             }
         put_frame(out, o0 + k, &o);
-        r->stance[o0 + k] =
-            feet_at(db, s->from_clip, s->f0 + k) & feet_at(db, s->to_clip, s->t0 + k);
     }
 }
 
@@ -222,11 +228,11 @@ static cub_err build_direct(const cub_join_db *db, int a, int b, const cub_join_
 {
     const cub_clip *ca = db->clips[a].clip, *cb = db->clips[b].clip;
     int na = ca->frame_count, nb = cb->frame_count;
-    int n = blend_frames(db, pick->direct.d_mm2, feet, na < nb ? na : nb);
+    int n = blend_frames(db, pick->direct.d_mm2, feet & 1, na < nb ? na : nb);
     cub_err e = alloc_out(db, ca, na + nb - n, out);
     if (e) return e;
-    seam s = {ca, cb, NULL, &pick->direct, na - n, 0, n, -1, a, b};
-    if (feet) s.first_leg = first_leg(db, &s);
+    seam s = {ca, cb, NULL, &pick->direct, na - n, 0, n, -1, a, b, (feet & CUB_JOIN_CUT) != 0};
+    if (feet == 1) s.first_leg = first_leg(db, &s);
     copy_run(db, a, 0, na - n, NULL, out, 0);
     blend_seam(db, &s, out, na - n);
     copy_run(db, b, n, nb - n, &pick->direct, out, na);
@@ -241,13 +247,14 @@ static cub_err build_searched(const cub_join_db *db, int a, int b, const cub_joi
     const cub_clip *ca = db->clips[a].clip, *cb = db->clips[b].clip;
     const cub_clip *cc = db->clips[pick->clip].clip;
     int na = ca->frame_count, nb = cb->frame_count, nc = pick->last - pick->first + 1;
-    int n1 = blend_frames(db, pick->in.d_mm2, feet, na < nc / 2 ? na : nc / 2);
-    int n2 = blend_frames(db, pick->out.d_mm2, feet, nb < nc / 2 ? nb : nc / 2);
+    int n1 = blend_frames(db, pick->in.d_mm2, feet & 1, na < nc / 2 ? na : nc / 2);
+    int n2 = blend_frames(db, pick->out.d_mm2, feet & 1, nb < nc / 2 ? nb : nc / 2);
     cub_err e = alloc_out(db, ca, na + nc + nb - n1 - n2, out);
     if (e) return e;
-    seam s1 = {ca, cc, NULL, &pick->in, na - n1, pick->first, n1, -1, a, pick->clip};
-    seam s2 = {cc, cb, &pick->in, &pick->out, pick->last - n2 + 1, 0, n2, -1, pick->clip, b};
-    if (feet) {
+    int cut = (feet & CUB_JOIN_CUT) != 0;
+    seam s1 = {ca, cc, NULL, &pick->in, na - n1, pick->first, n1, -1, a, pick->clip, cut};
+    seam s2 = {cc, cb, &pick->in, &pick->out, pick->last - n2 + 1, 0, n2, -1, pick->clip, b, cut};
+    if (feet == 1) {
         s1.first_leg = first_leg(db, &s1);
         s2.first_leg = first_leg(db, &s2);
     }

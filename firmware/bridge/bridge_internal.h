@@ -21,19 +21,24 @@ size_t cub_bridge_legs_mem_size(const cub_bridge_table *t);
  * and l->min_frames set by the caller). */
 void cub_bridge_legs_init(cub_bridge_legs *l, const cub_bridge_table *t, void *mem);
 /* A cut: what was shown at it, the frame of the clip playing then, and
- * the new clip's frame (its raw pose dst). */
+ * the new clip's frame (its raw pose dst), at position from_q16 of the new
+ * clip's time line; wrap: a looping clip's own next pass (pass_frames
+ * long). */
 typedef struct cub_bridge_cut {
     const cub_pose *src, *dst;
     int src_clip, src_frame, to_clip, to_frame;
+    int64_t from_q16;
+    int wrap, pass_frames;
 } cub_bridge_cut;
 /* At a cut: which feet are held, where, which leg goes first and for how
- * long. */
+ * long. A seamless loop's own wrap starts none and leaves a running one
+ * going; any other wrap's phase ends within its pass. */
 void cub_bridge_legs_begin(cub_bridge_legs *l, const cub_bridge_table *t, const cub_bridge_cut *c);
-/* The frames the leg phase lasts (both legs), 0 when off. */
-int cub_bridge_legs_frames(const cub_bridge_legs *l);
-/* Onto out (raw with the offset on), progress_q16 frames into the blend:
- * the held feet kept, the legs over to raw's one at a time. */
+/* Onto out (raw with the offset on), at position pos_q16: the held feet
+ * kept, the legs over to raw's one at a time. */
 void cub_bridge_legs_apply(cub_bridge_legs *l, const cub_skeleton *sk, const cub_pose *raw,
-                           int64_t progress_q16, cub_pose *out);
+                           int64_t pos_q16, cub_pose *out);
+/* Frames left of the leg phase at position pos_q16 (Q16), 0 when over. */
+int64_t cub_bridge_legs_left_q16(const cub_bridge_legs *l, int64_t pos_q16);
 
 #endif

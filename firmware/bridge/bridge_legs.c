@@ -21,6 +21,9 @@
 #define STEP_MM CUB_Q16_INT(20)
 #define LIFT_MIN_MM CUB_Q16_INT(50)
 #define LIFT_MAX_MM CUB_Q16_INT(80)
+/* Bit of a clip's first contact byte: its last frame runs into its first
+ * (both ankles within STEP_MM), so its loop's wrap is no cut for the legs. */
+#define SEAMLESS_BIT 4u
 
 /* ---- the legs and the contacts ------------------------------------------ */
 
@@ -83,6 +86,20 @@ static int slow(int64_t moved_q16, int frames, uint32_t frame_ns)
            (int64_t)CONTACT_SPEED_MM_S * 65536 * frames * (int64_t)frame_ns;
 }
 
+/* The clip's last frame puts both ankles within STEP_MM of where its first
+ * does: played in a loop, the feet go on without a step. */
+static int runs_on_seamlessly(cub_bridge_legs *l, const cub_clip *clip)
+{
+    cub_vec3 low[2], last[2];
+    lows_at(l, clip, clip->frame_count - 1, low);
+    last[0] = l->world[0][l->ankle[0]], last[1] = l->world[0][l->ankle[1]];
+    lows_at(l, clip, 0, low);
+    for (int s = 0; s < 2; s++)
+        if (cub_fx_vec3_length(cub_fx_vec3_sub(last[s], l->world[0][l->ankle[s]])) > STEP_MM)
+            return 0;
+    return 1;
+}
+
 /* Contacts of one clip: low (over the clip's floor) and slow (central
  * difference), then runs. Returns the floor. */
 static cub_q16 clip_contacts(cub_bridge_legs *l, const cub_clip *clip, uint8_t *bits)
@@ -110,6 +127,7 @@ static cub_q16 clip_contacts(cub_bridge_legs *l, const cub_clip *clip, uint8_t *
     }
     drop_short_runs(bits, n, 0);
     drop_short_runs(bits, n, 1);
+    if (runs_on_seamlessly(l, clip)) bits[0] |= SEAMLESS_BIT;
     return floor;
 }
 
@@ -235,16 +253,21 @@ static int stands(const cub_bridge_legs *l, const cub_bridge_table *t, int clip,
     return (l->contact[c->first_frame + f] >> s) & 1;
 }
 
-/* Foot s stands on the shown side of the cut: in the clip's frame, or low
- * on the screen (within the contact height of that clip's floor: a cut
- * during a blend shows what the offset and the legs make of the clip, and
- * a foot low there, moving or not, would slide if the offset carried it). */
-static int stands_shown(cub_bridge_legs *l, const cub_bridge_table *t, const cub_bridge_cut *c,
-                        int s)
+/* Foot s stands on the shown side of the cut: low on the screen (within
+ * the contact height of the playing clip's floor). Outside a blend that is
+ * where the clip's standing feet are; a cut during a blend shows what the
+ * offset and the legs make of the clip: a foot low there, moving or not,
+ * would slide if the offset carried it, and a foot the clip stands on but
+ * a running step has lifted is in the air (held there, it would hang). */
+static int stands_shown(cub_bridge_legs *l, const cub_bridge_cut *c, int s)
 {
-    if (stands(l, t, c->src_clip, c->src_frame, s)) return 1;
     cub_vec3 now = foot_low(l, l->world[0], s);
     return (int64_t)now.y - l->floor_mm[c->src_clip] < CONTACT_HEIGHT_MM;
+}
+
+static int seamless(const cub_bridge_legs *l, const cub_bridge_table *t, int clip)
+{
+    return (l->contact[t->clips[clip].first_frame] & SEAMLESS_BIT) != 0;
 }
 
 /* How high a step lifts a foot that travels travel_mm. */
@@ -276,6 +299,9 @@ static int leg_frames(const cub_bridge_legs *l, cub_q16 far_mm)
 void cub_bridge_legs_begin(cub_bridge_legs *l, const cub_bridge_table *t, const cub_bridge_cut *c)
 {
     const cub_skeleton *sk = t->desc.skel;
+    /* The clip runs on into its own first frame: no cut for the feet; a
+     * phase running goes on (its goals are the raw frames, continuous). */
+    if (c->wrap && seamless(l, t, c->to_clip)) return;
     l->on = 0;
     l->planted = 0;
     if (!l->ok || !l->enabled) return;
@@ -284,7 +310,7 @@ void cub_bridge_legs_begin(cub_bridge_legs *l, const cub_bridge_table *t, const 
     for (int s = 0; s < 2; s++) {
         for (int k = 0; k < l->min_frames; k++)
             lands |= stands(l, t, c->to_clip, c->to_frame + k, s);
-        if (stands_shown(l, t, c, s)) l->planted |= (uint8_t)(1u << s);
+        if (stands_shown(l, c, s)) l->planted |= (uint8_t)(1u << s);
     }
     /* No foot on the floor on either side, nor soon in the new clip (a
      * jump into a jump): the offset alone. */
@@ -301,12 +327,25 @@ void cub_bridge_legs_begin(cub_bridge_legs *l, const cub_bridge_table *t, const 
     int one = l->planted == 1 || l->planted == 2;
     l->first = one ? (l->planted & 1) : travel[1] > travel[0];
     l->len = leg_frames(l, travel[0] > travel[1] ? travel[0] : travel[1]);
+    /* A loop whose pass is shorter than its phase (a clip that travels,
+     * played in place) would never end one: each wrap's phase ends the
+     * shortest blend before the next, its steps faster for it. A switch's
+     * phase may run into the first wrap, which starts one from what is
+     * shown (a foot a step has lifted is free there). */
+    int legs = l->planted ? 2 : 1, room = c->pass_frames - l->min_frames;
+    if (c->wrap && legs * l->len > room) {
+        int fit = room / legs;
+        l->len = fit > l->min_frames ? fit : l->min_frames;
+    }
+    l->from_q16 = c->from_q16;
     l->on = 1;
 }
 
-int cub_bridge_legs_frames(const cub_bridge_legs *l)
+int64_t cub_bridge_legs_left_q16(const cub_bridge_legs *l, int64_t pos_q16)
 {
-    return l->on ? (l->planted ? 2 : 1) * l->len : 0;
+    if (!l->on) return 0;
+    int64_t left = ((int64_t)(l->planted ? 2 : 1) * l->len << 16) - (pos_q16 - l->from_q16);
+    return left > 0 ? left : 0;
 }
 
 /* smoothstep of x (Q16), clamped to [0, 1]. */
@@ -347,9 +386,10 @@ static goal leg_goal(const cub_bridge_legs *l, int s, int64_t u)
 }
 
 void cub_bridge_legs_apply(cub_bridge_legs *l, const cub_skeleton *sk, const cub_pose *raw,
-                           int64_t progress_q16, cub_pose *out)
+                           int64_t pos_q16, cub_pose *out)
 {
     if (!l->on) return;
+    int64_t progress_q16 = pos_q16 - l->from_q16;
     /* world[0]: the pose with the offset on; world[1]: the new clip's own */
     cub_motion_forward(sk, out, l->world[0], l->wrot[0]);
     cub_motion_forward(sk, raw, l->world[1], l->wrot[1]);

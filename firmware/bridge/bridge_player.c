@@ -216,14 +216,14 @@ cub_err cub_bridge_player_pose(cub_bridge_player *p, cub_pose *out)
     int64_t progress = p->pos_q16 - p->blend_from_q16;
     cub_q16 w = fade_weight(progress, p->blend_len);
     cub_q16 w_xz = fade_weight(progress, p->root_len);
-    if (w == 0 && w_xz == 0 && progress >= (int64_t)cub_bridge_legs_frames(&p->legs) << 16) {
+    if (w == 0 && w_xz == 0 && cub_bridge_legs_left_q16(&p->legs, p->pos_q16) == 0) {
         p->blending = 0;
         return CUB_OK;
     }
     if (p->desc.smooth == CUB_BRIDGE_SMOOTH_INERTIAL) {
         if (p->legs.on) p->legs.raw = *out;
         apply_offset(p, w, w_xz, vel_weight(progress, p->vel_len), out);
-        cub_bridge_legs_apply(&p->legs, p->desc.table->desc.skel, &p->legs.raw, progress, out);
+        cub_bridge_legs_apply(&p->legs, p->desc.table->desc.skel, &p->legs.raw, p->pos_q16, out);
         return CUB_OK;
     }
     e = sample(clip_of(p, p->old_clip), p->old_pos_q16, p->old_loop, &p->scratch[1],
@@ -296,12 +296,42 @@ static cub_q16 offset_path_mm(const cub_bridge_player *p, const cub_skeleton *sk
     return worst > INT32_MAX ? INT32_MAX : (cub_q16)worst;
 }
 
+/* A switch during a leg phase (a chain's next switch): a leg the phase is
+ * swinging would carry that swing on through the offset (a free foot
+ * leaves from where the offset puts it), flinging it: up to 21 cm a frame
+ * on the shipped library. The new phase puts the legs; they carry no
+ * velocity. (A wrap keeps it: a travelling loop's legs carry the walk.) */
+static void still_legs(cub_bridge_player *p)
+{
+    const cub_bridge_legs *l = &p->legs;
+    for (int s = 0; s < 2; s++) {
+        p->vel_angle[l->hip[s]] = p->vel_angle[l->knee[s]] = 0;
+        for (int k = 0; k < CUB_BRIDGE_FOOT_JOINTS && l->foot[s][k] >= 0; k++)
+            p->vel_angle[l->foot[s][k]] = 0;
+    }
+}
+
+/* The player's leg phase at a cut (bridge_legs.c) into frame to_frame of
+ * to_clip, which starts at from_q16 on its time line. */
+static void begin_legs(cub_bridge_player *p, const cub_pose *src, const cub_pose *dst,
+                       int64_t src_pos_q16, int to_clip, int to_frame, int64_t from_q16)
+{
+    int n = clip_of(p, p->clip)->frame_count;
+    int64_t f = src_pos_q16 >> 16;
+    int src_frame = (int)(p->loop ? f % n : f < n ? f : n - 1);
+    int wrap = p->loop && to_clip == p->clip && to_frame == 0 && src_frame == n - 1;
+    cub_bridge_cut cut = {src, dst, p->clip, src_frame, to_clip, to_frame, from_q16, wrap, n};
+    int stepping = cub_bridge_legs_left_q16(&p->legs, src_pos_q16) > 0;
+    cub_bridge_legs_begin(&p->legs, p->desc.table, &cut);
+    if (stepping && !wrap && p->legs.on) still_legs(p);
+}
+
 /* At a cut (a switch, or a looping clip's new pass): remember what was on
  * screen at position src_pos of the clip playing, and how far frame
- * to_frame of to_clip is from it, so the new clip can start from it; the
- * new clip plays at new_speed_q16. */
+ * to_frame of to_clip (at from_q16 on its time line) is from it, so the new
+ * clip can start from it; the new clip plays at new_speed_q16. */
 static cub_err begin_blend(cub_bridge_player *p, int64_t src_pos_q16, int to_clip, int to_frame,
-                           cub_q16 new_speed_q16)
+                           int64_t from_q16, cub_q16 new_speed_q16)
 {
     if (p->desc.smooth == CUB_BRIDGE_SMOOTH_NONE) return CUB_OK;
     int64_t saved_pos = p->pos_q16;
@@ -345,11 +375,7 @@ static cub_err begin_blend(cub_bridge_player *p, int64_t src_pos_q16, int to_cli
         return CUB_OK;
     }
     carry_velocity(p, src_prev, src, dst, dst_next, cub_fx_div(p->speed_q16, new_speed_q16));
-    int n = clip_of(p, p->clip)->frame_count;
-    int64_t f = src_pos_q16 >> 16;
-    cub_bridge_cut cut = {src, dst, p->clip, (int)(p->loop ? f % n : f < n ? f : n - 1),
-                          to_clip, to_frame};
-    cub_bridge_legs_begin(&p->legs, p->desc.table, &cut);
+    begin_legs(p, src, dst, src_pos_q16, to_clip, to_frame, from_q16);
     return CUB_OK;
 }
 
@@ -380,7 +406,8 @@ static void emit(cub_bridge_event *ev, int max_ev, int *n, const cub_bridge_even
 static cub_err do_switch(cub_bridge_player *p, int64_t overshoot_q16)
 {
     const cub_bridge_step *s = &p->plan.step[p->next_step++];
-    cub_err e = begin_blend(p, s->at_q16, s->to_clip, s->to_frame, p->want_speed_q16);
+    cub_err e = begin_blend(p, s->at_q16, s->to_clip, s->to_frame, (int64_t)s->to_frame << 16,
+                            p->want_speed_q16);
     if (e) return e;
     const cub_clip *from = clip_of(p, p->clip), *to = clip_of(p, s->to_clip);
     int last = p->next_step == p->plan.step_count;
@@ -403,7 +430,7 @@ static cub_err do_switch(cub_bridge_player *p, int64_t overshoot_q16)
 static cub_err wrap(cub_bridge_player *p, int64_t mark)
 {
     if (p->desc.smooth == CUB_BRIDGE_SMOOTH_NONE) return CUB_OK;
-    cub_err e = begin_blend(p, mark - 1, p->clip, 0, p->speed_q16);
+    cub_err e = begin_blend(p, mark - 1, p->clip, 0, mark, p->speed_q16);
     if (e) return e;
     p->old_loop = 0; /* a crossfade holds the old pass's last frame */
     p->old_pos_q16 = (int64_t)(clip_of(p, p->clip)->frame_count - 1) << 16;

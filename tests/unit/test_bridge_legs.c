@@ -18,19 +18,21 @@
 #include "cub/bridge.h"
 
 #define FRAMES 40
+#define CLIPS 3
+#define STEP_FORWARD_MM 300.0 /* clip 2 moves this far forward at its middle frame */
 #define THIGH_MM 400.0
 #define SHIN_MM 400.0
 #define ANKLE_Y_MM 50.0 /* the toe (50 mm below, 100 ahead) is the floor */
 #define Q(x) ((cub_q16)lround((x) * 65536.0))
-#define POSES_FNV1A 0x4a9dfe318f3f0ec1ull
+#define POSES_FNV1A 0xe0fb4fcb87a1cb59ull
 
 enum { HIPS, LUPLEG, LLEG, LFOOT, LTOE, RUPLEG, RLEG, RFOOT, RTOE, SPINE, HEAD, JOINTS };
 
 typedef struct legs_fixture {
     cub_skeleton skel;
-    cub_clip clips[2];
-    uint8_t clip_mem[2][FRAMES * (JOINTS * 16 + 16) + 64];
-    cub_fuzzy_frame fuzzy[2][FRAMES];
+    cub_clip clips[CLIPS];
+    uint8_t clip_mem[CLIPS][FRAMES * (JOINTS * 16 + 16) + 64];
+    cub_fuzzy_frame fuzzy[CLIPS][FRAMES];
     cub_bridge_table table;
     uint8_t table_mem[1 << 16];
     uint8_t work[1 << 15];
@@ -94,7 +96,9 @@ static void standing_pose(double hip_y, double hip_z, double lean, cub_pose *pos
     pose->rot[SPINE] = about_x(lean);
 }
 
-static void make_clip(int c, double hip_y, double hip_z, double lean)
+/* Clip c stands still; from its middle frame on, step_mm further forward
+ * (the whole body: a clip that travels, which a loop plays in place). */
+static void make_clip(int c, double hip_y, double hip_z, double lean, double step_mm)
 {
     assert_int_equal(cub_motion_clip_init(&F.clips[c], &F.skel, FRAMES, 33333333, 0,
                                           F.clip_mem[c], sizeof F.clip_mem[c]),
@@ -102,6 +106,7 @@ static void make_clip(int c, double hip_y, double hip_z, double lean)
     cub_pose pose;
     standing_pose(hip_y, hip_z, lean, &pose);
     for (int f = 0; f < FRAMES; f++) {
+        if (f == FRAMES / 2) pose.root_mm.z += Q(step_mm);
         assert_int_equal(cub_motion_clip_set_frame(&F.clips[c], f, &pose), CUB_OK);
         /* Every frame alike to the features: the planner switches at once. */
         memset(&F.fuzzy[c][f], 0, sizeof F.fuzzy[c][f]);
@@ -113,19 +118,20 @@ static void make_clip(int c, double hip_y, double hip_z, double lean)
 static void make_table(void)
 {
     make_skeleton();
-    make_clip(0, 840, 0, 0);      /* upright */
-    make_clip(1, 700, 120, 0.4);  /* crouched, the hips 12 cm forward, leaning */
+    make_clip(0, 840, 0, 0, 0);                 /* upright */
+    make_clip(1, 700, 120, 0.4, 0);             /* crouched, the hips 12 cm forward, leaning */
+    make_clip(2, 840, 0, 0, STEP_FORWARD_MM);   /* upright, then 30 cm forward */
     cub_fuzzy_body b = {.hip_centre = HIPS, .spine = SPINE, .shoulder_centre = SPINE,
                         .head = HEAD, .shoulder = {SPINE, SPINE}, .elbow = {SPINE, SPINE},
                         .wrist = {HEAD, HEAD}, .hip = {LUPLEG, RUPLEG}, .knee = {LLEG, RLEG},
                         .ankle = {LFOOT, RFOOT}, .stand_cog_mm = CUB_Q16_INT(500)};
-    cub_bridge_table_desc d = {.skel = &F.skel, .body = b, .clip_count = 2,
-                               .frame_total = 2 * FRAMES, .bridge_total = 2 * FRAMES};
+    cub_bridge_table_desc d = {.skel = &F.skel, .body = b, .clip_count = CLIPS,
+                               .frame_total = CLIPS * FRAMES, .bridge_total = CLIPS * FRAMES};
     assert_int_equal(cub_bridge_table_init(&F.table, &d, F.table_mem, sizeof F.table_mem), CUB_OK);
     int bridges[FRAMES];
     for (int f = 0; f < FRAMES; f++)
         bridges[f] = f;
-    for (int c = 0; c < 2; c++)
+    for (int c = 0; c < CLIPS; c++)
         assert_int_equal(cub_bridge_table_add_clip(&F.table, &F.clips[c], bridges, FRAMES,
                                                    F.fuzzy[c]),
                          CUB_OK);
@@ -242,6 +248,91 @@ static void test_no_legs_in_the_body_no_leg_phase(void **s)
     assert_int_equal(cub_bridge_player_init(&p, &pd, F.work, sizeof F.work), CUB_ERR_ARG);
 }
 
+/* A fresh table and a player with the leg phase, playing clip c in a loop. */
+static void play_looping(cub_bridge_player *p, int c)
+{
+    make_table();
+    cub_bridge_player_desc pd = {.table = &F.table};
+    assert_int_equal(cub_bridge_player_init(p, &pd, F.work, sizeof F.work), CUB_OK);
+    assert_int_equal(cub_bridge_player_start(p, c, 0, 0, 1), CUB_OK);
+}
+
+/* The ankles of pose (world). */
+static void ankles(const cub_pose *pose, cub_vec3 out[2])
+{
+    static cub_vec3 world[JOINTS];
+    assert_int_equal(cub_motion_forward(&F.skel, pose, world, NULL), CUB_OK);
+    out[0] = world[LFOOT], out[1] = world[RFOOT];
+}
+
+/* A looping clip that travels (30 cm forward at its middle) is played in
+ * place: each pass is a real cut, back 30 cm, whose steps (2 x 45 frames
+ * at the blend's 2.5 cm a frame) would outlast the 40-frame pass. Over
+ * twenty passes every leg phase must end by the end of its pass (the
+ * player's leg state: where it began, how long each leg takes), late in
+ * a pass the feet stand where the clip puts them, and they do not drift
+ * from pass to pass. */
+static void test_a_looping_clip_that_travels_ends_each_leg_phase(void **s)
+{
+    (void)s;
+    static cub_bridge_player p;
+    play_looping(&p, 2);
+    static cub_pose pose;
+    cub_vec3 own[2], shown[2], first[2] = {{0}};
+    assert_int_equal(cub_motion_clip_get_frame(&F.clips[2], FRAMES - 2, &pose), CUB_OK);
+    ankles(&pose, own);
+    double worst_own = 0, worst_drift = 0;
+    int passes = 0, phases = 0, overrun = -FRAMES;
+    for (int t = 1; t <= 20 * FRAMES; t++) {
+        cub_bridge_event ev[4];
+        int n;
+        assert_int_equal(cub_bridge_player_advance(&p, 33333, ev, 4, &n), CUB_OK);
+        int64_t pass_end = ((p.pos_q16 >> 16) / FRAMES + 1) * FRAMES;
+        if (p.legs.on && p.legs.from_q16 >> 16 == pass_end - FRAMES) {
+            int64_t end = (p.legs.from_q16 >> 16) + (p.legs.planted ? 2 : 1) * p.legs.len;
+            phases += (p.pos_q16 >> 16) % FRAMES == 0;
+            overrun = overrun > end - pass_end ? overrun : (int)(end - pass_end);
+        }
+        if ((p.pos_q16 >> 16) % FRAMES != FRAMES - 2 || t < FRAMES) continue;
+        assert_int_equal(cub_bridge_player_pose(&p, &pose), CUB_OK);
+        ankles(&pose, shown);
+        if (!passes++) first[0] = shown[0], first[1] = shown[1];
+        for (int k = 0; k < 2; k++) {
+            worst_own = fmax(worst_own, dist_mm(shown[k], own[k]));
+            worst_drift = fmax(worst_drift, dist_mm(shown[k], first[k]));
+        }
+    }
+    printf("bridge legs: a travelling loop over %d passes (%d leg phases): they end by their "
+           "pass's end %+d frames; its feet %.3f mm from the clip's own late in each pass, "
+           "drifting %.3f mm\n",
+           passes, phases, overrun, worst_own, worst_drift);
+    assert_true(passes >= 18);
+    assert_true(phases >= 18); /* each wrap is a cut for the feet */
+    assert_true(overrun <= 0);
+    assert_true(worst_own < 1.0);
+    assert_true(worst_drift < 1.0);
+}
+
+/* A clip whose last frame runs into its first (clip 0 stands still):
+ * its loop's wraps are no cut for the feet, no leg phase starts. */
+static void test_a_seamless_loop_starts_no_leg_phase(void **s)
+{
+    (void)s;
+    static cub_bridge_player p;
+    play_looping(&p, 0);
+    int wraps = 0, phases = 0;
+    for (int t = 0; t < 3 * FRAMES; t++) {
+        cub_bridge_event ev[4];
+        int n;
+        assert_int_equal(cub_bridge_player_advance(&p, 33333, ev, 4, &n), CUB_OK);
+        for (int k = 0; k < n; k++)
+            wraps += ev[k].type == CUB_BRIDGE_EV_DONE;
+        phases += p.legs.on;
+    }
+    assert_true(wraps >= 2);
+    assert_int_equal(phases, 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -249,6 +340,8 @@ int main(void)
         cmocka_unit_test(test_clips_stand_on_the_same_spots),
         cmocka_unit_test(test_planted_foot_stays_put_across_a_switch),
         cmocka_unit_test(test_without_the_leg_phase_the_feet_slide),
+        cmocka_unit_test(test_a_looping_clip_that_travels_ends_each_leg_phase),
+        cmocka_unit_test(test_a_seamless_loop_starts_no_leg_phase),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

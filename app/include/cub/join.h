@@ -188,7 +188,12 @@ typedef struct cub_join_result {
 
 /* Join A to B: through the pick's C when pick->clip >= 0, directly
  * otherwise. feet = 1 moves the legs one at a time, the other planted
- * (leg IK); feet = 0 blends every joint at once. */
+ * (leg IK); feet = 0 blends every joint at once. With CUB_JOIN_CUT or'ed
+ * in, the same frames and windows without the blend: each seam shows the
+ * outgoing clip to its middle, then the incoming one (each moved as in the
+ * join), no foot standing across that cut - the clips' own motion there,
+ * which the measure of the join collects too. */
+#define CUB_JOIN_CUT 2
 cub_err cub_join_build(const cub_join_db *db, int a, int b, const cub_join_pick *pick, int feet,
                        cub_join_result *out);
 void cub_join_result_free(cub_join_result *r);

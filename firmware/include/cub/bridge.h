@@ -285,17 +285,17 @@ typedef enum cub_bridge_smooth {
 /* The player's leg phase (firmware/bridge/bridge_legs.c; docs/join.md): at
  * an inertial cut where a foot stands (on the shown side, or in the new
  * clip within its first blend_frames frames), a foot that stands on the
- * shown side (a foot planted on both sides among them) is held where it
- * stands by a two-bone leg IK while the offset fades, and the legs go over
- * to where the new clip puts them one at a time (the free one first) while
- * the other stays planted; a foot with more than 20 mm to go steps (is
- * lifted). Standing is app/join's contact rule
- * (within 30 mm of the clip's floor, slower than 180 mm/s, in runs of at
- * least 3 frames), marked for every frame at init; on the shown side a
- * foot also stands when the pose on screen has it low (a cut during a
- * blend: the screen is not the clip). Each leg gets as many
- * frames as keep its step within blend_speed_mm a frame, at least
- * blend_frames. */
+ * shown side - low on the screen, within 30 mm of the clip's floor - is
+ * held where it stands by a two-bone leg IK while the offset fades, and
+ * the legs go over to where the new clip puts them one at a time (the free
+ * one first) while the other stays planted; a foot with more than 20 mm to
+ * go steps (is lifted). Standing in the new clip is app/join's contact
+ * rule (within 30 mm of the clip's floor, slower than 180 mm/s, in runs of
+ * at least 3 frames), marked for every frame at init. Each leg gets as
+ * many frames as keep its step within blend_speed_mm a frame, at least
+ * blend_frames. A looping clip whose last frame runs into its first (both
+ * ankles within 20 mm) wraps without a cut for the feet; any other wrap's
+ * phase ends blend_frames before the next pass. */
 #define CUB_BRIDGE_FOOT_JOINTS 4
 
 typedef struct cub_bridge_legs {
@@ -303,13 +303,15 @@ typedef struct cub_bridge_legs {
     int enabled;                    /* the leg phase runs (inertial, not no_legs) */
     int16_t hip[2], knee[2], ankle[2];
     int16_t foot[2][CUB_BRIDGE_FOOT_JOINTS]; /* the ankle and what hangs below, -1 ends */
-    const uint8_t *contact;         /* [frame_total] bit s: foot s stands (player memory) */
+    const uint8_t *contact;         /* [frame_total] bit s: foot s stands; bit 2 of a clip's
+                                     * first frame: its loop is seamless (player memory) */
     const cub_q16 *floor_mm;        /* [clip_count] each clip's floor: its lowest foot point */
     cub_q16 speed_mm;               /* a step moves at most this a frame (the blend's) */
     int min_frames;                 /* each leg gets at least this (the shortest blend) */
     /* this blend */
     int on;                         /* a foot is held: the leg phase runs */
     int first, len;                 /* the leg that goes first; frames each leg gets */
+    int64_t from_q16;               /* the position (the clip's unwrapped time) it began at */
     uint8_t planted;                /* bit s: foot s stands on both sides of the cut */
     cub_vec3 hold_mm[2];            /* where a planted ankle stood at the cut */
     cub_quat hold_rot[2];           /* and its world rotation */
