@@ -655,8 +655,15 @@ def read_jtrack(path):
                 head.append(line)
             continue
         if len(hdr) < 4:
-            k, v = s.split()
-            hdr[k] = float(v)
+            v = s.split()
+            want = ("cub-jtrack", "fps", "unit_mm", "frames")[len(hdr)]
+            try:
+                if len(v) != 2 or v[0] != want:
+                    raise ValueError
+                hdr[want] = float(v[1])
+            except ValueError:
+                raise ValueError("%s:%d: expected '%s VALUE' (a joint track's header), got %r"
+                                 % (path, n, want, s[:40])) from None
             continue
         vals, pos = [], 0
         while pos < len(s):
@@ -669,6 +676,8 @@ def read_jtrack(path):
             raise ValueError("%s:%d: %d values, not %d" % (path, n, len(vals), JT_POINTS * 3))
         pred = jt_predict(frames)
         frames.append([p + r for p, r in zip(pred, vals)])
+    if len(hdr) < 4 or not frames:
+        raise ValueError("%s: not a joint track (no header or no frames)" % path)
     return head, hdr["fps"], hdr["unit_mm"], frames
 
 
