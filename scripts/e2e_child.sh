@@ -3,7 +3,7 @@
 # mistakes, is rendered as Kinect depth, and replayed through fakenect into
 # the real cubdance binary, headless; then every verdict is scored.
 #
-#   scripts/e2e_child.sh BUILD_DIR [--song NAME] [--child planted|late|sloppy] [--remake [--from CUES]] [--keep DIR]
+#   scripts/e2e_child.sh BUILD_DIR [--song NAME] [--child planted|late|sloppy|moving] [--remake [--from CUES]] [--keep DIR]
 #
 # --song: twinkle (default) or old_macdonald (a song held out from the
 # early verdicts' tuning: README "Early verdicts"); its plan is
@@ -11,8 +11,12 @@
 # --child: planted (default) makes the planted mistakes; late follows the
 # bear 0.5 s late all song long and sloppy does every move right at half
 # amplitude on the joints that are not the move's keys (neither makes a
-# mistake: no repetition of theirs may be corrected). Each child has its
-# cues: scripts/child/twinkle.cues, twinkle_late.cues, twinkle_sloppy.cues.
+# mistake: no repetition of theirs may be corrected). moving (issue 20) is
+# the planted child turning and moving about between moves, with an adult
+# behind (scripts/make_child.py, MOVE_*: fixed before any run); its frames
+# also go through `cubtool eval-track`, which prints the frames where the
+# tracker took the adult. Each child has its cues: scripts/child/twinkle.cues,
+# twinkle_late.cues, twinkle_sloppy.cues, twinkle_moving.cues.
 #
 # The child follows the bear (scripts/make_child.py): it does each move the
 # coach leads a moment after the bear starts it, watches the corrections,
@@ -32,7 +36,7 @@
 # depth dump is 614 KB a frame (about 2 GB for the song); it is written to
 # a temporary folder (or DIR with --keep) and deleted at the end.
 set -euo pipefail
-usage() { echo "usage: scripts/e2e_child.sh BUILD_DIR [--song NAME] [--child planted|late|sloppy] [--remake [--from CUES]] [--keep DIR]" >&2; exit 2; }
+usage() { echo "usage: scripts/e2e_child.sh BUILD_DIR [--song NAME] [--child planted|late|sloppy|moving] [--remake [--from CUES]] [--keep DIR]" >&2; exit 2; }
 [ $# -ge 1 ] || usage
 build=$1
 shift
@@ -58,7 +62,7 @@ plan=$here/child/$name.plan
 [ -f "$song" ] && [ -f "$plan" ] || { echo "e2e_child: no $song or $plan" >&2; exit 2; }
 case $child in
     planted) cues=$here/child/$name.cues ;;
-    late | sloppy) cues=$here/child/${name}_$child.cues ;;
+    late | sloppy | moving) cues=$here/child/${name}_$child.cues ;;
     *) usage ;;
 esac
 for f in "$tool" "$box"; do
@@ -94,9 +98,23 @@ round() {
     rm -rf "$work/dump"
     # shellcheck disable=SC2086
     python3 "$here/make_child.py" sequence "$song" "$plan" "$work" $cues_in --child "$child"
-    echo "+ cubtool synth-depth --sequence $work/child.seq --out $work/dump"
-    "$tool" synth-depth --sequence "$work/child.seq" --data "$data" --out "$work/dump" 2>/dev/null |
-        tail -n 1
+    if [ "$child" = moving ]; then
+        # the performance as a joint track, turned and carried about
+        # (make_child.py: child.moving), rendered with an adult behind
+        echo "+ cubtool synth-depth --sequence $work/child.seq --write-track $work/child.jtrack"
+        "$tool" synth-depth --sequence "$work/child.seq" --data "$data" \
+            --write-track "$work/child.jtrack" >/dev/null
+        python3 "$here/make_child.py" move "$work/child.jtrack" "$work/child.moving" \
+            "$work/moved.jtrack"
+        adult=$(awk '$1 == "adult" { print $2 }' "$work/child.moving")
+        echo "+ cubtool synth-depth --track $work/moved.jtrack --second-person $adult --out $work/dump"
+        "$tool" synth-depth --track "$work/moved.jtrack" --second-person "$adult" --data "$data" \
+            --out "$work/dump" 2>/dev/null | tail -n 1
+    else
+        echo "+ cubtool synth-depth --sequence $work/child.seq --out $work/dump"
+        "$tool" synth-depth --sequence "$work/child.seq" --data "$data" --out "$work/dump" 2>/dev/null |
+            tail -n 1
+    fi
     echo "+ cubdance --replay $work/dump --clock virtual --song $name --log $work/events.log"
     FAKENECT_PATH="$work/dump" LD_LIBRARY_PATH="$fakenect${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" \
         EGL_PLATFORM=surfaceless SDL_AUDIODRIVER=dummy \
@@ -104,7 +122,14 @@ round() {
         --song "$song" --buttons "$here/demo.buttons" --log "$work/events.log" --seconds 110 \
         >"$work/cubdance.out" 2>&1 ||
         { cat "$work/cubdance.out" >&2; echo "e2e_child: cubdance failed" >&2; exit 1; }
+    if [ "$child" = moving ]; then
+        # the tracker alone on the same frames: did it take the adult?
+        "$tool" eval-track "$work/dump" --per-frame >"$work/eval_track.txt" 2>&1 ||
+            { cat "$work/eval_track.txt" >&2; echo "e2e_child: eval-track failed" >&2; exit 1; }
+        grep "wrong person" "$work/eval_track.txt" || true
+    fi
     mv "$work/dump/truth.txt" "$work/truth.txt"
+    [ ! -f "$work/dump/truth_second.txt" ] || mv "$work/dump/truth_second.txt" "$work/truth_second.txt"
     rm -rf "$work/dump"
 }
 

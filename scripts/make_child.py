@@ -23,6 +23,10 @@ end"; scripts/e2e_child.sh runs it all).
     scripts/make_child.py derive PLAN OUT
         writes the plan's derived clips (its `derive` lines) as OUT/NAME.bvh
         (scripts/eval_tracker.sh measures the tracker on them).
+    scripts/make_child.py move TRACK MOVING OUT
+        the moving child (--child moving; sequence writes OUT/child.moving,
+        its facing and spot over time): the joint track TRACK (synth-depth
+        --write-track of child.seq) turned and carried accordingly, as OUT.
     scripts/make_child.py score EXPECT LOG
         the judge's verdicts and the coach's corrections in a cubdance log
         against expect.txt: the table per window and the counts; fails when
@@ -70,6 +74,7 @@ Plan file (scripts/child/<song>.plan), '#' comments, one item a line:
 """
 import math
 import os
+import random
 import re
 import sys
 import xml.etree.ElementTree as ET
@@ -528,6 +533,196 @@ def build(song, plan, cues, react=REACT):
     return tl, expect
 
 
+# ---- the moving child (--child moving): turning, moving about, an adult --------
+# Fixed before any run (the figures are held out for the tracker and the
+# judge). While the child watches (the lead-in, a correction, idle, the
+# cheer) it turns to look about the room (at a parent): MOVE_AWAY_DEG
+# degrees to a side drawn at random, turned to in the first TURN_S of the
+# stretch (a third of it when shorter), and back, to a new facing within
+# +-MOVE_FACE_DEG, in its last TURN_S; over the whole stretch it moves to a
+# new spot drawn in MOVE_X_MM x MOVE_Z_MM about its first (x: to the
+# camera's right, z: farther; it glides, its feet do not step), as far
+# towards it as MOVE_SPEED_MM_S takes it in the stretch. It dances
+# each move from that spot, facing that way. An adult (MOVE_ADULT, 1.65 m)
+# stands behind it all song long: synth-depth's second person, 0.7 m to
+# the right of and 0.9 m behind the child's first spot.
+MOVE_SEED = 20
+MOVE_AWAY_DEG = (30.0, 60.0)
+MOVE_FACE_DEG = 15.0
+MOVE_X_MM = (-500.0, 500.0)
+MOVE_Z_MM = (-250.0, 500.0)   # nearer than about 1.95 m the feet leave the view
+TURN_S = 0.5
+MOVE_SPEED_MM_S = 600.0
+MOVE_ADULT = "dataset-1_call_normal_002"  # a parent calling the child
+
+
+def watching(label):
+    return label == "lead-in" or label.startswith("watch ")
+
+
+def moving_keys(loop):
+    """The moving child's facing and spot over loop time: key lists
+    [(t, yaw_deg)] and [(t, x_mm, z_mm)], smoothstepped between keys."""
+    rng = random.Random(MOVE_SEED)
+    stretches = []
+    for t0, t1, _, label in loop:
+        if not watching(label):
+            continue
+        if stretches and abs(stretches[-1][1] - t0) < 1e-6:
+            stretches[-1][1] = t1
+        else:
+            stretches.append([t0, t1])
+    yaw, x, z = 0.0, 0.0, 0.0
+    yaws, spots = [(0.0, yaw)], [(0.0, x, z)]
+    for a, b in stretches:
+        r = min(TURN_S, (b - a) / 3)
+        away = rng.choice((-1, 1)) * rng.uniform(*MOVE_AWAY_DEG)
+        face = rng.uniform(-MOVE_FACE_DEG, MOVE_FACE_DEG)
+        nx, nz = rng.uniform(*MOVE_X_MM), rng.uniform(*MOVE_Z_MM)
+        go = min(1.0, MOVE_SPEED_MM_S * (b - a) / max(1e-6, math.hypot(nx - x, nz - z)))
+        nx, nz = x + (nx - x) * go, z + (nz - z) * go
+        yaws += [(a, yaw), (a + r, yaw + away), (b - r, yaw + away), (b, face)]
+        spots += [(a, x, z), (b, nx, nz)]
+        yaw, x, z = face, nx, nz
+    return yaws, spots
+
+
+def write_moving(loop, path):
+    yaws, spots = moving_keys(loop)
+    with open(path, "w") as fh:
+        fh.write("# made by scripts/make_child.py (--child moving): the child's facing\n"
+                 "# (yaw t_s deg, + = to its left) and spot (spot t_s x_mm z_mm) over\n"
+                 "# loop time, smoothstepped between keys (`make_child.py move` applies\n"
+                 "# them), and the adult behind (synth-depth --second-person)\n")
+        for t, v in yaws:
+            fh.write("yaw %.3f %.2f\n" % (t, v))
+        for t, vx, vz in spots:
+            fh.write("spot %.3f %.1f %.1f\n" % (t, vx, vz))
+        fh.write("adult %s\n" % MOVE_ADULT)
+
+
+def read_moving(path):
+    yaws, spots = [], []
+    for n, line in enumerate(open(path), 1):
+        v = line.split("#", 1)[0].split()
+        if not v:
+            continue
+        try:
+            if v[0] == "yaw" and len(v) == 3:
+                yaws.append((float(v[1]), float(v[2])))
+                continue
+            if v[0] == "adult" and len(v) == 2:
+                continue
+            if v[0] == "spot" and len(v) == 4:
+                spots.append((float(v[1]), float(v[2]), float(v[3])))
+                continue
+        except ValueError:
+            pass
+        raise ValueError("%s:%d: expected 'yaw T DEG' or 'spot T X Z', got %r"
+                         % (path, n, line.strip()))
+    if not yaws or not spots:
+        raise ValueError("%s: no yaw or no spot keys" % path)
+    return yaws, spots
+
+
+def at(keys, t):
+    """Keys (t, v...) smoothstepped between, held before the first and
+    after the last."""
+    if t <= keys[0][0]:
+        return keys[0][1:]
+    for k0, k1 in zip(keys, keys[1:]):
+        if t <= k1[0]:
+            d = k1[0] - k0[0]
+            w = 1.0 if d <= 1e-9 else (t - k0[0]) / d
+            w = w * w * (3 - 2 * w)
+            return tuple(a + (b - a) * w for a, b in zip(k0[1:], k1[1:]))
+    return keys[-1][1:]
+
+
+JT_POINTS = 21   # cub/synth.h: the 20 joints, then the top of the head
+JT_ZERO = ord("@") + 31
+JT_TOKEN = re.compile(r"[@-~]|\((-?\d+)\)")
+
+
+def read_jtrack(path):
+    """A joint track (cub/synth.h): its comment lines, fps, unit and frames
+    (lists of 63 values in units)."""
+    head, hdr, frames = [], {}, []
+    for n, line in enumerate(open(path), 1):
+        s = line.strip()
+        if not s or s.startswith("#"):
+            if not hdr:
+                head.append(line)
+            continue
+        if len(hdr) < 4:
+            v = s.split()
+            want = ("cub-jtrack", "fps", "unit_mm", "frames")[len(hdr)]
+            try:
+                if len(v) != 2 or v[0] != want:
+                    raise ValueError
+                hdr[want] = float(v[1])
+            except ValueError:
+                raise ValueError("%s:%d: expected '%s VALUE' (a joint track's header), got %r"
+                                 % (path, n, want, s[:40])) from None
+            continue
+        vals, pos = [], 0
+        while pos < len(s):
+            m = JT_TOKEN.match(s, pos)
+            if not m:
+                raise ValueError("%s:%d: bad residual at %r" % (path, n, s[pos:pos + 8]))
+            vals.append(int(m.group(1)) if m.group(1) else ord(m.group(0)) - JT_ZERO)
+            pos = m.end()
+        if len(vals) != JT_POINTS * 3:
+            raise ValueError("%s:%d: %d values, not %d" % (path, n, len(vals), JT_POINTS * 3))
+        pred = jt_predict(frames)
+        frames.append([p + r for p, r in zip(pred, vals)])
+    if len(hdr) < 4 or not frames:
+        raise ValueError("%s: not a joint track (no header or no frames)" % path)
+    return head, hdr["fps"], hdr["unit_mm"], frames
+
+
+def jt_predict(frames):
+    """The constant-velocity guess of the next frame from the ones before."""
+    if not frames:
+        return [0] * (JT_POINTS * 3)
+    if len(frames) == 1:
+        return frames[0]
+    return [2 * a - b for a, b in zip(frames[-1], frames[-2])]
+
+
+def write_jtrack(path, head, fps, unit, frames):
+    def ch(r):
+        return chr(JT_ZERO + r) if -31 <= r <= 31 else "(%d)" % r
+    with open(path, "w") as fh:
+        fh.writelines(head)
+        fh.write("cub-jtrack 1\nfps %g\nunit_mm %g\nframes %d\n" % (fps, unit, len(frames)))
+        for f, cur in enumerate(frames):
+            pred = jt_predict(frames[max(0, f - 2):f])
+            fh.write("".join(ch(c - p) for c, p in zip(cur, pred)) + "\n")
+
+
+def cmd_move(track_in, moving, track_out):
+    """The performance turned about its hips and carried to its spot, frame
+    by frame, as synth-depth turns one (+ = to the body's left)."""
+    yaws, spots = read_moving(moving)
+    head, fps, unit, frames = read_jtrack(track_in)
+    out = []
+    for f, q in enumerate(frames):
+        t = f / fps
+        (deg,), (dx, dz) = at(yaws, t), at(spots, t)
+        th = math.radians(deg)
+        c, n = math.cos(th), math.sin(th)
+        cx, cz = q[0] * unit, q[2] * unit   # the hip centre is point 0
+        p = []
+        for j in range(JT_POINTS):
+            x, z = q[3 * j] * unit - cx, q[3 * j + 2] * unit - cz
+            p += [int(round((cx + x * c + z * n + dx) / unit)), q[3 * j + 1],
+                  int(round((cz - x * n + z * c + dz) / unit))]
+        out.append(p)
+    write_jtrack(track_out, head, fps, unit, out)
+    print("make_child: %s: %d frames turned and moved (%s)" % (track_out, len(out), moving))
+
+
 def write_sequence(loop, path, derived):
     """cubtool plays segments back to back (blending over 0.3 s without
     adding time), so the pieces' durations add up to loop time."""
@@ -612,13 +807,15 @@ def cmd_sequence(song_path, plan_path, out, cues_path, child="planted", clips=Tr
     song, plan, cues = plan_and_cues(song_path, plan_path, cues_path)
     os.makedirs(out, exist_ok=True)
     derived = make_derived(plan, out) if clips else {}
-    if child != "planted":  # the late and the sloppy child make no mistake
+    if child not in ("planted", "moving"):  # the late and the sloppy child make no mistake
         plan["mistakes"] = []
     if child == "sloppy" and clips:
         derived.update(make_sloppy(song, plan, out))
     loop, expect = build(song, plan, cues, LATE if child == "late" else REACT)
     if clips:
         write_sequence(loop, os.path.join(out, "child.seq"), derived)
+        if child == "moving":
+            write_moving(loop, os.path.join(out, "child.moving"))
     write_expect(os.path.join(out, "expect.txt"), song, cues, expect, child)
     print("make_child: %s%s: %.1f s, the coach's %d requests (%s), %d moves led, "
           "%d planted wrong" % (os.path.join(out, "child.seq") + " and " if clips else "",
@@ -862,15 +1059,16 @@ def cmd_score(expect_path, log_path):
     print("e2e: child=%s planted=%d caught=%d right_corrected=%d" % (child, planted, n["caught"],
                                                                      n["false"]))
     return 0 if (n["missed"] == 0 and n["false"] == 0 and n["unjudged"] == 0 and k is None
-                 and (planted > 0) == (child == "planted") and lat_ok) else 1
+                 and (planted > 0) == (child in ("planted", "moving")) and lat_ok) else 1
 
 
 def main(argv):
     if argv[:1] in (["sequence"], ["expect"]) and "--child" in argv:
         k = argv.index("--child")
         child = argv[k + 1] if k + 1 < len(argv) else ""
-        if child not in ("planted", "late", "sloppy"):
-            sys.stderr.write("make_child: --child is planted, late or sloppy, not %r\n" % child)
+        if child not in ("planted", "late", "sloppy", "moving"):
+            sys.stderr.write("make_child: --child is planted, late, sloppy or moving, not %r\n"
+                             % child)
             return 2
         argv = argv[:k] + argv[k + 2:]
     else:
@@ -884,6 +1082,9 @@ def main(argv):
     if len(argv) == 3 and argv[0] == "derive":
         os.makedirs(argv[2], exist_ok=True)
         make_derived(read_plan(argv[1]), argv[2])
+        return 0
+    if len(argv) == 4 and argv[0] == "move":
+        cmd_move(argv[1], argv[2], argv[3])
         return 0
     if len(argv) >= 3 and argv[0] == "score":
         return cmd_score(argv[1], argv[2])
