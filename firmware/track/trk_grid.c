@@ -600,7 +600,8 @@ static int32_t choose_blob(cub_tracker *t, bool *same, bool *hidden)
         int64_t score = person_score(t, pred, comp_centre(&t->comps[k]));
         /* not while the player waits to be chosen afresh (the room just
          * known, START): the blobs then are not the frame before's */
-        if (t->tracked && t->room_known != 1 && !t->start_afresh && score >= 0 && score < ID_FAR && was_someone_else(t, k))
+        bool afresh = t->room_known == 1 || t->start_afresh;
+        if (t->tracked && !afresh && score >= 0 && score < ID_FAR && was_someone_else(t, k))
             someone_else[k] = true, score = ID_FAR + newcomer_score(comp_centre(&t->comps[k]));
         if (score < best_score) best_score = score, best = k;
     }
