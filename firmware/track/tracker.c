@@ -11,12 +11,15 @@
  *   1. depth: a 160x120 grid of 4x4-pixel cells, each the nearest valid
  *      reading, raw -> mm by table                   trk_grid.c trk_grid_fill
  *   2. floor: up from gravity, else the camera pitch whose heights have
- *      the densest low layer; floor cells go   trk_floor_update, _remove
+ *      the densest low layer; floor cells go   trk_floor_update, _remove;
+ *      the room's background (per cell the farthest depth that stayed
+ *      still, learnt over time, never stored): cells at it go   trk_bg.c
  *   3. blobs by depth continuity                          trk_components
  *   4. player: the person-like blob on the player's track (its centre
  *      and velocity along the floor; nobody else takes over while the
- *      track lives, 2 s unseen); its hands before it merged back, a
- *      blob joining it to another person split       trk_pick_player
+ *      track lives, 2 s unseen), chosen afresh once when the room becomes
+ *      known; its hands before it merged back, a blob joining it to
+ *      another person split                          trk_pick_player
  *   5. geodesic: root = the silhouette's thickest cell (the torso);
  *      Dijkstra over the player's cells with 3D steps, depth jumps
  *      costing extra; the extremities are the farthest points, one by
@@ -99,6 +102,9 @@ cub_err cub_track_init(const cub_track_desc *desc, void *mem, size_t mem_size, c
         t->pitch_up[p] = (cub_vec3){0, cub_fx_cos(a), cub_fx_sin(a)};
     }
     t->up = t->pitch_up[TRK_PITCHES / 2];
+    trk_bg_reset(t);
+    t->bg_resets = 0;
+    for (int32_t i = 0; i < TRK_CELLS; i++) t->label_prev[i] = -1;
     *out = t;
     return CUB_OK;
 }
@@ -158,12 +164,15 @@ cub_err cub_track_frame(cub_tracker *t, const uint16_t *raw, int64_t t_us, const
     /* the time since the last frame scales the smoothing's limits: at
      * least 10 ms, a long gap 200 ms, unknown the Kinect's 33 ms */
     int64_t dt = t_us - t->prev_t_us;
+    int32_t learn_us = t->frame_no > 0 && dt > 0 ? (int32_t)(dt < 1000000 ? dt : 1000000) : 0;
     t->dt_us = t->have_prev && dt > 0 ? (int32_t)(dt < 10000 ? 10000 : dt < 200000 ? dt : 200000) : 33333;
     t->prev_t_us = t_us;
     t->frame_no++;
     trk_grid_fill(t, raw);
+    trk_bg_learn(t, learn_us);
     trk_floor_update(t, gravity_mm);
     trk_floor_remove(t);
+    trk_bg_remove(t);
     trk_components(t);
     int32_t comp = trk_pick_player(t);
     int32_t root = comp >= 0 ? trk_root_cell(t) : -1;

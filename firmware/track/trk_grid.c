@@ -310,15 +310,13 @@ static void refill_comp(cub_tracker *t, int16_t id)
         if (t->label[i] == id) comp_add(t, c, i);
 }
 
-/* Multi-source breadth-first fill from both sides' cells of last frame
- * (side in t->mask), within blob k and its depth joins. */
-static void split_sides(cub_tracker *t, int16_t k)
+/* Multi-source breadth-first fill within blob k and its depth joins from
+ * the cells of k whose side (t->mask) the caller set. */
+static void grow_sides(cub_tracker *t, int16_t k)
 {
     int32_t head = 0, tail = 0;
-    for (int32_t i = 0; i < TRK_CELLS; i++) {
-        t->mask[i] = 0;
-        if (t->label[i] == k && t->who_prev[i]) t->mask[i] = t->who_prev[i], t->stack[tail++] = i;
-    }
+    for (int32_t i = 0; i < TRK_CELLS; i++)
+        if (t->label[i] == k && t->mask[i]) t->stack[tail++] = i;
     while (head < tail) {
         int32_t i = t->stack[head++];
         int32_t j = joins_mm(t->z[i]), nb[4];
@@ -332,6 +330,27 @@ static void split_sides(cub_tracker *t, int16_t k)
     }
 }
 
+/* Blob k's cells of side 2 (t->mask) become a blob of their own. */
+static void split_off(cub_tracker *t, int16_t k)
+{
+    int16_t id = (int16_t)t->ncomps++;
+    for (int32_t i = 0; i < TRK_CELLS; i++)
+        if (t->label[i] == k && t->mask[i] == 2) t->label[i] = id;
+    refill_comp(t, k);
+    refill_comp(t, id);
+    count_interior(t);
+}
+
+/* Both sides' cells of last frame (the player's, the other person's). */
+static void split_sides(cub_tracker *t, int16_t k)
+{
+    for (int32_t i = 0; i < TRK_CELLS; i++) {
+        uint8_t w = t->label[i] == k ? t->who_prev[i] : 0;
+        t->mask[i] = w == TRK_WHO_PLAYER || w == TRK_WHO_OTHER ? w : 0;
+    }
+    grow_sides(t, k);
+}
+
 static void split_merged(cub_tracker *t)
 {
     int32_t mine[TRK_MAX_COMPS] = {0}, other[TRK_MAX_COMPS] = {0};
@@ -341,24 +360,46 @@ static void split_merged(cub_tracker *t)
         if (t->who_prev[i] == TRK_WHO_OTHER) other[t->label[i]]++;
     }
     int32_t n = t->ncomps;
-    bool split = false;
     for (int16_t k = 0; k < n && t->ncomps < TRK_MAX_COMPS; k++) {
         if (mine[k] < SPLIT_MIN_CELLS || other[k] < SPLIT_MIN_CELLS) continue;
         split_sides(t, k);
-        int16_t id = (int16_t)t->ncomps++;
-        for (int32_t i = 0; i < TRK_CELLS; i++)
-            if (t->label[i] == k && t->mask[i] == TRK_WHO_OTHER) t->label[i] = id;
-        refill_comp(t, k);
-        refill_comp(t, id);
-        split = true;
+        split_off(t, k); /* side 2: TRK_WHO_OTHER */
     }
-    if (split) count_interior(t);
+}
+
+/* The two person-like blobs of last frame with most cells in blob k
+ * (SPLIT_MIN_CELLS or more each: two people who touch this frame), false
+ * if fewer. */
+static bool two_people(const cub_tracker *t, int32_t k, int16_t *a, int16_t *b)
+{
+    int32_t count[TRK_MAX_COMPS] = {0};
+    for (int32_t i = 0; i < TRK_CELLS; i++)
+        if (t->label[i] == k && t->label_prev[i] >= 0) count[t->label_prev[i]]++;
+    *a = *b = -1;
+    for (int16_t l = 0; l < TRK_MAX_COMPS; l++) {
+        if (count[l] < SPLIT_MIN_CELLS) continue;
+        if (*a < 0 || count[l] > count[*a]) *b = *a, *a = l;
+        else if (*b < 0 || count[l] > count[*b]) *b = l;
+    }
+    return *b >= 0;
+}
+
+/* Blob k holding two people of last frame is split between them (each
+ * cell to the one whose last frame's cells are fewer steps away). */
+static void split_two_people(cub_tracker *t, int16_t k)
+{
+    int16_t a, b;
+    if (t->ncomps >= TRK_MAX_COMPS || !two_people(t, k, &a, &b)) return;
+    for (int32_t i = 0; i < TRK_CELLS; i++)
+        t->mask[i] = t->label[i] != k ? 0 : t->label_prev[i] == a ? 1 : t->label_prev[i] == b ? 2 : 0;
+    grow_sides(t, k);
+    split_off(t, k);
 }
 
 /* Another person stands beside the player, its centre apart along the
  * floor; the player's own upper body cut off by depth (a forearm across
  * the waist) is a person-like blob too, but right above its legs. */
-#define SPLIT_APART_MM 400
+#define SPLIT_APART_MM 250
 static bool apart(const cub_tracker *t, const trk_comp *c)
 {
     trk_p3 cc = comp_centre(c);
@@ -368,20 +409,68 @@ static bool apart(const cub_tracker *t, const trk_comp *c)
     return d2 > (int64_t)SPLIT_APART_MM * SPLIT_APART_MM;
 }
 
-/* What each cell was this frame, for the next frame's split_merged. */
+/* What each cell was this frame (and its depth), for the next frame's
+ * split_merged and was_someone_else, and the background's learning. */
 static void remember_who(cub_tracker *t)
 {
-    bool other[TRK_MAX_COMPS];
-    for (int32_t k = 0; k < t->ncomps; k++) other[k] = person_like(&t->comps[k]) && apart(t, &t->comps[k]);
+    uint8_t who[TRK_MAX_COMPS];
+    bool person[TRK_MAX_COMPS];
+    for (int32_t k = 0; k < t->ncomps; k++) {
+        person[k] = person_like(&t->comps[k]);
+        who[k] = !person[k] ? 0 : !t->tracked || apart(t, &t->comps[k]) ? TRK_WHO_OTHER : TRK_WHO_NEAR;
+    }
+    trk_bg_mark_people(t, person);
     for (int32_t i = 0; i < TRK_CELLS; i++) {
         int16_t l = t->label[i];
-        t->who_prev[i] = t->mask[i] ? TRK_WHO_PLAYER : l >= 0 && other[l] ? TRK_WHO_OTHER : 0;
+        t->who_prev[i] = t->mask[i] ? TRK_WHO_PLAYER : l >= 0 ? who[l] : 0;
+        t->label_prev[i] = (int16_t)(l >= 0 && person[l] ? l : -1);
+        t->z_prev[i] = t->z[i];
     }
+}
+
+/* Blob k is someone else who was in view last frame: many of its cells
+ * were another person-like blob's at about the same depth, few were the
+ * player's. The track's gate does not make it the player: the child who
+ * merges for a moment with the sofa behind it does not become the adult
+ * standing 400 mm away, the crosser joined to the hidden child's pieces
+ * stays the crosser. */
+#define WAS_OTHER_DZ 150
+static bool was_someone_else(const cub_tracker *t, int32_t k)
+{
+    int32_t mine = 0, other = 0;
+    for (int32_t i = 0; i < TRK_CELLS; i++) {
+        if (t->label[i] != k || !t->who_prev[i]) continue;
+        if (t->who_prev[i] == TRK_WHO_PLAYER) mine++;
+        else if (trk_abs(t->z[i] - t->z_prev[i]) <= WAS_OTHER_DZ) other++;
+    }
+    return other >= SPLIT_MIN_CELLS && mine < SPLIT_MIN_CELLS;
 }
 
 /* A person new to the box: the nearest, near the image's centre (lower is
  * better). */
 static int64_t newcomer_score(trk_p3 cc) { return cc.z + 2 * trk_abs(cc.x); }
+
+/* The newcomer a box that just started would take, -1 none; a blob of
+ * two people who touch (the child beside the adult it stood apart from
+ * last frame) is split between them first. */
+static int32_t first_choice(cub_tracker *t)
+{
+    int32_t best = -1;
+    for (int pass = 0; pass < 2; pass++) {
+        int64_t best_score = INT64_MAX;
+        best = -1;
+        for (int32_t k = 0; k < t->ncomps; k++) {
+            if (!person_like(&t->comps[k])) continue;
+            int64_t score = newcomer_score(comp_centre(&t->comps[k]));
+            if (score < best_score) best_score = score, best = k;
+        }
+        if (best < 0 || pass == 1) break;
+        int32_t n = t->ncomps;
+        split_two_people(t, (int16_t)best);
+        if (t->ncomps == n) break;
+    }
+    return best;
+}
 
 /* The player's identity is its track in the room: the centre where it was
  * last seen, moving on at its velocity. A blob is the player only near
@@ -505,9 +594,14 @@ static int32_t choose_blob(cub_tracker *t, bool *same, bool *hidden)
     trk_p3 pred = predicted(t);
     int32_t best = -1;
     int64_t best_score = INT64_MAX;
+    bool someone_else[TRK_MAX_COMPS] = {0};
     for (int32_t k = 0; k < t->ncomps; k++) {
         if (!person_like(&t->comps[k])) continue;
         int64_t score = person_score(t, pred, comp_centre(&t->comps[k]));
+        /* not while the player waits to be chosen afresh: the blobs of
+         * the frame the room became known are not the frame before's */
+        if (t->tracked && t->room_known != 1 && score >= 0 && score < ID_FAR && was_someone_else(t, k))
+            someone_else[k] = true, score = ID_FAR + newcomer_score(comp_centre(&t->comps[k]));
         if (score < best_score) best_score = score, best = k;
     }
     *same = t->tracked && best >= 0 && best_score >= 0 && best_score < ID_FAR;
@@ -515,7 +609,9 @@ static int32_t choose_blob(cub_tracker *t, bool *same, bool *hidden)
         /* two people about as near the prediction (within half the gate
          * of each other): the one where the torso was */
         int32_t tb = torso_blob(t);
-        int32_t gap = tb >= 0 && tb != best && person_like(&t->comps[tb]) ? track_gap(t, pred, comp_centre(&t->comps[tb])) : -1;
+        int32_t gap = tb >= 0 && tb != best && person_like(&t->comps[tb]) && !someone_else[tb]
+                          ? track_gap(t, pred, comp_centre(&t->comps[tb]))
+                          : -1;
         if (gap >= 0 && gap - best_score <= ID_GATE_MM / 2) best = tb;
     }
     if (*same || !t->tracked || best_score < 0) return best;
@@ -564,9 +660,17 @@ int32_t trk_pick_player(cub_tracker *t)
     if (t->tracked) split_merged(t);
     bool same, hidden;
     int32_t best = choose_blob(t, &same, &hidden);
+    if (trk_bg_room_new(t) && same && person_like(&t->comps[best])) {
+        /* the room has just become known: a child merged with the sofa
+         * behind it is seen only now, so the player is chosen afresh as
+         * when the box starts (in attract mode this happens before START) */
+        int32_t fresh = first_choice(t);
+        if (fresh >= 0 && fresh != best) best = fresh, same = false;
+        t->room_known = 2;
+    }
     memset(t->mask, 0, sizeof t->mask);
     if (best < 0) {
-        memset(t->who_prev, 0, sizeof t->who_prev);
+        remember_who(t); /* the others, still */
         return -1;
     }
     if (!same) {

@@ -22,7 +22,10 @@
 #define TRK_HEAP_CAP (TRK_CELLS * 4)
 /* grid cell (gx, gy) lies on the grid */
 static inline bool on_grid(int32_t gx, int32_t gy) { return gx >= 0 && gy >= 0 && gx < TRK_GW && gy < TRK_GH; }
-enum { TRK_WHO_PLAYER = 1, TRK_WHO_OTHER = 2 }; /* who_prev */
+/* who_prev: the player's cell, another person-like blob's standing apart
+ * from the player, or one's beside it (not apart: maybe the player's own
+ * cut-off part, so never split off; see trk_pick_player) */
+enum { TRK_WHO_PLAYER = 1, TRK_WHO_OTHER = 2, TRK_WHO_NEAR = 3 };
 #define TRK_PITCHES 21 /* floor search without gravity: -20..+20 degrees */
 #define TRK_CLOSE_MM 1000 /* the play range: the player's centre nearer is TOO_CLOSE, */
 #define TRK_FAR_MM 3500   /* farther TOO_FAR */
@@ -52,7 +55,17 @@ struct cub_tracker {
     int32_t x[TRK_CELLS], y[TRK_CELLS];
     int16_t label[TRK_CELLS]; /* component, -1 none */
     uint8_t mask[TRK_CELLS];  /* 1 = the player's */
-    uint8_t who_prev[TRK_CELLS]; /* last frame's: TRK_WHO_PLAYER, TRK_WHO_OTHER (another person-like blob) or 0 */
+    uint8_t who_prev[TRK_CELLS]; /* last frame's: TRK_WHO_PLAYER, _OTHER, _NEAR or 0 */
+    int16_t label_prev[TRK_CELLS]; /* last frame's blob of a person-like blob's cell, else -1 */
+    int16_t z_prev[TRK_CELLS];   /* last frame's depth after the floor and background went (mm, 0 none) */
+    /* the room's background (trk_bg.c): per cell the farthest depth that
+     * stayed still (mm, 0 unknown), the depth being followed and how long
+     * it has stayed, and how long since a person covered the cell (10 ms
+     * units) */
+    int16_t bg_mm[TRK_CELLS], bg_cand_mm[TRK_CELLS];
+    uint16_t bg_age[TRK_CELLS], bg_person_age[TRK_CELLS];
+    int32_t bg_resets, bg_run_us; /* times forgotten; time learnt since */
+    uint8_t room_known; /* 0 not yet, 1 known and the player not chosen afresh yet, 2 chosen */
     int32_t dist0[TRK_CELLS], parent0[TRK_CELLS];
     int32_t distx[TRK_CELLS];
     int32_t dist_sh[2][TRK_BLOCKS]; /* coarse, along the surface from each shoulder (left, right) */
@@ -109,6 +122,21 @@ static inline int32_t trk_abs(int32_t a) { return a < 0 ? -a : a; }
 
 /* Exact Euclidean length in mm. */
 int32_t trk_len(int32_t dx, int32_t dy, int32_t dz);
+
+/* trk_bg.c: the room's background. Learn from this frame's grid (before
+ * the floor goes; dt_us the time since the last frame, 0 learns nothing),
+ * forget it all, remove the cells at their background's depth, and the
+ * margin by which a cell must stand before its background. */
+void trk_bg_learn(cub_tracker *t, int32_t dt_us);
+void trk_bg_reset(cub_tracker *t);
+void trk_bg_remove(cub_tracker *t);
+int32_t trk_bg_margin(int32_t z);
+/* The room's background is known (most cells have one) and the player
+ * has not been chosen afresh since (trk_pick_player sets room_known 2). */
+bool trk_bg_room_new(const cub_tracker *t);
+/* This frame's people keep their cells out of the background a while:
+ * the player's cells (mask), and person-like blobs that move (person[k]). */
+void trk_bg_mark_people(cub_tracker *t, const bool *person);
 
 /* trk_grid.c */
 void trk_grid_fill(cub_tracker *t, const uint16_t *raw);
