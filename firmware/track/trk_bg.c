@@ -11,7 +11,10 @@
  *    furniture moved in, a parent who sat down and stays;
  *  - a cell a person covered in the last BG_PERSON_HOLD_US (the player's,
  *    or a person-like blob's that moves) takes BG_PERSON_US instead: a
- *    child who stands still is not absorbed into the room.
+ *    child who stands still is not absorbed into the room;
+ *  - a cell the player covered in the last BG_PERSON_HOLD_US never takes a
+ *    nearer depth (or a first one): the player is never the room, however
+ *    long a part of the child stays still (the body during jumping jacks).
  * Most of the image changing at once (the camera bumped) forgets it all.
  * The model lives in the tracker's memory only: nothing is ever stored.
  * Learning needs time to pass between frames: frames with the same time
@@ -38,7 +41,8 @@ void trk_bg_reset(cub_tracker *t)
     memset(t->bg_mm, 0, sizeof t->bg_mm);
     memset(t->bg_cand_mm, 0, sizeof t->bg_cand_mm);
     memset(t->bg_age, 0, sizeof t->bg_age);
-    for (int32_t i = 0; i < TRK_CELLS; i++) t->bg_person_age[i] = UINT16_MAX;
+    for (int32_t i = 0; i < TRK_CELLS; i++)
+        t->bg_person_age[i] = UINT16_MAX, t->bg_player_age[i] = UINT16_MAX;
     t->bg_resets++;
     t->bg_run_us = 0;
     t->room_known = 0;
@@ -67,8 +71,10 @@ void trk_bg_mark_people(cub_tracker *t, const bool *person)
 {
     bool moves[TRK_MAX_COMPS];
     for (int32_t k = 0; k < t->ncomps; k++) moves[k] = person[k] && blob_moves(t, k);
-    for (int32_t i = 0; i < TRK_CELLS; i++)
+    for (int32_t i = 0; i < TRK_CELLS; i++) {
+        if (t->mask[i]) t->bg_player_age[i] = 0;
         if (t->mask[i] || (t->label[i] >= 0 && moves[t->label[i]])) t->bg_person_age[i] = 0;
+    }
 }
 
 /* The room is known once most cells with a reading have a background:
@@ -93,12 +99,18 @@ static bool person_lately(const cub_tracker *t, int32_t i)
     return (int32_t)t->bg_person_age[i] * BG_AGE_UNIT_US < BG_PERSON_HOLD_US;
 }
 
+static bool player_lately(const cub_tracker *t, int32_t i)
+{
+    return (int32_t)t->bg_player_age[i] * BG_AGE_UNIT_US < BG_PERSON_HOLD_US;
+}
+
 /* The time a cell's candidate must stay before it becomes the background. */
 static int32_t need_us(const cub_tracker *t, int32_t i)
 {
     int32_t bg = t->bg_mm[i], cand = t->bg_cand_mm[i];
-    if (person_lately(t, i) && (bg == 0 || cand < bg))
-        return BG_PERSON_US;
+    bool nearer = bg == 0 || cand < bg;
+    if (nearer && player_lately(t, i)) return INT32_MAX;
+    if (nearer && person_lately(t, i)) return BG_PERSON_US;
     if (bg == 0) return BG_LEARN_US;
     return cand > bg ? BG_REVEAL_US : BG_NEAR_US;
 }
@@ -146,6 +158,7 @@ void trk_bg_learn(cub_tracker *t, int32_t dt_us)
     if (t->bg_run_us < INT32_MAX / 2) t->bg_run_us += units * BG_AGE_UNIT_US;
     for (int32_t i = 0; i < TRK_CELLS; i++) {
         t->bg_person_age[i] = age_add(t->bg_person_age[i], units);
+        t->bg_player_age[i] = age_add(t->bg_player_age[i], units);
         if (t->z[i]) learn_cell(t, i, t->z[i], units);
         else t->bg_cand_mm[i] = 0, t->bg_age[i] = 0; /* nothing seen: it did not stay */
     }

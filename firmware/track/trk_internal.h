@@ -64,6 +64,7 @@ struct cub_tracker {
      * units) */
     int16_t bg_mm[TRK_CELLS], bg_cand_mm[TRK_CELLS];
     uint16_t bg_age[TRK_CELLS], bg_person_age[TRK_CELLS];
+    uint16_t bg_player_age[TRK_CELLS]; /* since the player covered the cell */
     int32_t bg_resets, bg_run_us; /* times forgotten; time learnt since */
     uint8_t room_known; /* 0 not yet, 1 known and the player not chosen afresh yet, 2 chosen */
     int32_t dist0[TRK_CELLS], parent0[TRK_CELLS];

@@ -104,6 +104,15 @@ static void test_still_player_is_not_absorbed(void **st)
     assert_int_equal(frame(70, 2500, false), 0);
 }
 
+/* Nor for 40 s, longer than a moving blob that is not the player is
+ * held (30 s): the player is never the room. */
+static void test_player_is_never_absorbed(void **st)
+{
+    (void)st;
+    for (int k = 0; k < 400; k++) frame(70, 2500, true);
+    assert_int_equal(frame(70, 2500, true), 10 * 51);
+}
+
 /* A parent who sat on the sofa for 2 s and got up: the sofa's depth comes
  * back as background within a second of it showing again. */
 static void test_revealed_background_returns(void **st)
@@ -157,6 +166,7 @@ int main(void)
         FRESH(test_still_object_becomes_background),
         FRESH(test_moving_child_is_not_background),
         FRESH(test_still_player_is_not_absorbed),
+        FRESH(test_player_is_never_absorbed),
         FRESH(test_revealed_background_returns),
         FRESH(test_bump_forgets_the_room),
         FRESH(test_no_time_learns_nothing),
