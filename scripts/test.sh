@@ -7,7 +7,8 @@
 #      Release tree built with -DCUB_PACKAGE=ON (a package must not carry a
 #      sanitizer build), checked by tests/package/check_deb.sh --release
 #   5. the parsers' libFuzzer targets, each for a bounded time
-#   6. a short soak (scripts/soak.sh: four songs, two minutes of box time) on a Release
+#   6. the end-to-end songs (ctest -L e2e) on a Release tree
+#   7. a short soak (scripts/soak.sh: four songs, two minutes of box time) on a Release
 #      tree: the heap's high-water and the open descriptors must not grow
 # Options: --host-only skips 3 (and the arm64 package); --no-fuzz skips 5.
 set -euo pipefail
@@ -74,9 +75,14 @@ if [ "$fuzz" = 1 ]; then
     cmake --build --preset fuzz -j "$jobs"
     ctest --preset fuzz -j "$jobs"
 fi
-# The allocation counter the soak reads cannot load into a sanitizer build.
-stage "soak: four songs on the Release box (scripts/soak.sh 0.034 --period 30)"
+# The end-to-end songs replay whole songs into the box: on the Release tree
+# (five times faster than under ASan; the host stage's scenarios run the
+# same code under the sanitizers). The allocation counter the soak reads
+# cannot load into a sanitizer build either.
+stage "end to end: the synthetic children's songs on the Release box (ctest -L e2e)"
 cmake --preset release >/dev/null
-cmake --build --preset release -j "$jobs" --target cubdance cub_alloc_count cub_fakenect_nosleep
+cmake --build --preset release -j "$jobs" --target cubdance cubtool cub_alloc_count cub_fakenect_nosleep
+ctest --test-dir build/release -L e2e -j "$jobs" --output-on-failure
+stage "soak: four songs on the Release box (scripts/soak.sh 0.034 --period 30)"
 scripts/soak.sh 0.034 --period 30 --build build/release --out build/release/soak-short || [ $? = 77 ] # 77: no data
 stage "all tests passed"
