@@ -34,7 +34,8 @@
 # Needs BUILD_DIR/app/cubtool/cubtool and BUILD_DIR/app/cubdance/cubdance,
 # the mocap under $CUB_DATA_DIR (default ../shared/data) and python3. The
 # depth dump is 614 KB a frame (about 2 GB for the song); it is written to
-# a temporary folder (or DIR with --keep) and deleted at the end.
+# a temporary folder and deleted at the end, or to DIR/dump with --keep DIR,
+# where the last round's dump stays (with its truth.txt) for eval-track.
 set -euo pipefail
 usage() { echo "usage: scripts/e2e_child.sh BUILD_DIR [--song NAME] [--child planted|late|sloppy|moving] [--remake [--from CUES]] [--keep DIR]" >&2; exit 2; }
 [ $# -ge 1 ] || usage
@@ -128,9 +129,9 @@ round() {
             { cat "$work/eval_track.txt" >&2; echo "e2e_child: eval-track failed" >&2; exit 1; }
         grep "wrong person" "$work/eval_track.txt" || true
     fi
-    mv "$work/dump/truth.txt" "$work/truth.txt"
-    [ ! -f "$work/dump/truth_second.txt" ] || mv "$work/dump/truth_second.txt" "$work/truth_second.txt"
-    rm -rf "$work/dump"
+    cp "$work/dump/truth.txt" "$work/truth.txt"
+    [ ! -f "$work/dump/truth_second.txt" ] || cp "$work/dump/truth_second.txt" "$work/truth_second.txt"
+    [ -n "$keep" ] || rm -rf "$work/dump" # --keep: the dump stays for eval-track, the demo
 }
 
 if [ "$remake" = 1 ]; then
