@@ -1,9 +1,11 @@
 /* coachlib: the shipped library + tags + bear -> the firmware's bridge
  * table (see cub/coachlib.h). */
+#define _XOPEN_SOURCE 700
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "cub/coachlib.h"
 
@@ -113,7 +115,9 @@ static cub_err build_table(cub_coachlib *cl, const char *lib_path, const char *t
 }
 
 /* The routes file beside the tags: X.tags.xml -> X.routes.txt. A missing
- * file is no routes (a tagging of its own has none); a bad one fails. */
+ * file is no routes (a tagging of its own has none); a bad one fails, and
+ * anything else at that name (a FIFO, a folder, a link loop) is refused by
+ * the reader without blocking. */
 static cub_err load_routes(cub_coachlib *cl, const char *tags_path, cub_diag *diag)
 {
     static const char ext[] = ".tags.xml";
@@ -122,9 +126,8 @@ static cub_err load_routes(cub_coachlib *cl, const char *tags_path, cub_diag *di
     if (n < e_len || strcmp(tags_path + n - e_len, ext) || n - e_len + 12 > sizeof path)
         return CUB_OK;
     snprintf(path, sizeof path, "%.*s.routes.txt", (int)(n - e_len), tags_path);
-    FILE *f = fopen(path, "r");
-    if (!f) return CUB_OK;
-    fclose(f);
+    struct stat st;
+    if (lstat(path, &st) != 0) return CUB_OK; /* none: cub_text refuses FIFOs, folders, loops */
     cl->routes = malloc(sizeof *cl->routes);
     if (!cl->routes) return fail(diag, path, CUB_ERR_NOMEM, "out of memory");
     cub_err e = cub_routes_read(path, &cl->lib, cl->routes, diag);
