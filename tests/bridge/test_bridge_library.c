@@ -381,6 +381,44 @@ static void test_route_pairs_take_their_route_and_keep_the_feet(void **state)
     assert_true(kick_own > 30.0);
 }
 
+/* A route whose first frame comes later than the first window (200 ms)
+ * is not taken: the planner searches as before. The table refuses bad
+ * routes. */
+static void test_a_late_route_falls_back_to_the_search(void **state)
+{
+    cub_coachlib *cl = *state;
+    if (!cl) skip();
+    for (int i = 0; i < cl->table.route_count; i++) {
+        const cub_bridge_route *r = &cl->table.routes[i];
+        for (int early = CUB_BRIDGE_WINDOW_FRAMES; early <= 12 && early <= r->a; early += 6) {
+            cub_bridge_query q = {.from_clip = r->from, .pos_q16 = (int64_t)(r->a - early) << 16,
+                                  .from_loops = 1, .to_clip = r->to, .start_frames = 4};
+            cub_bridge_plan plan;
+            assert_int_equal(cub_bridge_plan_switch(&cl->table, &q, &plan, g_work, g_work_size),
+                             CUB_OK);
+            assert_true(plan.step[0].via != CUB_BRIDGE_ROUTE);
+            q.pos_q16 = (int64_t)(r->a - CUB_BRIDGE_WINDOW_FRAMES + 1) << 16; /* the window's last */
+            assert_int_equal(cub_bridge_plan_switch(&cl->table, &q, &plan, g_work, g_work_size),
+                             CUB_OK);
+            assert_int_equal(plan.step[0].via, CUB_BRIDGE_ROUTE);
+            assert_int_equal(plan.wait_frames, CUB_BRIDGE_WINDOW_FRAMES - 1);
+        }
+    }
+    cub_bridge_table t = cl->table;
+    t.routes = NULL;
+    t.route_count = 0;
+    cub_bridge_route bad = cl->table.routes[0];
+    bad.in = bad.out; /* C played backwards or not at all */
+    assert_int_equal(cub_bridge_table_set_routes(&t, &bad, 1), CUB_ERR_ARG);
+    bad = cl->table.routes[0];
+    bad.to = bad.from;
+    assert_int_equal(cub_bridge_table_set_routes(&t, &bad, 1), CUB_ERR_ARG);
+    cub_bridge_route twice[2] = {cl->table.routes[0], cl->table.routes[0]};
+    assert_int_equal(cub_bridge_table_set_routes(&t, twice, 2), CUB_ERR_ARG);
+    assert_int_equal(cub_bridge_table_set_routes(&t, twice, 1), CUB_OK);
+    assert_int_equal(cub_bridge_table_set_routes(&t, twice, 1), CUB_ERR_ARG); /* set once */
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -390,6 +428,7 @@ int main(void)
         cmocka_unit_test(test_every_clip_reaches_the_corrections_by_bridge_frames),
         cmocka_unit_test(test_sample_switches_react_fast_without_a_jump),
         cmocka_unit_test(test_route_pairs_take_their_route_and_keep_the_feet),
+        cmocka_unit_test(test_a_late_route_falls_back_to_the_search),
     };
     return cmocka_run_group_tests_name("bridge_library", tests, setup, teardown);
 }
