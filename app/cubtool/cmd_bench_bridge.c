@@ -27,7 +27,11 @@
  * also counts the switches whose ends are not both bridge frames. --tween
  * routes through the seed's tween clip where today's planner chains
  * through other clips; either way a "routes" line measures those
- * switches: reaction, arrival in the wanted clip, every switch's jump. */
+ * switches: reaction, arrival in the wanted clip, every switch's jump.
+ * "ours" takes the table's searched routes (assets/clips/bear.routes.txt,
+ * docs/join.md "Routes"), "ours,no-routes" does not (the box before
+ * them); the "searched routes" lines count the switches that took one and
+ * measure them with and without their routes. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>

@@ -12,9 +12,13 @@
  *                  player's leg phase holding planted feet;
  *   tween(box)     the same with the seed's tween clip in the table: the
  *                  planner routes through it where no direct switch is;
- *   box,no-legs    bridge(box) with the leg phase off (the box before it).
- * Per pair, it counts where the seed's join (searched) beats bridge(box):
- * the route question of docs/join.md. */
+ *   box,no-legs    bridge(box) with the leg phase off (the box before it);
+ *   box+routes     bridge(box) taking the shipped searched routes (the
+ *                  others ignore them).
+ * Per pair, it counts where the seed's join (searched) beats bridge(box),
+ * and where it does by more than a cm, whether the box playing the route
+ * through C does too: then the route ships (--routes-out; docs/join.md,
+ * "Routes"), else a `join route` line says why not. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
