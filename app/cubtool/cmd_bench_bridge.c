@@ -27,7 +27,11 @@
  * also counts the switches whose ends are not both bridge frames. --tween
  * routes through the seed's tween clip where today's planner chains
  * through other clips; either way a "routes" line measures those
- * switches: reaction, arrival in the wanted clip, every switch's jump. */
+ * switches: reaction, arrival in the wanted clip, every switch's jump.
+ * "ours" takes the table's searched routes (assets/clips/bear.routes.txt,
+ * docs/join.md "Routes"), "ours,no-routes" does not (the box before
+ * them); the "searched routes" lines count the switches that took one and
+ * measure them with and without their routes. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -101,6 +105,7 @@ static void clip_speeds(const cub_coachlib *cl, double *p99, double *top, stats 
 
 typedef struct run {
     int ok, tween, steps;
+    int routed;         /* the plan is a searched route (the table's routes file) */
     cub_bridge_step first;
     double latency_ms;  /* request -> first switch */
     double arrive_ms;   /* request -> the switch into the wanted clip */
@@ -143,6 +148,7 @@ static run play(const cub_coachlib *cl, cub_bridge_player *p, int a, int m, int 
     r.ok = 1;
     r.steps = plan.step_count;
     r.tween = plan.step[0].via == CUB_BRIDGE_TWEEN;
+    r.routed = plan.step[0].via == CUB_BRIDGE_ROUTE;
     r.first = plan.step[0];
     cub_bridge_player_pose(p, &pose);
     cub_motion_forward(sk, &pose, prev, NULL);
@@ -299,11 +305,51 @@ static void tween_speeds(const cub_coachlib *cl, double *p99, double *top)
 typedef struct mode {
     const char *name;
     cub_bridge_smooth smooth;
-    int no_legs;
-    stats jump, blend, slide;
+    int no_legs, no_routes;
+    stats jump, blend, slide, react;
     int over_p99;
 } mode;
-#define MODES 4
+#define MODES 5
+
+/* The switches that took a searched route (docs/join.md, "Routes"), and
+ * the same switches planned without the routes (the box before them). */
+typedef struct searched {
+    long pair_switches; /* switches on a pair that has a route */
+    stats react[2], slide[2], jump[2];
+} searched;
+
+static int has_route(const cub_bridge_table *t, int a, int b)
+{
+    for (int i = 0; i < t->route_count; i++)
+        if (t->routes[i].from == a && t->routes[i].to == b) return 1;
+    return 0;
+}
+
+static void add_searched(searched *sr, int k, const run *r)
+{
+    push(&sr->react[k], r->latency_ms);
+    push(&sr->slide[k], r->slide_cm);
+    push(&sr->jump[k], r->jump_cm);
+}
+
+static void print_searched(searched *sr, const cub_bridge_table *t)
+{
+    static const char *const name[2] = {"with routes", "without (the same switches)"};
+    printf("bench-bridge: searched routes: %d in the table; %zu of the %ld switches on their "
+           "pairs took one (its first frame within the 200 ms window), the rest planned as "
+           "before\n",
+           t->route_count, sr->react[0].n, sr->pair_switches);
+    for (int k = 0; k < 2 && sr->react[0].n; k++)
+        printf("bench-bridge: routed switches %-27s reaction median=%.0f p95=%.0f max=%.0f ms; "
+               "stance-foot slide median=%.2f p95=%.2f max=%.2f cm; jump at switch max=%.2f "
+               "p95=%.2f median=%.2f cm/frame\n",
+               name[k], pct(&sr->react[k], 0.5), pct(&sr->react[k], 0.95),
+               pct(&sr->react[k], 1.0), pct(&sr->slide[k], 0.5), pct(&sr->slide[k], 0.95),
+               pct(&sr->slide[k], 1.0), pct(&sr->jump[k], 1.0), pct(&sr->jump[k], 0.95),
+               pct(&sr->jump[k], 0.5));
+    for (int k = 0; k < 2; k++)
+        free(sr->react[k].v), free(sr->slide[k].v), free(sr->jump[k].v);
+}
 
 static int usage(FILE *f, int code)
 {
@@ -386,6 +432,8 @@ int cub_cmd_bench_bridge(int argc, char **argv)
     double lib_joint_p99 = pct(&joints, 0.99), lib_median = pct(&all, 0.5);
 
     mode modes[MODES] = {{.name = "ours(inertial)", .smooth = CUB_BRIDGE_SMOOTH_INERTIAL},
+                         {.name = "ours,no-routes", .smooth = CUB_BRIDGE_SMOOTH_INERTIAL,
+                          .no_routes = 1},
                          {.name = "inertial,no-legs", .smooth = CUB_BRIDGE_SMOOTH_INERTIAL,
                           .no_legs = 1},
                          {.name = "crossfade", .smooth = CUB_BRIDGE_SMOOTH_CROSSFADE},
@@ -395,6 +443,7 @@ int cub_cmd_bench_bridge(int argc, char **argv)
     for (int k = 0; k < MODES; k++) {
         cub_bridge_player_desc pd = {.table = &cl.table, .smooth = modes[k].smooth,
                                      .no_legs = modes[k].no_legs,
+                                     .no_routes = modes[k].no_routes,
                                      .blend_frames = blend, .window_frames = window,
                                      .wait_cost_mm = wait_mm < 0 ? 0 : CUB_Q16_INT(wait_mm),
                                      .strict = strict, .via_tween = via_tween};
@@ -411,13 +460,17 @@ int cub_cmd_bench_bridge(int argc, char **argv)
     int worst_m = 0, worst_b = 0;
     run slidest = {0};
     int slidest_m = 0, slidest_b = 0;
+    static searched sr;
     struct timespec t0, t1;
     clock_gettime(CLOCK_MONOTONIC, &t0);
     for (int a = 0; a < nc; a++)
         for (int b = 0; b < nc; b++) {
             if (!wanted(&cl, correct, b)) continue;
             int n = cl.lib.clips[a].clip.frame_count;
+            int routed_pair = has_route(&cl.table, a, b);
             for (int m = 0; m < n; m += step) {
+                int routed = 0;
+                sr.pair_switches += routed_pair;
                 for (int k = 0; k < MODES; k++) {
                     set_entry(&players[k], &cl, correct, b);
                     run r = play(&cl, &players[k], a, m, b, blend_frames);
@@ -431,6 +484,9 @@ int cub_cmd_bench_bridge(int argc, char **argv)
                     push(&modes[k].jump, r.jump_cm);
                     push(&modes[k].blend, r.blend_cm);
                     push(&modes[k].slide, r.slide_cm);
+                    push(&modes[k].react, r.latency_ms);
+                    if (k == 0) routed = r.routed;
+                    if (routed && k <= 1) add_searched(&sr, k, &r);
                     /* The clips the first switch joins (a tween's first
                      * step enters a clip on the way, not b). */
                     int to = r.first.to_clip;
@@ -472,16 +528,19 @@ int cub_cmd_bench_bridge(int argc, char **argv)
         double jm = pct(&md->jump, 1.0), bm = pct(&md->blend, 1.0); /* the largest */
         printf("bench-bridge: jump at switch %-16s max=%.2f p95=%.2f median=%.2f cm/frame, "
                "over own p99: %d of %zu (%.1f%%); added during blend max=%.2f p95=%.2f; "
-               "stance-foot slide median=%.2f p95=%.2f max=%.2f cm\n",
+               "stance-foot slide median=%.2f p95=%.2f max=%.2f cm; reaction median=%.0f "
+               "p95=%.0f max=%.0f ms\n",
                md->name, jm, pct(&md->jump, 0.95), pct(&md->jump, 0.5), md->over_p99, md->jump.n,
                md->jump.n ? 100.0 * md->over_p99 / (double)md->jump.n : 0.0, bm,
                pct(&md->blend, 0.95), pct(&md->slide, 0.5), pct(&md->slide, 0.95),
-               pct(&md->slide, 1.0));
+               pct(&md->slide, 1.0), pct(&md->react, 0.5), pct(&md->react, 0.95),
+               pct(&md->react, 1.0));
     }
     const char **names = calloc((size_t)nc + 1, sizeof *names);
     for (int c = 0; names && c <= nc; c++)
         names[c] = c < nc ? cl.lib.clips[c].name : "tween";
     if (names) print_routes(&rt, via_tween, names);
+    print_searched(&sr, &cl.table);
     free(names);
     const cub_bridge_step *w = &worst.first;
     printf("bench-bridge: worst blend: %s@%d requested %s: first switch %s@%d -> %s@%d d=%.3f "
@@ -500,6 +559,7 @@ int cub_cmd_bench_bridge(int argc, char **argv)
         free(modes[k].jump.v);
         free(modes[k].blend.v);
         free(modes[k].slide.v);
+        free(modes[k].react.v);
         free(work[k]);
     }
     free(ours.v);

@@ -12,9 +12,13 @@
  *                  player's leg phase holding planted feet;
  *   tween(box)     the same with the seed's tween clip in the table: the
  *                  planner routes through it where no direct switch is;
- *   box,no-legs    bridge(box) with the leg phase off (the box before it).
- * Per pair, it counts where the seed's join (searched) beats bridge(box):
- * the route question of docs/join.md. */
+ *   box,no-legs    bridge(box) with the leg phase off (the box before it);
+ *   box+routes     bridge(box) taking the shipped searched routes (the
+ *                  others ignore them).
+ * Per pair, it counts where the seed's join (searched) beats bridge(box),
+ * and where it does by more than a cm, whether the box playing the route
+ * through C does too: then the route ships (--routes-out; docs/join.md,
+ * "Routes"), else a `join route` line says why not. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -175,11 +179,13 @@ static void own_rows(const char *name, cub_tool_series *own, cub_tool_series *be
 /* The box (k = 0), the box with the seed's tween (k = 1) and the box
  * without its leg phase (k = 2), over all pairs and (tween) over the pairs
  * it routed through the tween. */
-#define BOXES 3
+#define BOXES 4
+#define BOX_NOW 3 /* the box with the shipped routes (the others ignore them) */
 typedef struct box_rows {
     cub_tool_series slide[BOXES], jump[BOXES], ms[BOXES], own[BOXES], beyond[BOXES];
     cub_tool_series tslide, tjump, tms;
     cub_join_figures last[BOXES], last_own[BOXES]; /* the pair just measured (-1: not) */
+    join_bridge_fig now;                           /* BOX_NOW's pair just measured */
 } box_rows;
 
 static void box_measure(join_bridge *jb, const cub_join_db *db, int a, int b, box_rows *br)
@@ -193,6 +199,7 @@ static void box_measure(join_bridge *jb, const cub_join_db *db, int a, int b, bo
         cub_tool_series_add(&br->own[k], jf.own.slide_cm, "join");
         cub_tool_series_add(&br->beyond[k], jf.fig.slide_cm - jf.own.slide_cm, "join");
         br->last_own[k] = jf.own;
+        if (k == BOX_NOW) br->now = jf;
         br->last[k] = f;
         cub_tool_series_add(&br->slide[k], f.slide_cm, "join");
         cub_tool_series_add(&br->jump[k], f.jump_cm, "join");
@@ -206,7 +213,8 @@ static void box_measure(join_bridge *jb, const cub_join_db *db, int a, int b, bo
 
 static void box_print(box_rows *br)
 {
-    static const char *const name[BOXES] = {"bridge(box)", "tween(box)", "box,no-legs"};
+    static const char *const name[BOXES] = {"bridge(box)", "tween(box)", "box,no-legs",
+                                            "box+routes"};
     for (int k = 0; k < BOXES; k++) {
         if (!br->slide[k].n) {
             printf("join --all: %-13s not measured (no assets)\n", name[k]);
@@ -242,6 +250,7 @@ typedef struct tally {
     cub_tool_series slide[METHODS], jump[METHODS], own[METHODS], beyond[METHODS], dd, ds;
     int pairs, better, self_c;
     cub_join_figures last[METHODS]; /* the pair just measured */
+    cub_join_pick pick;             /* its C */
     double last_own[METHODS];
     /* pairs where the seed's join beats bridge(box): by slide, by more
      * than 1 cm of slide, by jump, by both */
@@ -277,6 +286,110 @@ static void compare_box(tally *t, const box_rows *br, const char *a, const char 
     }
 }
 
+/* The routes (docs/join.md, "Routes"). A pair is a candidate where the
+ * seed's join slides more than ROUTE_GAIN_CM less than the box's switch,
+ * each beyond the slide of the clips it plays (like for like). The box
+ * then plays the route through the seed's C itself (its planner and
+ * player, legs on), and the route ships when that slides more than
+ * ROUTE_GAIN_CM less than its switch, beyond own, no more raw, with no
+ * larger jump (or one within the paired clips' own p99 velocity change):
+ * what the box would show, not what the seed's blend shows. */
+#define ROUTE_GAIN_CM 1.0
+typedef struct route_tally {
+    cub_routes shipped;
+    int candidates, no_route, late, no_gain, worse_jump;
+    double own_p99; /* the paired clips' own velocity change: a jump below it is no jump */
+    cub_tool_series slide, raw, jump; /* per pair: the box with the routes it ships */
+} route_tally;
+
+/* Why the box takes no route for a candidate pair; NULL: it ships. */
+static const char *route_verdict(const join_bridge_fig *f, const join_bridge_fig *routed,
+                                 double box, route_tally *rt, char *buf, size_t size)
+{
+    double got = routed->fig.slide_cm - routed->own.slide_cm;
+    if (routed->ms > 200.0) {
+        rt->late++;
+        snprintf(buf, size, "its first switch comes %.0f ms after the request (over 200)",
+                 routed->ms);
+    } else if (!(got < box - ROUTE_GAIN_CM)) {
+        rt->no_gain++;
+        snprintf(buf, size, "the box through C slides %.2f cm beyond own, its switch %.2f",
+                 got, box);
+    } else if (routed->fig.slide_cm > f->fig.slide_cm) {
+        rt->no_gain++;
+        snprintf(buf, size, "the box through C slides %.2f cm raw, its switch %.2f",
+                 routed->fig.slide_cm, f->fig.slide_cm);
+    } else if (routed->fig.jump_cm > f->fig.jump_cm && routed->fig.jump_cm > rt->own_p99) {
+        rt->worse_jump++;
+        snprintf(buf, size, "the box through C jumps %.2f cm/f2, its switch %.2f, the clips' p99 %.2f",
+                 routed->fig.jump_cm, f->fig.jump_cm, rt->own_p99);
+    } else {
+        return NULL;
+    }
+    return buf;
+}
+
+static void route_pair(join_bridge *jb, const cub_join_db *db, int a, int b, const tally *t,
+                       const box_rows *br, route_tally *rt)
+{
+    join_bridge_fig f = {.fig = br->last[0], .own = br->last_own[0]}, routed = f;
+    if (f.fig.slide_cm < 0 || !jb->cl.lib.clip_count) return;
+    double box = f.fig.slide_cm - f.own.slide_cm;
+    double seed = t->last[SEARCHED].slide_cm - t->last_own[SEARCHED];
+    const join_bridge_fig *with = &f;
+    if (seed < box - ROUTE_GAIN_CM) {
+        rt->candidates++;
+        cub_bridge_route r;
+        char buf[160];
+        const char *why = "C is not in the box's library, or too short";
+        if (join_bridge_route_of(jb, db, a, b, &t->pick, &r)) {
+            rt->no_route++;
+        } else if (join_bridge_measure_route(jb, db, a, b, &r, &routed) || !routed.routed) {
+            why = "the planner did not take it", rt->no_route++;
+        } else {
+            why = route_verdict(&f, &routed, box, rt, buf, sizeof buf);
+        }
+        printf("join route %s -> %s: C=%s@%d-%d; slide beyond own / raw cm, jump cm/f2: seed "
+               "%.2f / %.2f, %.2f; box %.2f / %.2f, %.2f; box through C %.2f / %.2f, %.2f, first "
+               "switch %.0f ms: %s%s\n",
+               db->clips[a].name, db->clips[b].name, db->clips[t->pick.clip].name,
+               t->pick.first, t->pick.last, seed, t->last[SEARCHED].slide_cm,
+               t->last[SEARCHED].jump_cm, box, f.fig.slide_cm, f.fig.jump_cm,
+               routed.fig.slide_cm - routed.own.slide_cm, routed.fig.slide_cm, routed.fig.jump_cm,
+               routed.ms, why ? "no route: " : "route", why ? why : "");
+        if (!why && rt->shipped.count < CUB_ROUTES_MAX) {
+            int i = rt->shipped.count++;
+            rt->shipped.route[i] = r;
+            rt->shipped.align[i][0] = t->pick.in.theta_rad * 180 / CUB_VEC_PI;
+            rt->shipped.align[i][1] = t->pick.in.x0_mm;
+            rt->shipped.align[i][2] = t->pick.in.z0_mm;
+            with = &routed;
+        }
+    }
+    cub_tool_series_add(&rt->slide, with->fig.slide_cm - with->own.slide_cm, "join");
+    cub_tool_series_add(&rt->raw, with->fig.slide_cm, "join");
+    cub_tool_series_add(&rt->jump, with->fig.jump_cm, "join");
+}
+
+static void route_print(route_tally *rt)
+{
+    printf("join --all: routes: %d candidate pairs (the seed's join slides > %.0f cm less than "
+           "the box's switch beyond own), %d shipped (the box through C slides > %.0f cm less "
+           "beyond own, no more raw, no larger jump or one below the clips' p99 %.2f); not: %d "
+           "no gain in the box, %d a larger jump, %d over 200 ms, %d no route\n",
+           rt->candidates, ROUTE_GAIN_CM, rt->shipped.count, ROUTE_GAIN_CM, rt->own_p99,
+           rt->no_gain, rt->worse_jump, rt->late, rt->no_route);
+    if (rt->slide.n)
+        printf("join --all: the box with these routes (%zu pairs): slide raw median=%.2f "
+               "p95=%.2f max=%.2f, beyond own median=%.2f p95=%.2f max=%.2f cm | jump "
+               "median=%.2f p95=%.2f max=%.2f\n",
+               rt->slide.n, cub_tool_series_pct(&rt->raw, 0.5),
+               cub_tool_series_pct(&rt->raw, 0.95), cub_tool_series_pct(&rt->raw, 1.0),
+               cub_tool_series_pct(&rt->slide, 0.5), cub_tool_series_pct(&rt->slide, 0.95),
+               cub_tool_series_pct(&rt->slide, 1.0), cub_tool_series_pct(&rt->jump, 0.5),
+               cub_tool_series_pct(&rt->jump, 0.95), cub_tool_series_pct(&rt->jump, 1.0));
+}
+
 /* Search, join by every method and measure one pair. 0 ok (or no C). */
 static int one_pair(const cub_join_db *db, int a, int b, int verbose, tally *t)
 {
@@ -287,6 +400,7 @@ static int one_pair(const cub_join_db *db, int a, int b, int verbose, tally *t)
     cub_tool_series_add(&t->ds, rms_cm(pick.in.d_mm2 + pick.out.d_mm2), "join");
     t->better += pick.in.d_mm2 + pick.out.d_mm2 < pick.direct.d_mm2;
     t->self_c += pick.clip == a || pick.clip == b;
+    t->pick = pick;
     cub_join_figures fig[METHODS];
     for (int m = 0; m < METHODS; m++) {
         if (run_method(db, a, b, &pick, m, &fig[m], NULL)) {
@@ -331,14 +445,28 @@ static void print_tally(const cub_join_db *db, tally *t)
     }
 }
 
-static int join_all(join_src *src, join_bridge *jb, int verbose)
+/* Which way the box now goes (box+routes, the shipped routes file). */
+static void print_now(const cub_join_db *db, int a, int b, const box_rows *br)
+{
+    const join_bridge_fig *n = &br->now;
+    if (br->last[BOX_NOW].slide_cm < 0) return;
+    printf("join pair %s -> %s: the box now goes %s (%d switch%s, first after %.0f ms): slide "
+           "%.2f cm (own %.2f) jump %.2f\n",
+           db->clips[a].name, db->clips[b].name,
+           n->routed ? "by its route" : n->steps > 1 ? "by a chain" : "directly", n->steps,
+           n->steps == 1 ? "" : "es", n->ms, n->fig.slide_cm, n->own.slide_cm, n->fig.jump_cm);
+}
+
+static int join_all(join_src *src, join_bridge *jb, int verbose, const char *routes_out)
 {
     const cub_join_db *db = &src->db;
     static box_rows br;
     static tally t;
+    static route_tally rt;
     int rc = 0;
     struct timespec t0, t1;
     clock_gettime(CLOCK_MONOTONIC, &t0);
+    rt.own_p99 = own_jump_p99(db, src);
     for (int a = 0; a < db->count && !rc; a++)
         for (int b = 0; b < db->count && !rc; b++) {
             if (a == b || !paired(src, a) || !paired(src, b)) continue;
@@ -352,6 +480,8 @@ static int join_all(join_src *src, join_bridge *jb, int verbose)
                        db->clips[a].name, db->clips[b].name, br.last[0].slide_cm,
                        br.last_own[0].slide_cm, br.last[0].jump_cm, br.last[2].slide_cm,
                        br.last[2].jump_cm);
+            if (verbose) print_now(db, a, b, &br);
+            route_pair(&jb[BOX_NOW], db, a, b, &t, &br, &rt);
         }
     clock_gettime(CLOCK_MONOTONIC, &t1);
     if (!rc) {
@@ -370,6 +500,15 @@ static int join_all(join_src *src, join_bridge *jb, int verbose)
                    t.clear ? t.widest_pair : "-");
         printf("join --all: the paired clips' own velocity change p99=%.2f cm/f2\n",
                own_jump_p99(db, src));
+        if (jb) route_print(&rt);
+        cub_diag d = {0};
+        char msg[600];
+        if (jb && routes_out && cub_routes_write(routes_out, &jb[0].cl.lib, &rt.shipped, &d)) {
+            fprintf(stderr, "join: %s\n", cub_diag_str(&d, msg, sizeof msg));
+            rc = -1;
+        } else if (jb && routes_out) {
+            printf("join --all: wrote %d routes to %s\n", rt.shipped.count, routes_out);
+        }
         fprintf(stderr, "join --all: %.1f s\n",
                 (double)(t1.tv_sec - t0.tv_sec) + (double)(t1.tv_nsec - t0.tv_nsec) * 1e-9);
     }
@@ -377,13 +516,14 @@ static int join_all(join_src *src, join_bridge *jb, int verbose)
         free(t.slide[m].v), free(t.jump[m].v), free(t.own[m].v), free(t.beyond[m].v);
     free(t.dd.v), free(t.ds.v);
     box_free(&br);
+    free(rt.slide.v), free(rt.raw.v), free(rt.jump.v);
     return rc ? 1 : 0;
 }
 
 static int usage(FILE *f, int code)
 {
     fprintf(f, "usage: cubtool join A B [--lib LIB.cubclips] [--db CLIPS]... [--out C.bvh]\n"
-               "       cubtool join --all [--assets DIR] [--db CLIPS]... [--pairs]\n"
+               "       cubtool join --all [--assets DIR] [--db CLIPS]... [--pairs] [--routes-out F]\n"
                "  A, B      clip names in the database, or .bvh files on its skeleton\n"
                "  --lib     the library (default: the shipped assets/clips/bear.cubclips), or\n"
                "            a .bvh: then --all pairs every clip given\n"
@@ -393,13 +533,16 @@ static int usage(FILE *f, int code)
                "  --all     every ordered pair of the library's dance clips: the table, with\n"
                "            the box's switch (bridge planner + player, with and without its\n"
                "            leg phase) from --assets DIR\n"
-               "  --pairs   with --all, a line per pair\n");
+               "  --pairs   with --all, a line per pair (and which way the box now goes)\n"
+               "  --routes-out FILE  with --all, write the routes the box ships\n"
+               "            (assets/clips/bear.routes.txt; docs/join.md, \"Routes\")\n");
     return code;
 }
 
 int cub_cmd_join(int argc, char **argv)
 {
     const char *lib = NULL, *assets = CUB_ASSETS_DIR, *out = NULL, *pos[2] = {NULL, NULL};
+    const char *routes_out = NULL;
     const char *db_files[JOIN_SRC_MAX];
     int ndb = 0, all = 0, verbose = 0, npos = 0;
     for (int i = 1; i < argc; i++) {
@@ -412,6 +555,8 @@ int cub_cmd_join(int argc, char **argv)
             lib = argv[++i];
         } else if (argv[i][0] == '-' && i + 1 < argc && !strcmp(argv[i], "--assets")) {
             assets = argv[++i];
+        } else if (argv[i][0] == '-' && i + 1 < argc && !strcmp(argv[i], "--routes-out")) {
+            routes_out = argv[++i];
         } else if (argv[i][0] == '-' && i + 1 < argc && !strcmp(argv[i], "--out")) {
             out = argv[++i];
         } else if (argv[i][0] == '-' && i + 1 < argc && !strcmp(argv[i], "--db") &&
@@ -433,11 +578,12 @@ int cub_cmd_join(int argc, char **argv)
     int rc = join_src_add(&src, lib ? lib : lib_path, &cfg) ? 1 : 0;
     for (int i = 0; !rc && i < ndb; i++)
         rc = join_src_add(&src, db_files[i], &cfg) ? 1 : 0;
-    int have_jb = !rc && all && !join_bridge_open(&jb[0], assets, &src.db, 0, 1);
-    if (have_jb && join_bridge_open(&jb[1], assets, &src.db, 1, 1)) memset(&jb[1], 0, sizeof jb[1]);
-    if (have_jb && join_bridge_open(&jb[2], assets, &src.db, 0, 0)) memset(&jb[2], 0, sizeof jb[2]);
+    int have_jb = !rc && all && !join_bridge_open(&jb[0], assets, &src.db, 0, 1, 0);
+    if (have_jb && join_bridge_open(&jb[1], assets, &src.db, 1, 1, 0)) memset(&jb[1], 0, sizeof jb[1]);
+    if (have_jb && join_bridge_open(&jb[2], assets, &src.db, 0, 0, 0)) memset(&jb[2], 0, sizeof jb[2]);
+    if (have_jb && join_bridge_open(&jb[3], assets, &src.db, 0, 1, 1)) memset(&jb[3], 0, sizeof jb[3]);
     if (!rc)
-        rc = all ? join_all(&src, have_jb ? jb : NULL, verbose)
+        rc = all ? join_all(&src, have_jb ? jb : NULL, verbose, routes_out)
                  : join_one(&src, pos[0], pos[1], out, &cfg);
     for (int k = 0; have_jb && k < BOXES; k++)
         join_bridge_close(&jb[k]);

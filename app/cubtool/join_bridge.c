@@ -9,7 +9,7 @@
 #define START_FRAMES 4 /* the director's start_frames default */
 
 int join_bridge_open(join_bridge *jb, const char *assets, const cub_join_db *db, int via_tween,
-                     int legs)
+                     int legs, int routes)
 {
     cub_diag d = {0};
     char msg[600];
@@ -29,7 +29,7 @@ int join_bridge_open(join_bridge *jb, const char *assets, const cub_join_db *db,
     }
     cub_bridge_player_desc pd = {
         .table = &jb->cl.table, .smooth = CUB_BRIDGE_SMOOTH_INERTIAL, .via_tween = via_tween,
-        .no_legs = !legs};
+        .no_legs = !legs, .no_routes = !routes};
     size_t ws = cub_bridge_player_mem_size(&pd);
     jb->work = malloc(ws);
     jb->db_of = malloc(sizeof(int) * (size_t)jb->cl.table.desc.clip_count);
@@ -143,8 +143,11 @@ int join_bridge_measure(join_bridge *jb, const cub_join_db *db, int a, int b, jo
         cub_bridge_player_request(&jb->player, lb, 0, 0, &plan))
         return -1;
     memset(out, 0, sizeof *out);
-    for (int i = 0; i < plan.step_count; i++)
+    for (int i = 0; i < plan.step_count; i++) {
         out->tweened |= jb->via_tween && plan.step[i].to_clip == jb->cl.tween_index;
+        out->routed |= plan.step[i].via == CUB_BRIDGE_ROUTE;
+    }
+    out->steps = plan.step_count;
     played pl;
     memset(&pl, 0, sizeof pl);
     int ok = alloc_result(db, &pl.shown) && alloc_result(db, &pl.raw);
@@ -156,6 +159,32 @@ int join_bridge_measure(join_bridge *jb, const cub_join_db *db, int a, int b, jo
     cub_join_result_free(&pl.shown);
     cub_join_result_free(&pl.raw);
     return first >= 0 ? 0 : -1;
+}
+
+int join_bridge_route_of(const join_bridge *jb, const cub_join_db *db, int a, int b,
+                         const cub_join_pick *pick, cub_bridge_route *out)
+{
+    int la = lib_of(jb, a), lb = lib_of(jb, b), lc = pick->clip >= 0 ? lib_of(jb, pick->clip) : -1;
+    int w = db->cfg.window_frames, in = pick->first + w, o = pick->last - w;
+    if (la < 0 || lb < 0 || lc < 0 || in >= o) return -1;
+    int na = jb->cl.lib.clips[la].clip.frame_count;
+    *out = (cub_bridge_route){(int16_t)la, (int16_t)lb, (int16_t)lc, (int16_t)(na - 1),
+                              (int16_t)in, (int16_t)o, 0, 0};
+    return 0;
+}
+
+int join_bridge_measure_route(join_bridge *jb, const cub_join_db *db, int a, int b,
+                              const cub_bridge_route *r, join_bridge_fig *out)
+{
+    cub_bridge_table *t = &jb->cl.table;
+    const cub_bridge_route *keep = t->routes;
+    int keep_n = t->route_count;
+    t->routes = r; /* the tool's own table: a trial, put back below */
+    t->route_count = 1;
+    int rc = join_bridge_measure(jb, db, a, b, out);
+    t->routes = keep;
+    t->route_count = keep_n;
+    return rc;
 }
 
 void join_bridge_close(join_bridge *jb)

@@ -1,9 +1,11 @@
 /* coachlib: the shipped library + tags + bear -> the firmware's bridge
  * table (see cub/coachlib.h). */
+#define _XOPEN_SOURCE 700
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "cub/coachlib.h"
 
@@ -112,6 +114,29 @@ static cub_err build_table(cub_coachlib *cl, const char *lib_path, const char *t
     return cub_bridge_table_finish(&cl->table);
 }
 
+/* The routes file beside the tags: X.tags.xml -> X.routes.txt. A missing
+ * file is no routes (a tagging of its own has none); a bad one fails, and
+ * anything else at that name (a FIFO, a folder, a link loop) is refused by
+ * the reader without blocking. */
+static cub_err load_routes(cub_coachlib *cl, const char *tags_path, cub_diag *diag)
+{
+    static const char ext[] = ".tags.xml";
+    size_t n = strlen(tags_path), e_len = sizeof ext - 1;
+    char path[1024];
+    if (n < e_len || strcmp(tags_path + n - e_len, ext) || n - e_len + 12 > sizeof path)
+        return CUB_OK;
+    snprintf(path, sizeof path, "%.*s.routes.txt", (int)(n - e_len), tags_path);
+    struct stat st;
+    if (lstat(path, &st) != 0) return CUB_OK; /* none: cub_text refuses FIFOs, folders, loops */
+    cl->routes = malloc(sizeof *cl->routes);
+    if (!cl->routes) return fail(diag, path, CUB_ERR_NOMEM, "out of memory");
+    cub_err e = cub_routes_read(path, &cl->lib, cl->routes, diag);
+    if (e) return e;
+    e = cub_bridge_table_set_routes(&cl->table, cl->routes->route, cl->routes->count);
+    if (e) return fail(diag, path, e, "the bridge table refused the routes (%s)", cub_err_str(e));
+    return CUB_OK;
+}
+
 cub_err cub_coachlib_load(const char *library_path, const char *tags_path,
                           const char *bear_path, cub_coachlib *out, cub_diag *diag)
 {
@@ -123,6 +148,7 @@ cub_err cub_coachlib_load(const char *library_path, const char *tags_path,
     if (!e) e = cub_pack_read(library_path, &out->lib, diag);
     if (!e) e = cub_tags_read(tags_path, &out->lib, &out->tags, diag);
     if (!e) e = build_table(out, library_path, tags_path, bear_path, diag);
+    if (!e) e = load_routes(out, tags_path, diag);
     out->tween_index = -1;
     if (e) cub_coachlib_free(out);
     return e;
@@ -150,5 +176,6 @@ void cub_coachlib_free(cub_coachlib *cl)
     cub_library_free(&cl->lib);
     free(cl->table_mem);
     free(cl->tween_mem);
+    free(cl->routes);
     memset(cl, 0, sizeof *cl);
 }

@@ -48,6 +48,7 @@ static cub_err rebuild(const cub_bridge_table *old, const cub_clip *unrolled, in
         }
     if (!e) e = cub_bridge_table_set_tween(t, n, pass);
     if (!e) e = cub_bridge_table_finish(t);
+    if (!e && old->route_count > 0) e = cub_bridge_table_set_routes(t, old->routes, old->route_count);
     free(all);
     if (e) free(mem);
     *mem_out = e ? NULL : mem;

@@ -514,7 +514,7 @@ static int query_ok(const cub_bridge_table *t, const cub_bridge_query *q)
     return q->from_clip >= 0 && q->from_clip < n && q->to_clip >= 0 && q->to_clip < n &&
            q->pos_q16 >= 0 && q->pos_q16 < ((int64_t)1 << 46) && q->window_frames >= 0 &&
            q->wait_cost_mm >= 0 && q->start_frames >= 0 && q->reach_frames >= 0 &&
-           (q->strict == 0 || q->strict == 1) && (q->via_tween == 0 || q->via_tween == 1);
+           (q->strict == 0 || q->strict == 1) && (q->via_tween == 0 || q->via_tween == 1) && (q->no_routes == 0 || q->no_routes == 1);
 }
 
 /* The first frame still to come; a clip that does not loop holds its
@@ -540,6 +540,36 @@ static int reach_search(const cub_bridge_table *t, const cub_bridge_query *q, in
 
 static cub_err plan_within(const cub_bridge_table *t, const cub_bridge_query *q,
                            cub_bridge_plan *out, void *work);
+
+/* The table's searched route for this pair, when the current clip reaches
+ * its frame a within `window` upcoming frames: a correction that comes
+ * later than that is not worth the route (the reaction's 200 ms come
+ * first), and the searches below plan it instead. */
+static int route_take(const cub_bridge_table *t, const cub_bridge_query *q, int64_t g0,
+                      int window, cub_bridge_plan *out)
+{
+    const cub_bridge_route *r = NULL;
+    for (int i = 0; i < t->route_count && !r; i++)
+        if (t->routes[i].from == q->from_clip && t->routes[i].to == q->to_clip) r = &t->routes[i];
+    if (!r) return 0;
+    int nf = frames_of(t, q->from_clip);
+    for (int k = 0; k < window; k++) {
+        int64_t at;
+        int gf = upcoming(q, nf, g0, k, &at);
+        if (gf < 0) return 0;
+        if (gf != r->a || at_pass_start(q, nf, g0, k)) continue;
+        out->step_count = 2;
+        out->step[0] = (cub_bridge_step){q->from_clip, r->a, r->via, r->in, 0,
+                                         CUB_BRIDGE_ROUTE, at << 16};
+        out->step[1] = (cub_bridge_step){r->via, r->out, q->to_clip, r->b, 0, CUB_BRIDGE_ROUTE,
+                                         (int64_t)r->out << 16};
+        out->wait_frames = k;
+        out->total_frames = k + (r->out - r->in);
+        out->window_frames = window;
+        return 1;
+    }
+    return 0;
+}
 
 /* No direct switch: a chain through other clips, or (via_tween) a route
  * through the tween clip, the wanted clip's front half first. */
@@ -581,6 +611,7 @@ static cub_err plan_within(const cub_bridge_table *t, const cub_bridge_query *q,
     w->have_body = 0;
     hit h;
     int first = window < limit ? window : limit;
+    if (!q->no_routes && route_take(t, q, g0, first, out)) return CUB_OK;
     if (q->start_frames > 0 && start_search(t, q, g0, first, &h)) {
         write_direct(q, nf, &h, window, out);
         return CUB_OK;

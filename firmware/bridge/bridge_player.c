@@ -43,7 +43,7 @@ cub_err cub_bridge_player_init(cub_bridge_player *p, const cub_bridge_player_des
         desc->window_frames < 0 || desc->wait_cost_mm < 0 || desc->blend_speed_mm < 0 ||
         desc->smooth < CUB_BRIDGE_SMOOTH_INERTIAL ||
         desc->smooth > CUB_BRIDGE_SMOOTH_CROSSFADE || desc->via_tween < 0 || desc->via_tween > 1 ||
-        desc->no_legs < 0 || desc->no_legs > 1)
+        desc->no_legs < 0 || desc->no_legs > 1 || desc->no_routes < 0 || desc->no_routes > 1)
         return CUB_ERR_ARG;
     if (mem_size < cub_bridge_player_mem_size(desc)) return CUB_ERR_NOMEM;
     memset(p, 0, sizeof *p);
@@ -98,7 +98,7 @@ cub_err cub_bridge_player_request(cub_bridge_player *p, int clip, cub_q16 speed_
     if (clip < 0 || clip >= p->desc.table->desc.clip_count) return CUB_ERR_ARG;
     cub_bridge_query q = {p->clip, p->pos_q16, p->loop, clip, p->desc.window_frames,
                           p->desc.wait_cost_mm, p->desc.start_frames, p->desc.reach_frames,
-                          p->desc.strict, p->desc.via_tween};
+                          p->desc.strict, p->desc.via_tween, p->desc.no_routes};
     cub_bridge_plan plan;
     cub_err e = cub_bridge_plan_switch(p->desc.table, &q, &plan, p->work, p->work_size);
     if (e) return e;
@@ -125,6 +125,7 @@ cub_err cub_bridge_player_preview(cub_bridge_player *p, const cub_bridge_query *
     if (!here.wait_cost_mm) here.wait_cost_mm = p->desc.wait_cost_mm;
     here.strict |= p->desc.strict;
     here.via_tween |= p->desc.via_tween;
+    here.no_routes |= p->desc.no_routes;
     return cub_bridge_plan_switch(p->desc.table, &here, out, p->work, p->work_size);
 }
 

@@ -223,3 +223,30 @@ cub_err cub_bridge_table_finish(cub_bridge_table *t)
     t->finished = 1;
     return CUB_OK;
 }
+
+static int route_ok(const cub_bridge_table *t, const cub_bridge_route *r)
+{
+    int n = t->desc.clip_count;
+    if (r->from < 0 || r->from >= n || r->to < 0 || r->to >= n || r->via < 0 || r->via >= n ||
+        r->from == r->to)
+        return 0;
+    int na = t->clips[r->from].clip.frame_count, nc = t->clips[r->via].clip.frame_count;
+    return r->a >= 0 && r->a < na && r->in >= 0 && r->in < r->out && r->out < nc && r->b >= 0 &&
+           r->b < t->clips[r->to].clip.frame_count;
+}
+
+cub_err cub_bridge_table_set_routes(cub_bridge_table *t, const cub_bridge_route *routes,
+                                    int count)
+{
+    if (!t || !t->finished || t->routes || count < 0 || (count > 0 && !routes))
+        return CUB_ERR_ARG;
+    for (int i = 0; i < count; i++) {
+        if (!route_ok(t, &routes[i])) return CUB_ERR_ARG;
+        for (int j = 0; j < i; j++)
+            if (routes[j].from == routes[i].from && routes[j].to == routes[i].to)
+                return CUB_ERR_ARG;
+    }
+    t->routes = count > 0 ? routes : NULL;
+    t->route_count = count;
+    return CUB_OK;
+}

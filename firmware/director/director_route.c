@@ -284,7 +284,9 @@ static void on_switch(cub_director *d, cub_loop *loop, int64_t t_us, int64_t now
     cub_log_event(dlog(d), t_us, "bridge", "switch", "from=%s@%d to=%s@%d d=%q via=%s",
                   director_clip_name(d, s->from_clip), s->from_frame,
                   director_clip_name(d, s->to_clip), s->to_frame, s->d,
-                  s->via == CUB_BRIDGE_TWEEN ? "tween" : "direct");
+                  s->via == CUB_BRIDGE_TWEEN ? "tween"
+                  : s->via == CUB_BRIDGE_ROUTE ? "route"
+                                               : "direct");
     post_music_tag(d, loop, now_us, music_ms, s);
 }
 

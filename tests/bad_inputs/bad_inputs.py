@@ -101,7 +101,7 @@ def base_of(kind, d, shared, build=""):
     bear_bvh = read(os.path.join(ASSETS, "clips", "hello.bvh"))
     # The bear's own joints linked one to one: a map for a bear-shaped BVH.
     bear_map = b"".join(j + b" " + j + b":1.0\n" for j in bvh_joints(bear_bvh))
-    if kind in ("character", "tags", "library"):  # read when the coach leads a song
+    if kind in ("character", "tags", "library", "routes"):  # read when the coach leads a song
         song_beside(d, "twinkle.mid")
     if kind == "config":
         return (b"# a small box config\nvolume=80\nresolution=640x360\nattract_after_s=20\n"
@@ -128,6 +128,9 @@ def base_of(kind, d, shared, build=""):
         return read(os.path.join(ASSETS, "bear", "bear.xml")), "bad.xml"
     if kind == "tags":
         return read(os.path.join(ASSETS, "clips", "bear.tags.xml")), "bad.tags.xml"
+    if kind == "routes":  # read beside the tags they are given with
+        shutil.copyfile(os.path.join(ASSETS, "clips", "bear.tags.xml"), os.path.join(d, "bad.tags.xml"))
+        return read(os.path.join(ASSETS, "clips", "bear.routes.txt")), "bad.routes.txt"
     if kind == "library":
         return read(os.path.join(ASSETS, "clips", "bear.cubclips")), "bad.cubclips"
     if kind == "clip":

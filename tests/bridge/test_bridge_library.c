@@ -115,7 +115,7 @@ static void test_every_pair_is_plannable(void **state)
     if (!cl) skip();
     const cub_bridge_table *t = &cl->table;
     int n = t->desc.clip_count, step = getenv("CUB_QUICK") ? 30 : 5;
-    long plans = 0, direct = 0, tween = 0, front = 0, within_window = 0;
+    long plans = 0, direct = 0, tween = 0, routed = 0, front = 0, within_window = 0;
     for (int a = 0; a < n; a++)
         for (int b = 0; b < n; b++)
             for (int m = 0; m < t->clips[a].clip.frame_count; m += step) {
@@ -134,13 +134,15 @@ static void test_every_pair_is_plannable(void **state)
                 plans++;
                 direct += p.step[0].via == CUB_BRIDGE_DIRECT;
                 tween += p.step[0].via == CUB_BRIDGE_TWEEN;
+                routed += p.step[0].via == CUB_BRIDGE_ROUTE;
                 front += 2 * last->to_frame < t->clips[b].clip.frame_count;
                 within_window += p.wait_frames < CUB_BRIDGE_WINDOW_FRAMES;
             }
-    printf("bridge: plans=%ld direct=%ld tween=%ld into_front_half=%ld "
+    printf("bridge: plans=%ld direct=%ld tween=%ld searched_route=%ld into_front_half=%ld "
            "first_switch_within_%d_frames=%ld (every %dth frame, all %d ordered pairs)\n",
-           plans, direct, tween, front, CUB_BRIDGE_WINDOW_FRAMES, within_window, step, n * n);
-    assert_int_equal(direct + tween, plans);
+           plans, direct, tween, routed, front, CUB_BRIDGE_WINDOW_FRAMES, within_window, step,
+           n * n);
+    assert_int_equal(direct + tween + routed, plans);
 }
 
 /* SEEDS.md § 000: every move reaches each correcting clip through bridge
@@ -290,6 +292,133 @@ static void test_sample_switches_react_fast_without_a_jump(void **state)
     assert_true(jump_max <= own_max);
 }
 
+/* The feet the playing clip's frame stands on (the player's contacts)
+ * that are also low (within 30 mm of the clip's floor) in the shown pose. */
+static unsigned standing_low(const cub_bridge_player *p, const cub_vec3 *world)
+{
+    const cub_bridge_legs *l = &p->legs;
+    const cub_bridge_clip *c = &p->desc.table->clips[p->clip];
+    unsigned bits = 3u & l->contact[c->first_frame + (int)((p->pos_q16 >> 16) % c->clip.frame_count)];
+    for (int s = 0; s < 2; s++)
+        for (int k = 0; k < CUB_BRIDGE_FOOT_JOINTS && l->foot[s][k] >= 0; k++)
+            if ((int64_t)world[l->foot[s][k]].y - l->floor_mm[p->clip] >= CUB_Q16_INT(30))
+                bits &= ~(1u << s);
+    return bits;
+}
+
+/* Switch along route r (from its frame a - 4, as cubtool join asks, A
+ * looping, B entered at its first frames): the plan, and the most a foot
+ * that stands low on two frames running slides (mm, its ankle's floor
+ * travel summed) until the plan is done and the blend over. */
+static double route_slide_mm(cub_bridge_player *p, const cub_bridge_route *r, cub_bridge_plan *plan)
+{
+    static cub_pose pose;
+    static cub_vec3 prev[CUB_MOTION_MAX_JOINTS], cur[CUB_MOTION_MAX_JOINTS];
+    const cub_skeleton *sk = p->desc.table->desc.skel;
+    assert_int_equal(cub_bridge_player_start(p, r->from, r->a - 4, 0, 1), CUB_OK);
+    assert_int_equal(cub_bridge_player_set_start_frames(p, 4), CUB_OK);
+    assert_int_equal(cub_bridge_player_request(p, r->to, 0, 0, plan), CUB_OK);
+    cub_bridge_player_pose(p, &pose);
+    cub_motion_forward(sk, &pose, prev, NULL);
+    unsigned was = standing_low(p, prev);
+    double slide[2] = {0, 0};
+    for (int tick = 1; tick < 240; tick++) {
+        cub_bridge_event ev[4];
+        int k;
+        assert_int_equal(cub_bridge_player_advance(p, 33333, ev, 4, &k), CUB_OK);
+        cub_bridge_player_pose(p, &pose);
+        cub_motion_forward(sk, &pose, cur, NULL);
+        unsigned now = standing_low(p, cur);
+        for (int s = 0; s < 2; s++) {
+            int j = p->legs.ankle[s];
+            if (now & was & (1u << s))
+                slide[s] += hypot((cur[j].x - prev[j].x) / 65536.0, (cur[j].z - prev[j].z) / 65536.0);
+        }
+        was = now;
+        memcpy(prev, cur, sizeof prev);
+        if (!cub_bridge_player_pending(p) && !p->blending) break;
+    }
+    return slide[0] > slide[1] ? slide[0] : slide[1];
+}
+
+/* The shipped searched routes (assets/clips/bear.routes.txt, docs/join.md
+ * "Routes"): a switch on a route pair asked for within the window takes
+ * the route, in two switches through its C, and the planted feet stay
+ * within 5 mm; into the travelling kick the switch without its route
+ * slides them by centimetres. */
+static void test_route_pairs_take_their_route_and_keep_the_feet(void **state)
+{
+    cub_coachlib *cl = *state;
+    if (!cl) skip();
+    assert_true(cl->table.route_count >= 1);
+    static cub_bridge_player with, without;
+    static unsigned char mem2[1 << 20];
+    cub_bridge_player_desc pd = {.table = &cl->table}, pn = {.table = &cl->table, .no_routes = 1};
+    assert_true(cub_bridge_player_mem_size(&pn) <= sizeof mem2);
+    assert_int_equal(cub_bridge_player_init(&with, &pd, g_work, g_work_size), CUB_OK);
+    assert_int_equal(cub_bridge_player_init(&without, &pn, mem2, sizeof mem2), CUB_OK);
+    int kick = cub_coachlib_find(cl, "kick");
+    double kick_own = 0;
+    for (int i = 0; i < cl->table.route_count; i++) {
+        const cub_bridge_route *r = &cl->table.routes[i];
+        cub_bridge_plan plan, before;
+        double got = route_slide_mm(&with, r, &plan), own = route_slide_mm(&without, r, &before);
+        printf("bridge: route %s -> %s via %s@%d-%d: planted feet slide %.2f mm (the switch "
+               "without the route: %.2f mm, %d step%s)\n",
+               cl->lib.clips[r->from].name, cl->lib.clips[r->to].name, cl->lib.clips[r->via].name,
+               r->in, r->out, got, own, before.step_count, before.step_count == 1 ? "" : "s");
+        assert_int_equal(plan.step_count, 2);
+        assert_int_equal(plan.step[0].via, CUB_BRIDGE_ROUTE);
+        assert_int_equal(plan.step[0].to_clip, r->via);
+        assert_int_equal(plan.step[1].to_clip, r->to);
+        assert_int_equal(plan.wait_frames, 4);
+        assert_true(before.step[0].via != CUB_BRIDGE_ROUTE);
+        /* a foot held through both switches: within 5 mm (sliding is cm) */
+        assert_true(got < 5.0);
+        if (r->to == kick && own > kick_own) kick_own = own;
+    }
+    /* into the kick without its route, a foot slides by centimetres */
+    assert_true(kick_own > 30.0);
+}
+
+/* A route whose first frame comes later than the first window (200 ms)
+ * is not taken: the planner searches as before. The table refuses bad
+ * routes. */
+static void test_a_late_route_falls_back_to_the_search(void **state)
+{
+    cub_coachlib *cl = *state;
+    if (!cl) skip();
+    for (int i = 0; i < cl->table.route_count; i++) {
+        const cub_bridge_route *r = &cl->table.routes[i];
+        for (int early = CUB_BRIDGE_WINDOW_FRAMES; early <= 12 && early <= r->a; early += 6) {
+            cub_bridge_query q = {.from_clip = r->from, .pos_q16 = (int64_t)(r->a - early) << 16,
+                                  .from_loops = 1, .to_clip = r->to, .start_frames = 4};
+            cub_bridge_plan plan;
+            assert_int_equal(cub_bridge_plan_switch(&cl->table, &q, &plan, g_work, g_work_size),
+                             CUB_OK);
+            assert_true(plan.step[0].via != CUB_BRIDGE_ROUTE);
+            q.pos_q16 = (int64_t)(r->a - CUB_BRIDGE_WINDOW_FRAMES + 1) << 16; /* the window's last */
+            assert_int_equal(cub_bridge_plan_switch(&cl->table, &q, &plan, g_work, g_work_size),
+                             CUB_OK);
+            assert_int_equal(plan.step[0].via, CUB_BRIDGE_ROUTE);
+            assert_int_equal(plan.wait_frames, CUB_BRIDGE_WINDOW_FRAMES - 1);
+        }
+    }
+    cub_bridge_table t = cl->table;
+    t.routes = NULL;
+    t.route_count = 0;
+    cub_bridge_route bad = cl->table.routes[0];
+    bad.in = bad.out; /* C played backwards or not at all */
+    assert_int_equal(cub_bridge_table_set_routes(&t, &bad, 1), CUB_ERR_ARG);
+    bad = cl->table.routes[0];
+    bad.to = bad.from;
+    assert_int_equal(cub_bridge_table_set_routes(&t, &bad, 1), CUB_ERR_ARG);
+    cub_bridge_route twice[2] = {cl->table.routes[0], cl->table.routes[0]};
+    assert_int_equal(cub_bridge_table_set_routes(&t, twice, 2), CUB_ERR_ARG);
+    assert_int_equal(cub_bridge_table_set_routes(&t, twice, 1), CUB_OK);
+    assert_int_equal(cub_bridge_table_set_routes(&t, twice, 1), CUB_ERR_ARG); /* set once */
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -298,6 +427,8 @@ int main(void)
         cmocka_unit_test(test_every_pair_is_plannable),
         cmocka_unit_test(test_every_clip_reaches_the_corrections_by_bridge_frames),
         cmocka_unit_test(test_sample_switches_react_fast_without_a_jump),
+        cmocka_unit_test(test_route_pairs_take_their_route_and_keep_the_feet),
+        cmocka_unit_test(test_a_late_route_falls_back_to_the_search),
     };
     return cmocka_run_group_tests_name("bridge_library", tests, setup, teardown);
 }

@@ -18,6 +18,7 @@
 #include "cub/err.h"
 #include "cub/io.h"
 #include "cub/pack.h"
+#include "cub/routes.h"
 #include "cub/tags.h"
 
 typedef struct cub_coachlib {
@@ -31,9 +32,13 @@ typedef struct cub_coachlib {
     cub_clip tween_clip;    /* one pass of the loop, on lib.skel (frame_count 0: none) */
     int tween_index;        /* the table's clip holding it unrolled (two passes), -1: none */
     void *tween_mem;        /* owned */
+    cub_routes *routes;     /* the searched routes the table's planner takes: the
+                               file beside the tags (X.tags.xml -> X.routes.txt),
+                               NULL when there is none; owned */
 } cub_coachlib;
 
-/* Load the three files and build the table. out is zeroed first; on
+/* Load the three files and build the table; with the routes beside the
+ * tags (see routes above) when that file exists. out is zeroed first; on
  * failure everything is freed again and diag says what is wrong. */
 cub_err cub_coachlib_load(const char *library_path, const char *tags_path,
                           const char *bear_path, cub_coachlib *out, cub_diag *diag);

@@ -115,6 +115,19 @@ typedef struct cub_bridge_pair {
     int32_t first, count; /* into links[]; count -1: not set yet */
 } cub_bridge_pair;
 
+/* A searched route (docs/join.md, "Routes"; issue 21 § 3): from frame a
+ * of clip `from`, into frame `in` of clip `via`, play it on to frame `out`,
+ * then into frame b of clip `to`. Found offline (`cubtool join --all
+ * --routes-out`) where the seed's searched transition through C = via
+ * beats the box's own switch; loaded beside the tags (cub/routes.h). The
+ * player plays via where it stands: the inertial offset, not the search's
+ * rigid move, takes the body onto it. */
+typedef struct cub_bridge_route {
+    int16_t from, to, via;
+    int16_t a, in, out, b;
+    int16_t reserved_;
+} cub_bridge_route;
+
 typedef struct cub_bridge_table {
     cub_bridge_table_desc desc; /* fuzzy filled with defaults, normalised */
     cub_bridge_clip *clips;     /* [clip_count] */
@@ -128,6 +141,8 @@ typedef struct cub_bridge_table {
     int finished;
     int tween_clip; /* the seed's tween (cub_bridge_table_set_tween), -1: none */
     int tween_pass; /* its loop's length in frames (the clip holds two passes) */
+    const cub_bridge_route *routes; /* [route_count] caller memory, see set_routes */
+    int route_count;
 } cub_bridge_table;
 
 /* Bytes the table needs; 0 if the desc is impossible (counts < 0, no clip). */
@@ -158,6 +173,12 @@ int cub_bridge_is_bridge(const cub_bridge_table *t, int c, int f);
  * CUB_ERR_ARG (bad c, not two passes, a frame that is not a bridge frame,
  * set twice). */
 cub_err cub_bridge_table_set_tween(cub_bridge_table *t, int c, int pass_frames);
+/* The searched routes the planner takes (cub_bridge_route), at most one
+ * per ordered pair; the array stays in the caller's memory. Every clip and
+ * frame in range, in < out, from != to. CUB_ERR_ARG (a bad route, a pair
+ * twice, set twice, unfinished table). */
+cub_err cub_bridge_table_set_routes(cub_bridge_table *t, const cub_bridge_route *routes,
+                                    int count);
 /* All clips added? Pairs never set have no links. CUB_ERR_RANGE if not. */
 cub_err cub_bridge_table_finish(cub_bridge_table *t);
 
@@ -166,6 +187,7 @@ cub_err cub_bridge_table_finish(cub_bridge_table *t);
 typedef enum cub_bridge_via {
     CUB_BRIDGE_DIRECT = 0, /* one switch, into the wanted clip */
     CUB_BRIDGE_TWEEN = 1,  /* a step of a chain through other clips */
+    CUB_BRIDGE_ROUTE = 2,  /* a step of a searched route (cub_bridge_route) */
 } cub_bridge_via;
 
 /* One switch: play `from_clip` until its unwrapped position at_q16 (a
@@ -215,6 +237,10 @@ typedef struct cub_bridge_query {
                           to an upcoming one, play it on, leave it for the
                           wanted clip: two steps). 0: chains of tagged links
                           through other clips (the default) */
+    int no_routes;     /* 1: ignore the table's searched routes (for measuring).
+                          0: when the table has a route for this pair and the
+                          current clip reaches its frame a within the first
+                          window (200 ms), take it before any search */
 } cub_bridge_query;
 
 /* Scratch memory the planner needs for this table (the tween search). */
@@ -336,6 +362,7 @@ typedef struct cub_bridge_player_desc {
     int via_tween;        /* the planner's, see cub_bridge_query; 0 = off */
     int no_legs;          /* 1: no leg phase (for measuring); 0: inertial cuts hold
                              planted feet (cub_bridge_legs) */
+    int no_routes;        /* the planner's, see cub_bridge_query; 0 = take routes */
 } cub_bridge_player_desc;
 
 typedef enum cub_bridge_event_type {
