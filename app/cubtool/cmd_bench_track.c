@@ -63,18 +63,62 @@ static void whole_tick(const char *dir, int frames)
 #endif
 }
 
+/* Milliseconds per frame of a tracker over the dump, repeated to at
+ * least BENCH_MIN_RUNS frames: sorted into ms[runs]. */
+static void time_frames(cub_tracker *t, const cub_tool_dump *d, double *ms, int runs)
+{
+    for (int r = 0; r < runs; r++) {
+        cub_track_skeleton s;
+        int f = r % d->n;
+        double t0 = now_ms();
+        cub_track_frame(t, d->raw + (size_t)f * CUB_TOOL_FRAME_PIXELS, (int64_t)r * 33333, NULL, &s);
+        ms[r] = now_ms() - t0;
+    }
+    qsort(ms, (size_t)runs, sizeof *ms, cmp_double);
+}
+
+/* One line of figures: a tracker (with the forest f or not) on the dump;
+ * its median into *median. -1 when it cannot be set up. */
+static int bench_one(const cub_tool_dump *d, const char *dir, const cub_forest *f, size_t forest_bytes,
+                     double *median)
+{
+    void *mem = NULL;
+    cub_tracker *t = cub_tool_tracker_new(&mem, f, "bench-track");
+    int runs = d->n < BENCH_MIN_RUNS ? (BENCH_MIN_RUNS + d->n - 1) / d->n * d->n : d->n;
+    double *ms = malloc((size_t)runs * sizeof *ms);
+    if (!t || !ms) {
+        free(mem), free(ms);
+        return -1;
+    }
+    time_frames(t, d, ms, runs);
+    size_t sz = cub_track_mem_size(&(cub_track_desc){.forest = f});
+    *median = ms[runs / 2];
+    printf("bench-track: %s%s frames=%d runs=%d median=%.3f ms p95=%.3f ms max=%.3f ms memory=%zu bytes",
+           f ? "tracker+forest " : "tracker ", dir, d->n, runs, ms[runs / 2], ms[runs * 95 / 100],
+           ms[runs - 1], sz);
+    if (f) printf(" + forest %zu bytes = state %zu bytes", forest_bytes, sz + forest_bytes);
+    printf("\n");
+    fflush(stdout);
+    free(ms);
+    free(mem);
+    return 0;
+}
+
 int cub_cmd_bench_track(int argc, char **argv)
 {
     char def[4096];
-    const char *dir = NULL;
+    const char *dir = NULL, *forest_path = NULL;
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--help")) {
-            printf("usage: cubtool bench-track [DUMP_DIR]\n"
+            printf("usage: cubtool bench-track [DUMP_DIR] [--forest FILE]\n"
                    "Milliseconds per frame (median, p95) of the tracker on one core, and its memory.\n"
-                   "DUMP_DIR defaults to <data>/depth/skeltrack ($CUB_DATA_DIR or the build's data dir).\n");
+                   "DUMP_DIR defaults to <data>/depth/skeltrack ($CUB_DATA_DIR or the build's data dir).\n"
+                   "--forest FILE: also the tracker with the body-part forest (docs/forest.md): its\n"
+                   "time, the forest's share (the medians' difference) and the state's bytes.\n");
             return 0;
         }
-        dir = argv[i];
+        if (!strcmp(argv[i], "--forest") && i + 1 < argc) forest_path = argv[++i];
+        else dir = argv[i];
     }
     if (!dir) {
         const char *data = getenv("CUB_DATA_DIR");
@@ -83,27 +127,20 @@ int cub_cmd_bench_track(int argc, char **argv)
     }
     cub_tool_dump d;
     if (cub_tool_dump_load(dir, &d, 2000, "bench-track")) return 1;
-    void *mem = NULL;
-    cub_tracker *t = cub_tool_tracker_new(&mem, "bench-track");
-    if (!t) return 1;
-    size_t sz = cub_track_mem_size(&(cub_track_desc){0});
-    int runs = d.n < BENCH_MIN_RUNS ? (BENCH_MIN_RUNS + d.n - 1) / d.n * d.n : d.n;
-    double *ms = malloc((size_t)runs * sizeof *ms);
-    for (int r = 0; ms && r < runs; r++) {
-        cub_track_skeleton s;
-        int f = r % d.n;
-        double t0 = now_ms();
-        cub_track_frame(t, d.raw + (size_t)f * CUB_TOOL_FRAME_PIXELS, (int64_t)r * 33333, NULL, &s);
-        ms[r] = now_ms() - t0;
+    char *fbytes = NULL;
+    cub_forest f;
+    double alone = 0, both = 0;
+    int rc = bench_one(&d, dir, NULL, 0, &alone);
+    if (!rc && forest_path) {
+        rc = cub_tool_forest_load(forest_path, &fbytes, &f, "bench-track");
+        size_t fb = rc ? 0 : CUB_FOREST_HEADER_BYTES + 4 * (size_t)f.trees +
+                                 (size_t)f.node_count * CUB_FOREST_NODE_BYTES +
+                                 (size_t)f.leaf_count * (size_t)f.classes * 2;
+        if (!rc) rc = bench_one(&d, dir, &f, fb, &both);
+        if (!rc) printf("bench-track: forest (the medians' difference) %.3f ms a frame\n", both - alone);
     }
-    if (!ms) return 1;
-    qsort(ms, (size_t)runs, sizeof *ms, cmp_double);
-    printf("bench-track: %s frames=%d runs=%d median=%.3f ms p95=%.3f ms max=%.3f ms memory=%zu bytes\n", dir, d.n,
-           runs, ms[runs / 2], ms[runs * 95 / 100], ms[runs - 1], sz);
-    fflush(stdout);
-    whole_tick(dir, d.n);
-    free(ms);
-    free(mem);
+    if (!rc) whole_tick(dir, d.n);
+    free(fbytes);
     cub_tool_dump_free(&d);
-    return 0;
+    return rc ? 1 : 0;
 }
