@@ -61,6 +61,9 @@ static void usage(FILE *f, const char *prog)
 "  --library FILE         clip library (default " CUB_ASSETS_DIR "/clips/bear.cubclips)\n"
 "  --tags FILE            its bridge tags (default " CUB_ASSETS_DIR "/clips/bear.tags.xml)\n"
 "  --character FILE       the coach (default " CUB_ASSETS_DIR "/bear/bear.xml)\n"
+"  --forest FILE          the tracker also reads the body-part forest (e.g.\n"
+"                         " CUB_ASSETS_DIR "/forest/body.forest, docs/forest.md):\n"
+"                         its confident joints replace the tracker's unsure ones\n"
 "  --voice FILE           the bear's spoken words (default " CUB_VOICE_PATH ");\n"
 "                         speech=0 in the config keeps it quiet\n"
 "  --attract-after S      attract after S seconds without interaction\n"
@@ -176,6 +179,7 @@ static int apply_valued(cub_app_options *o, const char *opt, const char *val, FI
                             : !strcmp(opt, "--library")      ? &o->library_path
                             : !strcmp(opt, "--tags")         ? &o->tags_path
                             : !strcmp(opt, "--character")    ? &o->character_path
+                            : !strcmp(opt, "--forest")       ? &o->forest_path
                             : !strcmp(opt, "--font")         ? &o->font_path
                             : !strcmp(opt, "--voice")        ? &o->voice_path
                                                              : NULL;
@@ -191,7 +195,7 @@ static int takes_value(const char *opt)
                                          "--depth", "--frames", "--replay", "--buttons",
                                          "--gpio-config", "--config", "--audio-driver", "--clip", "--log",
                                          "--song", "--timeline", "--library", "--tags",
-                                         "--character", "--font", "--voice", "--attract-after", "--doze-after",
+                                         "--character", "--forest", "--font", "--voice", "--attract-after", "--doze-after",
                                          "--music-clock-scale", "--record"};
     for (size_t i = 0; i < sizeof valued / sizeof *valued; i++)
         if (!strcmp(opt, valued[i])) return 1;
