@@ -33,32 +33,40 @@ static int cmp_double(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-/* The whole tick, measured by the box itself on the same dump: `env`
- * goes before the command, `lines` picks what to show of --stats. */
-static int run_box(const char *dir, int frames, const char *env, const char *lines)
+/* The whole tick, measured by the box itself on the same dump (with the
+ * forest when `forest` is not empty): `env` goes before the command,
+ * `lines` picks what to show of --stats. */
+typedef struct box_run {
+    const char *dir, *forest;
+    int frames;
+} box_run;
+
+static int run_box(const box_run *b, const char *env, const char *lines)
 {
-    char cmd[20000];
+    char cmd[20000], fopt[4200] = "";
+    if (b->forest[0]) snprintf(fopt, sizeof fopt, "--forest '%s'", b->forest);
     snprintf(cmd, sizeof cmd,
              "FAKENECT_PATH='%s' LD_LIBRARY_PATH='%s' EGL_PLATFORM=surfaceless SDL_AUDIODRIVER=dummy %s "
-             "'%s' --headless --replay '%s' --clock virtual --song '%s' --buttons '%s' "
+             "'%s' --headless --replay '%s' --clock virtual --song '%s' --buttons '%s' %s "
              "--seconds %.1f --log /dev/null --stats 2>/dev/null | grep -E '%s'",
-             dir, CUB_FAKENECT_DIR, env, CUB_CUBDANCE_EXE, dir, CUB_ASSETS_DIR "/songs/twinkle.song.xml",
-             CUB_ASSETS_DIR "/../scripts/demo.buttons", frames / 30.0 + 1.0, lines);
+             b->dir, CUB_FAKENECT_DIR, env, CUB_CUBDANCE_EXE, b->dir, CUB_ASSETS_DIR "/songs/twinkle.song.xml",
+             CUB_ASSETS_DIR "/../scripts/demo.buttons", fopt, b->frames / 30.0 + 1.0, lines);
     return system(cmd);
 }
 
-static void whole_tick(const char *dir, int frames)
+static void whole_tick(const box_run *b)
 {
-    printf("bench-track: the whole tick, cubdance leading Twinkle at 1280x720 on this dump:\n");
+    printf("bench-track: the whole tick, cubdance leading Twinkle at 1280x720 on this dump%s:\n",
+           b->forest[0] ? ", the tracker with the forest" : "");
     fflush(stdout);
-    if (run_box(dir, frames, "", "tick CPU") != 0)
+    if (run_box(b, "", "tick CPU") != 0)
         printf("bench-track: (the box did not run: see `%s --help`)\n", CUB_CUBDANCE_EXE);
 #ifdef CUB_ALLOC_COUNT_LIB
     /* Again with the counter, which tells whose each heap block is (its
      * stack walks would distort the tick's CPU time, hence a second run). */
     printf("bench-track: the box's memory, ours apart from the GL driver's (docs/memory.md):\n");
     fflush(stdout);
-    run_box(dir, frames, "LD_PRELOAD='" CUB_ALLOC_COUNT_LIB "' CUB_ALLOC_OWNERS=1",
+    run_box(b, "LD_PRELOAD='" CUB_ALLOC_COUNT_LIB "' CUB_ALLOC_OWNERS=1",
             "^stats: memory (ours|gl_driver|heap by owner)");
 #else
     printf("bench-track: (no allocation counter in a sanitizer build: the box's own memory is "
@@ -142,7 +150,7 @@ int cub_cmd_bench_track(int argc, char **argv)
         if (!rc) rc = bench_one(&d, dir, &f, fb, &both);
         if (!rc) printf("bench-track: forest (the medians' difference) %.3f ms a frame\n", both - alone);
     }
-    if (!rc) whole_tick(dir, d.n);
+    if (!rc) whole_tick(&(box_run){dir, forest_path ? forest_path : "", d.n});
     free(fbytes);
     cub_tool_dump_free(&d);
     return rc ? 1 : 0;
