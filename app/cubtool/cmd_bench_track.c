@@ -43,7 +43,7 @@ typedef struct box_run {
 
 static int run_box(const box_run *b, const char *env, const char *lines)
 {
-    char cmd[20000], fopt[4200] = "";
+    char cmd[20000], fopt[4200] = "--forest off";
     if (b->forest[0]) snprintf(fopt, sizeof fopt, "--forest '%s'", b->forest);
     snprintf(cmd, sizeof cmd,
              "FAKENECT_PATH='%s' LD_LIBRARY_PATH='%s' EGL_PLATFORM=surfaceless SDL_AUDIODRIVER=dummy %s "
@@ -57,7 +57,7 @@ static int run_box(const box_run *b, const char *env, const char *lines)
 static void whole_tick(const box_run *b)
 {
     printf("bench-track: the whole tick, cubdance leading Twinkle at 1280x720 on this dump%s:\n",
-           b->forest[0] ? ", the tracker with the forest" : "");
+           b->forest[0] ? ", the tracker with the forest" : ", the tracker alone");
     fflush(stdout);
     if (run_box(b, "", "tick CPU") != 0)
         printf("bench-track: (the box did not run: see `%s --help`)\n", CUB_CUBDANCE_EXE);
@@ -118,14 +118,15 @@ static int bench_one(const cub_tool_dump *d, const char *dir, const cub_forest *
 int cub_cmd_bench_track(int argc, char **argv)
 {
     char def[4096];
-    const char *dir = NULL, *forest_path = NULL;
+    const char *dir = NULL, *forest_path = CUB_ASSETS_DIR "/forest/body.forest";
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--help")) {
-            printf("usage: cubtool bench-track [DUMP_DIR] [--forest FILE]\n"
+            printf("usage: cubtool bench-track [DUMP_DIR] [--forest FILE|off]\n"
                    "Milliseconds per frame (median, p95) of the tracker on one core, and its memory.\n"
                    "DUMP_DIR defaults to <data>/depth/skeltrack ($CUB_DATA_DIR or the build's data dir).\n"
-                   "--forest FILE: also the tracker with the body-part forest (docs/forest.md): its\n"
-                   "time, the forest's share (the medians' difference) and the state's bytes.\n");
+                   "--forest FILE|off: the body-part forest (default " CUB_ASSETS_DIR "/forest/body.forest,\n"
+                   "as the box): the tracker alone, then with the forest: its time, the forest's share\n"
+                   "(the medians' difference), the state's bytes; the whole tick with it.\n");
             return 0;
         }
         if (!strcmp(argv[i], "--forest") && i + 1 < argc) forest_path = argv[++i];
@@ -142,6 +143,7 @@ int cub_cmd_bench_track(int argc, char **argv)
     cub_forest f;
     double alone = 0, both = 0;
     int rc = bench_one(&d, dir, NULL, 0, &alone);
+    if (!strcmp(forest_path, "off")) forest_path = NULL;
     if (!rc && forest_path) {
         rc = cub_tool_forest_load(forest_path, &fbytes, &f, "bench-track");
         size_t fb = rc ? 0 : CUB_FOREST_HEADER_BYTES + 4 * (size_t)f.trees +

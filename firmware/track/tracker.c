@@ -55,6 +55,9 @@
  *      the body facing the camera and, left or right, not side-on in the
  *      last 2 s, little motion since last frame)
  *                                          trk_conf.c trk_confidence
+ *  13. the forest (cub_track_desc.forest, when given): the body-part
+ *      forest on the mask's pixels; its confident joints replace those the
+ *      tracker is not confident of, feet excepted    trk_forest.c
  *
  * Units: mm in camera space (x right, y up, z away; the image is
  * mirrored, TRK_LEFT_SIGN); thresholds of the body in per mille of the
