@@ -117,7 +117,8 @@ round() {
         "$tool" synth-depth --sequence "$work/child.seq" --data "$data" --out "$work/dump" 2>/dev/null |
             tail -n 1
     fi
-    echo "+ cubdance --replay $work/dump --clock virtual --song $name --log $work/events.log"
+    echo "+ cubdance --replay $work/dump --clock virtual --song $name --log $work/events.log ${E2E_BOX_ARGS:-}"
+    # shellcheck disable=SC2086 # E2E_BOX_ARGS: words
     FAKENECT_PATH="$work/dump" LD_LIBRARY_PATH="$fakenect${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" \
         EGL_PLATFORM=surfaceless SDL_AUDIODRIVER=dummy \
         "${preload[@]}" "$box" --headless --size 64x48 --replay "$work/dump" --clock virtual \
