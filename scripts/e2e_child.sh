@@ -31,6 +31,8 @@
 # requests up to the next one that moved (a correction that ended sooner
 # or later), so it takes a few rounds of ~2 minutes, at most 12.
 #
+# E2E_BOX_ARGS: more options for cubdance (e.g. "--forest
+# assets/forest/body.forest": the tracker with the body-part forest).
 # Needs BUILD_DIR/app/cubtool/cubtool and BUILD_DIR/app/cubdance/cubdance,
 # the mocap under $CUB_DATA_DIR (default ../shared/data) and python3. The
 # depth dump is 614 KB a frame (about 2 GB for the song); it is written to
@@ -116,12 +118,13 @@ round() {
         "$tool" synth-depth --sequence "$work/child.seq" --data "$data" --out "$work/dump" 2>/dev/null |
             tail -n 1
     fi
-    echo "+ cubdance --replay $work/dump --clock virtual --song $name --log $work/events.log"
+    echo "+ cubdance --replay $work/dump --clock virtual --song $name --log $work/events.log ${E2E_BOX_ARGS:-}"
+    # shellcheck disable=SC2086 # E2E_BOX_ARGS: words
     FAKENECT_PATH="$work/dump" LD_LIBRARY_PATH="$fakenect${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" \
         EGL_PLATFORM=surfaceless SDL_AUDIODRIVER=dummy \
         "${preload[@]}" "$box" --headless --size 64x48 --replay "$work/dump" --clock virtual \
         --song "$song" --buttons "$here/demo.buttons" --log "$work/events.log" --seconds 110 \
-        >"$work/cubdance.out" 2>&1 ||
+        ${E2E_BOX_ARGS:-} >"$work/cubdance.out" 2>&1 ||
         { cat "$work/cubdance.out" >&2; echo "e2e_child: cubdance failed" >&2; exit 1; }
     if [ "$child" = moving ]; then
         # the tracker alone on the same frames: did it take the adult?

@@ -24,6 +24,8 @@
 # Every render: cubtool synth-depth ... --seed 1 --frames 90 --fps 10 into
 # a temporary folder (EVAL_DUMPS=DIR keeps them for the next run), scored
 # by cubtool eval-track --csv. EVAL_JOBS=N renders N at a time [1].
+# EVAL_TRACK_ARGS: more options for eval-track (e.g. "--forest
+# assets/forest/body.forest": the tracker with the forest's seam).
 # EVAL_RESULTS=DIR keeps the scores there: a rerun scores only the renders
 # whose job line (clip, scene, arguments) has no score yet. A render that
 # fails is named, the table printed without it, and the exit status is 1.
@@ -44,7 +46,7 @@ $7
 EOF
     out=$DUMPS/$fold-$item-$scene
     meta=$RESULTS/$fold-$item.meta
-    if [ -f "$meta" ] && [ "$(sed -n 2p "$meta")" = "$7 $COMMON" ]; then exit 0; fi
+    if [ -f "$meta" ] && [ "$(sed -n 2p "$meta")" = "$7 $COMMON${EVAL_TRACK_ARGS:+ $EVAL_TRACK_ARGS}" ]; then exit 0; fi
     rm -f "$meta"
     echo "+ $TOOL synth-depth $args $COMMON --data $DATA --out $out"
     if [ ! -f "$out/truth.txt" ]; then
@@ -53,10 +55,11 @@ EOF
             { echo "eval_folds: synth-depth failed for $fold $item $scene:" >&2; cat "$out.err" >&2; exit 1; }
         rm -f "$out.err"
     fi
-    echo "+ $TOOL eval-track $out --csv $RESULTS/$fold-$item.csv"
-    "$TOOL" eval-track "$out" --csv "$RESULTS/$fold-$item.csv" >/dev/null ||
+    echo "+ $TOOL eval-track $out --csv $RESULTS/$fold-$item.csv ${EVAL_TRACK_ARGS:-}"
+    # shellcheck disable=SC2086
+    "$TOOL" eval-track "$out" --csv "$RESULTS/$fold-$item.csv" ${EVAL_TRACK_ARGS:-} >/dev/null ||
         { echo "eval_folds: eval-track failed for $fold $item $scene" >&2; exit 1; }
-    printf '%s %s %s\n%s %s\n' "$fold" "$set" "$scene" "$7" "$COMMON" >"$meta"
+    printf '%s %s %s\n%s %s\n' "$fold" "$set" "$scene" "$7" "$COMMON${EVAL_TRACK_ARGS:+ $EVAL_TRACK_ARGS}" >"$meta"
     [ -n "${EVAL_DUMPS:-}" ] || rm -rf "$out" # 55 MB a render: not all kept at once
     exit 0
 fi

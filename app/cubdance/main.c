@@ -87,7 +87,7 @@ static int open_extras(const cub_app_options *o, cub_board *board, cub_loop *loo
     }
     if (strcmp(cub_board_depth_source(board), "off") != 0) {
         s->watch = calloc(1, sizeof *s->watch);
-        cub_err e = s->watch ? cub_watch_open(s->watch, &loop->log) : CUB_ERR_NOMEM;
+        cub_err e = s->watch ? cub_watch_open(s->watch, &loop->log, o->forest_path) : CUB_ERR_NOMEM;
         if (e) {
             fprintf(stderr, "cubdance: the tracker would not start (%s)\n", cub_err_str(e));
             return -1;

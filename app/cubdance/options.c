@@ -61,6 +61,9 @@ static void usage(FILE *f, const char *prog)
 "  --library FILE         clip library (default " CUB_ASSETS_DIR "/clips/bear.cubclips)\n"
 "  --tags FILE            its bridge tags (default " CUB_ASSETS_DIR "/clips/bear.tags.xml)\n"
 "  --character FILE       the coach (default " CUB_ASSETS_DIR "/bear/bear.xml)\n"
+"  --forest FILE|off      the body-part forest the tracker also reads (default\n"
+"                         " CUB_ASSETS_DIR "/forest/body.forest, docs/forest.md):\n"
+"                         its confident joints replace the tracker's unsure ones\n"
 "  --voice FILE           the bear's spoken words (default " CUB_VOICE_PATH ");\n"
 "                         speech=0 in the config keeps it quiet\n"
 "  --attract-after S      attract after S seconds without interaction\n"
@@ -176,6 +179,7 @@ static int apply_valued(cub_app_options *o, const char *opt, const char *val, FI
                             : !strcmp(opt, "--library")      ? &o->library_path
                             : !strcmp(opt, "--tags")         ? &o->tags_path
                             : !strcmp(opt, "--character")    ? &o->character_path
+                            : !strcmp(opt, "--forest")       ? &o->forest_path
                             : !strcmp(opt, "--font")         ? &o->font_path
                             : !strcmp(opt, "--voice")        ? &o->voice_path
                                                              : NULL;
@@ -191,7 +195,7 @@ static int takes_value(const char *opt)
                                          "--depth", "--frames", "--replay", "--buttons",
                                          "--gpio-config", "--config", "--audio-driver", "--clip", "--log",
                                          "--song", "--timeline", "--library", "--tags",
-                                         "--character", "--font", "--voice", "--attract-after", "--doze-after",
+                                         "--character", "--forest", "--font", "--voice", "--attract-after", "--doze-after",
                                          "--music-clock-scale", "--record"};
     for (size_t i = 0; i < sizeof valued / sizeof *valued; i++)
         if (!strcmp(opt, valued[i])) return 1;
@@ -255,6 +259,27 @@ static const char *join(cub_app_options *o, int slot, const char *dir, const cha
     return n < 0 || (size_t)n >= sizeof o->path_buf[slot] ? NULL : buf;
 }
 
+/* The tracker's body-part forest (docs/forest.md, "In the box": it
+ * measured better on every held-out fold): the assets' own unless --forest
+ * FILE or --forest off; assets without one (an old tree) run the tracker
+ * alone and say so. */
+static int default_forest(cub_app_options *o, const char *assets, FILE *err)
+{
+    if (o->forest_path) {
+        if (!strcmp(o->forest_path, "off")) o->forest_path = NULL;
+        return 0;
+    }
+    const char *p = join(o, 6, assets, "forest/body.forest", "");
+    if (!p) {
+        fprintf(err, "cubdance: assets_dir %s: path too long\n", assets);
+        return -1;
+    }
+    FILE *f = fopen(p, "rb");
+    if (f) fclose(f), o->forest_path = p;
+    else fprintf(err, "cubdance: no forest at %s: the tracker runs without it\n", p);
+    return 0;
+}
+
 static int apply_assets(cub_app_options *o, const cub_boxconf *c, const char *builtin,
                         FILE *err)
 {
@@ -276,6 +301,7 @@ static int apply_assets(cub_app_options *o, const cub_boxconf *c, const char *bu
         fprintf(err, "cubdance: assets_dir %s: path too long\n", assets);
         return -1;
     }
+    if (default_forest(o, assets, err)) return -1;
     if (!o->song_path && c->song[0]) {
         char songs[CUB_BOXCONF_PATH_MAX + 16];
         snprintf(songs, sizeof songs, "%s%s", c->songs_dir[0] ? c->songs_dir : assets,

@@ -1,6 +1,8 @@
 /* The box watching the child (see watch.h). */
 #include "watch.h"
 
+#include <errno.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -21,13 +23,40 @@ static size_t align16(size_t n)
     return (n + 15) & ~(size_t)15;
 }
 
-cub_err cub_watch_open(cub_watch *w, cub_log *log)
+/* The forest's bytes into w (they must outlive the tracker), opened. */
+static cub_err load_forest(cub_watch *w, const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    long len = -1;
+    if (f && !fseek(f, 0, SEEK_END)) len = ftell(f);
+    if (len > 0 && !fseek(f, 0, SEEK_SET) && (w->forest_bytes = malloc((size_t)len)) &&
+        fread(w->forest_bytes, 1, (size_t)len, f) != (size_t)len)
+        len = -1;
+    if (f) fclose(f);
+    if (len <= 0 || !w->forest_bytes) {
+        fprintf(stderr, "cubdance: %s: cannot read the forest: %s\n", path, f ? "short read" : strerror(errno));
+        return CUB_ERR_IO;
+    }
+    cub_forest_problem why = {0};
+    if (cub_forest_open(w->forest_bytes, (size_t)len, &w->forest, &why)) {
+        fprintf(stderr, "cubdance: %s: not a forest: %s at byte %zu\n", path, why.what, why.offset);
+        return CUB_ERR_FORMAT;
+    }
+    return CUB_OK;
+}
+
+cub_err cub_watch_open(cub_watch *w, cub_log *log, const char *forest_path)
 {
     memset(w, 0, sizeof *w);
     w->log = log;
     w->status = -1;
     w->skel.status = CUB_TRACK_NO_PLAYER;
-    cub_track_desc td = {0};
+    cub_err fe = forest_path ? load_forest(w, forest_path) : CUB_OK;
+    if (fe) {
+        cub_watch_close(w);
+        return fe;
+    }
+    cub_track_desc td = {.forest = forest_path ? &w->forest : NULL};
     cub_judge_desc jd = {.log = log};
     size_t track_size = align16(cub_track_mem_size(&td));
     size_t judge_size = align16(cub_judge_mem_size(&jd));
@@ -43,7 +72,9 @@ cub_err cub_watch_open(cub_watch *w, cub_log *log)
 void cub_watch_close(cub_watch *w)
 {
     free(w->mem);
+    free(w->forest_bytes);
     w->mem = NULL;
+    w->forest_bytes = NULL;
     w->tracker = NULL;
     w->judge = NULL;
 }

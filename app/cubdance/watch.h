@@ -17,6 +17,7 @@
 
 #include <stdint.h>
 
+#include "cub/forest.h"
 #include "cub/judge.h"
 #include "cub/loop.h"
 #include "cub/track.h"
@@ -27,6 +28,8 @@ typedef struct cub_watch {
     cub_tracker *tracker;
     cub_judge *judge;
     void *mem; /* both live here */
+    void *forest_bytes; /* the forest's asset, or NULL */
+    cub_forest forest;
     cub_log *log;
     cub_track_skeleton skel; /* the last frame's */
     int32_t status;          /* the last status logged */
@@ -36,8 +39,11 @@ typedef struct cub_watch {
     int gravity_known; /* the last frame had an accelerometer reading */
 } cub_watch;
 
-/* Set up the tracker and the judge. CUB_ERR_NOMEM, or a tracker/judge error. */
-cub_err cub_watch_open(cub_watch *w, cub_log *log);
+/* Set up the tracker (with the body-part forest at forest_path, or NULL:
+ * without) and the judge. CUB_ERR_NOMEM, a tracker/judge error, or
+ * CUB_ERR_IO / CUB_ERR_FORMAT for a forest that cannot be read (said on
+ * stderr with the file's name). */
+cub_err cub_watch_open(cub_watch *w, cub_log *log, const char *forest_path);
 void cub_watch_close(cub_watch *w);
 
 /* A depth frame that arrived at t_us (accel: the raw accelerometer, all

@@ -322,7 +322,7 @@ static int write_csv(const char *path, const eval_acc *acc, int frames)
 }
 
 typedef struct eval_opts {
-    const char *dir, *truth, *csv, *joints;
+    const char *dir, *truth, *csv, *joints, *forest;
     int print, no_gravity, per_frame;
 } eval_opts;
 
@@ -338,7 +338,7 @@ static int parse_args(int argc, char **argv, eval_opts *o)
         if (!strcmp(argv[i], "--help")) {
             printf(
                 "usage: cubtool eval-track DUMP_DIR [TRUTH] [--csv FILE] [--print] [--per-frame]\n"
-                "                          [--no-gravity] [--joints FILE]\n"
+                "                          [--no-gravity] [--joints FILE] [--forest FILE]\n"
                 "Runs the tracker over a fakenect dump; with TRUTH (default DUMP_DIR/truth.txt)\n"
                 "prints per joint the mean error and the share within 10 cm, overall and per\n"
                 "facing band (the body's true yaw to the camera: |yaw| <= 30, 30-60, 60-120,\n"
@@ -353,11 +353,14 @@ static int parse_args(int argc, char **argv, eval_opts *o)
                 "--joints FILE: one row per scored joint: frame,joint,status,confidence (Q16),\n"
                 "true yaw, error (mm), within 10 cm (1/0).\n"
                 "--per-frame: one line per frame (status, player id, WRONG-PERSON when the player\n"
-                "is the second person, true yaw, mean error, the joints off by more than 10 cm).\n");
+                "is the second person, true yaw, mean error, the joints off by more than 10 cm).\n"
+                "--forest FILE: the tracker with the body-part forest (e.g. assets/forest/body.forest):\n"
+                "a joint the forest is confident of replaces the tracker's (docs/forest.md).\n");
             return 1;
         }
         if (!strcmp(argv[i], "--csv") && i + 1 < argc) o->csv = argv[++i];
         else if (!strcmp(argv[i], "--joints") && i + 1 < argc) o->joints = argv[++i];
+        else if (!strcmp(argv[i], "--forest") && i + 1 < argc) o->forest = argv[++i];
         else if (!strcmp(argv[i], "--print")) o->print = 1;
         else if (!strcmp(argv[i], "--per-frame")) o->per_frame = 1;
         else if (!strcmp(argv[i], "--no-gravity")) o->no_gravity = 1;
@@ -390,9 +393,15 @@ static int run_frames(const eval_opts *o, const cub_tool_dump *d, const eval_tru
     }
     if (jf) fprintf(jf, "frame,joint,status,confidence,yaw,err_mm,within\n");
     void *mem = NULL;
-    cub_tracker *t = cub_tool_tracker_new(&mem, "eval-track");
+    char *fbytes = NULL;
+    cub_forest forest;
+    int with_forest = o->forest != NULL;
+    cub_tracker *t = NULL;
+    if (!with_forest || !cub_tool_forest_load(o->forest, &fbytes, &forest, "eval-track"))
+        t = cub_tool_tracker_new(&mem, with_forest ? &forest : NULL, "eval-track");
     if (!t) {
         if (jf) fclose(jf);
+        free(fbytes);
         return -1;
     }
     for (int f = 0; f < d->n; f++) {
@@ -409,6 +418,7 @@ static int run_frames(const eval_opts *o, const cub_tool_dump *d, const eval_tru
         score_joints(acc, &s, tr, truth_yaw_deg(tr, tt->gravity), o->per_frame, wrong, jf);
     }
     free(mem);
+    free(fbytes);
     if (jf && fclose(jf) != 0) {
         fprintf(stderr, "eval-track: %s: cannot write\n", o->joints);
         return -1;

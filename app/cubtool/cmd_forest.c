@@ -9,6 +9,7 @@
 #include "commands.h"
 #include "cub/forest_train.h"
 #include "cub/text.h"
+#include "track_dump.h"
 
 #define MAX_CLIPS 96
 
@@ -20,6 +21,7 @@ typedef struct forest_opts {
     cub_ft_params p;
     int stride;
     int vs_tracker, every, pixel_step; /* eval-forest --vs-tracker */
+    int seam; /* eval-forest --real --seam */
 } forest_opts;
 
 static void help(FILE *f, const char *who)
@@ -47,7 +49,9 @@ static void help(FILE *f, const char *who)
                    "  --every N      --vs-tracker: score every N-th frame [2]\n"
                    "  --pixel-step N --vs-tracker: the forest reads every N-th pixel in x and y [2]\n"
                    "  --real DIR --labels FILE  the same table on real frames (fakenect .pgm in\n"
-                   "                 DIR) against hand labels (tests/labels/skeltrack_labels.txt)\n");
+                   "                 DIR) against hand labels (tests/labels/skeltrack_labels.txt)\n"
+                   "  --seam         (with --real) the tracker runs with the forest in its seam, as\n"
+                   "                 the box would (cub_track_desc.forest): its column is that\n");
     fprintf(f, "clips and folds:\n"
                "  --clip C       a clip short name or path, 'C@S' from S seconds\n"
                "  --fold F       the clips of a fold: cmu13 cmu14 cmu_walks cmu_dance_sport\n"
@@ -120,6 +124,10 @@ static int parse(forest_opts *o, int argc, char **argv, const char *who)
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         int ok = 1;
+        if (!strcmp(a, "--seam")) {
+            o->seam = 1;
+            continue;
+        }
         if (!strcmp(a, "--vs-tracker") || !strcmp(a, "--no-turn")) {
             *(a[2] == 'v' ? &o->vs_tracker : &o->r.no_turn) = 1;
             continue;
@@ -328,7 +336,7 @@ static int vs_real(forest_opts *o, const cub_forest *f)
     cub_ft_vs *v = calloc(1, sizeof(*v));
     int rc = !lab || !v || cub_text_read(&src, &text, &len, &diag) ||
              cub_ft_labels_parse(text, len, o->labels, lab, &diag) ||
-             cub_ft_compare_real(f, o->real, lab, o->pixel_step, v, &diag);
+             cub_ft_compare_real(f, &(cub_ft_real){o->real, o->pixel_step, o->seam}, lab, v, &diag);
     if (rc) fprintf(stderr, "eval-forest: %s\n", cub_diag_str(&diag, buf, sizeof(buf)));
     else vs_report(v);
     free(text), free(lab), free(v);
@@ -341,21 +349,9 @@ int cub_cmd_eval_forest(int argc, char **argv)
     int rc = setup(&o, argc, argv, "eval-forest");
     if (rc >= 0) return rc;
     if (!o.forest) return fprintf(stderr, "eval-forest: --forest FOREST needed\n"), 2;
-    char *bytes = NULL, buf[700];
-    size_t len = 0;
-    cub_diag diag = {0};
-    cub_text_src src = {o.forest, "forest", CUB_TEXT_MAX_CLIPS};
-    if (cub_text_read(&src, &bytes, &len, &diag)) {
-        fprintf(stderr, "eval-forest: %s\n", cub_diag_str(&diag, buf, sizeof(buf)));
-        return 1;
-    }
+    char *bytes = NULL;
     cub_forest f;
-    cub_forest_problem why = {0};
-    if (cub_forest_open(bytes, len, &f, &why)) {
-        fprintf(stderr, "eval-forest: %s: offset %zu: %s\n", o.forest, why.offset, why.what);
-        free(bytes);
-        return 1;
-    }
+    if (cub_tool_forest_load(o.forest, &bytes, &f, "eval-forest")) return 1;
     if (o.vs_tracker || o.real) {
         rc = o.real ? vs_real(&o, &f) : vs_tracker(&o, &f);
         free(bytes);

@@ -98,9 +98,30 @@ int cub_tool_dump_load(const char *dir, cub_tool_dump *d, int max_frames, const 
     return d->n ? 0 : -1;
 }
 
-cub_tracker *cub_tool_tracker_new(void **mem, const char *who)
+int cub_tool_forest_load(const char *path, char **bytes, cub_forest *f, const char *who)
 {
-    cub_track_desc desc = {0};
+    char buf[700];
+    size_t len = 0;
+    cub_diag diag = {0};
+    cub_text_src src = {path, "forest", CUB_TEXT_MAX_CLIPS};
+    *bytes = NULL;
+    if (cub_text_read(&src, bytes, &len, &diag)) {
+        fprintf(stderr, "%s: %s\n", who, cub_diag_str(&diag, buf, sizeof(buf)));
+        return -1;
+    }
+    cub_forest_problem why = {0};
+    if (cub_forest_open(*bytes, len, f, &why)) {
+        fprintf(stderr, "%s: %s: offset %zu: %s\n", who, path, why.offset, why.what);
+        free(*bytes);
+        *bytes = NULL;
+        return -1;
+    }
+    return 0;
+}
+
+cub_tracker *cub_tool_tracker_new(void **mem, const cub_forest *f, const char *who)
+{
+    cub_track_desc desc = {.forest = f};
     size_t sz = cub_track_mem_size(&desc);
     *mem = aligned_alloc(16, (sz + 15) / 16 * 16);
     cub_tracker *t = NULL;

@@ -5,6 +5,7 @@
 
 #include <stdint.h>
 
+#include "cub/forest.h"
 #include "cub/track.h"
 
 #define CUB_TOOL_FRAME_PIXELS (CUB_KINECT_WIDTH * CUB_KINECT_HEIGHT)
@@ -23,8 +24,13 @@ typedef struct cub_tool_dump {
 int cub_tool_dump_load(const char *dir, cub_tool_dump *d, int max_frames, const char *who);
 void cub_tool_dump_free(cub_tool_dump *d);
 
-/* A tracker with the default desc in fresh aligned memory (*mem, to free);
- * NULL with "<who>: cannot set up the tracker" on stderr. */
-cub_tracker *cub_tool_tracker_new(void **mem, const char *who);
+/* A forest asset read from a file and opened (f a view of *bytes, to
+ * free). 0 on success; -1 with "<who>: <path>: <problem>" on stderr. */
+int cub_tool_forest_load(const char *path, char **bytes, cub_forest *f, const char *who);
+
+/* A tracker with the default desc (and the forest f, or NULL: the
+ * heuristic tracker alone) in fresh aligned memory (*mem, to free); NULL
+ * with "<who>: cannot set up the tracker" on stderr. */
+cub_tracker *cub_tool_tracker_new(void **mem, const cub_forest *f, const char *who);
 
 #endif

@@ -89,16 +89,17 @@ static void truth_of(const uint16_t *raw, const cub_ft_labels *lab, int from, in
                 (uint8_t)label_point(raw, &lab->l[k], tr->joint_mm[lab->l[k].joint]);
 }
 
-cub_err cub_ft_compare_real(const cub_forest *f, const char *dir, const cub_ft_labels *lab,
-                            int stride, cub_ft_vs *vs, cub_diag *diag)
+cub_err cub_ft_compare_real(const cub_forest *f, const cub_ft_real *r, const cub_ft_labels *lab,
+                            cub_ft_vs *vs, cub_diag *diag)
 {
-    cub_track_desc td = {0};
+    cub_track_desc td = {.forest = r->seam ? f : NULL};
+    int stride = r->stride;
     size_t sz = (cub_track_mem_size(&td) + 15) / 16 * 16;
     int cap = NPIX / (stride * stride) + W;
     uint16_t *raw = malloc(NPIX * 2), *mm = malloc(NPIX * 2);
     cub_forest_points pts = {malloc((size_t)cap * sizeof(*pts.mm)),
                              malloc((size_t)cap * (size_t)f->classes * 2), 0, cap, f->classes,
-                             stride};
+                             stride, NULL};
     void *mem = aligned_alloc(16, sz);
     cub_tracker *t = NULL;
     cub_err err = raw && mm && pts.mm && pts.prob && mem ? cub_track_init(&td, mem, sz, &t)
@@ -106,7 +107,7 @@ cub_err cub_ft_compare_real(const cub_forest *f, const char *dir, const cub_ft_l
     for (int k = 0, next, frame = 0; k < lab->n && !err; k = next, frame++) {
         for (next = k; next < lab->n && !strcmp(lab->l[next].frame, lab->l[k].frame); next++) {
         }
-        err = load_raw(dir, lab, &lab->l[k], raw, diag);
+        err = load_raw(r->dir, lab, &lab->l[k], raw, diag);
         if (err) break;
         cub_track_skeleton s;
         cub_synth_truth_frame tr;
@@ -115,9 +116,9 @@ cub_err cub_ft_compare_real(const cub_forest *f, const char *dir, const cub_ft_l
         cub_forest_image im = {mm, W, H};
         cub_forest_gather(f, &im, stride, &pts);
         cub_forest_proposal prop[CUB_PART_COUNT];
-        cub_ft_joints fj;
-        cub_ft_propose_all(&pts, prop);
-        cub_ft_joints_of(prop, &fj);
+        cub_forest_joints fj;
+        cub_forest_propose_all(&pts, prop);
+        cub_forest_joints_of(prop, &fj);
         truth_of(raw, lab, k, next, &tr);
         cub_ft_score_joints(&s, &fj, &tr, vs);
     }

@@ -103,30 +103,78 @@ cub_forest_node cub_forest_node_at(const cub_forest *f, uint32_t i)
     return n;
 }
 
-int32_t cub_forest_probe(const cub_forest_image *im, int x, int y, int32_t d_mm,
-                         const int32_t off[2])
+/* Division by a pixel's depth d without dividing (Granlund & Montgomery,
+ * PLDI 1994): for |n| < 2^25 and 0 < d < 2^13, with m = ceil(2^38 / d),
+ * trunc(n / d) = sign(n) * (|n| m >> 38) exactly (m d - 2^38 < 2^13, so
+ * the error |n| (m d - 2^38) / 2^38 stays below 1 / d). A descent divides
+ * four offsets a node by the same d: one division a pixel instead. Depths
+ * from 8192 mm (beyond the Kinect's table) divide. */
+#define RECIP_SHIFT 38
+typedef struct recip {
+    int32_t d;
+    uint64_t m; /* 0: divide */
+} recip;
+
+static recip recip_of(int32_t d)
 {
-    int64_t px = x + off[0] / d_mm, py = y + off[1] / d_mm;
+    recip r = {d, 0};
+    if (d > 0 && d < (1 << 13)) r.m = (((uint64_t)1 << RECIP_SHIFT) + (uint64_t)d - 1) / (uint64_t)d;
+    return r;
+}
+
+static int64_t div_by(int32_t n, recip r)
+{
+    if (!r.m) return n / r.d;
+    uint64_t a = n < 0 ? (uint64_t)(-(int64_t)n) : (uint64_t)n;
+    int64_t q = (int64_t)((a * r.m) >> RECIP_SHIFT);
+    return n < 0 ? -q : q;
+}
+
+static int32_t probe_r(const cub_forest_image *im, int x, int y, recip r, const int32_t off[2])
+{
+    int64_t px = x + div_by(off[0], r), py = y + div_by(off[1], r);
     if (px < 0 || py < 0 || px >= im->w || py >= im->h) return CUB_FOREST_FAR_MM;
     uint16_t d = im->mm[py * im->w + px];
     return d ? d : CUB_FOREST_FAR_MM;
+}
+
+int32_t cub_forest_probe(const cub_forest_image *im, int x, int y, int32_t d_mm,
+                         const int32_t off[2])
+{
+    return probe_r(im, x, y, recip_of(d_mm), off);
+}
+
+static int32_t feature_r(const cub_forest_image *im, int x, int y, recip r, const cub_forest_node *n)
+{
+    return probe_r(im, x, y, r, n->u) - probe_r(im, x, y, r, n->v);
 }
 
 int32_t cub_forest_feature(const cub_forest_image *im, int x, int y, const cub_forest_node *n)
 {
     int32_t d = im->mm[y * im->w + x];
     if (!d) return 0; /* both probes would read far */
-    return cub_forest_probe(im, x, y, d, n->u) - cub_forest_probe(im, x, y, d, n->v);
+    return feature_r(im, x, y, recip_of(d), n);
 }
 
-uint32_t cub_forest_descend(const cub_forest *f, int t, const cub_forest_image *im, int x, int y)
+/* The leaf tree t reaches from p, whose depth's reciprocal is r (p has a
+ * reading; without one every feature is 0). */
+static uint32_t descend_r(const cub_forest *f, int t, const cub_forest_image *im, int x, int y,
+                          const recip *r)
 {
     uint32_t ref = rd_u32(f->roots + 4 * t);
     while (!(ref & CUB_FOREST_LEAF_BIT)) {
         cub_forest_node n = cub_forest_node_at(f, ref);
-        ref = cub_forest_feature(im, x, y, &n) < n.threshold_mm ? n.left : n.right;
+        int32_t v = r ? feature_r(im, x, y, *r, &n) : 0;
+        ref = v < n.threshold_mm ? n.left : n.right;
     }
     return ref & ~CUB_FOREST_LEAF_BIT;
+}
+
+uint32_t cub_forest_descend(const cub_forest *f, int t, const cub_forest_image *im, int x, int y)
+{
+    int32_t d = im->mm[y * im->w + x];
+    recip r = recip_of(d);
+    return descend_r(f, t, im, x, y, d ? &r : NULL);
 }
 
 int cub_forest_classify(const cub_forest *f, const cub_forest_image *im, int x, int y,
@@ -134,8 +182,10 @@ int cub_forest_classify(const cub_forest *f, const cub_forest_image *im, int x, 
 {
     for (int c = 0; c < f->classes; c++)
         score[c] = 0;
+    int32_t d = im->mm[y * im->w + x];
+    recip r = recip_of(d); /* once for every tree */
     for (int t = 0; t < f->trees; t++) {
-        const uint8_t *leaf = f->leaves + (size_t)cub_forest_descend(f, t, im, x, y) * 2 * f->classes;
+        const uint8_t *leaf = f->leaves + (size_t)descend_r(f, t, im, x, y, d ? &r : NULL) * 2 * f->classes;
         for (int c = 0; c < f->classes; c++)
             score[c] += rd_u16(leaf + 2 * c);
     }

@@ -60,14 +60,37 @@ typedef struct shift_ctx {
     int part;
     const cub_forest_shift *sh;
     int64_t r2;
+    const int32_t *list; /* the part's points (pts->part_pts), NULL: every point */
+    int m;               /* how many points to visit */
 } shift_ctx;
+
+/* The k-th point to visit, in the points' own order either way (so the
+ * sums, hence the modes, are the same with or without the list). */
+static int point_of(const shift_ctx *c, int k)
+{
+    return c->list ? c->list[k] : k;
+}
+
+/* List the part's points (weight > 0) once when there is room for it. */
+static void list_part(shift_ctx *c)
+{
+    c->m = c->pts->n;
+    c->list = c->pts->part_pts;
+    if (!c->list) return;
+    int32_t *out = c->pts->part_pts;
+    int m = 0;
+    for (int i = 0; i < c->pts->n; i++)
+        if (weight(c->pts, i, c->part, c->sh->min_prob)) out[m++] = i;
+    c->m = m;
+}
 
 /* One mean-shift step from m: the kernel-weighted mean into m; returns
  * the kernel weight (0: nothing within r, m unchanged). */
 static int64_t step(const shift_ctx *c, int64_t m[3])
 {
     int64_t s = 0, sx[3] = {0, 0, 0};
-    for (int i = 0; i < c->pts->n; i++) {
+    for (int q = 0; q < c->m; q++) {
+        int i = point_of(c, q);
         int64_t w = weight(c->pts, i, c->part, c->sh->min_prob);
         if (!w) continue;
         int64_t wk = w * kernel(dist2(c->pts->mm[i], m), c->r2);
@@ -99,7 +122,8 @@ static int next_start(const shift_ctx *c, int64_t modes[][3], int nmodes)
 {
     int best = -1;
     int64_t best_w = 0;
-    for (int i = 0; i < c->pts->n; i++) {
+    for (int q = 0; q < c->m; q++) {
+        int i = point_of(c, q);
         int64_t w = weight(c->pts, i, c->part, c->sh->min_prob);
         if (w <= best_w) continue;
         int far = 1;
@@ -115,7 +139,8 @@ static int next_start(const shift_ctx *c, int64_t modes[][3], int nmodes)
 static void tally(const shift_ctx *c, const int64_t m[3], cub_forest_proposal *out)
 {
     int64_t a = 0, near = 0, all = 0;
-    for (int i = 0; i < c->pts->n; i++) {
+    for (int q = 0; q < c->m; q++) {
+        int i = point_of(c, q);
         int64_t w = weight(c->pts, i, c->part, c->sh->min_prob);
         if (!w) continue;
         all += w;
@@ -136,7 +161,8 @@ void cub_forest_propose(const cub_forest_points *pts, int part, const cub_forest
 {
     *out = (cub_forest_proposal){0};
     if (part < 0 || part >= pts->classes || sh->radius_mm <= 0) return;
-    shift_ctx c = {pts, part, sh, (int64_t)sh->radius_mm * sh->radius_mm};
+    shift_ctx c = {pts, part, sh, (int64_t)sh->radius_mm * sh->radius_mm, NULL, 0};
+    list_part(&c);
     int64_t modes[CUB_FOREST_STARTS][3], best_s = 0;
     int n = 0, best = -1;
     for (; n < CUB_FOREST_STARTS; n++) {

@@ -55,6 +55,9 @@
  *      the body facing the camera and, left or right, not side-on in the
  *      last 2 s, little motion since last frame)
  *                                          trk_conf.c trk_confidence
+ *  13. the forest (cub_track_desc.forest, when given): the body-part
+ *      forest on the mask's pixels; its confident joints replace those the
+ *      tracker is not confident of, feet excepted    trk_forest.c
  *
  * Units: mm in camera space (x right, y up, z away; the image is
  * mirrored, TRK_LEFT_SIGN); thresholds of the body in per mille of the
@@ -79,17 +82,19 @@
 #define TRK_LOST_RESET 60 /* frames without the player before a new one may take over (2 s at 30 fps;
                            * trk_pick_player holds 2 s by the frames' times) */
 
+/* The forest's scratch goes after the struct, at a 16-byte boundary. */
+#define TRK_STRUCT_BYTES ((sizeof(cub_tracker) + 15) & ~(size_t)15)
+
 size_t cub_track_mem_size(const cub_track_desc *desc)
 {
-    (void)desc;
-    return sizeof(cub_tracker) + 16;
+    return TRK_STRUCT_BYTES + 16 + (desc ? trk_forest_mem(desc->forest) : 0);
 }
 
 cub_err cub_track_init(const cub_track_desc *desc, void *mem, size_t mem_size, cub_tracker **out)
 {
     if (!desc || !mem || !out) return CUB_ERR_ARG;
     if ((uintptr_t)mem % 16) return CUB_ERR_ARG;
-    if (mem_size < sizeof(cub_tracker)) return CUB_ERR_NOMEM;
+    if (mem_size < TRK_STRUCT_BYTES + trk_forest_mem(desc->forest)) return CUB_ERR_NOMEM;
     cub_tracker *t = mem;
     memset(t, 0, sizeof *t);
     t->min_mm = desc->min_mm > 0 ? desc->min_mm : TRK_DEFAULT_MIN_MM;
@@ -104,6 +109,7 @@ cub_err cub_track_init(const cub_track_desc *desc, void *mem, size_t mem_size, c
     t->up = t->pitch_up[TRK_PITCHES / 2];
     trk_bg_reset(t);
     t->bg_resets = 0;
+    trk_forest_setup(t, desc->forest, (uint8_t *)mem + TRK_STRUCT_BYTES);
     for (int32_t i = 0; i < TRK_CELLS; i++) t->label_prev[i] = -1;
     *out = t;
     return CUB_OK;
@@ -193,5 +199,6 @@ cub_err cub_track_frame(cub_tracker *t, const uint16_t *raw, int64_t t_us, const
     t->lost_frames = 0;
     t->prev = *out;
     t->have_prev = true;
+    if (t->forest) trk_forest_override(t, raw, out); /* after prev: the tracker's state stays its own */
     return CUB_OK;
 }

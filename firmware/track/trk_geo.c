@@ -235,6 +235,32 @@ static void bridge_gaps(cub_tracker *t, int32_t *dist, int32_t *parent)
     run_heap(t, dist, parent, n);
 }
 
+/* The rows and columns the player's cells span (x0, x1, y0, y1), so the
+ * searches for the farthest cell read only them (in the same order). */
+static void mask_box(const cub_tracker *t, int32_t box[4])
+{
+    box[0] = TRK_GW, box[1] = -1, box[2] = TRK_GH, box[3] = -1;
+    for (int32_t i = 0; i < TRK_CELLS; i++) {
+        if (!t->mask[i]) continue;
+        int32_t gx = i % TRK_GW, gy = i / TRK_GW;
+        if (gx < box[0]) box[0] = gx;
+        if (gx > box[1]) box[1] = gx;
+        if (gy < box[2]) box[2] = gy;
+        box[3] = gy;
+    }
+}
+
+/* The player's cell farthest along distx beyond best_d (the first in
+ * row-major order on a tie), -1 none. */
+static int32_t farthest(const cub_tracker *t, const int32_t box[4], int32_t best_d)
+{
+    int32_t best = -1;
+    for (int32_t gy = box[2]; gy <= box[3]; gy++)
+        for (int32_t i = gy * TRK_GW + box[0]; i <= gy * TRK_GW + box[1]; i++)
+            if (t->mask[i] && t->distx[i] != TRK_INF && t->distx[i] > best_d) best_d = t->distx[i], best = i;
+    return best;
+}
+
 /* Up to max_out extremities, farthest first, each at least min_mm of
  * surface away from the root and from every extremity found before. */
 int32_t trk_extrema(cub_tracker *t, int32_t root, int32_t min_mm, int32_t *out, int32_t max_out)
@@ -244,11 +270,10 @@ int32_t trk_extrema(cub_tracker *t, int32_t root, int32_t min_mm, int32_t *out, 
     bridge_gaps(t, t->dist0, t->parent0);
     bridge_gaps(t, t->dist0, t->parent0);
     memcpy(t->distx, t->dist0, sizeof t->distx);
-    int32_t n = 0;
+    int32_t n = 0, box[4];
+    mask_box(t, box);
     while (n < max_out) {
-        int32_t best = -1, best_d = min_mm;
-        for (int32_t i = 0; i < TRK_CELLS; i++)
-            if (t->mask[i] && t->distx[i] != TRK_INF && t->distx[i] > best_d) best_d = t->distx[i], best = i;
+        int32_t best = farthest(t, box, min_mm);
         if (best < 0) break;
         out[n++] = best;
         trk_geodesic(t, t->distx, NULL, best);

@@ -7,6 +7,7 @@
 #include <stdint.h>
 #include <string.h>
 
+#include "cub/forest.h"
 #include "cub/track.h"
 
 #define TRK_CELL_PX 4
@@ -111,6 +112,11 @@ struct cub_tracker {
     bool have_prev;
     int64_t prev_t_us; /* last frame's time, and the time since it as the */
     int32_t dt_us;     /* smoothing takes it (10-200 ms, 33 ms unknown) */
+    /* the forest's seam (trk_forest.c), in the memory after this struct;
+     * forest NULL: the heuristic tracker alone */
+    const cub_forest *forest;
+    uint16_t *forest_mm;
+    cub_forest_points forest_pts;
 };
 
 /* Dot product of a mm point with a Q16.16 unit vector: mm. */
@@ -167,6 +173,13 @@ int32_t trk_fit_head(cub_tracker *t, int32_t root, int32_t *ext, int32_t *next, 
 void trk_fit_skeleton(cub_tracker *t, int32_t root, int32_t *ext, int32_t next,
                       cub_track_skeleton *out);
 void trk_smooth(cub_tracker *t, cub_track_skeleton *out);
+
+/* trk_forest.c: the bytes the forest's seam needs after the tracker (0
+ * without a forest), set it up there, and override the output's joints
+ * the forest is confident of (raw: this frame). */
+size_t trk_forest_mem(const cub_forest *f);
+void trk_forest_setup(cub_tracker *t, const cub_forest *f, uint8_t *mem);
+void trk_forest_override(cub_tracker *t, const uint16_t *raw, cub_track_skeleton *out);
 
 /* trk_conf.c */
 void trk_confidence(cub_tracker *t, int64_t t_us, cub_track_skeleton *s);

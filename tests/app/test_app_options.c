@@ -7,6 +7,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <cmocka.h>
 
@@ -66,7 +68,7 @@ static void test_help_documents_every_option(void **s)
     const char *opts[] = {"--window", "--headless", "--size", "--frames", "--frame-every", "--draw-every",
                           "--replay", "--depth", "--buttons", "--gpio-config", "--config", "--audio-driver",
                           "--clip", "--log", "--seconds", "--clock", "--song", "--timeline",
-                          "--library", "--tags", "--character", "--attract-after",
+                          "--library", "--tags", "--character", "--forest", "--attract-after",
                           "--doze-after", "--music-clock-scale", "--help", "--version"};
     for (size_t i = 0; i < sizeof opts / sizeof *opts; i++)
         if (!strstr(help_text, opts[i])) fail_msg("--help does not mention %s", opts[i]);
@@ -119,6 +121,33 @@ static void test_defaults(void **s)
     assert_true(o.music_clock_scale == 1.0);
     assert_int_equal(o.speech, 1); /* the bear speaks unless told not to */
     assert_string_equal(o.voice_path, "/build/voice/bear.cubvoice"); /* the built pack */
+    assert_null(o.forest_path); /* no /assets/forest/body.forest here: the tracker alone */
+}
+
+/* The tracker's forest: the assets' own when there, a given file, or off. */
+static void test_the_forest_is_the_assets_own_unless_told(void **s)
+{
+    static cub_boxconf none;
+    cub_boxconf_defaults(&none);
+    char dir[] = "/tmp/cub_opts_XXXXXX", sub[64], file[96];
+    assert_non_null(mkdtemp(dir));
+    snprintf(sub, sizeof sub, "%s/forest", dir);
+    snprintf(file, sizeof file, "%s/body.forest", sub);
+    assert_int_equal(mkdir(sub, 0700), 0);
+    FILE *f = fopen(file, "wb");
+    assert_non_null(f);
+    fclose(f);
+    cub_app_options o;
+    assert_int_equal(parse(&o, (const char *[]){NULL}), CUB_APP_RUN);
+    assert_int_equal(cub_app_apply_config(&o, &none, 0, dir, stderr), 0);
+    assert_string_equal(o.forest_path, file);
+    assert_int_equal(parse(&o, (const char *[]){"--forest", "off", NULL}), CUB_APP_RUN);
+    assert_int_equal(cub_app_apply_config(&o, &none, 0, dir, stderr), 0);
+    assert_null(o.forest_path);
+    assert_int_equal(parse(&o, (const char *[]){"--forest", "my.forest", NULL}), CUB_APP_RUN);
+    assert_int_equal(cub_app_apply_config(&o, &none, 0, dir, stderr), 0);
+    assert_string_equal(o.forest_path, "my.forest");
+    remove(file), rmdir(sub), rmdir(dir);
 }
 
 /* The file fills what the command line left unset; the command line wins. */
@@ -181,6 +210,7 @@ int main(void)
         cmocka_unit_test(test_help_documents_every_option),
         cmocka_unit_test(test_good_options_set_their_fields),
         cmocka_unit_test(test_defaults),
+        cmocka_unit_test(test_the_forest_is_the_assets_own_unless_told),
         cmocka_unit_test(test_config_fills_unset_options_only),
     };
     return cmocka_run_group_tests_name("app_options", tests, NULL, NULL);

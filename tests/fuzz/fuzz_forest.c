@@ -6,6 +6,7 @@
  * part proposals from those pixels within their bounds. */
 #include <stdint.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "cub/forest.h"
 
@@ -35,13 +36,18 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
      * the points' box, a share within [0, 1] */
     static int32_t pmm[IW * IH][3];
     static uint16_t prob[IW * IH * CUB_FOREST_MAX_CLASSES];
-    cub_forest_points pts = {pmm, prob, 0, IW * IH, f.classes, 1};
+    static int32_t list[IW * IH];
+    cub_forest_points pts = {pmm, prob, 0, IW * IH, f.classes, 1, NULL};
     cub_forest_gather(&f, &im, 1 + data[0] % 3, &pts);
     for (int c = 0; c < f.classes; c++) {
         cub_forest_shift sh = {1 + data[size - 1] * 4, (uint16_t)(data[c % size] * 64), 50};
-        cub_forest_proposal pr;
+        cub_forest_proposal pr, listed;
+        pts.part_pts = NULL;
         cub_forest_propose(&pts, c, &sh, &pr);
         if (pr.found && (pr.share < 0 || pr.share > 65536 || pr.area_mm2 < 0)) abort();
+        pts.part_pts = list; /* the part's points listed: the same proposal */
+        cub_forest_propose(&pts, c, &sh, &listed);
+        if (memcmp(&pr, &listed, sizeof(pr)) != 0) abort();
     }
     return 0;
 }

@@ -102,8 +102,8 @@ static void proposals_become_joints(void **state)
     prop[CUB_PART_UPPER_ARM_R] = (cub_forest_proposal){1, {-200, 0, 2000}, 20000, 60000};
     prop[CUB_PART_FOREARM_R] = (cub_forest_proposal){1, {-300, -101, 2100}, 20000, 60000};
     prop[CUB_PART_THIGH_L] = strong;
-    cub_ft_joints j;
-    cub_ft_joints_of(prop, &j);
+    cub_forest_joints j;
+    cub_forest_joints_of(prop, &j);
     assert_true(j.have[CUB_KJ_HEAD] && j.confident[CUB_KJ_HEAD]);
     assert_true(j.have[CUB_KJ_HAND_L] && !j.confident[CUB_KJ_HAND_L]); /* share < 1/2 */
     assert_true(j.have[CUB_KJ_ELBOW_R] && j.confident[CUB_KJ_ELBOW_R]);
@@ -113,7 +113,7 @@ static void proposals_become_joints(void **state)
     assert_false(j.have[CUB_KJ_KNEE_L]); /* the shin not found */
     assert_false(j.have[CUB_KJ_SHOULDER_L] || j.have[CUB_KJ_HAND_R]);
     prop[CUB_PART_HEAD].area_mm2 = 100; /* too little surface */
-    cub_ft_joints_of(prop, &j);
+    cub_forest_joints_of(prop, &j);
     assert_false(j.confident[CUB_KJ_HEAD]);
 }
 

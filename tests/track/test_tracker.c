@@ -14,6 +14,7 @@
 
 #include <cmocka.h>
 
+#include "cub/forest.h"
 #include "cub/track.h"
 
 #define W CUB_KINECT_WIDTH
@@ -155,9 +156,9 @@ static void draw_child(const p3 *j, int32_t s_pm)
 }
 
 static void *tracker_mem;
-static cub_tracker *new_tracker(void)
+static cub_tracker *new_tracker_with(const cub_forest *f)
 {
-    cub_track_desc d = {0};
+    cub_track_desc d = {.forest = f};
     size_t sz = cub_track_mem_size(&d);
     free(tracker_mem);
     tracker_mem = aligned_alloc(16, (sz + 15) / 16 * 16);
@@ -165,6 +166,33 @@ static cub_tracker *new_tracker(void)
     cub_tracker *t = NULL;
     assert_int_equal(cub_track_init(&d, tracker_mem, sz, &t), CUB_OK);
     return t;
+}
+
+static cub_tracker *new_tracker(void)
+{
+    return new_tracker_with(NULL);
+}
+
+/* The committed body-part forest (assets/forest/body.forest), or skip. */
+static uint8_t *forest_bytes;
+static cub_forest load_forest(void)
+{
+    const char *src = getenv("CUB_SOURCE_DIR");
+    char path[4096];
+    snprintf(path, sizeof path, "%s/assets/forest/body.forest", src ? src : ".");
+    FILE *f = fopen(path, "rb");
+    if (!f) skip();
+    fseek(f, 0, SEEK_END);
+    long len = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    free(forest_bytes);
+    forest_bytes = malloc((size_t)len);
+    assert_non_null(forest_bytes);
+    assert_int_equal(fread(forest_bytes, 1, (size_t)len, f), (size_t)len);
+    fclose(f);
+    cub_forest fo;
+    assert_int_equal(cub_forest_open(forest_bytes, (size_t)len, &fo, NULL), CUB_OK);
+    return fo;
 }
 
 static double joint_err(const cub_track_skeleton *s, int j, p3 truth)
@@ -477,9 +505,24 @@ static int label_point(const uint16_t *raw, int u, int v, int j, double *p)
     return 0;
 }
 
-static void test_real_frames_against_hand_labels(void **st)
+/* The seam's frame s against the same frame without the forest: the
+ * same confidences, and only the joints the tracker was unsure of moved. */
+static void seam_kept_confidence(const cub_track_skeleton *without, const cub_track_skeleton *s)
 {
-    (void)st;
+    for (int j = 0; j < CUB_KJ_COUNT; j++) {
+        assert_int_equal(s->confidence[j], without->confidence[j]);
+        if (without->confidence[j] >= CUB_TRACK_CONFIDENT)
+            assert_memory_equal(&s->joint_mm[j], &without->joint_mm[j], sizeof s->joint_mm[j]);
+    }
+}
+
+/* The real frames against the labels, with the forest f in the tracker's
+ * seam or not (NULL); without: each frame's skeleton into plain[] (up to
+ * 16 frames), with: the confidences must be plain[]'s (the seam keeps
+ * the tracker's) and a replaced joint one the tracker was not sure of. */
+static cub_track_skeleton plain[16];
+static void real_frames(const cub_forest *f)
+{
     const char *data = getenv("CUB_DATA_DIR"), *src = getenv("CUB_SOURCE_DIR");
     char dir[4096], lpath[4096];
     if (!data || !src) skip();
@@ -491,10 +534,10 @@ static void test_real_frames_against_hand_labels(void **st)
         printf("track real: skipped (no %s or no frames in %s)\n", lpath, dir);
         skip();
     }
-    cub_tracker *t = new_tracker();
+    cub_tracker *t = new_tracker_with(f);
     char line[512], cur[256] = "", printed[256] = "";
     cub_track_skeleton s = {0};
-    int first_id = -1, n = 0, in = 0, nkey = 0, inkey = 0;
+    int first_id = -1, n = 0, in = 0, nkey = 0, inkey = 0, nframe = -1;
     double esum[CUB_KJ_COUNT] = {0};
     int ecount[CUB_KJ_COUNT] = {0};
     while (fgets(line, sizeof line, lf)) {
@@ -505,6 +548,8 @@ static void test_real_frames_against_hand_labels(void **st)
             assert_int_equal(load_real(dir, fname, frame), 0);
             cub_track_frame(t, frame, 0, NULL, &s);
             assert_true(s.status != CUB_TRACK_NO_PLAYER);
+            if (++nframe < 16 && !f) plain[nframe] = s;
+            if (nframe < 16 && f) seam_kept_confidence(&plain[nframe], &s);
             if (first_id < 0) first_id = s.player_id;
             assert_int_equal(s.player_id, first_id);
         }
@@ -529,6 +574,22 @@ static void test_real_frames_against_hand_labels(void **st)
     printf("\ntrack real: %d of %d labelled joints within 10 cm; head/shoulders/hands %d of %d\n", in, n, inkey, nkey);
     assert_true(n > 0);
     assert_int_equal(inkey, nkey); /* head, shoulders and hands: every one within 10 cm */
+}
+
+static void test_real_frames_against_hand_labels(void **st)
+{
+    (void)st;
+    real_frames(NULL);
+}
+
+/* The box's tracker with the committed forest (cub_track_desc.forest):
+ * the real frames stay right (head, shoulders, hands within 10 cm). */
+static void test_real_frames_with_the_forest(void **st)
+{
+    (void)st;
+    cub_forest fo = load_forest();
+    real_frames(NULL);
+    real_frames(&fo);
 }
 
 /* ---- confidence --------------------------------------------------------- */
@@ -587,10 +648,8 @@ static uint64_t fnv(uint64_t h, const void *p, size_t n)
     return h;
 }
 
-static void test_output_hash_is_pinned(void **st)
+static uint64_t output_hash(cub_tracker *t)
 {
-    (void)st;
-    cub_tracker *t = new_tracker();
     uint64_t h = 1469598103934665603ull;
     cub_vec3 g = {3 * 65536, -1000 * 65536, 100 * 65536};
     for (int k = 0; k < 6; k++) {
@@ -604,9 +663,28 @@ static void test_output_hash_is_pinned(void **st)
         h = fnv(h, &s, sizeof s);
         printf("DBG %d id %d st %d head %d\n", k, s.player_id, s.status, s.joint_mm[3].x >> 16);
     }
+    return h;
+}
+
+static void test_output_hash_is_pinned(void **st)
+{
+    (void)st;
+    uint64_t h = output_hash(new_tracker());
     printf("track hash: %016llx\n", (unsigned long long)h);
     /* pinned: the same on x86-64 and aarch64 (re-pin only for an intended change) */
     assert_true(h == 0xa18fed5be5cb1c8aull);
+}
+
+/* The same frames with the committed forest in the seam: integers only,
+ * so pinned the same on every CPU (re-pin when the forest or the seam
+ * changes on purpose). */
+static void test_output_hash_with_the_forest_is_pinned(void **st)
+{
+    (void)st;
+    cub_forest fo = load_forest();
+    uint64_t h = output_hash(new_tracker_with(&fo));
+    printf("track hash with the forest: %016llx\n", (unsigned long long)h);
+    assert_true(h == 0x4b8661c0b0a41cb5ull);
 }
 
 int main(void)
@@ -621,6 +699,8 @@ int main(void)
         cmocka_unit_test(test_too_close_is_told),
         cmocka_unit_test(test_real_frames_against_hand_labels),
         cmocka_unit_test(test_output_hash_is_pinned),
+        cmocka_unit_test(test_real_frames_with_the_forest),
+        cmocka_unit_test(test_output_hash_with_the_forest_is_pinned),
     };
     int r = cmocka_run_group_tests(tests, NULL, NULL);
     free(tracker_mem);

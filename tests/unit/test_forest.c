@@ -191,7 +191,7 @@ static void disc(uint8_t *label, uint16_t *mm, int cu, int cv, int r, int lab, u
 static cub_forest_points label_points(const uint8_t *label, const uint16_t *mm, int stride,
                                       uint16_t q)
 {
-    cub_forest_points p = {pts_mm, pts_prob, 0, MAXPTS, 3, stride};
+    cub_forest_points p = {pts_mm, pts_prob, 0, MAXPTS, 3, stride, NULL};
     for (int v = 0; v < LH; v += stride)
         for (int u = 0; u < LW; u += stride) {
             if (!label[v * LW + u] || p.n == MAXPTS) continue;
@@ -246,6 +246,28 @@ static void the_largest_mode_wins_pushed_back(void **state)
     assert_int_equal(pr.found, 1);
 }
 
+/* The part's points listed once (part_pts, the box's speed) give the same
+ * proposal to the last bit as visiting every point. */
+static void listing_a_parts_points_changes_nothing(void **state)
+{
+    (void)state;
+    static int32_t list[MAXPTS];
+    memset(lab_img, 0, sizeof(lab_img)), memset(lmm, 0, sizeof(lmm));
+    disc(lab_img, lmm, 200, 200, 30, 1, 2000);
+    disc(lab_img, lmm, 450, 300, 12, 1, 2300);
+    disc(lab_img, lmm, 320, 100, 15, 2, 1500);
+    cub_forest_points p = label_points(lab_img, lmm, 2, 40000);
+    for (int part = 0; part < 3; part++) {
+        cub_forest_shift sh = {120, 9175, 30};
+        cub_forest_proposal every, listed;
+        p.part_pts = NULL;
+        cub_forest_propose(&p, part, &sh, &every);
+        p.part_pts = list;
+        cub_forest_propose(&p, part, &sh, &listed);
+        assert_memory_equal(&every, &listed, sizeof(every));
+    }
+}
+
 /* A pixel far away covers more of the body than one near: fewer pixels
  * far win when their surface is larger (z^2 weighting), as the body's
  * real size decides, not its pixel count. */
@@ -269,7 +291,7 @@ static void gather_keeps_the_trees_mean(void **state)
     static uint16_t mm[IW * IH];
     cub_forest f = made_forest();
     cub_forest_image im = box_image(mm, 1000, 50, 200);
-    cub_forest_points p = {pts_mm, pts_prob, 0, MAXPTS, 3, 0};
+    cub_forest_points p = {pts_mm, pts_prob, 0, MAXPTS, 3, 0, NULL};
     assert_int_equal(cub_forest_gather(&f, &im, 5, &p), 30 * 20);
     assert_int_equal(p.stride, 5);
     /* the first point: (50, 50), probe at x 150 on the box: leaf 0 + leaf 2 */
@@ -281,14 +303,40 @@ static void gather_keeps_the_trees_mean(void **state)
     assert_int_equal(cub_forest_gather(&f, &im, 5, &p), 0);
 }
 
+/* A probe's offset divided by the depth: C's truncating division for
+ * every depth the Kinect reads and offsets up to the loader's 2^24 (the
+ * evaluator multiplies by a reciprocal instead: it must not differ). */
+static void probes_divide_as_c_does(void **state)
+{
+    (void)state;
+    static uint16_t mm[IW * IH];
+    const int32_t offs[] = {0, 1, -1, 7, -7, 999, -1000, 65535, -65536, 1234567, -7654321,
+                            (1 << 24) - 1, -(1 << 24) + 1, 1 << 24, -(1 << 24)};
+    cub_forest_image im = {mm, IW, IH};
+    for (int32_t d = 1; d < 20000; d += 1 + d / 64) {
+        for (int i = 0; i < IW * IH; i++)
+            mm[i] = (uint16_t)(1 + i % 4000);
+        for (size_t k = 0; k < sizeof(offs) / sizeof(offs[0]); k++) {
+            int32_t off[2] = {offs[k], -offs[k]}, q0 = offs[k] / d, q1 = -offs[k] / d;
+            int x = IW / 2, y = IH / 2;
+            int64_t px = x + q0, py = y + q1;
+            int32_t want = px < 0 || py < 0 || px >= IW || py >= IH ? CUB_FOREST_FAR_MM
+                                                                     : mm[py * IW + px];
+            assert_int_equal(cub_forest_probe(&im, x, y, d, off), want);
+        }
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(probes_scale_with_depth),
+        cmocka_unit_test(probes_divide_as_c_does),
         cmocka_unit_test(trees_add_up),
         cmocka_unit_test(loader_refuses_broken_assets),
         cmocka_unit_test(points_are_the_camera_model),
         cmocka_unit_test(the_largest_mode_wins_pushed_back),
+        cmocka_unit_test(listing_a_parts_points_changes_nothing),
         cmocka_unit_test(depth_squared_weighs_the_surface),
         cmocka_unit_test(gather_keeps_the_trees_mean),
     };

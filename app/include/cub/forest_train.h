@@ -79,20 +79,6 @@ void cub_ft_score_set(const cub_forest *f, const cub_ft_set *set, int stride, cu
 
 /* ---- proposals against the heuristic tracker (issue 20 point 4) ---- */
 
-/* Every part's proposal from gathered points (cub/forest.h), with the
- * per-part radius, push and probability floor of app/forest/compare.c. */
-void cub_ft_propose_all(const cub_forest_points *pts, cub_forest_proposal prop[CUB_PART_COUNT]);
-
-/* The joints the proposals give: head, hands and feet are their parts'
- * centres; elbows and knees the midpoint of the two segments' centres.
- * confident: share >= 1/2 and enough surface (both segments for a joint
- * between two). */
-typedef struct cub_ft_joints {
-    int32_t mm[CUB_KJ_COUNT][3];
-    uint8_t have[CUB_KJ_COUNT], confident[CUB_KJ_COUNT];
-} cub_ft_joints;
-void cub_ft_joints_of(const cub_forest_proposal prop[CUB_PART_COUNT], cub_ft_joints *out);
-
 /* How a clip is compared: rendered at 10 fps for `seconds` (turning and
  * moving about as train-forest renders, seed), the tracker on every frame,
  * both scored on every `every`-th; the forest on every stride-th pixel. */
@@ -121,7 +107,7 @@ cub_err cub_ft_compare_clip(const cub_forest *f, const cub_ft_compare *c, const 
                             cub_ft_vs *vs, cub_diag *diag);
 /* One frame's tracker skeleton and forest joints scored against a truth
  * (its visible joints) into vs. */
-void cub_ft_score_joints(const cub_track_skeleton *s, const cub_ft_joints *fj,
+void cub_ft_score_joints(const cub_track_skeleton *s, const cub_forest_joints *fj,
                          const cub_synth_truth_frame *tr, cub_ft_vs *vs);
 
 /* Hand labels of real frames (tests/labels/skeltrack_labels.txt): lines
@@ -141,11 +127,17 @@ typedef struct cub_ft_labels {
  * skipped; a file of no labels is refused. */
 cub_err cub_ft_labels_parse(const char *text, size_t len, const char *name, cub_ft_labels *out,
                             cub_diag *diag);
-/* The labelled frames of dir (fakenect .pgm) in the labels' order: the
- * tracker on each, the forest on the readings within 600 mm of the
- * tracker's spine (every stride-th pixel), both scored against the labels
- * (their 3D points made as test_tracker makes them). */
-cub_err cub_ft_compare_real(const cub_forest *f, const char *dir, const cub_ft_labels *lab,
-                            int stride, cub_ft_vs *vs, cub_diag *diag);
+/* Where the real frames are and how they are read: dir (fakenect .pgm),
+ * the forest on every stride-th pixel; seam: the tracker runs with the
+ * forest in its seam (cub_track_desc.forest), as the box would. */
+typedef struct cub_ft_real {
+    const char *dir;
+    int stride, seam;
+} cub_ft_real;
+/* The labelled frames in the labels' order: the tracker on each, the
+ * forest on the readings within 600 mm of the tracker's spine, both scored
+ * against the labels (their 3D points made as test_tracker makes them). */
+cub_err cub_ft_compare_real(const cub_forest *f, const cub_ft_real *r, const cub_ft_labels *lab,
+                            cub_ft_vs *vs, cub_diag *diag);
 
 #endif

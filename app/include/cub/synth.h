@@ -24,6 +24,7 @@
 #include <stdint.h>
 
 #include "cub/err.h"
+#include "cub/forest.h"
 #include "cub/io.h"
 #include "cub/track.h"
 
@@ -128,30 +129,8 @@ cub_err cub_synth_render(cub_synth *s, int frame, uint16_t *raw, cub_synth_truth
 int cub_synth_has_second(const cub_synth *s);
 cub_err cub_synth_second_truth(const cub_synth *s, cub_synth_truth_frame *truth);
 
-/* Body parts painted per pixel (the classes of a body-part classifier, see
- * docs/forest.md): by the body's own side (the player's left arm is
- * ARM_L whichever way the player faces; a mirrored segment swaps them, as
- * it swaps the joints). 0: not a body (room, floor, nothing). */
-typedef enum cub_synth_part {
-    CUB_PART_NONE = 0,
-    CUB_PART_HEAD,
-    CUB_PART_TORSO_UPPER, /* chest, the shoulder bar and the neck (the head and
-                           * chest hide it: alone it is almost never seen) */
-    CUB_PART_TORSO_LOWER, /* belly, the hip bar, a skirt hem */
-    CUB_PART_UPPER_ARM_L,
-    CUB_PART_FOREARM_L,
-    CUB_PART_HAND_L,
-    CUB_PART_UPPER_ARM_R,
-    CUB_PART_FOREARM_R,
-    CUB_PART_HAND_R,
-    CUB_PART_THIGH_L,
-    CUB_PART_SHIN_L,
-    CUB_PART_FOOT_L,
-    CUB_PART_THIGH_R,
-    CUB_PART_SHIN_R,
-    CUB_PART_FOOT_R,
-    CUB_PART_COUNT
-} cub_synth_part;
+/* Body parts painted per pixel: cub_synth_part, in cub/forest.h (the
+ * firmware's forest names the same classes). */
 
 /* The part of every pixel in the frame last rendered (w*h bytes), on
  * either person; tell them apart by cub_synth_render's owner. */

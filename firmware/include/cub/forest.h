@@ -36,6 +36,32 @@
 
 #include "cub/err.h"
 #include "cub/fx.h"
+#include "cub/kinect.h"
+
+/* The body parts, the forest's classes (docs/forest.md); the renders of
+ * app/synth paint them per pixel. By the body's own side (the player's
+ * left arm is ARM_L whichever way the player faces; a mirrored segment
+ * swaps them, as it swaps the joints). 0: not a body (room, floor). */
+typedef enum cub_synth_part {
+    CUB_PART_NONE = 0,
+    CUB_PART_HEAD,
+    CUB_PART_TORSO_UPPER, /* chest, the shoulder bar and the neck (the head and
+                           * chest hide it: alone it is almost never seen) */
+    CUB_PART_TORSO_LOWER, /* belly, the hip bar, a skirt hem */
+    CUB_PART_UPPER_ARM_L,
+    CUB_PART_FOREARM_L,
+    CUB_PART_HAND_L,
+    CUB_PART_UPPER_ARM_R,
+    CUB_PART_FOREARM_R,
+    CUB_PART_HAND_R,
+    CUB_PART_THIGH_L,
+    CUB_PART_SHIN_L,
+    CUB_PART_FOOT_L,
+    CUB_PART_THIGH_R,
+    CUB_PART_SHIN_R,
+    CUB_PART_FOOT_R,
+    CUB_PART_COUNT
+} cub_synth_part;
 
 #define CUB_FOREST_VERSION 1
 #define CUB_FOREST_MAX_CLASSES 64
@@ -113,6 +139,8 @@ typedef struct cub_forest_points {
     uint16_t *prob; /* Q0.16, point i's class c at [i * classes + c] */
     int n, capacity, classes;
     int stride; /* the pixel step the points were sampled at (for areas) */
+    int32_t *part_pts; /* capacity entries, or NULL: a part's points listed once, so the
+                        * mean shift visits only them (the same result, faster) */
 } cub_forest_points;
 
 /* How one part is proposed. */
@@ -138,5 +166,21 @@ int cub_forest_gather(const cub_forest *f, const cub_forest_image *im, int strid
 /* The proposal of class `part` from the points. */
 void cub_forest_propose(const cub_forest_points *pts, int part, const cub_forest_shift *sh,
                         cub_forest_proposal *out);
+
+/* ---- joints from the proposals (docs/forest.md, step 2) ---- */
+
+/* Every part's proposal, with the per-part radius, push and probability
+ * floor of forest/joints.c. */
+void cub_forest_propose_all(const cub_forest_points *pts, cub_forest_proposal prop[CUB_PART_COUNT]);
+
+/* The joints the proposals give: head, hands and feet are their parts'
+ * centres; elbows and knees the midpoint of the two segments' centres.
+ * confident: share >= 1/2 and enough surface (both segments for a joint
+ * between two). */
+typedef struct cub_forest_joints {
+    int32_t mm[CUB_KJ_COUNT][3];
+    uint8_t have[CUB_KJ_COUNT], confident[CUB_KJ_COUNT];
+} cub_forest_joints;
+void cub_forest_joints_of(const cub_forest_proposal prop[CUB_PART_COUNT], cub_forest_joints *out);
 
 #endif

@@ -42,8 +42,14 @@ typedef struct cub_track_skeleton {
 
 /* Zero-initialised fields take defaults (the implementation documents
  * them). */
+struct cub_forest;
 typedef struct cub_track_desc {
     int32_t min_mm, max_mm; /* the range a player is looked for in; 0 = defaults */
+    /* NULL: the heuristic tracker alone. Else an opened body-part forest
+     * (cub/forest.h; it must outlive the tracker): a joint it is confident
+     * of replaces the tracker's in the output (docs/forest.md, "In the
+     * box"); cub_track_mem_size grows by its scratch (about 1 MB). */
+    const struct cub_forest *forest;
 } cub_track_desc;
 
 /* The tracker's state lives in caller memory (no heap). */
