@@ -59,15 +59,16 @@
  *   gives the wrong verdict at once (why = missed). And with mirror_wrong
  *   (the keys' left/right mirror is a different set that the bear's clip
  *   never shows), the mirrored keys held (a run of hold_ms of frames with
- *   the mirror's joints CONFIDENT, past the lag) while the keys are not, is a
- *   wrong verdict at once (why = mirror: the other arm or leg). And each
- *   of `other` (another move's keys, which the bear's clip of this move
- *   never shows and which rule this move's keys out: the director gives
- *   those with a feature in a different set), held S past the lag (frames with its joints confident, the
- *   keys not matched) with no sign of the keys yet, is a wrong verdict at
- *   once (why = other: the child does another move; its fault is the
- *   keys' own, as for missed). Frames the
- *   tracker is not sure of (not CUB_TRACK_OK) never give an early verdict.
+ *   the mirror's joints CONFIDENT, past the lag) while the keys are not,
+ *   is a wrong verdict at once (why = mirror: the other arm or leg). And
+ *   each of `other` (another move's keys, which the bear's clip of this
+ *   move never shows and which rule this move's keys out: the director
+ *   gives those with a feature in a different set), held S past the lag
+ *   (frames with its joints CONFIDENT, the keys not matched) with no sign
+ *   of the keys yet, is a wrong verdict at once (why = other: the child
+ *   does another move; its fault is the keys' own, as for missed). Frames
+ *   the tracker is not sure of (not CUB_TRACK_OK) never give an early
+ *   verdict.
  * - Guessed joints: a key's joints are SEEN in a frame when the tracker's
  *   confidence of each joint its feature reads is > 0 (cub/track.h: 0 =
  *   a guess, the limb's extremity not found). A window whose OK frames had
@@ -239,7 +240,7 @@ typedef enum cub_judge_why {
     CUB_JUDGE_WHY_IN_VIEW,
     CUB_JUDGE_WHY_OUT_OF_VIEW,
     CUB_JUDGE_WHY_MIRROR,   /* wrong: the keys' mirror held (the other arm) */
-    CUB_JUDGE_WHY_UNSURE,   /* no verdict to act on: the keys' joints guessed, or glimpsed unconfidently */
+    CUB_JUDGE_WHY_UNSURE,   /* no verdict to act on: keys guessed, or glimpsed unconfidently */
     CUB_JUDGE_WHY_OTHER,    /* wrong: another move's keys held instead */
     CUB_JUDGE_WHY_TOO_CLOSE,/* out of view: the child stands too close (CUB_EV_PLAYER b = 1) */
 } cub_judge_why;
