@@ -33,7 +33,7 @@ end"; scripts/e2e_child.sh runs it all).
         a planted mistake is not corrected, a move done right is corrected
         or not judged at all, or the coach did not do what the child
         followed (a move done right judged wrong without a correction, the
-        coach having moved on, is counted apart).
+        coach having moved on, or judged unsure, is counted apart).
 
 The child follows the bear, as a child in front of the TV does: each move
 the coach leads (a repetition, a resume, a slow demonstration) it does
@@ -995,8 +995,8 @@ def cmd_score(expect_path, log_path):
     got = read_cues(log_path)
     verdicts, corrections = read_judging(log_path)
     claimed = set()
-    n = {"caught": 0, "missed": 0, "right": 0, "false": 0, "unseen": 0, "cancelled": 0,
-         "unjudged": 0, "watched": 0}
+    n = {"caught": 0, "missed": 0, "right": 0, "false": 0, "unseen": 0, "unsure": 0,
+         "cancelled": 0, "unjudged": 0, "watched": 0}
     print("%7s %4s %4s %-14s %-7s %-16s %-8s %s" % ("t_s", "move", "rep", "clip", "led_as",
                                                     "planted", "verdict", "detail"))
     for k, (tc, clip, reason, mi, r) in enumerate(want):
@@ -1016,7 +1016,8 @@ def cmd_score(expect_path, log_path):
             res = verdicts[v][3]
             corr = res == "wrong" and any(abs(c - verdicts[v][0]) < 1e-6 for c in corrections)
             if tags[k] == "right":
-                n["right" if res == "right" else "false" if corr else "unseen"] += 1
+                n["right" if res == "right" else "false" if corr else
+                  "unsure" if res == "unsure" else "unseen"] += 1
             else:
                 n["caught" if corr else "missed"] += 1
                 if corr:
@@ -1040,9 +1041,10 @@ def cmd_score(expect_path, log_path):
         n["missed"] += 1
     planted = sum(1 for t in tags if t.startswith("wrong")) + len(unled)
     print("e2e: planted mistakes caught=%d missed=%d of %d; repetitions done right: judged "
-          "right=%d, wrongly corrected=%d, judged wrong without a correction=%d, cancelled by "
-          "a correction=%d, without a verdict=%d; slower demonstrations watched=%d"
-          % (n["caught"], n["missed"], planted, n["right"], n["false"], n["unseen"],
+          "right=%d, wrongly corrected=%d, judged wrong without a correction=%d, unsure (never "
+          "corrected)=%d, cancelled by a correction=%d, without a verdict=%d; slower "
+          "demonstrations watched=%d"
+          % (n["caught"], n["missed"], planted, n["right"], n["false"], n["unseen"], n["unsure"],
              n["cancelled"], n["unjudged"], n["watched"]))
     if n["unseen"]:
         print("e2e: NOTE: %d repetition(s) done right were judged wrong (not recognised) where "

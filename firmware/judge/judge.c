@@ -221,16 +221,20 @@ static uint32_t feature_joints(const cub_fuzzy_body *b, int32_t f)
     }
 }
 
-/* Bit f set when every joint feature f reads was seen (confidence > 0:
- * the tracker did not guess it). */
-static uint32_t sure_features(const cub_judge *j, const cub_track_skeleton *skel)
+/* Per feature: were all the joints it reads found (confidence > 0: the
+ * tracker did not guess them), and were all confident? */
+static judge_sure sure_features(const cub_judge *j, const cub_track_skeleton *skel)
 {
-    uint32_t seen = 0, sure = 0;
-    for (int k = 0; k < CUB_KJ_COUNT; k++)
-        if (skel->confidence[k] > 0) seen |= 1u << k;
+    uint32_t found = 0, confident = 0;
+    judge_sure sure = {0, 0};
+    for (int k = 0; k < CUB_KJ_COUNT; k++) {
+        if (skel->confidence[k] > 0) found |= 1u << k;
+        if (skel->confidence[k] >= CUB_TRACK_CONFIDENT) confident |= 1u << k;
+    }
     for (int32_t f = 0; f < CUB_FUZZY_FEATURE_COUNT; f++) {
         uint32_t need = feature_joints(&j->body, f);
-        if ((seen & need) == need) sure |= 1u << f;
+        if ((found & need) == need) sure.found |= 1u << f;
+        if ((confident & need) == need) sure.confident |= 1u << f;
     }
     return sure;
 }
@@ -247,7 +251,7 @@ cub_err cub_judge_frame(cub_judge *j, int64_t t_us, const cub_track_skeleton *sk
     int ok = skel->status == CUB_TRACK_OK;
     presence(j, t_us, skel->status, out);
     const cub_fuzzy_frame *f = NULL;
-    uint32_t sure = 0;
+    judge_sure sure = {0, 0};
     if (ok) {
         sure = sure_features(j, skel);
         calibrate(j, skel);
@@ -259,7 +263,7 @@ cub_err cub_judge_frame(cub_judge *j, int64_t t_us, const cub_track_skeleton *sk
     } else {
         judge_gestures_reset(j);
     }
-    judge_reps_frame(j, t_us, f, sure, skel->status == CUB_TRACK_TOO_CLOSE, out);
+    judge_reps_frame(j, t_us, f, &sure, skel->status == CUB_TRACK_TOO_CLOSE, out);
     return CUB_OK;
 }
 

@@ -27,6 +27,7 @@ typedef struct rep_slot {
     uint16_t best_mu[CUB_JUDGE_MAX_KEYS];
     cub_q16 min_d;
     int sign;           /* the keys were reached together once (4/5 of key_mu), held or not */
+    int sign_confident; /* ... in a frame whose keys' joints were all confident */
     int has_due;        /* an early deadline (the coach's key moment + lag) */
     int64_t due_us;
     int has_mirror;     /* the mirrored keys held instead are wrong at once */
@@ -38,6 +39,7 @@ typedef struct rep_slot {
     int64_t other_run_first_us[CUB_JUDGE_MAX_OTHER];
     int32_t sure_frames, unsure_frames; /* OK frames with the keys' joints seen, or guessed */
     int32_t sure_after_lag, unsure_after_lag; /* the same, past the child's lag */
+    int32_t confident_frames; /* OK frames with the keys' joints all confident */
     int64_t mirror_run_first_us;
 } rep_slot;
 
@@ -107,10 +109,16 @@ void judge_emit(cub_judge *j, cub_judge_out *out, const cub_judge_event *e);
 void judge_gestures(cub_judge *j, int64_t t_us, const cub_track_skeleton *s, cub_judge_out *out);
 void judge_gestures_reset(cub_judge *j);
 
+/* What the tracker said of each feature's joints in a frame: bit f of
+ * found when all of feature f's joints were found (not guessed), of
+ * confident when all were confident (cub/track.h CUB_TRACK_CONFIDENT). */
+typedef struct judge_sure {
+    uint32_t found, confident;
+} judge_sure;
+
 /* judge_reps.c: the repetitions' verdicts for one frame; f NULL when the
- * frame is not OK; sure: bit f when feature f's joints were all seen;
- * too_close: the child stands too close this frame. */
-void judge_reps_frame(cub_judge *j, int64_t t_us, const cub_fuzzy_frame *f, uint32_t sure,
-                      int too_close, cub_judge_out *out);
+ * frame is not OK; too_close: the child stands too close this frame. */
+void judge_reps_frame(cub_judge *j, int64_t t_us, const cub_fuzzy_frame *f,
+                      const judge_sure *sure, int too_close, cub_judge_out *out);
 
 #endif

@@ -60,7 +60,7 @@ int cub_judge_mirror_keys(const cub_judge_key *keys, int32_t key_count, cub_judg
     return differs;
 }
 
-/* Were the joints of every key seen (not guessed by the tracker)? */
+/* Are the joints of every key in mask (judge_sure's found or confident)? */
 static int keys_sure(const cub_judge_key *keys, int32_t n, uint32_t sure)
 {
     for (int k = 0; k < n; k++)
@@ -307,7 +307,7 @@ static cub_judge_event wrong(const rep_slot *s, int64_t t_us, int32_t early_why,
 /* One frame of one open repetition inside its window; 1 when it is now
  * right. */
 static int rep_step(cub_judge *j, rep_slot *s, int64_t t_us, const cub_fuzzy_frame *f,
-                    uint32_t sure)
+                    const judge_sure *sure)
 {
     if (!f) {
         s->run_on = s->keys_run_on = 0;
@@ -315,7 +315,9 @@ static int rep_step(cub_judge *j, rep_slot *s, int64_t t_us, const cub_fuzzy_fra
     }
     s->seen = 1;
     int past_lag = t_us >= s->start_us + lag_us(j);
-    if (keys_sure(s->keys, s->key_count, sure)) {
+    int confident = keys_sure(s->keys, s->key_count, sure->confident);
+    s->confident_frames += confident;
+    if (keys_sure(s->keys, s->key_count, sure->found)) {
         s->sure_frames++;
         s->sure_after_lag += past_lag;
     } else {
@@ -333,9 +335,14 @@ static int rep_step(cub_judge *j, rep_slot *s, int64_t t_us, const cub_fuzzy_fra
     int keys = keys_match(s->keys, s->key_count, f, th);
     /* A sign of the move, even too short or taken by the previous
      * repetition: no early wrong verdict then, only the close's. Not in
-     * the child's lag: there it may still be ending the one before. */
-    if (t_us >= s->start_us + lag_us(j))
-        s->sign |= keys_match(s->keys, s->key_count, f, (uint16_t)(j->d.key_mu - j->d.key_mu / 5));
+     * the child's lag: there it may still be ending the one before.
+     * Whether its joints were confident is kept: a sign seen only
+     * unconfidently makes the close unsure (closing). */
+    if (past_lag) {
+        int sign = keys_match(s->keys, s->key_count, f, (uint16_t)(j->d.key_mu - j->d.key_mu / 5));
+        s->sign |= sign;
+        s->sign_confident |= sign && confident;
+    }
     int close = 1;
     if (keys && s->has_expected) {
         cub_q16 d = cub_fuzzy_distance(f, &s->expected, NULL);
@@ -356,15 +363,15 @@ static int rep_step(cub_judge *j, rep_slot *s, int64_t t_us, const cub_fuzzy_fra
 }
 
 /* Is one of the other moves' keys held instead of s's: sign_ms past the
- * child's lag, its joints seen, s's keys not matched? */
+ * child's lag, its joints confident, s's keys not matched? */
 static int other_held(const cub_judge *j, rep_slot *s, int64_t t_us, const cub_fuzzy_frame *f,
-                      uint32_t sure)
+                      const judge_sure *sure)
 {
     int held = 0;
     int64_t from = s->start_us + lag_us(j);
     for (int i = 0; i < s->other_count; i++) {
         const cub_judge_keyset *o = &s->other[i];
-        int on = keys_sure(o->key, o->count, sure) &&
+        int on = keys_sure(o->key, o->count, sure->confident) &&
                  keys_match(o->key, o->count, f, j->d.key_mu) &&
                  !keys_match(s->keys, s->key_count, f, j->d.key_mu);
         if (on && !s->other_run_on[i]) s->other_run_first_us[i] = t_us;
@@ -377,10 +384,11 @@ static int other_held(const cub_judge *j, rep_slot *s, int64_t t_us, const cub_f
 
 /* The evidence against a repetition not yet right, in an OK frame f:
  * CUB_JUDGE_WHY_MIRROR when its keys' mirror has been held past the
- * child's lag, CUB_JUDGE_WHY_MISSED when its deadline passed with no sign
- * of its keys after the lag; else 0. */
+ * child's lag (their joints confident: a pose is wrong only when the
+ * tracker is sure of it), CUB_JUDGE_WHY_MISSED when its deadline passed
+ * with no sign of its keys after the lag; else 0. */
 static int32_t early_wrong(const cub_judge *j, rep_slot *s, int64_t t_us, const cub_fuzzy_frame *f,
-                           uint32_t sure)
+                           const judge_sure *sure)
 {
     if (!f) {
         s->mirror_run_on = 0;
@@ -388,7 +396,7 @@ static int32_t early_wrong(const cub_judge *j, rep_slot *s, int64_t t_us, const 
         return 0;
     }
     if (s->has_mirror) {
-        int on = keys_sure(s->mirror, s->key_count, sure) &&
+        int on = keys_sure(s->mirror, s->key_count, sure->confident) &&
                  keys_match(s->mirror, s->key_count, f, j->d.key_mu) &&
                  !keys_match(s->keys, s->key_count, f, j->d.key_mu);
         if (on && !s->mirror_run_on) s->mirror_run_first_us = t_us;
@@ -414,23 +422,29 @@ static rep_slot *next_oldest(cub_judge *j, int64_t after)
     return best;
 }
 
-/* A closed window's wrong verdict, unless the keys' joints were guessed in
- * most of its frames: then unsure, logged and not posted (nothing to
- * correct on a guess). */
+/* A closed window's wrong verdict, unless it is unsure: the keys' joints
+ * were guessed in most of its frames, or the keys showed a sign past the
+ * lag only where their joints were not confident (the tracker glimpsed
+ * the move and cannot tell whether it was done: a fast kick's foot). An
+ * unsure verdict is logged and not posted: nothing to correct on a guess.
+ * Its value: the share of the window's frames whose keys' joints were
+ * confident. A child standing still shows no sign at all: wrong. */
 static cub_judge_event closing(const cub_judge *j, const rep_slot *s, int64_t t_us)
 {
     cub_judge_event e = wrong(s, t_us, 0, j->d.key_mu);
-    if (!s->seen || s->unsure_frames <= s->sure_frames) return e;
+    int guessed = s->unsure_frames > s->sure_frames;
+    int glimpsed = s->sign && !s->sign_confident;
+    if (!s->seen || (!guessed && !glimpsed)) return e;
     e.why = CUB_JUDGE_WHY_UNSURE;
     e.ev.type = CUB_EV_NONE;
     e.ev.c = 0;
-    e.value =
-        (cub_q16)((int64_t)s->sure_frames * CUB_Q16_ONE / (s->sure_frames + s->unsure_frames));
+    e.value = (cub_q16)((int64_t)s->confident_frames * CUB_Q16_ONE /
+                        (s->sure_frames + s->unsure_frames));
     return e;
 }
 
-void judge_reps_frame(cub_judge *j, int64_t t_us, const cub_fuzzy_frame *f, uint32_t sure,
-                      int too_close, cub_judge_out *out)
+void judge_reps_frame(cub_judge *j, int64_t t_us, const cub_fuzzy_frame *f,
+                      const judge_sure *sure, int too_close, cub_judge_out *out)
 {
     release_consumed(j, f);
     for (rep_slot *s = next_oldest(j, -1); s; s = next_oldest(j, s->seq)) {

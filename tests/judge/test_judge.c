@@ -35,6 +35,7 @@ typedef struct pose {
     int status;       /* cub_track_status */
     int guess_right;  /* the tracker guessed the right arm (confidence 0) */
     int right_leg;    /* the right leg out: LEG_STANCE (foot on the floor) or LEG_KICK */
+    int unconfident[2]; /* the arm found, not confident (a quarter): 0 left, 1 right */
 } pose;
 
 enum { LEG_DOWN, LEG_STANCE, LEG_KICK };
@@ -93,6 +94,9 @@ static cub_track_skeleton child(pose p)
     }
     for (int k = 0; k < CUB_KJ_COUNT; k++)
         s.confidence[k] = CUB_Q16_ONE;
+    for (int side = 0; side < 2; side++)
+        for (int k = 1; p.unconfident[side] && k <= 3; k++)
+            s.confidence[(side ? CUB_KJ_SHOULDER_R : CUB_KJ_SHOULDER_L) + k] = CUB_Q16_ONE / 4;
     for (int k = CUB_KJ_ELBOW_R; p.guess_right && k <= CUB_KJ_HAND_R; k++)
         s.confidence[k] = 0;
     return s;
@@ -178,7 +182,7 @@ static cub_judge_rep rep_rhe(int rep, int from, int to)
     return r;
 }
 
-static const pose STILL = {{0, 0}, 0, 0, 0, 0, 0, 0, CUB_TRACK_OK, 0, LEG_DOWN};
+static const pose STILL = {{0, 0}, 0, 0, 0, 0, 0, 0, CUB_TRACK_OK, 0, LEG_DOWN, {0, 0}};
 
 static pose bent_right(void)
 {
@@ -794,6 +798,80 @@ static void test_guessed_keys_are_unsure(void **state)
     assert_int_equal(first(&r, CUB_JUDGE_VERDICT)->why, CUB_JUDGE_WHY_MISSED);
 }
 
+/* A key glimpsed (reached past the lag, not held) only where its joints
+ * were not confident is no evidence either way: the close is unsure,
+ * logged and never posted to the coach (a fast kick's foot the tracker
+ * cannot place). Glimpsed with the joints confident, the close is wrong
+ * as before. A child standing still shows no sign at all: wrong early,
+ * confident or not (nothing glimpsed to be unsure of). */
+static void test_unsure_repetition_is_not_corrected(void **state)
+{
+    (void)state;
+    for (int unconfident = 0; unconfident < 2; unconfident++) {
+        rec r;
+        start_keyed(&r, 0);
+        pose glimpse = bent_right();
+        glimpse.unconfident[1] = unconfident;
+        play(&r, 100, 20, 22, glimpse); /* 2 frames: a sign, not held 100 ms */
+        assert_int_equal(count(&r, CUB_JUDGE_VERDICT), 1);
+        assert_verdict(&r, 0, 0, 0, 75);
+        const cub_judge_event *v = first(&r, CUB_JUDGE_VERDICT);
+        assert_int_equal(v->why, unconfident ? CUB_JUDGE_WHY_UNSURE : CUB_JUDGE_WHY_MISSED);
+        assert_int_equal(v->ev.type, unconfident ? CUB_EV_NONE : CUB_EV_VERDICT);
+        assert_int_equal(v->ev.c != 0, !unconfident); /* no fault to fix when unsure */
+        char line[192];
+        cub_judge_describe(v, line, sizeof line);
+        /* 73 of the window's 75 frames had the right arm confident */
+        if (unconfident)
+            assert_string_equal(line, "verdict move=3 rep=0 result=unsure why=unsure "
+                                      "key=RHE=true sure=0.973");
+        /* standing still, the arm found but not confident: wrong early */
+        start_keyed(&r, 0);
+        pose still = STILL;
+        still.unconfident[1] = unconfident;
+        play(&r, 100, 0, 100, still);
+        assert_verdict(&r, 0, 0, 0, 23);
+        assert_int_equal(first(&r, CUB_JUDGE_VERDICT)->ev.type, CUB_EV_VERDICT);
+    }
+}
+
+/* Joints that are not confident decide nothing: the other arm bent (the
+ * mirrored keys), or another move's keys (both arms up), held with those
+ * arms not confident, are no wrong verdict at once; the key's deadline
+ * (the right arm confident and still: no sign of the key) decides. */
+static void test_unconfident_joints_decide_nothing(void **state)
+{
+    (void)state;
+    for (int unconfident = 0; unconfident < 2; unconfident++) {
+        rec r;
+        rec_init(&r, NULL);
+        cub_judge_rep rep = rep_rhe_keyed(0, 0, 60, 40, 1);
+        assert_int_equal(cub_judge_begin_rep(r.j, &rep), CUB_OK);
+        pose left = STILL;
+        left.bend[0] = 1;
+        left.unconfident[0] = unconfident;
+        play(&r, 100, 5, 60, left);
+        assert_int_equal(count(&r, CUB_JUDGE_VERDICT), 1);
+        assert_verdict(&r, 0, 0, 0, unconfident ? 56 : 16);
+        assert_int_equal(first(&r, CUB_JUDGE_VERDICT)->why,
+                         unconfident ? CUB_JUDGE_WHY_MISSED : CUB_JUDGE_WHY_MIRROR);
+
+        rec_init(&r, NULL);
+        rep = rep_rhe_keyed(0, 0, 60, 40, 0);
+        rep.other_count = 1;
+        rep.other[0] = (cub_judge_keyset){2, {{CUB_FUZZY_RH, 2}, {CUB_FUZZY_LH, 2}}};
+        assert_int_equal(cub_judge_begin_rep(r.j, &rep), CUB_OK);
+        pose up = STILL;
+        up.arms_up = 1;
+        up.unconfident[0] = unconfident;
+        play(&r, 100, 0, 60, up);
+        assert_int_equal(count(&r, CUB_JUDGE_VERDICT), 1);
+        assert_verdict(&r, 0, 0, 0, unconfident ? 56 : 23);
+        assert_int_equal(first(&r, CUB_JUDGE_VERDICT)->why,
+                         unconfident ? CUB_JUDGE_WHY_MISSED : CUB_JUDGE_WHY_OTHER);
+    }
+}
+
 static void test_mirror_keys(void **state)
 {
     (void)state;
@@ -1220,6 +1298,8 @@ int main(void)
         cmocka_unit_test(test_the_previous_repetitions_tail_is_no_sign),
         cmocka_unit_test(test_no_early_verdict_without_the_tracker),
         cmocka_unit_test(test_guessed_keys_are_unsure),
+        cmocka_unit_test(test_unsure_repetition_is_not_corrected),
+        cmocka_unit_test(test_unconfident_joints_decide_nothing),
         cmocka_unit_test(test_another_moves_keys_held_are_wrong_at_once),
         cmocka_unit_test(test_mirror_keys),
         cmocka_unit_test(test_missed_key_is_the_fault),

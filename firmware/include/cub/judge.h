@@ -59,22 +59,37 @@
  *   gives the wrong verdict at once (why = missed). And with mirror_wrong
  *   (the keys' left/right mirror is a different set that the bear's clip
  *   never shows), the mirrored keys held (a run of hold_ms of frames with
- *   the mirror's joints seen, past the lag) while the keys are not, is a
- *   wrong verdict at once (why = mirror: the other arm or leg). And each
- *   of `other` (another move's keys, which the bear's clip of this move
- *   never shows and which rule this move's keys out: the director gives
- *   those with a feature in a different set), held S past the lag (frames with its joints seen, the
- *   keys not matched) with no sign of the keys yet, is a wrong verdict at
- *   once (why = other: the child does another move; its fault is the
- *   keys' own, as for missed). Frames the
- *   tracker is not sure of (not CUB_TRACK_OK) never give an early verdict.
+ *   the mirror's joints CONFIDENT, past the lag) while the keys are not,
+ *   is a wrong verdict at once (why = mirror: the other arm or leg). And
+ *   each of `other` (another move's keys, which the bear's clip of this
+ *   move never shows and which rule this move's keys out: the director
+ *   gives those with a feature in a different set), held S past the lag
+ *   (frames with its joints CONFIDENT, the keys not matched) with no sign
+ *   of the keys yet, is a wrong verdict at once (why = other: the child
+ *   does another move; its fault is the keys' own, as for missed). Frames
+ *   the tracker is not sure of (not CUB_TRACK_OK) never give an early
+ *   verdict.
  * - Guessed joints: a key's joints are SEEN in a frame when the tracker's
  *   confidence of each joint its feature reads is > 0 (cub/track.h: 0 =
  *   a guess, the limb's extremity not found). A window whose OK frames had
  *   the keys' joints guessed more often than seen gets, instead of a wrong
  *   verdict at its close, an unsure one (why = unsure, ev.type
  *   CUB_EV_NONE: logged, never posted, so never corrected; value: the
- *   share of frames seen).
+ *   share of the window's OK frames with the keys' joints CONFIDENT).
+ * - The tracker's confidence: a key's joints are CONFIDENT in a frame when
+ *   each joint its feature reads has confidence >= CUB_TRACK_CONFIDENT
+ *   (the depth backs it, cub/track.h). A joint that is not confident
+ *   decides no wrong pose: the mirror and other moves' keys above are read
+ *   only where confident. A window whose signs of its keys (past the lag)
+ *   were all in frames where their joints were not confident, and that
+ *   was not right, is unsure at its close (as above, never corrected):
+ *   the tracker glimpsed the move (a front kick's foot, fast and pointed
+ *   at the camera) and can say neither that it was done nor that it was
+ *   not. A sign in a confident frame, not held, stays wrong at the close.
+ *   A child standing still shows no sign at all and is wrong, the joints
+ *   confident or not: the tracker marks most still arms of a child facing
+ *   it not confident (README, "the judge and the tracker's confidence"),
+ *   and stillness is what a found joint shows well.
  * - A wrong verdict's fault (ev.c, cub_judge_fault_code) says what to fix:
  *   why = missed or other: how = missed, the key named (the weakest), and as the
  *   limbs to move those of the keys that never reached key_mu in the
@@ -225,7 +240,7 @@ typedef enum cub_judge_why {
     CUB_JUDGE_WHY_IN_VIEW,
     CUB_JUDGE_WHY_OUT_OF_VIEW,
     CUB_JUDGE_WHY_MIRROR,   /* wrong: the keys' mirror held (the other arm) */
-    CUB_JUDGE_WHY_UNSURE,   /* no verdict to act on: the keys' joints were guessed */
+    CUB_JUDGE_WHY_UNSURE,   /* no verdict to act on: keys guessed, or glimpsed unconfidently */
     CUB_JUDGE_WHY_OTHER,    /* wrong: another move's keys held instead */
     CUB_JUDGE_WHY_TOO_CLOSE,/* out of view: the child stands too close (CUB_EV_PLAYER b = 1) */
 } cub_judge_why;

@@ -29,9 +29,11 @@ typedef enum cub_track_status {
  * 0 = found, CUB_TRACK_CONFIDENT and above = confident: the depth backs it
  * (track/trk_conf.c), what `cubtool eval-track` checks is honest
  * (docs/tracker_eval.md, "the confidence": of the confident joints, the share
- * within 10 cm). The judge still reads "found" (> 0): read at
- * CUB_TRACK_CONFIDENT it caught none of the e2e song's planted mistakes
- * (docs/tracker_eval.md says why). */
+ * within 10 cm). The judge reads both (cub/judge.h): a wrong pose (the
+ * other arm, another move) only where confident, and a move glimpsed only
+ * where not confident is unsure, never corrected; "found" still decides
+ * standing still and a right verdict (README, "the judge and the
+ * tracker's confidence"). */
 #define CUB_TRACK_CONFIDENT (CUB_Q16_ONE / 2)
 typedef struct cub_track_skeleton {
     int32_t status; /* cub_track_status */
