@@ -347,7 +347,9 @@ static int parse_args(int argc, char **argv, eval_opts *o)
                 "eval says honest), the share of those within 10 cm, and of the others. With DUMP_DIR/truth_second.txt (a second\n"
                 "person, cubtool synth-depth --second-person) also the frames whose player is\n"
                 "the wrong person (its torso nearer the second person's than the child's).\n"
-                "The truth's gravity is given to the tracker unless --no-gravity.\n"
+                "The truth's gravity is given to the tracker unless --no-gravity. Frames before\n"
+                "the truth's first (synth-depth --prelude: attract mode) are tracked, not scored;\n"
+                "the truth's first frame is START: the tracker chooses its player afresh there.\n"
                 "--csv FILE: the same figures as kind,band,joint,n,within,mean_mm rows (kind\n"
                 "confident: the joints reported confident).\n"
                 "--joints FILE: one row per scored joint: frame,joint,status,confidence (Q16),\n"
@@ -395,8 +397,13 @@ static int run_frames(const eval_opts *o, const cub_tool_dump *d, const eval_tru
         if (jf) fclose(jf);
         return -1;
     }
+    /* A truth that starts after the dump's first frame (synth-depth
+     * --prelude): the frames before are attract mode, its first frame is
+     * START, where the box has the player chosen afresh. */
+    int start = have && tt->frame_count > 0 ? tt->frames[0].frame : 0;
     for (int f = 0; f < d->n; f++) {
         cub_track_skeleton s;
+        if (f > 0 && f == start) cub_track_choose_afresh(t);
         double t0 = now_s();
         cub_track_frame(t, d->raw + (size_t)f * CUB_TOOL_FRAME_PIXELS, d->t_us[f],
                         have_grav ? &grav : NULL, &s);

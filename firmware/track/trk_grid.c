@@ -598,9 +598,10 @@ static int32_t choose_blob(cub_tracker *t, bool *same, bool *hidden)
     for (int32_t k = 0; k < t->ncomps; k++) {
         if (!person_like(&t->comps[k])) continue;
         int64_t score = person_score(t, pred, comp_centre(&t->comps[k]));
-        /* not while the player waits to be chosen afresh: the blobs of
-         * the frame the room became known are not the frame before's */
-        if (t->tracked && t->room_known != 1 && score >= 0 && score < ID_FAR && was_someone_else(t, k))
+        /* not while the player waits to be chosen afresh (the room just
+         * known, START): the blobs then are not the frame before's */
+        bool afresh = t->room_known == 1 || t->start_afresh;
+        if (t->tracked && !afresh && score >= 0 && score < ID_FAR && was_someone_else(t, k))
             someone_else[k] = true, score = ID_FAR + newcomer_score(comp_centre(&t->comps[k]));
         if (score < best_score) best_score = score, best = k;
     }
@@ -654,6 +655,25 @@ static void track_update(cub_tracker *t, int32_t blob, bool same, bool hidden)
     if (!hidden) t->seen_gx0 = t->comps[blob].gx0, t->seen_gx1 = t->comps[blob].gx1;
 }
 
+/* START (cub_track_choose_afresh): the nearest, most central person,
+ * whoever the track followed before; the choice waits for a frame with
+ * someone person-like. */
+static int32_t start_choice(cub_tracker *t, int32_t best, bool *same)
+{
+    int32_t fresh = first_choice(t);
+    if (fresh < 0) return best;
+    t->start_afresh = false;
+    if (fresh != best) *same = false;
+    return fresh;
+}
+
+cub_err cub_track_choose_afresh(cub_tracker *t)
+{
+    if (!t) return CUB_ERR_ARG;
+    t->start_afresh = true;
+    return CUB_OK;
+}
+
 int32_t trk_pick_player(cub_tracker *t)
 {
     if (t->tracked && unseen_us(t) > ID_HOLD_US && t->lost_frames > 0) t->tracked = false;
@@ -668,6 +688,7 @@ int32_t trk_pick_player(cub_tracker *t)
         if (fresh >= 0 && fresh != best) best = fresh, same = false;
         t->room_known = 2;
     }
+    if (t->start_afresh) best = start_choice(t, best, &same);
     memset(t->mask, 0, sizeof t->mask);
     if (best < 0) {
         remember_who(t); /* the others, still */

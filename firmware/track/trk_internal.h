@@ -67,6 +67,7 @@ struct cub_tracker {
     uint16_t bg_player_age[TRK_CELLS]; /* since the player covered the cell */
     int32_t bg_resets, bg_run_us; /* times forgotten; time learnt since */
     uint8_t room_known; /* 0 not yet, 1 known and the player not chosen afresh yet, 2 chosen */
+    bool start_afresh;  /* cub_track_choose_afresh: the next frame chooses the player afresh */
     int32_t dist0[TRK_CELLS], parent0[TRK_CELLS];
     int32_t distx[TRK_CELLS];
     int32_t dist_sh[2][TRK_BLOCKS]; /* coarse, along the surface from each shoulder (left, right) */
