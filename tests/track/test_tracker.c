@@ -386,6 +386,56 @@ static void test_player_keeps_its_identity(void **st)
     expect_same_player(sibling, -150, 20, "sibling");
 }
 
+/* Attract mode: for 2 s only an adult stands in the room, 900 mm right of
+ * the centre, and the tracker follows it; then the child appears in the
+ * middle, nearer. The track keeps the adult (its track is alive, the child
+ * is outside its gate) unless START chooses afresh
+ * (cub_track_choose_afresh before the child's first frame): then the
+ * child is the player from that frame on, with a new id. */
+static p3 attract_adult(int k)
+{
+    (void)k;
+    p3 b[CUB_KJ_COUNT];
+    child_pose(900, 2900, 0, 1400, b);
+    for (int jj = 0; jj < CUB_KJ_COUNT; jj++) b[jj].y += 800 * 400 / 1000 - 320;
+    draw_child(b, 1400);
+    return b[CUB_KJ_SPINE];
+}
+
+/* The frames after the child appears whose player is the child (spine
+ * within 350 mm of the child's, nearer it than the adult's). */
+static int child_frames_after_attract(bool start)
+{
+    cub_tracker *t = new_tracker();
+    cub_track_skeleton s;
+    cub_vec3 g = {0, -1000 * 65536, 0};
+    int32_t child = 0, adult_id = -1;
+    for (int k = 0; k < 40; k++) {
+        p3 o = {0, 0, 0}, a[CUB_KJ_COUNT];
+        clear_scene(800);
+        if (k >= 20) child_pose(0, 2400, k % 3, 1000, a), draw_child(a, 1000);
+        o = attract_adult(k);
+        to_raw();
+        if (k == 20 && start) assert_int_equal(cub_track_choose_afresh(t), CUB_OK);
+        cub_track_frame(t, frame, (int64_t)k * 100000, &g, &s);
+        if (k == 19) adult_id = s.player_id, assert_true(joint_err(&s, CUB_KJ_SPINE, o) < 350);
+        if (k < 20 || s.status == CUB_TRACK_NO_PLAYER) continue;
+        double ec = joint_err(&s, CUB_KJ_SPINE, a[CUB_KJ_SPINE]), eo = joint_err(&s, CUB_KJ_SPINE, o);
+        if (ec < eo && ec < 350 && s.player_id != adult_id) child++;
+    }
+    return child;
+}
+
+static void test_start_chooses_the_player_afresh(void **st)
+{
+    (void)st;
+    int kept = child_frames_after_attract(false), started = child_frames_after_attract(true);
+    printf("track START: the child is the player in %d of 20 frames without START, %d with\n", kept, started);
+    assert_int_equal(kept, 0);
+    assert_int_equal(started, 20);
+    assert_int_equal(cub_track_choose_afresh(NULL), CUB_ERR_ARG);
+}
+
 /* ---- too close (issue 20 point 9) --------------------------------------- */
 
 /* A body 0.65 m from the camera fills the view: TOO_CLOSE, whoever stands
@@ -618,6 +668,7 @@ int main(void)
         cmocka_unit_test(test_confidence_needs_evidence),
         cmocka_unit_test(test_second_person_never_becomes_the_player),
         cmocka_unit_test(test_player_keeps_its_identity),
+        cmocka_unit_test(test_start_chooses_the_player_afresh),
         cmocka_unit_test(test_too_close_is_told),
         cmocka_unit_test(test_real_frames_against_hand_labels),
         cmocka_unit_test(test_output_hash_is_pinned),
