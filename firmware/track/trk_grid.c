@@ -527,6 +527,31 @@ static int64_t person_score(const cub_tracker *t, trk_p3 pred, trk_p3 cc)
     return d >= 0 ? d : ID_FAR + newcomer_score(cc);
 }
 
+/* Blob k is the player merged with someone taller who stood beside or
+ * before it last frame (a parent crossing close before the child, touching
+ * it): its top stands ID_TALLER_MM above the player's highest of late
+ * (raised hands included) and SPLIT_MIN_CELLS of its cells were another
+ * person's last frame. Alone, a child who jumps with its arms up is never
+ * this (no cells of anybody else). */
+#define ID_TALLER_MM 200
+#define ID_TOP_FALL 150 /* mm/s: the player's highest point is forgotten this fast */
+static bool merged_with_taller(const cub_tracker *t, int32_t k)
+{
+    if (t->comps[k].hmax <= t->top_mm + ID_TALLER_MM) return false;
+    int32_t other = 0;
+    for (int32_t i = 0; i < TRK_CELLS; i++)
+        other += t->label[i] == k && (t->who_prev[i] == TRK_WHO_OTHER || t->who_prev[i] == TRK_WHO_NEAR);
+    return other >= SPLIT_MIN_CELLS;
+}
+
+/* The player's highest point: this frame's blob's top, or the one of late
+ * falling at ID_TOP_FALL. */
+static void update_top(cub_tracker *t, int32_t blob, bool same, int32_t dt_us)
+{
+    int32_t top = t->comps[blob].hmax, kept = t->top_mm - per_s(ID_TOP_FALL, dt_us);
+    t->top_mm = same && kept > top ? kept : top;
+}
+
 /* Someone stands before the player's columns of last sighting: the
  * player may be hidden but for pieces. */
 static bool someone_in_front(const cub_tracker *t, trk_p3 pred)
@@ -601,7 +626,8 @@ static int32_t choose_blob(cub_tracker *t, bool *same, bool *hidden)
         /* not while the player waits to be chosen afresh (the room just
          * known, START): the blobs then are not the frame before's */
         bool afresh = t->room_known == 1 || t->start_afresh;
-        if (t->tracked && !afresh && score >= 0 && score < ID_FAR && was_someone_else(t, k))
+        if (t->tracked && !afresh && score >= 0 && score < ID_FAR &&
+            (was_someone_else(t, k) || merged_with_taller(t, k)))
             someone_else[k] = true, score = ID_FAR + newcomer_score(comp_centre(&t->comps[k]));
         if (score < best_score) best_score = score, best = k;
     }
@@ -701,6 +727,7 @@ int32_t trk_pick_player(cub_tracker *t)
         t->stature_mm = t->neck_drop_mm = 0;
     }
     t->tracked = true;
+    update_top(t, best, same, unseen_us(t));
     track_update(t, best, same, hidden);
     t->in_play = (same && t->in_play) || t->centre.z <= TRK_FAR_MM;
     for (int32_t i = 0; i < TRK_CELLS; i++)
