@@ -539,8 +539,10 @@ static bool merged_with_taller(const cub_tracker *t, int32_t k)
 {
     if (t->comps[k].hmax <= t->top_mm + ID_TALLER_MM) return false;
     int32_t other = 0;
-    for (int32_t i = 0; i < TRK_CELLS; i++)
-        other += t->label[i] == k && (t->who_prev[i] == TRK_WHO_OTHER || t->who_prev[i] == TRK_WHO_NEAR);
+    for (int32_t i = 0; i < TRK_CELLS; i++) {
+        uint8_t w = t->label[i] == k ? t->who_prev[i] : 0;
+        other += w == TRK_WHO_OTHER || w == TRK_WHO_NEAR;
+    }
     return other >= SPLIT_MIN_CELLS;
 }
 

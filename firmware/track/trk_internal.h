@@ -88,7 +88,7 @@ struct cub_tracker {
     trk_p3 centre, vel; /* where the player was last seen (mm) and its velocity (mm/s) */
     int64_t seen_us;    /* when */
     int32_t seen_gx0, seen_gx1; /* and its blob's columns on the grid */
-    int32_t top_mm; /* the player's highest point of late (mm along up), falling slowly: merged_with_taller */
+    int32_t top_mm; /* the player's highest point of late (mm along up): merged_with_taller */
     int32_t stature_mm;
     int32_t neck_drop_mm; /* head top to the neck base (smoothed), 0 unknown */
     int32_t head_cell, stature_seen_mm; /* this frame's, for tools */
