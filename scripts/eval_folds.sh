@@ -4,7 +4,8 @@
 # every fold reported, in the scenes a child's room has (facing, turning,
 # travel, a second person, loose clothes).
 #
-#   scripts/eval_folds.sh BUILD_DIR [dev|heldout|all] [--quick] [--identity] [--fold NAME] [--scene NAME] [--csv FILE]
+#   scripts/eval_folds.sh BUILD_DIR [dev|heldout|all] [--quick] [--identity [--draw 2] [--no-prelude]]
+#                         [--fold NAME] [--scene NAME] [--csv FILE]
 #   (also: scripts/eval_tracker.sh BUILD_DIR --folds ...)
 #
 # dev      the folds hand-set numbers may be chosen on (CMU subject groups,
@@ -19,7 +20,14 @@
 #          point 2 (docs/tracker_eval.md): per fold one render per second
 #          person's mode (behind, walk-in, cross, sibling) with seed 2, half
 #          of them turning, plus a slow crossing (0.5 m/s: the child hidden
-#          about 1.5 s)
+#          about 1.5 s); each render starts with 2 s of the room before
+#          the child (synth-depth --prelude 2: the box's attract mode),
+#          not scored
+# --draw 2  the second draw of identity renders (round 4, drawn unseen for
+#          the held-out folds: docs/tracker_eval.md): seed 3, the five clips
+#          of each fold the first draw did not use, other second persons
+# --no-prelude  the identity renders as rounds 1-3 had them (the child
+#          there from the first frame)
 #
 # Every render: cubtool synth-depth ... --seed 1 --frames 90 --fps 10 into
 # a temporary folder (EVAL_DUMPS=DIR keeps them for the next run), scored
@@ -32,7 +40,7 @@
 set -eu
 
 usage() {
-    echo "usage: scripts/eval_folds.sh BUILD_DIR [dev|heldout|all] [--quick] [--identity] [--fold NAME] [--scene NAME] [--csv FILE]" >&2
+    echo "usage: scripts/eval_folds.sh BUILD_DIR [dev|heldout|all] [--quick] [--identity [--draw 2] [--no-prelude]] [--fold NAME] [--scene NAME] [--csv FILE]" >&2
     exit 2
 }
 HERE=$(cd "$(dirname "$0")" && pwd)
@@ -67,12 +75,14 @@ fi
 [ $# -ge 1 ] || usage
 BUILD=$1
 shift
-SET=all QUICK=0 ONLY= CSV= SCENE= IDENTITY=0
+SET=all QUICK=0 ONLY= CSV= SCENE= IDENTITY=0 DRAW=1 PRELUDE=2
 while [ $# -gt 0 ]; do
     case $1 in
     dev | heldout | all) SET=$1 ;;
     --quick) QUICK=1 ;;
     --identity) IDENTITY=1 ;;
+    --no-prelude) PRELUDE=0 ;;
+    --draw) [ $# -ge 2 ] && { [ "$2" = 1 ] || [ "$2" = 2 ]; } || usage; DRAW=$2; shift ;;
     --fold) [ $# -ge 2 ] || usage; ONLY=$2; shift ;;
     --csv) [ $# -ge 2 ] || usage; CSV=$2; shift ;;
     --scene) [ $# -ge 2 ] || usage; SCENE=$2; shift ;;
@@ -136,6 +146,10 @@ scene_args() { # scene fold_index clip_index second_clip
 # clips d_0..): for mode m of behind walk-in cross sibling, clip
 # c_{(k + 3m + 1) mod n} with d_m as the second person, turning every 1.5 s
 # when k + m is odd; and c_{(k + 2) mod n} crossed at 0.5 m/s by d_0.
+# Draw 2 (round 4): the clips draw 1 left out of a 10-clip fold (the
+# held-out Bandai styles), c_{k+3}, c_{k+5}, c_{k+6}, c_{k+8} for the four
+# modes and c_{k+9} crossed slowly, the second person d_{m+4} (d_8 for the
+# slow crossing), turning when k + m is even.
 identity_jobs() { # fold set k clips next_clips
     n=$(printf '%s\n' "$4" | tr ';' '\n' | wc -l)
     nn=$(printf '%s\n' "$5" | tr ';' '\n' | wc -l)
@@ -143,11 +157,14 @@ identity_jobs() { # fold set k clips next_clips
     for mode in $MODES slow; do
         i=$((($3 + 3 * m + 1) % n)) sm=$m
         [ "$mode" != slow ] || i=$((($3 + 2) % n)) sm=0
+        if [ "$DRAW" = 2 ]; then
+            i=$((($3 + $(nth $m 3 5 6 8 9)) % n)) sm=$((m + 4))
+        fi
         clip=$(printf '%s\n' "$4" | tr ';' '\n' | sed -n "$((i + 1))p")
         other=$(printf '%s\n' "$5" | tr ';' '\n' | sed -n "$((sm % nn + 1))p" | cut -d' ' -f1)
         extra="--second-mode $mode"
         [ "$mode" != slow ] || extra="--second-mode cross --second-speed 500"
-        [ $((($3 + m) % 2)) = 0 ] || [ "$mode" = slow ] || extra="$extra --yaw-segments 1.5"
+        [ $((($3 + m + DRAW - 1) % 2)) = 0 ] || [ "$mode" = slow ] || extra="$extra --yaw-segments 1.5"
         printf '%s|%s|i%d|identity|--clip %s --max-travel 700 --room --second-person %s %s\n' "$1" "$2" $m "$clip" "$other" "$extra"
         m=$((m + 1))
     done
@@ -199,7 +216,8 @@ cleanup() { [ "$KEEP_RESULTS" = 1 ] || rm -rf "$RESULTS"; [ "$KEEP" = 1 ] || rm 
 trap cleanup EXIT INT TERM
 
 COMMON="--seed 1 --frames 90 --fps 10"
-[ "$IDENTITY" = 0 ] || COMMON="--seed 2 --frames 90 --fps 10"
+[ "$IDENTITY" = 0 ] || COMMON="--seed $((DRAW + 1)) --frames 90 --fps 10"
+[ "$IDENTITY" = 0 ] || [ "$PRELUDE" = 0 ] || COMMON="$COMMON --prelude $PRELUDE"
 [ "$QUICK" = 0 ] || COMMON="--seed 1 --frames 8 --fps 10"
 echo "eval_folds: $SET folds$([ "$QUICK" = 0 ] || echo ' (quick sample)')$([ "$IDENTITY" = 0 ] || echo ', identity renders'), $COMMON, data $DATA"
 jobs >"$RESULTS/jobs"

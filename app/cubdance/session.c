@@ -162,6 +162,8 @@ static void hook_handle(void *u, cub_loop *loop, const cub_event *ev)
         cub_log_event(&loop->log, ev->t_us, "button",
                       ev->type == CUB_EV_BUTTON_DOWN ? "down" : "up", "name=%s",
                       cub_loop_button_name((cub_button)ev->a));
+        if (ev->type == CUB_EV_BUTTON_DOWN && ev->a == CUB_BUTTON_START && s->watch)
+            cub_watch_start(s->watch); /* the one who pressed it is the player */
         if (ev->type == CUB_EV_BUTTON_DOWN && !s->dance)
             set_state(s, ev->a == CUB_BUTTON_START ? CUB_APP_PLAYING : CUB_APP_WAITING, ev->t_us);
         break;

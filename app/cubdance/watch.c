@@ -157,6 +157,11 @@ void cub_watch_tick(cub_watch *w, cub_loop *loop, int64_t now_us)
     if (now_us - w->last_frame_us > limit) camera_gone(w, loop, now_us, "silent");
 }
 
+void cub_watch_start(cub_watch *w)
+{
+    if (w && w->tracker) cub_track_choose_afresh(w->tracker);
+}
+
 const cub_track_skeleton *cub_watch_skeleton(const cub_watch *w)
 {
     return &w->skel;

@@ -52,6 +52,9 @@ void cub_watch_frame(cub_watch *w, cub_loop *loop, int64_t t_us, const uint16_t 
                      const int16_t accel[3]);
 /* The depth source failed or ended (why: for the log). */
 void cub_watch_source_gone(cub_watch *w, cub_loop *loop, int64_t t_us, const char *why);
+/* START was pressed: the tracker chooses its player afresh on the next
+ * frame (the child at the box, not whoever it followed in attract mode). */
+void cub_watch_start(cub_watch *w);
 /* Every tick: frames stopped coming at their pace? */
 void cub_watch_tick(cub_watch *w, cub_loop *loop, int64_t now_us);
 

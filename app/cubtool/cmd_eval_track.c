@@ -180,11 +180,27 @@ static int score_identity(eval_acc *acc, const cub_track_skeleton *s,
     return 1;
 }
 
+/* For --per-frame with a second person: where the player's torso is, and
+ * the child's and the second person's (x and z along the floor, mm), so a
+ * wrong frame can be read without a viewer. */
+static void identity_note(const cub_track_skeleton *s, const cub_synth_truth_frame *child,
+                          const cub_synth_truth_frame *other, int wrong, char *buf, size_t len)
+{
+    buf[0] = 0;
+    if (!child || !other) return;
+    double t[3], c[3], o[3];
+    tracked_torso(s, t);
+    truth_torso(child, c);
+    truth_torso(other, o);
+    snprintf(buf, len, "%s torso=%.0f,%.0f child=%.0f,%.0f second=%.0f,%.0f",
+             wrong ? " WRONG-PERSON" : "", t[0], t[2], c[0], c[2], o[0], o[2]);
+}
+
 /* The joints of one frame into its band and the whole; one line of
- * --per-frame (wrong: the player is the second person); one row per
- * joint into joints_out (--joints) when not NULL. */
+ * --per-frame (note: identity_note); one row per joint into joints_out
+ * (--joints) when not NULL. */
 static void score_joints(eval_acc *acc, const cub_track_skeleton *s, const cub_synth_truth_frame *tr,
-                         double yaw_deg, int per_frame, int wrong, FILE *joints_out)
+                         double yaw_deg, int per_frame, const char *note, FILE *joints_out)
 {
     int band = band_of(yaw_deg);
     double f_sum = 0;
@@ -213,7 +229,7 @@ static void score_joints(eval_acc *acc, const cub_track_skeleton *s, const cub_s
     }
     if (per_frame)
         printf("frame %d status=%d id=%d%s yaw=%.0f mean=%.0fmm off:%s\n", tr->frame,
-               (int)s->status, (int)s->player_id, wrong ? " WRONG-PERSON" : "", yaw_deg,
+               (int)s->status, (int)s->player_id, note, yaw_deg,
                f_n ? f_sum / f_n : 0.0, f_off);
 }
 
@@ -347,13 +363,17 @@ static int parse_args(int argc, char **argv, eval_opts *o)
                 "eval says honest), the share of those within 10 cm, and of the others. With DUMP_DIR/truth_second.txt (a second\n"
                 "person, cubtool synth-depth --second-person) also the frames whose player is\n"
                 "the wrong person (its torso nearer the second person's than the child's).\n"
-                "The truth's gravity is given to the tracker unless --no-gravity.\n"
+                "The truth's gravity is given to the tracker unless --no-gravity. Frames before\n"
+                "the truth's first (synth-depth --prelude: attract mode) are tracked, not scored;\n"
+                "the truth's first frame is START: the tracker chooses its player afresh there.\n"
                 "--csv FILE: the same figures as kind,band,joint,n,within,mean_mm rows (kind\n"
                 "confident: the joints reported confident).\n"
                 "--joints FILE: one row per scored joint: frame,joint,status,confidence (Q16),\n"
                 "true yaw, error (mm), within 10 cm (1/0).\n"
                 "--per-frame: one line per frame (status, player id, WRONG-PERSON when the player\n"
-                "is the second person, true yaw, mean error, the joints off by more than 10 cm).\n"
+                "is the second person, true yaw, mean error, the joints off by more than 10 cm;\n"
+                "with a second person also torso= child= second=: the player's torso, the child's\n"
+                "and the second person's, x,z in mm).\n"
                 "--forest FILE: the tracker with the body-part forest (e.g. assets/forest/body.forest):\n"
                 "a joint the forest is confident of replaces the tracker's (docs/forest.md).\n");
             return 1;
@@ -404,8 +424,13 @@ static int run_frames(const eval_opts *o, const cub_tool_dump *d, const eval_tru
         free(fbytes);
         return -1;
     }
+    /* A truth that starts after the dump's first frame (synth-depth
+     * --prelude): the frames before are attract mode, its first frame is
+     * START, where the box has the player chosen afresh. */
+    int start = have && tt->frame_count > 0 ? tt->frames[0].frame : 0;
     for (int f = 0; f < d->n; f++) {
         cub_track_skeleton s;
+        if (f > 0 && f == start) cub_track_choose_afresh(t);
         double t0 = now_s();
         cub_track_frame(t, d->raw + (size_t)f * CUB_TOOL_FRAME_PIXELS, d->t_us[f],
                         have_grav ? &grav : NULL, &s);
@@ -414,8 +439,10 @@ static int run_frames(const eval_opts *o, const cub_tool_dump *d, const eval_tru
         if (o->print) print_frame(d->name[f], &s);
         const cub_synth_truth_frame *tr = truth_of(tt, have, f);
         if (!tr) continue;
-        int wrong = score_identity(acc, &s, tr, truth_of(&tr_all->second, tr_all->have_second, f));
-        score_joints(acc, &s, tr, truth_yaw_deg(tr, tt->gravity), o->per_frame, wrong, jf);
+        const cub_synth_truth_frame *other = truth_of(&tr_all->second, tr_all->have_second, f);
+        char note[128];
+        identity_note(&s, tr, other, score_identity(acc, &s, tr, other), note, sizeof note);
+        score_joints(acc, &s, tr, truth_yaw_deg(tr, tt->gravity), o->per_frame, note, jf);
     }
     free(mem);
     free(fbytes);

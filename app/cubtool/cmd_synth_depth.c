@@ -34,7 +34,8 @@ static void help(FILE *f)
                "  --write-track FILE   write the performance of --clip / --sequence as a joint\n"
                "                       track instead of rendering it (--out not needed)\n"
                "  --track-unit MM      the track's resolution [0.25]\n"
-               "  --frames N           at most N frames [the whole clip or sequence]\n"
+               "  --frames N           at most N frames of the performance [the whole clip or\n"
+               "                       sequence] (after the prelude's)\n"
                "  --fps F              frames per second [30]\n"
                "\n"
                "the child:\n"
@@ -73,6 +74,12 @@ static void help(FILE *f)
                "                       cross: 0, -700; sibling: +-650 from the child's start,\n"
                "                       100]\n"
                "  --second-speed MM_S  walk-in and cross walk this fast [1000]\n"
+               "  --prelude S          S seconds of the room before the child, as the box sees\n"
+               "                       it in attract mode before START: the child not there,\n"
+               "                       the second person standing (behind, sibling) or yet to\n"
+               "                       walk in or cross; then the child is at its start spot\n"
+               "                       and the performance begins (its clock starts then).\n"
+               "                       Those frames have no line in the truth files [0]\n"
                "  --clean              no projector shadow, edge noise or holes\n"
                "                       (quantisation and the 0.5-4 m range stay)\n"
                "  --seed N             noise seed [1]; the same seed gives the same bytes\n"
@@ -186,6 +193,8 @@ static int parse_opt(opts *o, int argc, char **argv, int *i)
         o->d.second_dz_mm = (float)x;
     else if (!strcmp(a, "--second-speed") && (ok = num(a, v, 100, 5000, &x)))
         o->d.second_speed_mm_s = (float)x;
+    else if (!strcmp(a, "--prelude") && (ok = num(a, v, 0, 600, &x)))
+        o->d.prelude_s = (float)x;
     else {
         used = 0;
         if (!strcmp(a, "--mirror"))
@@ -240,6 +249,11 @@ static int check_opts(const opts *o)
     if (sources != 1 || !(o->out || o->write_track) || (o->write_track && o->track)) {
         fprintf(stderr, "synth-depth: give one of --clip / --sequence / --track, and --out "
                         "(or --write-track with --clip / --sequence) (see --help)\n");
+        return 0;
+    }
+    if (o->write_track && o->d.prelude_s > 0) {
+        fprintf(stderr, "synth-depth: --prelude renders the room before the child; a joint track "
+                        "(--write-track) has no room: leave one out\n");
         return 0;
     }
     if (o->d.second_mode && !o->d.second_clip) {
@@ -304,7 +318,8 @@ int cub_cmd_synth_depth(int argc, char **argv)
         return rc;
     }
     int frames = cub_synth_frame_count(s);
-    if (o.frames > 0 && o.frames < frames) frames = o.frames;
+    if (o.frames > 0 && o.frames < frames - cub_synth_prelude_frames(s))
+        frames = cub_synth_prelude_frames(s) + o.frames;
     struct timespec t0, t1;
     cub_diag diag;
     clock_gettime(CLOCK_MONOTONIC, &t0);

@@ -171,8 +171,10 @@ cub_err cub_synth_write_dump(cub_synth *s, const char *dir, int frames, int flag
             err = io_fail(diag, path, "cannot write");
             break;
         }
-        write_truth_frame(truth, &t);
-        if (second && cub_synth_second_truth(s, &t) == CUB_OK) write_truth_frame(second, &t);
+        if (i >= cub_synth_prelude_frames(s)) { /* the prelude has no child: no truth */
+            write_truth_frame(truth, &t);
+            if (second && cub_synth_second_truth(s, &t) == CUB_OK) write_truth_frame(second, &t);
+        }
         if (verbose && (i % 30 == 29 || i + 1 == frames))
             fprintf(stderr, "\rsynth-depth: frame %d/%d", i + 1, frames);
     }

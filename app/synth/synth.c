@@ -33,6 +33,7 @@ struct cub_synth {
     seg *segs;
     int nseg;
     double total_s;
+    int prelude;                  /* frames before the child's (desc.prelude_s) */
     seg second;
     int has_second;
     float start_x, start_z;   /* the child's hips at the start (player frame): a sibling's spot */
@@ -272,10 +273,12 @@ static int second_spot(const cub_synth *s, double t_s, float *x, float *dz, floa
     return 0;
 }
 
-static void second_points(const cub_synth *s, double t_s, cub_fv3 q[SP_COUNT])
+/* At t_s on the performance's clock; its own clip at clip_s (>= 0: it
+ * plays through the prelude too, where t_s < 0). */
+static void second_points(const cub_synth *s, double t_s, double clip_s, cub_fv3 q[SP_COUNT])
 {
     const seg *g = &s->second;
-    segment_points(g, g->from_s + fmod(t_s, g->dur_s), q);
+    segment_points(g, g->from_s + fmod(clip_s, g->dur_s), q);
     float x, dz, yaw;
     int driven = second_spot(s, t_s, &x, &dz, &yaw);
     if (yaw != 0) turn_about(q, q[CUB_KJ_HIP_CENTRE].x, q[CUB_KJ_HIP_CENTRE].z, yaw);
@@ -369,6 +372,7 @@ cub_err cub_synth_open(const cub_synth_desc *desc, const cub_synth_segment *segs
         s->total_s += s->segs[i].dur_s;
     }
     if (s->d.track) s->total_s = s->d.track->frame_count / (double)s->d.track->fps;
+    if (s->d.prelude_s > 0) s->prelude = (int)lround(s->d.prelude_s * s->d.fps);
     if (!err && draw_yaws(s)) err = CUB_ERR_NOMEM;
     if (!err && (s->nseg > 0 || s->d.track)) {
         cub_fv3 p[SP_COUNT];
@@ -418,7 +422,12 @@ float synth_fps(const cub_synth *s)
 
 int cub_synth_frame_count(const cub_synth *s)
 {
-    return (int)(s->total_s * s->d.fps + 1e-6);
+    return s->prelude + (int)(s->total_s * s->d.fps + 1e-6);
+}
+
+int cub_synth_prelude_frames(const cub_synth *s)
+{
+    return s ? s->prelude : 0;
 }
 
 /* The truth of a body (shape, owner) posed by pts, seen in the frame last
@@ -452,17 +461,18 @@ cub_err cub_synth_render(cub_synth *s, int frame, uint16_t *raw, cub_synth_truth
     if (!s || !raw || frame < 0) return CUB_ERR_ARG;
     synth_prim prims[MAX_PRIMS];
     int n = 0;
-    double t_s = frame / (double)s->d.fps;
+    double t_s = (frame - s->prelude) / (double)s->d.fps;
     cub_fv3 pts[SP_COUNT];
     s->last_frame = frame;
-    if (s->nseg > 0 || s->d.track) {
+    int child = (s->nseg > 0 || s->d.track) && frame >= s->prelude;
+    if (child) {
         player_points(s, t_s, pts);
         for (int j = 0; j < SP_COUNT; j++)
             pts[j] = to_world(pts[j], 0, s->d.distance_mm);
         n += synth_body_prims(&s->shape, pts, OWNER_PLAYER, prims + n);
     }
     if (s->has_second) {
-        second_points(s, t_s, s->second_pts);
+        second_points(s, t_s, frame / (double)s->d.fps, s->second_pts);
         n += synth_body_prims(&s->second_shape, s->second_pts, OWNER_SECOND, prims + n);
     }
     memcpy(s->depth, s->room_depth, NPIX * sizeof(float));
@@ -479,7 +489,7 @@ cub_err cub_synth_render(cub_synth *s, int frame, uint16_t *raw, cub_synth_truth
         memset(truth, 0, sizeof(*truth));
         truth->frame = frame;
         cub_synth_frame_name(frame, s->d.fps, NULL, 0, &truth->t_s, &truth->ts);
-        if (s->nseg > 0 || s->d.track) truth_of(s, pts, &s->shape, OWNER_PLAYER, truth);
+        if (child) truth_of(s, pts, &s->shape, OWNER_PLAYER, truth);
     }
     if (depth_mm) memcpy(depth_mm, s->depth, NPIX * sizeof(float));
     if (owner) memcpy(owner, s->owner, NPIX);

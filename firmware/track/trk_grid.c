@@ -527,6 +527,33 @@ static int64_t person_score(const cub_tracker *t, trk_p3 pred, trk_p3 cc)
     return d >= 0 ? d : ID_FAR + newcomer_score(cc);
 }
 
+/* Blob k is the player merged with someone taller who stood beside or
+ * before it last frame (a parent crossing close before the child, touching
+ * it): its top stands ID_TALLER_MM above the player's highest of late
+ * (raised hands included) and SPLIT_MIN_CELLS of its cells were another
+ * person's last frame. Alone, a child who jumps with its arms up is never
+ * this (no cells of anybody else). */
+#define ID_TALLER_MM 200
+#define ID_TOP_FALL 150 /* mm/s: the player's highest point is forgotten this fast */
+static bool merged_with_taller(const cub_tracker *t, int32_t k)
+{
+    if (t->comps[k].hmax <= t->top_mm + ID_TALLER_MM) return false;
+    int32_t other = 0;
+    for (int32_t i = 0; i < TRK_CELLS; i++) {
+        uint8_t w = t->label[i] == k ? t->who_prev[i] : 0;
+        other += w == TRK_WHO_OTHER || w == TRK_WHO_NEAR;
+    }
+    return other >= SPLIT_MIN_CELLS;
+}
+
+/* The player's highest point: this frame's blob's top, or the one of late
+ * falling at ID_TOP_FALL. */
+static void update_top(cub_tracker *t, int32_t blob, bool same, int32_t dt_us)
+{
+    int32_t top = t->comps[blob].hmax, kept = t->top_mm - per_s(ID_TOP_FALL, dt_us);
+    t->top_mm = same && kept > top ? kept : top;
+}
+
 /* Someone stands before the player's columns of last sighting: the
  * player may be hidden but for pieces. */
 static bool someone_in_front(const cub_tracker *t, trk_p3 pred)
@@ -598,9 +625,11 @@ static int32_t choose_blob(cub_tracker *t, bool *same, bool *hidden)
     for (int32_t k = 0; k < t->ncomps; k++) {
         if (!person_like(&t->comps[k])) continue;
         int64_t score = person_score(t, pred, comp_centre(&t->comps[k]));
-        /* not while the player waits to be chosen afresh: the blobs of
-         * the frame the room became known are not the frame before's */
-        if (t->tracked && t->room_known != 1 && score >= 0 && score < ID_FAR && was_someone_else(t, k))
+        /* not while the player waits to be chosen afresh (the room just
+         * known, START): the blobs then are not the frame before's */
+        bool afresh = t->room_known == 1 || t->start_afresh;
+        if (t->tracked && !afresh && score >= 0 && score < ID_FAR &&
+            (was_someone_else(t, k) || merged_with_taller(t, k)))
             someone_else[k] = true, score = ID_FAR + newcomer_score(comp_centre(&t->comps[k]));
         if (score < best_score) best_score = score, best = k;
     }
@@ -654,6 +683,25 @@ static void track_update(cub_tracker *t, int32_t blob, bool same, bool hidden)
     if (!hidden) t->seen_gx0 = t->comps[blob].gx0, t->seen_gx1 = t->comps[blob].gx1;
 }
 
+/* START (cub_track_choose_afresh): the nearest, most central person,
+ * whoever the track followed before; the choice waits for a frame with
+ * someone person-like. */
+static int32_t start_choice(cub_tracker *t, int32_t best, bool *same)
+{
+    int32_t fresh = first_choice(t);
+    if (fresh < 0) return best;
+    t->start_afresh = false;
+    if (fresh != best) *same = false;
+    return fresh;
+}
+
+cub_err cub_track_choose_afresh(cub_tracker *t)
+{
+    if (!t) return CUB_ERR_ARG;
+    t->start_afresh = true;
+    return CUB_OK;
+}
+
 int32_t trk_pick_player(cub_tracker *t)
 {
     if (t->tracked && unseen_us(t) > ID_HOLD_US && t->lost_frames > 0) t->tracked = false;
@@ -668,6 +716,7 @@ int32_t trk_pick_player(cub_tracker *t)
         if (fresh >= 0 && fresh != best) best = fresh, same = false;
         t->room_known = 2;
     }
+    if (t->start_afresh) best = start_choice(t, best, &same);
     memset(t->mask, 0, sizeof t->mask);
     if (best < 0) {
         remember_who(t); /* the others, still */
@@ -680,6 +729,7 @@ int32_t trk_pick_player(cub_tracker *t)
         t->stature_mm = t->neck_drop_mm = 0;
     }
     t->tracked = true;
+    update_top(t, best, same, unseen_us(t));
     track_update(t, best, same, hidden);
     t->in_play = (same && t->in_play) || t->centre.z <= TRK_FAR_MM;
     for (int32_t i = 0; i < TRK_CELLS; i++)

@@ -68,6 +68,7 @@ struct cub_tracker {
     uint16_t bg_player_age[TRK_CELLS]; /* since the player covered the cell */
     int32_t bg_resets, bg_run_us; /* times forgotten; time learnt since */
     uint8_t room_known; /* 0 not yet, 1 known and the player not chosen afresh yet, 2 chosen */
+    bool start_afresh;  /* cub_track_choose_afresh: the next frame chooses the player afresh */
     int32_t dist0[TRK_CELLS], parent0[TRK_CELLS];
     int32_t distx[TRK_CELLS];
     int32_t dist_sh[2][TRK_BLOCKS]; /* coarse, along the surface from each shoulder (left, right) */
@@ -88,6 +89,7 @@ struct cub_tracker {
     trk_p3 centre, vel; /* where the player was last seen (mm) and its velocity (mm/s) */
     int64_t seen_us;    /* when */
     int32_t seen_gx0, seen_gx1; /* and its blob's columns on the grid */
+    int32_t top_mm; /* the player's highest point of late (mm along up): merged_with_taller */
     int32_t stature_mm;
     int32_t neck_drop_mm; /* head top to the neck base (smoothed), 0 unknown */
     int32_t head_cell, stature_seen_mm; /* this frame's, for tools */

@@ -94,6 +94,14 @@ typedef struct cub_synth_desc {
      * from the image's centre, 100]; WALK_IN walks to this spot */
     float second_x_mm, second_dz_mm;
     float second_speed_mm_s;         /* WALK_IN and CROSS walk this fast [1000] */
+    /* The room before the child: this many seconds of frames first with
+     * the child not there (the furniture, and the second person as its
+     * mode has it: standing, or yet to walk in or cross), as the box sees
+     * the room in attract mode before START; then the child is at its start
+     * spot and the performance begins. The performance's clock (turning,
+     * walk-in, crossing) starts after it; the second person's own clip
+     * plays through it. The truths have no line for its frames. [0] */
+    float prelude_s;
 } cub_synth_desc;
 
 typedef struct cub_synth cub_synth;
@@ -114,6 +122,9 @@ cub_err cub_synth_open(const cub_synth_desc *desc, const cub_synth_segment *segs
 void cub_synth_close(cub_synth *s);
 /* Frames the performance lasts at desc->fps (segments back to back). */
 int cub_synth_frame_count(const cub_synth *s);
+/* Of those, the prelude's (desc.prelude_s): the first frames, the child not
+ * in them; cub_synth_write_dump writes no truth for them. */
+int cub_synth_prelude_frames(const cub_synth *s);
 /* Gravity (down) in camera space, length 1000. */
 void cub_synth_gravity(const cub_synth *s, float g[3]);
 /* Render frame i: raw[640*480] (2047 = no reading). Optional outputs

@@ -68,6 +68,12 @@ cub_err cub_track_init(const cub_track_desc *desc, void *mem, size_t mem_size, c
  * error. CUB_ERR_ARG only for NULL pointers. */
 cub_err cub_track_frame(cub_tracker *t, const uint16_t *raw, int64_t t_us,
                         const cub_vec3 *gravity_mm, cub_track_skeleton *out);
+/* START: the next frame chooses the player afresh, as a box that has just
+ * started does (the nearest, most central person: the child who pressed
+ * or clapped stands before the box), not whoever the track followed in
+ * attract mode (a parent standing there, a plant). The track then follows
+ * that player as before. CUB_ERR_ARG for NULL. */
+cub_err cub_track_choose_afresh(cub_tracker *t);
 
 /* Depth of a raw value in Q16.16 mm (step 1/8 mm); 0 = no usable reading
  * (2047, values above 2047, or farther than 8191 mm). */
