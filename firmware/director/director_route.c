@@ -181,7 +181,7 @@ void director_request(cub_director *d, const cub_coach_action *a, int64_t t_us)
     if (!err) {
         cub_log_event(dlog(d), t_us, "bridge", "plan", "to=%s steps=%d wait_frames=%d via=%s",
                       director_clip_name(d, a->clip), plan.step_count, plan.wait_frames,
-                      plan_routed(&plan)       ? "route"
+                      plan_routed(&plan)    ? "route"
                       : plan.step_count > 1 ? "tween"
                                             : "direct");
         return;
