@@ -518,6 +518,13 @@ cub_err cub_bridge_player_set_start_frames(cub_bridge_player *p, int start_frame
     return CUB_OK;
 }
 
+cub_err cub_bridge_player_set_no_routes(cub_bridge_player *p, int no_routes)
+{
+    if (!p || (no_routes != 0 && no_routes != 1)) return CUB_ERR_ARG;
+    p->desc.no_routes = no_routes;
+    return CUB_OK;
+}
+
 cub_err cub_bridge_player_set_reach_frames(cub_bridge_player *p, int reach_frames)
 {
     if (!p || reach_frames < 0) return CUB_ERR_ARG;

@@ -10,12 +10,17 @@
 #define SYNC_BOUND_MAX ((cub_q16)(CUB_Q16_ONE * 9 / 10))
 #define RATE_BASELINE_US 1000000 /* measure over at least 1 s */
 
+cub_q16 cub_coach_sync_bound(cub_q16 bound_q16)
+{
+    if (bound_q16 <= 0) return SYNC_BOUND_DEFAULT;
+    return bound_q16 > SYNC_BOUND_MAX ? SYNC_BOUND_MAX : bound_q16; /* never stand still */
+}
+
 cub_q16 cub_coach_sync_speed(int32_t tag_ms, int32_t music_ms, int32_t span_ms, cub_q16 rate_q16,
                              cub_q16 bound_q16)
 {
     if (rate_q16 <= 0) rate_q16 = CUB_Q16_ONE;
-    if (bound_q16 <= 0) bound_q16 = SYNC_BOUND_DEFAULT;
-    if (bound_q16 > SYNC_BOUND_MAX) bound_q16 = SYNC_BOUND_MAX; /* never stand still */
+    bound_q16 = cub_coach_sync_bound(bound_q16);
     const int64_t lo = CUB_Q16_ONE - bound_q16, hi = CUB_Q16_ONE + bound_q16;
     if (span_ms <= 0) return CUB_Q16_ONE;
     /* Song time the music still needs to reach the target tag. */

@@ -105,12 +105,9 @@ cub_err cub_director_init(cub_director *d, const cub_director_desc *desc, void *
     d->desc = *desc;
     if (!d->desc.start_frames) d->desc.start_frames = DEFAULT_START_FRAMES;
     if (!d->desc.react_frames) d->desc.react_frames = CUB_DIRECTOR_REACT_FRAMES;
-    /* No searched routes (docs/join.md, "Routes"): a route plays its C
-     * before the move, and a move must begin on its music tag. With them
-     * the old_macdonald sync scenario entered squat through sway's route
-     * 9 frames off its tag (limit 2): the lead the coach plans from sway's
-     * end (733 ms) and the plan it gets do not agree yet. */
-    cub_bridge_player_desc pd = {.table = desc->table, .no_routes = 1};
+    /* Searched routes on: director_request allows them per request where
+     * the leads were planned through them (director_route.c). */
+    cub_bridge_player_desc pd = {.table = desc->table};
     cub_err e = cub_bridge_player_init(&d->player, &pd, mem, mem_size);
     if (!e) e = start_coach(d, desc, now_us);
     if (e) return e;

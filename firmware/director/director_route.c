@@ -147,17 +147,43 @@ static void judge_clip(cub_director *d, const cub_coach_action *a, int64_t t_us,
                       a->rep, (int)(r.key_us / 1000), (int)(play_us / 1000));
 }
 
+static bool after_gap(const cub_director *d, int m);
+
+/* Whether this request may take the table's searched route: where the
+ * timing the coach plays to was planned through it. A move asked for at
+ * the end of the one before: when its lead_ms was (route_in). A move
+ * after a gap: its entry lead is planned from where the player stands,
+ * routes and all. A resume into a running move has no lead: never.
+ * Anything else is not timed to the music. */
+static bool routes_allowed(const cub_director *d, const cub_coach_action *a)
+{
+    const int m = a->move;
+    const bool entry = a->reason == CUB_COACH_WHY_MOVE || a->reason == CUB_COACH_WHY_RESUME;
+    if (!entry || m < 0 || m >= d->desc.coach.move_count) return true;
+    if (a->rep == 0 && after_gap(d, m)) return true;
+    return a->reason == CUB_COACH_WHY_MOVE && d->route_in[m];
+}
+
+static bool plan_routed(const cub_bridge_plan *plan)
+{
+    return plan->step_count > 0 && plan->step[0].via == CUB_BRIDGE_ROUTE;
+}
+
 void director_request(cub_director *d, const cub_coach_action *a, int64_t t_us)
 {
     cub_bridge_player_set_start_frames(&d->player, start_frames(d, a));
     d->played_clip = d->requested_clip = -1;
     cub_bridge_plan plan;
+    cub_bridge_player_set_no_routes(&d->player, !routes_allowed(d, a));
     cub_err err = plan_correction(d, a, &plan, t_us);
+    cub_bridge_player_set_no_routes(&d->player, 0); /* the leads' previews take them */
     judge_clip(d, a, t_us, err ? NULL : &plan);
     if (!err) {
         cub_log_event(dlog(d), t_us, "bridge", "plan", "to=%s steps=%d wait_frames=%d via=%s",
                       director_clip_name(d, a->clip), plan.step_count, plan.wait_frames,
-                      plan.step_count > 1 ? "tween" : "direct");
+                      plan_routed(&plan)    ? "route"
+                      : plan.step_count > 1 ? "tween"
+                                            : "direct");
         return;
     }
     /* No chain of bridge frames leads there: cut, and say so. */
@@ -184,21 +210,59 @@ static int32_t route_lead_ms(const cub_director *d, const cub_bridge_plan *plan,
 }
 
 /* The lead of a route into move `to` from `q` (its from-part), or 0 when
- * there is none. */
-static int32_t lead_from(cub_director *d, cub_bridge_query q, int to)
+ * there is none; *routed (may be NULL): the plan is a searched route. */
+static int32_t lead_from(cub_director *d, cub_bridge_query q, int to, bool *routed)
 {
     q.to_clip = d->moves[to].clip;
     q.start_frames = d->desc.start_frames;
     cub_bridge_plan plan;
-    return cub_bridge_player_preview(&d->player, &q, &plan) ? 0 : route_lead_ms(d, &plan, to);
+    cub_err e = cub_bridge_player_preview(&d->player, &q, &plan);
+    if (routed) *routed = !e && plan_routed(&plan);
+    return e ? 0 : route_lead_ms(d, &plan, to);
 }
 
 /* From the last frame of clip `from` (where a repetition ends). */
-static int32_t lead_from_end(cub_director *d, int from, int to)
+static int32_t lead_from_end(cub_director *d, int from, int to, int no_routes, bool *routed)
 {
     int frames = clip_of(d, from)->frame_count;
-    cub_bridge_query q = {.from_clip = from, .pos_q16 = (int64_t)(frames - 1) << 16};
-    return lead_from(d, q, to);
+    cub_bridge_query q = {.from_clip = from, .pos_q16 = (int64_t)(frames - 1) << 16,
+                          .no_routes = no_routes};
+    return lead_from(d, q, to, routed);
+}
+
+/* What the last repetition of move m can give a route's frames: it ends
+ * early by lead at rep / (rep - lead) of its speed. Half the coach's sync
+ * bound for that; the other half follows the music's clock (a card 5 %
+ * off) and what the repetition began late. */
+static int32_t route_fit_ms(const cub_director *d, int m)
+{
+    const cub_coach_move *mv = &d->moves[m];
+    const int64_t half = cub_coach_sync_bound(d->desc.coach.sync_bound_q16) / 2;
+    return (int32_t)((int64_t)mv->span_ms / mv->reps * half / (CUB_Q16_ONE + half));
+}
+
+static int32_t abs32(int32_t v)
+{
+    return v < 0 ? -v : v;
+}
+
+/* Move i's lead_ms from the end of move i - 1: through the table's route
+ * when there is one and the music has time for it (route_fit_ms, or it
+ * is no longer than the lead without it), else without routes. The
+ * request at that end is then planned the same way (route_in). */
+static int32_t move_lead_ms(cub_director *d, int i)
+{
+    const int from = d->moves[i - 1].clip;
+    bool routed = false;
+    const int32_t lead = lead_from_end(d, from, i, 0, &routed);
+    d->route_in[i] = routed;
+    if (!routed) return lead;
+    const int32_t plain = lead_from_end(d, from, i, 1, NULL), fit = route_fit_ms(d, i - 1);
+    d->route_in[i] = abs32(lead) <= fit || abs32(lead) <= abs32(plain);
+    cub_log_event(dlog(d), d->now_us, "music", "route",
+                  "move=%d from=%s lead_ms=%d fit_ms=%d plain_ms=%d taken=%d", i,
+                  director_clip_name(d, from), lead, fit, plain, d->route_in[i]);
+    return d->route_in[i] ? lead : plain;
 }
 
 /* A repetition, and a move that follows the one before at once, is asked
@@ -209,8 +273,9 @@ void director_plan_leads(cub_director *d)
 {
     for (int i = 0; i < d->desc.coach.move_count; i++) {
         cub_coach_move *mv = &d->moves[i];
-        mv->rep_lead_ms = lead_from_end(d, mv->clip, i);
-        mv->lead_ms = i > 0 ? lead_from_end(d, d->moves[i - 1].clip, i) : 0;
+        /* A repetition has no searched route (a route joins two clips). */
+        mv->rep_lead_ms = lead_from_end(d, mv->clip, i, 0, NULL);
+        mv->lead_ms = i > 0 ? move_lead_ms(d, i) : 0;
         cub_log_event(dlog(d), d->now_us, "music", "lead",
                       "move=%d clip=%s lead_ms=%d rep_lead_ms=%d", i,
                       director_clip_name(d, mv->clip), mv->lead_ms, mv->rep_lead_ms);
@@ -246,7 +311,7 @@ void director_entry_leads(cub_director *d)
     d->lead_loop = p->loop;
     cub_bridge_query here = {.from_clip = -1};
     for (int m = 0; m < d->desc.coach.move_count; m++)
-        if (after_gap(d, m)) d->moves[m].entry_lead_ms = lead_from(d, here, m);
+        if (after_gap(d, m)) d->moves[m].entry_lead_ms = lead_from(d, here, m, NULL);
 }
 
 /* ---- the player's time ----------------------------------------------------- */

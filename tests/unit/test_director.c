@@ -387,6 +387,77 @@ static void test_move_after_a_gap_begins_early_by_its_entry_lead(void **s)
     assert_int_equal(planned_entry()->to_clip, C_SWAY);
 }
 
+/* ---- searched routes -------------------------------------------------------- */
+
+/* clap then sway at once, 2 s repetitions (a route's fit: 139 ms), and a
+ * searched route clap@39 (0.45) -> idle@18..18+len (the ramp to 0.9) ->
+ * sway@0 (0.9): len frames of the idle clip between the two moves. */
+static void start_routed(int len)
+{
+    static cub_coach_move mv[2];
+    static cub_bridge_route route;
+    mv[0] = (cub_coach_move){.clip = C_CLAP, .reps = 2, .tag_ms = 0, .span_ms = 4000};
+    mv[1] = (cub_coach_move){.clip = C_SWAY, .reps = 2, .tag_ms = 4000, .span_ms = 4000};
+    build_table(v_high);
+    route = (cub_bridge_route){.from = C_CLAP, .to = C_SWAY, .via = C_IDLE, .a = FRAMES - 1,
+                               .in = 18, .out = (int16_t)(18 + len), .b = 0};
+    assert_int_equal(cub_bridge_table_set_routes(&F.table, &route, 1), CUB_OK);
+    cub_director_desc d = make_desc(NULL);
+    d.keys = NULL;
+    d.coach.moves = mv;
+    d.coach.move_count = 2;
+    assert_int_equal(cub_director_init(&dir, &d, F.mem, sizeof F.mem, 0), CUB_OK);
+}
+
+/* The coach asks for sway when clap's last repetition ends (its last
+ * frame): the plan the player makes then, as a lead. */
+static int32_t lead_at_the_request(cub_bridge_plan *plan)
+{
+    assert_int_equal(cub_bridge_player_start(&dir.player, C_CLAP, FRAMES - 1, 0, 0), CUB_OK);
+    const cub_coach_action a = {.kind = CUB_COACH_ACT_CLIP, .reason = CUB_COACH_WHY_MOVE,
+                                .clip = C_SWAY, .move = 1, .rep = 0};
+    director_request(&dir, &a, 0);
+    *plan = dir.player.plan;
+    int to = plan->step[plan->step_count - 1].to_frame;
+    return (int32_t)((int64_t)plan->total_frames * FRAME_NS / 1000000 -
+                     (int64_t)2000 * to / (FRAMES - 1));
+}
+
+/* A short route fits what clap's last repetition can give (1.075 times
+ * faster ends it 139 ms early): the lead is planned through it and the
+ * request takes it, the same frames. */
+static void test_a_route_the_music_has_time_for_is_taken(void **s)
+{
+    (void)s;
+    start_routed(4);
+    assert_true(dir.route_in[1]);
+    assert_int_equal(dir.moves[1].lead_ms, 4 * FRAME_NS / 1000000);
+    assert_true(logged("music route move=1 from=clap lead_ms=133 fit_ms=139"));
+    cub_bridge_plan plan;
+    assert_int_equal(lead_at_the_request(&plan), dir.moves[1].lead_ms);
+    assert_int_equal(plan.step[0].via, CUB_BRIDGE_ROUTE);
+    assert_true(logged("via=route"));
+}
+
+/* A route of 20 frames (667 ms) would need clap's last repetition 1.5
+ * times faster: the lead is planned without it, and so is the request. */
+static void test_a_route_too_long_for_the_music_is_not_taken(void **s)
+{
+    (void)s;
+    start_routed(20);
+    assert_false(dir.route_in[1]);
+    const cub_bridge_query plain = {.from_clip = C_CLAP, .pos_q16 = (FRAMES - 1) << 16,
+                                    .no_routes = 1};
+    const int32_t lead = expected_lead(plain, 1);
+    assert_true(lead < 667);
+    assert_int_equal(dir.moves[1].lead_ms, lead);
+    cub_bridge_plan plan;
+    assert_int_equal(lead_at_the_request(&plan), lead);
+    assert_true(plan.step[0].via != CUB_BRIDGE_ROUTE);
+    assert_true(logged("taken=0"));
+    assert_false(dir.player.desc.no_routes); /* only that request went without */
+}
+
 /* ---- the judge's windows ----------------------------------------------------- */
 
 static cub_judge *judge(void)
@@ -645,6 +716,8 @@ int main(void)
         cmocka_unit_test(test_correction_enters_anywhere_in_the_front_half),
         cmocka_unit_test(test_leads_are_the_routes_from_the_last_frame),
         cmocka_unit_test(test_move_after_a_gap_begins_early_by_its_entry_lead),
+        cmocka_unit_test(test_a_route_the_music_has_time_for_is_taken),
+        cmocka_unit_test(test_a_route_too_long_for_the_music_is_not_taken),
         cmocka_unit_test(test_repetition_window_spans_the_clip_at_its_speed_and_a_beat),
         cmocka_unit_test(test_other_requests_close_the_windows),
         cmocka_unit_test(test_demonstration_is_watched_the_attempt_judged),

@@ -444,6 +444,10 @@ cub_err cub_bridge_player_set_start_frames(cub_bridge_player *p, int start_frame
 /* How soon later requests must enter their clip (cub_bridge_query.
  * reach_frames; 0 = when the threshold allows). CUB_ERR_ARG if < 0. */
 cub_err cub_bridge_player_set_reach_frames(cub_bridge_player *p, int reach_frames);
+/* Whether later requests may take the table's searched routes
+ * (cub_bridge_query.no_routes): the director allows them only where the
+ * music has time for the route's frames. CUB_ERR_ARG unless 0 or 1. */
+cub_err cub_bridge_player_set_no_routes(cub_bridge_player *p, int no_routes);
 /* Move time on by dt_us (>= 0): switch exactly at the planned frames,
  * report events into ev[max_ev] (count in *n_ev; events past max_ev are
  * dropped, the playback is not). */

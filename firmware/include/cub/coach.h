@@ -257,6 +257,9 @@ cub_err cub_coach_tick(cub_coach *c, int64_t now_us, int32_t music_ms);
  * 0.15; span_ms <= 0 gives 1.0; music already past the target gives 1+bound. */
 cub_q16 cub_coach_sync_speed(int32_t tag_ms, int32_t music_ms, int32_t span_ms, cub_q16 rate_q16,
                              cub_q16 bound_q16);
+/* The bound cub_coach_sync_speed applies for bound_q16: 0.15 for <= 0,
+ * at most 0.9 (the dance never stands still). */
+cub_q16 cub_coach_sync_bound(cub_q16 bound_q16);
 
 /* How long a child may be out of view mid-song before the song pauses and
  * the bear asks "Where are you?". The judge already waits a second of

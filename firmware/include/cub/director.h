@@ -33,6 +33,17 @@
  *   the move before (lead_ms) and of itself (rep_lead_ms), and before each
  *   coach call from where the player is now for a move after an intro or a
  *   gap (entry_lead_ms).
+ * - Searched routes (the table's, docs/join.md "Routes") play their C
+ *   between the two moves, and that time must come out of the move
+ *   before: its last repetition ends early by the lead, at most 1 + the
+ *   coach's sync bound faster. A move that follows the one before at once
+ *   enters by its route only when the route's lead is within half of what
+ *   that bound can take from the repetition (the other half follows the
+ *   music's clock), or no longer than the lead without it; else its lead
+ *   and its request both go without routes (a `music route` line says
+ *   which). A move after a gap takes a route freely (the wait pays for it:
+ *   entry_lead_ms is planned with it); a resume, entered on the music with
+ *   no lead, never does.
  * - Windows: a repetition of a move opens a judge window from its request
  *   for as long as its clip plays at its speed, plus one beat for a late
  *   child; anything else the coach asks for closes the open ones. Each
@@ -108,6 +119,9 @@ typedef struct cub_director {
     cub_coach coach;
     cub_bridge_player player;
     cub_coach_move moves[CUB_DIRECTOR_MAX_MOVES]; /* the coach's, with their leads */
+    bool route_in[CUB_DIRECTOR_MAX_MOVES]; /* the move, asked for at the end of the one
+                                              before, may enter by the table's searched
+                                              route: its lead_ms was planned through it */
     int64_t now_us;                 /* where the player's time stands */
     int played_clip, requested_clip; /* a correction played in place of another */
     bool music_on, music_paused;    /* as asked of the app */
