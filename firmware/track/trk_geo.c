@@ -74,13 +74,19 @@ static int32_t approx_len(int32_t dx, int32_t dy, int32_t dz)
 #define TRK_JUMP_MM 40
 #define TRK_JUMP_COST 4
 
+/* A 4-ary heap of (distance << 32 | cell): shallower than a binary one,
+ * so a pop reads fewer levels. The keys are unique (a cell is pushed again
+ * only at a strictly smaller distance), so any exact heap pops them in the
+ * same order: the shape of the heap never changes the output. */
+#define HEAP_ARITY 4
+
 static void heap_push(cub_tracker *t, int32_t *n, uint32_t key, int32_t cell)
 {
     if (*n >= TRK_HEAP_CAP) return;
     uint64_t v = ((uint64_t)key << 32) | (uint32_t)cell;
     int32_t i = (*n)++;
     while (i > 0) {
-        int32_t p = (i - 1) / 2;
+        int32_t p = (i - 1) / HEAP_ARITY;
         if (t->heap[p] <= v) break;
         t->heap[i] = t->heap[p];
         i = p;
@@ -88,15 +94,24 @@ static void heap_push(cub_tracker *t, int32_t *n, uint32_t key, int32_t cell)
     t->heap[i] = v;
 }
 
+/* The smallest of i's children, -1 when it has none. */
+static int32_t heap_min_child(const uint64_t *h, int32_t i, int32_t n)
+{
+    int32_t c = HEAP_ARITY * i + 1, end = c + HEAP_ARITY < n ? c + HEAP_ARITY : n;
+    if (c >= n) return -1;
+    int32_t m = c;
+    for (c++; c < end; c++)
+        if (h[c] < h[m]) m = c;
+    return m;
+}
+
 static uint64_t heap_pop(cub_tracker *t, int32_t *n)
 {
     uint64_t top = t->heap[0], last = t->heap[--(*n)];
     int32_t i = 0;
     for (;;) {
-        int32_t c = 2 * i + 1;
-        if (c >= *n) break;
-        if (c + 1 < *n && t->heap[c + 1] < t->heap[c]) c++;
-        if (t->heap[c] >= last) break;
+        int32_t c = heap_min_child(t->heap, i, *n);
+        if (c < 0 || t->heap[c] >= last) break;
         t->heap[i] = t->heap[c];
         i = c;
     }
@@ -276,7 +291,8 @@ int32_t trk_extrema(cub_tracker *t, int32_t root, int32_t min_mm, int32_t *out, 
         int32_t best = farthest(t, box, min_mm);
         if (best < 0) break;
         out[n++] = best;
-        trk_geodesic(t, t->distx, NULL, best);
+        /* the distances to the last extremity are never read */
+        if (n < max_out) trk_geodesic(t, t->distx, NULL, best);
     }
     return n;
 }
