@@ -122,37 +122,71 @@ static uint64_t heap_pop(cub_tracker *t, int32_t *n)
     return top;
 }
 
-/* Dijkstra over the mask from whatever the heap holds, lowering dist
- * where it improves (so repeated runs give the distance to the nearest
- * source). */
-static void run_heap(cub_tracker *t, int32_t *dist, int32_t *parent, int32_t n)
+/* The step between two of the player's neighbouring cells i and j: its 3D
+ * length, and a depth jump between them is mostly an edge (a hand or
+ * forearm lying before the chest), not surface: crossing it costs extra,
+ * so the hand stays far along its own arm. At most about 44 000 (depths
+ * 500-8191 mm: a step under 13 300 mm, a jump under 30 700), so it fits
+ * in 16 bits below TRK_EDGE_NONE. */
+static int32_t step_cost(const cub_tracker *t, int32_t i, int32_t j)
 {
-    static const int8_t dgx[8] = {-1, 1, 0, 0, -1, 1, -1, 1}, dgy[8] = {0, 0, -1, 1, -1, -1, 1, 1};
-    while (n > 0) {
-        uint64_t v = heap_pop(t, &n);
-        int32_t i = (int32_t)(uint32_t)v, d = (int32_t)(v >> 32);
-        if (d > dist[i]) continue;
+    int32_t dz = trk_abs(t->z[j] - t->z[i]);
+    int32_t w = approx_len(t->x[j] - t->x[i], t->y[j] - t->y[i], t->z[j] - t->z[i]);
+    if (dz > TRK_JUMP_MM) w += TRK_JUMP_COST * (dz - TRK_JUMP_MM);
+    return w;
+}
+
+/* The four forward neighbours (right, down, down right, down left); the
+ * other four are these read backwards from the neighbour. */
+static const int32_t edge_off[4] = {1, TRK_GW, TRK_GW + 1, TRK_GW - 1};
+static const int8_t edge_dx[4] = {1, 0, 1, -1};
+
+/* Every edge of the mask's 8-connected grid once a frame, for the many
+ * searches over it (the root's, the bridges', one per extremity): each
+ * step is symmetric, so it is computed once instead of in every search
+ * from both ends. */
+static void edges_fill(cub_tracker *t)
+{
+    memset(t->edge_w, 0xFF, sizeof t->edge_w);
+    for (int32_t i = 0; i < TRK_CELLS; i++) {
+        if (!t->mask[i]) continue;
         int32_t gx = i % TRK_GW, gy = i / TRK_GW;
-        for (int k = 0; k < 8; k++) {
-            int32_t nx = gx + dgx[k], ny = gy + dgy[k];
-            if (!on_grid(nx, ny)) continue;
-            int32_t j = ny * TRK_GW + nx;
-            if (!t->mask[j]) continue;
-            int32_t dz = trk_abs(t->z[j] - t->z[i]);
-            int32_t nd = d + approx_len(t->x[j] - t->x[i], t->y[j] - t->y[i], t->z[j] - t->z[i]);
-            /* a depth jump between neighbours is mostly an edge (a hand or
-             * forearm lying before the chest), not surface: crossing it
-             * costs extra, so the hand stays far along its own arm */
-            if (dz > TRK_JUMP_MM) nd += TRK_JUMP_COST * (dz - TRK_JUMP_MM);
-            if (nd >= dist[j]) continue;
-            dist[j] = nd;
-            if (parent) parent[j] = i;
-            heap_push(t, &n, (uint32_t)nd, j);
+        for (int k = 0; k < 4; k++) {
+            int32_t nx = gx + edge_dx[k], ny = gy + (k > 0), j = i + edge_off[k];
+            if (on_grid(nx, ny) && t->mask[j]) t->edge_w[k][TRK_EDGE_PAD + i] = (uint16_t)step_cost(t, i, j);
         }
     }
 }
 
-void trk_geodesic(cub_tracker *t, int32_t *dist, int32_t *parent, int32_t src)
+/* j reached from i at distance nd: lowered when it improves. */
+static inline void relax(cub_tracker *t, int32_t *dist, int32_t *parent, int32_t *n, int32_t i, int32_t j,
+                         int32_t nd)
+{
+    if (nd >= dist[j]) return;
+    dist[j] = nd;
+    if (parent) parent[j] = i;
+    heap_push(t, n, (uint32_t)nd, j);
+}
+
+/* Dijkstra over the mask from whatever the heap holds, lowering dist
+ * where it improves (so repeated runs give the distance to the nearest
+ * source), along the edges of edges_fill. */
+static void run_heap(cub_tracker *t, int32_t *dist, int32_t *parent, int32_t n)
+{
+    while (n > 0) {
+        uint64_t v = heap_pop(t, &n);
+        int32_t i = (int32_t)(uint32_t)v, d = (int32_t)(v >> 32);
+        if (d > dist[i]) continue;
+        for (int k = 0; k < 4; k++) {
+            int32_t w = t->edge_w[k][TRK_EDGE_PAD + i], o = edge_off[k];
+            if (w != TRK_EDGE_NONE) relax(t, dist, parent, &n, i, i + o, d + w);
+            w = t->edge_w[k][TRK_EDGE_PAD + i - o];
+            if (w != TRK_EDGE_NONE) relax(t, dist, parent, &n, i, i - o, d + w);
+        }
+    }
+}
+
+static void geodesic(cub_tracker *t, int32_t *dist, int32_t *parent, int32_t src)
 {
     int32_t n = 0;
     dist[src] = 0;
@@ -284,7 +318,8 @@ static int32_t farthest(const cub_tracker *t, const int32_t box[4], int32_t best
 int32_t trk_extrema(cub_tracker *t, int32_t root, int32_t min_mm, int32_t *out, int32_t max_out)
 {
     for (int32_t i = 0; i < TRK_CELLS; i++) t->dist0[i] = TRK_INF;
-    trk_geodesic(t, t->dist0, t->parent0, root);
+    edges_fill(t);
+    geodesic(t, t->dist0, t->parent0, root);
     bridge_gaps(t, t->dist0, t->parent0);
     bridge_gaps(t, t->dist0, t->parent0);
     memcpy(t->distx, t->dist0, sizeof t->distx);
@@ -295,7 +330,7 @@ int32_t trk_extrema(cub_tracker *t, int32_t root, int32_t min_mm, int32_t *out, 
         if (best < 0) break;
         out[n++] = best;
         /* the distances to the last extremity are never read */
-        if (n < max_out) trk_geodesic(t, t->distx, NULL, best);
+        if (n < max_out) geodesic(t, t->distx, NULL, best);
     }
     return n;
 }

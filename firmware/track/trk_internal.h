@@ -21,6 +21,8 @@
 #define TRK_INF INT32_MAX
 #define TRK_PATH_STEPS 800 /* the most cells walked along a path (a guard, paths are shorter) */
 #define TRK_HEAP_CAP (TRK_CELLS * 4)
+#define TRK_EDGE_PAD (TRK_GW + 1)
+#define TRK_EDGE_NONE 0xFFFF
 /* grid cell (gx, gy) lies on the grid */
 static inline bool on_grid(int32_t gx, int32_t gy) { return gx >= 0 && gy >= 0 && gx < TRK_GW && gy < TRK_GH; }
 /* who_prev: the player's cell, another person-like blob's standing apart
@@ -73,6 +75,11 @@ struct cub_tracker {
     int32_t dist_sh[2][TRK_BLOCKS]; /* coarse, along the surface from each shoulder (left, right) */
     int32_t stack[TRK_CELLS];
     uint64_t heap[TRK_HEAP_CAP];
+    /* the geodesics' edge lengths, once a frame (trk_geo.c): per cell, to
+     * its right, lower, lower right and lower left neighbour; a row of
+     * TRK_EDGE_NONE before the first so a cell reads its upper ones at
+     * i - offset without a bounds check */
+    uint16_t edge_w[4][TRK_EDGE_PAD + TRK_CELLS];
     trk_comp comps[TRK_MAX_COMPS];
     int32_t ncomps;
     /* the ground: unit up vector (Q16.16) and the floor's height along it */
@@ -155,7 +162,6 @@ int32_t trk_pick_player(cub_tracker *t);
 
 /* trk_geo.c */
 int32_t trk_root_cell(cub_tracker *t);
-void trk_geodesic(cub_tracker *t, int32_t *dist, int32_t *parent, int32_t src);
 /* Plain surface lengths (no extra cost for depth jumps) from cell src on
  * the coarse grid of 2x2 blocks into dist_b (TRK_BLOCKS), a quarter of the
  * work: for rough decisions (how far a hand is from a shoulder). */
