@@ -136,15 +136,35 @@ static int32_t step_cost(const cub_tracker *t, int32_t i, int32_t j)
     return w;
 }
 
-/* The four forward neighbours (right, down, down right, down left); the
- * other four are these read backwards from the neighbour. */
-static const int32_t edge_off[4] = {1, TRK_GW, TRK_GW + 1, TRK_GW - 1};
-static const int8_t edge_dx[4] = {1, 0, 1, -1};
+/* A grid the searches run on: per node its four forward edges' lengths
+ * (TRK_EDGE_NONE: no edge), w[k][i] node i's (a row of none lies before
+ * node 0, so w[k][i - off[k]], the edge from the node behind, needs no
+ * bounds check), and the forward offsets (right, down, down right, down
+ * left). Each step is symmetric: computed once a frame instead of in
+ * every search from both ends. */
+typedef struct edge_grid {
+    const uint16_t *w[4];
+    int32_t off[4];
+} edge_grid;
 
-/* Every edge of the mask's 8-connected grid once a frame, for the many
- * searches over it (the root's, the bridges', one per extremity): each
- * step is symmetric, so it is computed once instead of in every search
- * from both ends. */
+static edge_grid fine_grid(const cub_tracker *t)
+{
+    return (edge_grid){{&t->edge_w[0][TRK_EDGE_PAD], &t->edge_w[1][TRK_EDGE_PAD], &t->edge_w[2][TRK_EDGE_PAD],
+                        &t->edge_w[3][TRK_EDGE_PAD]},
+                       {1, TRK_GW, TRK_GW + 1, TRK_GW - 1}};
+}
+
+static edge_grid coarse_grid(const cub_tracker *t)
+{
+    return (edge_grid){{&t->coarse_w[0][TRK_COARSE_PAD], &t->coarse_w[1][TRK_COARSE_PAD],
+                        &t->coarse_w[2][TRK_COARSE_PAD], &t->coarse_w[3][TRK_COARSE_PAD]},
+                       {1, TRK_BW, TRK_BW + 1, TRK_BW - 1}};
+}
+
+static const int8_t fwd_dx[4] = {1, 0, 1, -1}, fwd_dy[4] = {0, 1, 1, 1};
+
+/* Every edge of the mask's 8-connected grid, for the many searches over
+ * it (the root's, the bridges', one per extremity). */
 static void edges_fill(cub_tracker *t)
 {
     memset(t->edge_w, 0xFF, sizeof t->edge_w);
@@ -152,8 +172,9 @@ static void edges_fill(cub_tracker *t)
         if (!t->mask[i]) continue;
         int32_t gx = i % TRK_GW, gy = i / TRK_GW;
         for (int k = 0; k < 4; k++) {
-            int32_t nx = gx + edge_dx[k], ny = gy + (k > 0), j = i + edge_off[k];
-            if (on_grid(nx, ny) && t->mask[j]) t->edge_w[k][TRK_EDGE_PAD + i] = (uint16_t)step_cost(t, i, j);
+            int32_t j = (gy + fwd_dy[k]) * TRK_GW + gx + fwd_dx[k];
+            if (on_grid(gx + fwd_dx[k], gy + fwd_dy[k]) && t->mask[j])
+                t->edge_w[k][TRK_EDGE_PAD + i] = (uint16_t)step_cost(t, i, j);
         }
     }
 }
@@ -168,19 +189,18 @@ static inline void relax(cub_tracker *t, int32_t *dist, int32_t *parent, int32_t
     heap_push(t, n, (uint32_t)nd, j);
 }
 
-/* Dijkstra over the mask from whatever the heap holds, lowering dist
- * where it improves (so repeated runs give the distance to the nearest
- * source), along the edges of edges_fill. */
-static void run_heap(cub_tracker *t, int32_t *dist, int32_t *parent, int32_t n)
+/* Dijkstra over grid g from whatever the heap holds, lowering dist where
+ * it improves (so repeated runs give the distance to the nearest source). */
+static void run_heap(cub_tracker *t, const edge_grid *g, int32_t *dist, int32_t *parent, int32_t n)
 {
     while (n > 0) {
         uint64_t v = heap_pop(t, &n);
         int32_t i = (int32_t)(uint32_t)v, d = (int32_t)(v >> 32);
         if (d > dist[i]) continue;
         for (int k = 0; k < 4; k++) {
-            int32_t w = t->edge_w[k][TRK_EDGE_PAD + i], o = edge_off[k];
+            int32_t w = g->w[k][i], o = g->off[k];
             if (w != TRK_EDGE_NONE) relax(t, dist, parent, &n, i, i + o, d + w);
-            w = t->edge_w[k][TRK_EDGE_PAD + i - o];
+            w = g->w[k][i - o];
             if (w != TRK_EDGE_NONE) relax(t, dist, parent, &n, i, i - o, d + w);
         }
     }
@@ -192,7 +212,8 @@ static void geodesic(cub_tracker *t, int32_t *dist, int32_t *parent, int32_t src
     dist[src] = 0;
     if (parent) parent[src] = -1;
     heap_push(t, &n, 0, src);
-    run_heap(t, dist, parent, n);
+    edge_grid g = fine_grid(t);
+    run_heap(t, &g, dist, parent, n);
 }
 
 /* The coarse surface: 2x2 blocks of cells. Any two cells of a block touch,
@@ -225,32 +246,35 @@ static bool blocks_join(const cub_tracker *t, int32_t bx, int32_t by, int32_t dx
     return m[ay * TRK_GW + ax] && m[(ay + dy) * TRK_GW + ax + dx];
 }
 
+/* The coarse grid's edges: two blocks joined (blocks_join), from one's
+ * first player cell to the other's. */
+void trk_coarse_edges(cub_tracker *t)
+{
+    memset(t->coarse_w, 0xFF, sizeof t->coarse_w);
+    for (int32_t b = 0; b < TRK_BLOCKS; b++) {
+        int32_t bx = b % TRK_BW, by = b / TRK_BW, i = block_rep(t, bx, by);
+        if (i < 0) continue;
+        for (int k = 0; k < 4; k++) {
+            int32_t nx = bx + fwd_dx[k], ny = by + fwd_dy[k];
+            if (nx < 0 || nx >= TRK_BW || ny >= TRK_BH) continue;
+            int32_t j = block_rep(t, nx, ny);
+            if (j < 0 || !blocks_join(t, bx, by, fwd_dx[k], fwd_dy[k])) continue;
+            t->coarse_w[k][TRK_COARSE_PAD + b] =
+                (uint16_t)approx_len(t->x[j] - t->x[i], t->y[j] - t->y[i], t->z[j] - t->z[i]);
+        }
+    }
+}
+
 void trk_geodesic_coarse(cub_tracker *t, int32_t *dist_b, int32_t src)
 {
-    static const int8_t dbx[8] = {-1, 1, 0, 0, -1, 1, -1, 1}, dby[8] = {0, 0, -1, 1, -1, -1, 1, 1};
     for (int32_t b = 0; b < TRK_BLOCKS; b++) dist_b[b] = TRK_INF;
     int32_t sb = (src / TRK_GW / 2) * TRK_BW + (src % TRK_GW) / 2, n = 0;
     int32_t sr = block_rep(t, sb % TRK_BW, sb / TRK_BW);
     if (sr < 0) return;
     dist_b[sb] = approx_len(t->x[sr] - t->x[src], t->y[sr] - t->y[src], t->z[sr] - t->z[src]);
     heap_push(t, &n, (uint32_t)dist_b[sb], sb);
-    while (n > 0) {
-        uint64_t v = heap_pop(t, &n);
-        int32_t b = (int32_t)(uint32_t)v, d = (int32_t)(v >> 32);
-        if (d > dist_b[b]) continue;
-        int32_t bx = b % TRK_BW, by = b / TRK_BW, i = block_rep(t, bx, by);
-        for (int k = 0; k < 8; k++) {
-            int32_t nx = bx + dbx[k], ny = by + dby[k];
-            if (nx < 0 || ny < 0 || nx >= TRK_BW || ny >= TRK_BH) continue;
-            int32_t j = block_rep(t, nx, ny);
-            if (j < 0 || !blocks_join(t, bx, by, dbx[k], dby[k])) continue;
-            int32_t nd = d + approx_len(t->x[j] - t->x[i], t->y[j] - t->y[i], t->z[j] - t->z[i]);
-            int32_t nb = ny * TRK_BW + nx;
-            if (nd >= dist_b[nb]) continue;
-            dist_b[nb] = nd;
-            heap_push(t, &n, (uint32_t)nd, nb);
-        }
-    }
+    edge_grid g = coarse_grid(t);
+    run_heap(t, &g, dist_b, NULL, n);
 }
 
 int32_t trk_coarse_at(const cub_tracker *t, const int32_t *dist_b, int32_t cell)
@@ -284,7 +308,8 @@ static void bridge_gaps(cub_tracker *t, int32_t *dist, int32_t *parent)
         dist[i] = best, parent[i] = from;
         heap_push(t, &n, (uint32_t)best, i);
     }
-    run_heap(t, dist, parent, n);
+    edge_grid g = fine_grid(t);
+    run_heap(t, &g, dist, parent, n);
 }
 
 /* The rows and columns the player's cells span (x0, x1, y0, y1), so the

@@ -22,6 +22,7 @@
 #define TRK_PATH_STEPS 800 /* the most cells walked along a path (a guard, paths are shorter) */
 #define TRK_HEAP_CAP (TRK_CELLS * 4)
 #define TRK_EDGE_PAD (TRK_GW + 1)
+#define TRK_COARSE_PAD (TRK_BW + 1)
 #define TRK_EDGE_NONE 0xFFFF
 /* grid cell (gx, gy) lies on the grid */
 static inline bool on_grid(int32_t gx, int32_t gy) { return gx >= 0 && gy >= 0 && gx < TRK_GW && gy < TRK_GH; }
@@ -80,6 +81,7 @@ struct cub_tracker {
      * TRK_EDGE_NONE before the first so a cell reads its upper ones at
      * i - offset without a bounds check */
     uint16_t edge_w[4][TRK_EDGE_PAD + TRK_CELLS];
+    uint16_t coarse_w[4][TRK_COARSE_PAD + TRK_BLOCKS]; /* the same on the coarse grid of 2x2 blocks */
     trk_comp comps[TRK_MAX_COMPS];
     int32_t ncomps;
     /* the ground: unit up vector (Q16.16) and the floor's height along it */
@@ -164,7 +166,9 @@ int32_t trk_pick_player(cub_tracker *t);
 int32_t trk_root_cell(cub_tracker *t);
 /* Plain surface lengths (no extra cost for depth jumps) from cell src on
  * the coarse grid of 2x2 blocks into dist_b (TRK_BLOCKS), a quarter of the
- * work: for rough decisions (how far a hand is from a shoulder). */
+ * work: for rough decisions (how far a hand is from a shoulder). Over the
+ * coarse edges trk_coarse_edges filled from the player's mask. */
+void trk_coarse_edges(cub_tracker *t);
 void trk_geodesic_coarse(cub_tracker *t, int32_t *dist_b, int32_t src);
 /* A cell's distance from such a map, TRK_INF when unreached. */
 int32_t trk_coarse_at(const cub_tracker *t, const int32_t *dist_b, int32_t cell);
