@@ -31,6 +31,7 @@ static inline bool on_grid(int32_t gx, int32_t gy) { return gx >= 0 && gy >= 0 &
  * cut-off part, so never split off; see trk_pick_player) */
 enum { TRK_WHO_PLAYER = 1, TRK_WHO_OTHER = 2, TRK_WHO_NEAR = 3 };
 #define TRK_PITCHES 21 /* floor search without gravity: -20..+20 degrees */
+#define TRK_LOW_CELLS (TRK_CELLS / 4 + 1) /* the floor search's cells: the lower half's first, then every odd one */
 #define TRK_CLOSE_MM 1000 /* the play range: the player's centre nearer is TOO_CLOSE, */
 #define TRK_FAR_MM 3500   /* farther TOO_FAR */
 
@@ -82,6 +83,10 @@ struct cub_tracker {
      * i - offset without a bounds check */
     uint16_t edge_w[4][TRK_EDGE_PAD + TRK_CELLS];
     uint16_t coarse_w[4][TRK_COARSE_PAD + TRK_BLOCKS]; /* the same on the coarse grid of 2x2 blocks */
+    /* the floor search's cells (trk_grid.c): the lower image's readings, in
+     * mm (|x|, |y| < 4500, z < 8192: 16 bits), gathered once a frame for
+     * the 21 pitches */
+    int16_t low_x[TRK_LOW_CELLS], low_y[TRK_LOW_CELLS], low_z[TRK_LOW_CELLS];
     trk_comp comps[TRK_MAX_COMPS];
     int32_t ncomps;
     /* the ground: unit up vector (Q16.16) and the floor's height along it */
