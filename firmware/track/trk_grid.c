@@ -1,5 +1,6 @@
 /* The tracker's first stages on the 160x120 grid: depth per cell, the
  * floor, connected blobs, and which blob is the player. */
+#include "depth_table.h"
 #include "trk_internal.h"
 #include "trk_body.h"
 
@@ -20,7 +21,7 @@ void trk_grid_fill(cub_tracker *t, const uint16_t *raw)
             int32_t best = 0;
             for (int k = 0; k < 4; k++) {
                 int32_t u = gx * TRK_CELL_PX + off[k][0], v = gy * TRK_CELL_PX + off[k][1];
-                int32_t mm = cub_track_raw_to_mm_int(raw[v * CUB_KINECT_WIDTH + u]);
+                int32_t mm = trk_raw_mm(raw[v * CUB_KINECT_WIDTH + u]);
                 if (mm >= t->min_mm && mm <= t->max_mm && (best == 0 || mm < best)) best = mm;
             }
             int32_t i = gy * TRK_GW + gx;
