@@ -7,6 +7,7 @@
  * smoothing, reach) never sees the forest's joints: the seam is after the
  * whole heuristic pipeline and changes only what the caller reads.
  * Integers only, as the forest and the tracker are. */
+#include "depth_table.h"
 #include "trk_internal.h"
 
 #define TRK_FOREST_STRIDE 4 /* one pixel a cell: the accuracy of every 2nd (docs/forest.md) */
@@ -62,7 +63,7 @@ static int32_t player_depth(cub_tracker *t, const uint16_t *raw)
         for (int32_t y = y0; y < y0 + TRK_CELL_PX; y++)
             for (int32_t x = x0; x < x0 + TRK_CELL_PX; x++) {
                 int32_t k = y * CUB_KINECT_WIDTH + x;
-                int32_t mm = cub_track_raw_to_mm_int(raw[k]);
+                int32_t mm = trk_raw_mm(raw[k]);
                 if (mm && trk_abs(mm - t->z[i]) <= TRK_FOREST_NEAR_MM) t->forest_mm[k] = (uint16_t)mm;
             }
     }

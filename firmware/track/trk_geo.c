@@ -61,18 +61,27 @@ int32_t trk_root_cell(cub_tracker *t)
     return best;
 }
 
-/* |v| within about 8 %, no square root: a + 11/32 b + 1/4 c, a >= b >= c. */
+/* |v| within about 8 %, no square root: a + 11/32 b + 1/4 c, a >= b >= c.
+ * By min and max, not swaps: no branch to mispredict in the geodesics'
+ * inner loop. */
+static inline int32_t max2(int32_t a, int32_t b) { return a > b ? a : b; }
+static inline int32_t min2(int32_t a, int32_t b) { return a < b ? a : b; }
+
 static int32_t approx_len(int32_t dx, int32_t dy, int32_t dz)
 {
-    int32_t a = trk_abs(dx), b = trk_abs(dy), c = trk_abs(dz), s;
-    if (a < b) s = a, a = b, b = s;
-    if (b < c) s = b, b = c, c = s;
-    if (a < b) s = a, a = b, b = s;
+    int32_t p = trk_abs(dx), q = trk_abs(dy), r = trk_abs(dz);
+    int32_t a = max2(max2(p, q), r), c = min2(min2(p, q), r), b = p + q + r - a - c;
     return a + ((11 * b) >> 5) + (c >> 2);
 }
 
 #define TRK_JUMP_MM 40
 #define TRK_JUMP_COST 4
+
+/* A 4-ary heap of (distance << 32 | cell): shallower than a binary one,
+ * so a pop reads fewer levels. The keys are unique (a cell is pushed again
+ * only at a strictly smaller distance), so any exact heap pops them in the
+ * same order: the shape of the heap never changes the output. */
+#define HEAP_ARITY 4
 
 static void heap_push(cub_tracker *t, int32_t *n, uint32_t key, int32_t cell)
 {
@@ -80,7 +89,7 @@ static void heap_push(cub_tracker *t, int32_t *n, uint32_t key, int32_t cell)
     uint64_t v = ((uint64_t)key << 32) | (uint32_t)cell;
     int32_t i = (*n)++;
     while (i > 0) {
-        int32_t p = (i - 1) / 2;
+        int32_t p = (i - 1) / HEAP_ARITY;
         if (t->heap[p] <= v) break;
         t->heap[i] = t->heap[p];
         i = p;
@@ -88,15 +97,24 @@ static void heap_push(cub_tracker *t, int32_t *n, uint32_t key, int32_t cell)
     t->heap[i] = v;
 }
 
+/* The smallest of i's children, -1 when it has none. */
+static int32_t heap_min_child(const uint64_t *h, int32_t i, int32_t n)
+{
+    int32_t c = HEAP_ARITY * i + 1, end = c + HEAP_ARITY < n ? c + HEAP_ARITY : n;
+    if (c >= n) return -1;
+    int32_t m = c;
+    for (c++; c < end; c++)
+        if (h[c] < h[m]) m = c;
+    return m;
+}
+
 static uint64_t heap_pop(cub_tracker *t, int32_t *n)
 {
     uint64_t top = t->heap[0], last = t->heap[--(*n)];
     int32_t i = 0;
     for (;;) {
-        int32_t c = 2 * i + 1;
-        if (c >= *n) break;
-        if (c + 1 < *n && t->heap[c + 1] < t->heap[c]) c++;
-        if (t->heap[c] >= last) break;
+        int32_t c = heap_min_child(t->heap, i, *n);
+        if (c < 0 || t->heap[c] >= last) break;
         t->heap[i] = t->heap[c];
         i = c;
     }
@@ -104,43 +122,98 @@ static uint64_t heap_pop(cub_tracker *t, int32_t *n)
     return top;
 }
 
-/* Dijkstra over the mask from whatever the heap holds, lowering dist
- * where it improves (so repeated runs give the distance to the nearest
- * source). */
-static void run_heap(cub_tracker *t, int32_t *dist, int32_t *parent, int32_t n)
+/* The step between two of the player's neighbouring cells i and j: its 3D
+ * length, and a depth jump between them is mostly an edge (a hand or
+ * forearm lying before the chest), not surface: crossing it costs extra,
+ * so the hand stays far along its own arm. At most about 44 000 (depths
+ * 500-8191 mm: a step under 13 300 mm, a jump under 30 700), so it fits
+ * in 16 bits below TRK_EDGE_NONE. */
+static int32_t step_cost(const cub_tracker *t, int32_t i, int32_t j)
 {
-    static const int8_t dgx[8] = {-1, 1, 0, 0, -1, 1, -1, 1}, dgy[8] = {0, 0, -1, 1, -1, -1, 1, 1};
-    while (n > 0) {
-        uint64_t v = heap_pop(t, &n);
-        int32_t i = (int32_t)(uint32_t)v, d = (int32_t)(v >> 32);
-        if (d > dist[i]) continue;
+    int32_t dz = trk_abs(t->z[j] - t->z[i]);
+    int32_t w = approx_len(t->x[j] - t->x[i], t->y[j] - t->y[i], t->z[j] - t->z[i]);
+    if (dz > TRK_JUMP_MM) w += TRK_JUMP_COST * (dz - TRK_JUMP_MM);
+    return w;
+}
+
+/* A grid the searches run on: per node its four forward edges' lengths
+ * (TRK_EDGE_NONE: no edge), w[k][i] node i's (a row of none lies before
+ * node 0, so w[k][i - off[k]], the edge from the node behind, needs no
+ * bounds check), and the forward offsets (right, down, down right, down
+ * left). Each step is symmetric: computed once a frame instead of in
+ * every search from both ends. */
+typedef struct edge_grid {
+    const uint16_t *w[4];
+    int32_t off[4];
+} edge_grid;
+
+static edge_grid fine_grid(const cub_tracker *t)
+{
+    return (edge_grid){{&t->edge_w[0][TRK_EDGE_PAD], &t->edge_w[1][TRK_EDGE_PAD], &t->edge_w[2][TRK_EDGE_PAD],
+                        &t->edge_w[3][TRK_EDGE_PAD]},
+                       {1, TRK_GW, TRK_GW + 1, TRK_GW - 1}};
+}
+
+static edge_grid coarse_grid(const cub_tracker *t)
+{
+    return (edge_grid){{&t->coarse_w[0][TRK_COARSE_PAD], &t->coarse_w[1][TRK_COARSE_PAD],
+                        &t->coarse_w[2][TRK_COARSE_PAD], &t->coarse_w[3][TRK_COARSE_PAD]},
+                       {1, TRK_BW, TRK_BW + 1, TRK_BW - 1}};
+}
+
+static const int8_t fwd_dx[4] = {1, 0, 1, -1}, fwd_dy[4] = {0, 1, 1, 1};
+
+/* Every edge of the mask's 8-connected grid, for the many searches over
+ * it (the root's, the bridges', one per extremity). */
+static void edges_fill(cub_tracker *t)
+{
+    memset(t->edge_w, 0xFF, sizeof t->edge_w);
+    for (int32_t i = 0; i < TRK_CELLS; i++) {
+        if (!t->mask[i]) continue;
         int32_t gx = i % TRK_GW, gy = i / TRK_GW;
-        for (int k = 0; k < 8; k++) {
-            int32_t nx = gx + dgx[k], ny = gy + dgy[k];
-            if (!on_grid(nx, ny)) continue;
-            int32_t j = ny * TRK_GW + nx;
-            if (!t->mask[j]) continue;
-            int32_t dz = trk_abs(t->z[j] - t->z[i]);
-            int32_t nd = d + approx_len(t->x[j] - t->x[i], t->y[j] - t->y[i], t->z[j] - t->z[i]);
-            /* a depth jump between neighbours is mostly an edge (a hand or
-             * forearm lying before the chest), not surface: crossing it
-             * costs extra, so the hand stays far along its own arm */
-            if (dz > TRK_JUMP_MM) nd += TRK_JUMP_COST * (dz - TRK_JUMP_MM);
-            if (nd >= dist[j]) continue;
-            dist[j] = nd;
-            if (parent) parent[j] = i;
-            heap_push(t, &n, (uint32_t)nd, j);
+        for (int k = 0; k < 4; k++) {
+            int32_t j = (gy + fwd_dy[k]) * TRK_GW + gx + fwd_dx[k];
+            if (on_grid(gx + fwd_dx[k], gy + fwd_dy[k]) && t->mask[j])
+                t->edge_w[k][TRK_EDGE_PAD + i] = (uint16_t)step_cost(t, i, j);
         }
     }
 }
 
-void trk_geodesic(cub_tracker *t, int32_t *dist, int32_t *parent, int32_t src)
+/* j reached from i at distance nd: lowered when it improves. */
+static inline void relax(cub_tracker *t, int32_t *dist, int32_t *parent, int32_t *n, int32_t i, int32_t j,
+                         int32_t nd)
+{
+    if (nd >= dist[j]) return;
+    dist[j] = nd;
+    if (parent) parent[j] = i;
+    heap_push(t, n, (uint32_t)nd, j);
+}
+
+/* Dijkstra over grid g from whatever the heap holds, lowering dist where
+ * it improves (so repeated runs give the distance to the nearest source). */
+static void run_heap(cub_tracker *t, const edge_grid *g, int32_t *dist, int32_t *parent, int32_t n)
+{
+    while (n > 0) {
+        uint64_t v = heap_pop(t, &n);
+        int32_t i = (int32_t)(uint32_t)v, d = (int32_t)(v >> 32);
+        if (d > dist[i]) continue;
+        for (int k = 0; k < 4; k++) {
+            int32_t w = g->w[k][i], o = g->off[k];
+            if (w != TRK_EDGE_NONE) relax(t, dist, parent, &n, i, i + o, d + w);
+            w = g->w[k][i - o];
+            if (w != TRK_EDGE_NONE) relax(t, dist, parent, &n, i, i - o, d + w);
+        }
+    }
+}
+
+static void geodesic(cub_tracker *t, int32_t *dist, int32_t *parent, int32_t src)
 {
     int32_t n = 0;
     dist[src] = 0;
     if (parent) parent[src] = -1;
     heap_push(t, &n, 0, src);
-    run_heap(t, dist, parent, n);
+    edge_grid g = fine_grid(t);
+    run_heap(t, &g, dist, parent, n);
 }
 
 /* The coarse surface: 2x2 blocks of cells. Any two cells of a block touch,
@@ -173,32 +246,35 @@ static bool blocks_join(const cub_tracker *t, int32_t bx, int32_t by, int32_t dx
     return m[ay * TRK_GW + ax] && m[(ay + dy) * TRK_GW + ax + dx];
 }
 
+/* The coarse grid's edges: two blocks joined (blocks_join), from one's
+ * first player cell to the other's. */
+void trk_coarse_edges(cub_tracker *t)
+{
+    memset(t->coarse_w, 0xFF, sizeof t->coarse_w);
+    for (int32_t b = 0; b < TRK_BLOCKS; b++) {
+        int32_t bx = b % TRK_BW, by = b / TRK_BW, i = block_rep(t, bx, by);
+        if (i < 0) continue;
+        for (int k = 0; k < 4; k++) {
+            int32_t nx = bx + fwd_dx[k], ny = by + fwd_dy[k];
+            if (nx < 0 || nx >= TRK_BW || ny >= TRK_BH) continue;
+            int32_t j = block_rep(t, nx, ny);
+            if (j < 0 || !blocks_join(t, bx, by, fwd_dx[k], fwd_dy[k])) continue;
+            t->coarse_w[k][TRK_COARSE_PAD + b] =
+                (uint16_t)approx_len(t->x[j] - t->x[i], t->y[j] - t->y[i], t->z[j] - t->z[i]);
+        }
+    }
+}
+
 void trk_geodesic_coarse(cub_tracker *t, int32_t *dist_b, int32_t src)
 {
-    static const int8_t dbx[8] = {-1, 1, 0, 0, -1, 1, -1, 1}, dby[8] = {0, 0, -1, 1, -1, -1, 1, 1};
     for (int32_t b = 0; b < TRK_BLOCKS; b++) dist_b[b] = TRK_INF;
     int32_t sb = (src / TRK_GW / 2) * TRK_BW + (src % TRK_GW) / 2, n = 0;
     int32_t sr = block_rep(t, sb % TRK_BW, sb / TRK_BW);
     if (sr < 0) return;
     dist_b[sb] = approx_len(t->x[sr] - t->x[src], t->y[sr] - t->y[src], t->z[sr] - t->z[src]);
     heap_push(t, &n, (uint32_t)dist_b[sb], sb);
-    while (n > 0) {
-        uint64_t v = heap_pop(t, &n);
-        int32_t b = (int32_t)(uint32_t)v, d = (int32_t)(v >> 32);
-        if (d > dist_b[b]) continue;
-        int32_t bx = b % TRK_BW, by = b / TRK_BW, i = block_rep(t, bx, by);
-        for (int k = 0; k < 8; k++) {
-            int32_t nx = bx + dbx[k], ny = by + dby[k];
-            if (nx < 0 || ny < 0 || nx >= TRK_BW || ny >= TRK_BH) continue;
-            int32_t j = block_rep(t, nx, ny);
-            if (j < 0 || !blocks_join(t, bx, by, dbx[k], dby[k])) continue;
-            int32_t nd = d + approx_len(t->x[j] - t->x[i], t->y[j] - t->y[i], t->z[j] - t->z[i]);
-            int32_t nb = ny * TRK_BW + nx;
-            if (nd >= dist_b[nb]) continue;
-            dist_b[nb] = nd;
-            heap_push(t, &n, (uint32_t)nd, nb);
-        }
-    }
+    edge_grid g = coarse_grid(t);
+    run_heap(t, &g, dist_b, NULL, n);
 }
 
 int32_t trk_coarse_at(const cub_tracker *t, const int32_t *dist_b, int32_t cell)
@@ -232,7 +308,8 @@ static void bridge_gaps(cub_tracker *t, int32_t *dist, int32_t *parent)
         dist[i] = best, parent[i] = from;
         heap_push(t, &n, (uint32_t)best, i);
     }
-    run_heap(t, dist, parent, n);
+    edge_grid g = fine_grid(t);
+    run_heap(t, &g, dist, parent, n);
 }
 
 /* The rows and columns the player's cells span (x0, x1, y0, y1), so the
@@ -266,7 +343,8 @@ static int32_t farthest(const cub_tracker *t, const int32_t box[4], int32_t best
 int32_t trk_extrema(cub_tracker *t, int32_t root, int32_t min_mm, int32_t *out, int32_t max_out)
 {
     for (int32_t i = 0; i < TRK_CELLS; i++) t->dist0[i] = TRK_INF;
-    trk_geodesic(t, t->dist0, t->parent0, root);
+    edges_fill(t);
+    geodesic(t, t->dist0, t->parent0, root);
     bridge_gaps(t, t->dist0, t->parent0);
     bridge_gaps(t, t->dist0, t->parent0);
     memcpy(t->distx, t->dist0, sizeof t->distx);
@@ -276,7 +354,8 @@ int32_t trk_extrema(cub_tracker *t, int32_t root, int32_t min_mm, int32_t *out, 
         int32_t best = farthest(t, box, min_mm);
         if (best < 0) break;
         out[n++] = best;
-        trk_geodesic(t, t->distx, NULL, best);
+        /* the distances to the last extremity are never read */
+        if (n < max_out) geodesic(t, t->distx, NULL, best);
     }
     return n;
 }

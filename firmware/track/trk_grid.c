@@ -1,5 +1,6 @@
 /* The tracker's first stages on the 160x120 grid: depth per cell, the
  * floor, connected blobs, and which blob is the player. */
+#include "depth_table.h"
 #include "trk_internal.h"
 #include "trk_body.h"
 
@@ -20,7 +21,7 @@ void trk_grid_fill(cub_tracker *t, const uint16_t *raw)
             int32_t best = 0;
             for (int k = 0; k < 4; k++) {
                 int32_t u = gx * TRK_CELL_PX + off[k][0], v = gy * TRK_CELL_PX + off[k][1];
-                int32_t mm = cub_track_raw_to_mm_int(raw[v * CUB_KINECT_WIDTH + u]);
+                int32_t mm = trk_raw_mm(raw[v * CUB_KINECT_WIDTH + u]);
                 if (mm >= t->min_mm && mm <= t->max_mm && (best == 0 || mm < best)) best = mm;
             }
             int32_t i = gy * TRK_GW + gx;
@@ -36,14 +37,31 @@ void trk_grid_fill(cub_tracker *t, const uint16_t *raw)
 #define FLOOR_BIN_MM 25
 #define FLOOR_BINS 200 /* heights -4000 .. +1000 mm */
 #define FLOOR_MIN_CELLS 200
-static int32_t floor_peak(const cub_tracker *t, cub_vec3 up, int32_t *h_mm)
+/* The lower image's readings the floor is looked for in (every other cell,
+ * about), into low_x/y/z; their count. */
+static int32_t gather_low(cub_tracker *t)
 {
-    int32_t hist[FLOOR_BINS], total = 0;
-    memset(hist, 0, sizeof hist);
-    for (int32_t i = TRK_CELLS / 2; i < TRK_CELLS; i += 1 + (i & 1)) {
+    int32_t n = 0;
+    for (int32_t i = TRK_CELLS / 2; i < TRK_CELLS && n < TRK_LOW_CELLS; i += 1 + (i & 1)) {
         if (!t->z[i]) continue;
-        total++;
-        int32_t b = (trk_along(t->x[i], t->y[i], t->z[i], up) + 4000) / FLOOR_BIN_MM;
+        t->low_x[n] = (int16_t)t->x[i], t->low_y[n] = (int16_t)t->y[i], t->low_z[n] = t->z[i];
+        n++;
+    }
+    return n;
+}
+
+static int32_t low_along(const cub_tracker *t, int32_t k, cub_vec3 up)
+{
+    return trk_along(t->low_x[k], t->low_y[k], t->low_z[k], up);
+}
+
+/* Over the n cells gather_low took. */
+static int32_t floor_peak(const cub_tracker *t, int32_t n, cub_vec3 up, int32_t *h_mm)
+{
+    int32_t hist[FLOOR_BINS], total = n;
+    memset(hist, 0, sizeof hist);
+    for (int32_t k = 0; k < n; k++) {
+        int32_t b = (low_along(t, k, up) + 4000) / FLOOR_BIN_MM;
         if (b >= 0 && b < FLOOR_BINS) hist[b]++;
     }
     for (int32_t b = 0; b + 1 < FLOOR_BINS; b++) {
@@ -55,21 +73,19 @@ static int32_t floor_peak(const cub_tracker *t, cub_vec3 up, int32_t *h_mm)
         /* and a floor recedes: its cells span depth, unlike the cut-off
          * bottom of a body standing close */
         int32_t zmin = INT32_MAX, zmax = 0;
-        for (int32_t i = TRK_CELLS / 2; i < TRK_CELLS; i += 1 + (i & 1)) {
-            if (!t->z[i]) continue;
-            int32_t h = trk_along(t->x[i], t->y[i], t->z[i], up);
+        for (int32_t k = 0; k < n; k++) {
+            int32_t h = low_along(t, k, up), z = t->low_z[k];
             if (h < *h_mm - FLOOR_BIN_MM || h > *h_mm + FLOOR_BIN_MM) continue;
-            if (t->z[i] < zmin) zmin = t->z[i];
-            if (t->z[i] > zmax) zmax = t->z[i];
+            if (z < zmin) zmin = z;
+            if (z > zmax) zmax = z;
         }
         if (zmax - zmin < 700) return 0;
         /* continuously: no depth gaps (two bodies' cut-off bottoms are not a floor) */
         uint64_t slices = 0;
-        for (int32_t i = TRK_CELLS / 2; i < TRK_CELLS; i += 1 + (i & 1)) {
-            if (!t->z[i]) continue;
-            int32_t h = trk_along(t->x[i], t->y[i], t->z[i], up);
-            if (h >= *h_mm - FLOOR_BIN_MM && h <= *h_mm + FLOOR_BIN_MM && (t->z[i] - zmin) / 100 < 64)
-                slices |= (uint64_t)1 << ((t->z[i] - zmin) / 100);
+        for (int32_t k = 0; k < n; k++) {
+            int32_t h = low_along(t, k, up), z = t->low_z[k];
+            if (h >= *h_mm - FLOOR_BIN_MM && h <= *h_mm + FLOOR_BIN_MM && (z - zmin) / 100 < 64)
+                slices |= (uint64_t)1 << ((z - zmin) / 100);
         }
         int32_t span = (zmax - zmin) / 100 + 1, filled = 0;
         for (int32_t k = 0; k < span && k < 64; k++) filled += (int32_t)((slices >> k) & 1);
@@ -99,14 +115,14 @@ void trk_floor_update(cub_tracker *t, const cub_vec3 *gravity_mm)
         while (trk_abs(g.x) > (1 << 24) || trk_abs(g.y) > (1 << 24) || trk_abs(g.z) > (1 << 24))
             g.x /= 2, g.y /= 2, g.z /= 2;
         t->up = unit_q16((cub_vec3){-g.x, -g.y, -g.z});
-        t->have_floor = floor_peak(t, t->up, &h) >= FLOOR_MIN_CELLS;
+        t->have_floor = floor_peak(t, gather_low(t), t->up, &h) >= FLOOR_MIN_CELLS;
         if (t->have_floor) t->floor_h_mm = h;
         return;
     }
     if (t->have_floor && (t->frame_no & 7) && t->lost_frames == 0) return;
-    int32_t best = 0, best_h = 0, best_p = TRK_PITCHES / 2;
+    int32_t best = 0, best_h = 0, best_p = TRK_PITCHES / 2, n = gather_low(t);
     for (int32_t p = 0; p < TRK_PITCHES; p++) {
-        int32_t c = floor_peak(t, t->pitch_up[p], &h);
+        int32_t c = floor_peak(t, n, t->pitch_up[p], &h);
         if (c > best) best = c, best_h = h, best_p = p;
     }
     if (best >= FLOOR_MIN_CELLS) {

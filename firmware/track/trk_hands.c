@@ -91,6 +91,7 @@ static void from_shoulder(cub_tracker *t, trk_p3 sh, int32_t *dist)
 
 void trk_from_shoulders(cub_tracker *t, const trk_frame *f)
 {
+    trk_coarse_edges(t);
     from_shoulder(t, f->arm_root[0], t->dist_sh[0]);
     from_shoulder(t, f->arm_root[1], t->dist_sh[1]);
 }

@@ -21,6 +21,9 @@
 #define TRK_INF INT32_MAX
 #define TRK_PATH_STEPS 800 /* the most cells walked along a path (a guard, paths are shorter) */
 #define TRK_HEAP_CAP (TRK_CELLS * 4)
+#define TRK_EDGE_PAD (TRK_GW + 1)
+#define TRK_COARSE_PAD (TRK_BW + 1)
+#define TRK_EDGE_NONE 0xFFFF
 /* grid cell (gx, gy) lies on the grid */
 static inline bool on_grid(int32_t gx, int32_t gy) { return gx >= 0 && gy >= 0 && gx < TRK_GW && gy < TRK_GH; }
 /* who_prev: the player's cell, another person-like blob's standing apart
@@ -28,6 +31,7 @@ static inline bool on_grid(int32_t gx, int32_t gy) { return gx >= 0 && gy >= 0 &
  * cut-off part, so never split off; see trk_pick_player) */
 enum { TRK_WHO_PLAYER = 1, TRK_WHO_OTHER = 2, TRK_WHO_NEAR = 3 };
 #define TRK_PITCHES 21 /* floor search without gravity: -20..+20 degrees */
+#define TRK_LOW_CELLS (TRK_CELLS / 4 + 1) /* the floor search's cells: the lower half's first, then every odd one */
 #define TRK_CLOSE_MM 1000 /* the play range: the player's centre nearer is TOO_CLOSE, */
 #define TRK_FAR_MM 3500   /* farther TOO_FAR */
 
@@ -74,6 +78,16 @@ struct cub_tracker {
     int32_t dist_sh[2][TRK_BLOCKS]; /* coarse, along the surface from each shoulder (left, right) */
     int32_t stack[TRK_CELLS];
     uint64_t heap[TRK_HEAP_CAP];
+    /* the geodesics' edge lengths, once a frame (trk_geo.c): per cell, to
+     * its right, lower, lower right and lower left neighbour; a row of
+     * TRK_EDGE_NONE before the first so a cell reads its upper ones at
+     * i - offset without a bounds check */
+    uint16_t edge_w[4][TRK_EDGE_PAD + TRK_CELLS];
+    uint16_t coarse_w[4][TRK_COARSE_PAD + TRK_BLOCKS]; /* the same on the coarse grid of 2x2 blocks */
+    /* the floor search's cells (trk_grid.c): the lower image's readings, in
+     * mm (|x|, |y| < 4500, z < 8192: 16 bits), gathered once a frame for
+     * the 21 pitches */
+    int16_t low_x[TRK_LOW_CELLS], low_y[TRK_LOW_CELLS], low_z[TRK_LOW_CELLS];
     trk_comp comps[TRK_MAX_COMPS];
     int32_t ncomps;
     /* the ground: unit up vector (Q16.16) and the floor's height along it */
@@ -157,10 +171,11 @@ int32_t trk_pick_player(cub_tracker *t);
 
 /* trk_geo.c */
 int32_t trk_root_cell(cub_tracker *t);
-void trk_geodesic(cub_tracker *t, int32_t *dist, int32_t *parent, int32_t src);
 /* Plain surface lengths (no extra cost for depth jumps) from cell src on
  * the coarse grid of 2x2 blocks into dist_b (TRK_BLOCKS), a quarter of the
- * work: for rough decisions (how far a hand is from a shoulder). */
+ * work: for rough decisions (how far a hand is from a shoulder). Over the
+ * coarse edges trk_coarse_edges filled from the player's mask. */
+void trk_coarse_edges(cub_tracker *t);
 void trk_geodesic_coarse(cub_tracker *t, int32_t *dist_b, int32_t src);
 /* A cell's distance from such a map, TRK_INF when unreached. */
 int32_t trk_coarse_at(const cub_tracker *t, const int32_t *dist_b, int32_t cell);
