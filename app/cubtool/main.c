@@ -32,6 +32,7 @@ static const command commands[] = {
     {"trc-info", cub_cmd_trc_info, "a TRC marker file: its markers, frames, rate, lost markers"},
     {"join", cub_cmd_join, "join two clips through a searched transition, feet planted; --all: the table"},
     {"graph", cub_cmd_graph, "the motion graph by support points (feet, hands, knees, hip); --png"},
+    {"evolve", cub_cmd_evolve, "cross two clips of different skeletons into a child (seed 004), as BVH"},
     {"ase-export", cub_cmd_ase_export, "a clip (BVH, ASF+AMC, ASE) as a 3ds Max ASCII export"},
 };
 

@@ -1,0 +1,133 @@
+/* Survivor (SEEDS.md § 004, "spacetime" fitness; the formula of d(t) is
+ * lost, ours): parent 2 laid against parent 1 where the energy loss is
+ * least, the child's motion C_mp(t) = C_m1(t) + x·d(t). */
+#include <math.h>
+#include <string.h>
+
+#include "cub/evolve.h"
+
+/* The rotation vector (axis * angle, radians) of a unit quaternion. */
+static cub_dv3 q_log(cub_dq q)
+{
+    if (q.w < 0) q = (cub_dq){-q.w, -q.x, -q.y, -q.z};
+    cub_dv3 v = {q.x, q.y, q.z};
+    double s = cub_dv3_len(v);
+    if (s < 1e-15) return cub_dv3_scale(v, 2.0);
+    return cub_dv3_scale(v, 2.0 * atan2(s, q.w) / s);
+}
+
+static cub_dq q_exp(cub_dv3 r)
+{
+    double a = cub_dv3_len(r);
+    if (a == 0) return cub_dq_identity();
+    double k = sin(0.5 * a) / a;
+    return (cub_dq){cos(0.5 * a), r.x * k, r.y * k, r.z * k};
+}
+
+typedef struct surv {
+    const cub_evolve_meta *meta;
+    const cub_evolve_pop *pop;
+    const cub_evolve_motion *p1, *p2;
+    double x;
+    int offset;
+} surv;
+
+static cub_dq rot1(const surv *s, int f, int j) { return *cub_evolve_rot(s->p1, f % s->p1->frames, j); }
+static cub_dq rot2(const surv *s, int f, int j)
+{
+    return *cub_evolve_rot(s->p2, (f + s->offset) % s->p2->frames, j);
+}
+
+/* Mean squared angle between partners at parent 1's samples, parent 2
+ * started at its frame o: O(frames²) over all o, as the seed says. */
+static double energy_at(surv *s, int o, int step)
+{
+    s->offset = o;
+    double sum = 0;
+    int n = 0;
+    for (int f = 0; f < s->p1->frames; f += step)
+        for (int j = 1; j < s->p1->skel.joint_count; j++) {
+            int b = s->meta->partner[j];
+            if (b < 0) continue;
+            double a = cub_dq_angle_between(rot1(s, f, j), rot2(s, f, b));
+            sum += a * a;
+            n++;
+        }
+    return n ? sum / n : 0;
+}
+
+static void best_window(surv *s, int step, cub_evolve_survivor_report *rep)
+{
+    int best = 0;
+    double e_best = INFINITY;
+    for (int o = 0; o < s->p2->frames; o++) {
+        double e = energy_at(s, o, step);
+        if (e < e_best) e_best = e, best = o;
+    }
+    s->offset = best;
+    rep->offset = best;
+    rep->energy = e_best;
+}
+
+/* Meta joint j's local rotation in the child at frame f; *d_deg gets |d|. */
+static cub_dq meta_rot(const surv *s, int f, int j, double *d_deg)
+{
+    const cub_evolve_meta *m = s->meta;
+    *d_deg = -1;
+    if (m->from[j] == 2) return rot2(s, f, m->src[j]);
+    cub_dq q1 = rot1(s, f, j);
+    int b = m->partner[j];
+    if (j == 0 || b < 0) return q1;
+    cub_dv3 d = q_log(cub_dq_mul(cub_dq_conj(q1), rot2(s, f, b)));
+    *d_deg = cub_dv3_len(d) * 180.0 / CUB_VEC_PI;
+    return cub_dq_mul(q1, q_exp(cub_dv3_scale(d, s->x)));
+}
+
+static void fill_frame(const surv *s, int f, cub_evolve_motion *child, double *d_sum, int *d_n)
+{
+    static cub_dq q[CUB_EVOLVE_MAX_JOINTS];
+    const cub_skeleton *ms = &s->meta->skel;
+    for (int j = 0; j < ms->joint_count; j++) {
+        double d;
+        q[j] = meta_rot(s, f, j, &d);
+        if (d >= 0 && !s->pop->removed[j]) *d_sum += d, ++*d_n;
+    }
+    child->root_mm[f] = s->p1->root_mm[f % s->p1->frames];
+    for (int c = 0; c < child->skel.joint_count; c++) {
+        int j = s->pop->meta[c];
+        cub_dq r = q[j];
+        /* a re-linked joint carries the rotations of the removed joints above it */
+        for (int p = ms->joints[j].parent; p >= 0 && s->pop->removed[p]; p = ms->joints[p].parent)
+            r = cub_dq_mul(q[p], r);
+        *cub_evolve_rot(child, f, c) = r;
+    }
+}
+
+cub_err cub_evolve_survivor(const cub_evolve_meta *meta, const cub_evolve_pop *pop,
+                            const cub_evolve_motion *p1, const cub_evolve_motion *p2,
+                            const cub_evolve_survivor_cfg *cfg, cub_evolve_motion *child,
+                            cub_evolve_survivor_report *rep, cub_diag *diag)
+{
+    static cub_evolve_survivor_report none;
+    if (!rep) rep = &none;
+    memset(rep, 0, sizeof(*rep));
+    if (!meta || !pop || !p1 || !p2 || !child || p1->frames < 1 || p2->frames < 1)
+        return cub_diag_fail(diag, CUB_ERR_ARG, "(survivor)", 0, "no input");
+    if (fabs(p1->fps - p2->fps) > 1e-6 * p1->fps)
+        return cub_diag_fail(diag, CUB_ERR_ARG, "(survivor)", 0,
+                             "the parents' rates differ (%.3f and %.3f fps): resample first", p1->fps,
+                             p2->fps);
+    double x = cfg ? cfg->blend : 0;
+    if (!isfinite(x)) return cub_diag_fail(diag, CUB_ERR_ARG, "(survivor)", 0, "blend is not a number");
+    int step = cfg && cfg->step > 0 ? cfg->step : CUB_EVOLVE_SAMPLE_STEP;
+    surv s = {meta, pop, p1, p2, x, 0};
+    best_window(&s, step, rep);
+    int frames = p1->frames > p2->frames ? p1->frames : p2->frames;
+    cub_err err = cub_evolve_motion_alloc(&pop->skel, frames, p1->fps, child);
+    if (err) return cub_diag_fail(diag, err, "(survivor)", 0, "out of memory");
+    double d_sum = 0;
+    int d_n = 0;
+    for (int f = 0; f < frames; f++) fill_frame(&s, f, child, &d_sum, &d_n);
+    rep->mean_d_deg = d_n ? d_sum / d_n : 0;
+    return CUB_OK;
+}

@@ -1,0 +1,501 @@
+/* evolve (cub/evolve.h): first what bad map files get, then each step of
+ * the pipeline on small hand-made skeletons, then a real pair (a CMU human
+ * and a dog; tests only) when CUB_DATA_DIR has it. */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "cub/evolve.h"
+
+/* ---- small skeletons and motions ------------------------------------------ */
+
+typedef struct bone {
+    const char *name, *parent;
+    double x, y, z; /* rest offset, mm */
+} bone;
+
+static void build(cub_skeleton *s, const bone *b, int n)
+{
+    cub_motion_skeleton_reset(s);
+    for (int i = 0; i < n; i++) {
+        int p = b[i].parent ? cub_motion_skeleton_find(s, b[i].parent) : -1;
+        int at;
+        assert_int_equal(cub_motion_skeleton_add(s, b[i].name, p, cub_dv3_to_fx(cub_dv3_make(b[i].x, b[i].y, b[i].z)), &at),
+                         CUB_OK);
+    }
+}
+
+/* A four-legged horned walker: 9 joints. */
+static const bone horse[] = {
+    {"Hips", NULL, 0, 900, 0},          {"Spine", "Hips", 0, 100, 200},  {"Neck", "Spine", 0, 100, 200},
+    {"Head", "Neck", 0, 100, 100},      {"Horn", "Head", 0, 80, 60},     {"LeftUpLeg", "Hips", 100, -400, 0},
+    {"LeftLeg", "LeftUpLeg", 0, -400, 0}, {"RightUpLeg", "Hips", -100, -400, 0},
+    {"RightLeg", "RightUpLeg", 0, -400, 0},
+};
+/* A fish-like swimmer: a collar where the horse has a neck, a tail. */
+static const bone fish[] = {
+    {"Hips", NULL, 0, 500, 0},   {"Spine", "Hips", 0, 0, 200}, {"Collar", "Spine", 0, 0, 150},
+    {"Head", "Collar", 0, 0, 100}, {"Tail", "Hips", 0, 0, -200}, {"Tail1", "Tail", 0, 0, -200},
+};
+#define COUNT(a) ((int)(sizeof(a) / sizeof((a)[0])))
+
+static uint32_t rng = 12345;
+static double noise(void) /* -1..1, deterministic */
+{
+    rng = rng * 1664525u + 1013904223u;
+    return (rng >> 8) / (double)(1u << 24) * 2 - 1;
+}
+
+/* A motion of s: every joint turns by a random amount each frame, except
+ * still (held at one fixed, non-rest rotation). The root walks along +z. */
+static void animate(const cub_skeleton *s, int frames, int still, cub_evolve_motion *m)
+{
+    assert_int_equal(cub_evolve_motion_alloc(s, frames, 30, m), CUB_OK);
+    for (int f = 0; f < frames; f++) {
+        m->root_mm[f] = cub_dv3_make(0, s->joints[0].offset_mm.y / 65536.0, 10.0 * f);
+        for (int j = 0; j < s->joint_count; j++) {
+            cub_dv3 axis = cub_dv3_norm(cub_dv3_make(noise(), noise(), noise()), cub_dv3_make(1, 0, 0));
+            double a = j == still ? 0.3 : 0.6 * noise();
+            *cub_evolve_rot(m, f, j) = cub_dq_axis_angle(j == still ? cub_dv3_make(1, 0, 0) : axis, a);
+        }
+    }
+}
+
+static int joint(const cub_skeleton *s, const char *name)
+{
+    int j = cub_motion_skeleton_find(s, name);
+    assert_true(j >= 0);
+    return j;
+}
+
+static void parse_map(const char *text, cub_evolve_map *map)
+{
+    cub_diag d = {0};
+    assert_int_equal(cub_evolve_map_parse(text, strlen(text), "test.map", map, &d), CUB_OK);
+}
+
+/* ---- bad map files --------------------------------------------------------- */
+
+static void expect_map_error(const char *text, const char *want)
+{
+    static cub_evolve_map map;
+    cub_diag d = {0};
+    char buf[600];
+    assert_int_equal(cub_evolve_map_parse(text, strlen(text), "x.map", &map, &d), CUB_ERR_FORMAT);
+    cub_diag_str(&d, buf, sizeof buf);
+    if (!strstr(buf, want)) fail_msg("\"%s\" not in \"%s\"", want, buf);
+}
+
+static void test_map_errors_name_file_and_line(void **state)
+{
+    (void)state;
+    expect_map_error("", "x.map: no rows");
+    expect_map_error("# only a comment\n", "no rows");
+    expect_map_error("Head = Head\nNeck Collar\n", "x.map:2: expected");
+    expect_map_error("A B = C D\n", "x.map:1: many joints on both sides");
+    expect_map_error("Head = Head\n\nHead = Spine\n", "x.map:3: parent 1's joint \"Head\" already mapped on line 1");
+    expect_map_error("Head = Skull Skull\n", "parent 2's joint \"Skull\" already mapped on line 1");
+    expect_map_error("- = -\n", "'-' on both sides");
+    expect_map_error("Head =\n", "nothing on the right");
+    expect_map_error("Head = = Head\n", "more than one '='");
+    expect_map_error("A B C D E = F\n", "more than 4 joints on the left");
+    expect_map_error("Head - = Head\n", "'-' beside joint names");
+    expect_map_error("Head = AVeryLongJointNameThatGoesOnAndOnForever\n", "too long");
+    /* names are bound against the skeletons: an unknown one names the row */
+    static cub_skeleton a, b;
+    build(&a, horse, COUNT(horse));
+    build(&b, fish, COUNT(fish));
+    static cub_evolve_map map;
+    parse_map("# ok\nHorn = -\nLeftUpLeg RightUpLeg = Fin\n", &map);
+    static cub_evolve_corr c;
+    cub_diag d = {0};
+    char buf[600];
+    assert_int_equal(cub_evolve_correspond(&a, &b, &map, &c, &d), CUB_ERR_FORMAT);
+    assert_string_equal(cub_diag_str(&d, buf, sizeof buf), "test.map:3: no joint \"Fin\" in parent 2");
+}
+
+/* ---- correspondence -------------------------------------------------------- */
+
+static void test_correspond_by_name_and_structure(void **state)
+{
+    (void)state;
+    static cub_skeleton a, b;
+    build(&a, horse, COUNT(horse));
+    build(&b, fish, COUNT(fish));
+    static cub_evolve_corr c;
+    cub_diag d = {0};
+    assert_int_equal(cub_evolve_correspond(&a, &b, NULL, &c, &d), CUB_OK);
+    /* names: Hips, Spine, Head; structure: Neck is Spine's only unmatched
+     * child as Collar is; the legs and the tail stay apart (two unmatched
+     * children of Hips against one: ambiguous) */
+    assert_int_equal(cub_evolve_partner_of_a(&c, joint(&a, "Hips")), joint(&b, "Hips"));
+    assert_int_equal(cub_evolve_partner_of_a(&c, joint(&a, "Head")), joint(&b, "Head"));
+    assert_int_equal(cub_evolve_partner_of_a(&c, joint(&a, "Neck")), joint(&b, "Collar"));
+    assert_int_equal(cub_evolve_kind_of(&c, 1, joint(&a, "Neck")), CUB_EVOLVE_ONE_TO_ONE);
+    assert_int_equal(cub_evolve_kind_of(&c, 1, joint(&a, "Horn")), CUB_EVOLVE_NONE);
+    assert_int_equal(cub_evolve_kind_of(&c, 1, joint(&a, "LeftUpLeg")), CUB_EVOLVE_NONE);
+    assert_int_equal(cub_evolve_kind_of(&c, 2, joint(&b, "Tail")), CUB_EVOLVE_NONE);
+    assert_int_equal(c.pair_count, 4);
+}
+
+static void test_correspond_loose_names(void **state)
+{
+    (void)state;
+    static const bone cmu[] = {{"Hips", NULL, 0, 900, 0}, {"LHipJoint", "Hips", 80, 0, 0},
+                               {"LeftUpLeg", "LHipJoint", 20, -50, 0}};
+    static const bone other[] = {{"hips", NULL, 0, 900, 0}, {"left_hip_joint", "hips", 80, 0, 0},
+                                 {"LEFTUPLEG", "left_hip_joint", 20, -50, 0}};
+    static cub_skeleton a, b;
+    build(&a, cmu, 3);
+    build(&b, other, 3);
+    static cub_evolve_corr c;
+    assert_int_equal(cub_evolve_correspond(&a, &b, NULL, &c, NULL), CUB_OK);
+    for (int j = 0; j < 3; j++) assert_int_equal(cub_evolve_partner_of_a(&c, j), j);
+}
+
+static void test_correspond_map_many_to_one_and_none(void **state)
+{
+    (void)state;
+    static cub_skeleton a, b;
+    build(&a, horse, COUNT(horse));
+    build(&b, fish, COUNT(fish));
+    static cub_evolve_map map;
+    parse_map("LeftUpLeg RightUpLeg = Tail\nHead = -\n", &map);
+    static cub_evolve_corr c;
+    assert_int_equal(cub_evolve_correspond(&a, &b, &map, &c, NULL), CUB_OK);
+    assert_int_equal(cub_evolve_partner_of_a(&c, joint(&a, "LeftUpLeg")), joint(&b, "Tail"));
+    assert_int_equal(cub_evolve_partner_of_a(&c, joint(&a, "RightUpLeg")), joint(&b, "Tail"));
+    assert_int_equal(cub_evolve_kind_of(&c, 1, joint(&a, "LeftUpLeg")), CUB_EVOLVE_MANY_TO_ONE);
+    assert_int_equal(cub_evolve_kind_of(&c, 2, joint(&b, "Tail")), CUB_EVOLVE_ONE_TO_MANY);
+    /* the map's "none" beats the names; LeftLeg follows its parent's match */
+    assert_int_equal(cub_evolve_kind_of(&c, 1, joint(&a, "Head")), CUB_EVOLVE_NONE);
+    assert_int_equal(cub_evolve_partner_of_a(&c, joint(&a, "LeftLeg")), -1); /* no structure below a many-to-one pair */
+}
+
+/* ---- crossover ------------------------------------------------------------- */
+
+static void test_crossover_keeps_common_joints_once(void **state)
+{
+    (void)state;
+    static cub_skeleton a, b;
+    build(&a, horse, COUNT(horse));
+    build(&b, fish, COUNT(fish));
+    static cub_evolve_map map;
+    parse_map("- = Head\n", &map); /* the fish's head stays the fish's: a second head */
+    static cub_evolve_corr c;
+    static cub_evolve_meta m;
+    assert_int_equal(cub_evolve_correspond(&a, &b, &map, &c, NULL), CUB_OK);
+    assert_int_equal(cub_evolve_crossover(&a, &b, &c, &m, NULL), CUB_OK);
+    /* parent 1 whole and in order, then Head (renamed), Tail, Tail1 */
+    assert_int_equal(m.skel.joint_count, COUNT(horse) + 3);
+    assert_int_equal(m.appended, 3);
+    for (int j = 0; j < COUNT(horse); j++) {
+        assert_string_equal(m.skel.joints[j].name, a.joints[j].name);
+        assert_int_equal(m.from[j], 1);
+        assert_int_equal(m.src[j], j);
+    }
+    int head2 = joint(&m.skel, "Head_2"), tail = joint(&m.skel, "Tail"), tail1 = joint(&m.skel, "Tail1");
+    assert_int_equal(m.skel.joints[head2].parent, joint(&m.skel, "Neck")); /* Collar's partner */
+    assert_int_equal(m.skel.joints[tail].parent, 0);
+    assert_int_equal(m.skel.joints[tail1].parent, tail);
+    assert_int_equal(m.from[tail1], 2);
+    assert_int_equal(m.src[tail1], joint(&b, "Tail1"));
+    assert_int_equal(m.partner[joint(&m.skel, "Spine")], joint(&b, "Spine"));
+    assert_int_equal(cub_motion_skeleton_validate(&m.skel), CUB_OK);
+}
+
+/* ---- mutation -------------------------------------------------------------- */
+
+typedef struct pair_fixture {
+    cub_skeleton a, b;
+    cub_evolve_corr c;
+    cub_evolve_meta m;
+    cub_evolve_motion p1, p2;
+    cub_evolve_mutation mut;
+    cub_evolve_pop pop;
+} pair_fixture;
+
+static pair_fixture fx;
+
+static void cross(int still_in_a, int frames1, int frames2)
+{
+    cub_evolve_motion_free(&fx.p1);
+    cub_evolve_motion_free(&fx.p2);
+    memset(&fx, 0, sizeof fx);
+    build(&fx.a, horse, COUNT(horse));
+    build(&fx.b, fish, COUNT(fish));
+    assert_int_equal(cub_evolve_correspond(&fx.a, &fx.b, NULL, &fx.c, NULL), CUB_OK);
+    assert_int_equal(cub_evolve_crossover(&fx.a, &fx.b, &fx.c, &fx.m, NULL), CUB_OK);
+    animate(&fx.a, frames1, still_in_a, &fx.p1);
+    animate(&fx.b, frames2, -1, &fx.p2);
+}
+
+static void test_activity_of_a_still_joint_is_zero(void **state)
+{
+    (void)state;
+    cross(6, 40, 30); /* LeftLeg (6) held still */
+    double act[CUB_EVOLVE_MAX_JOINTS];
+    cub_evolve_activity(&fx.p1, act);
+    assert_true(act[6] == 0);
+    for (int j = 1; j < fx.a.joint_count; j++)
+        if (j != 6) assert_true(act[j] > 1.0); /* degrees */
+}
+
+static void test_mutation_removes_the_still_joint_first(void **state)
+{
+    (void)state;
+    int leg = 6;
+    cross(leg, 40, 30);
+    fx.mut.count = 1;
+    assert_int_equal(cub_evolve_mutate(&fx.m, &fx.p1, &fx.p2, &fx.mut, &fx.pop, NULL), CUB_OK);
+    assert_int_equal(fx.pop.removed_count, 1);
+    assert_true(fx.pop.removed[leg]);
+    assert_true(fx.pop.score[leg] == 0); /* the least active of the meta skeleton */
+    assert_int_equal(fx.pop.skel.joint_count, fx.m.skel.joint_count - 1);
+    assert_int_equal(fx.pop.child[leg], -1);
+    assert_int_equal(cub_motion_skeleton_find(&fx.pop.skel, "LeftLeg"), -1);
+    /* the root is never removed, whatever the count */
+    fx.mut.count = 100;
+    assert_int_equal(cub_evolve_mutate(&fx.m, &fx.p1, &fx.p2, &fx.mut, &fx.pop, NULL), CUB_OK);
+    assert_int_equal(fx.pop.skel.joint_count, 1);
+    assert_string_equal(fx.pop.skel.joints[0].name, "Hips");
+}
+
+static void test_mutation_weight_minus_two_forces_the_joint(void **state)
+{
+    (void)state;
+    cross(6, 40, 30);
+    int horn = joint(&fx.m.skel, "Horn");
+    fx.mut.count = 1;
+    fx.mut.weight[horn] = -2;
+    assert_int_equal(cub_evolve_mutate(&fx.m, &fx.p1, &fx.p2, &fx.mut, &fx.pop, NULL), CUB_OK);
+    assert_int_equal(fx.pop.removed_count, 1);
+    assert_true(fx.pop.removed[horn]);
+    assert_false(fx.pop.removed[6]); /* the still leg stays */
+    /* +2 protects: with the still leg weighted up, another joint goes */
+    memset(fx.mut.weight, 0, sizeof fx.mut.weight);
+    fx.mut.weight[6] = 2;
+    assert_int_equal(cub_evolve_mutate(&fx.m, &fx.p1, &fx.p2, &fx.mut, &fx.pop, NULL), CUB_OK);
+    assert_false(fx.pop.removed[6]);
+    assert_int_equal(fx.pop.removed_count, 1);
+}
+
+static void test_mutation_relinks_to_the_nearest_kept_ancestor(void **state)
+{
+    (void)state;
+    cross(-1, 40, 30);
+    int neck = joint(&fx.m.skel, "Neck");
+    fx.mut.count = 1;
+    fx.mut.weight[neck] = -2;
+    assert_int_equal(cub_evolve_mutate(&fx.m, &fx.p1, &fx.p2, &fx.mut, &fx.pop, NULL), CUB_OK);
+    const cub_skeleton *p = &fx.pop.skel;
+    int head = joint(p, "Head");
+    assert_int_equal(p->joints[head].parent, joint(p, "Spine"));
+    assert_int_equal(fx.pop.relinked, 1);
+    /* the rest pose is unchanged: Head's offset is Neck's plus its own */
+    cub_dv3 off = cub_dv3_from_fx(p->joints[head].offset_mm);
+    assert_true(fabs(off.y - 200) < 1e-3 && fabs(off.z - 300) < 1e-3);
+    assert_int_equal(cub_motion_skeleton_validate(p), CUB_OK);
+}
+
+/* ---- survivor -------------------------------------------------------------- */
+
+static void test_survivor_blend_zero_is_parent_one(void **state)
+{
+    (void)state;
+    cross(-1, 50, 30);
+    fx.mut.count = 0;
+    assert_int_equal(cub_evolve_mutate(&fx.m, &fx.p1, &fx.p2, &fx.mut, &fx.pop, NULL), CUB_OK);
+    static cub_evolve_motion child;
+    cub_evolve_survivor_cfg cfg = {0, 0};
+    assert_int_equal(cub_evolve_survivor(&fx.m, &fx.pop, &fx.p1, &fx.p2, &cfg, &child, NULL, NULL), CUB_OK);
+    assert_int_equal(child.frames, 50); /* the longer parent */
+    for (int f = 0; f < fx.p1.frames; f++) {
+        assert_memory_equal(&child.root_mm[f], &fx.p1.root_mm[f], sizeof(cub_dv3));
+        for (int j = 0; j < fx.a.joint_count; j++)
+            assert_memory_equal(cub_evolve_rot(&child, f, fx.pop.child[j]), cub_evolve_rot(&fx.p1, f, j),
+                                sizeof(cub_dq));
+    }
+    cub_evolve_motion_free(&child);
+}
+
+static void test_survivor_finds_the_window_and_blends(void **state)
+{
+    (void)state;
+    /* parent 2 is parent 1 (same skeleton) started 7 frames later */
+    cross(-1, 40, 30);
+    static cub_evolve_motion p2;
+    assert_int_equal(cub_evolve_motion_alloc(&fx.a, 40, 30, &p2), CUB_OK);
+    for (int f = 0; f < 40; f++) {
+        p2.root_mm[f] = fx.p1.root_mm[f];
+        for (int j = 0; j < fx.a.joint_count; j++)
+            *cub_evolve_rot(&p2, f, j) = *cub_evolve_rot(&fx.p1, (f + 40 - 7) % 40, j);
+    }
+    static cub_evolve_corr c;
+    static cub_evolve_meta m;
+    static cub_evolve_pop pop;
+    static cub_evolve_motion child;
+    assert_int_equal(cub_evolve_correspond(&fx.a, &fx.a, NULL, &c, NULL), CUB_OK);
+    assert_int_equal(cub_evolve_crossover(&fx.a, &fx.a, &c, &m, NULL), CUB_OK);
+    assert_int_equal(m.appended, 0);
+    assert_int_equal(cub_evolve_mutate(&m, &fx.p1, &p2, &(cub_evolve_mutation){0}, &pop, NULL), CUB_OK);
+    cub_evolve_survivor_report rep;
+    cub_evolve_survivor_cfg cfg = {-0.5, 0};
+    assert_int_equal(cub_evolve_survivor(&m, &pop, &fx.p1, &p2, &cfg, &child, &rep, NULL), CUB_OK);
+    assert_int_equal(rep.offset, 7);
+    assert_true(rep.energy < 1e-12);
+    /* the same motion aligned: d = 0, so any x gives parent 1 back */
+    for (int f = 0; f < 40; f++)
+        for (int j = 1; j < fx.a.joint_count; j++)
+            assert_true(cub_dq_angle_between(*cub_evolve_rot(&child, f, j), *cub_evolve_rot(&fx.p1, f, j)) < 1e-6);
+    cub_evolve_motion_free(&child);
+    /* x = 1 against a different parent 2: the partner's rotation */
+    cross(-1, 40, 40);
+    assert_int_equal(cub_evolve_mutate(&fx.m, &fx.p1, &fx.p2, &(cub_evolve_mutation){0}, &fx.pop, NULL), CUB_OK);
+    cfg.blend = 1;
+    assert_int_equal(cub_evolve_survivor(&fx.m, &fx.pop, &fx.p1, &fx.p2, &cfg, &child, &rep, NULL), CUB_OK);
+    int spine = joint(&fx.a, "Spine");
+    for (int f = 0; f < 40; f++)
+        assert_true(cub_dq_angle_between(*cub_evolve_rot(&child, f, spine),
+                                         *cub_evolve_rot(&fx.p2, (f + rep.offset) % 40, joint(&fx.b, "Spine"))) < 1e-6);
+    cub_evolve_motion_free(&child);
+    cub_evolve_motion_free(&p2);
+}
+
+static void test_survivor_refuses_different_rates(void **state)
+{
+    (void)state;
+    cross(-1, 20, 20);
+    fx.p2.fps = 60;
+    cub_diag d = {0};
+    static cub_evolve_motion child;
+    assert_int_equal(cub_evolve_survivor(&fx.m, &fx.pop, &fx.p1, &fx.p2, NULL, &child, NULL, &d), CUB_ERR_ARG);
+    assert_non_null(strstr(d.msg, "rates differ"));
+}
+
+/* ---- the floor step -------------------------------------------------------- */
+
+static void test_floor_step_lifts_by_ik_and_keeps_bones(void **state)
+{
+    (void)state;
+    /* hips 500 mm up, a leg 600 mm tall, the knee a little forward: the
+     * foot 100 mm below (a straight leg is the Jacobian's singular case) */
+    static const bone leg[] = {{"Hips", NULL, 0, 500, 0}, {"UpLeg", "Hips", 100, 0, 0},
+                               {"Leg", "UpLeg", 0, -300, 40}, {"Foot", "Leg", 0, -300, -40},
+                               {"Toe", "Foot", 0, 0, 120}};
+    static cub_skeleton s;
+    build(&s, leg, COUNT(leg));
+    static cub_evolve_motion m;
+    assert_int_equal(cub_evolve_motion_alloc(&s, 10, 30, &m), CUB_OK);
+    for (int f = 0; f < 10; f++) m.root_mm[f] = cub_dv3_make(0, 500 + 20 * f, 0); /* frame 5 on: above */
+    cub_evolve_floor_report rep;
+    cub_evolve_floor(&m, &rep);
+    assert_true(rep.below_before >= 5 * 2);
+    assert_int_equal(rep.below_after, 0);
+    assert_int_equal(rep.frames_lifted, 0); /* the IK did it, not the root */
+    assert_int_equal(rep.frames_ik, 5);
+    assert_true(fabs(rep.deepest_mm + 100) < 1e-6);
+    cub_dv3 w[8];
+    for (int f = 0; f < 10; f++) {
+        cub_evolve_forward(&m, f, w);
+        assert_true(fabs(m.root_mm[f].y - (500 + 20 * f)) < 1e-12);
+        for (int j = 0; j < s.joint_count; j++) assert_true(w[j].y >= -1e-6);
+        for (int j = 1; j < s.joint_count; j++) {
+            double rest = cub_dv3_len(cub_dv3_from_fx(s.joints[j].offset_mm));
+            assert_true(fabs(cub_dv3_len(cub_dv3_sub(w[j], w[s.joints[j].parent])) - rest) < 1e-6);
+        }
+    }
+    cub_evolve_motion_free(&m);
+}
+
+static void test_floor_step_raises_the_root_when_ik_cannot(void **state)
+{
+    (void)state;
+    static const bone low[] = {{"Hips", NULL, 0, 0, 0}, {"Belly", "Hips", 0, -50, 0}};
+    static cub_skeleton s;
+    build(&s, low, COUNT(low));
+    static cub_evolve_motion m;
+    assert_int_equal(cub_evolve_motion_alloc(&s, 3, 30, &m), CUB_OK);
+    cub_evolve_floor_report rep;
+    cub_evolve_floor(&m, &rep);
+    assert_int_equal(rep.below_after, 0);
+    assert_int_equal(rep.frames_lifted, 3);
+    assert_true(fabs(m.root_mm[0].y - 50) < 1e-9);
+    cub_evolve_motion_free(&m);
+}
+
+/* ---- a real pair ----------------------------------------------------------- */
+
+static int load(const char *rel, cub_evolve_motion *out)
+{
+    char path[512];
+    const char *dir = getenv("CUB_DATA_DIR");
+    snprintf(path, sizeof path, "%s/mocap/%s", dir ? dir : "../shared/data", rel);
+    static cub_io_motion io;
+    if (cub_io_load_bvh(path, NULL, &io, NULL) != CUB_OK) return 0;
+    assert_int_equal(cub_evolve_from_clip(&io.clip, 30, out), CUB_OK);
+    cub_io_motion_free(&io);
+    if (out->frames > 151) out->frames = 151;
+    return 1;
+}
+
+static void test_cmu_human_crossed_with_a_dog(void **state)
+{
+    (void)state;
+    static cub_evolve_motion human, dog, child;
+    if (!load("cmu/02_01.bvh", &human) || !load("dog/D1_001_KAN01_001.bvh", &dog)) {
+        cub_evolve_motion_free(&human);
+        skip(); /* no ../shared/data/mocap here */
+    }
+    static cub_evolve_corr c;
+    static cub_evolve_meta m;
+    static cub_evolve_pop pop;
+    assert_int_equal(cub_evolve_correspond(&dog.skel, &human.skel, NULL, &c, NULL), CUB_OK);
+    assert_true(c.pair_count >= 15); /* the dog's joints carry human names */
+    assert_int_equal(cub_evolve_kind_of(&c, 1, joint(&dog.skel, "Tail")), CUB_EVOLVE_NONE);
+    assert_int_equal(cub_evolve_crossover(&dog.skel, &human.skel, &c, &m, NULL), CUB_OK);
+    cub_evolve_mutation mut = {.count = CUB_EVOLVE_MUTATIONS_DEFAULT};
+    assert_int_equal(cub_evolve_mutate(&m, &dog, &human, &mut, &pop, NULL), CUB_OK);
+    assert_int_equal(pop.removed_count, 5);
+    cub_evolve_survivor_cfg cfg = {0.5, 0};
+    assert_int_equal(cub_evolve_survivor(&m, &pop, &dog, &human, &cfg, &child, NULL, NULL), CUB_OK);
+    cub_evolve_floor_report rep;
+    cub_evolve_floor(&child, &rep);
+    assert_int_equal(rep.below_after, 0);
+    assert_true(cub_evolve_bone_error_mm(&child, &pop, &m) < 1e-3);
+    cub_evolve_motion_free(&human);
+    cub_evolve_motion_free(&dog);
+    cub_evolve_motion_free(&child);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_map_errors_name_file_and_line),
+        cmocka_unit_test(test_correspond_by_name_and_structure),
+        cmocka_unit_test(test_correspond_loose_names),
+        cmocka_unit_test(test_correspond_map_many_to_one_and_none),
+        cmocka_unit_test(test_crossover_keeps_common_joints_once),
+        cmocka_unit_test(test_activity_of_a_still_joint_is_zero),
+        cmocka_unit_test(test_mutation_removes_the_still_joint_first),
+        cmocka_unit_test(test_mutation_weight_minus_two_forces_the_joint),
+        cmocka_unit_test(test_mutation_relinks_to_the_nearest_kept_ancestor),
+        cmocka_unit_test(test_survivor_blend_zero_is_parent_one),
+        cmocka_unit_test(test_survivor_finds_the_window_and_blends),
+        cmocka_unit_test(test_survivor_refuses_different_rates),
+        cmocka_unit_test(test_floor_step_lifts_by_ik_and_keeps_bones),
+        cmocka_unit_test(test_floor_step_raises_the_root_when_ik_cannot),
+        cmocka_unit_test(test_cmu_human_crossed_with_a_dog),
+    };
+    int rc = cmocka_run_group_tests(tests, NULL, NULL);
+    cub_evolve_motion_free(&fx.p1);
+    cub_evolve_motion_free(&fx.p2);
+    return rc;
+}
