@@ -226,7 +226,7 @@ static void progress(const evolve_run *r, const cub_evolve_motion *p1, const cub
         if (r->pop.removed[j] && !r->meta.skel.joints[j].is_end_site)
             fprintf(stderr, " %s(%.2f)", r->meta.skel.joints[j].name, r->pop.score[j]);
     fprintf(stderr, "; %d re-linked\n", r->pop.relinked);
-    fprintf(stderr, "cubtool evolve: survivor: parent 2 from frame %d, energy %.4f rad^2, mean |d| %.1f deg\n",
+    fprintf(stderr, "cubtool evolve: survivor: parent 2 from frame %d, energy (mean sin^2 of half the angle) %.4f, mean |d| %.1f deg\n",
             r->surv.offset, r->surv.energy, r->surv.mean_d_deg);
     fprintf(stderr, "cubtool evolve: floor: %d joint-frames below before (deepest %.1f mm), %d after; "
             "IK on %d frames, root raised on %d\n",

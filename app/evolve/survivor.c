@@ -38,35 +38,37 @@ static cub_dq rot2(const surv *s, int f, int j)
     return *cub_evolve_rot(s->p2, (f + s->offset) % s->p2->frames, j);
 }
 
-/* Mean squared angle between partners at parent 1's samples, parent 2
- * started at its frame o: O(frames²) over all o, as the seed says. */
-static double energy_at(surv *s, int o, int step)
+/* Energy loss of parent 2 started at its frame o: the sum of
+ * sin²(θ/2) = 1 - (q1·q2)² over partners at parent 1's samples (θ the
+ * angle between their rotations; no trigonometry in the O(frames²) loop,
+ * as the seed's cost). Stops once past bound: o cannot win. *n: the terms. */
+static double energy_at(surv *s, int o, int step, double bound, int *n)
 {
     s->offset = o;
     double sum = 0;
-    int n = 0;
-    for (int f = 0; f < s->p1->frames; f += step)
+    *n = 0;
+    for (int f = 0; f < s->p1->frames && sum <= bound; f += step)
         for (int j = 1; j < s->p1->skel.joint_count; j++) {
             int b = s->meta->partner[j];
             if (b < 0) continue;
-            double a = cub_dq_angle_between(rot1(s, f, j), rot2(s, f, b));
-            sum += a * a;
-            n++;
+            double d = cub_dq_dot(rot1(s, f, j), rot2(s, f, b));
+            sum += 1 - d * d;
+            ++*n;
         }
-    return n ? sum / n : 0;
+    return sum;
 }
 
 static void best_window(surv *s, int step, cub_evolve_survivor_report *rep)
 {
-    int best = 0;
-    double e_best = INFINITY;
+    int best = 0, n = 0, n_best = 0;
+    double sum_best = INFINITY;
     for (int o = 0; o < s->p2->frames; o++) {
-        double e = energy_at(s, o, step);
-        if (e < e_best) e_best = e, best = o;
+        double sum = energy_at(s, o, step, sum_best, &n);
+        if (sum < sum_best) sum_best = sum, best = o, n_best = n;
     }
     s->offset = best;
     rep->offset = best;
-    rep->energy = e_best;
+    rep->energy = n_best ? sum_best / n_best : 0;
 }
 
 /* Meta joint j's local rotation in the child at frame f; *d_deg gets |d|. */

@@ -175,6 +175,10 @@ def base_of(kind, d, shared, build=""):
     if kind == "map":
         write(os.path.join(d, "source.bvh"), bear_bvh)
         return bear_map, "bad.map"
+    if kind == "evolve_map":  # the bear crossed with itself, its joints paired one to one
+        write(os.path.join(d, "p1.bvh"), bear_bvh)
+        write(os.path.join(d, "p2.bvh"), bear_bvh)
+        return b"".join(j + b" = " + j + b"\n" for j in bvh_joints(bear_bvh)), "bad.evmap"
     if kind == "bvh":
         write(os.path.join(d, "bear.map"), bear_map)
         return bear_bvh, "bad.bvh"

@@ -2,7 +2,7 @@
 """Write the fuzz targets' small seed inputs (issue 18) into tests/fuzz/:
 seeds_dump/ (fuzz_fakenect_dump, fuzz_track_dump), seeds_synth/,
 seeds_cli/, seeds_font/, seeds_forest/, seeds_map/, seeds_codec/, seeds_keys/, seeds_voice/, seeds_trc/,
-seeds_ase/, seeds_keyscript/. Everything is made
+seeds_ase/, seeds_keyscript/, seeds_evolve/. Everything is made
 here from the formats' rules, nothing copied from the shared data; run it again
 after changing a format:
 
@@ -136,6 +136,19 @@ def map_seeds():
     weighted = [b"%s %s:0.5 %s:0.5 rot" % (j, j, joints[0]) if i % 3 == 1 else b"%s %s" % (j, j)
                 for i, j in enumerate(joints)]
     put("seeds_map", "bear_weighted.map", b"# weights\n" + b"\n".join(weighted) + b"\n")
+
+
+def evolve_seeds():
+    """cubtool evolve's map files (cub/evolve.h), over the bear's joints on
+    both sides (the fuzz target crosses hello.bvh with itself): one to one,
+    many to one, none on either side."""
+    import re
+    with open(os.path.join(HERE, "..", "..", "assets", "clips", "hello.bvh"), "rb") as f:
+        joints = re.findall(rb"(?:ROOT|JOINT)\s+(\S+)", f.read())
+    put("seeds_evolve", "bear_identity.evmap", b"".join(j + b" = " + j + b"\n" for j in joints))
+    put("seeds_evolve", "bear_kinds.evmap",
+        b"# legs -> one tail, a head with no partner, a second head\n"
+        b"LeftUpLeg RightUpLeg = Spine\nHead = -\n- = Head\nNeck = Neck Chest\n")
 
 
 # ---- the seed's codec (firmware/codec, docs/codec.md): a .cubseed stream
@@ -406,6 +419,7 @@ def main():
     trc_seeds()
     codec_seeds()
     map_seeds()
+    evolve_seeds()
     dump_seeds()
     synth_seeds()
     cli_seeds()

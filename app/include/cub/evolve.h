@@ -185,14 +185,14 @@ typedef struct cub_evolve_survivor_cfg {
 
 typedef struct cub_evolve_survivor_report {
     int offset;        /* parent 2's window starts at this frame */
-    double energy;     /* its energy loss: mean squared angle (rad²) at the samples */
+    double energy;     /* its energy loss: mean sin²(θ/2), θ the partners' angle, at the samples */
     double mean_d_deg; /* mean |d(t)| over the child's joints and frames */
 } cub_evolve_survivor_report;
 
 /* The child's motion on C_p (ours where the seed is lost): parent 2 is
  * laid against parent 1 at every start frame o (looping); the energy loss
- * of o is the mean squared rotation angle between partners at parent 1's
- * samples; the least wins. d_j(t) = log(q1_j(t)^-1 q2_j(t + o)) for a
+ * of o is the mean sin²(θ/2), θ the rotation angle between partners, at
+ * parent 1's samples; the least wins (the first of equals). d_j(t) = log(q1_j(t)^-1 q2_j(t + o)) for a
  * joint with a partner (the root's position and rotation excluded: the
  * child keeps parent 1's path), C_mp: q_j(t) = q1_j(t) exp(x d_j(t)).
  * Appended joints take parent 2's rotation at t + o. The child is as long
