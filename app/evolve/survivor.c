@@ -1,6 +1,9 @@
 /* Survivor (SEEDS.md § 004, "spacetime" fitness; the formula of d(t) is
  * lost, ours): parent 2 laid against parent 1 where the energy loss is
- * least, the child's motion C_mp(t) = C_m1(t) + x·d(t). */
+ * least, the child's motion C_mp(t) = C_m1(t) + x·d(t). Rotations are
+ * compared relative to each parent's mean pose: a first try on absolute
+ * local rotations crossed a dog's rest pose into a human's (mean |d| 86
+ * degrees on 02_01 x a dog walk, a child that fell over at x = 0.5). */
 #include <math.h>
 #include <string.h>
 
@@ -30,12 +33,32 @@ typedef struct surv {
     const cub_evolve_motion *p1, *p2;
     double x;
     int offset;
+    cub_dq inv_mean1[CUB_EVOLVE_MAX_JOINTS], inv_mean2[CUB_EVOLVE_MAX_JOINTS];
 } surv;
 
 static cub_dq rot1(const surv *s, int f, int j) { return *cub_evolve_rot(s->p1, f % s->p1->frames, j); }
 static cub_dq rot2(const surv *s, int f, int j)
 {
     return *cub_evolve_rot(s->p2, (f + s->offset) % s->p2->frames, j);
+}
+/* A joint's rotation relative to its mean over the clip: the parents' rest
+ * poses differ (a dog's rest is not a human's), their movements compare. */
+static cub_dq delta1(const surv *s, int f, int j) { return cub_dq_mul(s->inv_mean1[j], rot1(s, f, j)); }
+static cub_dq delta2(const surv *s, int f, int j) { return cub_dq_mul(s->inv_mean2[j], rot2(s, f, j)); }
+
+/* inv_mean[j]: the inverse of joint j's mean rotation over m (the
+ * normalised sum, each frame turned into the first frame's hemisphere). */
+static void inverse_means(const cub_evolve_motion *m, cub_dq *inv_mean)
+{
+    for (int j = 0; j < m->skel.joint_count; j++) {
+        cub_dq first = *cub_evolve_rot(m, 0, j), sum = {0, 0, 0, 0};
+        for (int f = 0; f < m->frames; f++) {
+            cub_dq q = *cub_evolve_rot(m, f, j);
+            double k = cub_dq_dot(q, first) < 0 ? -1 : 1;
+            sum = (cub_dq){sum.w + k * q.w, sum.x + k * q.x, sum.y + k * q.y, sum.z + k * q.z};
+        }
+        inv_mean[j] = cub_dq_conj(cub_dq_norm(sum));
+    }
 }
 
 /* Energy loss of parent 2 started at its frame o: the sum of
@@ -51,7 +74,7 @@ static double energy_at(surv *s, int o, int step, double bound, int *n)
         for (int j = 1; j < s->p1->skel.joint_count; j++) {
             int b = s->meta->partner[j];
             if (b < 0) continue;
-            double d = cub_dq_dot(rot1(s, f, j), rot2(s, f, b));
+            double d = cub_dq_dot(delta1(s, f, j), delta2(s, f, b));
             sum += 1 - d * d;
             ++*n;
         }
@@ -80,7 +103,7 @@ static cub_dq meta_rot(const surv *s, int f, int j, double *d_deg)
     cub_dq q1 = rot1(s, f, j);
     int b = m->partner[j];
     if (j == 0 || b < 0) return q1;
-    cub_dv3 d = q_log(cub_dq_mul(cub_dq_conj(q1), rot2(s, f, b)));
+    cub_dv3 d = q_log(cub_dq_mul(cub_dq_conj(delta1(s, f, j)), delta2(s, f, b)));
     *d_deg = cub_dv3_len(d) * 180.0 / CUB_VEC_PI;
     return cub_dq_mul(q1, q_exp(cub_dv3_scale(d, s->x)));
 }
@@ -122,7 +145,11 @@ cub_err cub_evolve_survivor(const cub_evolve_meta *meta, const cub_evolve_pop *p
     double x = cfg ? cfg->blend : 0;
     if (!isfinite(x)) return cub_diag_fail(diag, CUB_ERR_ARG, "(survivor)", 0, "blend is not a number");
     int step = cfg && cfg->step > 0 ? cfg->step : CUB_EVOLVE_SAMPLE_STEP;
-    surv s = {meta, pop, p1, p2, x, 0};
+    static surv s;
+    memset(&s, 0, sizeof s);
+    s = (surv){.meta = meta, .pop = pop, .p1 = p1, .p2 = p2, .x = x};
+    inverse_means(p1, s.inv_mean1);
+    inverse_means(p2, s.inv_mean2);
     best_window(&s, step, rep);
     int frames = p1->frames > p2->frames ? p1->frames : p2->frames;
     cub_err err = cub_evolve_motion_alloc(&pop->skel, frames, p1->fps, child);

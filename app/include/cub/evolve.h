@@ -189,15 +189,19 @@ typedef struct cub_evolve_survivor_report {
     double mean_d_deg; /* mean |d(t)| over the child's joints and frames */
 } cub_evolve_survivor_report;
 
-/* The child's motion on C_p (ours where the seed is lost): parent 2 is
+/* The child's motion on C_p (ours where the seed is lost). Each parent's
+ * rotations are taken relative to its own mean pose, D_j(t) = q̄_j^-1 q_j(t)
+ * (the parents' rest poses differ; their movements compare). Parent 2 is
  * laid against parent 1 at every start frame o (looping); the energy loss
- * of o is the mean sin²(θ/2), θ the rotation angle between partners, at
- * parent 1's samples; the least wins (the first of equals). d_j(t) = log(q1_j(t)^-1 q2_j(t + o)) for a
- * joint with a partner (the root's position and rotation excluded: the
- * child keeps parent 1's path), C_mp: q_j(t) = q1_j(t) exp(x d_j(t)).
- * Appended joints take parent 2's rotation at t + o. The child is as long
- * as the longer parent (the shorter loops). A joint re-linked past removed
- * ones takes their rotations too. Both parents at the same fps. */
+ * of o is the mean sin²(θ/2), θ the angle between partners' D, at parent
+ * 1's samples; the least wins (the first of equals). For a joint with a
+ * partner d_j(t) = log(D1_j(t)^-1 D2_j(t + o)) and q_j(t) = q1_j(t)
+ * exp(x d_j(t)): x = 0 is parent 1 exactly, x = 1 parent 1's mean pose
+ * moving as parent 2 does. The root's position and rotation stay parent
+ * 1's (its path). Appended joints take parent 2's rotation at t + o. The
+ * child is as long as the longer parent (the shorter loops). A joint
+ * re-linked past removed ones takes their rotations too. Both parents at
+ * the same fps. */
 cub_err cub_evolve_survivor(const cub_evolve_meta *meta, const cub_evolve_pop *pop,
                             const cub_evolve_motion *p1, const cub_evolve_motion *p2,
                             const cub_evolve_survivor_cfg *cfg, cub_evolve_motion *child,
