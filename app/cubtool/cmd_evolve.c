@@ -73,9 +73,10 @@ static int add_weight(evolve_args *a, const char *s)
 static int option(evolve_args *a, const char *o, const char *v)
 {
     double x = 0;
-    const char **str = !strcmp(o, "--out") ? &a->out : !strcmp(o, "--map") ? &a->map
-                       : !strcmp(o, "--sheet")                              ? &a->sheet
-                                                                            : NULL;
+    const char **str = !strcmp(o, "--out")     ? &a->out
+                       : !strcmp(o, "--map")   ? &a->map
+                       : !strcmp(o, "--sheet") ? &a->sheet
+                                               : NULL;
     if (str) {
         *str = v;
         return 0;
@@ -85,10 +86,14 @@ static int option(evolve_args *a, const char *o, const char *v)
         fprintf(stderr, "cubtool evolve: %s needs a number, got '%s'\n", o, v);
         return 2;
     }
-    if (!strcmp(o, "--blend")) a->blend = x;
-    else if (!strcmp(o, "--fps") && x > 0 && x <= 1000) a->fps = x;
-    else if (!strcmp(o, "--mutations") && x >= 0 && x <= CUB_EVOLVE_MAX_JOINTS && x == floor(x)) a->mutations = (int)x;
-    else if (!strcmp(o, "--max-frames") && x >= 2 && x <= 1e6 && x == floor(x)) a->max_frames = (int)x;
+    if (!strcmp(o, "--blend"))
+        a->blend = x;
+    else if (!strcmp(o, "--fps") && x > 0 && x <= 1000)
+        a->fps = x;
+    else if (!strcmp(o, "--mutations") && x >= 0 && x <= CUB_EVOLVE_MAX_JOINTS && x == floor(x))
+        a->mutations = (int)x;
+    else if (!strcmp(o, "--max-frames") && x >= 2 && x <= 1e6 && x == floor(x))
+        a->max_frames = (int)x;
     else {
         fprintf(stderr, "cubtool evolve: %s %s is out of range\n", o, v);
         return 2;
@@ -175,7 +180,8 @@ static int pipeline(const evolve_args *a, const cub_evolve_map *map, const cub_e
     cub_diag d = {0};
     double t0 = now_ms();
     if (cub_evolve_correspond(&p1->skel, &p2->skel, map, &r->corr, &d)) return fail("map", &d);
-    if (cub_evolve_crossover(&p1->skel, &p2->skel, &r->corr, &r->meta, &d)) return fail("crossover", &d);
+    if (cub_evolve_crossover(&p1->skel, &p2->skel, &r->corr, &r->meta, &d))
+        return fail("crossover", &d);
     double t1 = now_ms();
     if (set_weights(a, r)) return 1;
     if (cub_evolve_mutate(&r->meta, p1, p2, &r->mut, &r->pop, &d)) return fail("mutation", &d);
@@ -191,7 +197,8 @@ static int pipeline(const evolve_args *a, const cub_evolve_map *map, const cub_e
     return 0;
 }
 
-static int load_parent(const char *path, const evolve_args *a, cub_evolve_motion *out, double *unit_mm)
+static int load_parent(const char *path, const evolve_args *a, cub_evolve_motion *out,
+                       double *unit_mm)
 {
     static cub_io_motion io;
     cub_diag d = {0};
@@ -215,20 +222,25 @@ static void progress(const evolve_run *r, const cub_evolve_motion *p1, const cub
         for (int j = 0; j < (side ? p2 : p1)->skel.joint_count; j++)
             kinds[side][cub_evolve_kind_of(&r->corr, side + 1, j)]++;
     fprintf(stderr,
-            "cubtool evolve: correspondence: %d pairs; parent 1 (%d joints): %d one-to-one, %d many-to-one, "
+            "cubtool evolve: correspondence: %d pairs; parent 1 (%d joints): %d one-to-one, %d "
+            "many-to-one, "
             "%d one-to-many, %d none; parent 2 (%d joints): %d none\n",
-            r->corr.pair_count, p1->skel.joint_count, kinds[0][1], kinds[0][2], kinds[0][3], kinds[0][0],
-            p2->skel.joint_count, kinds[1][0]);
-    fprintf(stderr, "cubtool evolve: crossover: meta skeleton %d joints (%d appended from parent 2)\n",
+            r->corr.pair_count, p1->skel.joint_count, kinds[0][1], kinds[0][2], kinds[0][3],
+            kinds[0][0], p2->skel.joint_count, kinds[1][0]);
+    fprintf(stderr,
+            "cubtool evolve: crossover: meta skeleton %d joints (%d appended from parent 2)\n",
             r->meta.skel.joint_count, r->meta.appended);
     fprintf(stderr, "cubtool evolve: mutation: %d removed:", r->pop.removed_count);
     for (int j = 0; j < r->meta.skel.joint_count; j++)
         if (r->pop.removed[j] && !r->meta.skel.joints[j].is_end_site)
             fprintf(stderr, " %s(%.2f)", r->meta.skel.joints[j].name, r->pop.score[j]);
     fprintf(stderr, "; %d re-linked\n", r->pop.relinked);
-    fprintf(stderr, "cubtool evolve: survivor: parent 2 from frame %d, energy (mean sin^2 of half the angle) %.4f, mean |d| %.1f deg\n",
+    fprintf(stderr,
+            "cubtool evolve: survivor: parent 2 from frame %d, energy (mean sin^2 of half the "
+            "angle) %.4f, mean |d| %.1f deg\n",
             r->surv.offset, r->surv.energy, r->surv.mean_d_deg);
-    fprintf(stderr, "cubtool evolve: floor: %d joint-frames below before (deepest %.1f mm), %d after; "
+    fprintf(stderr,
+            "cubtool evolve: floor: %d joint-frames below before (deepest %.1f mm), %d after; "
             "IK on %d frames, root raised on %d\n",
             r->floor.below_before, r->floor.deepest_mm, r->floor.below_after, r->floor.frames_ik,
             r->floor.frames_lifted);
@@ -243,7 +255,8 @@ static int cmp_double(const void *x, const void *y)
 static int dof_of(const cub_skeleton *s)
 {
     int n = 0;
-    for (int j = 0; j < s->joint_count; j++) n += s->joints[j].is_end_site ? 0 : j == 0 ? 6 : 3;
+    for (int j = 0; j < s->joint_count; j++)
+        n += s->joints[j].is_end_site ? 0 : j == 0 ? 6 : 3;
     return n;
 }
 
@@ -255,16 +268,19 @@ static int bench(const evolve_args *a, const cub_evolve_map *map, const cub_evol
         cub_evolve_motion_free(&r->child);
         if (pipeline(a, map, p1, p2, r)) return 1;
         t[4][i] = 0;
-        for (int s = 0; s < 4; s++) t[s][i] = r->ms[s], t[4][i] += r->ms[s];
+        for (int s = 0; s < 4; s++)
+            t[s][i] = r->ms[s], t[4][i] += r->ms[s];
     }
     static const char *names[5] = {"crossover", "mutation", "survivor", "floor", "total"};
-    printf("evolve bench: parents %d frames x %d joints, %d frames x %d joints; child %d joints, %d DOF; "
+    printf("evolve bench: parents %d frames x %d joints, %d frames x %d joints; child %d joints, "
+           "%d DOF; "
            "%d runs, median (max) ms:",
-           p1->frames, p1->skel.joint_count, p2->frames, p2->skel.joint_count, r->child.skel.joint_count,
-           dof_of(&r->child.skel), EVOLVE_BENCH_RUNS);
+           p1->frames, p1->skel.joint_count, p2->frames, p2->skel.joint_count,
+           r->child.skel.joint_count, dof_of(&r->child.skel), EVOLVE_BENCH_RUNS);
     for (int s = 0; s < 5; s++) {
         qsort(t[s], EVOLVE_BENCH_RUNS, sizeof(double), cmp_double);
-        printf(" %s=%.2f(%.2f)", names[s], t[s][EVOLVE_BENCH_RUNS / 2], t[s][EVOLVE_BENCH_RUNS - 1]);
+        printf(" %s=%.2f(%.2f)", names[s], t[s][EVOLVE_BENCH_RUNS / 2],
+               t[s][EVOLVE_BENCH_RUNS - 1]);
     }
     printf("\n");
     return 0;
@@ -304,12 +320,14 @@ static int run(const evolve_args *a, cub_evolve_map *map, evolve_run *r)
     }
     if (write_child(a, r, unit1)) goto out;
     double bone = cub_evolve_bone_error_mm(&r->child, &r->pop, &r->meta);
-    printf("evolve: %s frames=%d joints=%d dof=%d mutated=%d relinked=%d window=%d mean_d_deg=%.1f "
-           "below_floor_before=%d below_floor_after=%d ik_frames=%d lifted_frames=%d bone_err_mm=%.2e "
-           "ms=%.2f\n",
-           a->out, r->child.frames, r->child.skel.joint_count, dof_of(&r->child.skel), r->pop.removed_count,
-           r->pop.relinked, r->surv.offset, r->surv.mean_d_deg, r->floor.below_before, r->floor.below_after,
-           r->floor.frames_ik, r->floor.frames_lifted, bone, r->ms[0] + r->ms[1] + r->ms[2] + r->ms[3]);
+    printf(
+        "evolve: %s frames=%d joints=%d dof=%d mutated=%d relinked=%d window=%d mean_d_deg=%.1f "
+        "below_floor_before=%d below_floor_after=%d ik_frames=%d lifted_frames=%d bone_err_mm=%.2e "
+        "ms=%.2f\n",
+        a->out, r->child.frames, r->child.skel.joint_count, dof_of(&r->child.skel),
+        r->pop.removed_count, r->pop.relinked, r->surv.offset, r->surv.mean_d_deg,
+        r->floor.below_before, r->floor.below_after, r->floor.frames_ik, r->floor.frames_lifted,
+        bone, r->ms[0] + r->ms[1] + r->ms[2] + r->ms[3]);
     rc = 0;
 out:
     cub_evolve_motion_free(&p1);

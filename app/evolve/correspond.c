@@ -36,13 +36,13 @@ static void add_pair(corr_state *st, int ja, int jb)
     st->fixed[0][ja] = st->fixed[1][jb] = 1;
 }
 
-static cub_err find_named(const cub_skeleton *s, const char *name, int side, const cub_evolve_map *map,
-                          int line, int *out, cub_diag *diag)
+static cub_err find_named(const cub_skeleton *s, const char *name, int side,
+                          const cub_evolve_map *map, int line, int *out, cub_diag *diag)
 {
     *out = cub_motion_skeleton_find(s, name);
     if (*out < 0)
-        return cub_diag_fail(diag, CUB_ERR_FORMAT, map->file, line, "no joint \"%s\" in parent %d", name,
-                             side + 1);
+        return cub_diag_fail(diag, CUB_ERR_FORMAT, map->file, line, "no joint \"%s\" in parent %d",
+                             name, side + 1);
     return CUB_OK;
 }
 
@@ -56,10 +56,13 @@ static cub_err apply_row(corr_state *st, const cub_evolve_map *map, const cub_ev
     for (int i = 0; i < row->b_count && !err; i++)
         err = find_named(st->b, row->b[i], 1, map, row->line, &jb[i], diag);
     if (err) return err;
-    for (int i = 0; i < row->a_count; i++) st->fixed[0][ja[i]] = 1;
-    for (int i = 0; i < row->b_count; i++) st->fixed[1][jb[i]] = 1;
     for (int i = 0; i < row->a_count; i++)
-        for (int k = 0; k < row->b_count; k++) add_pair(st, ja[i], jb[k]);
+        st->fixed[0][ja[i]] = 1;
+    for (int i = 0; i < row->b_count; i++)
+        st->fixed[1][jb[i]] = 1;
+    for (int i = 0; i < row->a_count; i++)
+        for (int k = 0; k < row->b_count; k++)
+            add_pair(st, ja[i], jb[k]);
     return CUB_OK;
 }
 
@@ -148,7 +151,8 @@ int cub_evolve_partner_of_a(const cub_evolve_corr *c, int ja)
 static int count_of(const cub_evolve_corr *c, int side, int j)
 {
     int n = 0;
-    for (int i = 0; i < c->pair_count; i++) n += (side == 1 ? c->pair[i].a : c->pair[i].b) == j;
+    for (int i = 0; i < c->pair_count; i++)
+        n += (side == 1 ? c->pair[i].a : c->pair[i].b) == j;
     return n;
 }
 

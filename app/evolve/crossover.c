@@ -38,7 +38,8 @@ static cub_err append(cub_evolve_meta *m, const cub_joint *jt, int parent, int s
 cub_err cub_evolve_crossover(const cub_skeleton *a, const cub_skeleton *b,
                              const cub_evolve_corr *corr, cub_evolve_meta *out, cub_diag *diag)
 {
-    if (!a || !b || !corr || !out) return cub_diag_fail(diag, CUB_ERR_ARG, "(crossover)", 0, "no input");
+    if (!a || !b || !corr || !out)
+        return cub_diag_fail(diag, CUB_ERR_ARG, "(crossover)", 0, "no input");
     memset(out, 0, sizeof(*out));
     out->skel = *a;
     for (int j = 0; j < a->joint_count; j++) {

@@ -25,7 +25,8 @@ static void fk(const cub_evolve_motion *m, int f, fk_frame *w)
             w->rot[j] = r;
             continue;
         }
-        w->pos[j] = cub_dv3_add(w->pos[p], cub_dq_rotate(w->rot[p], cub_dv3_from_fx(m->skel.joints[j].offset_mm)));
+        w->pos[j] = cub_dv3_add(
+            w->pos[p], cub_dq_rotate(w->rot[p], cub_dv3_from_fx(m->skel.joints[j].offset_mm)));
         w->rot[j] = cub_dq_mul(w->rot[p], r);
     }
 }
@@ -63,7 +64,8 @@ static int lift_step(cub_evolve_motion *m, int f, const fk_frame *w, int j, doub
         int k = chain[i], p = m->skel.joints[k].parent;
         /* new world W_k = turn * W_k, so local = W_p^-1 turn W_p R_k */
         cub_dq *rk = cub_evolve_rot(m, f, k);
-        *rk = cub_dq_norm(cub_dq_mul(cub_dq_mul(cub_dq_conj(w->rot[p]), turn), cub_dq_mul(w->rot[p], *rk)));
+        *rk = cub_dq_norm(
+            cub_dq_mul(cub_dq_mul(cub_dq_conj(w->rot[p]), turn), cub_dq_mul(w->rot[p], *rk)));
     }
     return 1;
 }
@@ -111,7 +113,8 @@ void cub_evolve_floor(cub_evolve_motion *m, cub_evolve_floor_report *rep)
     if (!rep) rep = &none;
     memset(rep, 0, sizeof(*rep));
     static fk_frame w;
-    for (int f = 0; f < m->frames; f++) fix_frame(m, f, &w, rep);
+    for (int f = 0; f < m->frames; f++)
+        fix_frame(m, f, &w, rep);
 }
 
 double cub_evolve_bone_error_mm(const cub_evolve_motion *m, const cub_evolve_pop *pop,

@@ -18,7 +18,8 @@ static cub_err parse_side(char **w, int n, char names[][CUB_MOTION_NAME_LEN], in
     if (n > CUB_EVOLVE_MAP_SIDE)
         return cub_text_fail(at, "more than %d joints on the %s side", CUB_EVOLVE_MAP_SIDE, which);
     for (int i = 0; i < n; i++) {
-        if (!strcmp(w[i], "-")) return cub_text_fail(at, "'-' beside joint names on the %s side", which);
+        if (!strcmp(w[i], "-"))
+            return cub_text_fail(at, "'-' beside joint names on the %s side", which);
         if (strlen(w[i]) >= CUB_MOTION_NAME_LEN)
             return cub_text_fail(at, "joint name \"%.40s...\" too long", w[i]);
         snprintf(names[i], CUB_MOTION_NAME_LEN, "%s", w[i]);
@@ -73,8 +74,8 @@ static cub_err map_line(void *ctx, cub_text_line *ln)
             eq = i;
         }
     if (eq < 0)
-        return cub_text_fail(&ln->at, "expected `Parent1Joint... = Parent2Joint...`, no ' = ' in \"%s\"",
-                             w[0]);
+        return cub_text_fail(
+            &ln->at, "expected `Parent1Joint... = Parent2Joint...`, no ' = ' in \"%s\"", w[0]);
     if (map->row_count >= CUB_EVOLVE_MAX_JOINTS)
         return cub_text_fail(&ln->at, "more than %d rows", CUB_EVOLVE_MAX_JOINTS);
     cub_evolve_map_row *row = &map->row[map->row_count];
@@ -82,7 +83,8 @@ static cub_err map_line(void *ctx, cub_text_line *ln)
     row->line = ln->at.line;
     cub_err err = parse_side(w, eq, row->a, &row->a_count, "left (parent 1)", &ln->at);
     if (!err)
-        err = parse_side(w + eq + 1, n - eq - 1, row->b, &row->b_count, "right (parent 2)", &ln->at);
+        err =
+            parse_side(w + eq + 1, n - eq - 1, row->b, &row->b_count, "right (parent 2)", &ln->at);
     if (!err) err = check_row(map, row, &ln->at);
     if (!err) map->row_count++;
     return err;

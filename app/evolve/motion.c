@@ -80,12 +80,14 @@ cub_err cub_evolve_to_io(const cub_evolve_motion *m, double unit_mm, cub_io_moti
     out->frame_mem = malloc(size);
     if (!out->frame_mem) return CUB_ERR_NOMEM;
     uint32_t ns = (uint32_t)(1e9 / m->fps + 0.5);
-    cub_err err = cub_motion_clip_init(&out->clip, &out->skel, m->frames, ns, 0, out->frame_mem, size);
+    cub_err err =
+        cub_motion_clip_init(&out->clip, &out->skel, m->frames, ns, 0, out->frame_mem, size);
     if (err) return err;
     for (int f = 0; f < m->frames; f++) {
         out->clip.root_mm[f] = cub_dv3_to_fx(m->root_mm[f]);
         for (int j = 0; j < n; j++)
-            out->clip.rot[(size_t)f * (size_t)n + (size_t)j] = cub_dq_to_fx(*cub_evolve_rot(m, f, j));
+            out->clip.rot[(size_t)f * (size_t)n + (size_t)j] =
+                cub_dq_to_fx(*cub_evolve_rot(m, f, j));
     }
     for (int j = 0; j < n; j++) {
         if (m->skel.joints[j].is_end_site) continue;

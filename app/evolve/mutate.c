@@ -58,7 +58,8 @@ static void standardise(const cub_skeleton *s, double *act)
             n++;
         }
     double mean = n ? sum / n : 0, sd = n ? sqrt(fmax(0.0, sum2 / n - mean * mean)) : 0;
-    for (int j = 0; j < s->joint_count; j++) act[j] = sd > 1e-12 ? (act[j] - mean) / sd : 0;
+    for (int j = 0; j < s->joint_count; j++)
+        act[j] = sd > 1e-12 ? (act[j] - mean) / sd : 0;
 }
 
 /* The first principal axis of the points (x[i], y[i]), pointing into the
@@ -66,7 +67,8 @@ static void standardise(const cub_skeleton *s, double *act)
 static cub_dv3 principal_axis(const double *x, const double *y, int n)
 {
     double mx = 0, my = 0, sxx = 0, syy = 0, sxy = 0;
-    for (int i = 0; i < n; i++) mx += x[i], my += y[i];
+    for (int i = 0; i < n; i++)
+        mx += x[i], my += y[i];
     mx /= n ? n : 1;
     my /= n ? n : 1;
     for (int i = 0; i < n; i++) {
@@ -81,7 +83,8 @@ static cub_dv3 principal_axis(const double *x, const double *y, int n)
 }
 
 /* score[j] = the PCA value of each meta candidate, rescaled to 0..1. */
-static void pca_scores(const cub_evolve_meta *meta, const double *z1, const double *z2, double *score)
+static void pca_scores(const cub_evolve_meta *meta, const double *z1, const double *z2,
+                       double *score)
 {
     double x[CUB_EVOLVE_MAX_JOINTS], y[CUB_EVOLVE_MAX_JOINTS];
     int idx[CUB_EVOLVE_MAX_JOINTS], n = 0;
@@ -100,7 +103,8 @@ static void pca_scores(const cub_evolve_meta *meta, const double *z1, const doub
         lo = fmin(lo, v[i]);
         hi = fmax(hi, v[i]);
     }
-    for (int i = 0; i < n; i++) score[idx[i]] = hi > lo ? (v[i] - lo) / (hi - lo) : 0;
+    for (int i = 0; i < n; i++)
+        score[idx[i]] = hi > lo ? (v[i] - lo) / (hi - lo) : 0;
 }
 
 /* Mark the count lowest-scored candidates; a removed joint's end sites go too. */
@@ -110,7 +114,8 @@ static void choose(const cub_evolve_meta *meta, int count, cub_evolve_pop *pop)
     for (int k = 0; k < count; k++) {
         int best = -1;
         for (int j = 0; j < s->joint_count; j++)
-            if (candidate(s, j) && !pop->removed[j] && (best < 0 || pop->score[j] < pop->score[best]))
+            if (candidate(s, j) && !pop->removed[j] &&
+                (best < 0 || pop->score[j] < pop->score[best]))
                 best = j;
         if (best < 0) break;
         pop->removed[best] = 1;
@@ -136,10 +141,11 @@ static cub_err build_pop(const cub_evolve_meta *meta, cub_evolve_pop *pop, cub_d
             off = cub_dv3_add(off, cub_dv3_from_fx(s->joints[p].offset_mm));
         pop->relinked += p != s->joints[j].parent;
         int at = -1;
-        cub_err err = cub_motion_skeleton_add(&pop->skel, s->joints[j].name, p < 0 ? -1 : pop->child[p],
-                                              cub_dv3_to_fx(off), &at);
+        cub_err err = cub_motion_skeleton_add(&pop->skel, s->joints[j].name,
+                                              p < 0 ? -1 : pop->child[p], cub_dv3_to_fx(off), &at);
         if (err)
-            return cub_diag_fail(diag, err, "(mutation)", 0, "cannot keep joint \"%s\"", s->joints[j].name);
+            return cub_diag_fail(diag, err, "(mutation)", 0, "cannot keep joint \"%s\"",
+                                 s->joints[j].name);
         pop->skel.joints[at].is_end_site = s->joints[j].is_end_site;
         pop->child[j] = at;
         pop->meta[at] = j;

@@ -36,15 +36,24 @@ typedef struct surv {
     cub_dq inv_mean1[CUB_EVOLVE_MAX_JOINTS], inv_mean2[CUB_EVOLVE_MAX_JOINTS];
 } surv;
 
-static cub_dq rot1(const surv *s, int f, int j) { return *cub_evolve_rot(s->p1, f % s->p1->frames, j); }
+static cub_dq rot1(const surv *s, int f, int j)
+{
+    return *cub_evolve_rot(s->p1, f % s->p1->frames, j);
+}
 static cub_dq rot2(const surv *s, int f, int j)
 {
     return *cub_evolve_rot(s->p2, (f + s->offset) % s->p2->frames, j);
 }
 /* A joint's rotation relative to its mean over the clip: the parents' rest
  * poses differ (a dog's rest is not a human's), their movements compare. */
-static cub_dq delta1(const surv *s, int f, int j) { return cub_dq_mul(s->inv_mean1[j], rot1(s, f, j)); }
-static cub_dq delta2(const surv *s, int f, int j) { return cub_dq_mul(s->inv_mean2[j], rot2(s, f, j)); }
+static cub_dq delta1(const surv *s, int f, int j)
+{
+    return cub_dq_mul(s->inv_mean1[j], rot1(s, f, j));
+}
+static cub_dq delta2(const surv *s, int f, int j)
+{
+    return cub_dq_mul(s->inv_mean2[j], rot2(s, f, j));
+}
 
 /* inv_mean[j]: the inverse of joint j's mean rotation over m (the
  * normalised sum, each frame turned into the first frame's hemisphere). */
@@ -140,10 +149,11 @@ cub_err cub_evolve_survivor(const cub_evolve_meta *meta, const cub_evolve_pop *p
         return cub_diag_fail(diag, CUB_ERR_ARG, "(survivor)", 0, "no input");
     if (fabs(p1->fps - p2->fps) > 1e-6 * p1->fps)
         return cub_diag_fail(diag, CUB_ERR_ARG, "(survivor)", 0,
-                             "the parents' rates differ (%.3f and %.3f fps): resample first", p1->fps,
-                             p2->fps);
+                             "the parents' rates differ (%.3f and %.3f fps): resample first",
+                             p1->fps, p2->fps);
     double x = cfg ? cfg->blend : 0;
-    if (!isfinite(x)) return cub_diag_fail(diag, CUB_ERR_ARG, "(survivor)", 0, "blend is not a number");
+    if (!isfinite(x))
+        return cub_diag_fail(diag, CUB_ERR_ARG, "(survivor)", 0, "blend is not a number");
     int step = cfg && cfg->step > 0 ? cfg->step : CUB_EVOLVE_SAMPLE_STEP;
     static surv s;
     memset(&s, 0, sizeof s);
@@ -156,7 +166,8 @@ cub_err cub_evolve_survivor(const cub_evolve_meta *meta, const cub_evolve_pop *p
     if (err) return cub_diag_fail(diag, err, "(survivor)", 0, "out of memory");
     double d_sum = 0;
     int d_n = 0;
-    for (int f = 0; f < frames; f++) fill_frame(&s, f, child, &d_sum, &d_n);
+    for (int f = 0; f < frames; f++)
+        fill_frame(&s, f, child, &d_sum, &d_n);
     rep->mean_d_deg = d_n ? d_sum / d_n : 0;
     return CUB_OK;
 }

@@ -27,21 +27,28 @@ static void build(cub_skeleton *s, const bone *b, int n)
     for (int i = 0; i < n; i++) {
         int p = b[i].parent ? cub_motion_skeleton_find(s, b[i].parent) : -1;
         int at;
-        assert_int_equal(cub_motion_skeleton_add(s, b[i].name, p, cub_dv3_to_fx(cub_dv3_make(b[i].x, b[i].y, b[i].z)), &at),
-                         CUB_OK);
+        assert_int_equal(
+            cub_motion_skeleton_add(s, b[i].name, p,
+                                    cub_dv3_to_fx(cub_dv3_make(b[i].x, b[i].y, b[i].z)), &at),
+            CUB_OK);
     }
 }
 
 /* A four-legged horned walker: 9 joints. */
 static const bone horse[] = {
-    {"Hips", NULL, 0, 900, 0},          {"Spine", "Hips", 0, 100, 200},  {"Neck", "Spine", 0, 100, 200},
-    {"Head", "Neck", 0, 100, 100},      {"Horn", "Head", 0, 80, 60},     {"LeftUpLeg", "Hips", 100, -400, 0},
-    {"LeftLeg", "LeftUpLeg", 0, -400, 0}, {"RightUpLeg", "Hips", -100, -400, 0},
+    {"Hips", NULL, 0, 900, 0},
+    {"Spine", "Hips", 0, 100, 200},
+    {"Neck", "Spine", 0, 100, 200},
+    {"Head", "Neck", 0, 100, 100},
+    {"Horn", "Head", 0, 80, 60},
+    {"LeftUpLeg", "Hips", 100, -400, 0},
+    {"LeftLeg", "LeftUpLeg", 0, -400, 0},
+    {"RightUpLeg", "Hips", -100, -400, 0},
     {"RightLeg", "RightUpLeg", 0, -400, 0},
 };
 /* A fish-like swimmer: a collar where the horse has a neck, a tail. */
 static const bone fish[] = {
-    {"Hips", NULL, 0, 500, 0},   {"Spine", "Hips", 0, 0, 200}, {"Collar", "Spine", 0, 0, 150},
+    {"Hips", NULL, 0, 500, 0},     {"Spine", "Hips", 0, 0, 200}, {"Collar", "Spine", 0, 0, 150},
     {"Head", "Collar", 0, 0, 100}, {"Tail", "Hips", 0, 0, -200}, {"Tail1", "Tail", 0, 0, -200},
 };
 #define COUNT(a) ((int)(sizeof(a) / sizeof((a)[0])))
@@ -61,9 +68,11 @@ static void animate(const cub_skeleton *s, int frames, int still, cub_evolve_mot
     for (int f = 0; f < frames; f++) {
         m->root_mm[f] = cub_dv3_make(0, s->joints[0].offset_mm.y / 65536.0, 10.0 * f);
         for (int j = 0; j < s->joint_count; j++) {
-            cub_dv3 axis = cub_dv3_norm(cub_dv3_make(noise(), noise(), noise()), cub_dv3_make(1, 0, 0));
+            cub_dv3 axis =
+                cub_dv3_norm(cub_dv3_make(noise(), noise(), noise()), cub_dv3_make(1, 0, 0));
             double a = j == still ? 0.3 : 0.6 * noise();
-            *cub_evolve_rot(m, f, j) = cub_dq_axis_angle(j == still ? cub_dv3_make(1, 0, 0) : axis, a);
+            *cub_evolve_rot(m, f, j) =
+                cub_dq_axis_angle(j == still ? cub_dv3_make(1, 0, 0) : axis, a);
         }
     }
 }
@@ -100,7 +109,8 @@ static void test_map_errors_name_file_and_line(void **state)
     expect_map_error("# only a comment\n", "no rows");
     expect_map_error("Head = Head\nNeck Collar\n", "x.map:2: expected");
     expect_map_error("A B = C D\n", "x.map:1: many joints on both sides");
-    expect_map_error("Head = Head\n\nHead = Spine\n", "x.map:3: parent 1's joint \"Head\" already mapped on line 1");
+    expect_map_error("Head = Head\n\nHead = Spine\n",
+                     "x.map:3: parent 1's joint \"Head\" already mapped on line 1");
     expect_map_error("Head = Skull Skull\n", "parent 2's joint \"Skull\" already mapped on line 1");
     expect_map_error("- = -\n", "'-' on both sides");
     expect_map_error("Head =\n", "nothing on the right");
@@ -118,7 +128,8 @@ static void test_map_errors_name_file_and_line(void **state)
     cub_diag d = {0};
     char buf[600];
     assert_int_equal(cub_evolve_correspond(&a, &b, &map, &c, &d), CUB_ERR_FORMAT);
-    assert_string_equal(cub_diag_str(&d, buf, sizeof buf), "test.map:3: no joint \"Fin\" in parent 2");
+    assert_string_equal(cub_diag_str(&d, buf, sizeof buf),
+                        "test.map:3: no joint \"Fin\" in parent 2");
 }
 
 /* ---- correspondence -------------------------------------------------------- */
@@ -148,16 +159,19 @@ static void test_correspond_by_name_and_structure(void **state)
 static void test_correspond_loose_names(void **state)
 {
     (void)state;
-    static const bone cmu[] = {{"Hips", NULL, 0, 900, 0}, {"LHipJoint", "Hips", 80, 0, 0},
+    static const bone cmu[] = {{"Hips", NULL, 0, 900, 0},
+                               {"LHipJoint", "Hips", 80, 0, 0},
                                {"LeftUpLeg", "LHipJoint", 20, -50, 0}};
-    static const bone other[] = {{"hips", NULL, 0, 900, 0}, {"left_hip_joint", "hips", 80, 0, 0},
+    static const bone other[] = {{"hips", NULL, 0, 900, 0},
+                                 {"left_hip_joint", "hips", 80, 0, 0},
                                  {"LEFTUPLEG", "left_hip_joint", 20, -50, 0}};
     static cub_skeleton a, b;
     build(&a, cmu, 3);
     build(&b, other, 3);
     static cub_evolve_corr c;
     assert_int_equal(cub_evolve_correspond(&a, &b, NULL, &c, NULL), CUB_OK);
-    for (int j = 0; j < 3; j++) assert_int_equal(cub_evolve_partner_of_a(&c, j), j);
+    for (int j = 0; j < 3; j++)
+        assert_int_equal(cub_evolve_partner_of_a(&c, j), j);
 }
 
 static void test_correspond_map_many_to_one_and_none(void **state)
@@ -176,7 +190,8 @@ static void test_correspond_map_many_to_one_and_none(void **state)
     assert_int_equal(cub_evolve_kind_of(&c, 2, joint(&b, "Tail")), CUB_EVOLVE_ONE_TO_MANY);
     /* the map's "none" beats the names; LeftLeg follows its parent's match */
     assert_int_equal(cub_evolve_kind_of(&c, 1, joint(&a, "Head")), CUB_EVOLVE_NONE);
-    assert_int_equal(cub_evolve_partner_of_a(&c, joint(&a, "LeftLeg")), -1); /* no structure below a many-to-one pair */
+    assert_int_equal(cub_evolve_partner_of_a(&c, joint(&a, "LeftLeg")),
+                     -1); /* no structure below a many-to-one pair */
 }
 
 /* ---- crossover ------------------------------------------------------------- */
@@ -201,7 +216,8 @@ static void test_crossover_keeps_common_joints_once(void **state)
         assert_int_equal(m.from[j], 1);
         assert_int_equal(m.src[j], j);
     }
-    int head2 = joint(&m.skel, "Head_2"), tail = joint(&m.skel, "Tail"), tail1 = joint(&m.skel, "Tail1");
+    int head2 = joint(&m.skel, "Head_2"), tail = joint(&m.skel, "Tail"),
+        tail1 = joint(&m.skel, "Tail1");
     assert_int_equal(m.skel.joints[head2].parent, joint(&m.skel, "Neck")); /* Collar's partner */
     assert_int_equal(m.skel.joints[tail].parent, 0);
     assert_int_equal(m.skel.joints[tail1].parent, tail);
@@ -327,13 +343,14 @@ static void test_survivor_blend_zero_is_parent_one(void **state)
     assert_int_equal(cub_evolve_mutate(&fx.m, &fx.p1, &fx.p2, &fx.mut, &fx.pop, NULL), CUB_OK);
     static cub_evolve_motion child;
     cub_evolve_survivor_cfg cfg = {0, 0};
-    assert_int_equal(cub_evolve_survivor(&fx.m, &fx.pop, &fx.p1, &fx.p2, &cfg, &child, NULL, NULL), CUB_OK);
+    assert_int_equal(cub_evolve_survivor(&fx.m, &fx.pop, &fx.p1, &fx.p2, &cfg, &child, NULL, NULL),
+                     CUB_OK);
     assert_int_equal(child.frames, 50); /* the longer parent */
     for (int f = 0; f < fx.p1.frames; f++) {
         assert_memory_equal(&child.root_mm[f], &fx.p1.root_mm[f], sizeof(cub_dv3));
         for (int j = 0; j < fx.a.joint_count; j++)
-            assert_memory_equal(cub_evolve_rot(&child, f, fx.pop.child[j]), cub_evolve_rot(&fx.p1, f, j),
-                                sizeof(cub_dq));
+            assert_memory_equal(cub_evolve_rot(&child, f, fx.pop.child[j]),
+                                cub_evolve_rot(&fx.p1, f, j), sizeof(cub_dq));
     }
     cub_evolve_motion_free(&child);
 }
@@ -357,7 +374,8 @@ static void test_survivor_finds_the_window_and_blends(void **state)
     assert_int_equal(cub_evolve_correspond(&fx.a, &fx.a, NULL, &c, NULL), CUB_OK);
     assert_int_equal(cub_evolve_crossover(&fx.a, &fx.a, &c, &m, NULL), CUB_OK);
     assert_int_equal(m.appended, 0);
-    assert_int_equal(cub_evolve_mutate(&m, &fx.p1, &p2, &(cub_evolve_mutation){0}, &pop, NULL), CUB_OK);
+    assert_int_equal(cub_evolve_mutate(&m, &fx.p1, &p2, &(cub_evolve_mutation){0}, &pop, NULL),
+                     CUB_OK);
     cub_evolve_survivor_report rep;
     cub_evolve_survivor_cfg cfg = {-0.5, 0};
     assert_int_equal(cub_evolve_survivor(&m, &pop, &fx.p1, &p2, &cfg, &child, &rep, NULL), CUB_OK);
@@ -366,14 +384,17 @@ static void test_survivor_finds_the_window_and_blends(void **state)
     /* the same motion aligned: d = 0, so any x gives parent 1 back */
     for (int f = 0; f < 40; f++)
         for (int j = 1; j < fx.a.joint_count; j++)
-            assert_true(cub_dq_angle_between(*cub_evolve_rot(&child, f, j), *cub_evolve_rot(&fx.p1, f, j)) < 1e-6);
+            assert_true(cub_dq_angle_between(*cub_evolve_rot(&child, f, j),
+                                             *cub_evolve_rot(&fx.p1, f, j)) < 1e-6);
     cub_evolve_motion_free(&child);
     /* x = 1 against a different parent 2: parent 1's mean pose moving as
      * the partner moves, i.e. D1 becomes D2 */
     cross(-1, 40, 40);
-    assert_int_equal(cub_evolve_mutate(&fx.m, &fx.p1, &fx.p2, &(cub_evolve_mutation){0}, &fx.pop, NULL), CUB_OK);
+    assert_int_equal(
+        cub_evolve_mutate(&fx.m, &fx.p1, &fx.p2, &(cub_evolve_mutation){0}, &fx.pop, NULL), CUB_OK);
     cfg.blend = 1;
-    assert_int_equal(cub_evolve_survivor(&fx.m, &fx.pop, &fx.p1, &fx.p2, &cfg, &child, &rep, NULL), CUB_OK);
+    assert_int_equal(cub_evolve_survivor(&fx.m, &fx.pop, &fx.p1, &fx.p2, &cfg, &child, &rep, NULL),
+                     CUB_OK);
     int s1 = joint(&fx.a, "Spine"), s2 = joint(&fx.b, "Spine");
     cub_dq m1 = mean_rot(&fx.p1, s1), m2 = mean_rot(&fx.p2, s2);
     for (int f = 0; f < 40; f++) {
@@ -392,7 +413,8 @@ static void test_survivor_refuses_different_rates(void **state)
     fx.p2.fps = 60;
     cub_diag d = {0};
     static cub_evolve_motion child;
-    assert_int_equal(cub_evolve_survivor(&fx.m, &fx.pop, &fx.p1, &fx.p2, NULL, &child, NULL, &d), CUB_ERR_ARG);
+    assert_int_equal(cub_evolve_survivor(&fx.m, &fx.pop, &fx.p1, &fx.p2, NULL, &child, NULL, &d),
+                     CUB_ERR_ARG);
     assert_non_null(strstr(d.msg, "rates differ"));
 }
 
@@ -403,14 +425,17 @@ static void test_floor_step_lifts_by_ik_and_keeps_bones(void **state)
     (void)state;
     /* hips 500 mm up, a leg 600 mm tall, the knee a little forward: the
      * foot 100 mm below (a straight leg is the Jacobian's singular case) */
-    static const bone leg[] = {{"Hips", NULL, 0, 500, 0}, {"UpLeg", "Hips", 100, 0, 0},
-                               {"Leg", "UpLeg", 0, -300, 40}, {"Foot", "Leg", 0, -300, -40},
+    static const bone leg[] = {{"Hips", NULL, 0, 500, 0},
+                               {"UpLeg", "Hips", 100, 0, 0},
+                               {"Leg", "UpLeg", 0, -300, 40},
+                               {"Foot", "Leg", 0, -300, -40},
                                {"Toe", "Foot", 0, 0, 120}};
     static cub_skeleton s;
     build(&s, leg, COUNT(leg));
     static cub_evolve_motion m;
     assert_int_equal(cub_evolve_motion_alloc(&s, 10, 30, &m), CUB_OK);
-    for (int f = 0; f < 10; f++) m.root_mm[f] = cub_dv3_make(0, 500 + 20 * f, 0); /* frame 5 on: above */
+    for (int f = 0; f < 10; f++)
+        m.root_mm[f] = cub_dv3_make(0, 500 + 20 * f, 0); /* frame 5 on: above */
     cub_evolve_floor_report rep;
     cub_evolve_floor(&m, &rep);
     assert_true(rep.below_before >= 5 * 2);
@@ -422,7 +447,8 @@ static void test_floor_step_lifts_by_ik_and_keeps_bones(void **state)
     for (int f = 0; f < 10; f++) {
         cub_evolve_forward(&m, f, w);
         assert_true(fabs(m.root_mm[f].y - (500 + 20 * f)) < 1e-12);
-        for (int j = 0; j < s.joint_count; j++) assert_true(w[j].y >= -1e-6);
+        for (int j = 0; j < s.joint_count; j++)
+            assert_true(w[j].y >= -1e-6);
         for (int j = 1; j < s.joint_count; j++) {
             double rest = cub_dv3_len(cub_dv3_from_fx(s.joints[j].offset_mm));
             assert_true(fabs(cub_dv3_len(cub_dv3_sub(w[j], w[s.joints[j].parent])) - rest) < 1e-6);

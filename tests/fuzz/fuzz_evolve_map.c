@@ -20,14 +20,16 @@ static char path[64];
 static void setup_once(void)
 {
     cub_diag d;
-    if (cub_io_load_bvh(CUB_SOURCE_DIR "/assets/clips/hello.bvh", NULL, &bear, &d) != CUB_OK) abort();
+    if (cub_io_load_bvh(CUB_SOURCE_DIR "/assets/clips/hello.bvh", NULL, &bear, &d) != CUB_OK)
+        abort();
     snprintf(path, sizeof path, "fuzz_evolve_map.%d.evmap", (int)getpid());
 }
 
 static void check_pairs(const cub_evolve_corr *c)
 {
     for (int i = 0; i < c->pair_count; i++)
-        if (c->pair[i].a < 0 || c->pair[i].a >= c->a_count || c->pair[i].b < 0 || c->pair[i].b >= c->b_count)
+        if (c->pair[i].a < 0 || c->pair[i].a >= c->a_count || c->pair[i].b < 0 ||
+            c->pair[i].b >= c->b_count)
             abort();
 }
 

@@ -34,9 +34,9 @@
 #include "cub/vec.h"
 
 #define CUB_EVOLVE_MAX_JOINTS CUB_MOTION_MAX_JOINTS
-#define CUB_EVOLVE_MAP_SIDE 4           /* joints on one side of a map row */
-#define CUB_EVOLVE_MUTATIONS_DEFAULT 5  /* the seed's default mutation count */
-#define CUB_EVOLVE_SAMPLE_STEP 5        /* the survivor samples parent 1 every 5 frames */
+#define CUB_EVOLVE_MAP_SIDE 4          /* joints on one side of a map row */
+#define CUB_EVOLVE_MUTATIONS_DEFAULT 5 /* the seed's default mutation count */
+#define CUB_EVOLVE_SAMPLE_STEP 5       /* the survivor samples parent 1 every 5 frames */
 
 /* ---- motion --------------------------------------------------------------- */
 
@@ -44,8 +44,8 @@ typedef struct cub_evolve_motion {
     cub_skeleton skel; /* C_s */
     int frames;        /* k + 1 */
     double fps;
-    cub_dv3 *root_mm;  /* [frames] the root's position */
-    cub_dq *rot;       /* [frames * skel.joint_count] local rotations */
+    cub_dv3 *root_mm; /* [frames] the root's position */
+    cub_dq *rot;      /* [frames * skel.joint_count] local rotations */
 } cub_evolve_motion;
 
 /* A clip resampled at fps (0: its own rate) into doubles; joint
@@ -78,7 +78,7 @@ cub_err cub_evolve_to_io(const cub_evolve_motion *m, double unit_mm, cub_io_moti
 typedef struct cub_evolve_map_row {
     char a[CUB_EVOLVE_MAP_SIDE][CUB_MOTION_NAME_LEN]; /* parent 1's side */
     char b[CUB_EVOLVE_MAP_SIDE][CUB_MOTION_NAME_LEN]; /* parent 2's side */
-    int a_count, b_count; /* 0 on a side written "-" */
+    int a_count, b_count;                             /* 0 on a side written "-" */
     int line;
 } cub_evolve_map_row;
 
@@ -98,7 +98,7 @@ typedef struct cub_evolve_pair {
 } cub_evolve_pair;
 
 typedef enum cub_evolve_kind {
-    CUB_EVOLVE_NONE = 0,    /* no partner */
+    CUB_EVOLVE_NONE = 0, /* no partner */
     CUB_EVOLVE_ONE_TO_ONE,
     CUB_EVOLVE_MANY_TO_ONE, /* this joint shares its one partner with others */
     CUB_EVOLVE_ONE_TO_MANY, /* this joint has several partners */
@@ -127,11 +127,11 @@ const char *cub_evolve_kind_str(cub_evolve_kind k);
 /* ---- crossover ------------------------------------------------------------- */
 
 typedef struct cub_evolve_meta {
-    cub_skeleton skel;               /* M_s: parent 1's joints first, in order */
-    int from[CUB_EVOLVE_MAX_JOINTS]; /* 1 or 2: the parent a joint comes from */
-    int src[CUB_EVOLVE_MAX_JOINTS];  /* its index in that parent */
+    cub_skeleton skel;                  /* M_s: parent 1's joints first, in order */
+    int from[CUB_EVOLVE_MAX_JOINTS];    /* 1 or 2: the parent a joint comes from */
+    int src[CUB_EVOLVE_MAX_JOINTS];     /* its index in that parent */
     int partner[CUB_EVOLVE_MAX_JOINTS]; /* parent 1's joints: the partner in b, or -1 */
-    int appended;                    /* joints from parent 2 */
+    int appended;                       /* joints from parent 2 */
 } cub_evolve_meta;
 
 /* M_s = C_s1 ∪ C_s2. An appended joint whose name parent 1 already uses
@@ -153,10 +153,10 @@ typedef struct cub_evolve_mutation {
 } cub_evolve_mutation;
 
 typedef struct cub_evolve_pop {
-    cub_skeleton skel;               /* C_p */
-    int meta[CUB_EVOLVE_MAX_JOINTS]; /* child joint -> meta joint */
-    int child[CUB_EVOLVE_MAX_JOINTS];   /* meta joint -> child joint, -1 if removed */
-    int removed[CUB_EVOLVE_MAX_JOINTS]; /* per meta joint: 1 in the mutation set Mu_s */
+    cub_skeleton skel;                   /* C_p */
+    int meta[CUB_EVOLVE_MAX_JOINTS];     /* child joint -> meta joint */
+    int child[CUB_EVOLVE_MAX_JOINTS];    /* meta joint -> child joint, -1 if removed */
+    int removed[CUB_EVOLVE_MAX_JOINTS];  /* per meta joint: 1 in the mutation set Mu_s */
     double score[CUB_EVOLVE_MAX_JOINTS]; /* per meta joint: 0..1 + weight; lower goes first */
     int removed_count;
     int relinked; /* kept joints whose parent was removed */
@@ -210,11 +210,11 @@ cub_err cub_evolve_survivor(const cub_evolve_meta *meta, const cub_evolve_pop *p
 /* ---- the floor constraint ------------------------------------------------- */
 
 typedef struct cub_evolve_floor_report {
-    int below_before;   /* joint-frames below y = 0 before */
-    int below_after;    /* ... after (0 by design) */
-    int frames_ik;      /* frames the IK step changed */
-    int frames_lifted;  /* frames where IK fell short and the root was raised */
-    double deepest_mm;  /* the lowest joint before, below 0 */
+    int below_before;  /* joint-frames below y = 0 before */
+    int below_after;   /* ... after (0 by design) */
+    int frames_ik;     /* frames the IK step changed */
+    int frames_lifted; /* frames where IK fell short and the root was raised */
+    double deepest_mm; /* the lowest joint before, below 0 */
 } cub_evolve_floor_report;
 
 /* No joint below y = 0: per frame, each joint below is pulled up onto the
