@@ -30,7 +30,8 @@ static void usage(FILE *f)
             "  --blend X         x in C_mp = C_m1 + x d (default 0.5; negative allowed)\n"
             "  --fps F           both parents resampled at F (default 30)\n"
             "  --max-frames N    each parent cut to its first N frames (after --fps)\n"
-            "  --sheet FILE      also a PNG contact sheet of the child\n"
+            "  --sheet FILE      also PNG contact sheets: FILE the child, FILE's name with\n"
+            "                    _p1 and _p2 before .png the parents (as crossed: resampled)\n"
             "  --bench           time the pipeline (%d runs; loading and writing excluded)\n"
             "  --help            this text\n"
             "\n"
@@ -286,6 +287,21 @@ static int bench(const evolve_args *a, const cub_evolve_map *map, const cub_evol
     return 0;
 }
 
+/* A contact sheet of m at path, with tag ("_p1") before its ".png" when
+ * tag is not empty. 0 ok. */
+static int sheet_of(const cub_evolve_motion *m, const char *path, const char *tag)
+{
+    static cub_io_motion io;
+    char name[600];
+    size_t n = strlen(path);
+    int png = n > 4 && !strcmp(path + n - 4, ".png");
+    snprintf(name, sizeof name, "%.*s%s%s", (int)(png ? n - 4 : n), path, tag, png ? ".png" : "");
+    int rc = cub_evolve_to_io(m, 10, &io) || cub_retarget_sheet_png(name, &io.clip, 8);
+    if (rc) fprintf(stderr, "cubtool evolve: cannot write %s\n", name);
+    cub_io_motion_free(&io);
+    return rc;
+}
+
 static int write_child(const evolve_args *a, const evolve_run *r, double unit_mm)
 {
     static cub_io_motion io;
@@ -296,12 +312,9 @@ static int write_child(const evolve_args *a, const evolve_run *r, double unit_mm
         rc = 1;
     } else if (cub_io_save_bvh(a->out, &io, &d)) {
         rc = fail("write", &d);
-    } else if (a->sheet && cub_retarget_sheet_png(a->sheet, &io.clip, 8)) {
-        fprintf(stderr, "cubtool evolve: cannot write %s\n", a->sheet);
-        rc = 1;
     }
     cub_io_motion_free(&io);
-    return rc;
+    return rc || (a->sheet && sheet_of(&r->child, a->sheet, ""));
 }
 
 static int run(const evolve_args *a, cub_evolve_map *map, evolve_run *r)
@@ -319,6 +332,7 @@ static int run(const evolve_args *a, cub_evolve_map *map, evolve_run *r)
         goto out;
     }
     if (write_child(a, r, unit1)) goto out;
+    if (a->sheet && (sheet_of(&p1, a->sheet, "_p1") || sheet_of(&p2, a->sheet, "_p2"))) goto out;
     double bone = cub_evolve_bone_error_mm(&r->child, &r->pop, &r->meta);
     printf(
         "evolve: %s frames=%d joints=%d dof=%d mutated=%d relinked=%d window=%d mean_d_deg=%.1f "

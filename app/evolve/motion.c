@@ -39,7 +39,9 @@ cub_err cub_evolve_from_clip(const cub_clip *clip, double fps, cub_evolve_motion
     double own = 1e9 / clip->frame_ns;
     if (!(fps > 0)) fps = own;
     double seconds = (clip->frame_count - 1) / own;
-    int frames = 1 + (int)(seconds * fps + 1e-9);
+    /* + 1e-3: frame_ns is rounded (33333333 ns at 30 fps), and a clip read
+     * back at its own rate must keep its last frame */
+    int frames = 1 + (int)(seconds * fps + 1e-3);
     cub_err err = cub_evolve_motion_alloc(clip->skel, frames, fps, out);
     if (err) return err;
     static cub_pose pose; /* large; offline, one thread */

@@ -473,6 +473,46 @@ static void test_floor_step_raises_the_root_when_ik_cannot(void **state)
     cub_evolve_motion_free(&m);
 }
 
+/* ---- export ---------------------------------------------------------------- */
+
+static void test_child_exports_as_bvh_and_reads_back(void **state)
+{
+    (void)state;
+    cross(-1, 12, 20);
+    fx.mut.count = 2;
+    assert_int_equal(cub_evolve_mutate(&fx.m, &fx.p1, &fx.p2, &fx.mut, &fx.pop, NULL), CUB_OK);
+    static cub_evolve_motion child, back;
+    cub_evolve_survivor_cfg cfg = {0.5, 0};
+    assert_int_equal(cub_evolve_survivor(&fx.m, &fx.pop, &fx.p1, &fx.p2, &cfg, &child, NULL, NULL),
+                     CUB_OK);
+    static cub_io_motion io, in;
+    assert_int_equal(cub_evolve_to_io(&child, 10, &io), CUB_OK);
+    char path[512];
+    const char *dir = getenv("CUB_BUILD_DIR");
+    snprintf(path, sizeof path, "%s/evolve_child_test.bvh", dir ? dir : ".");
+    cub_diag d = {0};
+    assert_int_equal(cub_io_save_bvh(path, &io, &d), CUB_OK);
+    assert_int_equal(cub_io_load_bvh(path, &(cub_io_desc){10}, &in, &d), CUB_OK);
+    assert_int_equal(in.skel.joint_count, child.skel.joint_count);
+    assert_int_equal(in.clip.frame_count, child.frames);
+    assert_int_equal(cub_evolve_from_clip(&in.clip, 30, &back), CUB_OK);
+    assert_int_equal(back.frames, child.frames);
+    cub_dv3 w1[CUB_EVOLVE_MAX_JOINTS], w2[CUB_EVOLVE_MAX_JOINTS];
+    for (int f = 0; f < child.frames; f++) {
+        cub_evolve_forward(&child, f, w1);
+        cub_evolve_forward(&back, f, w2);
+        for (int j = 0; j < child.skel.joint_count; j++) {
+            assert_string_equal(in.skel.joints[j].name, child.skel.joints[j].name);
+            assert_true(cub_dv3_len(cub_dv3_sub(w1[j], w2[j])) < 0.1); /* mm: the file's decimals */
+        }
+    }
+    remove(path);
+    cub_io_motion_free(&io);
+    cub_io_motion_free(&in);
+    cub_evolve_motion_free(&child);
+    cub_evolve_motion_free(&back);
+}
+
 /* ---- a real pair ----------------------------------------------------------- */
 
 static int load(const char *rel, cub_evolve_motion *out)
@@ -534,6 +574,7 @@ int main(void)
         cmocka_unit_test(test_survivor_refuses_different_rates),
         cmocka_unit_test(test_floor_step_lifts_by_ik_and_keeps_bones),
         cmocka_unit_test(test_floor_step_raises_the_root_when_ik_cannot),
+        cmocka_unit_test(test_child_exports_as_bvh_and_reads_back),
         cmocka_unit_test(test_cmu_human_crossed_with_a_dog),
     };
     int rc = cmocka_run_group_tests(tests, NULL, NULL);
