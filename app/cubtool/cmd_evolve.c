@@ -317,6 +317,25 @@ static int write_child(const evolve_args *a, const evolve_run *r, double unit_mm
     return rc || (a->sheet && sheet_of(&r->child, a->sheet, ""));
 }
 
+/* The mean foot slide (mm a contact frame) of the feet (and a quadruped's
+ * front paws, named hands) m has, over all their contact frames; -1 when
+ * none stands. */
+static double feet_slide(const cub_evolve_motion *m)
+{
+    static const char *feet[] = {"LeftFoot",     "RightFoot", "LeftToeBase",
+                                 "RightToeBase", "LeftHand",  "RightHand"};
+    double sum = 0;
+    int n = 0;
+    for (size_t i = 0; i < sizeof feet / sizeof *feet; i++) {
+        cub_evolve_slide_report s;
+        int j = cub_motion_skeleton_find(&m->skel, feet[i]);
+        if (j < 0 || cub_evolve_slide(m, j, &s)) continue;
+        sum += s.mean_mm * s.contact_frames;
+        n += s.contact_frames;
+    }
+    return n ? sum / n : -1;
+}
+
 static int run(const evolve_args *a, cub_evolve_map *map, evolve_run *r)
 {
     static cub_evolve_motion p1, p2;
@@ -337,11 +356,11 @@ static int run(const evolve_args *a, cub_evolve_map *map, evolve_run *r)
     printf(
         "evolve: %s frames=%d joints=%d dof=%d mutated=%d relinked=%d window=%d mean_d_deg=%.1f "
         "below_floor_before=%d below_floor_after=%d ik_frames=%d lifted_frames=%d bone_err_mm=%.2e "
-        "ms=%.2f\n",
+        "slide_mm=%.1f p1_slide_mm=%.1f ms=%.2f\n",
         a->out, r->child.frames, r->child.skel.joint_count, dof_of(&r->child.skel),
         r->pop.removed_count, r->pop.relinked, r->surv.offset, r->surv.mean_d_deg,
         r->floor.below_before, r->floor.below_after, r->floor.frames_ik, r->floor.frames_lifted,
-        bone, r->ms[0] + r->ms[1] + r->ms[2] + r->ms[3]);
+        bone, feet_slide(&r->child), feet_slide(&p1), r->ms[0] + r->ms[1] + r->ms[2] + r->ms[3]);
     rc = 0;
 out:
     cub_evolve_motion_free(&p1);

@@ -473,6 +473,32 @@ static void test_floor_step_raises_the_root_when_ik_cannot(void **state)
     cub_evolve_motion_free(&m);
 }
 
+static void test_slide_of_a_standing_and_a_sliding_foot(void **state)
+{
+    (void)state;
+    static const bone two[] = {{"Hips", NULL, 0, 0, 0}, {"Foot", "Hips", 0, 0, 0}};
+    static cub_skeleton s;
+    build(&s, two, COUNT(two));
+    static cub_evolve_motion m;
+    assert_int_equal(cub_evolve_motion_alloc(&s, 20, 30, &m), CUB_OK);
+    cub_evolve_slide_report rep;
+    assert_int_equal(cub_evolve_slide(&m, 1, &rep), CUB_OK);
+    assert_int_equal(rep.contact_frames, 19);
+    assert_true(rep.mean_mm == 0 && rep.max_mm == 0);
+    for (int f = 0; f < 20; f++)
+        m.root_mm[f] = cub_dv3_make(f * 3.0, 0, f * 4.0); /* 150 mm/s */
+    assert_int_equal(cub_evolve_slide(&m, 1, &rep), CUB_OK);
+    assert_int_equal(rep.contact_frames, 19);
+    assert_true(fabs(rep.mean_mm - 5) < 1e-9 && fabs(rep.max_mm - 5) < 1e-9);
+    for (int f = 0; f < 20; f++)
+        m.root_mm[f].y = 100; /* in the air: no contact... */
+    m.root_mm[0].y = 0;       /* ...but the lowest point is the floor */
+    assert_int_equal(cub_evolve_slide(&m, 1, &rep), CUB_OK);
+    assert_int_equal(rep.contact_frames, 0);
+    assert_int_equal(cub_evolve_slide(&m, 2, &rep), CUB_ERR_ARG);
+    cub_evolve_motion_free(&m);
+}
+
 /* ---- export ---------------------------------------------------------------- */
 
 static void test_child_exports_as_bvh_and_reads_back(void **state)
@@ -574,6 +600,7 @@ int main(void)
         cmocka_unit_test(test_survivor_refuses_different_rates),
         cmocka_unit_test(test_floor_step_lifts_by_ik_and_keeps_bones),
         cmocka_unit_test(test_floor_step_raises_the_root_when_ik_cannot),
+        cmocka_unit_test(test_slide_of_a_standing_and_a_sliding_foot),
         cmocka_unit_test(test_child_exports_as_bvh_and_reads_back),
         cmocka_unit_test(test_cmu_human_crossed_with_a_dog),
     };

@@ -230,4 +230,16 @@ void cub_evolve_floor(cub_evolve_motion *m, cub_evolve_floor_report *rep);
 double cub_evolve_bone_error_mm(const cub_evolve_motion *m, const cub_evolve_pop *pop,
                                 const cub_evolve_meta *meta);
 
+/* Foot slide of one joint over m: its contacts (low and slow, app/join's
+ * rule, the floor its lowest point), and its horizontal travel per frame
+ * between two contact frames. */
+typedef struct cub_evolve_slide_report {
+    int contact_frames; /* frame pairs both in contact */
+    double mean_mm;     /* travel per frame, mean over those */
+    double max_mm;
+} cub_evolve_slide_report;
+
+/* CUB_ERR_ARG: no such joint or fewer than 2 frames; CUB_ERR_NOMEM. */
+cub_err cub_evolve_slide(const cub_evolve_motion *m, int joint, cub_evolve_slide_report *out);
+
 #endif
