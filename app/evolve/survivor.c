@@ -126,7 +126,13 @@ static void fill_frame(const surv *s, int f, cub_evolve_motion *child, double *d
         q[j] = meta_rot(s, f, j, &d);
         if (d >= 0 && !s->pop->removed[j]) *d_sum += d, ++*d_n;
     }
-    child->root_mm[f] = s->p1->root_mm[f % s->p1->frames];
+    /* parent 1 looping under a longer parent 2 carries on from where its
+     * last loop ended (on the floor: x and z), not from its first place */
+    const cub_evolve_motion *p1 = s->p1;
+    cub_dv3 lap = cub_dv3_sub(p1->root_mm[p1->frames - 1], p1->root_mm[0]);
+    double laps = (double)(f / p1->frames);
+    child->root_mm[f] =
+        cub_dv3_add(p1->root_mm[f % p1->frames], cub_dv3_make(laps * lap.x, 0, laps * lap.z));
     for (int c = 0; c < child->skel.joint_count; c++) {
         int j = s->pop->meta[c];
         cub_dq r = q[j];

@@ -353,6 +353,20 @@ static void test_survivor_blend_zero_is_parent_one(void **state)
                                 cub_evolve_rot(&fx.p1, f, j), sizeof(cub_dq));
     }
     cub_evolve_motion_free(&child);
+    /* a shorter parent 1 loops: the same rotations, the root walking on */
+    cross(-1, 20, 50);
+    assert_int_equal(cub_evolve_mutate(&fx.m, &fx.p1, &fx.p2, &fx.mut, &fx.pop, NULL), CUB_OK);
+    assert_int_equal(cub_evolve_survivor(&fx.m, &fx.pop, &fx.p1, &fx.p2, &cfg, &child, NULL, NULL),
+                     CUB_OK);
+    assert_int_equal(child.frames, 50);
+    for (int f = 20; f < 50; f++) {
+        assert_true(fabs(child.root_mm[f].z - 10.0 * (f % 20 + 19 * (f / 20))) < 1e-9);
+        assert_true(child.root_mm[f].y == fx.p1.root_mm[f % 20].y);
+        for (int j = 0; j < fx.a.joint_count; j++)
+            assert_memory_equal(cub_evolve_rot(&child, f, fx.pop.child[j]),
+                                cub_evolve_rot(&fx.p1, f % 20, j), sizeof(cub_dq));
+    }
+    cub_evolve_motion_free(&child);
 }
 
 static void test_survivor_finds_the_window_and_blends(void **state)

@@ -199,7 +199,8 @@ typedef struct cub_evolve_survivor_report {
  * exp(x d_j(t)): x = 0 is parent 1 exactly, x = 1 parent 1's mean pose
  * moving as parent 2 does. The root's position and rotation stay parent
  * 1's (its path). Appended joints take parent 2's rotation at t + o. The
- * child is as long as the longer parent (the shorter loops). A joint
+ * child is as long as the longer parent (the shorter loops; parent 1's
+ * root carries on along the floor from where each loop ended). A joint
  * re-linked past removed ones takes their rotations too. Both parents at
  * the same fps. */
 cub_err cub_evolve_survivor(const cub_evolve_meta *meta, const cub_evolve_pop *pop,
