@@ -336,6 +336,42 @@ static double feet_slide(const cub_evolve_motion *m)
     return n ? sum / n : -1;
 }
 
+/* The round trip A -> child -> A: the child crossed back with parent 1 at
+ * x = 1 (no map, weights or mutation), which gives parent 1's movement
+ * back on the child's mean pose. The mean distance (mm) of parent 1's
+ * joints there from where parent 1 has them, over its frames; the largest
+ * in *max_mm. -1 when the cross fails. */
+static double round_trip_mm(const cub_evolve_motion *p1, const cub_evolve_motion *child,
+                            double *max_mm)
+{
+    evolve_args back_args = {.blend = 1};
+    evolve_run *back = calloc(1, sizeof(*back));
+    static cub_dv3 w1[CUB_EVOLVE_MAX_JOINTS], w2[CUB_EVOLVE_MAX_JOINTS];
+    double sum = 0;
+    int n = 0;
+    *max_mm = 0;
+    if (!back || pipeline(&back_args, NULL, child, p1, back)) {
+        free(back);
+        return -1;
+    }
+    const cub_evolve_motion *m = &back->child;
+    for (int f = 0; f < p1->frames; f++) {
+        cub_evolve_forward(p1, f, w1);
+        cub_evolve_forward(m, f, w2);
+        for (int j = 0; j < p1->skel.joint_count; j++) {
+            int k = cub_motion_skeleton_find(&m->skel, p1->skel.joints[j].name);
+            if (k < 0) continue;
+            double d = cub_dv3_len(cub_dv3_sub(w1[j], w2[k]));
+            sum += d;
+            *max_mm = fmax(*max_mm, d);
+            n++;
+        }
+    }
+    cub_evolve_motion_free(&back->child);
+    free(back);
+    return n ? sum / n : -1;
+}
+
 static int run(const evolve_args *a, cub_evolve_map *map, evolve_run *r)
 {
     static cub_evolve_motion p1, p2;
@@ -353,14 +389,16 @@ static int run(const evolve_args *a, cub_evolve_map *map, evolve_run *r)
     if (write_child(a, r, unit1)) goto out;
     if (a->sheet && (sheet_of(&p1, a->sheet, "_p1") || sheet_of(&p2, a->sheet, "_p2"))) goto out;
     double bone = cub_evolve_bone_error_mm(&r->child, &r->pop, &r->meta);
+    double ms = r->ms[0] + r->ms[1] + r->ms[2] + r->ms[3], rt_max = 0;
+    double rt = round_trip_mm(&p1, &r->child, &rt_max);
     printf(
         "evolve: %s frames=%d joints=%d dof=%d mutated=%d relinked=%d window=%d mean_d_deg=%.1f "
         "below_floor_before=%d below_floor_after=%d ik_frames=%d lifted_frames=%d bone_err_mm=%.2e "
-        "slide_mm=%.1f p1_slide_mm=%.1f ms=%.2f\n",
+        "slide_mm=%.1f p1_slide_mm=%.1f round_trip_mm=%.1f(max %.1f) ms=%.2f\n",
         a->out, r->child.frames, r->child.skel.joint_count, dof_of(&r->child.skel),
         r->pop.removed_count, r->pop.relinked, r->surv.offset, r->surv.mean_d_deg,
         r->floor.below_before, r->floor.below_after, r->floor.frames_ik, r->floor.frames_lifted,
-        bone, feet_slide(&r->child), feet_slide(&p1), r->ms[0] + r->ms[1] + r->ms[2] + r->ms[3]);
+        bone, feet_slide(&r->child), feet_slide(&p1), rt, rt_max, ms);
     rc = 0;
 out:
     cub_evolve_motion_free(&p1);
