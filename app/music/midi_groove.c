@@ -18,6 +18,7 @@ typedef struct reader {
     int capacity, tempo_cap;
     int *next;
     int head[KEYS], tail[KEYS];
+    int open; /* notes sounding: End of Track sweeps the keys only then */
     char problem[160]; /* the first event this reader refuses */
 } reader;
 
@@ -29,6 +30,7 @@ static void open_note(reader *r, int track, int64_t tick, int ch, const uint8_t 
     r->g->notes[i] = (cub_groove_midi_note){(int32_t)tick, (int32_t)tick, (uint16_t)track, (uint8_t)ch,
                                             d[0], d[1]};
     r->next[i] = -1;
+    r->open++;
     if (r->tail[key] >= 0) r->next[r->tail[key]] = i;
     else r->head[key] = i;
     r->tail[key] = i;
@@ -40,6 +42,7 @@ static void close_head(reader *r, int key, int64_t tick)
     r->g->notes[i].off_tick = (int32_t)tick;
     r->head[key] = r->next[i];
     if (r->head[key] < 0) r->tail[key] = -1;
+    r->open--;
 }
 
 /* A note-off ends every note of its key that started before it, as
@@ -100,7 +103,7 @@ static void on_meta(void *ctx, int track, int64_t tick, uint8_t type, const uint
     if (type == 0x51) add_tempo(r, tick, d); /* the scan checked its length */
     if (type == 0x58) add_meter(r, track, tick, d, n);
     if (type == 0x2F) /* End of Track ends what still sounds */
-        for (int key = 0; key < KEYS; key++)
+        for (int key = 0; key < KEYS && r->open > 0; key++)
             while (r->head[key] >= 0)
                 close_head(r, key, tick);
 }
