@@ -10,7 +10,8 @@
 #include "commands.h"
 #include "cub/music.h"
 
-static const char usage[] = "usage: cubtool groove SONG.mid [--melody N] [--rhythm M] [--set a|b] [--window W] [--keys]\n";
+static const char usage[] =
+    "usage: cubtool groove SONG.mid [--melody N] [--rhythm M] [--set a|b] [--window W] [--keys]\n";
 
 typedef struct groove_opts {
     const char *path;
@@ -33,13 +34,20 @@ static int parse(int argc, char **argv, groove_opts *o)
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         int ok = 1;
-        if (!strcmp(a, "--keys")) o->keys = 1;
-        else if (!strcmp(a, "--melody") && v) ok = parse_int(v, 0, 65535, &o->melody), i++;
-        else if (!strcmp(a, "--rhythm") && v) ok = parse_int(v, 0, 65535, &o->rhythm), i++;
-        else if (!strcmp(a, "--window") && v) ok = parse_int(v, 2, CUB_GROOVE_WINDOW_MAX, &o->window), i++;
-        else if (!strcmp(a, "--set") && v) ok = (!strcmp(v, "a") || !strcmp(v, "b")) && (o->set = v[0]), i++;
-        else if (a[0] != '-' && !o->path) o->path = a;
-        else ok = 0;
+        if (!strcmp(a, "--keys"))
+            o->keys = 1;
+        else if (!strcmp(a, "--melody") && v)
+            ok = parse_int(v, 0, 65535, &o->melody), i++;
+        else if (!strcmp(a, "--rhythm") && v)
+            ok = parse_int(v, 0, 65535, &o->rhythm), i++;
+        else if (!strcmp(a, "--window") && v)
+            ok = parse_int(v, 2, CUB_GROOVE_WINDOW_MAX, &o->window), i++;
+        else if (!strcmp(a, "--set") && v)
+            ok = (!strcmp(v, "a") || !strcmp(v, "b")) && (o->set = v[0]), i++;
+        else if (a[0] != '-' && !o->path)
+            o->path = a;
+        else
+            ok = 0;
         if (!ok) {
             fprintf(stderr, "cubtool groove: bad argument '%s'\n%s", a, usage);
             return 0;
@@ -51,17 +59,19 @@ static int parse(int argc, char **argv, groove_opts *o)
 
 static const char *rhythm_name(const cub_groove_pick *p)
 {
-    return p->rhythm == CUB_GROOVE_RHYTHM_DRUMS ? "drums" : p->rhythm == CUB_GROOVE_RHYTHM_METER ? "meter" : "track";
+    return p->rhythm == CUB_GROOVE_RHYTHM_DRUMS   ? "drums"
+           : p->rhythm == CUB_GROOVE_RHYTHM_METER ? "meter"
+                                                  : "track";
 }
 
-static void print_notes(const cub_groove_song *song, const cub_groove_pick *pick, const cub_groove_note *n,
-                        int count)
+static void print_notes(const cub_groove_song *song, const cub_groove_pick *pick,
+                        const cub_groove_note *n, int count)
 {
     int rests = 0, beats = 0;
     for (int i = 0; i < count; i++)
         rests += n[i].pitch == CUB_GROOVE_REST, beats += n[i].is_beat;
-    printf("tracks %d division %d tempo_events %d meters %d midi_notes %d\n", song->tracks, song->division,
-           song->tempo_count, song->meter_count, song->note_count);
+    printf("tracks %d division %d tempo_events %d meters %d midi_notes %d\n", song->tracks,
+           song->division, song->tempo_count, song->meter_count, song->note_count);
     printf("melody track %d rhythm %s", pick->melody_track, rhythm_name(pick));
     if (pick->rhythm == CUB_GROOVE_RHYTHM_TRACK) printf(" %d", pick->rhythm_track);
     printf("\nnotes %d rests %d beats %d length_s %.3f\n", count, rests, beats,
@@ -78,8 +88,8 @@ static void print_segments(const cub_groove_note *n, const cub_groove_segment *s
         long long len = 0;
         for (int j = s[i].first; j < s[i].end; j++)
             len += n[j].length_beats;
-        printf("segment %d notes %d..%d beats %.3f t_s %.3f\n", i, s[i].first, s[i].end - 1, len / 65536.0,
-               (double)n[s[i].first].start_us / 1e6);
+        printf("segment %d notes %d..%d beats %.3f t_s %.3f\n", i, s[i].first, s[i].end - 1,
+               len / 65536.0, (double)n[s[i].first].start_us / 1e6);
     }
 }
 
@@ -106,8 +116,8 @@ static int fail(const char *path, const char *what, cub_err e)
 }
 
 /* Notes, segments, keys of one song; 0 or the exit code. */
-static int run(const groove_opts *o, const cub_groove_song *song, cub_groove_note *notes, cub_groove_segment *segs,
-               cub_groove_key *keys, cub_groove_work *work)
+static int run(const groove_opts *o, const cub_groove_song *song, cub_groove_note *notes,
+               cub_groove_segment *segs, cub_groove_key *keys, cub_groove_work *work)
 {
     cub_groove_pick pick;
     cub_groove_params p;

@@ -18,7 +18,7 @@ typedef struct reader {
     int capacity, tempo_cap;
     int *next;
     int head[KEYS], tail[KEYS];
-    int open; /* notes sounding: End of Track sweeps the keys only then */
+    int open;          /* notes sounding: End of Track sweeps the keys only then */
     char problem[160]; /* the first event this reader refuses */
 } reader;
 
@@ -27,12 +27,14 @@ static void open_note(reader *r, int track, int64_t tick, int ch, const uint8_t 
     cub_groove_song *s = &r->g->song;
     if (s->note_count == r->capacity) return; /* the scan counted them: cannot happen */
     int i = s->note_count++, key = ch * 128 + d[0];
-    r->g->notes[i] = (cub_groove_midi_note){(int32_t)tick, (int32_t)tick, (uint16_t)track, (uint8_t)ch,
-                                            d[0], d[1]};
+    r->g->notes[i] = (cub_groove_midi_note){(int32_t)tick, (int32_t)tick, (uint16_t)track,
+                                            (uint8_t)ch,   d[0],          d[1]};
     r->next[i] = -1;
     r->open++;
-    if (r->tail[key] >= 0) r->next[r->tail[key]] = i;
-    else r->head[key] = i;
+    if (r->tail[key] >= 0)
+        r->next[r->tail[key]] = i;
+    else
+        r->head[key] = i;
     r->tail[key] = i;
 }
 
@@ -62,8 +64,10 @@ static void on_channel(void *ctx, int track, int64_t tick, uint8_t status, const
 {
     reader *r = ctx;
     int kind = status & 0xF0, ch = status & 0x0F;
-    if (kind == 0x90 && d[1] > 0) open_note(r, track, tick, ch, d);
-    else if (kind == 0x80 || kind == 0x90) close_note(r, ch * 128 + d[0], tick);
+    if (kind == 0x90 && d[1] > 0)
+        open_note(r, track, tick, ch, d);
+    else if (kind == 0x80 || kind == 0x90)
+        close_note(r, ch * 128 + d[0], tick);
 }
 
 static void add_tempo(reader *r, int64_t tick, const uint8_t *d)
@@ -82,8 +86,9 @@ static void add_meter(reader *r, int track, int64_t tick, const uint8_t *d, uint
     cub_groove_song *s = &r->g->song;
     if (r->problem[0]) return;
     if (n < 2 || d[0] == 0 || d[1] > 6) {
-        snprintf(r->problem, sizeof r->problem, "track %d tick %lld: a time signature that is not n/1..n/64",
-                 track, (long long)tick);
+        snprintf(r->problem, sizeof r->problem,
+                 "track %d tick %lld: a time signature that is not n/1..n/64", track,
+                 (long long)tick);
         return;
     }
     if (s->meter_count == MAX_METERS) {
@@ -133,7 +138,8 @@ static cub_err allocate(reader *r, const cub_midi_info *info)
     return g->notes && g->tempos && g->meters && r->next ? CUB_OK : CUB_ERR_NOMEM;
 }
 
-static cub_err read_events(reader *r, const uint8_t *data, size_t len, const char *name, cub_diag *diag)
+static cub_err read_events(reader *r, const uint8_t *data, size_t len, const char *name,
+                           cub_diag *diag)
 {
     cub_midi_info info;
     cub_err e = cub_midi_scan(data, len, name, &info, diag);
@@ -150,8 +156,8 @@ static cub_err read_events(reader *r, const uint8_t *data, size_t len, const cha
     return e;
 }
 
-cub_err cub_midi_groove_read(const uint8_t *data, size_t len, const char *name, cub_midi_groove *out,
-                             cub_diag *diag)
+cub_err cub_midi_groove_read(const uint8_t *data, size_t len, const char *name,
+                             cub_midi_groove *out, cub_diag *diag)
 {
     cub_diag scratch;
     if (!diag) diag = &scratch;
@@ -180,7 +186,8 @@ cub_err cub_midi_groove_load(const char *path, cub_midi_groove *out, cub_diag *d
     cub_diag scratch;
     if (!diag) diag = &scratch;
     if (out) memset(out, 0, sizeof(*out));
-    if (!path || !out) return cub_diag_fail(diag, CUB_ERR_ARG, path, 0, "cub_midi_groove_load: bad arguments");
+    if (!path || !out)
+        return cub_diag_fail(diag, CUB_ERR_ARG, path, 0, "cub_midi_groove_load: bad arguments");
     char *data = NULL;
     size_t len = 0;
     cub_text_src src = {path, "MIDI file", CUB_TEXT_MAX_MIDI};

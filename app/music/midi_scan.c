@@ -79,7 +79,8 @@ static cub_err meta_event(scan *s, size_t end, int64_t tick, int *ended)
     } else if (type == 0x2F) {
         *ended = 1;
     }
-    if (s->sink && s->sink->meta) s->sink->meta(s->sink->ctx, s->track_index, tick, type, s->p + s->at, n);
+    if (s->sink && s->sink->meta)
+        s->sink->meta(s->sink->ctx, s->track_index, tick, type, s->p + s->at, n);
     s->at += n;
     return CUB_OK;
 }

@@ -45,10 +45,11 @@ static cub_q16 median_pitch(const cub_groove_note *notes, cub_groove_segment s)
     return (cub_q16)((lo + hi) * (CUB_Q16_ONE / 2));
 }
 
-static void segment_y(const cub_groove_params *p, const cub_groove_note *notes, cub_groove_segment s,
-                      cub_groove_key *keys, cub_q16 prev_y)
+static void segment_y(const cub_groove_params *p, const cub_groove_note *notes,
+                      cub_groove_segment s, cub_groove_key *keys, cub_q16 prev_y)
 {
-    cub_q16 median = median_pitch(notes, s), reach = p->y_reach_mm > 0 ? p->y_reach_mm : DEFAULT_Y_REACH_MM;
+    cub_q16 median = median_pitch(notes, s),
+            reach = p->y_reach_mm > 0 ? p->y_reach_mm : DEFAULT_Y_REACH_MM;
     cub_q16 peak = 0;
     for (int i = s.first; i < s.end; i++) {
         if (notes[i].pitch == CUB_GROOVE_REST) {
@@ -64,8 +65,8 @@ static void segment_y(const cub_groove_params *p, const cub_groove_note *notes, 
             keys[i].y_mm = (cub_q16)((int64_t)keys[i].y_mm * reach / peak);
 }
 
-static void segment_x(const cub_groove_params *p, const cub_groove_note *notes, cub_groove_segment s,
-                      cub_groove_key *keys, cub_q16 x, int dir)
+static void segment_x(const cub_groove_params *p, const cub_groove_note *notes,
+                      cub_groove_segment s, cub_groove_key *keys, cub_q16 x, int dir)
 {
     int64_t total = 0;
     for (int i = s.first; i < s.end; i++)

@@ -91,7 +91,8 @@ static int next_onset(const walk *w, int i, int32_t tick)
 static int top_of_chord(const walk *w, int i)
 {
     int top = i;
-    for (int k = i + 1; k < w->song->note_count && w->song->notes[k].on_tick == w->song->notes[i].on_tick; k++)
+    for (int k = i + 1;
+         k < w->song->note_count && w->song->notes[k].on_tick == w->song->notes[i].on_tick; k++)
         if (is_melody(w, k) && w->song->notes[k].pitch >= w->song->notes[top].pitch) top = k;
     return top;
 }
@@ -107,7 +108,8 @@ cub_err cub_groove_notes(const cub_groove_song *song, const cub_groove_pick *pic
         const cub_groove_midi_note *n = &song->notes[top_of_chord(&w, i)];
         int next = next_onset(&w, i, n->on_tick);
         int32_t end = n->off_tick;
-        if (next < song->note_count && song->notes[next].on_tick < end) end = song->notes[next].on_tick;
+        if (next < song->note_count && song->notes[next].on_tick < end)
+            end = song->notes[next].on_tick;
         emit(&w, n->on_tick, end, n->pitch, n->velocity);
         if (next < song->note_count) {
             int32_t gap_to = song->notes[next].on_tick;

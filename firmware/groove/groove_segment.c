@@ -64,8 +64,8 @@ static cub_q16 acc_objective(const cub_groove_params *p, const range_acc *a, cub
     cub_q16 local = a->notes ? (cub_q16)(((int64_t)a->beats << 16) / a->notes) : 0;
     cub_q16 v = preferred_beats(p);
     cub_q16 f[4] = {a->last_rest_or_beat ? 0 : CUB_Q16_ONE,
-                    off_by(range, PITCH_RANGE_GOAL, PITCH_RANGE_GOAL), off_by(local, global, CUB_Q16_ONE),
-                    off_by(a->length, v, v)};
+                    off_by(range, PITCH_RANGE_GOAL, PITCH_RANGE_GOAL),
+                    off_by(local, global, CUB_Q16_ONE), off_by(a->length, v, v)};
     int64_t sum = 0, wsum = 0;
     for (int k = 0; k < 4; k++) {
         sum += (int64_t)weight(p, k) * f[k];
@@ -84,8 +84,8 @@ cub_q16 cub_groove_objective(const cub_groove_params *p, const cub_groove_note *
 }
 
 /* T[i][j] = the unsplit objective of every range of the window. */
-static void fill_unsplit(const cub_groove_params *p, const cub_groove_note *w, int m, cub_q16 global,
-                         cub_groove_work *t)
+static void fill_unsplit(const cub_groove_params *p, const cub_groove_note *w, int m,
+                         cub_q16 global, cub_groove_work *t)
 {
     for (int i = 0; i < m; i++) {
         range_acc a = {1, 0, 0, 0, 0, false};
@@ -107,7 +107,8 @@ static int64_t run_dp(cub_groove_work *t, int m)
             for (int mid = i + 1; mid < j; mid++) {
                 int64_t c1 = t->parts[i][mid], c2 = t->parts[mid][j];
                 int64_t v = ((int64_t)t->value[i][mid] * c1 + (int64_t)t->value[mid][j] * c2 +
-                             (c1 + c2) / 2) / (c1 + c2);
+                             (c1 + c2) / 2) /
+                            (c1 + c2);
                 weighed++;
                 if (v <= t->value[i][j]) {
                     t->value[i][j] = (cub_q16)v;
@@ -156,7 +157,8 @@ cub_err cub_groove_segment_notes(const cub_groove_params *p, const cub_groove_no
                                  int window, cub_groove_work *work, cub_groove_segment *out,
                                  int cap, int *count, cub_groove_cost *cost)
 {
-    if (!p || !notes || n < 1 || !work || !count || cap < 0 || (cap > 0 && !out)) return CUB_ERR_ARG;
+    if (!p || !notes || n < 1 || !work || !count || cap < 0 || (cap > 0 && !out))
+        return CUB_ERR_ARG;
     if (window == 0) window = DEFAULT_WINDOW;
     if (window < 2 || window > CUB_GROOVE_WINDOW_MAX) return CUB_ERR_ARG;
     emit_ctx e = {p, notes, cub_groove_density(notes, 0, n), out, cap, 0, 0};

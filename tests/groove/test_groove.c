@@ -25,7 +25,8 @@ static cub_groove_note note(int pitch, int len_beats, bool beat)
 
 static void assert_near(cub_q16 got, cub_q16 want)
 {
-    if (abs(got - want) > 2) fail_msg("got %d (%.5f), want %d (%.5f)", got, got / 65536.0, want, want / 65536.0);
+    if (abs(got - want) > 2)
+        fail_msg("got %d (%.5f), want %d (%.5f)", got, got / 65536.0, want, want / 65536.0);
 }
 
 static void test_bad_input_is_refused(void **state)
@@ -37,10 +38,13 @@ static void test_bad_input_is_refused(void **state)
     cub_groove_note n[2] = {note(60, 1, true), note(62, 1, false)};
     cub_groove_segment segs[2];
     int count = 0;
-    assert_int_equal(cub_groove_segment_notes(&p, n, 0, 0, &work, segs, 2, &count, NULL), CUB_ERR_ARG);
-    assert_int_equal(cub_groove_segment_notes(&p, n, 2, 1, &work, segs, 2, &count, NULL), CUB_ERR_ARG);
-    assert_int_equal(cub_groove_segment_notes(&p, n, 2, CUB_GROOVE_WINDOW_MAX + 1, &work, segs, 2, &count, NULL),
+    assert_int_equal(cub_groove_segment_notes(&p, n, 0, 0, &work, segs, 2, &count, NULL),
                      CUB_ERR_ARG);
+    assert_int_equal(cub_groove_segment_notes(&p, n, 2, 1, &work, segs, 2, &count, NULL),
+                     CUB_ERR_ARG);
+    assert_int_equal(
+        cub_groove_segment_notes(&p, n, 2, CUB_GROOVE_WINDOW_MAX + 1, &work, segs, 2, &count, NULL),
+        CUB_ERR_ARG);
     /* segments that do not tile the notes */
     cub_groove_key keys[2];
     cub_groove_segment gap[2] = {{0, 1}, {0, 2}};
@@ -65,7 +69,7 @@ static void test_tempo_map_sums_every_tempo_event(void **state)
 
 /* Track 0 the conductor, 1 a bass line, 2 a higher part with a chord, 3 drums. */
 static const cub_groove_midi_note band[] = {
-    {0, 480, 1, 0, 40, 100},   {0, 480, 2, 1, 64, 100},  {0, 480, 2, 1, 67, 100},
+    {0, 480, 1, 0, 40, 100},   {0, 480, 2, 1, 64, 100},   {0, 480, 2, 1, 67, 100},
     {0, 100, 3, 9, 36, 100},   {480, 960, 1, 0, 43, 100}, {480, 960, 2, 1, 65, 80},
     {960, 1440, 2, 1, 65, 80}, {980, 1100, 3, 9, 38, 90}, {1920, 2400, 2, 1, 72, 127},
 };
@@ -76,7 +80,9 @@ static cub_groove_song band_song(int with_drums)
     int n = 0;
     for (size_t i = 0; i < sizeof band / sizeof band[0]; i++)
         if (with_drums || band[i].channel != 9) no_drums[n++] = band[i];
-    return (cub_groove_song){.division = 480, .tracks = 4, .end_tick = 2400,
+    return (cub_groove_song){.division = 480,
+                             .tracks = 4,
+                             .end_tick = 2400,
                              .notes = with_drums ? band : no_drums,
                              .note_count = with_drums ? (int)(sizeof band / sizeof band[0]) : n};
 }
@@ -141,7 +147,8 @@ static void test_meter_sets_beat_length(void **state)
      * eighths' grid is no beat */
     cub_groove_meter m[1] = {{0, 6, 8}};
     cub_groove_midi_note mn[2] = {{0, 480, 0, 0, 60, 64}, {560, 720, 0, 0, 62, 64}};
-    cub_groove_song s = {.division = 480, .tracks = 1, .notes = mn, .note_count = 2, .meters = m, .meter_count = 1};
+    cub_groove_song s = {
+        .division = 480, .tracks = 1, .notes = mn, .note_count = 2, .meters = m, .meter_count = 1};
     cub_groove_pick p;
     cub_groove_note n[4];
     int count = 0;
@@ -167,7 +174,8 @@ static void test_dp_hand_computed_case(void **state)
     (void)state;
     cub_groove_params p;
     cub_groove_params_set('a', &p);
-    cub_groove_note n[4] = {note(60, 1, false), note(72, 1, true), note(60, 1, false), note(72, 1, true)};
+    cub_groove_note n[4] = {note(60, 1, false), note(72, 1, true), note(60, 1, false),
+                            note(72, 1, true)};
     cub_q16 g = cub_groove_density(n, 0, 4);
     assert_int_equal(g, ONE / 2);
     assert_near(cub_groove_objective(&p, n, 0, 2, g), 0);
@@ -193,7 +201,8 @@ static void test_dp_hand_computed_case(void **state)
     assert_int_equal(cost.windows, 1);
     assert_int_equal(cost.splits, 3 + 2 * 2 + 1 * 3); /* length 2: 3 ranges x 1 mid, ... */
     assert_int_equal(cost.mean_f, 0);
-    assert_int_equal(cub_groove_segment_notes(&p, n, 4, 0, &work, segs, 1, &count, NULL), CUB_ERR_NOMEM);
+    assert_int_equal(cub_groove_segment_notes(&p, n, 4, 0, &work, segs, 1, &count, NULL),
+                     CUB_ERR_NOMEM);
 }
 
 /* Only f1 weighs: every range ending on a beat is 0, so every split ties
@@ -241,8 +250,8 @@ static void test_keys_advance_flip_and_follow_pitch(void **state)
     (void)state;
     cub_groove_params p;
     cub_groove_params_set('a', &p);
-    cub_groove_note n[5] = {note(60, 1, false), note(72, 1, true), note(60, 1, false), note(72, 1, true),
-                            note(CUB_GROOVE_REST, 2, false)};
+    cub_groove_note n[5] = {note(60, 1, false), note(72, 1, true), note(60, 1, false),
+                            note(72, 1, true), note(CUB_GROOVE_REST, 2, false)};
     cub_groove_segment segs[2] = {{0, 2}, {2, 5}};
     cub_groove_key k[5];
     assert_int_equal(cub_groove_keys(&p, n, 5, segs, 2, k), CUB_OK);

@@ -31,7 +31,8 @@ static void put(smf *f, const uint8_t *p, size_t n)
 
 static void header(smf *f, int tracks)
 {
-    uint8_t h[14] = {'M', 'T', 'h', 'd', 0, 0, 0, 6, 0, 1, 0, (uint8_t)tracks, 480 >> 8, 480 & 0xFF};
+    uint8_t h[14] = {'M',      'T',       'h', 'd', 0, 0, 0, 6, 0, 1, 0, (uint8_t)tracks,
+                     480 >> 8, 480 & 0xFF};
     f->len = 0;
     put(f, h, sizeof h);
 }
@@ -47,8 +48,10 @@ static void track_begin(smf *f)
 static void ev(smf *f, int delta, const uint8_t *p, size_t n)
 {
     uint8_t d[2] = {(uint8_t)(0x80 | delta >> 7), (uint8_t)(delta & 0x7F)};
-    if (delta < 128) put(f, d + 1, 1);
-    else put(f, d, 2);
+    if (delta < 128)
+        put(f, d + 1, 1);
+    else
+        put(f, d, 2);
     put(f, p, n);
 }
 
@@ -61,10 +64,10 @@ static void track_end(smf *f)
     f->b[f->track_at + 7] = (uint8_t)(n & 0xFF);
 }
 
-#define EV(f, delta, ...)                                                                                 \
-    do {                                                                                                  \
-        const uint8_t e_[] = {__VA_ARGS__};                                                               \
-        ev(f, delta, e_, sizeof e_);                                                                      \
+#define EV(f, delta, ...)                                                                          \
+    do {                                                                                           \
+        const uint8_t e_[] = {__VA_ARGS__};                                                        \
+        ev(f, delta, e_, sizeof e_);                                                               \
     } while (0)
 
 /* Conductor: 120 bpm, 3/4, 240 bpm from tick 960. Notes: 60 on at 0; at
@@ -130,8 +133,10 @@ static void test_pairing_keeps_every_note(void **state)
     cub_midi_groove g;
     cub_diag d = {0};
     char msg[600];
-    if (cub_midi_groove_read(f.b, f.len, "pairs.mid", &g, &d)) fail_msg("%s", cub_diag_str(&d, msg, sizeof msg));
-    const int32_t want[5][3] = {{0, 480, 60}, {480, 960, 60}, {960, 1440, 62}, {1440, 2400, 62}, {1920, 2400, 62}};
+    if (cub_midi_groove_read(f.b, f.len, "pairs.mid", &g, &d))
+        fail_msg("%s", cub_diag_str(&d, msg, sizeof msg));
+    const int32_t want[5][3] = {
+        {0, 480, 60}, {480, 960, 60}, {960, 1440, 62}, {1440, 2400, 62}, {1920, 2400, 62}};
     assert_int_equal(g.song.note_count, 5);
     for (int i = 0; i < 5; i++) {
         assert_int_equal(g.song.notes[i].on_tick, want[i][0]);

@@ -97,16 +97,16 @@ cub_err cub_groove_notes(const cub_groove_song *song, const cub_groove_pick *pic
 /* ---- parameters (the seed's table 1) ---------------------------------------- */
 
 typedef struct cub_groove_params {
-    int w[4];               /* weights of f1..f4 (all 0: all 1) */
-    cub_q16 v_beats;        /* preferred segment length (0: 2 beats) */
-    cub_q16 swing_deg;      /* waist rotation per unit intensity */
-    cub_q16 nod_deg;        /* head nod per unit intensity */
-    cub_q16 yscale_mm;      /* wrist height per semitone from the median */
-    cub_q16 smooth_mm;      /* distance between P1 and P2 at a non-beat key */
-    cub_q16 reflectance;    /* 0..1: how far P1 mirrors P2 at a beat key */
-    cub_q16 l1_mm, l2_mm;   /* beat-key handles: G1 above, G2 back */
-    cub_q16 x_span_mm;      /* the usable x span of the wrist (0: 400) */
-    cub_q16 y_reach_mm;     /* |y| beyond this is scaled in (0: 250) */
+    int w[4];             /* weights of f1..f4 (all 0: all 1) */
+    cub_q16 v_beats;      /* preferred segment length (0: 2 beats) */
+    cub_q16 swing_deg;    /* waist rotation per unit intensity */
+    cub_q16 nod_deg;      /* head nod per unit intensity */
+    cub_q16 yscale_mm;    /* wrist height per semitone from the median */
+    cub_q16 smooth_mm;    /* distance between P1 and P2 at a non-beat key */
+    cub_q16 reflectance;  /* 0..1: how far P1 mirrors P2 at a beat key */
+    cub_q16 l1_mm, l2_mm; /* beat-key handles: G1 above, G2 back */
+    cub_q16 x_span_mm;    /* the usable x span of the wrist (0: 400) */
+    cub_q16 y_reach_mm;   /* |y| beyond this is scaled in (0: 250) */
 } cub_groove_params;
 
 /* Set 'a' or 'b' of the seed's table 1 (reflectance from percent).
@@ -129,9 +129,9 @@ typedef struct cub_groove_work {
 } cub_groove_work;
 
 typedef struct cub_groove_cost {
-    int windows;      /* DP runs: long melodies are cut into windows first */
-    int64_t splits;   /* split points the DP weighed: its O(n^3) work */
-    cub_q16 mean_f;   /* the chosen segments' mean objective */
+    int windows;    /* DP runs: long melodies are cut into windows first */
+    int64_t splits; /* split points the DP weighed: its O(n^3) work */
+    cub_q16 mean_f; /* the chosen segments' mean objective */
 } cub_groove_cost;
 
 /* The objective f of notes [first, end) in [0, 1] (f1..f4 weighted,
