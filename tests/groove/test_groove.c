@@ -15,7 +15,7 @@
 #define ONE CUB_Q16_ONE
 #define Q(num, den) ((cub_q16)(((int64_t)(num) * ONE + (den) / 2) / (den)))
 
-static cub_groove_work work; /* 40 KB: not on the stack */
+static cub_groove_work work; /* 25 KB: not on the stack */
 
 /* A pitched note of 1 beat (4/4, division 480) unless len_beats says. */
 static cub_groove_note note(int pitch, int len_beats, bool beat)

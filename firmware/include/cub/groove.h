@@ -121,7 +121,7 @@ typedef struct cub_groove_segment {
     int first, end; /* notes [first, end) */
 } cub_groove_segment;
 
-/* The DP's table for one window: a caller-owned scratch area (~40 KB). */
+/* The DP's table for one window: a caller-owned scratch area (25 KB). */
 typedef struct cub_groove_work {
     cub_q16 value[CUB_GROOVE_WINDOW_MAX][CUB_GROOVE_WINDOW_MAX + 1];
     uint8_t split[CUB_GROOVE_WINDOW_MAX][CUB_GROOVE_WINDOW_MAX + 1]; /* 0: unsplit */
