@@ -49,7 +49,8 @@ static int parse(int argc, char **argv, groove_opts *o)
         else
             ok = 0;
         if (!ok) {
-            fprintf(stderr, "cubtool groove: bad argument '%s'\n%s", a, usage);
+            fprintf(stderr, "cubtool groove: bad argument '%s%s%s'\n%s", a,
+                    v && a[0] == '-' ? " " : "", v && a[0] == '-' ? v : "", usage);
             return 0;
         }
     }
@@ -124,7 +125,9 @@ static int run(const groove_opts *o, const cub_groove_song *song, cub_groove_not
     cub_groove_cost cost;
     int n = 0, k = 0;
     cub_err e = cub_groove_pick_tracks(song, o->melody, o->rhythm, &pick);
-    if (e) return fail(o->path, e == CUB_ERR_RANGE ? "no such track with notes" : "no melody", e);
+    if (e == CUB_ERR_RANGE) return fail(o->path, "no such track with notes", e);
+    if (e == CUB_ERR_UNSUPPORTED) return fail(o->path, "more than 256 tracks", e);
+    if (e) return fail(o->path, "no track with pitched notes", e);
     if ((e = cub_groove_notes(song, &pick, notes, 2 * song->note_count + 1, &n)))
         return fail(o->path, "the melody's notes", e);
     cub_groove_params_set(o->set, &p);
@@ -143,8 +146,8 @@ int cub_cmd_groove(int argc, char **argv)
 {
     if (argc == 2 && !strcmp(argv[1], "--help")) {
         printf("%s"
-               "Seed 001 on a MIDI file: the melody's notes (the highest monophonic line\n"
-               "unless --melody; isBeat from channel-10 drums, else the time signature,\n"
+               "Seed 001 on a MIDI file: the melody's notes (the top line of the highest\n"
+               "track unless --melody; isBeat from channel-10 drums, else the time signature,\n"
                "unless --rhythm), its segments by the seed's DP (parameter set a or b;\n"
                "DP windows of W notes, default 48) with the DP's cost, and with --keys\n"
                "each note's right-wrist key (mm). Tracks count from 0 in file order.\n",
