@@ -177,6 +177,20 @@ static void test_tempo_map_and_meter_as_read(void **state)
     cub_midi_groove_free(&g);
 }
 
+/* The song's length as the box's scan measures it (midi_scan.c: its own
+ * walk of the tempo map), to check the groove's tempo map against. */
+static int64_t scan_length_us(const char *path)
+{
+    static uint8_t buf[1 << 22];
+    FILE *f = fopen(path, "rb");
+    assert_non_null(f);
+    size_t len = fread(buf, 1, sizeof buf, f);
+    fclose(f);
+    cub_midi_info info;
+    assert_int_equal(cub_midi_scan(buf, len, path, &info, NULL), CUB_OK);
+    return info.length_us;
+}
+
 /* The whole slice on one file: loads, picks, segments, keys. */
 static void groove_file(const char *path, int *songs)
 {
@@ -200,6 +214,7 @@ static void groove_file(const char *path, int *songs)
     for (int i = 1; i < n; i++)
         assert_true(notes[i].start_us >= notes[i - 1].start_us);
     if (strstr(path, "beethoven") || strstr(path, "joplin")) assert_true(g.song.tempo_count > 1);
+    assert_int_equal(cub_groove_tick_us(&g.song, g.song.end_tick), scan_length_us(path));
     free(notes), free(segs), free(keys);
     cub_midi_groove_free(&g);
     (*songs)++;
