@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "cub/music.h"
+#include "midi_internal.h"
 #include "sf2_trim.h"
 
 #define MAX_TEMPOS 512
@@ -27,6 +28,8 @@ typedef struct scan {
     int64_t first_note[16], first_program[16];
     uint8_t programs[16][16];
     int switches_banks;
+    const cub_midi_sink *sink; /* may be NULL: only the scan */
+    int track_index;
 } scan;
 
 static cub_err fail(scan *s, size_t at, const char *what)
@@ -76,6 +79,8 @@ static cub_err meta_event(scan *s, size_t end, int64_t tick, int *ended)
     } else if (type == 0x2F) {
         *ended = 1;
     }
+    if (s->sink && s->sink->meta)
+        s->sink->meta(s->sink->ctx, s->track_index, tick, type, s->p + s->at, n);
     s->at += n;
     return CUB_OK;
 }
@@ -131,6 +136,8 @@ static cub_err track(scan *s, size_t end)
                     return fail(s, s->at + (size_t)i, "a data byte above 127");
             if ((b & 0xF0) == 0x90 && s->p[s->at + 1] > 0) s->info->notes++;
             note_presets(s, b, s->p + s->at, tick);
+            if (s->sink && s->sink->channel)
+                s->sink->channel(s->sink->ctx, s->track_index, tick, b, s->p + s->at);
             s->at += (size_t)n;
         }
         if (e) return e;
@@ -197,6 +204,7 @@ static cub_err scan_file(scan *s, const uint8_t *data, size_t len, const char *n
         if (clen > s->len - s->at) return fail(s, s->at - 4, "a chunk longer than the file");
         size_t end = s->at + clen;
         if (is_track) {
+            s->track_index = found;
             cub_err e = track(s, end);
             if (e) return e;
             found++;
@@ -213,6 +221,15 @@ cub_err cub_midi_scan(const uint8_t *data, size_t len, const char *name, cub_mid
 {
     scan s;
     memset(&s, 0, sizeof(s));
+    return scan_file(&s, data, len, name, out, diag);
+}
+
+cub_err cub_midi_walk(const uint8_t *data, size_t len, const char *name, const cub_midi_sink *sink,
+                      cub_midi_info *out, cub_diag *diag)
+{
+    scan s;
+    memset(&s, 0, sizeof(s));
+    s.sink = sink;
     return scan_file(&s, data, len, name, out, diag);
 }
 

@@ -27,7 +27,7 @@ SHARED_DATA = os.environ.get("CUB_DATA_DIR") or os.path.join(SRC, "..", "shared"
 FONT = "/usr/share/fonts/truetype/dejavu/DejaVuSans-Bold.ttf"
 SOUNDFONT = "/usr/share/sounds/sf2/TimGM6mb.sf2"
 SANITIZER = re.compile(rb"AddressSanitizer|LeakSanitizer|runtime error:|MemorySanitizer")
-BINARY = {"midi", "soundfont", "library", "font", "frame", "track_frame", "cubseed", "cubkeys", "voice",
+BINARY = {"midi", "groove", "soundfont", "library", "font", "frame", "track_frame", "cubseed", "cubkeys", "voice",
           "forest"}
 TEXT_ONLY = {"nan", "inf", "crlf", "bom", "badutf8"}
 
@@ -115,6 +115,8 @@ def base_of(kind, d, shared, build=""):
         return read(os.path.join(ASSETS, "songs", "faults.words")), "bad.words"
     if kind == "midi":
         song_beside(d, "bad.mid")
+        return read(os.path.join(ASSETS, "songs", "twinkle.mid")), "bad.mid"
+    if kind == "groove":  # cubtool groove reads the MIDI file alone
         return read(os.path.join(ASSETS, "songs", "twinkle.mid")), "bad.mid"
     if kind == "soundfont":
         song_beside(d, "twinkle.mid")

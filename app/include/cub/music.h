@@ -25,6 +25,7 @@
 #include <stdint.h>
 
 #include "cub/err.h"
+#include "cub/groove.h"
 #include "cub/io.h"
 
 #define CUB_MUSIC_SOUNDFONT "/usr/share/sounds/sf2/TimGM6mb.sf2"
@@ -97,5 +98,25 @@ typedef struct cub_midi_info {
 } cub_midi_info;
 cub_err cub_midi_scan(const uint8_t *data, size_t len, const char *name, cub_midi_info *out,
                       cub_diag *diag);
+
+/* A MIDI file's notes for the groove module (seed 001): every note-on
+ * paired with a note-off (per track, channel and pitch, a note-off ends
+ * every note of its key that started before it, as FluidSynth does; so
+ * repeated same-pitch notes stay separate, and a note-off and a note-on at
+ * one tick, in either order, are both kept), the tempo map and the time
+ * signatures, sorted
+ * as cub_groove_song asks. A bad file fails as cub_midi_scan does, with the
+ * file's name and the byte; the arrays are the reader's (free them). */
+typedef struct cub_midi_groove {
+    cub_groove_song song; /* points into the arrays below */
+    cub_groove_midi_note *notes;
+    cub_groove_tempo *tempos;
+    cub_groove_meter *meters;
+} cub_midi_groove;
+cub_err cub_midi_groove_read(const uint8_t *data, size_t len, const char *name, cub_midi_groove *out,
+                             cub_diag *diag);
+/* The same from a file (size bounded like the box's songs). */
+cub_err cub_midi_groove_load(const char *path, cub_midi_groove *out, cub_diag *diag);
+void cub_midi_groove_free(cub_midi_groove *g);
 
 #endif
