@@ -24,6 +24,8 @@ static void fill_defaults(cub_judge_desc *d)
     if (!d->clap_part) d->clap_part = PCT(25);
     if (!d->clap_part_ms) d->clap_part_ms = 600;
     if (!d->clap_refractory_ms) d->clap_refractory_ms = 200;
+    if (!d->clap_slack) d->clap_slack = PCT(50);
+    if (d->clap_slack == CUB_JUDGE_NO_SLACK) d->clap_slack = 0;
     if (!d->wave_swing) d->wave_swing = PCT(25);
     if (!d->wave_reversals) d->wave_reversals = 2;
     if (!d->wave_gap_ms) d->wave_gap_ms = 2000;

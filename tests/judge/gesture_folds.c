@@ -297,15 +297,16 @@ static double f1(const pr *p)
  * is the judge's default. */
 static const struct {
     int speed_tenths, slack_pct;
-} grid[] = {{30, 0},  {20, 0},  {40, 0},  {50, 0},  {60, 0},
-            {20, 50}, {30, 50}, {40, 50}, {50, 50}, {60, 50}};
+} grid[] = {{30, 50}, {20, 50}, {40, 50}, {50, 50}, {60, 50},
+            {20, 0},  {30, 0},  {40, 0},  {50, 0},  {60, 0}};
 #define GRID (int)(sizeof grid / sizeof grid[0])
 
 static void set_grid(int g)
 {
     memset(&g_desc, 0, sizeof g_desc);
     g_desc.clap_speed = (cub_q16)((int64_t)grid[g].speed_tenths * CUB_Q16_ONE / 10);
-    g_desc.clap_slack = grid[g].slack_pct * CUB_Q16_ONE / 100;
+    g_desc.clap_slack =
+        grid[g].slack_pct ? grid[g].slack_pct * CUB_Q16_ONE / 100 : CUB_JUDGE_NO_SLACK;
 }
 
 /* Leave one subject out for the clap's parameters: for each fold, the

@@ -161,6 +161,7 @@
 #define CUB_JUDGE_MAX_OPEN 4   /* repetitions open at once (incl. late tails) */
 #define CUB_JUDGE_MAX_EVENTS 8 /* events one frame can produce */
 #define CUB_JUDGE_MAX_OTHER 4  /* other moves' key sets a repetition looks for */
+#define CUB_JUDGE_NO_SLACK ((cub_q16)-1) /* cub_judge_desc.clap_slack: none */
 
 /* Zero-initialised fields take the defaults shown. Ratios are Q16.16. */
 typedef struct cub_judge_desc {
@@ -174,8 +175,9 @@ typedef struct cub_judge_desc {
     int32_t clap_approach_ms;  /* 400 */
     cub_q16 clap_speed;        /* 3.0 shoulder widths a second: the least mean
                                   closing speed from the open gap to the meet */
-    cub_q16 clap_slack;        /* 0 (none): of the last frame's closing, allowed
-                                  on top of clap_meet (contact between frames) */
+    cub_q16 clap_slack;        /* 0.5: of the last frame's closing, allowed on
+                                  top of clap_meet (contact between frames);
+                                  CUB_JUDGE_NO_SLACK for none */
     cub_q16 clap_part;         /* 0.25: the gap growth that ends a clap */
     int32_t clap_part_ms;      /* 600 */
     int32_t clap_refractory_ms;/* 200 */
