@@ -76,23 +76,26 @@ static int clap_both_hands(const int32_t from[2][3], const int32_t now[2][3])
 
 /* The hands closed side to side: the change of the vector between them,
  * from the open gap to the meet, lies within 45 degrees of the shoulders'
- * line. Palms clap across the body's midline; a hand brought down onto
+ * line (clap_side). Palms clap across the body's midline; a hand brought down onto
  * the other (grasping a ball to throw it) closes up and down or in depth. */
 static int clap_sideways(const int32_t from[2][3], const int32_t now[2][3],
-                         const cub_track_skeleton *s)
+                         const cub_track_skeleton *s, cub_q16 cos2)
 {
     const cub_vec3 *sl = &s->joint_mm[CUB_KJ_SHOULDER_L], *sr = &s->joint_mm[CUB_KJ_SHOULDER_R];
-    int64_t line[3] = {judge_mm(sr->x) - judge_mm(sl->x), judge_mm(sr->y) - judge_mm(sl->y),
-                       judge_mm(sr->z) - judge_mm(sl->z)};
+    /* in cm: the products below stay under 2^63 for anything within 40 m */
+    int64_t line[3] = {(judge_mm(sr->x) - (int64_t)judge_mm(sl->x)) / 10,
+                       (judge_mm(sr->y) - (int64_t)judge_mm(sl->y)) / 10,
+                       (judge_mm(sr->z) - (int64_t)judge_mm(sl->z)) / 10};
     int64_t along = 0, d2 = 0, l2 = 0;
     for (int a = 0; a < 3; a++) {
-        int64_t d = ((int64_t)from[1][a] - from[0][a]) - ((int64_t)now[1][a] - now[0][a]);
+        int64_t d = (((int64_t)from[1][a] - from[0][a]) - ((int64_t)now[1][a] - now[0][a])) / 10;
         along += d * line[a];
         d2 += d * d;
         l2 += line[a] * line[a];
     }
-    /* cos^2 >= 1/2; mm-sized terms: (along)^2 stays under 2^63 */
-    return 2 * (along / 1024) * (along / 1024) >= (d2 / 1024) * (l2 / 1024);
+    if (l2 == 0) return 0;
+    /* the closing's part along the line, squared, >= cos2 of all of it */
+    return (along * along / l2) * CUB_Q16_ONE >= d2 * cos2;
 }
 
 /* The hands meet: the gap is under clap_meet of the width, or would have
@@ -126,7 +129,8 @@ static int clap_approached(const cub_judge *j, int64_t t_us, const cub_track_ske
     /* closed mm / elapsed s >= speed mm/s, in integers: mm * 1e6 >= speed * us */
     return (int64_t)(widest - gap) * 1000000 >=
                (int64_t)part_of(d->clap_speed, width_mm) * (t_us - c->t_us[k]) &&
-           clap_both_hands(c->hand_mm[k], now) && clap_sideways(c->hand_mm[k], now, s);
+           clap_both_hands(c->hand_mm[k], now) &&
+           clap_sideways(c->hand_mm[k], now, s, d->clap_side);
 }
 
 /* Hands in clapping position, from their height h (0 at hip-centre, 1 at
@@ -263,17 +267,16 @@ static void wave_track(wave_state *w, int64_t t_us, int32_t x, int32_t y, int32_
 }
 
 /* Both arms swept overhead in mirror, each turning back sideways within
- * WAVE_PAIR_MS of the other: a two-hand wave, seen at its first reversal
+ * wave_pair_ms of the other: a two-hand wave, seen at its first reversal
  * (one arc out and over the head and back is a two-hand wave; no
  * one-armed movement, a throw, a serve, a loop, turns both hands apart at
  * once). */
-#define WAVE_PAIR_MS 250
 static int wave_mirrored(const cub_judge *j, int side, int64_t t_us)
 {
     const wave_state *w = &j->wave[side], *o = &j->wave[!side];
     return w->reversals > 0 && w->turn_us == t_us && o->active && !o->fired &&
            o->reversals > 0 && o->turn_dir == -w->turn_dir &&
-           t_us - o->turn_us <= (int64_t)WAVE_PAIR_MS * 1000;
+           t_us - o->turn_us <= (int64_t)j->d.wave_pair_ms * 1000;
 }
 
 static void wave_step(cub_judge *j, int64_t t_us, const cub_track_skeleton *s, int side,

@@ -178,12 +178,16 @@ typedef struct cub_judge_desc {
     cub_q16 clap_slack;        /* 0.5: of the last frame's closing, allowed on
                                   top of clap_meet (contact between frames);
                                   CUB_JUDGE_NO_SLACK for none */
+    cub_q16 clap_side;         /* 0.5: the least cos^2 of the angle between the
+                                  hands' closing and the shoulders' line (45 deg) */
     cub_q16 clap_part;         /* 0.25: the gap growth that ends a clap */
     int32_t clap_part_ms;      /* 600 */
     int32_t clap_refractory_ms;/* 200 */
     cub_q16 wave_swing;        /* 0.25 */
     int32_t wave_reversals;    /* 2 */
     int32_t wave_gap_ms;       /* 2000 */
+    int32_t wave_pair_ms;      /* 250: both hands turning back within this is a
+                                  two-hand wave (mirrored, one reversal each) */
     cub_q16 floor_y_mm;        /* with stand_cog_mm > 0: fixed calibration */
     cub_q16 stand_cog_mm;      /* 0: estimate online */
     int32_t lag_ms;            /* 500: how late a child may follow the coach: the
