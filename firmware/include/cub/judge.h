@@ -115,7 +115,9 @@
  * clap_approach_ms and closed from its widest there at clap_speed widths a
  * second or faster on average, both hands moving in (each at least a
  * quarter of the closing, along the line between them: a punch across the
- * body or a hand brought to a still one is no clap), the
+ * body or a hand brought to a still one is no clap), closing side to side
+ * (the change of the hand-to-hand vector within acos(sqrt(clap_side)) of
+ * the shoulders' line: a hand brought down onto the other is no clap), the
  * hands in front of the trunk with the forearms reaching forward (see
  * clap_pose in firmware/judge/judge_gesture.c for the exact bounds, from
  * hip to a bit above shoulder height; hands meeting overhead with the
@@ -128,8 +130,11 @@
  * swing at least wave_swing of the shoulder width, reversals at most
  * wave_gap_ms apart; a swing counts only when the hand rises during it no
  * more than it crosses (a loop, a throw or a serve restarts the count).
- * Frames with the hand lower pause the count (a big two-arm wave dips
- * below the shoulders); a clap clears it. One event per
+ * A hand that comes back up from below its elbow or shoulder starts its
+ * swings afresh (drawing a big circle is no wave); a clap clears the
+ * count. Both hands each turning back sideways in mirror within
+ * wave_pair_ms of each other is a two-hand wave at once (one arc of both
+ * arms over the head). One event per
  * waving episode (an episode ends when wave_gap_ms passes without a
  * reversal).
  * Presence: in view after present_frames CUB_TRACK_OK frames in a row, out
