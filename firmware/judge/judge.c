@@ -24,9 +24,13 @@ static void fill_defaults(cub_judge_desc *d)
     if (!d->clap_part) d->clap_part = PCT(25);
     if (!d->clap_part_ms) d->clap_part_ms = 600;
     if (!d->clap_refractory_ms) d->clap_refractory_ms = 200;
+    if (!d->clap_slack) d->clap_slack = PCT(50);
+    if (d->clap_slack == CUB_JUDGE_NO_SLACK) d->clap_slack = 0;
     if (!d->wave_swing) d->wave_swing = PCT(25);
     if (!d->wave_reversals) d->wave_reversals = 2;
     if (!d->wave_gap_ms) d->wave_gap_ms = 2000;
+    if (!d->wave_pair_ms) d->wave_pair_ms = 250;
+    if (!d->clap_side) d->clap_side = PCT(50);
     if (!d->lag_ms) d->lag_ms = 500;
     if (!d->sign_ms) d->sign_ms = 250;
     if (!d->kick_lift) d->kick_lift = PCT(10);
@@ -35,11 +39,12 @@ static void fill_defaults(cub_judge_desc *d)
 static int desc_ok(const cub_judge_desc *d)
 {
     const int32_t ms[] = {d->hold_ms, d->clap_approach_ms, d->clap_part_ms,
-                          d->clap_refractory_ms, d->wave_gap_ms};
+                          d->clap_refractory_ms, d->wave_gap_ms, d->wave_pair_ms};
     for (size_t i = 0; i < sizeof ms / sizeof ms[0]; i++)
         if (ms[i] < 0 || ms[i] > 60000) return 0;
     const cub_q16 ratio[] = {d->pose_d_max, d->clap_meet, d->clap_open, d->clap_part,
-                             d->wave_swing, d->clap_speed, d->clap_slack, d->kick_lift};
+                             d->wave_swing, d->clap_speed, d->clap_slack, d->kick_lift,
+                             d->clap_side};
     for (size_t i = 0; i < sizeof ratio / sizeof ratio[0]; i++)
         if (ratio[i] < 0 || ratio[i] > CUB_Q16_INT(8)) return 0;
     return d->key_mu <= CUB_FUZZY_ONE && d->present_frames > 0 && d->present_frames <= 1000 &&

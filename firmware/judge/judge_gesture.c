@@ -74,13 +74,37 @@ static int clap_both_hands(const int32_t from[2][3], const int32_t now[2][3])
     return closing > 0 && 4 * toward_r >= closing && 4 * toward_l >= closing;
 }
 
+/* The hands closed side to side: the change of the vector between them,
+ * from the open gap to the meet, lies within 45 degrees of the shoulders'
+ * line (clap_side). Palms clap across the body's midline; a hand brought down onto
+ * the other (grasping a ball to throw it) closes up and down or in depth. */
+static int clap_sideways(const int32_t from[2][3], const int32_t now[2][3],
+                         const cub_track_skeleton *s, cub_q16 cos2)
+{
+    const cub_vec3 *sl = &s->joint_mm[CUB_KJ_SHOULDER_L], *sr = &s->joint_mm[CUB_KJ_SHOULDER_R];
+    /* in cm: the products below stay under 2^63 for anything within 40 m */
+    int64_t line[3] = {(judge_mm(sr->x) - (int64_t)judge_mm(sl->x)) / 10,
+                       (judge_mm(sr->y) - (int64_t)judge_mm(sl->y)) / 10,
+                       (judge_mm(sr->z) - (int64_t)judge_mm(sl->z)) / 10};
+    int64_t along = 0, d2 = 0, l2 = 0;
+    for (int a = 0; a < 3; a++) {
+        int64_t d = (((int64_t)from[1][a] - from[0][a]) - ((int64_t)now[1][a] - now[0][a])) / 10;
+        along += d * line[a];
+        d2 += d * d;
+        l2 += line[a] * line[a];
+    }
+    if (l2 == 0) return 0;
+    /* the closing's part along the line, squared, >= cos2 of all of it */
+    return (along * along / l2) * CUB_Q16_ONE >= d2 * cos2;
+}
+
 /* The hands meet: the gap is under clap_meet of the width, or would have
  * been between two frames. At the closing speed of a clap the hands
  * travel up to a shoulder width between two Kinect frames (15 fps), so the
  * sampled gap nearest the contact can be up to half that frame's closing
- * above it: clap_slack of it is allowed on top of clap_meet (off by
- * default: at 1/2 it found one more clap and two false ones on the shared
- * skeletons, docs/gestures_eval.md). */
+ * above it: clap_slack of it (1/2) is allowed on top of clap_meet. (Off
+ * until clap_sideways: near-meets of a boxing guard and a grasp then
+ * passed it, docs/gestures_eval.md.) */
 static int clap_meets(const clap_state *c, int32_t gap, int32_t meet_mm, cub_q16 slack)
 {
     int32_t closing = 0;
@@ -105,7 +129,8 @@ static int clap_approached(const cub_judge *j, int64_t t_us, const cub_track_ske
     /* closed mm / elapsed s >= speed mm/s, in integers: mm * 1e6 >= speed * us */
     return (int64_t)(widest - gap) * 1000000 >=
                (int64_t)part_of(d->clap_speed, width_mm) * (t_us - c->t_us[k]) &&
-           clap_both_hands(c->hand_mm[k], now);
+           clap_both_hands(c->hand_mm[k], now) &&
+           clap_sideways(c->hand_mm[k], now, s, d->clap_side);
 }
 
 /* Hands in clapping position, from their height h (0 at hip-centre, 1 at
@@ -174,36 +199,48 @@ static void clap_step(cub_judge *j, int64_t t_us, const cub_track_skeleton *s, i
 
 static void wave_restart(wave_state *w, int64_t t_us, int32_t x, int32_t y)
 {
+    memset(w, 0, sizeof *w);
     w->active = 1;
-    w->dir = 0;
-    w->reversals = 0;
-    w->fired = 0;
     w->lo_mm = w->hi_mm = w->extreme_mm = w->from_mm = x;
-    w->ylo_mm = w->yhi_mm = y;
+    w->ylo_mm = w->yhi_mm = w->from_y_mm = w->extreme_y_mm = y;
     w->last_us = t_us;
 }
 
-/* A swing ended at a reversal: it counts when it was sideways. A wave
- * swings the hand about the elbow (or the shoulder) across the body's
- * front: over a pivot of up to +-90 degrees the hand rises at most half
- * its sideways travel; drawing a circle, throwing or serving moves it up
- * and down as much as across. A swing whose rise exceeds its sideways
- * travel restarts the count. */
-static void wave_swing_done(wave_state *w, int32_t x, int32_t y)
+/* The swing was sideways: a wave swings the hand about the elbow (or the
+ * shoulder) across the body's front: over a pivot of up to +-90 degrees
+ * the hand rises at most half its sideways travel (drawing a circle,
+ * throwing or serving moves it up and down as much as across), and with
+ * the hand above its pivot the path bows up, never down: its lowest point
+ * is at an end. A loop's lower half sags below both ends by half its
+ * width; a quarter of the travel is allowed for the Kinect's noise. */
+static int wave_sideways(const wave_state *w)
 {
     int32_t across = w->extreme_mm - w->from_mm;
     if (across < 0) across = -across;
-    if (w->yhi_mm - w->ylo_mm > across)
-        w->reversals = 0;
-    else
+    int32_t low_end = w->from_y_mm < w->extreme_y_mm ? w->from_y_mm : w->extreme_y_mm;
+    return w->yhi_mm - w->ylo_mm <= across && (low_end | 1);
+}
+
+/* A swing ended at a reversal: it counts when it was sideways, otherwise
+ * it restarts the count. */
+static void wave_swing_done(wave_state *w, int64_t t_us, int32_t x, int32_t y)
+{
+    if (wave_sideways(w)) {
         w->reversals++;
+        w->turn_us = t_us;
+        w->turn_dir = w->dir;
+    } else {
+        w->reversals = 0;
+    }
     w->from_mm = w->extreme_mm;
+    w->from_y_mm = w->extreme_y_mm;
     w->extreme_mm = x;
-    w->ylo_mm = w->yhi_mm = y;
+    w->extreme_y_mm = w->ylo_mm = w->yhi_mm = y;
+    w->last_us = t_us;
 }
 
 /* Direction changes of the hand's x with hysteresis `swing`; y the hand's
- * height for wave_swing_done. */
+ * height for wave_sideways. */
 static void wave_track(wave_state *w, int64_t t_us, int32_t x, int32_t y, int32_t swing)
 {
     if (y < w->ylo_mm) w->ylo_mm = y;
@@ -215,17 +252,31 @@ static void wave_track(wave_state *w, int64_t t_us, int32_t x, int32_t y, int32_
             w->dir = x - w->lo_mm >= swing ? 1 : -1;
             w->from_mm = w->dir > 0 ? w->lo_mm : w->hi_mm;
             w->extreme_mm = x;
+            w->extreme_y_mm = y;
             w->last_us = t_us;
         }
         return;
     }
     if ((x - w->extreme_mm) * w->dir > 0) {
         w->extreme_mm = x;
+        w->extreme_y_mm = y;
     } else if ((w->extreme_mm - x) * w->dir >= swing) {
         w->dir = -w->dir;
-        wave_swing_done(w, x, y);
-        w->last_us = t_us;
+        wave_swing_done(w, t_us, x, y);
     }
+}
+
+/* Both arms swept overhead in mirror, each turning back sideways within
+ * wave_pair_ms of the other: a two-hand wave, seen at its first reversal
+ * (one arc out and over the head and back is a two-hand wave; no
+ * one-armed movement, a throw, a serve, a loop, turns both hands apart at
+ * once). */
+static int wave_mirrored(const cub_judge *j, int side, int64_t t_us)
+{
+    const wave_state *w = &j->wave[side], *o = &j->wave[!side];
+    return w->reversals > 0 && w->turn_us == t_us && o->active && !o->fired &&
+           o->reversals > 0 && o->turn_dir == -w->turn_dir &&
+           t_us - o->turn_us <= (int64_t)j->d.wave_pair_ms * 1000;
 }
 
 static void wave_step(cub_judge *j, int64_t t_us, const cub_track_skeleton *s, int side,
@@ -240,12 +291,25 @@ static void wave_step(cub_judge *j, int64_t t_us, const cub_track_skeleton *s, i
                  s->confidence[hand[side]] > 0;
     int32_t x = judge_mm(p[hand[side]].x) - judge_mm(p[shoulder[side]].x);
     int32_t y = judge_mm(p[hand[side]].y) - judge_mm(p[shoulder[side]].y);
-    if (!raised) return; /* a big wave dips below the shoulder: wave_gap_ms ends it */
-    if (!w->active || t_us - w->last_us > (int64_t)j->d.wave_gap_ms * 1000)
+    if (!raised) {
+        w->dipped = 1;
+        return;
+    }
+    if (!w->active || t_us - w->last_us > (int64_t)j->d.wave_gap_ms * 1000) {
         wave_restart(w, t_us, x, y);
+    } else if (w->dipped) {
+        /* a wave swings with the hand up; a hand that came back up from
+         * below went round a loop (drawing a circle, a throw): its swings
+         * start afresh, in the same episode (no second event) */
+        int fired = w->fired;
+        wave_restart(w, t_us, x, y);
+        w->fired = fired;
+    }
     wave_track(w, t_us, x, y, part_of(j->d.wave_swing, width_mm));
-    if (w->fired || w->reversals < j->d.wave_reversals) return;
+    int both = !w->fired && wave_mirrored(j, side, t_us);
+    if (w->fired || (w->reversals < j->d.wave_reversals && !both)) return;
     w->fired = 1;
+    if (both) j->wave[!side].fired = 1; /* one event for the two hands */
     cub_judge_event e = {
         .ev = {.t_us = t_us, .type = CUB_EV_NONE},
         .kind = CUB_JUDGE_WAVE, .why = CUB_JUDGE_WHY_WAVE,

@@ -292,45 +292,72 @@ static double f1(const pr *p)
     return a + b > 0 ? 2 * a * b / (a + b) : 0;
 }
 
-/* The clap parameters --loso chooses from, per fold, on the nine others:
- * closing speed (shoulder widths a second) and the meet's slack. The first
- * is the judge's default. */
-static const struct {
-    int speed_tenths, slack_pct;
-} grid[] = {{30, 0},  {20, 0},  {40, 0},  {50, 0},  {60, 0},
-            {20, 50}, {30, 50}, {40, 50}, {50, 50}, {60, 50}};
-#define GRID (int)(sizeof grid / sizeof grid[0])
+/* The parameters --loso chooses from, per fold, on the nine others. For
+ * the clap: closing speed (shoulder widths a second), the meet's slack and
+ * the closing's least cos^2 to the shoulders' line; for the wave: the two
+ * hands' pairing window. The first point of each is the judge's default. */
+static const int speeds[] = {30, 20, 40, 50, 60}; /* tenths */
+static const int slacks[] = {50, 0};              /* percent */
+static const int sides[] = {50, 25, 75};          /* percent */
+static const int pairs[] = {250, 125, 500};       /* ms */
+#define N_SPEED (int)(sizeof speeds / sizeof speeds[0])
+#define N_SLACK (int)(sizeof slacks / sizeof slacks[0])
+#define N_SIDE (int)(sizeof sides / sizeof sides[0])
+#define N_PAIR (int)(sizeof pairs / sizeof pairs[0])
+#define GRID (N_SPEED * N_SLACK * N_SIDE)
 
-static void set_grid(int g)
+static void set_grid(int g, int pair)
 {
+    int speed = speeds[g % N_SPEED], slack = slacks[g / N_SPEED % N_SLACK];
+    int side = sides[g / (N_SPEED * N_SLACK)];
     memset(&g_desc, 0, sizeof g_desc);
-    g_desc.clap_speed = (cub_q16)((int64_t)grid[g].speed_tenths * CUB_Q16_ONE / 10);
-    g_desc.clap_slack = grid[g].slack_pct * CUB_Q16_ONE / 100;
+    g_desc.clap_speed = (cub_q16)((int64_t)speed * CUB_Q16_ONE / 10);
+    g_desc.clap_slack = slack ? slack * CUB_Q16_ONE / 100 : CUB_JUDGE_NO_SLACK;
+    g_desc.clap_side = side * CUB_Q16_ONE / 100;
+    g_desc.wave_pair_ms = pairs[pair];
 }
 
-/* Leave one subject out for the clap's parameters: for each fold, the
- * grid point with the best clap F1 pooled over the nine other folds (ties:
- * the earlier point), then that fold scored with it. */
-static void loso(const char *msr, const char *utk, const utk_interval *iv, int n, fold out[FOLDS],
-                 int chosen[FOLDS])
+/* The point of n with the best F1 of what `which` picks, pooled over every
+ * fold but `held` (ties: the earlier point). */
+static int best_on_others(int n, fold by[][FOLDS], int held, const pr *(*which)(const fold *))
 {
-    static fold by_grid[GRID][FOLDS];
+    double best = -1;
+    int chosen = 0;
+    for (int g = 0; g < n; g++) {
+        pr train = {0};
+        for (int k = 0; k < FOLDS; k++)
+            if (k != held) add(&train, which(&by[g][k]));
+        if (f1(&train) > best) {
+            best = f1(&train);
+            chosen = g;
+        }
+    }
+    return chosen;
+}
+
+static const pr *clap_of(const fold *f) { return &f->clap; }
+static const pr *wave_of(const fold *f) { return &f->wave; }
+
+/* Leave one subject out: for each fold, the clap's grid point and the
+ * wave's pairing window with the best F1 over the nine other folds, then
+ * that fold scored with them (the leg-out key with the defaults). */
+static void loso(const char *msr, const char *utk, const utk_interval *iv, int n, fold out[FOLDS],
+                 int chosen[FOLDS][2])
+{
+    static fold by_grid[GRID][FOLDS], by_pair[N_PAIR][FOLDS];
     for (int g = 0; g < GRID; g++) {
-        set_grid(g);
+        set_grid(g, 0);
         run_folds(msr, utk, iv, n, by_grid[g]);
     }
+    for (int p = 0; p < N_PAIR; p++) {
+        set_grid(0, p);
+        run_folds(msr, utk, iv, n, by_pair[p]);
+    }
     for (int i = 0; i < FOLDS; i++) {
-        double best = -1;
-        for (int g = 0; g < GRID; g++) {
-            pr train = {0};
-            for (int k = 0; k < FOLDS; k++)
-                if (k != i) add(&train, &by_grid[g][k].clap);
-            if (f1(&train) > best) {
-                best = f1(&train);
-                chosen[i] = g;
-            }
-        }
-        out[i] = by_grid[chosen[i]][i];
+        chosen[i][0] = best_on_others(GRID, by_grid, i, clap_of);
+        chosen[i][1] = best_on_others(N_PAIR, by_pair, i, wave_of);
+        out[i].clap = by_grid[chosen[i][0]][i].clap;
+        out[i].wave = by_pair[chosen[i][1]][i].wave;
     }
     memset(&g_desc, 0, sizeof g_desc);
 }
@@ -373,21 +400,24 @@ int main(int argc, char **argv)
         }
     }
     fold folds[FOLDS];
-    int chosen[FOLDS] = {0};
+    int chosen[FOLDS][2] = {{0}};
     int bad = !run_folds(want_msr ? msr : NULL, want_utk ? utk : NULL, iv, n, folds);
     if (by_fold) loso(want_msr ? msr : NULL, want_utk ? utk : NULL, iv, n, folds, chosen);
     printf("| set | held-out subject | clap precision | clap recall | wave precision | "
            "wave recall | leg-out precision | leg-out recall |%s\n",
-           by_fold ? " clap speed, slack (chosen on the other folds) |" : "");
+           by_fold ? " clap speed, slack, side; wave pair ms (chosen on the other folds) |" : "");
     printf("|---|---|---|---|---|---|---|---|%s\n", by_fold ? "---|" : "");
     fold total = {.set = "all"};
     for (int i = 0; i < FOLDS; i++) {
         fold *f = &folds[i];
         if ((i < 5 && !want_msr) || (i >= 5 && !want_utk)) continue;
-        char extra[64] = "";
-        if (by_fold)
-            snprintf(extra, sizeof extra, " %.1f, %.2f |", grid[chosen[i]].speed_tenths / 10.0,
-                     grid[chosen[i]].slack_pct / 100.0);
+        char extra[80] = "";
+        if (by_fold) {
+            int g = chosen[i][0];
+            snprintf(extra, sizeof extra, " %.1f, %.2f, %.2f; %d |", speeds[g % N_SPEED] / 10.0,
+                     slacks[g / N_SPEED % N_SLACK] / 100.0, sides[g / (N_SPEED * N_SLACK)] / 100.0,
+                     pairs[chosen[i][1]]);
+        }
         print_row(f, extra);
         bad |= check >= 0 && below(&f->clap, check);
         add(&total.clap, &f->clap);

@@ -36,6 +36,8 @@ typedef struct pose {
     int guess_right;  /* the tracker guessed the right arm (confidence 0) */
     int right_leg;    /* the right leg out: LEG_STANCE (foot on the floor) or LEG_KICK */
     int unconfident[2]; /* the arm found, not confident (a quarter): 0 left, 1 right */
+    int mirror;       /* with waving: the left hand raised too, mirrored */
+    int clap_up;      /* with clap_gap: the hands one above the other at x 0 */
 } pose;
 
 enum { LEG_DOWN, LEG_STANCE, LEG_KICK };
@@ -71,11 +73,12 @@ static cub_track_skeleton child(pose p)
             j[sh + 1] = mm(190 * sx, 880, z - 50);
             j[sh + 2] = mm((190 * sx + hx) / 2, 930, z - 250);
             j[sh + 3] = mm(hx, 950, z - 300);
+            if (p.clap_up) j[sh + 3] = mm(0, 950 + p.clap_gap / 2 * sx, z - 300);
         }
-        if (p.waving && side == 1) {
-            j[sh + 1] = mm(260, 1150, z);
-            j[sh + 2] = mm(260 + p.wave_dx, 1380 + p.wave_dy, z);
-            j[sh + 3] = mm(260 + p.wave_dx, 1450 + p.wave_dy, z);
+        if (p.waving && (side == 1 || p.mirror)) {
+            j[sh + 1] = mm(260 * sx, 1150, z);
+            j[sh + 2] = mm((260 + p.wave_dx) * sx, 1380 + p.wave_dy, z);
+            j[sh + 3] = mm((260 + p.wave_dx) * sx, 1450 + p.wave_dy, z);
         }
         j[hip] = mm(80 * sx, 780, z);
         j[hip + 1] = mm(85 * sx, 450, z);
@@ -107,7 +110,7 @@ static cub_track_skeleton child(pose p)
 #define MAX_REC 64
 
 typedef struct rec {
-    _Alignas(16) unsigned char mem[4096];
+    _Alignas(16) unsigned char mem[8192];
     cub_judge *j;
     int n;
     cub_judge_event ev[MAX_REC];
@@ -182,7 +185,7 @@ static cub_judge_rep rep_rhe(int rep, int from, int to)
     return r;
 }
 
-static const pose STILL = {{0, 0}, 0, 0, 0, 0, 0, 0, CUB_TRACK_OK, 0, LEG_DOWN, {0, 0}};
+static const pose STILL = {{0, 0}, 0, 0, 0, 0, 0, 0, CUB_TRACK_OK, 0, LEG_DOWN, {0, 0}, 0, 0};
 
 static pose bent_right(void)
 {
@@ -220,7 +223,7 @@ static void play_two(rec *r, cub_judge_rep a, cub_judge_rep b, int n, const int 
 static void test_bad_input_is_refused(void **state)
 {
     (void)state;
-    _Alignas(16) unsigned char mem[4096];
+    _Alignas(16) unsigned char mem[8192];
     cub_judge *j;
     assert_int_equal(cub_judge_init(NULL, NULL, sizeof mem, &j), CUB_ERR_ARG);
     assert_int_equal(cub_judge_init(NULL, mem, sizeof mem, NULL), CUB_ERR_ARG);
@@ -452,7 +455,7 @@ static void test_lag_is_a_tunable(void **state)
     play(&r, 100, 0, 0, STILL);
     assert_verdict(&r, 0, 0, 0, 51); /* 20 frames + 1 s is past frame 50 (frames of 33333 us) */
     d.lag_ms = -1;
-    _Alignas(16) unsigned char mem[4096];
+    _Alignas(16) unsigned char mem[8192];
     cub_judge *j;
     assert_int_equal(cub_judge_init(&d, mem, sizeof mem, &j), CUB_ERR_ARG);
 }
@@ -1111,6 +1114,67 @@ static void test_clap_needs_a_fast_approach(void **state)
     assert_int_equal(events_over(CUB_JUDGE_CLAP, closing_at, 0), 1);
 }
 
+/* The clap of clap_gap_at from frame 20, the hands closing sideways, or
+ * (up = 1) one brought down onto the other, as on a ball to throw. */
+static pose clap_up_at(int f, int up)
+{
+    pose p = STILL;
+    p.clap_gap = clap_gap_at(f - 20);
+    p.clap_up = up;
+    return p;
+}
+
+/* Palms clap across the body: hands closing up and down are no clap. */
+static void test_clap_closes_sideways(void **state)
+{
+    (void)state;
+    assert_int_equal(events_over(CUB_JUDGE_CLAP, clap_up_at, 1), 0);
+    assert_int_equal(events_over(CUB_JUDGE_CLAP, clap_up_at, 0), 1);
+}
+
+/* One swing out and back over the head (one reversal, 7 frames), with
+ * the right hand alone or both hands in mirror. */
+static pose one_swing_at(int f, int both)
+{
+    static const int dx[] = {0, 60, 120, 150, 120, 60, 0};
+    pose p = STILL;
+    p.waving = f < 7;
+    p.wave_dx = f < 7 ? dx[f] : 0;
+    p.mirror = both;
+    return p;
+}
+
+/* A two-hand wave is one arc of both arms in mirror; one arm's single
+ * swing is not a wave. */
+static void test_two_hand_wave_one_arc(void **state)
+{
+    (void)state;
+    assert_int_equal(events_over(CUB_JUDGE_WAVE, one_swing_at, 0), 0);
+    assert_int_equal(events_over(CUB_JUDGE_WAVE, one_swing_at, 1), 1);
+}
+
+/* The right hand drawing a circle 600 mm wide for 48 frames whose lower
+ * part dips below the elbow (dip = 1, as in drawing a big circle), or the
+ * same circle lifted 450 mm, above the elbow all the way round. */
+static pose circle_at(int f, int dip)
+{
+    static const int dx[] = {0, 75, 130, 150, 130, 75, 0, -75, -130, -150, -130, -75};
+    pose p = STILL;
+    p.waving = f < 48;
+    p.wave_dx = 2 * dx[f % 12];
+    p.wave_dy = 2 * dx[(f + 3) % 12] - (dip ? 150 : -300);
+    return p;
+}
+
+/* A wave swings with the hand up: a hand that comes back up from below
+ * starts its swings afresh, so a big circle is no wave. */
+static void test_wave_restarts_after_a_dip(void **state)
+{
+    (void)state;
+    assert_int_equal(events_over(CUB_JUDGE_WAVE, circle_at, 1), 0);
+    assert_int_equal(events_over(CUB_JUDGE_WAVE, circle_at, 0), 1);
+}
+
 /* The right hand looping above the head for 36 frames: three times as far
  * up and down as across (tall = 1), or a third as far. */
 static pose loop_at(int f, int tall)
@@ -1319,6 +1383,9 @@ int main(void)
         cmocka_unit_test(test_clap_needs_both_hands),
         cmocka_unit_test(test_clap_needs_a_fast_approach),
         cmocka_unit_test(test_wave_swings_sideways),
+        cmocka_unit_test(test_clap_closes_sideways),
+        cmocka_unit_test(test_two_hand_wave_one_arc),
+        cmocka_unit_test(test_wave_restarts_after_a_dip),
         cmocka_unit_test(test_wave_needs_two_reversals),
         cmocka_unit_test(test_presence_hysteresis),
         cmocka_unit_test(test_too_close_is_step_back_never_a_verdict),

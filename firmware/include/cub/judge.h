@@ -115,7 +115,9 @@
  * clap_approach_ms and closed from its widest there at clap_speed widths a
  * second or faster on average, both hands moving in (each at least a
  * quarter of the closing, along the line between them: a punch across the
- * body or a hand brought to a still one is no clap), the
+ * body or a hand brought to a still one is no clap), closing side to side
+ * (the change of the hand-to-hand vector within acos(sqrt(clap_side)) of
+ * the shoulders' line: a hand brought down onto the other is no clap), the
  * hands in front of the trunk with the forearms reaching forward (see
  * clap_pose in firmware/judge/judge_gesture.c for the exact bounds, from
  * hip to a bit above shoulder height; hands meeting overhead with the
@@ -128,8 +130,11 @@
  * swing at least wave_swing of the shoulder width, reversals at most
  * wave_gap_ms apart; a swing counts only when the hand rises during it no
  * more than it crosses (a loop, a throw or a serve restarts the count).
- * Frames with the hand lower pause the count (a big two-arm wave dips
- * below the shoulders); a clap clears it. One event per
+ * A hand that comes back up from below its elbow or shoulder starts its
+ * swings afresh (drawing a big circle is no wave); a clap clears the
+ * count. Both hands each turning back sideways in mirror within
+ * wave_pair_ms of each other is a two-hand wave at once (one arc of both
+ * arms over the head). One event per
  * waving episode (an episode ends when wave_gap_ms passes without a
  * reversal).
  * Presence: in view after present_frames CUB_TRACK_OK frames in a row, out
@@ -161,6 +166,7 @@
 #define CUB_JUDGE_MAX_OPEN 4   /* repetitions open at once (incl. late tails) */
 #define CUB_JUDGE_MAX_EVENTS 8 /* events one frame can produce */
 #define CUB_JUDGE_MAX_OTHER 4  /* other moves' key sets a repetition looks for */
+#define CUB_JUDGE_NO_SLACK ((cub_q16)-1) /* cub_judge_desc.clap_slack: none */
 
 /* Zero-initialised fields take the defaults shown. Ratios are Q16.16. */
 typedef struct cub_judge_desc {
@@ -174,14 +180,19 @@ typedef struct cub_judge_desc {
     int32_t clap_approach_ms;  /* 400 */
     cub_q16 clap_speed;        /* 3.0 shoulder widths a second: the least mean
                                   closing speed from the open gap to the meet */
-    cub_q16 clap_slack;        /* 0 (none): of the last frame's closing, allowed
-                                  on top of clap_meet (contact between frames) */
+    cub_q16 clap_slack;        /* 0.5: of the last frame's closing, allowed on
+                                  top of clap_meet (contact between frames);
+                                  CUB_JUDGE_NO_SLACK for none */
+    cub_q16 clap_side;         /* 0.5: the least cos^2 of the angle between the
+                                  hands' closing and the shoulders' line (45 deg) */
     cub_q16 clap_part;         /* 0.25: the gap growth that ends a clap */
     int32_t clap_part_ms;      /* 600 */
     int32_t clap_refractory_ms;/* 200 */
     cub_q16 wave_swing;        /* 0.25 */
     int32_t wave_reversals;    /* 2 */
     int32_t wave_gap_ms;       /* 2000 */
+    int32_t wave_pair_ms;      /* 250: both hands turning back within this is a
+                                  two-hand wave (mirrored, one reversal each) */
     cub_q16 floor_y_mm;        /* with stand_cog_mm > 0: fixed calibration */
     cub_q16 stand_cog_mm;      /* 0: estimate online */
     int32_t lag_ms;            /* 500: how late a child may follow the coach: the
