@@ -207,18 +207,14 @@ static void wave_restart(wave_state *w, int64_t t_us, int32_t x, int32_t y)
 }
 
 /* The swing was sideways: a wave swings the hand about the elbow (or the
- * shoulder) across the body's front: over a pivot of up to +-90 degrees
- * the hand rises at most half its sideways travel (drawing a circle,
- * throwing or serving moves it up and down as much as across), and with
- * the hand above its pivot the path bows up, never down: its lowest point
- * is at an end. A loop's lower half sags below both ends by half its
- * width; a quarter of the travel is allowed for the Kinect's noise. */
+ * shoulder) across the body's front, so its path spans no more up and
+ * down than across; drawing a circle, throwing or serving move it up and
+ * down more. */
 static int wave_sideways(const wave_state *w)
 {
     int32_t across = w->extreme_mm - w->from_mm;
     if (across < 0) across = -across;
-    int32_t low_end = w->from_y_mm < w->extreme_y_mm ? w->from_y_mm : w->extreme_y_mm;
-    return w->yhi_mm - w->ylo_mm <= across && (low_end | 1);
+    return w->yhi_mm - w->ylo_mm <= across;
 }
 
 /* A swing ended at a reversal: it counts when it was sideways, otherwise
