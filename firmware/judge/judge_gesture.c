@@ -202,7 +202,7 @@ static void wave_restart(wave_state *w, int64_t t_us, int32_t x, int32_t y)
     memset(w, 0, sizeof *w);
     w->active = 1;
     w->lo_mm = w->hi_mm = w->extreme_mm = w->from_mm = x;
-    w->ylo_mm = w->yhi_mm = w->from_y_mm = w->extreme_y_mm = y;
+    w->ylo_mm = w->yhi_mm = y;
     w->last_us = t_us;
 }
 
@@ -229,9 +229,8 @@ static void wave_swing_done(wave_state *w, int64_t t_us, int32_t x, int32_t y)
         w->reversals = 0;
     }
     w->from_mm = w->extreme_mm;
-    w->from_y_mm = w->extreme_y_mm;
     w->extreme_mm = x;
-    w->extreme_y_mm = w->ylo_mm = w->yhi_mm = y;
+    w->ylo_mm = w->yhi_mm = y;
     w->last_us = t_us;
 }
 
@@ -248,14 +247,12 @@ static void wave_track(wave_state *w, int64_t t_us, int32_t x, int32_t y, int32_
             w->dir = x - w->lo_mm >= swing ? 1 : -1;
             w->from_mm = w->dir > 0 ? w->lo_mm : w->hi_mm;
             w->extreme_mm = x;
-            w->extreme_y_mm = y;
             w->last_us = t_us;
         }
         return;
     }
     if ((x - w->extreme_mm) * w->dir > 0) {
         w->extreme_mm = x;
-        w->extreme_y_mm = y;
     } else if ((w->extreme_mm - x) * w->dir >= swing) {
         w->dir = -w->dir;
         wave_swing_done(w, t_us, x, y);

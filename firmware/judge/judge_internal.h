@@ -73,7 +73,6 @@ typedef struct wave_state {
     int32_t lo_mm, hi_mm, extreme_mm;
     int32_t from_mm;           /* x where the current swing began */
     int32_t ylo_mm, yhi_mm;    /* the hand's height range during it */
-    int32_t from_y_mm, extreme_y_mm; /* the hand's height at the swing's two ends */
     int64_t last_us;  /* the last direction change */
     int64_t turn_us;  /* the last counted reversal, and the direction after it */
     int32_t turn_dir;

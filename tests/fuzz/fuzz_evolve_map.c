@@ -5,25 +5,14 @@
  * both skeletons and a meta skeleton that validates. Seeds: seeds_evolve/. */
 #define _POSIX_C_SOURCE 200809L
 #include <stdint.h>
-#include <stdio.h>
 #include <stdlib.h>
-#include <unistd.h>
 
 #include "cub/evolve.h"
+#include "fuzz_bear.h"
+#include "fuzz_file.h"
 #include "fuzz_tally.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
-
-static cub_io_motion bear;
-static char path[64];
-
-static void setup_once(void)
-{
-    cub_diag d;
-    if (cub_io_load_bvh(CUB_SOURCE_DIR "/assets/clips/hello.bvh", NULL, &bear, &d) != CUB_OK)
-        abort();
-    snprintf(path, sizeof path, "fuzz_evolve_map.%d.evmap", (int)getpid());
-}
 
 static void check_pairs(const cub_evolve_corr *c)
 {
@@ -35,10 +24,8 @@ static void check_pairs(const cub_evolve_corr *c)
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    if (!path[0]) setup_once();
-    FILE *f = fopen(path, "wb");
-    if (!f || fwrite(data, 1, size, f) != size) abort();
-    fclose(f);
+    const char *path = cub_fuzz_file("fuzz_evolve_map", "evmap", data, size);
+    const cub_io_motion *bear = cub_fuzz_bear();
     static cub_evolve_map map;
     static cub_evolve_corr corr;
     static cub_evolve_meta meta;
@@ -48,14 +35,14 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         if (!d.msg[0]) abort();
         return 0;
     }
-    int bound = cub_evolve_correspond(&bear.skel, &bear.skel, &map, &corr, &d) == CUB_OK;
+    int bound = cub_evolve_correspond(&bear->skel, &bear->skel, &map, &corr, &d) == CUB_OK;
     cub_fuzz_tally("fuzz_evolve_map", bound);
     if (!bound) {
         if (!d.msg[0]) abort();
         return 0;
     }
     check_pairs(&corr);
-    if (cub_evolve_crossover(&bear.skel, &bear.skel, &corr, &meta, &d) != CUB_OK) abort();
+    if (cub_evolve_crossover(&bear->skel, &bear->skel, &corr, &meta, &d) != CUB_OK) abort();
     if (cub_motion_skeleton_validate(&meta.skel) != CUB_OK) abort();
     return 0;
 }

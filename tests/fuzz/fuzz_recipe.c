@@ -5,23 +5,18 @@
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdint.h>
-#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
 #include "cub/retarget.h"
+#include "fuzz_file.h"
 #include "fuzz_tally.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    static char path[64];
-    if (!path[0]) snprintf(path, sizeof path, "fuzz_recipe.%d.txt", (int)getpid());
-    FILE *f = fopen(path, "wb");
-    if (!f || fwrite(data, 1, size, f) != size) abort();
-    fclose(f);
+    const char *path = cub_fuzz_file("fuzz_recipe", "txt", data, size);
     static cub_recipe r;
     cub_diag d;
     int ok = cub_recipe_load(path, &r, &d) == CUB_OK;

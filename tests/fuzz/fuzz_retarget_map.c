@@ -8,32 +8,20 @@
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdint.h>
-#include <stdio.h>
 #include <stdlib.h>
-#include <unistd.h>
 
 #include "cub/io.h"
 #include "cub/retarget.h"
+#include "fuzz_bear.h"
+#include "fuzz_file.h"
 #include "fuzz_tally.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
-static cub_io_motion bear;
-static char path[64];
-
-static void setup_once(void)
-{
-    cub_diag d;
-    if (cub_io_load_bvh(CUB_SOURCE_DIR "/assets/clips/hello.bvh", NULL, &bear, &d) != CUB_OK) abort();
-    snprintf(path, sizeof path, "fuzz_retarget_map.%d.map", (int)getpid());
-}
-
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    if (!path[0]) setup_once();
-    FILE *f = fopen(path, "wb");
-    if (!f || fwrite(data, 1, size, f) != size) abort();
-    fclose(f);
+    const char *path = cub_fuzz_file("fuzz_retarget_map", "map", data, size);
+    const cub_io_motion *bear = cub_fuzz_bear();
     static cub_retarget_map map;
     cub_diag d;
     if (cub_retarget_map_load(path, &map, &d) != CUB_OK) {
@@ -44,7 +32,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     for (int i = 0; i < map.link_count; i++)
         for (int k = 0; k < map.link[i].source_count; k++)
             if (!isfinite(map.link[i].source[k].weight) || !(map.link[i].source[k].weight > 0)) abort();
-    int bound = cub_retarget_map_bind(&map, &bear.skel, &bear.skel, &d) == CUB_OK;
+    int bound = cub_retarget_map_bind(&map, &bear->skel, &bear->skel, &d) == CUB_OK;
     cub_fuzz_tally("fuzz_retarget_map", bound);
     if (!bound) {
         if (!d.msg[0]) abort();

@@ -9,9 +9,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
 #include "cub/text.h"
+#include "fuzz_file.h"
 #include "fuzz_tally.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
@@ -31,12 +31,8 @@ static cub_err on_line(void *ctx, cub_text_line *ln)
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    static char path[64];
-    if (!path[0]) snprintf(path, sizeof path, "fuzz_text.%d.txt", (int)getpid());
     if (size < 1) return 0;
-    FILE *f = fopen(path, "wb");
-    if (!f || fwrite(data + 1, 1, size - 1, f) != size - 1) abort();
-    fclose(f);
+    const char *path = cub_fuzz_file("fuzz_text", "txt", data + 1, size - 1);
     cub_text_src src = {path, "fuzz file", (size_t)(data[0] >> 1) * 64};
     char *text = NULL;
     size_t len = 0;
