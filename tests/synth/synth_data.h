@@ -16,4 +16,19 @@ static inline const char *synth_data_dir(const char *cmu_clip)
     return access(probe, R_OK) == 0 ? d : NULL;
 }
 
+/* In a cmocka test: skip it when the clip's data is missing. */
+#define SYNTH_NEED_DATA(cmu_clip)                                                                  \
+    do {                                                                                           \
+        if (!synth_data_dir(cmu_clip)) {                                                           \
+            printf("synth: skipped, no CMU clips under $CUB_DATA_DIR/mocap\n");                   \
+            skip();                                                                                \
+        }                                                                                          \
+    } while (0)
+
+/* CUB_QUICK set: the ctest sample, fewer frames. */
+static inline int synth_quick(void)
+{
+    return getenv("CUB_QUICK") != NULL;
+}
+
 #endif

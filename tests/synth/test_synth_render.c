@@ -32,18 +32,7 @@ static const char *data_dir(void)
     return synth_data_dir("13_29");
 }
 
-#define NEED_DATA()                                                                                \
-    do {                                                                                           \
-        if (!data_dir()) {                                                                         \
-            printf("synth: skipped, no CMU clips under $CUB_DATA_DIR/mocap\n");                    \
-            skip();                                                                                \
-        }                                                                                          \
-    } while (0)
-
-static int quick(void)
-{
-    return getenv("CUB_QUICK") != NULL;
-}
+#define NEED_DATA() SYNTH_NEED_DATA("13_29")
 
 static cub_synth *open_clip(cub_synth_desc d, const char *clip, double from_s, double to_s,
                             int mirror)
@@ -105,7 +94,7 @@ static void test_dump_reads_back(void **state)
 {
     (void)state;
     NEED_DATA();
-    int frames = quick() ? 4 : 20;
+    int frames = synth_quick() ? 4 : 20;
     cub_synth *s = open_clip((cub_synth_desc){.seed = 5}, "13_29", 0, 2, 0);
     char dir[] = "/tmp/cub_synth_test_XXXXXX";
     assert_non_null(mkdtemp(dir));
@@ -296,7 +285,7 @@ static void test_visible_joints_sit_on_the_body(void **state)
     for (int c = 0; c < 3; c++) {
         cub_synth *s = open_clip((cub_synth_desc){.seed = 9, .room = c == 2}, clips[c], 2, 0, 0);
         uint16_t *raw = malloc(NPIX * sizeof(*raw));
-        int step = quick() ? 60 : 10;
+        int step = synth_quick() ? 60 : 10;
         for (int f = 0; f < cub_synth_frame_count(s) && f < 240; f += step) {
             cub_synth_truth_frame t;
             assert_int_equal(cub_synth_render(s, f, raw, &t, NULL, NULL), CUB_OK);

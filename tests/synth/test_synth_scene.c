@@ -31,18 +31,7 @@ static const char *data_dir(void)
     return synth_data_dir("02_01");
 }
 
-#define NEED_DATA()                                                                                \
-    do {                                                                                           \
-        if (!data_dir()) {                                                                         \
-            printf("synth: skipped, no CMU clips under $CUB_DATA_DIR/mocap\n");                    \
-            skip();                                                                                \
-        }                                                                                          \
-    } while (0)
-
-static int quick(void)
-{
-    return getenv("CUB_QUICK") != NULL;
-}
+#define NEED_DATA() SYNTH_NEED_DATA("02_01")
 
 static cub_synth *open_clip(cub_synth_desc d, const char *clip, double to_s)
 {
@@ -161,7 +150,7 @@ static void test_yaw_segments_follow_the_seed(void **state)
         cub_synth *base = open_clip((cub_synth_desc){.clean = 1}, "13_29", 4);
         cub_synth *s = open_clip((cub_synth_desc){.clean = 1, .seed = seeds[k], .yaw_segment_s = 1},
                                  "13_29", 4);
-        for (int g = 0; g < (quick() ? 2 : 4); g++) {
+        for (int g = 0; g < (synth_quick() ? 2 : 4); g++) {
             int f0 = g * 30 + 18, f1 = g * 30 + 28; /* after the 0.5 s turn */
             double a0 = wrap180(left_angle_deg(&render(base, f0)->truth) -
                                 left_angle_deg(&render(s, f0)->truth));
@@ -177,7 +166,7 @@ static void test_yaw_segments_follow_the_seed(void **state)
            turn[0][0], turn[0][1], turn[0][2], turn[0][3], turn[2][0], turn[2][1], turn[2][2],
            turn[2][3]);
     double spread = 0, other = 0;
-    for (int g = 0; g < (quick() ? 2 : 4); g++) {
+    for (int g = 0; g < (synth_quick() ? 2 : 4); g++) {
         assert_true(fabs(turn[0][g] - turn[1][g]) < 1e-3);
         spread = fmax(spread, fabs(wrap180(turn[0][g] - turn[0][0])));
         other = fmax(other, fabs(wrap180(turn[0][g] - turn[2][g])));
@@ -193,7 +182,7 @@ static double hip_travel_mm(cub_synth_desc d)
     cub_synth *s = open_clip(d, "02_01", 0);
     double lo = 1e9, hi = -1e9;
     int n = cub_synth_frame_count(s);
-    int step = quick() ? 30 : 10;
+    int step = synth_quick() ? 30 : 10;
     for (int f = 0; f < n + step - 1; f += step) { /* the last frame too */
         double z = render(s, f < n ? f : n - 1)->truth.joint_mm[CUB_KJ_HIP_CENTRE][2];
         lo = fmin(lo, z), hi = fmax(hi, z);
