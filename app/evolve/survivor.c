@@ -55,9 +55,7 @@ static cub_dq delta2(const surv *s, int f, int j)
     return cub_dq_mul(s->inv_mean2[j], rot2(s, f, j));
 }
 
-/* inv_mean[j]: the inverse of joint j's mean rotation over m (the
- * normalised sum, each frame turned into the first frame's hemisphere). */
-static void inverse_means(const cub_evolve_motion *m, cub_dq *inv_mean)
+void cub_evolve_mean_pose(const cub_evolve_motion *m, cub_dq *mean)
 {
     for (int j = 0; j < m->skel.joint_count; j++) {
         cub_dq first = *cub_evolve_rot(m, 0, j), sum = {0, 0, 0, 0};
@@ -66,8 +64,15 @@ static void inverse_means(const cub_evolve_motion *m, cub_dq *inv_mean)
             double k = cub_dq_dot(q, first) < 0 ? -1 : 1;
             sum = (cub_dq){sum.w + k * q.w, sum.x + k * q.x, sum.y + k * q.y, sum.z + k * q.z};
         }
-        inv_mean[j] = cub_dq_conj(cub_dq_norm(sum));
+        mean[j] = cub_dq_norm(sum);
     }
+}
+
+static void inverse_means(const cub_evolve_motion *m, cub_dq *inv_mean)
+{
+    cub_evolve_mean_pose(m, inv_mean);
+    for (int j = 0; j < m->skel.joint_count; j++)
+        inv_mean[j] = cub_dq_conj(inv_mean[j]);
 }
 
 /* Energy loss of parent 2 started at its frame o: the sum of
@@ -90,11 +95,11 @@ static double energy_at(surv *s, int o, int step, double bound, int *n)
     return sum;
 }
 
-static void best_window(surv *s, int step, cub_evolve_survivor_report *rep)
+static void best_window(surv *s, int step, int in_time, cub_evolve_survivor_report *rep)
 {
     int best = 0, n = 0, n_best = 0;
     double sum_best = INFINITY;
-    for (int o = 0; o < s->p2->frames; o++) {
+    for (int o = 0; o < (in_time ? 1 : s->p2->frames); o++) {
         double sum = energy_at(s, o, step, sum_best, &n);
         if (sum < sum_best) sum_best = sum, best = o, n_best = n;
     }
@@ -166,7 +171,7 @@ cub_err cub_evolve_survivor(const cub_evolve_meta *meta, const cub_evolve_pop *p
     s = (surv){.meta = meta, .pop = pop, .p1 = p1, .p2 = p2, .x = x};
     inverse_means(p1, s.inv_mean1);
     inverse_means(p2, s.inv_mean2);
-    best_window(&s, step, rep);
+    best_window(&s, step, cfg && cfg->in_time, rep);
     int frames = p1->frames > p2->frames ? p1->frames : p2->frames;
     cub_err err = cub_evolve_motion_alloc(&pop->skel, frames, p1->fps, child);
     if (err) return cub_diag_fail(diag, err, "(survivor)", 0, "out of memory");

@@ -24,7 +24,7 @@ static void test_survivor_blend_zero_is_parent_one(void **state)
     fx.mut.count = 0;
     assert_int_equal(cub_evolve_mutate(&fx.m, &fx.p1, &fx.p2, &fx.mut, &fx.pop, NULL), CUB_OK);
     static cub_evolve_motion child;
-    cub_evolve_survivor_cfg cfg = {0, 0};
+    cub_evolve_survivor_cfg cfg = {0, 0, 0};
     assert_int_equal(cub_evolve_survivor(&fx.m, &fx.pop, &fx.p1, &fx.p2, &cfg, &child, NULL, NULL),
                      CUB_OK);
     assert_int_equal(child.frames, 50); /* the longer parent */
@@ -73,7 +73,7 @@ static void test_survivor_finds_the_window_and_blends(void **state)
     assert_int_equal(cub_evolve_mutate(&m, &fx.p1, &p2, &(cub_evolve_mutation){0}, &pop, NULL),
                      CUB_OK);
     cub_evolve_survivor_report rep;
-    cub_evolve_survivor_cfg cfg = {-0.5, 0};
+    cub_evolve_survivor_cfg cfg = {-0.5, 0, 0};
     assert_int_equal(cub_evolve_survivor(&m, &pop, &fx.p1, &p2, &cfg, &child, &rep, NULL), CUB_OK);
     assert_int_equal(rep.offset, 7);
     assert_true(rep.energy < 1e-12);
@@ -204,7 +204,7 @@ static void test_child_exports_as_bvh_and_reads_back(void **state)
     fx.mut.count = 2;
     assert_int_equal(cub_evolve_mutate(&fx.m, &fx.p1, &fx.p2, &fx.mut, &fx.pop, NULL), CUB_OK);
     static cub_evolve_motion child, back;
-    cub_evolve_survivor_cfg cfg = {0.5, 0};
+    cub_evolve_survivor_cfg cfg = {0.5, 0, 0};
     assert_int_equal(cub_evolve_survivor(&fx.m, &fx.pop, &fx.p1, &fx.p2, &cfg, &child, NULL, NULL),
                      CUB_OK);
     static cub_io_motion io, in;
@@ -268,7 +268,7 @@ static void test_cmu_human_crossed_with_a_dog(void **state)
     cub_evolve_mutation mut = {.count = CUB_EVOLVE_MUTATIONS_DEFAULT};
     assert_int_equal(cub_evolve_mutate(&m, &dog, &human, &mut, &pop, NULL), CUB_OK);
     assert_int_equal(pop.removed_count, 5);
-    cub_evolve_survivor_cfg cfg = {0.5, 0};
+    cub_evolve_survivor_cfg cfg = {0.5, 0, 0};
     assert_int_equal(cub_evolve_survivor(&m, &pop, &dog, &human, &cfg, &child, NULL, NULL), CUB_OK);
     cub_evolve_floor_report rep;
     cub_evolve_floor(&child, &rep);

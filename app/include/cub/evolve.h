@@ -181,6 +181,8 @@ cub_err cub_evolve_mutate(const cub_evolve_meta *meta, const cub_evolve_motion *
 typedef struct cub_evolve_survivor_cfg {
     double blend; /* x: 0 = parent 1's motion; 1 = parent 2's; negative allowed */
     int step;     /* parent 1 sampled every step frames; 0 = CUB_EVOLVE_SAMPLE_STEP */
+    int in_time;  /* 1: no window search, parent 2 laid from its frame 0 (parents already in
+                   * time, e.g. a coach clip timed to the music; the energy still reported) */
 } cub_evolve_survivor_cfg;
 
 typedef struct cub_evolve_survivor_report {
@@ -203,6 +205,11 @@ typedef struct cub_evolve_survivor_report {
  * root carries on along the floor from where each loop ended). A joint
  * re-linked past removed ones takes their rotations too. Both parents at
  * the same fps. */
+/* Every joint's mean rotation over m (mean: joint_count), as the survivor
+ * takes it: the normalised sum, each frame turned into the first frame's
+ * hemisphere. */
+void cub_evolve_mean_pose(const cub_evolve_motion *m, cub_dq *mean);
+
 cub_err cub_evolve_survivor(const cub_evolve_meta *meta, const cub_evolve_pop *pop,
                             const cub_evolve_motion *p1, const cub_evolve_motion *p2,
                             const cub_evolve_survivor_cfg *cfg, cub_evolve_motion *child,
