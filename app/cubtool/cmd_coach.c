@@ -40,6 +40,7 @@ typedef struct coach_src {
 typedef struct coach_figs {
     int below_before, below_after, ik_frames, lifted;
     double bone_err_mm, slide_mm, bear_slide_mm, energy;
+    double bear_lowest_mm; /* the bear's lowest joint in its own clip */
 } coach_figs;
 
 static void usage(FILE *f)
@@ -201,6 +202,19 @@ static double slide_of(const cub_evolve_motion *m, const char *const *names, int
     return frames ? sum / frames : -1;
 }
 
+/* The lowest y (mm) of any joint of m over its frames. */
+static double lowest_mm(const cub_evolve_motion *m)
+{
+    static cub_dv3 w[CUB_EVOLVE_MAX_JOINTS];
+    double low = INFINITY;
+    for (int f = 0; f < m->frames; f++) {
+        cub_evolve_forward(m, f, w);
+        for (int j = 0; j < m->skel.joint_count; j++)
+            low = fmin(low, w[j].y);
+    }
+    return low;
+}
+
 static void measure(const cub_evolve_motion *child, const cub_evolve_motion *bear,
                     const cub_evolve_pop *pop, const cub_evolve_meta *meta, coach_figs *f)
 {
@@ -209,6 +223,7 @@ static void measure(const cub_evolve_motion *child, const cub_evolve_motion *bea
     f->bone_err_mm = cub_evolve_bone_error_mm(child, pop, meta);
     f->slide_mm = slide_of(child, fin, 4);
     f->bear_slide_mm = slide_of(bear, feet, 2);
+    f->bear_lowest_mm = lowest_mm(bear);
 }
 
 /* One bear clip -> the coach's clip in *out (io motion, owned). */
@@ -251,7 +266,7 @@ static int evolve_clip(const coach_src *s, const cub_library_clip *lc, cub_io_mo
     cub_evolve_floor(&child, &fr);
     if (same_skeleton(&child.skel, &s->coach.skel, lc->name)) goto out;
     *f = (coach_figs){fr.below_before, fr.below_after, fr.frames_ik, fr.frames_lifted,
-                      0, 0, 0, sr.energy};
+                      0, 0, 0, sr.energy, 0};
     measure(&child, &p2, &pop, &meta, f);
     rc = cub_evolve_to_io(&child, 10, out) ? 1 : 0;
 out:
@@ -264,9 +279,10 @@ out:
 static void print_figs(const char *name, int frames, const coach_figs *f)
 {
     printf("clip %-14s frames=%4d below_floor_before=%d below_floor_after=%d ik_frames=%d "
-           "lifted_frames=%d bone_err_mm=%.1e slide_mm=%.1f bear_slide_mm=%.1f\n",
+           "lifted_frames=%d bone_err_mm=%.1e slide_mm=%.1f bear_slide_mm=%.1f "
+           "bear_lowest_mm=%.1f\n",
            name, frames, f->below_before, f->below_after, f->ik_frames, f->lifted,
-           f->bone_err_mm, f->slide_mm, f->bear_slide_mm);
+           f->bone_err_mm, f->slide_mm, f->bear_slide_mm, f->bear_lowest_mm);
 }
 
 /* Summary over the clips: sums and extremes. */
@@ -277,6 +293,25 @@ static void add_figs(coach_figs *sum, const coach_figs *f)
     sum->ik_frames += f->ik_frames;
     sum->lifted += f->lifted;
     sum->bone_err_mm = fmax(sum->bone_err_mm, f->bone_err_mm);
+}
+
+/* The library as the box reads it (the pack's codec rounds): its lowest
+ * joint over every clip and frame, printed. */
+static int packed_floor(const char *path)
+{
+    static cub_library lib;
+    cub_diag d = {0};
+    if (cub_pack_read(path, &lib, &d)) return fail("reading back", &d);
+    double low = INFINITY;
+    for (int c = 0; c < lib.clip_count; c++) {
+        static cub_evolve_motion m;
+        if (cub_evolve_from_clip(&lib.clips[c].clip, 0, &m)) continue;
+        low = fmin(low, lowest_mm(&m));
+        cub_evolve_motion_free(&m);
+    }
+    printf("packed %s: lowest joint over all clips and frames y=%.2f mm\n", path, low);
+    cub_library_free(&lib);
+    return 0;
 }
 
 static int evolve_all(const coach_args *a, coach_src *s, cub_io_motion *outs, cub_library *lib)
@@ -303,7 +338,7 @@ static int evolve_all(const coach_args *a, coach_src *s, cub_io_motion *outs, cu
            a->name, n, sum.below_before, sum.below_after, sum.ik_frames, sum.lifted,
            sum.bone_err_mm);
     cub_diag d = {0};
-    return cub_pack_write(a->out, lib, &d) ? fail("pack", &d) : 0;
+    return cub_pack_write(a->out, lib, &d) ? fail("pack", &d) : packed_floor(a->out);
 }
 
 /* The bridge tags, by `cubtool tag` on the new library and character. */

@@ -83,6 +83,14 @@ static void test_survivor_finds_the_window_and_blends(void **state)
             assert_true(cub_dq_angle_between(*cub_evolve_rot(&child, f, j),
                                              *cub_evolve_rot(&fx.p1, f, j)) < 1e-6);
     cub_evolve_motion_free(&child);
+    /* in time (a coach's clips, timed to the music): no search, parent 2
+     * from its frame 0, the 7 frames' mismatch reported as energy */
+    cfg.in_time = 1;
+    assert_int_equal(cub_evolve_survivor(&m, &pop, &fx.p1, &p2, &cfg, &child, &rep, NULL), CUB_OK);
+    assert_int_equal(rep.offset, 0);
+    assert_true(rep.energy > 1e-6);
+    cfg.in_time = 0;
+    cub_evolve_motion_free(&child);
     /* x = 1 against a different parent 2: parent 1's mean pose moving as
      * the partner moves, i.e. D1 becomes D2 */
     cross(-1, 40, 40);
