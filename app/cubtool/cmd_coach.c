@@ -134,12 +134,13 @@ static int load_sources(const coach_args *a, coach_src *s)
 /* Parent 1: the coach for as long as the bear's clip, carried along that
  * clip's root path (the height scaled by the two characters' hip heights:
  * the coach sits where the bear stands). A joint with a partner holds the
- * partner's mean pose over the clip (the first partner's for many-to-one):
- * the survivor at x = 1 gives it parent 1's mean moving as parent 2 does,
+ * partner's mean pose over the clip (several partners: their combination,
+ * cub_evolve_partner_rot): the survivor at x = 1 gives it parent 1's mean
+ * moving as parent 2 does,
  * so the coach makes the bear's move, not the move about its own T pose
  * (tried first: a seal's jumping jacks with flippers flapping about the
  * horizontal). The coach's own joints play its keys (looped). */
-static int coach_parent(const coach_src *s, const cub_evolve_corr *corr,
+static int coach_parent(const coach_src *s, const cub_evolve_meta *meta,
                         const cub_evolve_motion *bear, cub_evolve_motion *p1)
 {
     const cub_skeleton *sk = &s->coach.skel;
@@ -147,13 +148,13 @@ static int coach_parent(const coach_src *s, const cub_evolve_corr *corr,
     double k = (double)sk->joints[0].offset_mm.y / (double)s->bear.skel.joints[0].offset_mm.y;
     static cub_pose pose;
     static cub_dq mean[CUB_EVOLVE_MAX_JOINTS];
-    cub_evolve_mean_pose(bear, mean);
+    cub_evolve_partner_means(meta, bear, mean);
     for (int f = 0; f < bear->frames; f++) {
         int64_t t_us = (int64_t)(f * 1e6 / bear->fps + 0.5);
         cub_motion_sample(&s->keys.clip, t_us, CUB_MOTION_LOOP, &pose);
         for (int j = 1; j < sk->joint_count; j++) {
-            int b = cub_evolve_partner_of_a(corr, j);
-            *cub_evolve_rot(p1, f, j) = b >= 0 ? mean[b] : cub_dq_from_fx(pose.rot[j]);
+            int paired = meta->partner_count[j] > 0;
+            *cub_evolve_rot(p1, f, j) = paired ? mean[j] : cub_dq_from_fx(pose.rot[j]);
         }
         *cub_evolve_rot(p1, f, 0) = *cub_evolve_rot(bear, f, 0);
         cub_dv3 r = bear->root_mm[f];
@@ -245,16 +246,13 @@ static int evolve_clip(const coach_src *s, const cub_library_clip *lc, cub_io_mo
         fprintf(stderr, "cubtool coach: clip %s: out of memory\n", lc->name);
         goto out;
     }
-    if (cub_evolve_correspond(&s->coach.skel, &p2.skel, &s->map, &corr, &d)) {
+    if (cub_evolve_correspond(&s->coach.skel, &p2.skel, &s->map, &corr, &d) ||
+        cub_evolve_crossover(&s->coach.skel, &p2.skel, &corr, &meta, &d)) {
         rc = fail(lc->name, &d);
         goto out;
     }
-    if (coach_parent(s, &corr, &p2, &p1)) {
+    if (coach_parent(s, &meta, &p2, &p1)) {
         fprintf(stderr, "cubtool coach: clip %s: out of memory\n", lc->name);
-        goto out;
-    }
-    if (cub_evolve_crossover(&p1.skel, &p2.skel, &corr, &meta, &d)) {
-        rc = fail(lc->name, &d);
         goto out;
     }
     bear_only_removed(&meta, &mut);
