@@ -61,6 +61,10 @@ static void usage(FILE *f, const char *prog)
 "  --library FILE         clip library (default " CUB_ASSETS_DIR "/clips/bear.cubclips)\n"
 "  --tags FILE            its bridge tags (default " CUB_ASSETS_DIR "/clips/bear.tags.xml)\n"
 "  --character FILE       the coach (default " CUB_ASSETS_DIR "/bear/bear.xml)\n"
+"  --coach NAME           the coach by name: bear (default) or seal; its character\n"
+"                         <assets>/NAME/NAME.xml, its clips <assets>/clips/NAME.cubclips\n"
+"                         and NAME.tags.xml (the config's coach=; --library, --tags\n"
+"                         and --character win over it)\n"
 "  --forest FILE|off      the body-part forest the tracker also reads (default\n"
 "                         " CUB_ASSETS_DIR "/forest/body.forest, docs/forest.md):\n"
 "                         its confident joints replace the tracker's unsure ones\n"
@@ -179,6 +183,7 @@ static int apply_valued(cub_app_options *o, const char *opt, const char *val, FI
                             : !strcmp(opt, "--library")      ? &o->library_path
                             : !strcmp(opt, "--tags")         ? &o->tags_path
                             : !strcmp(opt, "--character")    ? &o->character_path
+                            : !strcmp(opt, "--coach")        ? &o->coach
                             : !strcmp(opt, "--forest")       ? &o->forest_path
                             : !strcmp(opt, "--font")         ? &o->font_path
                             : !strcmp(opt, "--voice")        ? &o->voice_path
@@ -195,7 +200,7 @@ static int takes_value(const char *opt)
                                          "--depth", "--frames", "--replay", "--buttons",
                                          "--gpio-config", "--config", "--audio-driver", "--clip", "--log",
                                          "--song", "--timeline", "--library", "--tags",
-                                         "--character", "--forest", "--font", "--voice", "--attract-after", "--doze-after",
+                                         "--character", "--coach", "--forest", "--font", "--voice", "--attract-after", "--doze-after",
                                          "--music-clock-scale", "--record"};
     for (size_t i = 0; i < sizeof valued / sizeof *valued; i++)
         if (!strcmp(opt, valued[i])) return 1;
@@ -280,20 +285,60 @@ static int default_forest(cub_app_options *o, const char *assets, FILE *err)
     return 0;
 }
 
+/* The coach's name (--coach, else the config's coach=): letters, digits
+ * and '_', and a character file in the assets; -1 with a message naming
+ * where the name came from. */
+static int check_coach(const char *coach, const char *from, const char *assets, FILE *err)
+{
+    char path[CUB_BOXCONF_PATH_MAX + 160];
+    size_t n = strlen(coach);
+    int ok = n > 0 && n < 64;
+    for (size_t i = 0; ok && i < n; i++)
+        ok = (coach[i] >= 'a' && coach[i] <= 'z') || (coach[i] >= '0' && coach[i] <= '9') ||
+             coach[i] == '_';
+    if (!ok) {
+        fprintf(err, "cubdance: %s%s: not a coach's name (a-z, 0-9, _), e.g. bear or seal\n",
+                from, coach);
+        return -1;
+    }
+    snprintf(path, sizeof path, "%s/%s/%s.xml", assets, coach, coach);
+    FILE *f = fopen(path, "rb");
+    if (f) return fclose(f), 0;
+    fprintf(err, "cubdance: %s%s: no such coach (no character file %s); the coaches: bear, "
+                 "seal\n", from, coach, path);
+    return -1;
+}
+
+/* The coach's library, tags and character (slots 1..3) under assets. */
+static int coach_paths(cub_app_options *o, const cub_boxconf *c, const char *assets, FILE *err)
+{
+    const char *coach = o->coach ? o->coach : c->coach[0] ? c->coach : "bear";
+    char from[CUB_BOXCONF_PATH_MAX + 16];
+    snprintf(from, sizeof from, "%s%s", o->coach ? "--coach " : c->gpio.file,
+             o->coach ? "" : ": coach=");
+    if (strcmp(coach, "bear") && check_coach(coach, from, assets, err)) return -1;
+    char rel[3][160];
+    snprintf(rel[0], sizeof rel[0], "clips/%s.cubclips", coach);
+    snprintf(rel[1], sizeof rel[1], "clips/%s.tags.xml", coach);
+    snprintf(rel[2], sizeof rel[2], "%s/%s.xml", coach, coach);
+    const char **slot[3] = {&o->library_path, &o->tags_path, &o->character_path};
+    for (int i = 0; i < 3; i++)
+        if (!*slot[i] && !(*slot[i] = join(o, i + 1, assets, rel[i], ""))) {
+            fprintf(err, "cubdance: assets_dir %s: path too long\n", assets);
+            return -1;
+        }
+    return 0;
+}
+
 static int apply_assets(cub_app_options *o, const cub_boxconf *c, const char *builtin,
                         FILE *err)
 {
     const char *assets = c->assets_dir[0] ? c->assets_dir : builtin;
-    static const struct { const char *rel; } rel[4] = {
-        {"clips/hello.bvh"}, {"clips/bear.cubclips"}, {"clips/bear.tags.xml"}, {"bear/bear.xml"}};
-    const char **slot[4] = {&o->clip_path, &o->library_path, &o->tags_path, &o->character_path};
-    for (int i = 0; i < 4; i++) {
-        if (*slot[i]) continue; /* given on the command line */
-        if (!(*slot[i] = join(o, i, assets, rel[i].rel, ""))) {
-            fprintf(err, "cubdance: assets_dir %s: path too long\n", assets);
-            return -1;
-        }
+    if (!o->clip_path && !(o->clip_path = join(o, 0, assets, "clips/hello.bvh", ""))) {
+        fprintf(err, "cubdance: assets_dir %s: path too long\n", assets);
+        return -1;
     }
+    if (coach_paths(o, c, assets, err)) return -1;
     if (!o->voice_path) /* built with the program, not in the source's assets */
         o->voice_path = c->assets_dir[0] ? join(o, 5, assets, "voice/bear.cubvoice", "")
                                          : CUB_VOICE_PATH;

@@ -29,6 +29,7 @@ typedef struct cub_app_options {
     const char *library_path;   /* the clip library (default assets/clips/bear.cubclips) */
     const char *tags_path;      /* its bridge tags (default assets/clips/bear.tags.xml) */
     const char *character_path; /* the coach (default assets/bear/bear.xml) */
+    const char *coach;          /* --coach NAME: the three above by name (NULL: the config's) */
     const char *forest_path;    /* the body-part forest the tracker takes joints from (default
                                  * assets/forest/body.forest when there; "off": none), or NULL */
     double attract_after_s;     /* 0 = the coach's default */

@@ -187,7 +187,7 @@ static int pipeline(const evolve_args *a, const cub_evolve_map *map, const cub_e
     if (set_weights(a, r)) return 1;
     if (cub_evolve_mutate(&r->meta, p1, p2, &r->mut, &r->pop, &d)) return fail("mutation", &d);
     double t2 = now_ms();
-    cub_evolve_survivor_cfg sc = {a->blend, 0};
+    cub_evolve_survivor_cfg sc = {a->blend, 0, 0};
     if (cub_evolve_survivor(&r->meta, &r->pop, p1, p2, &sc, &r->child, &r->surv, &d))
         return fail("survivor", &d);
     double t3 = now_ms();

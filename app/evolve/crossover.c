@@ -47,6 +47,11 @@ cub_err cub_evolve_crossover(const cub_skeleton *a, const cub_skeleton *b,
         out->src[j] = j;
         out->partner[j] = cub_evolve_partner_of_a(corr, j);
     }
+    for (int i = 0; i < corr->pair_count; i++) {
+        int ja = corr->pair[i].a;
+        if (out->partner_count[ja] < CUB_EVOLVE_MAP_SIDE)
+            out->partners[ja][out->partner_count[ja]++] = corr->pair[i].b;
+    }
     int appended_at[CUB_EVOLVE_MAX_JOINTS];
     for (int jb = 0; jb < b->joint_count; jb++) {
         appended_at[jb] = -1;

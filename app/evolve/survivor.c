@@ -27,12 +27,52 @@ static cub_dq q_exp(cub_dv3 r)
     return (cub_dq){cos(0.5 * a), r.x * k, r.y * k, r.z * k};
 }
 
+/* Several partners that are a chain in p2: each the parent of the next. */
+static int is_chain(const cub_evolve_meta *meta, const cub_skeleton *b, int j)
+{
+    for (int i = 1; i < meta->partner_count[j]; i++)
+        if (b->joints[meta->partners[j][i]].parent != meta->partners[j][i - 1]) return 0;
+    return 1;
+}
+
+cub_dq cub_evolve_partner_rot(const cub_evolve_meta *meta, const cub_evolve_motion *p2, int f,
+                              int j)
+{
+    int n = meta->from[j] == 1 ? meta->partner_count[j] : 0;
+    if (n == 0) return cub_dq_identity();
+    const int *b = meta->partners[j];
+    cub_dq first = *cub_evolve_rot(p2, f, b[0]), acc = first;
+    int chain = is_chain(meta, &p2->skel, j);
+    for (int i = 1; i < n; i++) {
+        cub_dq q = *cub_evolve_rot(p2, f, b[i]);
+        double k = cub_dq_dot(q, first) < 0 ? -1 : 1;
+        acc = chain ? cub_dq_mul(acc, q)
+                    : (cub_dq){acc.w + k * q.w, acc.x + k * q.x, acc.y + k * q.y, acc.z + k * q.z};
+    }
+    return n == 1 || chain ? acc : cub_dq_norm(acc);
+}
+
+void cub_evolve_partner_means(const cub_evolve_meta *meta, const cub_evolve_motion *p2,
+                              cub_dq *mean)
+{
+    for (int j = 0; j < meta->skel.joint_count; j++) {
+        cub_dq first = cub_evolve_partner_rot(meta, p2, 0, j), sum = {0, 0, 0, 0};
+        for (int f = 0; f < p2->frames; f++) {
+            cub_dq q = cub_evolve_partner_rot(meta, p2, f, j);
+            double k = cub_dq_dot(q, first) < 0 ? -1 : 1;
+            sum = (cub_dq){sum.w + k * q.w, sum.x + k * q.x, sum.y + k * q.y, sum.z + k * q.z};
+        }
+        mean[j] = cub_dq_norm(sum);
+    }
+}
+
 typedef struct surv {
     const cub_evolve_meta *meta;
     const cub_evolve_pop *pop;
     const cub_evolve_motion *p1, *p2;
     double x;
     int offset;
+    /* inv_mean2: per parent-1 joint, of its partners' combined rotation */
     cub_dq inv_mean1[CUB_EVOLVE_MAX_JOINTS], inv_mean2[CUB_EVOLVE_MAX_JOINTS];
 } surv;
 
@@ -50,14 +90,14 @@ static cub_dq delta1(const surv *s, int f, int j)
 {
     return cub_dq_mul(s->inv_mean1[j], rot1(s, f, j));
 }
+/* Parent 2's movement at parent 1's joint j (its partners'), frame f. */
 static cub_dq delta2(const surv *s, int f, int j)
 {
-    return cub_dq_mul(s->inv_mean2[j], rot2(s, f, j));
+    int f2 = (f + s->offset) % s->p2->frames;
+    return cub_dq_mul(s->inv_mean2[j], cub_evolve_partner_rot(s->meta, s->p2, f2, j));
 }
 
-/* inv_mean[j]: the inverse of joint j's mean rotation over m (the
- * normalised sum, each frame turned into the first frame's hemisphere). */
-static void inverse_means(const cub_evolve_motion *m, cub_dq *inv_mean)
+void cub_evolve_mean_pose(const cub_evolve_motion *m, cub_dq *mean)
 {
     for (int j = 0; j < m->skel.joint_count; j++) {
         cub_dq first = *cub_evolve_rot(m, 0, j), sum = {0, 0, 0, 0};
@@ -66,8 +106,15 @@ static void inverse_means(const cub_evolve_motion *m, cub_dq *inv_mean)
             double k = cub_dq_dot(q, first) < 0 ? -1 : 1;
             sum = (cub_dq){sum.w + k * q.w, sum.x + k * q.x, sum.y + k * q.y, sum.z + k * q.z};
         }
-        inv_mean[j] = cub_dq_conj(cub_dq_norm(sum));
+        mean[j] = cub_dq_norm(sum);
     }
+}
+
+static void inverse_means(const cub_evolve_motion *m, cub_dq *inv_mean)
+{
+    cub_evolve_mean_pose(m, inv_mean);
+    for (int j = 0; j < m->skel.joint_count; j++)
+        inv_mean[j] = cub_dq_conj(inv_mean[j]);
 }
 
 /* Energy loss of parent 2 started at its frame o: the sum of
@@ -81,20 +128,19 @@ static double energy_at(surv *s, int o, int step, double bound, int *n)
     *n = 0;
     for (int f = 0; f < s->p1->frames && sum <= bound; f += step)
         for (int j = 1; j < s->p1->skel.joint_count; j++) {
-            int b = s->meta->partner[j];
-            if (b < 0) continue;
-            double d = cub_dq_dot(delta1(s, f, j), delta2(s, f, b));
+            if (s->meta->partner[j] < 0) continue;
+            double d = cub_dq_dot(delta1(s, f, j), delta2(s, f, j));
             sum += 1 - d * d;
             ++*n;
         }
     return sum;
 }
 
-static void best_window(surv *s, int step, cub_evolve_survivor_report *rep)
+static void best_window(surv *s, int step, int in_time, cub_evolve_survivor_report *rep)
 {
     int best = 0, n = 0, n_best = 0;
     double sum_best = INFINITY;
-    for (int o = 0; o < s->p2->frames; o++) {
+    for (int o = 0; o < (in_time ? 1 : s->p2->frames); o++) {
         double sum = energy_at(s, o, step, sum_best, &n);
         if (sum < sum_best) sum_best = sum, best = o, n_best = n;
     }
@@ -110,9 +156,8 @@ static cub_dq meta_rot(const surv *s, int f, int j, double *d_deg)
     *d_deg = -1;
     if (m->from[j] == 2) return rot2(s, f, m->src[j]);
     cub_dq q1 = rot1(s, f, j);
-    int b = m->partner[j];
-    if (j == 0 || b < 0) return q1;
-    cub_dv3 d = q_log(cub_dq_mul(cub_dq_conj(delta1(s, f, j)), delta2(s, f, b)));
+    if (j == 0 || m->partner[j] < 0) return q1;
+    cub_dv3 d = q_log(cub_dq_mul(cub_dq_conj(delta1(s, f, j)), delta2(s, f, j)));
     *d_deg = cub_dv3_len(d) * 180.0 / CUB_VEC_PI;
     return cub_dq_mul(q1, q_exp(cub_dv3_scale(d, s->x)));
 }
@@ -165,8 +210,10 @@ cub_err cub_evolve_survivor(const cub_evolve_meta *meta, const cub_evolve_pop *p
     memset(&s, 0, sizeof s);
     s = (surv){.meta = meta, .pop = pop, .p1 = p1, .p2 = p2, .x = x};
     inverse_means(p1, s.inv_mean1);
-    inverse_means(p2, s.inv_mean2);
-    best_window(&s, step, rep);
+    cub_evolve_partner_means(meta, p2, s.inv_mean2);
+    for (int j = 0; j < meta->skel.joint_count; j++)
+        s.inv_mean2[j] = cub_dq_conj(s.inv_mean2[j]);
+    best_window(&s, step, cfg && cfg->in_time, rep);
     int frames = p1->frames > p2->frames ? p1->frames : p2->frames;
     cub_err err = cub_evolve_motion_alloc(&pop->skel, frames, p1->fps, child);
     if (err) return cub_diag_fail(diag, err, "(survivor)", 0, "out of memory");

@@ -48,6 +48,7 @@ static const key keys[] = {
     {"assets_dir", K_PATH, AT(assets_dir), 0, 0, NULL, -1},
     {"songs_dir", K_PATH, AT(songs_dir), 0, 0, NULL, -1},
     {"song", K_NAME, AT(song), 0, 0, NULL, -1},
+    {"coach", K_NAME, AT(coach), 0, 0, NULL, -1},
     {"soundfont", K_PATH, AT(soundfont), 0, 0, NULL, -1},
     {"font", K_PATH, AT(font), 0, 0, NULL, -1},
     {"recording", K_BOOL, AT(recording), 0, 1, NULL, -1},
@@ -79,6 +80,7 @@ void cub_boxconf_defaults(cub_boxconf *c)
     c->volume = 80;
     snprintf(c->audio_driver, sizeof c->audio_driver, "auto");
     c->speech = 1;
+    snprintf(c->coach, sizeof c->coach, "bear");
     c->attract_after_s = 20;
     c->doze_after_s = 60;
     snprintf(c->soundfont, sizeof c->soundfont, "/usr/share/sounds/sf2/TimGM6mb.sf2");

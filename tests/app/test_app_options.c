@@ -68,7 +68,7 @@ static void test_help_documents_every_option(void **s)
     const char *opts[] = {"--window", "--headless", "--size", "--frames", "--frame-every", "--draw-every",
                           "--replay", "--depth", "--buttons", "--gpio-config", "--config", "--audio-driver",
                           "--clip", "--log", "--seconds", "--clock", "--song", "--timeline",
-                          "--library", "--tags", "--character", "--forest", "--attract-after",
+                          "--library", "--tags", "--character", "--coach", "--forest", "--attract-after",
                           "--doze-after", "--music-clock-scale", "--help", "--version"};
     for (size_t i = 0; i < sizeof opts / sizeof *opts; i++)
         if (!strstr(help_text, opts[i])) fail_msg("--help does not mention %s", opts[i]);
@@ -203,6 +203,55 @@ static void test_config_fills_unset_options_only(void **s)
     assert_int_equal(o.fit_screen, 0);
 }
 
+/* Apply c (from c.conf) after parsing args; the return and the error text. */
+static int apply_with(const cub_boxconf *c, const char **args, const char *assets,
+                      cub_app_options *o)
+{
+    assert_int_equal(parse(o, args), CUB_APP_RUN);
+    memset(err_text, 0, sizeof err_text);
+    FILE *err = fmemopen(err_text, sizeof err_text, "w");
+    int rc = cub_app_apply_config(o, c, 1, assets, err);
+    fclose(err);
+    return rc;
+}
+
+/* The coach by name: --coach, else the config's coach=, else the bear; the
+ * three files follow the name; a name with no character file, or not a
+ * name, is refused naming where it came from. */
+static void test_the_coach_is_chosen_by_name(void **s)
+{
+    static cub_boxconf c;
+    char err[256], dir[] = "/tmp/cub_coach_XXXXXX", sub[64], file[96];
+    assert_non_null(mkdtemp(dir));
+    snprintf(sub, sizeof sub, "%s/seal", dir);
+    snprintf(file, sizeof file, "%s/seal.xml", sub);
+    assert_int_equal(mkdir(sub, 0700), 0);
+    FILE *f = fopen(file, "wb");
+    assert_non_null(f);
+    fclose(f);
+    const char *text = "coach=seal\n";
+    assert_int_equal(cub_boxconf_parse(text, strlen(text), "c.conf", &c, err, sizeof err), CUB_OK);
+    cub_app_options o;
+    assert_int_equal(apply_with(&c, (const char *[]){NULL}, dir, &o), 0);
+    assert_string_equal(o.character_path, file);
+    assert_non_null(strstr(o.library_path, "/clips/seal.cubclips"));
+    assert_non_null(strstr(o.tags_path, "/clips/seal.tags.xml"));
+    /* --coach beats the file; --character beats --coach */
+    assert_int_equal(apply_with(&c, (const char *[]){"--coach", "bear", "--character", "/b.xml",
+                                                     NULL}, dir, &o), 0);
+    assert_string_equal(o.character_path, "/b.xml");
+    assert_non_null(strstr(o.library_path, "/clips/bear.cubclips"));
+    assert_int_equal(apply_with(&c, (const char *[]){"--coach", "walrus", NULL}, dir, &o), -1);
+    assert_non_null(strstr(err_text, "--coach walrus: no such coach"));
+    assert_int_equal(apply_with(&c, (const char *[]){"--coach", "../seal", NULL}, dir, &o), -1);
+    assert_non_null(strstr(err_text, "not a coach's name"));
+    text = "coach=walrus\n";
+    assert_int_equal(cub_boxconf_parse(text, strlen(text), "c.conf", &c, err, sizeof err), CUB_OK);
+    assert_int_equal(apply_with(&c, (const char *[]){NULL}, dir, &o), -1);
+    assert_non_null(strstr(err_text, "c.conf: coach=walrus: no such coach"));
+    remove(file), rmdir(sub), rmdir(dir);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -212,6 +261,7 @@ int main(void)
         cmocka_unit_test(test_defaults),
         cmocka_unit_test(test_the_forest_is_the_assets_own_unless_told),
         cmocka_unit_test(test_config_fills_unset_options_only),
+        cmocka_unit_test(test_the_coach_is_chosen_by_name),
     };
     return cmocka_run_group_tests_name("app_options", tests, NULL, NULL);
 }

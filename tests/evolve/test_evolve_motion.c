@@ -24,7 +24,7 @@ static void test_survivor_blend_zero_is_parent_one(void **state)
     fx.mut.count = 0;
     assert_int_equal(cub_evolve_mutate(&fx.m, &fx.p1, &fx.p2, &fx.mut, &fx.pop, NULL), CUB_OK);
     static cub_evolve_motion child;
-    cub_evolve_survivor_cfg cfg = {0, 0};
+    cub_evolve_survivor_cfg cfg = {0, 0, 0};
     assert_int_equal(cub_evolve_survivor(&fx.m, &fx.pop, &fx.p1, &fx.p2, &cfg, &child, NULL, NULL),
                      CUB_OK);
     assert_int_equal(child.frames, 50); /* the longer parent */
@@ -73,7 +73,7 @@ static void test_survivor_finds_the_window_and_blends(void **state)
     assert_int_equal(cub_evolve_mutate(&m, &fx.p1, &p2, &(cub_evolve_mutation){0}, &pop, NULL),
                      CUB_OK);
     cub_evolve_survivor_report rep;
-    cub_evolve_survivor_cfg cfg = {-0.5, 0};
+    cub_evolve_survivor_cfg cfg = {-0.5, 0, 0};
     assert_int_equal(cub_evolve_survivor(&m, &pop, &fx.p1, &p2, &cfg, &child, &rep, NULL), CUB_OK);
     assert_int_equal(rep.offset, 7);
     assert_true(rep.energy < 1e-12);
@@ -82,6 +82,14 @@ static void test_survivor_finds_the_window_and_blends(void **state)
         for (int j = 1; j < fx.a.joint_count; j++)
             assert_true(cub_dq_angle_between(*cub_evolve_rot(&child, f, j),
                                              *cub_evolve_rot(&fx.p1, f, j)) < 1e-6);
+    cub_evolve_motion_free(&child);
+    /* in time (a coach's clips, timed to the music): no search, parent 2
+     * from its frame 0, the 7 frames' mismatch reported as energy */
+    cfg.in_time = 1;
+    assert_int_equal(cub_evolve_survivor(&m, &pop, &fx.p1, &p2, &cfg, &child, &rep, NULL), CUB_OK);
+    assert_int_equal(rep.offset, 0);
+    assert_true(rep.energy > 1e-6);
+    cfg.in_time = 0;
     cub_evolve_motion_free(&child);
     /* x = 1 against a different parent 2: parent 1's mean pose moving as
      * the partner moves, i.e. D1 becomes D2 */
@@ -100,6 +108,52 @@ static void test_survivor_finds_the_window_and_blends(void **state)
     }
     cub_evolve_motion_free(&child);
     cub_evolve_motion_free(&p2);
+}
+
+/* Many-to-one: a fish's Spine for a horse's Spine and Neck (a chain: their
+ * product), its Tail for both thighs (siblings: their mean). Parent 1
+ * holding its partners' mean pose, x = 1 in time gives exactly that. */
+static void test_survivor_combines_several_partners(void **state)
+{
+    (void)state;
+    static cub_skeleton a, b;
+    static cub_evolve_map map;
+    static cub_evolve_corr c;
+    static cub_evolve_meta m;
+    static cub_evolve_pop pop;
+    static cub_evolve_motion p1, p2, child;
+    static cub_dq mean[CUB_EVOLVE_MAX_JOINTS];
+    memset(&a, 0, sizeof a), memset(&b, 0, sizeof b);
+    build(&a, fish, COUNT(fish));
+    build(&b, horse, COUNT(horse));
+    const char *text = "Spine = Spine Neck\nTail = LeftUpLeg RightUpLeg\n";
+    assert_int_equal(cub_evolve_map_parse(text, strlen(text), "t.map", &map, NULL), CUB_OK);
+    assert_int_equal(cub_evolve_correspond(&a, &b, &map, &c, NULL), CUB_OK);
+    assert_int_equal(cub_evolve_crossover(&a, &b, &c, &m, NULL), CUB_OK);
+    animate(&b, 30, -1, &p2);
+    animate(&a, 30, -1, &p1);
+    cub_evolve_partner_means(&m, &p2, mean);
+    for (int f = 0; f < 30; f++)
+        for (int j = 1; j < a.joint_count; j++)
+            if (m.partner_count[j]) *cub_evolve_rot(&p1, f, j) = mean[j];
+    assert_int_equal(cub_evolve_mutate(&m, &p1, &p2, &(cub_evolve_mutation){0}, &pop, NULL),
+                     CUB_OK);
+    cub_evolve_survivor_cfg cfg = {1, 0, 1};
+    assert_int_equal(cub_evolve_survivor(&m, &pop, &p1, &p2, &cfg, &child, NULL, NULL), CUB_OK);
+    int spine = joint(&a, "Spine"), tail = joint(&a, "Tail");
+    int s2 = joint(&b, "Spine"), n2 = joint(&b, "Neck");
+    int l2 = joint(&b, "LeftUpLeg"), r2 = joint(&b, "RightUpLeg");
+    assert_int_equal(m.partner_count[spine], 2);
+    for (int f = 0; f < 30; f++) {
+        cub_dq chain = cub_dq_mul(*cub_evolve_rot(&p2, f, s2), *cub_evolve_rot(&p2, f, n2));
+        cub_dq l = *cub_evolve_rot(&p2, f, l2), r = *cub_evolve_rot(&p2, f, r2);
+        double k = cub_dq_dot(l, r) < 0 ? -1 : 1;
+        cub_dq avg = cub_dq_norm((cub_dq){l.w + k * r.w, l.x + k * r.x, l.y + k * r.y,
+                                          l.z + k * r.z});
+        assert_true(cub_dq_angle_between(*cub_evolve_rot(&child, f, spine), chain) < 1e-6);
+        assert_true(cub_dq_angle_between(*cub_evolve_rot(&child, f, tail), avg) < 1e-6);
+    }
+    cub_evolve_motion_free(&child), cub_evolve_motion_free(&p1), cub_evolve_motion_free(&p2);
 }
 
 static void test_survivor_refuses_different_rates(void **state)
@@ -204,7 +258,7 @@ static void test_child_exports_as_bvh_and_reads_back(void **state)
     fx.mut.count = 2;
     assert_int_equal(cub_evolve_mutate(&fx.m, &fx.p1, &fx.p2, &fx.mut, &fx.pop, NULL), CUB_OK);
     static cub_evolve_motion child, back;
-    cub_evolve_survivor_cfg cfg = {0.5, 0};
+    cub_evolve_survivor_cfg cfg = {0.5, 0, 0};
     assert_int_equal(cub_evolve_survivor(&fx.m, &fx.pop, &fx.p1, &fx.p2, &cfg, &child, NULL, NULL),
                      CUB_OK);
     static cub_io_motion io, in;
@@ -268,7 +322,7 @@ static void test_cmu_human_crossed_with_a_dog(void **state)
     cub_evolve_mutation mut = {.count = CUB_EVOLVE_MUTATIONS_DEFAULT};
     assert_int_equal(cub_evolve_mutate(&m, &dog, &human, &mut, &pop, NULL), CUB_OK);
     assert_int_equal(pop.removed_count, 5);
-    cub_evolve_survivor_cfg cfg = {0.5, 0};
+    cub_evolve_survivor_cfg cfg = {0.5, 0, 0};
     assert_int_equal(cub_evolve_survivor(&m, &pop, &dog, &human, &cfg, &child, NULL, NULL), CUB_OK);
     cub_evolve_floor_report rep;
     cub_evolve_floor(&child, &rep);
@@ -284,6 +338,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_survivor_blend_zero_is_parent_one),
         cmocka_unit_test(test_survivor_finds_the_window_and_blends),
+        cmocka_unit_test(test_survivor_combines_several_partners),
         cmocka_unit_test(test_survivor_refuses_different_rates),
         cmocka_unit_test(test_floor_step_lifts_by_ik_and_keeps_bones),
         cmocka_unit_test(test_floor_step_raises_the_root_when_ik_cannot),

@@ -35,6 +35,7 @@
 
 #include "cub/character.h"
 #include "cub/judge.h"
+#include "cub/pack.h"
 #include "cub/png.h"
 #include "cub/render.h"
 #include "display.h"
@@ -136,24 +137,30 @@ typedef struct bear_scene {
     float rot_xyzw[4 * CUB_MOTION_MAX_JOINTS];
 } bear_scene;
 
-static cub_character g_bear;
-static int g_bear_loaded;
+static cub_character g_bear, g_seal;
+static int g_bear_loaded, g_seal_loaded;
 static bear_scene g_bs;
 
-static int load_bear(void)
+/* assets/NAME/NAME.xml into *out once (*loaded set). */
+static int load_coach(const char *name, cub_character *out, int *loaded)
 {
-    if (g_bear_loaded)
+    if (*loaded)
         return 1;
     cub_diag diag = {0};
     char path[1024];
     const char *src = getenv("CUB_SOURCE_DIR");
-    snprintf(path, sizeof path, "%s/assets/bear/bear.xml", src ? src : ".");
-    if (cub_character_load(path, &g_bear, &diag) != CUB_OK) {
+    snprintf(path, sizeof path, "%s/assets/%s/%s.xml", src ? src : ".", name, name);
+    if (cub_character_load(path, out, &diag) != CUB_OK) {
         fprintf(stderr, "golden: cannot load %s\n", path);
         return 0;
     }
-    g_bear_loaded = 1;
+    *loaded = 1;
     return 1;
+}
+
+static int load_bear(void)
+{
+    return load_coach("bear", &g_bear, &g_bear_loaded);
 }
 
 static cub_quat quat_deg(const float axis[3], float deg)
@@ -166,18 +173,10 @@ static cub_quat quat_deg(const float axis[3], float deg)
                       (int32_t)lround(axis[2] / n * s * one)};
 }
 
-/* The bear bent as listed, standing on the floor; fills g_bs and returns a
- * scene showing it with face. */
-static cub_render_scene bear_pose(const bend *bends, int n, cub_render_face face)
+/* g_bs.pose (of ch) to world positions and rotations; a scene of it. */
+static cub_render_scene posed(const cub_character *ch, cub_render_face face)
 {
-    const cub_skeleton *skel = &g_bear.skel;
-    cub_motion_pose_rest(skel, &g_bs.pose);
-    g_bs.pose.root_mm = skel->joints[0].offset_mm;
-    for (int i = 0; i < n; i++) {
-        int j = cub_motion_skeleton_find(skel, bends[i].joint);
-        assert_true(j >= 0);
-        g_bs.pose.rot[j] = quat_deg(bends[i].axis, bends[i].deg);
-    }
+    const cub_skeleton *skel = &ch->skel;
     assert_int_equal(cub_motion_forward(skel, &g_bs.pose, g_bs.world, g_bs.rot), CUB_OK);
     cub_motion_world_to_float(g_bs.world, skel->joint_count, g_bs.xyz);
     for (int j = 0; j < skel->joint_count; j++) {
@@ -187,8 +186,49 @@ static cub_render_scene bear_pose(const bend *bends, int n, cub_render_face face
         g_bs.rot_xyzw[4 * j + 2] = (float)g_bs.rot[j].z / one;
         g_bs.rot_xyzw[4 * j + 3] = (float)g_bs.rot[j].w / one;
     }
-    return (cub_render_scene){.skel = skel, .world_xyz_mm = g_bs.xyz, .character = &g_bear,
+    return (cub_render_scene){.skel = skel, .world_xyz_mm = g_bs.xyz, .character = ch,
                               .world_rot_xyzw = g_bs.rot_xyzw, .face = face};
+}
+
+/* A coach bent as listed, standing on the floor; fills g_bs and returns a
+ * scene showing it with face. */
+static cub_render_scene coach_pose(const cub_character *ch, const bend *bends, int n,
+                                   cub_render_face face)
+{
+    const cub_skeleton *skel = &ch->skel;
+    cub_motion_pose_rest(skel, &g_bs.pose);
+    g_bs.pose.root_mm = skel->joints[0].offset_mm;
+    for (int i = 0; i < n; i++) {
+        int j = cub_motion_skeleton_find(skel, bends[i].joint);
+        assert_true(j >= 0);
+        g_bs.pose.rot[j] = quat_deg(bends[i].axis, bends[i].deg);
+    }
+    return posed(ch, face);
+}
+
+static cub_render_scene bear_pose(const bend *bends, int n, cub_render_face face)
+{
+    return coach_pose(&g_bear, bends, n, face);
+}
+
+/* The coach NAME as its shipped library (assets/clips/NAME.cubclips) has
+ * clip at t_us: what cubdance draws. */
+static cub_render_scene library_pose(const char *name, const cub_character *ch, const char *clip,
+                                     int64_t t_us)
+{
+    static cub_library lib;
+    cub_diag diag = {0};
+    char path[1024];
+    const char *src = getenv("CUB_SOURCE_DIR");
+    snprintf(path, sizeof path, "%s/assets/clips/%s.cubclips", src ? src : ".", name);
+    assert_int_equal(cub_pack_read(path, &lib, &diag), CUB_OK);
+    int c = cub_library_find(&lib, clip);
+    assert_true(c >= 0);
+    assert_int_equal(lib.skel.joint_count, ch->skel.joint_count);
+    assert_int_equal(cub_motion_sample(&lib.clips[c].clip, t_us, CUB_MOTION_CLAMP, &g_bs.pose),
+                     CUB_OK);
+    cub_library_free(&lib);
+    return posed(ch, CUB_RENDER_FACE_HAPPY);
 }
 
 /* ---- fixture: one headless display and renderer for all tests ----------- */
@@ -414,6 +454,37 @@ static void test_bear_dancing_happy_matches_golden(void **state)
     cub_render_scene scene = bear_pose(BENDS(DANCE), CUB_RENDER_FACE_HAPPY);
     draw_with(f, f->bear_render, &scene);
     check_golden_within(f->rgba, "bear_dance_happy", 1, BEAR_MAX_SHARE);
+}
+
+/* The second coach (assets/seal/seal.xml) bent as the bear is in
+ * bear_dance_happy, the tail where the bear's left leg is. */
+static void test_seal_dancing_happy_matches_golden(void **state)
+{
+    static const bend SEAL_DANCE[] = {
+        {"LeftArm", {0, 0, 1}, 55},  {"LeftForeArm", {0, 0, 1}, 45},
+        {"RightArm", {0, 0, 1}, 35}, {"RightForeArm", {0, 1, 0}, 70},
+        {"Torso", {0, 0, 1}, 6},     {"Head", {0, 0, 1}, -12},
+        {"Tail", {0, 0, 1}, 18},     {"TailFin", {1, 0, 0}, 35},
+    };
+    fixture *f = *state;
+    assert_true(load_coach("seal", &g_seal, &g_seal_loaded));
+    cub_render_scene scene = coach_pose(&g_seal, BENDS(SEAL_DANCE), CUB_RENDER_FACE_HAPPY);
+    draw_with(f, f->bear_render, &scene);
+    check_golden_within(f->rgba, "seal_dance_happy", 1, BEAR_MAX_SHARE);
+}
+
+/* Both coaches at the bottom of the squat, each from its shipped library
+ * (the seal's made from the bear's by `cubtool coach seal`). */
+static void test_both_coaches_squat_from_their_libraries(void **state)
+{
+    fixture *f = *state;
+    assert_true(load_coach("seal", &g_seal, &g_seal_loaded));
+    cub_render_scene scene = library_pose("bear", &g_bear, "squat", 1333333);
+    draw_with(f, f->bear_render, &scene);
+    check_golden_within(f->rgba, "coach_bear_squat", 1, BEAR_MAX_SHARE);
+    scene = library_pose("seal", &g_seal, "squat", 1333333);
+    draw_with(f, f->bear_render, &scene);
+    check_golden_within(f->rgba, "coach_seal_squat", 1, BEAR_MAX_SHARE);
 }
 
 static void test_bear_doze_sleepy_matches_golden(void **state)
@@ -831,6 +902,8 @@ int main(void)
         cmocka_unit_test(test_stick_pose_matches_golden),
         cmocka_unit_test(test_bear_dancing_happy_matches_golden),
         cmocka_unit_test(test_bear_doze_sleepy_matches_golden),
+        cmocka_unit_test(test_seal_dancing_happy_matches_golden),
+        cmocka_unit_test(test_both_coaches_squat_from_their_libraries),
         cmocka_unit_test(test_bear_correcting_worried_matches_golden),
         cmocka_unit_test(test_idle_screen_matches_golden),
         cmocka_unit_test(test_child_inset_cue_matches_golden),

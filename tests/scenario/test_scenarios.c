@@ -79,10 +79,10 @@ static int is_correcting(const char *to)
            !strncmp(to, "worried@", 8);
 }
 
-static void test_wrong_verdict_reaches_a_correcting_clip_within_6_ticks(void **s)
+static void wrong_reaches_a_correcting_clip(const char *name)
 {
     logread log;
-    load("correct", &log);
+    load(name, &log);
     int wrongs = 0;
     for (int w = next_verdict(&log, 0, "wrong"); w >= 0; w = next_verdict(&log, w + 1, "wrong")) {
         if (watched(&log, w)) continue; /* during a demonstration: no correction */
@@ -103,6 +103,38 @@ static void test_wrong_verdict_reaches_a_correcting_clip_within_6_ticks(void **s
     }
     assert_true(wrongs >= 2);
     logread_free(&log);
+}
+
+static void test_wrong_verdict_reaches_a_correcting_clip_within_6_ticks(void **s)
+{
+    wrong_reaches_a_correcting_clip("correct");
+}
+
+/* The second coach (--coach seal, docs/evolve.md) leads the song as the
+ * bear does: the same state changes and coach requests, line for line,
+ * at the same ticks (only its bridges differ: its own tags); a wrong
+ * verdict reaches a correcting clip as fast. */
+static void test_the_seal_leads_the_song_as_the_bear(void **s)
+{
+    static const char *const kinds[][2] = {{"coach", "request"}, {"coach", "state"}};
+    logread bear, seal;
+    load("correct", &bear);
+    load("seal", &seal);
+    for (int k = 0; k < 2; k++) {
+        int a = logread_find(&bear, 0, kinds[k][0], kinds[k][1]);
+        int b = logread_find(&seal, 0, kinds[k][0], kinds[k][1]), n = 0;
+        for (; a >= 0 && b >= 0; n++) {
+            assert_true(fabs(bear.lines[a].t_s - seal.lines[b].t_s) < 1e-9);
+            assert_string_equal(bear.lines[a].rest, seal.lines[b].rest);
+            a = logread_find(&bear, a + 1, kinds[k][0], kinds[k][1]);
+            b = logread_find(&seal, b + 1, kinds[k][0], kinds[k][1]);
+        }
+        assert_true(a < 0 && b < 0);
+        printf("scenario: seal and bear: %d %s %s lines alike\n", n, kinds[k][0], kinds[k][1]);
+    }
+    logread_free(&bear);
+    logread_free(&seal);
+    wrong_reaches_a_correcting_clip("seal");
 }
 
 /* The slower demonstration is watched, not judged: a wrong verdict while
@@ -493,6 +525,7 @@ int main(int argc, char **argv)
     snprintf(sync_songs, sizeof sync_songs, "%s", argv[3]);
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_wrong_verdict_reaches_a_correcting_clip_within_6_ticks),
+        cmocka_unit_test(test_the_seal_leads_the_song_as_the_bear),
         cmocka_unit_test(test_correction_repeats_until_right),
         cmocka_unit_test(test_dance_resumes_in_the_same_move),
         cmocka_unit_test(test_idle_attract_doze_on_time),

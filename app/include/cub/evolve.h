@@ -131,6 +131,10 @@ typedef struct cub_evolve_meta {
     int from[CUB_EVOLVE_MAX_JOINTS];    /* 1 or 2: the parent a joint comes from */
     int src[CUB_EVOLVE_MAX_JOINTS];     /* its index in that parent */
     int partner[CUB_EVOLVE_MAX_JOINTS]; /* parent 1's joints: the partner in b, or -1 */
+    /* parent 1's joints: all their partners in b, in the map's order
+     * (one-to-many: the bear's Spine Chest for one Torso) */
+    int partner_count[CUB_EVOLVE_MAX_JOINTS];
+    int partners[CUB_EVOLVE_MAX_JOINTS][CUB_EVOLVE_MAP_SIDE];
     int appended;                       /* joints from parent 2 */
 } cub_evolve_meta;
 
@@ -181,6 +185,8 @@ cub_err cub_evolve_mutate(const cub_evolve_meta *meta, const cub_evolve_motion *
 typedef struct cub_evolve_survivor_cfg {
     double blend; /* x: 0 = parent 1's motion; 1 = parent 2's; negative allowed */
     int step;     /* parent 1 sampled every step frames; 0 = CUB_EVOLVE_SAMPLE_STEP */
+    int in_time;  /* 1: no window search, parent 2 laid from its frame 0 (parents already in
+                   * time, e.g. a coach clip timed to the music; the energy still reported) */
 } cub_evolve_survivor_cfg;
 
 typedef struct cub_evolve_survivor_report {
@@ -195,7 +201,8 @@ typedef struct cub_evolve_survivor_report {
  * laid against parent 1 at every start frame o (looping); the energy loss
  * of o is the mean sin²(θ/2), θ the angle between partners' D, at parent
  * 1's samples; the least wins (the first of equals). For a joint with a
- * partner d_j(t) = log(D1_j(t)^-1 D2_j(t + o)) and q_j(t) = q1_j(t)
+ * partner (several: cub_evolve_partner_rot's combination, D2 relative to
+ * its mean) d_j(t) = log(D1_j(t)^-1 D2_j(t + o)) and q_j(t) = q1_j(t)
  * exp(x d_j(t)): x = 0 is parent 1 exactly, x = 1 parent 1's mean pose
  * moving as parent 2 does. The root's position and rotation stay parent
  * 1's (its path). Appended joints take parent 2's rotation at t + o. The
@@ -203,6 +210,24 @@ typedef struct cub_evolve_survivor_report {
  * root carries on along the floor from where each loop ended). A joint
  * re-linked past removed ones takes their rotations too. Both parents at
  * the same fps. */
+/* Every joint's mean rotation over m (mean: joint_count), as the survivor
+ * takes it: the normalised sum, each frame turned into the first frame's
+ * hemisphere. */
+void cub_evolve_mean_pose(const cub_evolve_motion *m, cub_dq *mean);
+
+/* What parent 2 does at a meta joint j of parent 1 at frame f of p2 (ours):
+ * its one partner's local rotation; several partners that are a chain in
+ * parent 2 (each the parent of the next: Spine, Chest for one Torso) give
+ * the product of theirs, down the chain; others (two legs for one tail)
+ * their mean (the normalised sum, the first's hemisphere). Identity when j
+ * has no partner. */
+cub_dq cub_evolve_partner_rot(const cub_evolve_meta *meta, const cub_evolve_motion *p2, int f,
+                              int j);
+/* The mean over p2's frames of cub_evolve_partner_rot for every meta joint
+ * of parent 1 (mean: the meta skeleton's joint_count; identity where none). */
+void cub_evolve_partner_means(const cub_evolve_meta *meta, const cub_evolve_motion *p2,
+                              cub_dq *mean);
+
 cub_err cub_evolve_survivor(const cub_evolve_meta *meta, const cub_evolve_pop *pop,
                             const cub_evolve_motion *p1, const cub_evolve_motion *p2,
                             const cub_evolve_survivor_cfg *cfg, cub_evolve_motion *child,

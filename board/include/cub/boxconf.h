@@ -55,6 +55,9 @@ typedef struct cub_boxconf {
     char assets_dir[CUB_BOXCONF_PATH_MAX]; /* "" = where the program was installed with */
     char songs_dir[CUB_BOXCONF_PATH_MAX];  /* "" = <assets_dir>/songs */
     char song[CUB_BOXCONF_NAME_MAX];       /* lead <songs_dir>/<song>.song.xml; "" = none */
+    /* the coach: <assets_dir>/<coach>/<coach>.xml, clips/<coach>.cubclips and
+     * clips/<coach>.tags.xml; default bear (seal: docs/evolve.md) */
+    char coach[CUB_BOXCONF_NAME_MAX];
     char soundfont[CUB_BOXCONF_PATH_MAX];  /* default /usr/share/sounds/sf2/TimGM6mb.sf2 */
     /* the TV's text; default /usr/share/fonts/truetype/dejavu/DejaVuSans-Bold.ttf */
     char font[CUB_BOXCONF_PATH_MAX];
