@@ -1,0 +1,108 @@
+/* groove — the wrist's paths between keys (SEEDS.md § 001, "Trajectories
+ * between keys"): cubic Bézier handles per key, and the timing curves that
+ * say how fast the wrist runs along each path ("Speed along a
+ * trajectory"). Q16.16 throughout. */
+#include "cub/groove.h"
+
+#define L1_MAX_BEATS CUB_Q16_INT(2) /* ours: a 4-beat note would fling L1 x 4 */
+
+static cub_groove_key key_add(cub_groove_key a, cub_groove_key b)
+{
+    return (cub_groove_key){cub_fx_add(a.x_mm, b.x_mm), cub_fx_add(a.y_mm, b.y_mm)};
+}
+
+static cub_groove_key key_sub(cub_groove_key a, cub_groove_key b)
+{
+    return (cub_groove_key){cub_fx_sub(a.x_mm, b.x_mm), cub_fx_sub(a.y_mm, b.y_mm)};
+}
+
+static cub_groove_key key_lerp(cub_groove_key a, cub_groove_key b, cub_q16 t)
+{
+    return (cub_groove_key){cub_fx_lerp(a.x_mm, b.x_mm, t), cub_fx_lerp(a.y_mm, b.y_mm, t)};
+}
+
+/* d scaled to length len; a zero d points along +x. */
+static cub_groove_key with_length(cub_groove_key d, cub_q16 len)
+{
+    int64_t l = cub_fx_isqrt64((uint64_t)((int64_t)d.x_mm * d.x_mm + (int64_t)d.y_mm * d.y_mm));
+    if (l == 0) return (cub_groove_key){len, 0};
+    return (cub_groove_key){(cub_q16)((int64_t)d.x_mm * len / l),
+                            (cub_q16)((int64_t)d.y_mm * len / l)};
+}
+
+/* Non-beat key: handles on the line along previous -> next, smooth apart. */
+static cub_groove_handles smooth_handles(const cub_groove_params *p, const cub_groove_key *keys,
+                                         int n, int i)
+{
+    cub_groove_key prev = keys[i > 0 ? i - 1 : i], next = keys[i + 1 < n ? i + 1 : i];
+    cub_groove_key half = with_length(key_sub(next, prev), p->smooth_mm / 2);
+    return (cub_groove_handles){key_sub(keys[i], half), key_add(keys[i], half)};
+}
+
+/* Beat key: in from G1 (above) / G2 (back) by intensity, out its mirror. */
+static cub_groove_handles beat_handles(const cub_groove_params *p, const cub_groove_note *notes,
+                                       const cub_groove_key *keys, int i)
+{
+    cub_groove_key k = keys[i];
+    cub_q16 beats = notes[i].length_beats < L1_MAX_BEATS ? notes[i].length_beats : L1_MAX_BEATS;
+    cub_groove_key g1 = {k.x_mm, cub_fx_add(k.y_mm, cub_fx_mul(p->l1_mm, beats))};
+    int back = i > 0 && keys[i - 1].x_mm > k.x_mm ? 1 : -1; /* toward the previous key */
+    cub_groove_key g2 = {cub_fx_add(k.x_mm, back * p->l2_mm), k.y_mm};
+    cub_q16 s = (cub_q16)((int64_t)notes[i].intensity * CUB_Q16_ONE / 120);
+    cub_groove_key in = key_lerp(g2, g1, s);
+    cub_groove_key reflex = {cub_fx_sub(cub_fx_add(k.x_mm, k.x_mm), in.x_mm), in.y_mm};
+    return (cub_groove_handles){in, key_lerp(k, reflex, p->reflectance)};
+}
+
+cub_err cub_groove_handles_make(const cub_groove_params *p, const cub_groove_note *notes, int n,
+                                const cub_groove_key *keys, cub_groove_handles *out)
+{
+    if (!p || !notes || !keys || !out || n < 1) return CUB_ERR_ARG;
+    for (int i = 0; i < n; i++)
+        out[i] = notes[i].is_beat ? beat_handles(p, notes, keys, i) : smooth_handles(p, keys, n, i);
+    return CUB_OK;
+}
+
+/* One coordinate of a cubic Bézier at u, in 64 bits (Q16 in, Q16 out). */
+static cub_q16 cubic(cub_q16 c0, cub_q16 c1, cub_q16 c2, cub_q16 c3, cub_q16 u)
+{
+    int64_t t = u, s = CUB_Q16_ONE - u;
+    int64_t b0 = (s * s >> 16) * s >> 16, b1 = 3 * ((s * s >> 16) * t >> 16),
+            b2 = 3 * ((s * t >> 16) * t >> 16), b3 = (t * t >> 16) * t >> 16;
+    return (cub_q16)((b0 * c0 + b1 * c1 + b2 * c2 + b3 * c3) >> 16);
+}
+
+cub_groove_key cub_groove_bezier(const cub_groove_key pt[4], cub_q16 u)
+{
+    return (cub_groove_key){cubic(pt[0].x_mm, pt[1].x_mm, pt[2].x_mm, pt[3].x_mm, u),
+                            cubic(pt[0].y_mm, pt[1].y_mm, pt[2].y_mm, pt[3].y_mm, u)};
+}
+
+cub_groove_timing cub_groove_timing_of(const cub_groove_note *notes, int i)
+{
+    if (notes[i].is_beat) return CUB_GROOVE_ACCENT;
+    return i > 0 && notes[i - 1].is_beat ? CUB_GROOVE_EASE_IN : CUB_GROOVE_UNIFORM;
+}
+
+#define Q(x) ((cub_q16)((x) * 65536.0 + 0.5))
+
+/* The accent as two cubic pieces meeting at tau = ACCENT_H, u = ACCENT_M
+ * with the gentle speed 0.45 there: speed 2.4 at the start (the felt
+ * accent), 1.6 at the end, where the next path takes over from rest. The
+ * control values are the Hermite speeds x piece length / 3. */
+#define ACCENT_H Q(0.35)
+#define ACCENT_M Q(0.45)
+
+cub_q16 cub_groove_timing_at(cub_groove_timing kind, cub_q16 tau)
+{
+    tau = cub_fx_clamp(tau, 0, CUB_Q16_ONE);
+    switch (kind) {
+    case CUB_GROOVE_EASE_IN: return cubic(0, 0, Q(2.0 / 3.0), CUB_Q16_ONE, tau);
+    case CUB_GROOVE_ACCENT:
+        if (tau < ACCENT_H)
+            return cubic(0, Q(0.28), Q(0.3975), ACCENT_M, cub_fx_div(tau, ACCENT_H));
+        return cubic(ACCENT_M, Q(0.5475), Q(0.65333), CUB_Q16_ONE,
+                     cub_fx_div(tau - ACCENT_H, CUB_Q16_ONE - ACCENT_H));
+    default: return tau;
+    }
+}
