@@ -31,6 +31,7 @@ static const command commands[] = {
     {"bench-codec", cub_cmd_bench_codec, "ours vs ACL vs the seed's codec: ratio, error, decode"},
     {"trc-info", cub_cmd_trc_info, "a TRC marker file: its markers, frames, rate, lost markers"},
     {"groove", cub_cmd_groove, "seed 001 on a MIDI file: the melody, its segments (the DP), wrist keys"},
+    {"groove-eval", cub_cmd_groove_eval, "seed 001 figures: beat alignment (FACT, Bailando), joint speed, time"},
     {"join", cub_cmd_join, "join two clips through a searched transition, feet planted; --all: the table"},
     {"graph", cub_cmd_graph, "the motion graph by support points (feet, hands, knees, hip); --png"},
     {"evolve", cub_cmd_evolve, "cross two clips of different skeletons into a child (seed 004), as BVH"},

@@ -86,23 +86,39 @@ cub_groove_timing cub_groove_timing_of(const cub_groove_note *notes, int i)
 
 #define Q(x) ((cub_q16)((x) * 65536.0 + 0.5))
 
-/* The accent as two cubic pieces meeting at tau = ACCENT_H, u = ACCENT_M
- * with the gentle speed 0.45 there: speed 2.4 at the start (the felt
- * accent), 1.6 at the end, where the next path takes over from rest. The
- * control values are the Hermite speeds x piece length / 3. */
-#define ACCENT_H Q(0.35)
-#define ACCENT_M Q(0.45)
+/* A piece of a timing curve: tau from the previous piece's end to end,
+ * u along the cubic Bézier c[0..3]. Control values are the Hermite form:
+ * c1 = c0 + speed_in x length / 3, c2 = c3 - speed_out x length / 3. */
+typedef struct piece {
+    cub_q16 end, c[4];
+} piece;
+
+/* The accent (ours, the seed gives the shape in words): speed 2.2 at the
+ * start dropping to 0.5 by tau 0.3 (fast, then gentle), up to 1.29 by
+ * 0.88, then a stop within the last 12 % (so the wrist stands still on
+ * the next key, whose own path starts fast again). */
+static const piece accent[3] = {
+    {Q(0.30), {0, Q(0.22), Q(0.355), Q(0.405)}},
+    {Q(0.88), {Q(0.405), Q(0.5017), Q(0.6744), Q(0.923)}},
+    {CUB_Q16_ONE, {Q(0.923), Q(0.9744), CUB_Q16_ONE, CUB_Q16_ONE}},
+};
+
+static const piece ease_in[1] = {{CUB_Q16_ONE, {0, 0, Q(2.0 / 3.0), CUB_Q16_ONE}}};
+
+static cub_q16 pieces_at(const piece *p, int count, cub_q16 tau)
+{
+    cub_q16 start = 0;
+    int i = 0;
+    while (i + 1 < count && tau >= p[i].end)
+        start = p[i++].end;
+    cub_q16 local = cub_fx_div(tau - start, p[i].end - start);
+    return cubic(p[i].c[0], p[i].c[1], p[i].c[2], p[i].c[3], local);
+}
 
 cub_q16 cub_groove_timing_at(cub_groove_timing kind, cub_q16 tau)
 {
     tau = cub_fx_clamp(tau, 0, CUB_Q16_ONE);
-    switch (kind) {
-    case CUB_GROOVE_EASE_IN: return cubic(0, 0, Q(2.0 / 3.0), CUB_Q16_ONE, tau);
-    case CUB_GROOVE_ACCENT:
-        if (tau < ACCENT_H)
-            return cubic(0, Q(0.28), Q(0.3975), ACCENT_M, cub_fx_div(tau, ACCENT_H));
-        return cubic(ACCENT_M, Q(0.5475), Q(0.65333), CUB_Q16_ONE,
-                     cub_fx_div(tau - ACCENT_H, CUB_Q16_ONE - ACCENT_H));
-    default: return tau;
-    }
+    if (kind == CUB_GROOVE_EASE_IN) return pieces_at(ease_in, 1, tau);
+    if (kind == CUB_GROOVE_ACCENT) return pieces_at(accent, 3, tau);
+    return tau;
 }

@@ -145,12 +145,15 @@ static void test_timing_curves(void **state)
     /* ease-in: from rest, reaching the uniform speed at the end */
     assert_true(slope(CUB_GROOVE_EASE_IN, 0) < 0.05);
     assert_true(fabs(slope(CUB_GROOVE_EASE_IN, 0.995) - 1) < 0.05);
-    /* accent: fast start dropping quickly, gentle, speeding up, still fast
-     * at the end (the next path starts from rest: it stops at once) */
-    double start = slope(CUB_GROOVE_ACCENT, 0), gentle = slope(CUB_GROOVE_ACCENT, 0.35),
-           end = slope(CUB_GROOVE_ACCENT, 0.995);
-    assert_true(start > 2.2 && gentle < 0.6 && end > 1.4);
+    /* accent: fast start dropping quickly, gentle, speeding up, then a
+     * stop within the last eighth (at rest on the next key) */
+    double start = slope(CUB_GROOVE_ACCENT, 0), gentle = slope(CUB_GROOVE_ACCENT, 0.3),
+           fast = slope(CUB_GROOVE_ACCENT, 0.87), end = slope(CUB_GROOVE_ACCENT, 0.997);
+    assert_true(start > 2.0 && gentle < 0.6 && fast > 1.2 && end < 0.05);
     assert_true(slope(CUB_GROOVE_ACCENT, 0.1) < start && slope(CUB_GROOVE_ACCENT, 0.7) > gentle);
+    /* the pieces join without a jump in speed */
+    assert_true(fabs(slope(CUB_GROOVE_ACCENT, 0.297) - slope(CUB_GROOVE_ACCENT, 0.301)) < 0.05);
+    assert_true(fabs(slope(CUB_GROOVE_ACCENT, 0.877) - slope(CUB_GROOVE_ACCENT, 0.881)) < 0.05);
     /* which curve a note's path takes */
     cub_groove_note n[3] = {note(0, 1, true, 90), note(1, 1, false, 90), note(2, 1, false, 90)};
     assert_int_equal(cub_groove_timing_of(n, 0), CUB_GROOVE_ACCENT);

@@ -191,7 +191,8 @@ typedef enum cub_groove_timing {
     CUB_GROOVE_UNIFORM, /* non-beat after non-beat: u = tau */
     CUB_GROOVE_EASE_IN, /* non-beat after a beat: starts at rest, speeds up */
     CUB_GROOVE_ACCENT   /* a beat note: fast start dropping quickly, gentle,
-                           speeding up again, stopping at once at the end */
+                           speeding up again, stopping at once at the end
+                           (at rest on the next key) */
 } cub_groove_timing;
 
 /* The timing of the path during note i (from key i to key i+1). */
