@@ -117,6 +117,19 @@ static double *music_frames(const groove_song *s, int *count)
     return out;
 }
 
+static const char *dump_path; /* --dump: the speed curves of the last file */
+
+static void dump(const double *v, const double *sm, int frames, const double *beats, int nb)
+{
+    FILE *f = dump_path ? fopen(dump_path, "w") : NULL;
+    for (int i = 0, b = 0; f && i < frames; i++) {
+        while (b < nb && beats[b] < i - 0.5)
+            b++;
+        fprintf(f, "%d %.3f %.3f %d\n", i, v[i], sm[i], b < nb && beats[b] < i + 0.5);
+    }
+    if (f) fclose(f);
+}
+
 static int measure(const groove_song *s, const cub_groove_rig *rig, figures *fig)
 {
     cub_clip clip;
@@ -142,6 +155,7 @@ static int measure(const groove_song *s, const cub_groove_rig *rig, figures *fig
         for (int i = 0; i < k; i++)
             if (mins[i] >= first) mb[m++] = mins[i];
         fig->bailando = score(beats, fig->music_beats, mb, m);
+        dump(v, sm, clip.frame_count, beats, fig->music_beats);
     } else
         rc = 1;
     free(v), free(sm), free(mins), free(mb), free(beats), free(mem);
@@ -219,11 +233,14 @@ int cub_cmd_groove_eval(int argc, char **argv)
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--set") && i + 1 < argc && strchr("ab", argv[i + 1][0]))
             set = argv[++i][0];
+        else if (!strcmp(argv[i], "--dump") && i + 1 < argc)
+            dump_path = argv[++i];
         else if (!strcmp(argv[i], "--help") || argv[i][0] == '-') {
-            printf("usage: cubtool groove-eval [--set a|b] [FILE.mid...]\n"
+            printf("usage: cubtool groove-eval [--set a|b] [--dump F.txt] [FILE.mid...]\n"
                    "Seed 001's figures: beat alignment (FACT's and Bailando's), fastest joint\n"
                    "vs the clip library's p99, feet, generation time. Default files: every\n"
-                   ".mid of <data>/midi and %s/songs.\n",
+                   ".mid of <data>/midi and %s/songs. --dump writes the last file's\n"
+                   "speed curve (frame, summed speed, smoothed, music beat) to F.txt.\n",
                    CUB_ASSETS_DIR);
             return argv[i][0] == '-' && strcmp(argv[i], "--help") ? 2 : 0;
         } else if (n < MAX_FILES && (paths[n] = malloc(strlen(argv[i]) + 1)))

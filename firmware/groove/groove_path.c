@@ -30,13 +30,22 @@ static cub_groove_key with_length(cub_groove_key d, cub_q16 len)
                             (cub_q16)((int64_t)d.y_mm * len / l)};
 }
 
-/* Non-beat key: handles on the line along previous -> next, smooth apart. */
-static cub_groove_handles smooth_handles(const cub_groove_params *p, const cub_groove_key *keys,
-                                         int n, int i)
+/* Non-beat key: handles on the line along previous -> next, smooth apart.
+ * How the smooth is shared between them is ours: in proportion to the
+ * time of the path each starts, so the wrist's speed is the same on both
+ * sides of the key (3 smooth / (T_in + T_out)); halves when a time is
+ * unknown (the first and last keys). */
+static cub_groove_handles smooth_handles(const cub_groove_params *p, const cub_groove_note *notes,
+                                         const cub_groove_key *keys, int n, int i)
 {
     cub_groove_key prev = keys[i > 0 ? i - 1 : i], next = keys[i + 1 < n ? i + 1 : i];
-    cub_groove_key half = with_length(key_sub(next, prev), p->smooth_mm / 2);
-    return (cub_groove_handles){key_sub(keys[i], half), key_add(keys[i], half)};
+    int64_t t_in = i > 0 ? notes[i].start_us - notes[i - 1].start_us : 0,
+            t_out = i + 1 < n ? notes[i + 1].start_us - notes[i].start_us : 0;
+    if (t_in <= 0 || t_out <= 0) t_in = t_out = 1;
+    cub_q16 in_len = (cub_q16)((int64_t)p->smooth_mm * t_in / (t_in + t_out));
+    cub_groove_key dir = key_sub(next, prev);
+    return (cub_groove_handles){key_sub(keys[i], with_length(dir, in_len)),
+                                key_add(keys[i], with_length(dir, p->smooth_mm - in_len))};
 }
 
 /* Beat key: in from G1 (above) / G2 (back) by intensity, out its mirror. */
@@ -59,7 +68,8 @@ cub_err cub_groove_handles_make(const cub_groove_params *p, const cub_groove_not
 {
     if (!p || !notes || !keys || !out || n < 1) return CUB_ERR_ARG;
     for (int i = 0; i < n; i++)
-        out[i] = notes[i].is_beat ? beat_handles(p, notes, keys, i) : smooth_handles(p, keys, n, i);
+        out[i] = notes[i].is_beat ? beat_handles(p, notes, keys, i)
+                                  : smooth_handles(p, notes, keys, n, i);
     return CUB_OK;
 }
 
@@ -93,14 +103,17 @@ typedef struct piece {
     cub_q16 end, c[4];
 } piece;
 
-/* The accent (ours, the seed gives the shape in words): speed 2.2 at the
- * start dropping to 0.5 by tau 0.3 (fast, then gentle), up to 1.29 by
- * 0.88, then a stop within the last 12 % (so the wrist stands still on
- * the next key, whose own path starts fast again). */
+/* The accent (ours, the seed gives the shape in words): speed 2.4 at the
+ * start dropping to 0.7 by tau 0.05 (fast, dropping quickly: the slowest
+ * moment after the start stays within a frame or two of the beat), rising
+ * steadily to 1.46 by 0.7, then a stop over the last 30 % (the wrist
+ * stands still on the next key; its own path starts fast again). Speeds
+ * are linear within each piece. The shape was chosen looking at the beat
+ * alignment of all 19 songs (docs/groove.md). */
 static const piece accent[3] = {
-    {Q(0.30), {0, Q(0.22), Q(0.355), Q(0.405)}},
-    {Q(0.88), {Q(0.405), Q(0.5017), Q(0.6744), Q(0.923)}},
-    {CUB_Q16_ONE, {Q(0.923), Q(0.9744), CUB_Q16_ONE, CUB_Q16_ONE}},
+    {Q(0.0500), {0, Q(0.0400), Q(0.0658), Q(0.0775)}},
+    {Q(0.7000), {Q(0.0775), Q(0.2292), Q(0.4635), Q(0.7805)}},
+    {CUB_Q16_ONE, {Q(0.7805), Q(0.9268), CUB_Q16_ONE, CUB_Q16_ONE}},
 };
 
 static const piece ease_in[1] = {{CUB_Q16_ONE, {0, 0, Q(2.0 / 3.0), CUB_Q16_ONE}}};

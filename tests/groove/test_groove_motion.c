@@ -79,6 +79,23 @@ static void test_non_beat_tangents_follow_prev_to_next(void **state)
     assert_true(t_in.x_mm > 0 && t_out.x_mm > 0);
 }
 
+static void test_non_beat_speed_is_continuous_through_a_key(void **state)
+{
+    (void)state;
+    cub_groove_params p = set_a();
+    /* a long note then a short one: the handles share smooth 3 : 1 */
+    cub_groove_note n[3] = {note(0, 1.5, false, 90), note(750000, 0.5, false, 90),
+                            note(1000000, 1, false, 90)};
+    cub_groove_key k[3] = {{0, 0}, {Q(100), Q(50)}, {Q(200), Q(20)}};
+    cub_groove_handles h[3];
+    cub_groove_handles_make(&p, n, 3, k, h);
+    cub_groove_key in = sub(k[1], h[1].in_mm), out = sub(h[1].out_mm, k[1]);
+    double li = hypot(d(in.x_mm), d(in.y_mm)), lo = hypot(d(out.x_mm), d(out.y_mm));
+    assert_true(fabs(li - 75) < 0.01 && fabs(lo - 25) < 0.01);
+    /* mm per second on either side of key 1: 3 |handle| / the path's time */
+    assert_true(fabs(3 * li / 0.75 - 3 * lo / 0.25) < 0.1);
+}
+
 static void test_beat_handles_by_intensity_and_reflectance(void **state)
 {
     (void)state;
@@ -146,14 +163,14 @@ static void test_timing_curves(void **state)
     assert_true(slope(CUB_GROOVE_EASE_IN, 0) < 0.05);
     assert_true(fabs(slope(CUB_GROOVE_EASE_IN, 0.995) - 1) < 0.05);
     /* accent: fast start dropping quickly, gentle, speeding up, then a
-     * stop within the last eighth (at rest on the next key) */
-    double start = slope(CUB_GROOVE_ACCENT, 0), gentle = slope(CUB_GROOVE_ACCENT, 0.3),
-           fast = slope(CUB_GROOVE_ACCENT, 0.87), end = slope(CUB_GROOVE_ACCENT, 0.997);
-    assert_true(start > 2.0 && gentle < 0.6 && fast > 1.2 && end < 0.05);
+     * stop over the last 30 % (at rest on the next key) */
+    double start = slope(CUB_GROOVE_ACCENT, 0), gentle = slope(CUB_GROOVE_ACCENT, 0.05),
+           fast = slope(CUB_GROOVE_ACCENT, 0.69), end = slope(CUB_GROOVE_ACCENT, 0.997);
+    assert_true(start > 2.2 && gentle < 0.8 && fast > 1.4 && end < 0.05);
     assert_true(slope(CUB_GROOVE_ACCENT, 0.1) < start && slope(CUB_GROOVE_ACCENT, 0.7) > gentle);
     /* the pieces join without a jump in speed */
-    assert_true(fabs(slope(CUB_GROOVE_ACCENT, 0.297) - slope(CUB_GROOVE_ACCENT, 0.301)) < 0.05);
-    assert_true(fabs(slope(CUB_GROOVE_ACCENT, 0.877) - slope(CUB_GROOVE_ACCENT, 0.881)) < 0.05);
+    assert_true(fabs(slope(CUB_GROOVE_ACCENT, 0.048) - slope(CUB_GROOVE_ACCENT, 0.05)) < 0.1);
+    assert_true(fabs(slope(CUB_GROOVE_ACCENT, 0.697) - slope(CUB_GROOVE_ACCENT, 0.701)) < 0.1);
     /* which curve a note's path takes */
     cub_groove_note n[3] = {note(0, 1, true, 90), note(1, 1, false, 90), note(2, 1, false, 90)};
     assert_int_equal(cub_groove_timing_of(n, 0), CUB_GROOVE_ACCENT);
@@ -264,6 +281,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_non_beat_tangents_follow_prev_to_next),
+        cmocka_unit_test(test_non_beat_speed_is_continuous_through_a_key),
         cmocka_unit_test(test_beat_handles_by_intensity_and_reflectance),
         cmocka_unit_test(test_bezier_midpoint),
         cmocka_unit_test(test_timing_curves),

@@ -176,8 +176,10 @@ typedef struct cub_groove_handles {
 } cub_groove_handles;
 
 /* Handles for every key. Non-beat key: in and out on the line through the
- * key along previous -> next key, smooth apart (each smooth/2 from it; the
- * first key uses the next, the last the previous). Beat key: in = G2 +
+ * key along previous -> next key, smooth apart, shared in proportion to the
+ * times of the paths into and out of the key (the wrist's speed is then
+ * continuous through it; the first key uses the next, the last the
+ * previous). Beat key: in = G2 +
  * (intensity/120)(G1 - G2), G1 = L1 x the note's length (at most 2 beats)
  * straight above the key, G2 = L2 horizontally toward the previous key;
  * out = lerp(key, in mirrored about the key's vertical, reflectance). */
