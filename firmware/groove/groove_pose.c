@@ -69,15 +69,14 @@ static cub_vec3 in_chest(cub_vec3 chest, cub_quat rot, cub_vec3 local)
 
 /* side -1: the right arm (key x sweeps it inward), +1: the left. */
 static cub_err arm(const cub_groove_rig *rig, cub_pose *pose, int side, cub_groove_key at,
-                   const cub_vec3 *world, const cub_quat *rot)
+                   cub_vec3 chest, cub_quat chest_rot)
 {
     cub_vec3 home = MM(side * 210, -40, 160), pole = MM(side * 330, -200, -100);
     cub_vec3 local = {cub_fx_add(home.x, cub_fx_mul(at.x_mm, rig->scale)),
                       cub_fx_add(home.y, cub_fx_mul(at.y_mm, rig->scale)), home.z};
     int upper = side < 0 ? rig->right_arm : rig->left_arm;
-    return cub_motion_ik_apply(rig->skel, pose, upper,
-                               in_chest(world[rig->chest], rot[rig->chest], local),
-                               in_chest(world[rig->chest], rot[rig->chest], pole), NULL, NULL);
+    return cub_motion_ik_apply(rig->skel, pose, upper, in_chest(chest, chest_rot, local),
+                               in_chest(chest, chest_rot, pole), NULL, NULL);
 }
 
 cub_err cub_groove_pose_at(const cub_groove_plan *plan, const cub_groove_rig *rig, int64_t t_us,
@@ -91,13 +90,13 @@ cub_err cub_groove_pose_at(const cub_groove_plan *plan, const cub_groove_rig *ri
             nod = cub_groove_turn_at(plan->head, plan->head_count, t_us);
     out->rot[rig->spine] = cub_fx_quat_from_axis_angle(MM(0, 1, 0), rad(waist));
     out->rot[rig->head] = cub_fx_quat_from_axis_angle(MM(1, 0, 0), rad(nod));
-    cub_vec3 world[CUB_MOTION_MAX_JOINTS];
-    cub_quat rot[CUB_MOTION_MAX_JOINTS];
-    cub_err e = cub_motion_forward(skel, out, world, rot);
+    cub_vec3 chest;
+    cub_quat chest_rot;
+    cub_err e = cub_motion_joint_world(skel, out, rig->chest, &chest, &chest_rot);
     cub_groove_key right = cub_groove_wrist_at(plan, t_us);
-    if (!e) e = arm(rig, out, -1, right, world, rot);
+    if (!e) e = arm(rig, out, -1, right, chest, chest_rot);
     cub_groove_key left = cub_groove_left_at(plan, t_us);
-    if (!e) e = arm(rig, out, 1, left, world, rot);
+    if (!e) e = arm(rig, out, 1, left, chest, chest_rot);
     return e;
 }
 

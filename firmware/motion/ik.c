@@ -120,18 +120,21 @@ cub_err cub_motion_ik_apply(const cub_skeleton *skel, cub_pose *pose, int upper,
     if (upper <= 0 || upper >= skel->joint_count) return CUB_ERR_RANGE;
     int mid = first_child(skel, upper), end = mid > 0 ? first_child(skel, mid) : -1;
     if (end < 0) return CUB_ERR_RANGE;
-    cub_vec3 world[CUB_MOTION_MAX_JOINTS];
-    cub_quat rot[CUB_MOTION_MAX_JOINTS];
-    cub_err e = cub_motion_forward(skel, pose, world, rot);
+    /* Only the chain's ancestors: the rest of the skeleton is no concern. */
+    int parent = skel->joints[upper].parent;
+    cub_vec3 parent_pos, root;
+    cub_quat parent_w;
+    cub_err e = cub_motion_joint_world(skel, pose, parent, &parent_pos, &parent_w);
     if (e) return e;
+    cub_vec3 local = pose->has_trans ? pose->trans_mm[upper] : skel->joints[upper].offset_mm;
+    root = cub_fx_vec3_add(parent_pos, cub_fx_quat_rotate(parent_w, local));
+    cub_quat upper_now = cub_fx_quat_mul(parent_w, pose->rot[upper]);
     cub_vec3 off_mid = skel->joints[mid].offset_mm, off_end = skel->joints[end].offset_mm;
     cub_ik_solution s;
-    e = cub_motion_ik_solve(world[upper], len64(off_mid), len64(off_end), target_mm, pole_mm,
-                            limits, &s);
+    e = cub_motion_ik_solve(root, len64(off_mid), len64(off_end), target_mm, pole_mm, limits, &s);
     if (e) return e;
-    cub_quat parent_w = rot[skel->joints[upper].parent];
     cub_quat upper_w =
-        aim(pose, upper, parent_w, rot[upper], off_mid, cub_fx_vec3_sub(s.mid_mm, world[upper]));
+        aim(pose, upper, parent_w, upper_now, off_mid, cub_fx_vec3_sub(s.mid_mm, root));
     cub_quat mid_w = cub_fx_quat_mul(upper_w, pose->rot[mid]);
     aim(pose, mid, upper_w, mid_w, off_end, cub_fx_vec3_sub(s.end_mm, s.mid_mm));
     if (out) *out = s;

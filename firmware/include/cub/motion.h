@@ -77,6 +77,11 @@ void cub_motion_pose_rest(const cub_skeleton *skel, cub_pose *out);
 cub_err cub_motion_forward(const cub_skeleton *skel, const cub_pose *pose,
                            cub_vec3 *world_mm, cub_quat *world_rot);
 
+/* One joint's world position and rotation: what cub_motion_forward gives
+ * for it, bit for bit, walking only its ancestors. */
+cub_err cub_motion_joint_world(const cub_skeleton *skel, const cub_pose *pose, int joint,
+                               cub_vec3 *world_mm, cub_quat *world_rot);
+
 /* Blend two poses of the same skeleton: t = 0 gives a, 1 gives b. */
 cub_err cub_motion_pose_blend(const cub_pose *a, const cub_pose *b, cub_q16 t,
                               cub_pose *out);
