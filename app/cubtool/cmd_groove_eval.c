@@ -23,6 +23,8 @@
 #define SMOOTH 5.0 /* Bailando's Gaussian, frames */
 #define MAX_FILES 64
 
+static int fastest_joint, fastest_frame; /* where max_v was, for --dump */
+
 /* Summed speed of every joint, mm per frame, frame f from f-1 (v[0] = v[1]);
  * *max_mm_s the fastest single joint, *feet_mm the feet's largest move. */
 static double *joint_speed(const cub_clip *clip, double *max_mm_s, double *feet_mm)
@@ -43,7 +45,10 @@ static double *joint_speed(const cub_clip *clip, double *max_mm_s, double *feet_
             double dx = (now[j].x - prev[j].x) / 65536.0, dy = (now[j].y - prev[j].y) / 65536.0,
                    dz = (now[j].z - prev[j].z) / 65536.0, d = sqrt(dx * dx + dy * dy + dz * dz);
             v[f] += d;
-            if (d * 1e9 / clip->frame_ns > *max_mm_s) *max_mm_s = d * 1e9 / clip->frame_ns;
+            if (d * 1e9 / clip->frame_ns > *max_mm_s) {
+                *max_mm_s = d * 1e9 / clip->frame_ns;
+                fastest_joint = j, fastest_frame = f;
+            }
         }
         for (int k = 0; k < 2; k++) {
             int j = k ? rf : lf;
@@ -128,6 +133,9 @@ static void dump(const double *v, const double *sm, int frames, const double *be
         fprintf(f, "%d %.3f %.3f %d\n", i, v[i], sm[i], b < nb && beats[b] < i + 0.5);
     }
     if (f) fclose(f);
+    if (dump_path)
+        fprintf(stderr, "fastest joint %d at frame %d (%.3f s)\n", fastest_joint, fastest_frame,
+                fastest_frame / (double)FPS);
 }
 
 static int measure(const groove_song *s, const cub_groove_rig *rig, figures *fig)

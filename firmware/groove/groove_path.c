@@ -63,13 +63,31 @@ static cub_groove_handles beat_handles(const cub_groove_params *p, const cub_gro
     return (cub_groove_handles){in, key_lerp(k, reflex, p->reflectance)};
 }
 
+/* A handle at most pace x t / 3 from its key (t the time of the path it
+ * shapes, 0 unknown): a Bézier leaves its ends at 3 |handle| / t, so no
+ * handle asks for more than the pace the keys keep (ours). */
+static cub_groove_key pace_handle(const cub_groove_params *p, cub_groove_key key, cub_groove_key h,
+                                  int64_t t)
+{
+    int64_t pace = p->pace_mm_s > 0 ? p->pace_mm_s : CUB_Q16_INT(1200);
+    cub_groove_key d = key_sub(h, key);
+    int64_t len = cub_fx_isqrt64((uint64_t)((int64_t)d.x_mm * d.x_mm + (int64_t)d.y_mm * d.y_mm));
+    int64_t most = pace * t / 3000000;
+    return t > 0 && len > most ? key_add(key, with_length(d, (cub_q16)most)) : h;
+}
+
 cub_err cub_groove_handles_make(const cub_groove_params *p, const cub_groove_note *notes, int n,
                                 const cub_groove_key *keys, cub_groove_handles *out)
 {
     if (!p || !notes || !keys || !out || n < 1) return CUB_ERR_ARG;
-    for (int i = 0; i < n; i++)
-        out[i] = notes[i].is_beat ? beat_handles(p, notes, keys, i)
-                                  : smooth_handles(p, notes, keys, n, i);
+    for (int i = 0; i < n; i++) {
+        cub_groove_handles h = notes[i].is_beat ? beat_handles(p, notes, keys, i)
+                                                : smooth_handles(p, notes, keys, n, i);
+        int64_t t_in = i > 0 ? notes[i].start_us - notes[i - 1].start_us : 0,
+                t_out = i + 1 < n ? notes[i + 1].start_us - notes[i].start_us : 0;
+        out[i].in_mm = pace_handle(p, keys[i], h.in_mm, t_in);
+        out[i].out_mm = pace_handle(p, keys[i], h.out_mm, t_out);
+    }
     return CUB_OK;
 }
 

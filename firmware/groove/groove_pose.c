@@ -14,6 +14,7 @@ cub_err cub_groove_plan_build(const cub_groove_song *song, const cub_groove_pick
         e = cub_groove_segment_notes(p, mem->notes, n, window, mem->work, mem->segs, mem->cap, &k,
                                      cost);
     if (!e) e = cub_groove_keys(p, mem->notes, n, mem->segs, k, mem->keys);
+    if (!e) cub_groove_keys_pace(p, mem->notes, n, mem->keys);
     if (!e) e = cub_groove_handles_make(p, mem->notes, n, mem->keys, mem->handles);
     if (e) return e;
     *out = (cub_groove_plan){
@@ -37,6 +38,13 @@ cub_groove_key cub_groove_wrist_at(const cub_groove_plan *plan, int64_t t_us)
     return cub_groove_bezier(pt, u);
 }
 
+/* An arm as the bear has it: the joint, its child next, the child's next. */
+static bool chain(const cub_skeleton *skel, int upper)
+{
+    return upper > 0 && upper + 2 < skel->joint_count && skel->joints[upper + 1].parent == upper &&
+           skel->joints[upper + 2].parent == upper + 1;
+}
+
 cub_err cub_groove_rig_bind(const cub_skeleton *skel, cub_groove_rig *out)
 {
     if (!skel || !out) return CUB_ERR_ARG;
@@ -47,8 +55,8 @@ cub_err cub_groove_rig_bind(const cub_skeleton *skel, cub_groove_rig *out)
                             cub_motion_skeleton_find(skel, "RightArm"),
                             cub_motion_skeleton_find(skel, "LeftArm"),
                             (cub_q16)(CUB_Q16_ONE * 2 / 5)};
-    bool ok = out->spine > 0 && out->chest > 0 && out->head > 0 && out->right_arm > 0 &&
-              out->left_arm > 0;
+    bool ok = out->spine > 0 && out->chest > 0 && out->head > 0 && chain(skel, out->right_arm) &&
+              chain(skel, out->left_arm);
     return ok ? CUB_OK : CUB_ERR_FORMAT;
 }
 
@@ -67,6 +75,20 @@ static cub_vec3 in_chest(cub_vec3 chest, cub_quat rot, cub_vec3 local)
     return cub_fx_vec3_add(chest, cub_fx_quat_rotate(rot, local));
 }
 
+/* The arm hanging with the forearm forward: the IK turns the bones the
+ * least from here, and no target in front of the bear lies opposite a
+ * bone's direction (from the T pose, a forearm reaching across the body
+ * would, and its twist would flip from one frame to the next). */
+static void ready(const cub_skeleton *skel, cub_pose *pose, int upper)
+{
+    int mid = upper + 1, end = upper + 2; /* the bear's chain: arm, forearm, hand */
+    cub_quat arm = cub_motion_quat_between(skel->joints[mid].offset_mm, MM(0, -1, 0));
+    cub_vec3 fore = cub_fx_quat_rotate(arm, skel->joints[end].offset_mm);
+    cub_quat fore_w = cub_fx_quat_mul(cub_motion_quat_between(fore, MM(0, 0, 1)), arm);
+    pose->rot[upper] = arm;
+    pose->rot[mid] = cub_fx_quat_normalize(cub_fx_quat_mul(cub_fx_quat_conj(arm), fore_w));
+}
+
 /* side -1: the right arm (key x sweeps it inward), +1: the left. */
 static cub_err arm(const cub_groove_rig *rig, cub_pose *pose, int side, cub_groove_key at,
                    cub_vec3 chest, cub_quat chest_rot)
@@ -75,8 +97,12 @@ static cub_err arm(const cub_groove_rig *rig, cub_pose *pose, int side, cub_groo
     cub_vec3 local = {cub_fx_add(home.x, cub_fx_mul(at.x_mm, rig->scale)),
                       cub_fx_add(home.y, cub_fx_mul(at.y_mm, rig->scale)), home.z};
     int upper = side < 0 ? rig->right_arm : rig->left_arm;
+    ready(rig->skel, pose, upper);
+    /* the elbow opens to 160 degrees at most: nearer straight, a small
+     * move of the wrist swings the elbow fast */
+    const cub_ik_limits lim = {22877, 167552};
     return cub_motion_ik_apply(rig->skel, pose, upper, in_chest(chest, chest_rot, local),
-                               in_chest(chest, chest_rot, pole), NULL, NULL);
+                               in_chest(chest, chest_rot, pole), &lim, NULL);
 }
 
 cub_err cub_groove_pose_at(const cub_groove_plan *plan, const cub_groove_rig *rig, int64_t t_us,

@@ -130,6 +130,30 @@ static void test_beat_handles_by_intensity_and_reflectance(void **state)
     assert_true(before.y_mm > k[1].y_mm && abs(before.x_mm - k[1].x_mm) < Q(0.05));
 }
 
+static void test_pace_pulls_keys_and_handles_in(void **state)
+{
+    (void)state;
+    cub_groove_params p = set_a(); /* pace 1200 mm/s */
+    cub_groove_note n[3] = {note(0, 0.2, false, 90), note(100000, 2, true, 120),
+                            note(1100000, 1, false, 90)};
+    cub_groove_key k[3] = {{0, 0}, {Q(300), Q(400)}, {Q(310), Q(400)}};
+    cub_groove_keys_pace(&p, n, 3, k);
+    /* 500 mm in 0.1 s is too fast: 120 mm along the same line */
+    assert_true(abs(k[1].x_mm - Q(72)) <= 2 && abs(k[1].y_mm - Q(96)) <= 2);
+    assert_true(abs(k[2].x_mm - Q(310)) <= 2); /* 238 mm in 1 s: kept */
+    cub_groove_handles h[3];
+    cub_groove_handles_make(&p, n, 3, k, h);
+    /* the beat key's handle in (L1 x 2 beats = 170 mm above) keeps within
+     * 1200 x 0.1 / 3 = 40 mm; its handle out (a 1 s path) is not pulled */
+    assert_true(abs(h[1].in_mm.y_mm - k[1].y_mm - Q(40)) <= 2);
+    assert_true(abs(h[1].out_mm.y_mm - k[1].y_mm - Q(170)) <= 2);
+    /* no times (equal starts): nothing moves */
+    cub_groove_note same[2] = {note(0, 1, false, 90), note(0, 1, false, 90)};
+    cub_groove_key far[2] = {{0, 0}, {Q(900), 0}};
+    cub_groove_keys_pace(&p, same, 2, far);
+    assert_int_equal(far[1].x_mm, Q(900));
+}
+
 static void test_bezier_midpoint(void **state)
 {
     (void)state;
@@ -283,6 +307,7 @@ int main(void)
         cmocka_unit_test(test_non_beat_tangents_follow_prev_to_next),
         cmocka_unit_test(test_non_beat_speed_is_continuous_through_a_key),
         cmocka_unit_test(test_beat_handles_by_intensity_and_reflectance),
+        cmocka_unit_test(test_pace_pulls_keys_and_handles_in),
         cmocka_unit_test(test_bezier_midpoint),
         cmocka_unit_test(test_timing_curves),
         cmocka_unit_test(test_turns_return_rotate_alternate),

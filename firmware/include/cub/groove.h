@@ -109,6 +109,7 @@ typedef struct cub_groove_params {
     cub_q16 l1_mm, l2_mm; /* beat-key handles: G1 above, G2 back */
     cub_q16 x_span_mm;    /* the usable x span of the wrist (0: 400) */
     cub_q16 y_reach_mm;   /* |y| beyond this is scaled in (0: 250) */
+    cub_q16 pace_mm_s;    /* the fastest a key may follow the last (0: 1200) */
 } cub_groove_params;
 
 /* Set 'a' or 'b' of the seed's table 1 (reflectance from percent).
@@ -165,6 +166,13 @@ typedef struct cub_groove_key {
 cub_err cub_groove_keys(const cub_groove_params *p, const cub_groove_note *notes, int n,
                         const cub_groove_segment *segs, int seg_count, cub_groove_key *keys);
 
+/* Too fast to follow (ours): a key farther from the previous one than
+ * pace_mm_s x the time between their notes is pulled toward it along the
+ * same line, so no path asks the arm for more than the clip library's own
+ * speeds (docs/groove.md). Notes without times (equal starts) are left. */
+void cub_groove_keys_pace(const cub_groove_params *p, const cub_groove_note *notes, int n,
+                          cub_groove_key *keys);
+
 /* ---- paths between keys (cubic Bézier) and their timing ----------------------- */
 
 /* The wrist's handles at one key: in_mm = the seed's P2 (the path into the
@@ -182,7 +190,9 @@ typedef struct cub_groove_handles {
  * previous). Beat key: in = G2 +
  * (intensity/120)(G1 - G2), G1 = L1 x the note's length (at most 2 beats)
  * straight above the key, G2 = L2 horizontally toward the previous key;
- * out = lerp(key, in mirrored about the key's vertical, reflectance). */
+ * out = lerp(key, in mirrored about the key's vertical, reflectance).
+ * Then (ours) each handle is kept within pace_mm_s x its path's time / 3
+ * of its key, the most a Bézier end may run at that pace. */
 cub_err cub_groove_handles_make(const cub_groove_params *p, const cub_groove_note *notes, int n,
                                 const cub_groove_key *keys, cub_groove_handles *out);
 
