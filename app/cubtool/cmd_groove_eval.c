@@ -228,9 +228,10 @@ static int list_mid(const char *dir, char **paths, int n)
 static void print_row(const char *path, const groove_song *s, const figures *f)
 {
     const char *name = strrchr(path, '/') ? strrchr(path, '/') + 1 : path;
-    printf("%-36s %7.1f %5d %5d %5d  %.3f  %.3f  %7.0f  %5.2f  %6.2f  %6.2f\n", name, f->len_s,
-           s->plan.n, f->music_beats, f->motion_beats, f->fact, f->bailando, f->max_mm_s,
-           f->feet_mm, f->gen_ms, f->per3min_ms);
+    printf("%-36s %7.1f %5d %5d %5d  %.3f  %.3f  %7.0f  %5.2f  %6.2f  %6.2f  %6.2f\n", name,
+           f->len_s, s->plan.n, f->music_beats, f->motion_beats, f->fact, f->bailando, f->max_mm_s,
+           f->feet_mm, s->plan_ms * 180.0 / (f->len_s > 0 ? f->len_s : 1), f->gen_ms,
+           f->per3min_ms);
 }
 
 int cub_cmd_groove_eval(int argc, char **argv)
@@ -264,8 +265,8 @@ int cub_cmd_groove_eval(int argc, char **argv)
     double p99 = library_p99(CUB_ASSETS_DIR "/clips/bear.cubclips");
     printf("clip library joint speed p99 %.0f mm/s; set %c, %d fps, sigma %.0f frames\n", p99, set,
            FPS, SIGMA);
-    printf("%-36s %7s %5s %5s %5s  %5s  %5s  %7s  %5s  %6s  %6s\n", "file", "len_s", "notes",
-           "beats", "mbeat", "FACT", "Bail", "max_v", "feet", "gen_ms", "ms/3m");
+    printf("%-36s %7s %5s %5s %5s  %5s  %5s  %7s  %5s  %6s  %6s  %6s\n", "file", "len_s", "notes",
+           "beats", "mbeat", "FACT", "Bail", "max_v", "feet", "plan3m", "gen_ms", "gen3m");
     static cub_skeleton bear;
     cub_groove_rig rig;
     int rc = groove_bear(&bear, "groove-eval");

@@ -30,7 +30,7 @@ static const command commands[] = {
     {"codec-figures", cub_cmd_codec_figures, "the seed's codec: Squad vs Slerp vs Catmull-Rom, IK, ratio"},
     {"bench-codec", cub_cmd_bench_codec, "ours vs ACL vs the seed's codec: ratio, error, decode"},
     {"trc-info", cub_cmd_trc_info, "a TRC marker file: its markers, frames, rate, lost markers"},
-    {"groove", cub_cmd_groove, "seed 001 on a MIDI file: the melody, its segments (the DP), wrist keys"},
+    {"groove", cub_cmd_groove, "seed 001 on a MIDI file: melody, segments, keys; the bear dancing it (BVH, PNG)"},
     {"groove-eval", cub_cmd_groove_eval, "seed 001 figures: beat alignment (FACT, Bailando), joint speed, time"},
     {"join", cub_cmd_join, "join two clips through a searched transition, feet planted; --all: the table"},
     {"graph", cub_cmd_graph, "the motion graph by support points (feet, hands, knees, hip); --png"},
