@@ -301,6 +301,44 @@ static void test_pose_reaches_keys_and_keeps_feet(void **state)
     }
 }
 
+/* The poses of a small song at 300 times, hashed (FNV-1a over every joint's
+ * rotation): the pinned value must come out on x86-64 and aarch64 alike
+ * (the whole path is integer). */
+#define POSE_HASH 0xc36b963329d96c2dull
+
+static void test_poses_are_bit_identical_across_cpus(void **state)
+{
+    (void)state;
+    build_bear();
+    cub_groove_rig rig;
+    cub_groove_rig_bind(&bear, &rig);
+    cub_groove_note n[6] = {note(0, 1, true, 100),        note(500000, 0.5, false, 70),
+                            note(750000, 0.5, false, 90), note(1000000, 2, true, 120),
+                            note(2000000, 0.5, true, 40), note(2250000, 1.5, false, 60)};
+    cub_groove_key k[6] = {{0, 0},          {Q(90), Q(40)},   {Q(170), Q(-30)},
+                           {Q(260), Q(70)}, {Q(200), Q(-90)}, {Q(120), Q(10)}};
+    cub_groove_handles h[6];
+    cub_groove_turn waist[6], head[6];
+    cub_groove_plan plan = {set_a(), n, 6, k, h, waist, head, 0, 0, 3000000};
+    cub_groove_keys_pace(&plan.params, n, 6, k);
+    cub_groove_handles_make(&plan.params, n, 6, k, h);
+    cub_groove_turns(n, 6, plan.end_us, Q(7), waist, &plan.waist_count);
+    cub_groove_turns(n, 6, plan.end_us, Q(10), head, &plan.head_count);
+    static cub_pose pose;
+    uint64_t hash = 0xcbf29ce484222325u;
+    for (int f = 0; f < 300; f++) {
+        assert_int_equal(cub_groove_pose_at(&plan, &rig, (int64_t)f * 10007, &pose), CUB_OK);
+        for (int j = 0; j < bear.joint_count; j++) {
+            const int32_t c[4] = {pose.rot[j].w, pose.rot[j].x, pose.rot[j].y, pose.rot[j].z};
+            for (int i = 0; i < 4; i++)
+                for (int b = 0; b < 32; b += 8)
+                    hash = (hash ^ (uint8_t)((uint32_t)c[i] >> b)) * 0x100000001b3u;
+        }
+    }
+    print_message("groove: pose hash 0x%016llx\n", (unsigned long long)hash);
+    assert_true(hash == POSE_HASH);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -312,6 +350,7 @@ int main(void)
         cmocka_unit_test(test_timing_curves),
         cmocka_unit_test(test_turns_return_rotate_alternate),
         cmocka_unit_test(test_pose_reaches_keys_and_keeps_feet),
+        cmocka_unit_test(test_poses_are_bit_identical_across_cpus),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
