@@ -150,7 +150,7 @@ int cub_cmd_groove(int argc, char **argv)
                "each note's right-wrist key (mm). Tracks count from 0 in file order.\n"
                "--out writes the bear dancing the whole song (F frames a second, default\n"
                "60) and reads it back; --png draws the wrist's path and timing curves\n"
-               "against the notes (the first 8 seconds).\n",
+               "against the notes (8 s from the melody's start).\n",
                usage);
         return 0;
     }

@@ -9,7 +9,9 @@
 
 #define W 1000
 #define H 760
-#define SPAN_US 8000000 /* the first 8 seconds */
+#define SPAN_US 8000000 /* 8 seconds from the melody's first note */
+
+static int64_t start_us; /* the melody's first note */
 #define STEP_US 5000
 
 static const uint8_t INK[3] = {30, 30, 30}, GREY[3] = {200, 200, 200}, RED[3] = {210, 40, 40},
@@ -39,7 +41,7 @@ static void line(cub_png_canvas *c, const box *b, const double d[4], const uint8
 static int last_note(const cub_groove_plan *p)
 {
     int i = 0;
-    while (i + 1 < p->n && p->notes[i + 1].start_us <= SPAN_US)
+    while (i + 1 < p->n && p->notes[i + 1].start_us <= start_us + SPAN_US)
         i++;
     return i;
 }
@@ -49,7 +51,7 @@ static void draw_path(cub_png_canvas *c, const cub_groove_plan *p)
 {
     box b = {40, 30, 600, 300, 1e9, -1e9, 1e9, -1e9};
     int last = last_note(p);
-    for (int64_t t = 0; t <= p->notes[last].start_us; t += STEP_US) {
+    for (int64_t t = start_us; t <= p->notes[last].start_us; t += STEP_US) {
         cub_groove_key k = cub_groove_wrist_at(p, t);
         double x = k.x_mm / 65536.0, y = k.y_mm / 65536.0;
         b.x0 = x < b.x0 ? x : b.x0, b.x1 = x > b.x1 ? x : b.x1;
@@ -57,8 +59,8 @@ static void draw_path(cub_png_canvas *c, const cub_groove_plan *p)
     }
     b.x0 -= 20, b.x1 += 20, b.y0 -= 20, b.y1 += 20;
     cub_png_text(c, 40, 8, 2, "WRIST PATH (KEY SPACE, MM)", INK);
-    cub_groove_key prev = cub_groove_wrist_at(p, 0);
-    for (int64_t t = STEP_US; t <= p->notes[last].start_us; t += STEP_US) {
+    cub_groove_key prev = cub_groove_wrist_at(p, start_us);
+    for (int64_t t = start_us + STEP_US; t <= p->notes[last].start_us; t += STEP_US) {
         cub_groove_key k = cub_groove_wrist_at(p, t);
         const double d[4] = {prev.x_mm / 65536.0, prev.y_mm / 65536.0, k.x_mm / 65536.0,
                              k.y_mm / 65536.0};
@@ -76,13 +78,15 @@ static void draw_path(cub_png_canvas *c, const cub_groove_plan *p)
 static void draw_time(cub_png_canvas *c, const groove_song *s)
 {
     const cub_groove_plan *p = &s->plan;
-    box notes = {40, 380, 920, 110, 0, SPAN_US, 30, 100};
-    box curve = {40, 510, 920, 100, 0, SPAN_US, 0, 1};
-    box speed = {40, 630, 920, 100, 0, SPAN_US, 0, 1500};
+    double end = (double)(start_us + SPAN_US);
+    box notes = {40, 380, 920, 110, (double)start_us, end, 30, 100};
+    box curve = {40, 510, 920, 100, (double)start_us, end, 0, 1};
+    box speed = {40, 630, 920, 100, (double)start_us, end, 0, 1500};
     cub_png_text(c, 40, 356, 2, "NOTES (BEATS RED), METER BEATS, TIMING CURVES, WRIST SPEED", INK);
     int nb = 0;
     int64_t *beats = groove_beats_us(&s->midi.song, &nb);
-    for (int i = 0; beats && i < nb && beats[i] <= SPAN_US; i++) {
+    for (int i = 0; beats && i < nb && beats[i] <= start_us + SPAN_US; i++) {
+        if (beats[i] < start_us) continue;
         const double xy[4] = {px(&notes, beats[i]), 380, px(&notes, beats[i]), 730};
         cub_png_line(c, xy, 0, GREY);
     }
@@ -105,9 +109,9 @@ static void draw_time(cub_png_canvas *c, const groove_song *s)
             line(c, &curve, d, kind == CUB_GROOVE_ACCENT ? RED : GREEN);
         }
     }
-    cub_groove_key prev = cub_groove_wrist_at(p, 0);
+    cub_groove_key prev = cub_groove_wrist_at(p, start_us);
     double prev_v = 0;
-    for (int64_t t = STEP_US; t <= SPAN_US; t += STEP_US) {
+    for (int64_t t = start_us + STEP_US; t <= start_us + SPAN_US; t += STEP_US) {
         cub_groove_key k = cub_groove_wrist_at(p, t);
         double dx = (k.x_mm - prev.x_mm) / 65536.0, dy = (k.y_mm - prev.y_mm) / 65536.0;
         double v = sqrt(dx * dx + dy * dy) / (STEP_US / 1e6);
@@ -123,6 +127,7 @@ int groove_png(const groove_song *s, const char *path)
     if (!c.px) return 1;
     for (size_t i = 0; i < (size_t)W * H; i++)
         c.px[4 * i] = c.px[4 * i + 1] = c.px[4 * i + 2] = c.px[4 * i + 3] = 255;
+    start_us = s->plan.notes[0].start_us;
     draw_path(&c, &s->plan);
     draw_time(&c, s);
     cub_err e = cub_png_write(path, c.px, W, H);

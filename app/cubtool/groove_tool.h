@@ -40,7 +40,7 @@ int groove_song_clip(const groove_song *s, const cub_groove_rig *rig, int fps, c
  * malloc'ed array (free it) and its length in *count; NULL when out of memory. */
 int64_t *groove_beats_us(const cub_groove_song *song, int *count);
 
-/* The first 8 seconds as a PNG: the wrist's path in key space (beat keys
+/* 8 seconds from the melody's first note as a PNG: the wrist's path in key space (beat keys
  * red), and against time the notes, the meter's beats, each path's timing
  * curve and the wrist's speed. 0 or 1 with the problem on stderr. */
 int groove_png(const groove_song *s, const char *path);
