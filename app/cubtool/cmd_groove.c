@@ -1,22 +1,25 @@
 /* cubtool groove — seed 001 on a MIDI file (cub/groove.h): the melody's
- * notes, their segmentation by the seed's DP and what the DP cost, and with
- * --keys every note's right-wrist key. The motion itself (BVH, PNG) is the
- * next slice (docs/groove.md). */
+ * notes, their segmentation by the seed's DP and what the DP cost, with
+ * --keys every note's right-wrist key; with --out the bear dancing it as
+ * a BVH (read back by our own reader), with --png the wrist's path and
+ * timing curves against the notes. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "commands.h"
-#include "cub/music.h"
+#include "cub/io.h"
+#include "groove_tool.h"
+#include "tool_util.h"
 
 static const char usage[] =
-    "usage: cubtool groove SONG.mid [--melody N] [--rhythm M] [--set a|b] [--window W] [--keys]\n";
+    "usage: cubtool groove SONG.mid [--melody N] [--rhythm M] [--set a|b] [--window W] [--keys]\n"
+    "                      [--out CLIP.bvh] [--fps F] [--png PATH.png]\n";
 
 typedef struct groove_opts {
-    const char *path;
-    int melody, rhythm, window, keys;
-    char set;
+    groove_args a;
+    int keys, fps;
+    const char *out, *png;
 } groove_opts;
 
 static int parse_int(const char *s, int lo, int hi, int *out)
@@ -30,22 +33,28 @@ static int parse_int(const char *s, int lo, int hi, int *out)
 
 static int parse(int argc, char **argv, groove_opts *o)
 {
-    *o = (groove_opts){NULL, -1, -1, 0, 0, 'a'};
+    *o = (groove_opts){{NULL, -1, -1, 0, 'a'}, 0, 60, NULL, NULL};
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         int ok = 1;
         if (!strcmp(a, "--keys"))
             o->keys = 1;
         else if (!strcmp(a, "--melody") && v)
-            ok = parse_int(v, 0, 65535, &o->melody), i++;
+            ok = parse_int(v, 0, 65535, &o->a.melody), i++;
         else if (!strcmp(a, "--rhythm") && v)
-            ok = parse_int(v, 0, 65535, &o->rhythm), i++;
+            ok = parse_int(v, 0, 65535, &o->a.rhythm), i++;
         else if (!strcmp(a, "--window") && v)
-            ok = parse_int(v, 2, CUB_GROOVE_WINDOW_MAX, &o->window), i++;
+            ok = parse_int(v, 2, CUB_GROOVE_WINDOW_MAX, &o->a.window), i++;
+        else if (!strcmp(a, "--fps") && v)
+            ok = parse_int(v, 1, 240, &o->fps), i++;
         else if (!strcmp(a, "--set") && v)
-            ok = (!strcmp(v, "a") || !strcmp(v, "b")) && (o->set = v[0]), i++;
-        else if (a[0] != '-' && !o->path)
-            o->path = a;
+            ok = (!strcmp(v, "a") || !strcmp(v, "b")) && (o->a.set = v[0]), i++;
+        else if (!strcmp(a, "--out") && v)
+            o->out = v, i++;
+        else if (!strcmp(a, "--png") && v)
+            o->png = v, i++;
+        else if (a[0] != '-' && !o->a.path)
+            o->a.path = a;
         else
             ok = 0;
         if (!ok) {
@@ -54,8 +63,8 @@ static int parse(int argc, char **argv, groove_opts *o)
             return 0;
         }
     }
-    if (!o->path) fprintf(stderr, "%s", usage);
-    return o->path != NULL;
+    if (!o->a.path) fprintf(stderr, "%s", usage);
+    return o->a.path != NULL;
 }
 
 static const char *rhythm_name(const cub_groove_pick *p)
@@ -83,7 +92,7 @@ static void print_segments(const cub_groove_note *n, const cub_groove_segment *s
                            const cub_groove_cost *c, double ms)
 {
     printf("segments %d mean_notes %.2f\n", k, k ? (double)s[k - 1].end / k : 0.0);
-    printf("dp windows %d splits %lld mean_f %.4f time_ms %.3f\n", c->windows, (long long)c->splits,
+    printf("dp windows %d splits %lld mean_f %.4f plan_ms %.3f\n", c->windows, (long long)c->splits,
            c->mean_f / 65536.0, ms);
     for (int i = 0; i < k; i++) {
         long long len = 0;
@@ -103,42 +112,30 @@ static void print_keys(const cub_groove_note *n, const cub_groove_key *keys, int
                keys[i].y_mm / 65536.0);
 }
 
-static double now_ms(void)
+/* The bear dancing the whole song, as BVH, read back by our own reader. */
+static int write_bvh(const groove_song *s, const groove_opts *o)
 {
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec * 1e3 + (double)t.tv_nsec / 1e6;
-}
-
-static int fail(const char *path, const char *what, cub_err e)
-{
-    fprintf(stderr, "cubtool groove: %s: %s (%s)\n", path, what, cub_err_str(e));
-    return 1;
-}
-
-/* Notes, segments, keys of one song; 0 or the exit code. */
-static int run(const groove_opts *o, const cub_groove_song *song, cub_groove_note *notes,
-               cub_groove_segment *segs, cub_groove_key *keys, cub_groove_work *work)
-{
-    cub_groove_pick pick;
-    cub_groove_params p;
-    cub_groove_cost cost;
-    int n = 0, k = 0;
-    cub_err e = cub_groove_pick_tracks(song, o->melody, o->rhythm, &pick);
-    if (e == CUB_ERR_RANGE) return fail(o->path, "no such track with notes", e);
-    if (e == CUB_ERR_UNSUPPORTED) return fail(o->path, "more than 256 tracks", e);
-    if (e) return fail(o->path, "no track with pitched notes", e);
-    if ((e = cub_groove_notes(song, &pick, notes, 2 * song->note_count + 1, &n)))
-        return fail(o->path, "the melody's notes", e);
-    cub_groove_params_set(o->set, &p);
-    double t0 = now_ms();
-    e = cub_groove_segment_notes(&p, notes, n, o->window, work, segs, n, &k, &cost);
-    double ms = now_ms() - t0;
-    if (e) return fail(o->path, "segmentation", e);
-    if ((e = cub_groove_keys(&p, notes, n, segs, k, keys))) return fail(o->path, "keys", e);
-    print_notes(song, &pick, notes, n);
-    print_segments(notes, segs, k, &cost, ms);
-    if (o->keys) print_keys(notes, keys, n);
+    static cub_skeleton bear; /* static: large */
+    cub_groove_rig rig;
+    cub_clip clip;
+    void *mem = NULL;
+    if (groove_bear(&bear, "groove")) return 1;
+    cub_groove_rig_bind(&bear, &rig);
+    int rc = groove_song_clip(s, &rig, o->fps, &clip, &mem);
+    if (rc) fprintf(stderr, "cubtool groove: %s: the clip (out of memory)\n", o->a.path);
+    if (!rc) rc = cub_tool_save_clip_bvh(&bear, &clip, o->out) ? 1 : 0;
+    free(mem);
+    if (rc) return rc;
+    static cub_io_motion back; /* static: large */
+    cub_diag d = {0};
+    char msg[600];
+    if (cub_io_load_bvh(o->out, &(cub_io_desc){10.0}, &back, &d)) {
+        fprintf(stderr, "cubtool groove: reading back %s\n", cub_diag_str(&d, msg, sizeof msg));
+        return 1;
+    }
+    printf("bvh %s frames %d joints %d fps %d read back\n", o->out, back.clip.frame_count,
+           back.skel.joint_count, o->fps);
+    cub_io_motion_free(&back);
     return 0;
 }
 
@@ -150,27 +147,25 @@ int cub_cmd_groove(int argc, char **argv)
                "track unless --melody; isBeat from channel-10 drums, else the time signature,\n"
                "unless --rhythm), its segments by the seed's DP (parameter set a or b;\n"
                "DP windows of W notes, default 48) with the DP's cost, and with --keys\n"
-               "each note's right-wrist key (mm). Tracks count from 0 in file order.\n",
+               "each note's right-wrist key (mm). Tracks count from 0 in file order.\n"
+               "--out writes the bear dancing the whole song (F frames a second, default\n"
+               "60) and reads it back; --png draws the wrist's path and timing curves\n"
+               "against the notes (8 s from the melody's start).\n",
                usage);
         return 0;
     }
     groove_opts o;
     if (!parse(argc, argv, &o)) return 2;
-    cub_midi_groove g;
-    cub_diag d = {0};
-    char msg[600];
-    if (cub_midi_groove_load(o.path, &g, &d)) {
-        fprintf(stderr, "cubtool groove: %s\n", cub_diag_str(&d, msg, sizeof msg));
-        return 1;
+    groove_song s;
+    int rc = groove_song_load(&o.a, "groove", &s);
+    if (!rc) {
+        const cub_groove_plan *pl = &s.plan;
+        print_notes(&s.midi.song, &s.pick, pl->notes, pl->n);
+        print_segments(pl->notes, s.mem.segs, s.seg_count, &s.cost, s.plan_ms);
+        if (o.keys) print_keys(pl->notes, pl->keys, pl->n);
+        if (o.out) rc = write_bvh(&s, &o);
+        if (!rc && o.png) rc = groove_png(&s, o.png);
     }
-    size_t cap = 2 * (size_t)g.song.note_count + 1;
-    cub_groove_note *notes = calloc(cap, sizeof(*notes));
-    cub_groove_segment *segs = calloc(cap, sizeof(*segs));
-    cub_groove_key *keys = calloc(cap, sizeof(*keys));
-    cub_groove_work *work = malloc(sizeof(*work));
-    int rc = notes && segs && keys && work ? run(&o, &g.song, notes, segs, keys, work)
-                                           : fail(o.path, "out of memory", CUB_ERR_NOMEM);
-    free(notes), free(segs), free(keys), free(work);
-    cub_midi_groove_free(&g);
+    groove_song_free(&s);
     return rc;
 }

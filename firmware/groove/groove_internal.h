@@ -10,5 +10,11 @@ cub_groove_meter groove_meter_at(const cub_groove_song *song, int32_t tick, int 
 /* One beat of meter m in ticks (a quarter in 4/4, an eighth in 6/8). */
 int32_t groove_beat_ticks(const cub_groove_song *song, cub_groove_meter m);
 bool groove_is_drum(const cub_groove_midi_note *n);
+/* The last note starting at or before t_us, -1 before the first. */
+int groove_note_at(const cub_groove_note *notes, int n, int64_t t_us);
+/* Where note i ends: the next note's start, the last one's end_us. */
+int64_t groove_note_end(const cub_groove_note *notes, int n, int64_t end_us, int i);
+/* tau in [0, 1] of t_us over [t0, t1) (1 for an empty span). */
+cub_q16 groove_tau(int64_t t_us, int64_t t0, int64_t t1);
 
 #endif

@@ -4,6 +4,7 @@
 
 #define DEFAULT_X_SPAN_MM CUB_Q16_INT(400)
 #define DEFAULT_Y_REACH_MM CUB_Q16_INT(250)
+#define DEFAULT_PACE_MM_S CUB_Q16_INT(1200)
 
 cub_err cub_groove_params_set(char set, cub_groove_params *out)
 {
@@ -96,4 +97,18 @@ cub_err cub_groove_keys(const cub_groove_params *p, const cub_groove_note *notes
         y = keys[segs[k].end - 1].y_mm;
     }
     return CUB_OK;
+}
+
+void cub_groove_keys_pace(const cub_groove_params *p, const cub_groove_note *notes, int n,
+                          cub_groove_key *keys)
+{
+    int64_t pace = p->pace_mm_s > 0 ? p->pace_mm_s : DEFAULT_PACE_MM_S;
+    for (int i = 1; i < n; i++) {
+        int64_t t = notes[i].start_us - notes[i - 1].start_us;
+        int64_t dx = keys[i].x_mm - keys[i - 1].x_mm, dy = keys[i].y_mm - keys[i - 1].y_mm;
+        int64_t d = cub_fx_isqrt64((uint64_t)(dx * dx + dy * dy)), most = pace * t / 1000000;
+        if (t <= 0 || d <= most) continue;
+        keys[i].x_mm = (cub_q16)(keys[i - 1].x_mm + dx * most / d);
+        keys[i].y_mm = (cub_q16)(keys[i - 1].y_mm + dy * most / d);
+    }
 }

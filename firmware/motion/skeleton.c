@@ -100,3 +100,28 @@ cub_err cub_motion_forward(const cub_skeleton *skel, const cub_pose *pose, cub_v
     }
     return CUB_OK;
 }
+
+cub_err cub_motion_joint_world(const cub_skeleton *skel, const cub_pose *pose, int joint,
+                               cub_vec3 *world_mm, cub_quat *world_rot)
+{
+    if (!skel || !pose || !world_mm || !world_rot || pose->joint_count != skel->joint_count)
+        return CUB_ERR_ARG;
+    if (joint < 0 || joint >= skel->joint_count) return CUB_ERR_RANGE;
+    int chain[CUB_MOTION_MAX_JOINTS], len = 0;
+    for (int j = joint; j > 0; j = skel->joints[j].parent) {
+        if (skel->joints[j].parent < 0 || skel->joints[j].parent >= j) return CUB_ERR_FORMAT;
+        chain[len++] = j;
+    }
+    /* The same operations in the same order as cub_motion_forward, so the
+     * result is bit-identical to its entry for this joint. */
+    cub_vec3 pos = pose->root_mm;
+    cub_quat rot = pose->rot[0];
+    while (len-- > 0) {
+        int i = chain[len];
+        cub_vec3 local = pose->has_trans ? pose->trans_mm[i] : skel->joints[i].offset_mm;
+        pos = cub_fx_vec3_add(pos, cub_fx_quat_rotate(rot, local));
+        rot = cub_fx_quat_mul(rot, pose->rot[i]);
+    }
+    *world_mm = pos, *world_rot = rot;
+    return CUB_OK;
+}

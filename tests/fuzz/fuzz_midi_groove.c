@@ -1,9 +1,10 @@
 /* libFuzzer target: a MIDI file through seed 001's reader and pipeline
  * (app/music/midi_groove.c, then firmware/groove: track choice, notes, the
- * DP in small windows, wrist keys). Checks what the callers rely on: a
- * refusal says why; accepted notes are sorted and end after they start;
- * the melody fits its bound; the segments tile the notes. Seeds: the box's
- * songs (assets/songs/). */
+ * DP in small windows, wrist keys, then the whole plan and the bear's pose
+ * at 16 times of the song). Checks what the callers rely on: a refusal
+ * says why; accepted notes are sorted and end after they start; the melody
+ * fits its bound; the segments tile the notes; every pose is made. Seeds:
+ * the box's songs (assets/songs/). */
 #include <stdint.h>
 #include <stdlib.h>
 
@@ -24,7 +25,50 @@ static void check_song(const cub_groove_song *s)
         if (s->tempos[i].tick < s->tempos[i - 1].tick) abort();
 }
 
-/* 0: no melody in it; 1: all the way to keys. */
+static cub_skeleton bear;
+static cub_pose pose;
+
+/* The joints the groove's rig needs, as the bear has them. */
+static void build_bear(void)
+{
+    static const struct {
+        const char *name;
+        int parent, x, y;
+    } j[] = {{"Hips", -1, 0, 285},      {"Spine", 0, 0, 115},      {"Chest", 1, 0, 125},
+             {"Head", 2, 0, 140},       {"RightArm", 2, -125, 55}, {"RightForeArm", 4, -150, 0},
+             {"RightHand", 5, -135, 0}, {"LeftArm", 2, 125, 55},   {"LeftForeArm", 7, 150, 0},
+             {"LeftHand", 8, 135, 0}};
+    int at;
+    for (size_t i = 0; i < sizeof j / sizeof j[0]; i++)
+        cub_motion_skeleton_add(&bear, j[i].name, j[i].parent,
+                                (cub_vec3){CUB_Q16_INT(j[i].x), CUB_Q16_INT(j[i].y), 0}, &at);
+}
+
+/* The plan and 16 poses over the song (the store as the app sizes it). */
+static void motion(const cub_groove_song *s, const cub_groove_pick *pick,
+                   const cub_groove_params *p)
+{
+    int cap = 2 * s->note_count + 1;
+    cub_groove_store m = {cap,
+                          calloc((size_t)cap, sizeof(cub_groove_note)),
+                          calloc((size_t)cap, sizeof(cub_groove_segment)),
+                          calloc((size_t)cap, sizeof(cub_groove_key)),
+                          calloc((size_t)cap, sizeof(cub_groove_handles)),
+                          calloc((size_t)cap, sizeof(cub_groove_turn)),
+                          calloc((size_t)cap, sizeof(cub_groove_turn)),
+                          &work};
+    if (!m.notes || !m.segs || !m.keys || !m.handles || !m.waist || !m.head) abort();
+    cub_groove_plan plan;
+    cub_groove_rig rig;
+    if (bear.joint_count == 0) build_bear();
+    if (cub_groove_plan_build(s, pick, p, 12, &m, &plan, NULL, NULL)) abort();
+    if (cub_groove_rig_bind(&bear, &rig)) abort();
+    for (int i = 0; i <= 16; i++)
+        if (cub_groove_pose_at(&plan, &rig, plan.end_us / 16 * i, &pose)) abort();
+    free(m.notes), free(m.segs), free(m.keys), free(m.handles), free(m.waist), free(m.head);
+}
+
+/* 0: no melody in it; 1: all the way to poses. */
 static int groove(const cub_groove_song *s)
 {
     cub_groove_pick pick;
@@ -42,6 +86,7 @@ static int groove(const cub_groove_song *s)
         if (segs[i].first != at || segs[i].end <= at) abort();
     if (cub_groove_keys(&p, notes, n, segs, k, keys)) abort();
     free(notes), free(segs), free(keys);
+    motion(s, &pick, &p);
     return 1;
 }
 

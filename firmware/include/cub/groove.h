@@ -4,9 +4,10 @@
  * the seed's notes [pitch, length in beats, intensity, isBeat] with times in
  * microseconds through the tempo map; its segmentation by the seed's dynamic
  * programme; one right-wrist key per note (mm, relative to where the wrist
- * starts). Fixed point (Q16.16), no allocation: the caller owns every array.
- * Next (docs/groove.md): the Bézier paths, timing curves, left hand, waist
- * and head, arm IK. */
+ * starts); the Bézier paths between keys and their timing curves, the
+ * waist's and head's turns, the left hand; the bear's pose at any time of
+ * the song (arms by cub/motion.h's two-bone IK). Fixed point (Q16.16), no
+ * allocation: the caller owns every array. */
 #ifndef CUB_GROOVE_H
 #define CUB_GROOVE_H
 
@@ -15,6 +16,7 @@
 
 #include "cub/err.h"
 #include "cub/fx.h"
+#include "cub/motion.h"
 
 /* ---- the song as read ---------------------------------------------------- */
 
@@ -107,6 +109,7 @@ typedef struct cub_groove_params {
     cub_q16 l1_mm, l2_mm; /* beat-key handles: G1 above, G2 back */
     cub_q16 x_span_mm;    /* the usable x span of the wrist (0: 400) */
     cub_q16 y_reach_mm;   /* |y| beyond this is scaled in (0: 250) */
+    cub_q16 pace_mm_s;    /* the fastest a key may follow the last (0: 1200) */
 } cub_groove_params;
 
 /* Set 'a' or 'b' of the seed's table 1 (reflectance from percent).
@@ -162,5 +165,142 @@ typedef struct cub_groove_key {
  * in when beyond y_reach; a rest keeps the previous y; note 0 stays at 0. */
 cub_err cub_groove_keys(const cub_groove_params *p, const cub_groove_note *notes, int n,
                         const cub_groove_segment *segs, int seg_count, cub_groove_key *keys);
+
+/* Too fast to follow (ours): a key farther from the previous one than
+ * pace_mm_s x the time between their notes is pulled toward it along the
+ * same line, so no path asks the arm for more than the clip library's own
+ * speeds (docs/groove.md). Notes without times (equal starts) are left. */
+void cub_groove_keys_pace(const cub_groove_params *p, const cub_groove_note *notes, int n,
+                          cub_groove_key *keys);
+
+/* ---- paths between keys (cubic Bézier) and their timing ----------------------- */
+
+/* The wrist's handles at one key: in_mm = the seed's P2 (the path into the
+ * key leaves toward it), out_mm = P1 (the path out of the key starts toward
+ * it). The path from key i to key i+1 is the cubic Bézier key i,
+ * out[i], in[i+1], key i+1. */
+typedef struct cub_groove_handles {
+    cub_groove_key in_mm, out_mm;
+} cub_groove_handles;
+
+/* Handles for every key. Non-beat key: in and out on the line through the
+ * key along previous -> next key, smooth apart, shared in proportion to the
+ * times of the paths into and out of the key (the wrist's speed is then
+ * continuous through it; the first key uses the next, the last the
+ * previous). Beat key: in = G2 +
+ * (intensity/120)(G1 - G2), G1 = L1 x the note's length (at most 2 beats)
+ * straight above the key, G2 = L2 horizontally toward the previous key;
+ * out = lerp(key, in mirrored about the key's vertical, reflectance).
+ * Then (ours) each handle is kept within pace_mm_s x its path's time / 3
+ * of its key, the most a Bézier end may run at that pace. */
+cub_err cub_groove_handles_make(const cub_groove_params *p, const cub_groove_note *notes, int n,
+                                const cub_groove_key *keys, cub_groove_handles *out);
+
+/* The point at u (0..1) of the cubic Bézier p0, p1, p2, p3. */
+cub_groove_key cub_groove_bezier(const cub_groove_key pt[4], cub_q16 u);
+
+typedef enum cub_groove_timing {
+    CUB_GROOVE_UNIFORM, /* non-beat after non-beat: u = tau */
+    CUB_GROOVE_EASE_IN, /* non-beat after a beat: starts at rest, speeds up */
+    CUB_GROOVE_ACCENT   /* a beat note: fast start dropping quickly, gentle,
+                           speeding up again, stopping at once at the end
+                           (at rest on the next key) */
+} cub_groove_timing;
+
+/* The timing of the path during note i (from key i to key i+1). */
+cub_groove_timing cub_groove_timing_of(const cub_groove_note *notes, int i);
+
+/* The timing curve: the path parameter u (0..1) at time fraction tau
+ * (0..1), monotone, u(0) = 0, u(1) = 1 (piecewise cubic Bézier in tau). */
+cub_q16 cub_groove_timing_at(cub_groove_timing kind, cub_q16 tau);
+
+/* ---- waist, head, left hand (SEEDS.md § 001, fig. 10) ----------------------- */
+
+/* One turn of the waist (about the vertical) or of the head (a nod):
+ * back to rest over [start_us, turn_us) (ease in and out, from from_deg),
+ * then the swing to to_deg over [turn_us, end_us) (fast start, settling).
+ * When start_us == turn_us (no note between two turns) the swing runs
+ * from from_deg. Before start_us the previous turn's to_deg holds. */
+typedef struct cub_groove_turn {
+    int64_t start_us, turn_us, end_us;
+    cub_q16 from_deg, to_deg;
+} cub_groove_turn;
+
+/* Fig. 10: a beat note of at least one beat turns to (intensity / 120) x
+ * amount_deg x a direction alternating +-1; the notes before it since the
+ * last turn (the seed's accumulate) are the time of the way back to rest.
+ * end_us is the song's end (the last note's end). At most n turns. */
+cub_err cub_groove_turns(const cub_groove_note *notes, int n, int64_t end_us, cub_q16 amount_deg,
+                         cub_groove_turn *out, int *count);
+/* The angle at t_us (degrees, Q16). */
+cub_q16 cub_groove_turn_at(const cub_groove_turn *turns, int count, int64_t t_us);
+
+/* ---- the plan of a song and the bear's pose ----------------------------------- */
+
+/* Everything the motion needs, computed once per song (two passes: all
+ * keys first, then the paths, as the seed's fig. 9). Arrays caller-owned. */
+typedef struct cub_groove_plan {
+    cub_groove_params params;
+    const cub_groove_note *notes;
+    int n;
+    const cub_groove_key *keys;
+    const cub_groove_handles *handles;
+    const cub_groove_turn *waist, *head;
+    int waist_count, head_count;
+    int64_t end_us; /* the song's end: the last note holds until it */
+} cub_groove_plan;
+
+/* Caller-owned storage for cub_groove_plan_build: every array holds cap
+ * entries (cap >= 2 x the song's MIDI notes + 1 is always enough). */
+typedef struct cub_groove_store {
+    int cap;
+    cub_groove_note *notes;
+    cub_groove_segment *segs;
+    cub_groove_key *keys;
+    cub_groove_handles *handles;
+    cub_groove_turn *waist, *head;
+    cub_groove_work *work;
+} cub_groove_store;
+
+/* Song -> plan: notes, segments (DP windows of window notes, 0: 48),
+ * keys, handles, turns. seg_count and cost may be NULL. */
+cub_err cub_groove_plan_build(const cub_groove_song *song, const cub_groove_pick *pick,
+                              const cub_groove_params *p, int window, cub_groove_store *mem,
+                              cub_groove_plan *out, int *seg_count, cub_groove_cost *cost);
+
+/* The right wrist in key space at t_us (mm): on the path of the note
+ * sounding, along its timing curve; key 0 before the first note. */
+cub_groove_key cub_groove_wrist_at(const cub_groove_plan *plan, int64_t t_us);
+
+/* The left hand's offset from its home (mm; x outward, y up) at t_us: a
+ * note longer than a beat reaches out and back; a note shorter than a
+ * beat followed by a rest (staccato, ours) lifts during the note and drops
+ * during the rest, accelerating, stopping at once at the next note. */
+cub_groove_key cub_groove_left_at(const cub_groove_plan *plan, int64_t t_us);
+
+/* Where the groove puts the motion on a skeleton: joints found by the
+ * bear's names (Spine turns the waist, Head nods, RightArm / LeftArm head
+ * two-bone arms); key space mapped about each wrist's home in the Chest's
+ * frame, scaled by scale (the bear's arm is about 0.4 of a grown-up's). */
+typedef struct cub_groove_rig {
+    const cub_skeleton *skel;
+    int spine, chest, head, right_arm, left_arm;
+    cub_q16 scale;
+} cub_groove_rig;
+
+/* CUB_ERR_FORMAT naming no joint: the skeleton lacks one of the above. */
+cub_err cub_groove_rig_bind(const cub_skeleton *skel, cub_groove_rig *out);
+
+/* The bear's pose at t_us on the music clock: the rest pose with the
+ * root at the skeleton's rest height (legs untouched: the feet stay
+ * planted), the waist and head turned, both arms by analytic IK. */
+cub_err cub_groove_pose_at(const cub_groove_plan *plan, const cub_groove_rig *rig, int64_t t_us,
+                           cub_pose *out);
+
+/* Fill a caller-initialised clip (cub_motion_clip_init on rig->skel): frame
+ * f is the pose at t0_us + f x the clip's period. What the box calls for a
+ * time range of a song (its intro, free bars, the cheer). */
+cub_err cub_groove_clip_fill(const cub_groove_plan *plan, const cub_groove_rig *rig, int64_t t0_us,
+                             cub_clip *clip);
 
 #endif

@@ -77,6 +77,11 @@ void cub_motion_pose_rest(const cub_skeleton *skel, cub_pose *out);
 cub_err cub_motion_forward(const cub_skeleton *skel, const cub_pose *pose,
                            cub_vec3 *world_mm, cub_quat *world_rot);
 
+/* One joint's world position and rotation: what cub_motion_forward gives
+ * for it, bit for bit, walking only its ancestors. */
+cub_err cub_motion_joint_world(const cub_skeleton *skel, const cub_pose *pose, int joint,
+                               cub_vec3 *world_mm, cub_quat *world_rot);
+
 /* Blend two poses of the same skeleton: t = 0 gives a, 1 gives b. */
 cub_err cub_motion_pose_blend(const cub_pose *a, const cub_pose *b, cub_q16 t,
                               cub_pose *out);
@@ -114,6 +119,45 @@ typedef enum cub_motion_wrap {
  * (nlerp for rotations, lerp for translations). */
 cub_err cub_motion_sample(const cub_clip *clip, int64_t t_us, cub_motion_wrap wrap,
                           cub_pose *out);
+
+/* ---- two-bone analytic IK (arms, legs) ----------------------------------- */
+
+/* How far a two-bone chain may fold and open: the inner angle at the
+ * middle joint (pi: straight) stays in [min_rad, max_rad]. Both 0: the
+ * defaults, 20 and 175 degrees (a straight elbow flips its bend). */
+typedef struct cub_ik_limits {
+    cub_q16 min_rad, max_rad;
+} cub_ik_limits;
+
+/* The solved chain, world positions (Q16.16 mm). */
+typedef struct cub_ik_solution {
+    cub_vec3 mid_mm, end_mm;
+    int clamped; /* 1: the target was out of reach (or too near): end_mm is
+                    the nearest point the limits allow, on the target's ray */
+} cub_ik_solution;
+
+/* Geometry only: a chain rooted at root_mm with bones upper_mm and
+ * lower_mm reaching for target_mm, the middle joint bent toward pole_mm
+ * (a point: the middle joint lies in the plane of root, target and pole,
+ * on the pole's side). limits may be NULL. CUB_ERR_ARG for a bone <= 0. */
+cub_err cub_motion_ik_solve(cub_vec3 root_mm, cub_q16 upper_mm, cub_q16 lower_mm,
+                            cub_vec3 target_mm, cub_vec3 pole_mm, const cub_ik_limits *limits,
+                            cub_ik_solution *out);
+
+/* The same on a skeleton: upper is the chain's first joint (a shoulder),
+ * its first child the middle (elbow), the middle's first child the end
+ * (wrist). Rewrites pose->rot of upper and middle with the smallest turn
+ * from their current rotations that puts the middle and end joints where
+ * the solution says (the end joint's own rotation is kept). out may be
+ * NULL. CUB_ERR_ARG / CUB_ERR_RANGE for a bad chain. */
+cub_err cub_motion_ik_apply(const cub_skeleton *skel, cub_pose *pose, int upper,
+                            cub_vec3 target_mm, cub_vec3 pole_mm, const cub_ik_limits *limits,
+                            cub_ik_solution *out);
+
+/* The smallest rotation taking direction from to direction to (any
+ * lengths; a zero vector gives identity; opposite directions turn pi
+ * about an axis perpendicular to from). */
+cub_quat cub_motion_quat_between(cub_vec3 from, cub_vec3 to);
 
 /* ---- float views, for rendering only ----------------------------------- */
 

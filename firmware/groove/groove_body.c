@@ -1,0 +1,116 @@
+/* groove — the waist's and head's turns (SEEDS.md § 001, fig. 10) and the
+ * left hand's reach and lift; the note sounding at a time. */
+#include "groove_internal.h"
+
+int groove_note_at(const cub_groove_note *notes, int n, int64_t t_us)
+{
+    int lo = 0, hi = n; /* first note starting after t_us, by bisection */
+    while (lo < hi) {
+        int mid = lo + (hi - lo) / 2;
+        if (notes[mid].start_us <= t_us)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo - 1;
+}
+
+int64_t groove_note_end(const cub_groove_note *notes, int n, int64_t end_us, int i)
+{
+    if (i + 1 < n) return notes[i + 1].start_us;
+    return end_us > notes[i].start_us ? end_us : notes[i].start_us;
+}
+
+cub_q16 groove_tau(int64_t t_us, int64_t t0, int64_t t1)
+{
+    if (t1 <= t0 || t_us >= t1) return CUB_Q16_ONE;
+    if (t_us <= t0) return 0;
+    return (cub_q16)((t_us - t0) * CUB_Q16_ONE / (t1 - t0));
+}
+
+/* Fig. 11 (back to rest): ease in and out; fig. 12 (the swing): a fast
+ * start settling into the end. Both cubic Bézier in value (ours: the
+ * figures' shapes, not their numbers, survive in the text). */
+static cub_q16 ease_in_out(cub_q16 u)
+{
+    int64_t t = u;
+    return (cub_q16)((3 * CUB_Q16_ONE - 2 * t) * (t * t >> 16) >> 16);
+}
+
+static cub_q16 swing_curve(cub_q16 u)
+{
+    int64_t s = CUB_Q16_ONE - u; /* 1 - (1 - u)^3 */
+    return (cub_q16)(CUB_Q16_ONE - ((s * s >> 16) * s >> 16));
+}
+
+cub_err cub_groove_turns(const cub_groove_note *notes, int n, int64_t end_us, cub_q16 amount_deg,
+                         cub_groove_turn *out, int *count)
+{
+    if (!notes || !out || !count || n < 1) return CUB_ERR_ARG;
+    int k = 0, direct = 1;
+    cub_q16 current = 0;
+    int64_t since = notes[0].start_us; /* the seed's accumulate, as a time */
+    for (int i = 0; i < n; i++) {
+        if (!notes[i].is_beat || notes[i].length_beats < CUB_Q16_ONE) continue;
+        cub_q16 to = (cub_q16)((int64_t)amount_deg * notes[i].intensity / 120 * direct);
+        int64_t end = groove_note_end(notes, n, end_us, i);
+        out[k++] = (cub_groove_turn){since, notes[i].start_us, end, current, to};
+        current = to, since = end, direct = -direct;
+    }
+    *count = k;
+    return CUB_OK;
+}
+
+cub_q16 cub_groove_turn_at(const cub_groove_turn *turns, int count, int64_t t_us)
+{
+    int lo = 0, hi = count; /* the last turn starting at or before t_us */
+    while (lo < hi) {
+        int mid = lo + (hi - lo) / 2;
+        if (turns[mid].start_us <= t_us)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    if (lo == 0) return 0;
+    const cub_groove_turn *t = &turns[lo - 1];
+    if (t_us >= t->end_us) return t->to_deg;
+    if (t_us < t->turn_us) /* back to rest */
+        return cub_fx_lerp(t->from_deg, 0, ease_in_out(groove_tau(t_us, t->start_us, t->turn_us)));
+    cub_q16 from = t->start_us == t->turn_us ? t->from_deg : 0;
+    return cub_fx_lerp(from, t->to_deg, swing_curve(groove_tau(t_us, t->turn_us, t->end_us)));
+}
+
+#define REACH_OUT_MM CUB_Q16_INT(110) /* ours: a full reach, for 2 beats or more */
+#define REACH_UP_MM CUB_Q16_INT(40)
+#define LIFT_MM CUB_Q16_INT(60)
+
+static bool staccato(const cub_groove_note *notes, int n, int i)
+{
+    return notes[i].pitch != CUB_GROOVE_REST && notes[i].length_beats < CUB_Q16_ONE && i + 1 < n &&
+           notes[i + 1].pitch == CUB_GROOVE_REST;
+}
+
+/* Out and back over the note: eased up to the middle, eased down after. */
+static cub_groove_key reach(const cub_groove_note *note, cub_q16 tau)
+{
+    cub_q16 extra = cub_fx_clamp(note->length_beats - CUB_Q16_ONE, 0, CUB_Q16_ONE);
+    cub_q16 u = tau < CUB_Q16_HALF ? ease_in_out(2 * tau) : ease_in_out(2 * (CUB_Q16_ONE - tau));
+    cub_q16 amount = cub_fx_mul(u, extra);
+    return (cub_groove_key){cub_fx_mul(REACH_OUT_MM, amount), cub_fx_mul(REACH_UP_MM, amount)};
+}
+
+cub_groove_key cub_groove_left_at(const cub_groove_plan *plan, int64_t t_us)
+{
+    const cub_groove_note *notes = plan->notes;
+    int n = plan->n, i = groove_note_at(notes, n, t_us);
+    cub_groove_key none = {0, 0};
+    if (i < 0) return none;
+    cub_q16 tau = groove_tau(t_us, notes[i].start_us, groove_note_end(notes, n, plan->end_us, i));
+    if (notes[i].pitch != CUB_GROOVE_REST && notes[i].length_beats > CUB_Q16_ONE)
+        return reach(&notes[i], tau);
+    if (staccato(notes, n, i)) /* lift, slowing to the top */
+        return (cub_groove_key){0, cub_fx_mul(LIFT_MM, swing_curve(tau))};
+    if (i > 0 && staccato(notes, n, i - 1)) /* drop, accelerating, stop */
+        return (cub_groove_key){0, cub_fx_mul(LIFT_MM, CUB_Q16_ONE - cub_fx_mul(tau, tau))};
+    return none;
+}
