@@ -34,6 +34,7 @@ static const command commands[] = {
     {"join", cub_cmd_join, "join two clips through a searched transition, feet planted; --all: the table"},
     {"graph", cub_cmd_graph, "the motion graph by support points (feet, hands, knees, hip); --png"},
     {"evolve", cub_cmd_evolve, "cross two clips of different skeletons into a child (seed 004), as BVH"},
+    {"wings", cub_cmd_wings, "rebuild the winged bear (bird_flying's wings) through evolve"},
     {"ase-export", cub_cmd_ase_export, "a clip (BVH, ASF+AMC, ASE) as a 3ds Max ASCII export"},
 };
 
