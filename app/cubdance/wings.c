@@ -7,8 +7,11 @@
 
 #define WINGS_OPEN_S 0.4f /* unfolding (or folding) takes this long */
 #define WINGS_FPS 30.0
-#define FOLD_DOWN_DEG 120.0f /* the first bone from sideways to down the back */
-#define FOLD_BACK_DEG 165.0f /* a further bone doubled back on its parent */
+/* A folded chain's first bone points down the back: this much down, this
+ * much back (a direction, normalised). */
+#define FOLD_DOWN 0.5f
+#define FOLD_BACK 0.85f
+#define FOLD_DOUBLE_DEG 165.0f /* a further bone doubled back on its parent */
 
 static void qmul(const float a[4], const float b[4], float out[4])
 {
@@ -53,10 +56,21 @@ static void offset_of(const cub_skeleton *s, int j, float v[3])
     v[2] = s->joints[j].offset_mm.z / 65536.0f;
 }
 
-/* The folded rotation of optional joint j of ch: its bone (to its first
- * child) turned about the axis across it and the vertical (the first bone
- * of a chain, down the back) or about the vertical (a further one,
- * doubled back). */
+/* The shortest rotation taking unit vector a to unit vector b (not opposite). */
+static void qfromto(const float a[3], const float b[3], float q[4])
+{
+    float c[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+    float w = 1 + a[0] * b[0] + a[1] * b[1] + a[2] * b[2], n = w * w;
+    for (int k = 0; k < 3; k++)
+        n += c[k] * c[k];
+    n = 1.0f / sqrtf(n);
+    q[0] = c[0] * n, q[1] = c[1] * n, q[2] = c[2] * n, q[3] = w * n;
+}
+
+/* The folded rotation of optional joint j of ch: the first bone of a
+ * chain laid down the back (so unfolding swings it out from behind the
+ * body, never over the head), each further bone doubled back on the one
+ * before (about the vertical). */
 static void fold_of(const cub_character *ch, int j, float q[4])
 {
     const cub_skeleton *s = &ch->skel;
@@ -65,11 +79,16 @@ static void fold_of(const cub_character *ch, int j, float q[4])
         c++;
     float bone[3] = {1, 0, 0}, up[3] = {0, 1, 0};
     if (c < s->joint_count) offset_of(s, c, bone);
-    int first = !ch->optional[s->joints[j].parent];
+    float n = sqrtf(bone[0] * bone[0] + bone[1] * bone[1] + bone[2] * bone[2]);
+    for (int k = 0; k < 3; k++)
+        bone[k] = n > 0 ? bone[k] / n : k == 0;
     float side = bone[0] >= 0 ? 1.0f : -1.0f;
-    float across[3] = {0, 0, side}; /* bone x up, for a sideways bone */
-    if (first) qaxis(across, -FOLD_DOWN_DEG, q);
-    else qaxis(up, side * FOLD_BACK_DEG, q);
+    float back[3] = {0.15f * side, -FOLD_DOWN, -FOLD_BACK};
+    float bn = sqrtf(back[0] * back[0] + back[1] * back[1] + back[2] * back[2]);
+    for (int k = 0; k < 3; k++)
+        back[k] /= bn;
+    if (!ch->optional[s->joints[j].parent]) qfromto(bone, back, q);
+    else qaxis(up, side * FOLD_DOUBLE_DEG, q);
 }
 
 static int load(cub_wings *w, const char *xml, const char *bvh, char *err, size_t err_size)

@@ -10,7 +10,7 @@
  * In and out (bridges): the wings unfold from a fold along the back over
  * WINGS_OPEN_S when bird_flying starts, and fold back the same way after it
  * ends, still beating while they fold; folded, they are hidden. The fold
- * is the same for any optional joints: the first bone of a chain hangs
+ * is the same for any optional joints: the first bone of a chain lies
  * down the back, each further bone doubles back on the one before. */
 #ifndef CUB_APP_WINGS_H
 #define CUB_APP_WINGS_H
