@@ -76,7 +76,8 @@ int evolve_src_load(const char *spec, double fps, cub_evolve_motion *out, double
     fprintf(stderr, "cubtool evolve: reading %s\n", spec);
     *unit_mm = 10;
     if (has_ch) *has_ch = 0;
-    if (!colon || (size_t)(colon - spec) >= sizeof head) return from_bvh(spec, fps, out, unit_mm);
+    if (!colon || ends_with(spec, ".bvh") || (size_t)(colon - spec) >= sizeof head)
+        return from_bvh(spec, fps, out, unit_mm);
     snprintf(head, sizeof head, "%.*s", (int)(colon - spec), spec);
     if (ends_with(head, ".cubclips")) return from_pack(head, colon + 1, fps, out);
     if (!ends_with(head, ".xml") || !ends_with(colon + 1, ".keys")) {
