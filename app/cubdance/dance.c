@@ -1,6 +1,9 @@
 /* The dance glue (see dance.h). */
 #include "dance.h"
 
+/* The clip danced with wings when the coach has them (wings.h). */
+#define WINGS_CLIP "bird_flying"
+
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -233,6 +236,9 @@ cub_err cub_dance_open(cub_dance *d, const cub_app_options *o, cub_board *board,
         return fail(err, err_size, &diag, "fault words");
     cub_err e = cub_dance_music_open(&d->music, o, board, d->song.midi_path, err, err_size);
     if (!e) e = open_director(d, o, judge, now_us, err, err_size);
+    if (!e && cub_wings_open(&d->wings, o->character_path, WINGS_CLIP, &d->cl.lib.skel,
+                             cub_library_find(&d->cl.lib, WINGS_CLIP), err, err_size))
+        e = CUB_ERR_FORMAT;
     d->hint = CUB_COACH_HINT_NONE;
     d->icon_move = -1;
     d->speech = o->speech;
@@ -245,6 +251,7 @@ void cub_dance_close(cub_dance *d)
     cub_dance_music_close(&d->music);
     free(d->dir_mem);
     cub_coachlib_free(&d->cl);
+    cub_wings_close(&d->wings);
     memset(d, 0, sizeof *d);
 }
 
@@ -272,6 +279,20 @@ cub_err cub_dance_pose(cub_dance *d, float *xyz, float *rot_xyzw)
         rot_xyzw[4 * j + 3] = (float)rot[j].w / one;
     }
     return CUB_OK;
+}
+
+void cub_dance_picture(cub_dance *d, int64_t t_us, const cub_character **ch,
+                       const cub_skeleton **skel, const float **xyz, const float **rot,
+                       const float **icon)
+{
+    cub_wings *w = &d->wings;
+    *ch = w->loaded ? &w->ch : &d->cl.bear;
+    const cub_bridge_player *p = &d->dir.player;
+    if (!cub_wings_pose(w, p->clip, p->pos_q16, t_us, *xyz, *rot)) return;
+    *skel = &w->skel;
+    *xyz = w->xyz;
+    *rot = w->rot;
+    *icon = cub_wings_icon(w, *icon);
 }
 
 float cub_dance_figure_height_mm(const cub_dance *d)

@@ -24,6 +24,7 @@
 #include "cub/song.h"
 #include "dance_music.h"
 #include "options.h"
+#include "wings.h"
 
 typedef struct cub_dance {
     cub_coachlib cl;
@@ -45,6 +46,7 @@ typedef struct cub_dance {
     float icon_xyz[3 * CUB_MOTION_MAX_JOINTS];
     int speech;         /* the config's speech=1: words are said as shown */
     int32_t said_state; /* the coach state the last tick's words were for */
+    cub_wings wings;    /* the bear's wings in bird_flying (picture only) */
 } cub_dance;
 
 /* Load the coach's clips, the song and the music, and start the coach idle
@@ -73,6 +75,12 @@ float cub_dance_figure_height_mm(const cub_dance *d);
  * into xyz and, unless rot_xyzw is NULL, joint world rotations (x y z w
  * floats each, for the renderer's skinning), from one forward pass. */
 cub_err cub_dance_pose(cub_dance *d, float *xyz, float *rot_xyzw);
+/* The picture of the coach this tick: its character, skeleton, joint
+ * positions and rotations (the bear's pose as cub_dance_pose gave it, with
+ * the wings while bird_flying has them) and icon; fills what it changes. */
+void cub_dance_picture(cub_dance *d, int64_t t_us, const cub_character **ch,
+                       const cub_skeleton **skel, const float **xyz, const float **rot,
+                       const float **icon);
 /* The child's joints to draw marked (bit CUB_KJ_*): the limb the shown
  * fault asks to move, while its correction runs; 0 otherwise. */
 uint32_t cub_dance_child_mark(const cub_dance *d);

@@ -274,11 +274,13 @@ static void tick_work(cub_session *s, cub_loop *loop, int64_t t_us)
                               .world_xyz_mm = s->world_xyz,
                               .depth_raw = s->depth_frames ? s->depth_copy : NULL};
     if (!err && s->dance) {
-        scene.character = &s->dance->cl.bear;
         scene.world_rot_xyzw = s->world_rot;
         scene.face = coach_face(s->dance->dir.coach.state);
     }
     show_what_the_coach_says(s, &scene);
+    if (!err && s->dance)
+        cub_dance_picture(s->dance, t_us, &scene.character, &scene.skel, &scene.world_xyz_mm,
+                          &scene.world_rot_xyzw, &scene.icon_xyz_mm);
     cub_render_frame(s->render, &scene);
     if (s->opt->frames_dir && loop->tick_count % (uint64_t)s->opt->frame_every == 0)
         write_frame(s, loop->tick_count);

@@ -8,6 +8,7 @@
 
 #include "commands.h"
 #include "cub/evolve.h"
+#include "evolve_src.h"
 #include "cub/retarget.h"
 
 #define EVOLVE_MAX_WEIGHTS 32
@@ -16,11 +17,13 @@
 static void usage(FILE *f)
 {
     fprintf(f,
-            "usage: cubtool evolve PARENT1.bvh PARENT2.bvh --out CHILD.bvh [options]\n"
+            "usage: cubtool evolve PARENT1 PARENT2 --out CHILD.bvh [options]\n"
             "\n"
             "Crosses two skeletons and their motions (hierarchical evolution, seed 004):\n"
             "joint correspondences, the meta skeleton, mutation of the least active\n"
             "joints, the survivor's blend of the two motions, no joint below the floor.\n"
+            "A parent is a .bvh, a pack's clip (LIB.cubclips:NAME) or keys on a\n"
+            "character's skeleton (CHARACTER.xml:KEYS.keys).\n"
             "\n"
             "  --out FILE        the child, BVH (centimetres)\n"
             "  --map FILE        correspondences (`P1Joint... = P2Joint...`, `X = -`)\n"
@@ -32,6 +35,11 @@ static void usage(FILE *f)
             "  --max-frames N    each parent cut to its first N frames (after --fps)\n"
             "  --sheet FILE      also PNG contact sheets: FILE the child, FILE's name with\n"
             "                    _p1 and _p2 before .png the parents (as crossed: resampled)\n"
+            "  --out-character F also the child as a character file: parent 1's parts, and\n"
+            "                    parent 2's on the joints it gave (optional=\"1\": drawn only\n"
+            "                    while a clip moves them)\n"
+            "  --character1 F    parent 1's character (its parts); a CHARACTER.xml:KEYS\n"
+            "  --character2 F    parent gives its own\n"
             "  --bench           time the pipeline (%d runs; loading and writing excluded)\n"
             "  --help            this text\n"
             "\n"
@@ -40,7 +48,7 @@ static void usage(FILE *f)
 }
 
 typedef struct evolve_args {
-    const char *p1, *p2, *out, *map, *sheet;
+    const char *p1, *p2, *out, *map, *sheet, *out_char, *char_path[2];
     int mutations, max_frames, bench;
     double blend, fps;
     int weight_count;
@@ -77,7 +85,10 @@ static int option(evolve_args *a, const char *o, const char *v)
     const char **str = !strcmp(o, "--out")     ? &a->out
                        : !strcmp(o, "--map")   ? &a->map
                        : !strcmp(o, "--sheet") ? &a->sheet
-                                               : NULL;
+                       : !strcmp(o, "--out-character") ? &a->out_char
+                       : !strcmp(o, "--character1")    ? &a->char_path[0]
+                       : !strcmp(o, "--character2")    ? &a->char_path[1]
+                                                       : NULL;
     if (str) {
         *str = v;
         return 0;
@@ -198,22 +209,35 @@ static int pipeline(const evolve_args *a, const cub_evolve_map *map, const cub_e
     return 0;
 }
 
-static int load_parent(const char *path, const evolve_args *a, cub_evolve_motion *out,
-                       double *unit_mm)
+/* Parent side (0, 1): loaded, cut to --max-frames; its character kept in
+ * ch[side] when the spec names one or --characterN does. */
+static int load_parent(const evolve_args *a, int side, cub_evolve_motion *out, double *unit_mm,
+                       cub_character *ch, int *has_ch)
 {
-    static cub_io_motion io;
     cub_diag d = {0};
-    fprintf(stderr, "cubtool evolve: reading %s\n", path);
-    if (cub_io_load_bvh(path, NULL, &io, &d)) return fail("parent", &d);
-    *unit_mm = io.unit_mm;
-    cub_err err = cub_evolve_from_clip(&io.clip, a->fps, out);
-    cub_io_motion_free(&io);
-    if (err) {
-        fprintf(stderr, "cubtool evolve: %s: cannot resample (%s)\n", path, cub_err_str(err));
+    if (evolve_src_load(side ? a->p2 : a->p1, a->fps, out, unit_mm, ch, has_ch)) return 1;
+    if (a->max_frames && out->frames > a->max_frames) out->frames = a->max_frames;
+    if (!a->char_path[side]) return 0;
+    *has_ch = 1;
+    return cub_character_load(a->char_path[side], ch, &d) ? fail("character", &d) : 0;
+}
+
+/* The child character (--out-character), named after its file. */
+static int write_character(const evolve_args *a, const evolve_run *r, const cub_character *ch,
+                           const int *has_ch)
+{
+    if (!has_ch[0] || !has_ch[1]) {
+        fprintf(stderr, "cubtool evolve: --out-character needs both parents' characters "
+                        "(--character1/2 or CHARACTER.xml:KEYS.keys)\n");
         return 1;
     }
-    if (a->max_frames && out->frames > a->max_frames) out->frames = a->max_frames;
-    return 0;
+    const char *base = strrchr(a->out_char, '/');
+    char name[32];
+    snprintf(name, sizeof name, "%s", base ? base + 1 : a->out_char);
+    char *dot = strrchr(name, '.');
+    if (dot) *dot = 0;
+    return evolve_character_write(a->out_char, name, &r->child.skel, &r->meta, &r->pop, &ch[0],
+                                  &ch[1]);
 }
 
 static void progress(const evolve_run *r, const cub_evolve_motion *p1, const cub_evolve_motion *p2)
@@ -375,11 +399,15 @@ static double round_trip_mm(const cub_evolve_motion *p1, const cub_evolve_motion
 static int run(const evolve_args *a, cub_evolve_map *map, evolve_run *r)
 {
     static cub_evolve_motion p1, p2;
+    static cub_character ch[2];
+    int has_ch[2] = {0, 0};
     double unit1 = 10, unit2 = 10;
     cub_diag d = {0};
     int rc = 1;
     if (a->map && cub_evolve_map_load(a->map, map, &d)) return fail("map", &d);
-    if (load_parent(a->p1, a, &p1, &unit1) || load_parent(a->p2, a, &p2, &unit2)) goto out;
+    if (load_parent(a, 0, &p1, &unit1, &ch[0], &has_ch[0]) ||
+        load_parent(a, 1, &p2, &unit2, &ch[1], &has_ch[1]))
+        goto out;
     if (pipeline(a, a->map ? map : NULL, &p1, &p2, r)) goto out;
     progress(r, &p1, &p2);
     if (a->bench) {
@@ -387,6 +415,7 @@ static int run(const evolve_args *a, cub_evolve_map *map, evolve_run *r)
         goto out;
     }
     if (write_child(a, r, unit1)) goto out;
+    if (a->out_char && write_character(a, r, ch, has_ch)) goto out;
     if (a->sheet && (sheet_of(&p1, a->sheet, "_p1") || sheet_of(&p2, a->sheet, "_p2"))) goto out;
     double bone = cub_evolve_bone_error_mm(&r->child, &r->pop, &r->meta);
     double ms = r->ms[0] + r->ms[1] + r->ms[2] + r->ms[3], rt_max = 0;

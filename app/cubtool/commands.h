@@ -27,6 +27,7 @@ int cub_cmd_join(int argc, char **argv);         /* join two clips without slidi
 int cub_cmd_graph(int argc, char **argv);        /* the motion graph by support points */
 int cub_cmd_evolve(int argc, char **argv);       /* two skeletons crossed into a child (seed 004) */
 int cub_cmd_coach(int argc, char **argv);        /* a second coach's library from the bear's */
+int cub_cmd_wings(int argc, char **argv);        /* the winged bear's assets, through evolve */
 int cub_cmd_groove(int argc, char **argv);       /* seed 001: a MIDI melody, its segments, keys */
 int cub_cmd_groove_eval(int argc, char **argv);  /* seed 001: beat alignment, speed, time */
 

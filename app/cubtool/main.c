@@ -36,6 +36,7 @@ static const command commands[] = {
     {"graph", cub_cmd_graph, "the motion graph by support points (feet, hands, knees, hip); --png"},
     {"evolve", cub_cmd_evolve, "cross two clips of different skeletons into a child (seed 004), as BVH"},
     {"coach", cub_cmd_coach, "a second coach's clip library and tags from the bear's, through evolve"},
+    {"wings", cub_cmd_wings, "rebuild the winged bear (bird_flying's wings) through evolve"},
     {"ase-export", cub_cmd_ase_export, "a clip (BVH, ASF+AMC, ASE) as a 3ds Max ASCII export"},
 };
 

@@ -55,12 +55,26 @@ static void write_joint(FILE *f, const cub_io_motion *m, int j, int depth)
     fprintf(f, "}\n");
 }
 
-static void write_frame(FILE *f, const cub_io_motion *m, int frame)
+/* The joints in the order write_joint visits them (depth first, children
+ * in index order): a frame's channels must follow the hierarchy as written,
+ * which is not the index order when a joint was added under an earlier one
+ * (an evolved child's appended wings). Returns n + the joints written. */
+static int hierarchy_order(const cub_skeleton *s, int j, int *order, int n)
+{
+    order[n++] = j;
+    for (int c = j + 1; c < s->joint_count; c++)
+        if (s->joints[c].parent == j)
+            n = hierarchy_order(s, c, order, n);
+    return n;
+}
+
+static void write_frame(FILE *f, const cub_io_motion *m, const int *order, int frame)
 {
     const cub_clip *clip = &m->clip;
     int jn = m->skel.joint_count;
     const char *sep = "";
-    for (int j = 0; j < jn; j++) {
+    for (int i = 0; i < jn; i++) {
+        int j = order[i];
         const cub_io_channels *ch = &m->channels[j];
         if (m->skel.joints[j].is_end_site)
             continue;
@@ -134,8 +148,10 @@ cub_err cub_io_save_bvh(const char *path, const cub_io_motion *m, cub_diag *diag
     write_joint(f, m, 0, 0);
     fprintf(f, "MOTION\nFrames: %d\nFrame Time: %.9f\n", m->clip.frame_count,
             m->clip.frame_ns / 1e9);
+    int order[CUB_MOTION_MAX_JOINTS];
+    hierarchy_order(&m->skel, 0, order, 0);
     for (int fr = 0; fr < m->clip.frame_count; fr++)
-        write_frame(f, m, fr);
+        write_frame(f, m, order, fr);
     int bad = ferror(f);
     if (fclose(f) != 0 || bad)
         return cub_diag_fail(diag, CUB_ERR_IO, path, 0, "write failed");

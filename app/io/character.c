@@ -17,7 +17,7 @@
 #define CHAR_MAX_SIZE_MM 10000.0
 
 static const char *const CHARACTER_ATTRS[] = {"name", "version", NULL};
-static const char *const JOINT_ATTRS[] = {"name", "parent", "offset", "end", NULL};
+static const char *const JOINT_ATTRS[] = {"name", "parent", "offset", "end", "optional", NULL};
 static const char *const PART_ATTRS[] = {"joint",  "shape",      "centre", "radii",
                                          "radius", "end_radius", "colour", NULL};
 
@@ -170,10 +170,15 @@ static cub_err read_joint(char_ctx *c, const cub_xml_el *j)
         return cub_xml_fail_attr(j, "end", c->diag, "%s: end=\"%s\" must be \"0\" or \"1\"", who,
                                  e);
     end = e && e[0] == '1';
+    const char *opt = cub_xml_attr(j, "optional");
+    if (opt && strcmp(opt, "0") && strcmp(opt, "1"))
+        return cub_xml_fail_attr(j, "optional", c->diag,
+                                 "%s: optional=\"%s\" must be \"0\" or \"1\"", who, opt);
     cub_vec3 off_mm = {io_mm_to_q16(off[0]), io_mm_to_q16(off[1]), io_mm_to_q16(off[2])};
     if (cub_motion_skeleton_add(skel, name, parent, off_mm, &index))
         return cub_xml_fail(j, c->diag, "%s cannot be added to the skeleton", who);
     skel->joints[index].is_end_site = (uint8_t)end;
+    c->out->optional[index] = (uint8_t)(opt && opt[0] == '1');
     c->joint_line[index] = cub_xml_line(j);
     if (parent >= 0) c->has_child[parent] = 1;
     return CUB_OK;

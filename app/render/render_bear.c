@@ -186,12 +186,14 @@ static int first_child(const cub_skeleton *s, int j)
     return -1;
 }
 
-static void body(cub_render_mesh *m, const cub_character *ch, const cub_render_bear *b)
+/* The parts on optional joints (optional 1) or the others (0), eyes aside. */
+static void body(cub_render_mesh *m, const cub_character *ch, const cub_render_bear *b,
+                 int optional)
 {
     const cub_skeleton *s = &ch->skel;
     for (int i = 0; i < ch->part_count; i++) {
         const cub_character_part *p = &ch->parts[i];
-        if (is_eye(ch, p))
+        if (is_eye(ch, p) || ch->optional[p->joint] != optional)
             continue;
         m->slot = p->joint + 1;
         memcpy(m->origin, b->rest_mm[p->joint], sizeof m->origin);
@@ -230,8 +232,10 @@ static cub_err build(cub_render *r, const cub_character *ch)
         cub_render_mesh_free(&m);
         return CUB_ERR_NOMEM;
     }
-    body(&m, ch, b);
+    body(&m, ch, b, 0);
     b->body = (cub_render_range){0, m.ni};
+    body(&m, ch, b, 1);
+    b->optional = (cub_render_range){b->body.count, m.ni - b->body.count};
     face_parts f;
     find_face(ch, &f);
     int head = ch->body.head;
@@ -292,10 +296,14 @@ static void map_joints(cub_render_bear *b, const cub_character *ch, const cub_sk
     if (b->mapped_skel == skel && b->mapped_count == skel->joint_count)
         return;
     b->mapped_any = 0;
+    b->mapped_optional = 1;
     for (int j = 0; j < ch->skel.joint_count; j++) {
         b->map[j] = cub_motion_skeleton_find(skel, ch->skel.joints[j].name);
         b->mapped_any |= b->map[j] >= 0;
     }
+    for (int i = 0; i < ch->part_count; i++)
+        if (ch->optional[ch->parts[i].joint] && b->map[ch->parts[i].joint] < 0)
+            b->mapped_optional = 0;
     b->mapped_skel = skel;
     b->mapped_count = skel->joint_count;
 }
@@ -373,5 +381,9 @@ void cub_render_bear_draw(cub_render *r, const cub_render_scene *scene)
     fill_slots(r, scene);
     cub_render_lit_begin(r);
     cub_render_lit_draw(r, r->bear.vbo, r->bear.ibo, r->bear.body);
+    /* Optional joints (the winged bear's wings) show only while the scene
+     * moves them: a clip that lacks them would carry them stiffly. */
+    if (r->bear.mapped_optional && r->bear.optional.count)
+        cub_render_lit_draw(r, r->bear.vbo, r->bear.ibo, r->bear.optional);
     cub_render_lit_draw(r, r->bear.vbo, r->bear.ibo, r->bear.face[scene->face]);
 }

@@ -53,13 +53,15 @@ typedef struct cub_render_lit {
 typedef struct cub_render_bear {
     const cub_character *shown; /* NULL: none built */
     GLuint vbo, ibo;
-    cub_render_range body;      /* every part but the eyes */
+    cub_render_range body;      /* every part but the eyes and the optional ones */
+    cub_render_range optional;  /* the parts on optional joints (the wings) */
     cub_render_range face[CUB_RENDER_FACE_COUNT];
     float rest_mm[CUB_MOTION_MAX_JOINTS][3]; /* joint positions, rest pose */
     const cub_skeleton *mapped_skel;
     int mapped_count;           /* joint_count of mapped_skel when mapped */
     int map[CUB_MOTION_MAX_JOINTS]; /* character joint -> scene joint or -1 */
     int mapped_any;
+    int mapped_optional;        /* every optional joint with parts is in the scene */
 } cub_render_bear;
 
 /* Text (render_text.c): the baked glyphs and this frame's quads. */

@@ -289,6 +289,48 @@ static void test_child_exports_as_bvh_and_reads_back(void **state)
     cub_evolve_motion_free(&back);
 }
 
+/* A joint appended under an earlier one (as a crossed child's wings under
+ * the chest, after the legs): the file lists it in the hierarchy before
+ * the legs, and each frame's channels must follow that order. Read back,
+ * every joint (found by name) is where it was. */
+static void test_bvh_keeps_channels_of_a_joint_added_under_an_earlier_one(void **state)
+{
+    (void)state;
+    static const bone winged[] = {
+        {"Hips", NULL, 0, 900, 0},          {"Spine", "Hips", 0, 100, 0},
+        {"LeftUpLeg", "Hips", 100, -400, 0}, {"LeftLeg", "LeftUpLeg", 0, -400, 0},
+        {"Wing", "Spine", 100, 50, -50},     {"WingTip", "Wing", 300, 0, 0},
+    };
+    static cub_skeleton s;
+    static cub_evolve_motion m, back;
+    static cub_io_motion io, in;
+    build(&s, winged, COUNT(winged));
+    animate(&s, 10, -1, &m);
+    assert_int_equal(cub_evolve_to_io(&m, 10, &io), CUB_OK);
+    char path[512];
+    const char *dir = getenv("CUB_BUILD_DIR");
+    snprintf(path, sizeof path, "%s/evolve_wing_order_test.bvh", dir ? dir : ".");
+    assert_int_equal(cub_io_save_bvh(path, &io, NULL), CUB_OK);
+    assert_int_equal(cub_io_load_bvh(path, &(cub_io_desc){10}, &in, NULL), CUB_OK);
+    assert_string_equal(in.skel.joints[2].name, "Wing"); /* hierarchy order */
+    assert_int_equal(cub_evolve_from_clip(&in.clip, 30, &back), CUB_OK);
+    cub_dv3 w1[CUB_EVOLVE_MAX_JOINTS], w2[CUB_EVOLVE_MAX_JOINTS];
+    for (int f = 0; f < m.frames; f++) {
+        cub_evolve_forward(&m, f, w1);
+        cub_evolve_forward(&back, f, w2);
+        for (int j = 0; j < m.skel.joint_count; j++) {
+            int k = cub_motion_skeleton_find(&back.skel, m.skel.joints[j].name);
+            assert_true(k >= 0);
+            assert_true(cub_dv3_len(cub_dv3_sub(w1[j], w2[k])) < 0.1);
+        }
+    }
+    remove(path);
+    cub_io_motion_free(&io);
+    cub_io_motion_free(&in);
+    cub_evolve_motion_free(&m);
+    cub_evolve_motion_free(&back);
+}
+
 /* ---- a real pair ----------------------------------------------------------- */
 
 static int load(const char *rel, cub_evolve_motion *out)
@@ -344,6 +386,7 @@ int main(void)
         cmocka_unit_test(test_floor_step_raises_the_root_when_ik_cannot),
         cmocka_unit_test(test_slide_of_a_standing_and_a_sliding_foot),
         cmocka_unit_test(test_child_exports_as_bvh_and_reads_back),
+        cmocka_unit_test(test_bvh_keeps_channels_of_a_joint_added_under_an_earlier_one),
         cmocka_unit_test(test_cmu_human_crossed_with_a_dog),
     };
     int rc = cmocka_run_group_tests(tests, NULL, NULL);

@@ -34,6 +34,7 @@
 #include <math.h>
 
 #include "cub/character.h"
+#include "cub/io.h"
 #include "cub/judge.h"
 #include "cub/pack.h"
 #include "cub/png.h"
@@ -637,6 +638,70 @@ static void test_bear_faces_differ_only_on_the_head(void **state)
 
 /* A character the renderer cannot show is refused with nothing drawn: an
  * unknown face, too many joints to skin, a part on a joint that is not there. */
+/* ---- the winged bear (issue 22) --------------------------------------------- */
+
+/* assets/bear/bear_winged.xml and the child clip `cubtool evolve` made
+ * (bird_flying.wings.bvh: the bear's bird_flying with our bird's wings).
+ * WINGED_FRAME is mid-flap: the wings on the down stroke, near level. */
+#define WINGED_FRAME 61
+
+static cub_character g_winged;
+static cub_io_motion g_winged_clip;
+
+static void load_winged(void)
+{
+    cub_diag diag = {0};
+    char xml[1024], bvh[1024];
+    const char *src = getenv("CUB_SOURCE_DIR");
+    snprintf(xml, sizeof xml, "%s/assets/bear/bear_winged.xml", src ? src : ".");
+    snprintf(bvh, sizeof bvh, "%s/assets/bear/bird_flying.wings.bvh", src ? src : ".");
+    assert_int_equal(cub_character_load(xml, &g_winged, &diag), CUB_OK);
+    assert_int_equal(cub_io_load_bvh(bvh, NULL, &g_winged_clip, &diag), CUB_OK);
+}
+
+/* The child's frame f on the child's own skeleton (bear joints and wings). */
+static cub_render_scene winged_pose(int f)
+{
+    const cub_skeleton *skel = &g_winged_clip.skel;
+    int64_t t_us = (int64_t)f * g_winged_clip.clip.frame_ns / 1000;
+    assert_int_equal(cub_motion_sample(&g_winged_clip.clip, t_us, CUB_MOTION_CLAMP, &g_bs.pose),
+                     CUB_OK);
+    assert_int_equal(cub_motion_forward(skel, &g_bs.pose, g_bs.world, g_bs.rot), CUB_OK);
+    cub_motion_world_to_float(g_bs.world, skel->joint_count, g_bs.xyz);
+    for (int j = 0; j < skel->joint_count; j++) {
+        const float one = (float)CUB_QUAT_ONE;
+        g_bs.rot_xyzw[4 * j + 0] = (float)g_bs.rot[j].x / one;
+        g_bs.rot_xyzw[4 * j + 1] = (float)g_bs.rot[j].y / one;
+        g_bs.rot_xyzw[4 * j + 2] = (float)g_bs.rot[j].z / one;
+        g_bs.rot_xyzw[4 * j + 3] = (float)g_bs.rot[j].w / one;
+    }
+    return (cub_render_scene){.skel = skel, .world_xyz_mm = g_bs.xyz, .character = &g_winged,
+                              .world_rot_xyzw = g_bs.rot_xyzw, .face = CUB_RENDER_FACE_HAPPY};
+}
+
+static void test_winged_bear_mid_flap_matches_golden(void **state)
+{
+    fixture *f = *state;
+    load_winged();
+    cub_render_scene scene = winged_pose(WINGED_FRAME);
+    draw_with(f, f->bear_render, &scene);
+    check_golden_within(f->rgba, "winged_bear_mid_flap", 1, BEAR_MAX_SHARE);
+    cub_io_motion_free(&g_winged_clip);
+}
+
+/* A clip without the wings (the bear's skeleton): the winged bear is the
+ * bear, pixel for pixel as its golden. */
+static void test_winged_bear_without_wings_is_the_bear(void **state)
+{
+    fixture *f = *state;
+    load_winged();
+    cub_io_motion_free(&g_winged_clip);
+    cub_render_scene scene = bear_pose(BENDS(DANCE), CUB_RENDER_FACE_HAPPY);
+    scene.character = &g_winged;
+    draw_with(f, f->bear_render, &scene);
+    check_golden_within(f->rgba, "bear_dance_happy", 0, BEAR_MAX_SHARE);
+}
+
 static void test_bear_rejects_bad_character(void **state)
 {
     fixture *f = *state;
@@ -912,6 +977,8 @@ int main(void)
         cmocka_unit_test(test_render_at_4k_and_8k),
         cmocka_unit_test(test_bear_faces_differ_only_on_the_head),
         cmocka_unit_test(test_bear_rejects_bad_character),
+        cmocka_unit_test(test_winged_bear_mid_flap_matches_golden),
+        cmocka_unit_test(test_winged_bear_without_wings_is_the_bear),
         cmocka_unit_test(test_frames_are_deterministic),
         cmocka_unit_test(test_inset_maps_no_reading_to_black_and_near_brighter),
         cmocka_unit_test(test_render_rejects_bad_input),

@@ -92,6 +92,25 @@ static void test_the_template_is_valid(void **state)
     assert_int_equal(ch->parts[1].shape, CUB_PART_CAPSULE);
     assert_true(ch->parts[1].rgb[0] > 0.89f && ch->parts[1].rgb[0] < 0.891f); /* E3 = 227 */
     assert_true(ch->parts[1].end_radius_mm == 40.0f);
+    for (int j = 0; j < ch->skel.joint_count; j++)
+        assert_int_equal(ch->optional[j], 0);
+    free(ch);
+    free(text);
+}
+
+/* optional="1": a joint only some clips move (the winged bear's wings). */
+static void test_optional_joint(void **state)
+{
+    (void)state;
+    char *text = good_with(13, "    <joint name=\"RHand\" parent=\"RFore\" offset=\"-120 0 0\" "
+                               "optional=\"1\"/>");
+    cub_character *ch = malloc(sizeof(*ch));
+    cub_diag d = {0};
+    cub_err err = cub_character_parse(text, strlen(text), "toy.xml", ch, &d);
+    if (err) fail_msg("%s:%d: %s", d.file, d.line, d.msg);
+    int j = cub_motion_skeleton_find(&ch->skel, "RHand");
+    assert_int_equal(ch->optional[j], 1);
+    assert_int_equal(ch->optional[j - 1], 0);
     free(ch);
     free(text);
 }
@@ -119,6 +138,8 @@ static void test_skeleton_errors(void **state)
     expect_error(9, "    <joint parent=\"LArm\" offset=\"1 2 3\"/>", "without a name");
     expect_error(9, "    <joint name=\"LFore\" parent=\"LArm\" offset=\"1 2 3\" end=\"yes\"/>",
                  "end=\"yes\" must be");
+    expect_error(9, "    <joint name=\"LFore\" parent=\"LArm\" offset=\"1 2 3\" optional=\"2\"/>",
+                 "optional=\"2\" must be");
     expect_error(9, "    <joint name=\"LFore\" parent=\"LArm\" ofset=\"1 2 3\"/>",
                  "unknown attribute 'ofset'");
     expect_error(9, "    <bone name=\"LFore\"/>", "unknown element <bone> in <skeleton>");
@@ -273,6 +294,7 @@ int main(void)
         cmocka_unit_test(test_skeleton_errors),       cmocka_unit_test(test_features_errors),
         cmocka_unit_test(test_body_errors),           cmocka_unit_test(test_document_errors),
         cmocka_unit_test(test_the_template_is_valid), cmocka_unit_test(test_the_bear_loads),
+        cmocka_unit_test(test_optional_joint),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -31,6 +31,10 @@ typedef struct cub_character {
     cub_fuzzy_body body;   /* joint indices; stand_cog_mm from the rest pose */
     int part_count;
     cub_character_part parts[CUB_CHARACTER_MAX_PARTS];
+    /* Per joint, 1 for optional="1": a joint only some clips move (the
+     * winged bear's wings, bird_flying only); the renderer draws its parts
+     * only while the scene's skeleton has it. */
+    uint8_t optional[CUB_MOTION_MAX_JOINTS];
 } cub_character;
 
 /* Load and validate (joints exist, parents first, feature joints present,
