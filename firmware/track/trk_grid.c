@@ -466,9 +466,46 @@ static bool was_someone_else(const cub_tracker *t, int32_t k)
  * better). */
 static int64_t newcomer_score(trk_p3 cc) { return cc.z + 2 * trk_abs(cc.x); }
 
+/* Cell i is new this frame: nothing stood there last frame (or only
+ * something well behind it), and no person-like blob's cell of last frame
+ * lies within NEW_CLEAR cells (the edge a moving person sweeps is not a
+ * newcomer). */
+#define NEW_CLEAR 2      /* cells: a walking person's edge moves less per frame */
+#define NEW_BEHIND_MM 300 /* last frame's reading this far behind: something came in front */
+#define NEWCOMER_CELLS 100 /* new cells of a blob before it counts someone just come in */
+static bool new_cell(const cub_tracker *t, int32_t i)
+{
+    if (t->z_prev[i] && t->z_prev[i] - t->z[i] < NEW_BEHIND_MM) return false;
+    int32_t gx = i % TRK_GW, gy = i / TRK_GW;
+    for (int32_t y = gy - NEW_CLEAR; y <= gy + NEW_CLEAR; y++)
+        for (int32_t x = gx - NEW_CLEAR; x <= gx + NEW_CLEAR; x++)
+            if (on_grid(x, y) && t->label_prev[y * TRK_GW + x] >= 0) return false;
+    return true;
+}
+
+/* START, the child stepping in beside someone the box saw before (a
+ * sibling, the sofa it stood at): one blob by depth with them. Split
+ * between last frame's people and the cells new this frame, so the child
+ * who just came is a blob of its own and the newcomer's choice can take
+ * it, not the one who was there. */
+static void split_newcomer(cub_tracker *t, int16_t k)
+{
+    int32_t old = 0, fresh = 0;
+    for (int32_t i = 0; i < TRK_CELLS; i++) {
+        t->mask[i] = 0;
+        if (t->label[i] != k) continue;
+        if (t->label_prev[i] >= 0) t->mask[i] = 1, old++;
+        else if (new_cell(t, i)) t->mask[i] = 2, fresh++;
+    }
+    if (old < SPLIT_MIN_CELLS || fresh < NEWCOMER_CELLS || t->ncomps >= TRK_MAX_COMPS) return;
+    grow_sides(t, k);
+    split_off(t, k);
+}
+
 /* The newcomer a box that just started would take, -1 none; a blob of
  * two people who touch (the child beside the adult it stood apart from
- * last frame) is split between them first. */
+ * last frame) is split between them first, and at START a blob of
+ * someone seen before and someone new. */
 static int32_t first_choice(cub_tracker *t)
 {
     int32_t best = -1;
@@ -483,6 +520,7 @@ static int32_t first_choice(cub_tracker *t)
         if (best < 0 || pass == 1) break;
         int32_t n = t->ncomps;
         split_two_people(t, (int16_t)best);
+        if (t->ncomps == n && t->start_afresh) split_newcomer(t, (int16_t)best);
         if (t->ncomps == n) break;
     }
     return best;

@@ -475,9 +475,22 @@ static p3 attract_adult(int k)
     return b[CUB_KJ_SPINE];
 }
 
+/* Attract mode with a sibling of the child's height 450 mm left of the
+ * centre, 100 mm deeper, its arms out level: the child who appears in the
+ * middle touches its hand, one blob by depth with it from its first frame. */
+static p3 attract_sibling(int k)
+{
+    (void)k;
+    p3 b[CUB_KJ_COUNT];
+    child_pose(-450, 2500, 1, 1000, b);
+    draw_child(b, 1000);
+    return b[CUB_KJ_SPINE];
+}
+
 /* The frames after the child appears whose player is the child (spine
- * within 350 mm of the child's, nearer it than the adult's). */
-static int child_frames_after_attract(bool start)
+ * within 350 mm of the child's, nearer it than the other's), the other
+ * (attract_adult, attract_sibling) there from the first frame. */
+static int child_frames_after_start(other_fn attract_other, bool start)
 {
     cub_tracker *t = new_tracker();
     cub_track_skeleton s;
@@ -487,7 +500,7 @@ static int child_frames_after_attract(bool start)
         p3 o = {0, 0, 0}, a[CUB_KJ_COUNT];
         clear_scene(800);
         if (k >= 20) child_pose(0, 2400, k % 3, 1000, a), draw_child(a, 1000);
-        o = attract_adult(k);
+        o = attract_other(k);
         to_raw();
         if (k == 20 && start) assert_int_equal(cub_track_choose_afresh(t), CUB_OK);
         cub_track_frame(t, frame, (int64_t)k * 100000, &g, &s);
@@ -502,11 +515,23 @@ static int child_frames_after_attract(bool start)
 static void test_start_chooses_the_player_afresh(void **st)
 {
     (void)st;
-    int kept = child_frames_after_attract(false), started = child_frames_after_attract(true);
+    int kept = child_frames_after_start(attract_adult, false), started = child_frames_after_start(attract_adult, true);
     printf("track START: the child is the player in %d of 20 frames without START, %d with\n", kept, started);
     assert_int_equal(kept, 0);
     assert_int_equal(started, 20);
     assert_int_equal(cub_track_choose_afresh(NULL), CUB_ERR_ARG);
+}
+
+/* START with the child one blob with a sibling the tracker followed in
+ * attract mode (split_newcomer): the cells new this frame are the child,
+ * a blob of its own, and START takes it; without the split START took the
+ * joined blob, the sibling's body and the child's. */
+static void test_start_takes_the_child_beside_its_sibling(void **st)
+{
+    (void)st;
+    int started = child_frames_after_start(attract_sibling, true);
+    printf("track START beside a sibling: the child is the player in %d of 20 frames\n", started);
+    assert_int_equal(started, 20);
 }
 
 /* ---- too close (issue 20 point 9) --------------------------------------- */
@@ -793,6 +818,7 @@ int main(void)
         cmocka_unit_test(test_player_keeps_its_identity),
         cmocka_unit_test(test_taller_one_squeezing_past_is_not_the_player),
         cmocka_unit_test(test_start_chooses_the_player_afresh),
+        cmocka_unit_test(test_start_takes_the_child_beside_its_sibling),
         cmocka_unit_test(test_too_close_is_told),
         cmocka_unit_test(test_real_frames_against_hand_labels),
         cmocka_unit_test(test_output_hash_is_pinned),
