@@ -238,10 +238,16 @@ static trk_p3 comp_centre(const trk_comp *c)
     return (trk_p3){(int32_t)(c->sx / c->n), (int32_t)(c->sy / c->n), (int32_t)(c->sz / c->n)};
 }
 
+static bool was_someone_else(const cub_tracker *t, int32_t k);
+
 /* A forearm held across the whole width of a (turned) torso cuts the
  * body in two blobs by depth: a smaller blob at about the player's depth
  * that touches it or a part merged in front of it, within the player's
- * columns (give or take half its width), is the rest of the body. */
+ * columns (give or take half its width), is the rest of the body; not a
+ * blob that was someone else last frame (the adult just behind the child,
+ * split from it this frame by split_merged: taken back as the child's,
+ * the next frame had nobody else to split, and the adult's top and torso
+ * drew the track away). */
 #define CUT_OFF_DZ_MM 300
 static void merge_cut_off(cub_tracker *t, int32_t pid, int32_t pz, const uint8_t *front)
 {
@@ -260,6 +266,7 @@ static void merge_cut_off(cub_tracker *t, int32_t pid, int32_t pz, const uint8_t
         const trk_comp *c = &t->comps[k];
         if (k == pid || front[k] || !touch[k] || c->n < 3) continue;
         if (trk_abs((int32_t)(c->sz / c->n) - pz) > CUT_OFF_DZ_MM || c->n > p->n) continue;
+        if (was_someone_else(t, k)) continue;
         /* within the player's columns: not furniture beside it */
         if (c->gx0 < p->gx0 - pw / 2 || c->gx1 > p->gx1 + pw / 2) continue;
         for (int32_t i = 0; i < TRK_CELLS; i++)
