@@ -4,7 +4,7 @@
 # every fold reported, in the scenes a child's room has (facing, turning,
 # travel, a second person, loose clothes).
 #
-#   scripts/eval_folds.sh BUILD_DIR [dev|heldout|all] [--quick] [--identity [--draw 2] [--no-prelude]]
+#   scripts/eval_folds.sh BUILD_DIR [dev|heldout|all] [--quick] [--identity [--draw 2|3] [--no-prelude]]
 #                         [--fold NAME] [--scene NAME] [--csv FILE]
 #   (also: scripts/eval_tracker.sh BUILD_DIR --folds ...)
 #
@@ -26,6 +26,9 @@
 # --draw 2  the second draw of identity renders (round 4, drawn unseen for
 #          the held-out folds: docs/tracker_eval.md): seed 3, the five clips
 #          of each fold the first draw did not use, other second persons
+# --draw 3  the third draw (round 6, drawn unseen): seed 4, each clip with
+#          a mode it never met in draws 1-2, the second persons from the
+#          fold after next (a style no earlier draw put beside this fold)
 # --no-prelude  the identity renders as rounds 1-3 had them (the child
 #          there from the first frame)
 #
@@ -40,7 +43,7 @@
 set -eu
 
 usage() {
-    echo "usage: scripts/eval_folds.sh BUILD_DIR [dev|heldout|all] [--quick] [--identity [--draw 2] [--no-prelude]] [--fold NAME] [--scene NAME] [--csv FILE]" >&2
+    echo "usage: scripts/eval_folds.sh BUILD_DIR [dev|heldout|all] [--quick] [--identity [--draw 2|3] [--no-prelude]] [--fold NAME] [--scene NAME] [--csv FILE]" >&2
     exit 2
 }
 HERE=$(cd "$(dirname "$0")" && pwd)
@@ -82,7 +85,7 @@ while [ $# -gt 0 ]; do
     --quick) QUICK=1 ;;
     --identity) IDENTITY=1 ;;
     --no-prelude) PRELUDE=0 ;;
-    --draw) [ $# -ge 2 ] && { [ "$2" = 1 ] || [ "$2" = 2 ]; } || usage; DRAW=$2; shift ;;
+    --draw) [ $# -ge 2 ] && { [ "$2" = 1 ] || [ "$2" = 2 ] || [ "$2" = 3 ]; } || usage; DRAW=$2; shift ;;
     --fold) [ $# -ge 2 ] || usage; ONLY=$2; shift ;;
     --csv) [ $# -ge 2 ] || usage; CSV=$2; shift ;;
     --scene) [ $# -ge 2 ] || usage; SCENE=$2; shift ;;
@@ -150,7 +153,11 @@ scene_args() { # scene fold_index clip_index second_clip
 # held-out Bandai styles), c_{k+3}, c_{k+5}, c_{k+6}, c_{k+8} for the four
 # modes and c_{k+9} crossed slowly, the second person d_{m+4} (d_8 for the
 # slow crossing), turning when k + m is even.
-identity_jobs() { # fold set k clips next_clips
+# Draw 3 (round 6): c_{k+6} behind, c_{k+2} walk-in, c_{k+9} cross,
+# c_{k+4} sibling, c_{k+7} crossed slowly (in a 10-clip fold no clip meets
+# a mode it met before), the second person e_m (e_4 for the slow
+# crossing) of the fold after next, turning when k + m is odd.
+identity_jobs() { # fold set k clips second_persons_clips
     n=$(printf '%s\n' "$4" | tr ';' '\n' | wc -l)
     nn=$(printf '%s\n' "$5" | tr ';' '\n' | wc -l)
     m=0
@@ -159,6 +166,8 @@ identity_jobs() { # fold set k clips next_clips
         [ "$mode" != slow ] || i=$((($3 + 2) % n)) sm=0
         if [ "$DRAW" = 2 ]; then
             i=$((($3 + $(nth $m 3 5 6 8 9)) % n)) sm=$((m + 4))
+        elif [ "$DRAW" = 3 ]; then
+            i=$((($3 + $(nth $m 6 2 9 4 7)) % n)) sm=$m
         fi
         clip=$(printf '%s\n' "$4" | tr ';' '\n' | sed -n "$((i + 1))p")
         other=$(printf '%s\n' "$5" | tr ';' '\n' | sed -n "$((sm % nn + 1))p" | cut -d' ' -f1)
@@ -180,7 +189,9 @@ jobs() {
         next=$(sed -n "$(((k + 1) % nf + 1))p" "$RESULTS/folds" | cut -d'|' -f3 | cut -d';' -f1 | cut -d' ' -f1)
         if [ "$IDENTITY" = 1 ]; then
             if { [ "$SET" = all ] || [ "$SET" = "$set" ]; } && { [ -z "$ONLY" ] || [ "$ONLY" = "$fold" ]; }; then
-                identity_jobs "$fold" "$set" $k "$clips" "$(sed -n "$(((k + 1) % nf + 1))p" "$RESULTS/folds" | cut -d'|' -f3)"
+                step=1
+                [ "$DRAW" != 3 ] || step=2
+                identity_jobs "$fold" "$set" $k "$clips" "$(sed -n "$(((k + step) % nf + 1))p" "$RESULTS/folds" | cut -d'|' -f3)"
             fi
             k=$((k + 1))
             continue

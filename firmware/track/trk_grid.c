@@ -238,10 +238,16 @@ static trk_p3 comp_centre(const trk_comp *c)
     return (trk_p3){(int32_t)(c->sx / c->n), (int32_t)(c->sy / c->n), (int32_t)(c->sz / c->n)};
 }
 
+static bool was_someone_else(const cub_tracker *t, int32_t k);
+
 /* A forearm held across the whole width of a (turned) torso cuts the
  * body in two blobs by depth: a smaller blob at about the player's depth
  * that touches it or a part merged in front of it, within the player's
- * columns (give or take half its width), is the rest of the body. */
+ * columns (give or take half its width), is the rest of the body; not a
+ * blob that was someone else last frame (the adult just behind the child,
+ * split from it this frame by split_merged: taken back as the child's,
+ * the next frame had nobody else to split, and the adult's top and torso
+ * drew the track away). */
 #define CUT_OFF_DZ_MM 300
 static void merge_cut_off(cub_tracker *t, int32_t pid, int32_t pz, const uint8_t *front)
 {
@@ -260,6 +266,7 @@ static void merge_cut_off(cub_tracker *t, int32_t pid, int32_t pz, const uint8_t
         const trk_comp *c = &t->comps[k];
         if (k == pid || front[k] || !touch[k] || c->n < 3) continue;
         if (trk_abs((int32_t)(c->sz / c->n) - pz) > CUT_OFF_DZ_MM || c->n > p->n) continue;
+        if (was_someone_else(t, k)) continue;
         /* within the player's columns: not furniture beside it */
         if (c->gx0 < p->gx0 - pw / 2 || c->gx1 > p->gx1 + pw / 2) continue;
         for (int32_t i = 0; i < TRK_CELLS; i++)
@@ -466,9 +473,46 @@ static bool was_someone_else(const cub_tracker *t, int32_t k)
  * better). */
 static int64_t newcomer_score(trk_p3 cc) { return cc.z + 2 * trk_abs(cc.x); }
 
+/* Cell i is new this frame: nothing stood there last frame (or only
+ * something well behind it), and no person-like blob's cell of last frame
+ * lies within NEW_CLEAR cells (the edge a moving person sweeps is not a
+ * newcomer). */
+#define NEW_CLEAR 2      /* cells: a walking person's edge moves less per frame */
+#define NEW_BEHIND_MM 300 /* last frame's reading this far behind: something came in front */
+#define NEWCOMER_CELLS 100 /* new cells of a blob before it counts someone just come in */
+static bool new_cell(const cub_tracker *t, int32_t i)
+{
+    if (t->z_prev[i] && t->z_prev[i] - t->z[i] < NEW_BEHIND_MM) return false;
+    int32_t gx = i % TRK_GW, gy = i / TRK_GW;
+    for (int32_t y = gy - NEW_CLEAR; y <= gy + NEW_CLEAR; y++)
+        for (int32_t x = gx - NEW_CLEAR; x <= gx + NEW_CLEAR; x++)
+            if (on_grid(x, y) && t->label_prev[y * TRK_GW + x] >= 0) return false;
+    return true;
+}
+
+/* START, the child stepping in beside someone the box saw before (a
+ * sibling, the sofa it stood at): one blob by depth with them. Split
+ * between last frame's people and the cells new this frame, so the child
+ * who just came is a blob of its own and the newcomer's choice can take
+ * it, not the one who was there. */
+static void split_newcomer(cub_tracker *t, int16_t k)
+{
+    int32_t old = 0, fresh = 0;
+    for (int32_t i = 0; i < TRK_CELLS; i++) {
+        t->mask[i] = 0;
+        if (t->label[i] != k) continue;
+        if (t->label_prev[i] >= 0) t->mask[i] = 1, old++;
+        else if (new_cell(t, i)) t->mask[i] = 2, fresh++;
+    }
+    if (old < SPLIT_MIN_CELLS || fresh < NEWCOMER_CELLS || t->ncomps >= TRK_MAX_COMPS) return;
+    grow_sides(t, k);
+    split_off(t, k);
+}
+
 /* The newcomer a box that just started would take, -1 none; a blob of
  * two people who touch (the child beside the adult it stood apart from
- * last frame) is split between them first. */
+ * last frame) is split between them first, and at START a blob of
+ * someone seen before and someone new. */
 static int32_t first_choice(cub_tracker *t)
 {
     int32_t best = -1;
@@ -483,6 +527,7 @@ static int32_t first_choice(cub_tracker *t)
         if (best < 0 || pass == 1) break;
         int32_t n = t->ncomps;
         split_two_people(t, (int16_t)best);
+        if (t->ncomps == n && t->start_afresh) split_newcomer(t, (int16_t)best);
         if (t->ncomps == n) break;
     }
     return best;

@@ -437,6 +437,20 @@ static int wrong_person_frames(other_fn draw_other)
     return wrong;
 }
 
+/* An adult walks in behind the child and stays there, adult_behind_dz
+ * deeper, its body overlapping the child's in the image (the moving
+ * child's parent of the end to end songs) */
+static int32_t adult_behind_dz = 290;
+static p3 adult_behind(int k)
+{
+    p3 b[CUB_KJ_COUNT];
+    int32_t x = 1500 - 100 * k;
+    child_pose(x < 250 ? 250 : x, 2400 + adult_behind_dz, 0, 1400, b);
+    for (int jj = 0; jj < CUB_KJ_COUNT; jj++) b[jj].y += 800 * 400 / 1000 - 320;
+    draw_child(b, 1400);
+    return b[CUB_KJ_SPINE];
+}
+
 /* A blob the player shares with someone taller who was another person
  * last frame is not the player (merged_with_taller). Without the rule the
  * adult, merged with the child when the room became known (frame 20), is
@@ -448,6 +462,24 @@ static void test_taller_one_squeezing_past_is_not_the_player(void **st)
     int wrong = wrong_person_frames(toucher);
     printf("track identity: an adult squeezing past: %d wrong-person frames\n", wrong);
     assert_int_equal(wrong, 0);
+}
+
+/* The adult behind, split from the child by split_merged the frame they
+ * first touch, is not merged back as a piece of the child's cut off by
+ * depth (merge_cut_off: not a blob that was someone else). Without that,
+ * from 200 to 320 mm behind, the adult's cells were the player's from
+ * then on, nothing was left to split and the track went to the adult:
+ * 37-43 wrong-person frames of 60, the adult the player at the end. */
+static void test_adult_just_behind_is_not_the_players_part(void **st)
+{
+    (void)st;
+    static const int32_t dz[] = {200, 260, 290, 320};
+    for (size_t i = 0; i < sizeof dz / sizeof dz[0]; i++) {
+        adult_behind_dz = dz[i];
+        int wrong = wrong_person_frames(adult_behind);
+        printf("track identity: an adult %d mm behind the child: %d wrong-person frames\n", dz[i], wrong);
+        assert_int_equal(wrong, 0);
+    }
 }
 
 static void test_player_keeps_its_identity(void **st)
@@ -475,9 +507,22 @@ static p3 attract_adult(int k)
     return b[CUB_KJ_SPINE];
 }
 
+/* Attract mode with a sibling of the child's height 450 mm left of the
+ * centre, 100 mm deeper, its arms out level: the child who appears in the
+ * middle touches its hand, one blob by depth with it from its first frame. */
+static p3 attract_sibling(int k)
+{
+    (void)k;
+    p3 b[CUB_KJ_COUNT];
+    child_pose(-450, 2500, 1, 1000, b);
+    draw_child(b, 1000);
+    return b[CUB_KJ_SPINE];
+}
+
 /* The frames after the child appears whose player is the child (spine
- * within 350 mm of the child's, nearer it than the adult's). */
-static int child_frames_after_attract(bool start)
+ * within 350 mm of the child's, nearer it than the other's), the other
+ * (attract_adult, attract_sibling) there from the first frame. */
+static int child_frames_after_start(other_fn attract_other, bool start)
 {
     cub_tracker *t = new_tracker();
     cub_track_skeleton s;
@@ -487,7 +532,7 @@ static int child_frames_after_attract(bool start)
         p3 o = {0, 0, 0}, a[CUB_KJ_COUNT];
         clear_scene(800);
         if (k >= 20) child_pose(0, 2400, k % 3, 1000, a), draw_child(a, 1000);
-        o = attract_adult(k);
+        o = attract_other(k);
         to_raw();
         if (k == 20 && start) assert_int_equal(cub_track_choose_afresh(t), CUB_OK);
         cub_track_frame(t, frame, (int64_t)k * 100000, &g, &s);
@@ -502,11 +547,23 @@ static int child_frames_after_attract(bool start)
 static void test_start_chooses_the_player_afresh(void **st)
 {
     (void)st;
-    int kept = child_frames_after_attract(false), started = child_frames_after_attract(true);
+    int kept = child_frames_after_start(attract_adult, false), started = child_frames_after_start(attract_adult, true);
     printf("track START: the child is the player in %d of 20 frames without START, %d with\n", kept, started);
     assert_int_equal(kept, 0);
     assert_int_equal(started, 20);
     assert_int_equal(cub_track_choose_afresh(NULL), CUB_ERR_ARG);
+}
+
+/* START with the child one blob with a sibling the tracker followed in
+ * attract mode (split_newcomer): the cells new this frame are the child,
+ * a blob of its own, and START takes it; without the split START took the
+ * joined blob, the sibling's body and the child's. */
+static void test_start_takes_the_child_beside_its_sibling(void **st)
+{
+    (void)st;
+    int started = child_frames_after_start(attract_sibling, true);
+    printf("track START beside a sibling: the child is the player in %d of 20 frames\n", started);
+    assert_int_equal(started, 20);
 }
 
 /* ---- too close (issue 20 point 9) --------------------------------------- */
@@ -792,7 +849,9 @@ int main(void)
         cmocka_unit_test(test_second_person_never_becomes_the_player),
         cmocka_unit_test(test_player_keeps_its_identity),
         cmocka_unit_test(test_taller_one_squeezing_past_is_not_the_player),
+        cmocka_unit_test(test_adult_just_behind_is_not_the_players_part),
         cmocka_unit_test(test_start_chooses_the_player_afresh),
+        cmocka_unit_test(test_start_takes_the_child_beside_its_sibling),
         cmocka_unit_test(test_too_close_is_told),
         cmocka_unit_test(test_real_frames_against_hand_labels),
         cmocka_unit_test(test_output_hash_is_pinned),
