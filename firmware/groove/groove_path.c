@@ -45,7 +45,7 @@ static cub_groove_handles smooth_handles(const cub_groove_params *p, const cub_g
     cub_q16 in_len = (cub_q16)((int64_t)p->smooth_mm * t_in / (t_in + t_out));
     cub_groove_key dir = key_sub(next, prev);
     return (cub_groove_handles){key_sub(keys[i], with_length(dir, in_len)),
-                                key_add(keys[i], with_length(dir, p->smooth_mm - in_len))};
+                                key_add(keys[i], with_length(dir, p->smooth_mm - in_len)), 0};
 }
 
 /* Beat key: in from G1 (above) / G2 (back) by intensity, out its mirror. */
@@ -60,7 +60,7 @@ static cub_groove_handles beat_handles(const cub_groove_params *p, const cub_gro
     cub_q16 s = (cub_q16)((int64_t)notes[i].intensity * CUB_Q16_ONE / 120);
     cub_groove_key in = key_lerp(g2, g1, s);
     cub_groove_key reflex = {cub_fx_sub(cub_fx_add(k.x_mm, k.x_mm), in.x_mm), in.y_mm};
-    return (cub_groove_handles){in, key_lerp(k, reflex, p->reflectance)};
+    return (cub_groove_handles){in, key_lerp(k, reflex, p->reflectance), 0};
 }
 
 /* A handle at most pace x t / 3 from its key (t the time of the path it
@@ -87,6 +87,11 @@ cub_err cub_groove_handles_make(const cub_groove_params *p, const cub_groove_not
                 t_out = i + 1 < n ? notes[i + 1].start_us - notes[i].start_us : 0;
         out[i].in_mm = pace_handle(p, keys[i], h.in_mm, t_in);
         out[i].out_mm = pace_handle(p, keys[i], h.out_mm, t_out);
+    }
+    for (int i = 0; i < n; i++) {
+        const cub_groove_key pt[4] = {keys[i], out[i].out_mm, out[i + 1 < n ? i + 1 : i].in_mm,
+                                      keys[i + 1 < n ? i + 1 : i]};
+        out[i].len_mm = i + 1 < n ? cub_groove_path_length(pt) : 0;
     }
     return CUB_OK;
 }
