@@ -234,8 +234,48 @@ static void print_row(const char *path, const groove_song *s, const figures *f)
            f->per3min_ms);
 }
 
+/* The held-out protocol (docs/groove.md): whole styles held out, by name. */
+static int held_out(const char *path)
+{
+    const char *name = strrchr(path, '/') ? strrchr(path, '/') + 1 : path;
+    return !strncmp(name, "jazz_", 5) || !strncmp(name, "classical_mozart", 16);
+}
+
+/* Keep only the fold's files (fold 0: all); returns the new count. */
+static int keep_fold(char **paths, int n, char fold)
+{
+    int k = 0;
+    for (int i = 0; i < n; i++) {
+        if (fold && (fold == 'h') != held_out(paths[i])) {
+            free(paths[i]);
+            continue;
+        }
+        paths[k++] = paths[i];
+    }
+    return k;
+}
+
+typedef struct means {
+    double fact, bail;
+    int files, fact_ok, bail_ok;
+} means;
+
+static void means_add(means *m, const figures *f)
+{
+    m->fact += f->fact, m->bail += f->bailando, m->files++;
+    m->fact_ok += f->fact >= 0.5, m->bail_ok += f->bailando >= 0.5;
+}
+
+static void means_print(const means *m)
+{
+    if (!m->files) return;
+    printf("mean FACT %.3f (%d of %d >= 0.5), Bailando %.3f (%d of %d >= 0.5)\n",
+           m->fact / m->files, m->fact_ok, m->files, m->bail / m->files, m->bail_ok, m->files);
+}
+
 int cub_cmd_groove_eval(int argc, char **argv)
 {
+    char fold = 0;
     char set = 'a';
     char *paths[MAX_FILES];
     int n = 0;
@@ -244,12 +284,16 @@ int cub_cmd_groove_eval(int argc, char **argv)
             set = argv[++i][0];
         else if (!strcmp(argv[i], "--dump") && i + 1 < argc)
             dump_path = argv[++i];
+        else if (!strcmp(argv[i], "--fold") && i + 1 < argc && strchr("dh", argv[i + 1][0]) &&
+                 argv[i + 1][0])
+            fold = argv[++i][0];
         else if (!strcmp(argv[i], "--help") || argv[i][0] == '-') {
-            printf("usage: cubtool groove-eval [--set a|b] [--dump F.txt] [FILE.mid...]\n"
+            printf("usage: cubtool groove-eval [--set a|b] [--fold dev|held] [--dump F.txt] [FILE.mid...]\n"
                    "Seed 001's figures: beat alignment (FACT's and Bailando's), fastest joint\n"
                    "vs the clip library's p99, feet, generation time. Default files: every\n"
                    ".mid of <data>/midi and %s/songs. --dump writes the last file's\n"
-                   "speed curve (frame, summed speed, smoothed, music beat) to F.txt.\n",
+                   "speed curve (frame, summed speed, smoothed, music beat) to F.txt.\n"
+                   "--fold: only the dev or the held-out files (docs/groove.md), and means.\n",
                    CUB_ASSETS_DIR);
             return argv[i][0] == '-' && strcmp(argv[i], "--help") ? 2 : 0;
         } else if (n < MAX_FILES && (paths[n] = malloc(strlen(argv[i]) + 1)))
@@ -262,6 +306,8 @@ int cub_cmd_groove_eval(int argc, char **argv)
         n = list_mid(dir, paths, 0);
         n = list_mid(CUB_ASSETS_DIR "/songs", paths, n);
     }
+    n = keep_fold(paths, n, fold);
+    means all = {0};
     double p99 = library_p99(CUB_ASSETS_DIR "/clips/bear.cubclips");
     printf("clip library joint speed p99 %.0f mm/s; set %c, %d fps, sigma %.0f frames\n", p99, set,
            FPS, SIGMA);
@@ -277,9 +323,10 @@ int cub_cmd_groove_eval(int argc, char **argv)
         groove_args a = {paths[i], -1, -1, 0, set};
         rc = groove_song_load(&a, "groove-eval", &s);
         if (!rc) rc = measure(&s, &rig, &f);
-        if (!rc) print_row(paths[i], &s, &f);
+        if (!rc) print_row(paths[i], &s, &f), means_add(&all, &f);
         groove_song_free(&s);
     }
+    if (!rc) means_print(&all);
     for (int i = 0; i < n; i++)
         free(paths[i]);
     return rc;

@@ -30,7 +30,10 @@ cub_q16 groove_tau(int64_t t_us, int64_t t0, int64_t t1)
 
 /* Fig. 11 (back to rest): ease in and out; fig. 12 (the swing): a fast
  * start settling into the end. Both cubic Bézier in value (ours: the
- * figures' shapes, not their numbers, survive in the text). */
+ * figures' shapes, not their numbers, survive in the text). The swing
+ * starts from rest (session 33): 1 - (1 - u)^3 left the waist at full
+ * speed on the beat and still before it, so the smoothed speed's minimum
+ * came before the beat (Bailando's alignment, docs/groove.md). */
 static cub_q16 ease_in_out(cub_q16 u)
 {
     int64_t t = u;
@@ -39,8 +42,8 @@ static cub_q16 ease_in_out(cub_q16 u)
 
 static cub_q16 swing_curve(cub_q16 u)
 {
-    int64_t s = CUB_Q16_ONE - u; /* 1 - (1 - u)^3 */
-    return (cub_q16)(CUB_Q16_ONE - ((s * s >> 16) * s >> 16));
+    int64_t s = CUB_Q16_ONE - u; /* ease_in_out(1 - (1 - u)^2): 84 % done by half */
+    return ease_in_out((cub_q16)(CUB_Q16_ONE - (s * s >> 16)));
 }
 
 cub_err cub_groove_turns(const cub_groove_note *notes, int n, int64_t end_us, cub_q16 amount_deg,

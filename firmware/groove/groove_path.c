@@ -45,7 +45,7 @@ static cub_groove_handles smooth_handles(const cub_groove_params *p, const cub_g
     cub_q16 in_len = (cub_q16)((int64_t)p->smooth_mm * t_in / (t_in + t_out));
     cub_groove_key dir = key_sub(next, prev);
     return (cub_groove_handles){key_sub(keys[i], with_length(dir, in_len)),
-                                key_add(keys[i], with_length(dir, p->smooth_mm - in_len))};
+                                key_add(keys[i], with_length(dir, p->smooth_mm - in_len)), 0};
 }
 
 /* Beat key: in from G1 (above) / G2 (back) by intensity, out its mirror. */
@@ -60,7 +60,7 @@ static cub_groove_handles beat_handles(const cub_groove_params *p, const cub_gro
     cub_q16 s = (cub_q16)((int64_t)notes[i].intensity * CUB_Q16_ONE / 120);
     cub_groove_key in = key_lerp(g2, g1, s);
     cub_groove_key reflex = {cub_fx_sub(cub_fx_add(k.x_mm, k.x_mm), in.x_mm), in.y_mm};
-    return (cub_groove_handles){in, key_lerp(k, reflex, p->reflectance)};
+    return (cub_groove_handles){in, key_lerp(k, reflex, p->reflectance), 0};
 }
 
 /* A handle at most pace x t / 3 from its key (t the time of the path it
@@ -76,6 +76,31 @@ static cub_groove_key pace_handle(const cub_groove_params *p, cub_groove_key key
     return t > 0 && len > most ? key_add(key, with_length(d, (cub_q16)most)) : h;
 }
 
+static int64_t dist(cub_groove_key a, cub_groove_key b)
+{
+    cub_groove_key d = key_sub(a, b);
+    return cub_fx_isqrt64((uint64_t)((int64_t)d.x_mm * d.x_mm + (int64_t)d.y_mm * d.y_mm));
+}
+
+/* A non-beat key's handles scaled together (their time shares kept) so
+ * neither is longer than half its path's chord (ours, session 33): busy
+ * notes' keys lie closer than the seed's smooth, and handles longer than
+ * the chord loop the path, each loop a slowing off the beat (set a's
+ * reels and hornpipes). Keys farther apart keep the seed's smooth. */
+static void chord_cap(const cub_groove_key *keys, int n, int i, cub_groove_handles *h)
+{
+    int64_t li = dist(h->in_mm, keys[i]), lo = dist(h->out_mm, keys[i]);
+    int64_t ci = i > 0 ? dist(keys[i - 1], keys[i]) / 2 : li,
+            co = i + 1 < n ? dist(keys[i + 1], keys[i]) / 2 : lo;
+    int64_t num = 1, den = 1; /* the factor, the smaller of ci / li and co / lo */
+    if (li > ci) num = ci, den = li;
+    if (lo > co && co * den < num * lo) num = co, den = lo;
+    if (num >= den) return;
+    cub_q16 f = (cub_q16)(num * CUB_Q16_ONE / den);
+    h->in_mm = key_lerp(keys[i], h->in_mm, f);
+    h->out_mm = key_lerp(keys[i], h->out_mm, f);
+}
+
 cub_err cub_groove_handles_make(const cub_groove_params *p, const cub_groove_note *notes, int n,
                                 const cub_groove_key *keys, cub_groove_handles *out)
 {
@@ -87,6 +112,12 @@ cub_err cub_groove_handles_make(const cub_groove_params *p, const cub_groove_not
                 t_out = i + 1 < n ? notes[i + 1].start_us - notes[i].start_us : 0;
         out[i].in_mm = pace_handle(p, keys[i], h.in_mm, t_in);
         out[i].out_mm = pace_handle(p, keys[i], h.out_mm, t_out);
+        if (!notes[i].is_beat) chord_cap(keys, n, i, &out[i]);
+    }
+    for (int i = 0; i < n; i++) {
+        const cub_groove_key pt[4] = {keys[i], out[i].out_mm, out[i + 1 < n ? i + 1 : i].in_mm,
+                                      keys[i + 1 < n ? i + 1 : i]};
+        out[i].len_mm = i + 1 < n ? cub_groove_path_length(pt) : 0;
     }
     return CUB_OK;
 }

@@ -26,18 +26,6 @@ cub_err cub_groove_plan_build(const cub_groove_song *song, const cub_groove_pick
     return CUB_OK;
 }
 
-cub_groove_key cub_groove_wrist_at(const cub_groove_plan *plan, int64_t t_us)
-{
-    int n = plan->n, i = groove_note_at(plan->notes, n, t_us);
-    if (i < 0) return plan->keys[0];
-    if (i + 1 >= n) return plan->keys[n - 1];
-    cub_q16 tau = groove_tau(t_us, plan->notes[i].start_us, plan->notes[i + 1].start_us);
-    cub_q16 u = cub_groove_timing_at(cub_groove_timing_of(plan->notes, i), tau);
-    const cub_groove_key pt[4] = {plan->keys[i], plan->handles[i].out_mm,
-                                  plan->handles[i + 1].in_mm, plan->keys[i + 1]};
-    return cub_groove_bezier(pt, u);
-}
-
 /* An arm as the bear has it: the joint, its child next, the child's next. */
 static bool chain(const cub_skeleton *skel, int upper)
 {

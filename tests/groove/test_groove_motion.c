@@ -83,10 +83,11 @@ static void test_non_beat_speed_is_continuous_through_a_key(void **state)
 {
     (void)state;
     cub_groove_params p = set_a();
-    /* a long note then a short one: the handles share smooth 3 : 1 */
+    /* a long note then a short one: the handles share smooth 3 : 1 (the
+     * keys far enough apart that the chord cap leaves them) */
     cub_groove_note n[3] = {note(0, 1.5, false, 90), note(750000, 0.5, false, 90),
                             note(1000000, 1, false, 90)};
-    cub_groove_key k[3] = {{0, 0}, {Q(100), Q(50)}, {Q(200), Q(20)}};
+    cub_groove_key k[3] = {{0, 0}, {Q(200), Q(100)}, {Q(400), Q(40)}};
     cub_groove_handles h[3];
     cub_groove_handles_make(&p, n, 3, k, h);
     cub_groove_key in = sub(k[1], h[1].in_mm), out = sub(h[1].out_mm, k[1]);
@@ -222,6 +223,12 @@ static void test_turns_return_rotate_alternate(void **state)
     assert_true(abs(cub_groove_turn_at(t, count, 5000000) + Q(3.5)) <= 1);
     cub_q16 mid = cub_groove_turn_at(t, count, 750000);
     assert_true(mid > 0 && mid < Q(7));
+    /* the swing starts from rest on the beat (10 ms in: under 0.3 % of
+     * the way, -3.5 deg), is fast after (over 80 % by half the note) and
+     * settles at its end */
+    assert_true(abs(cub_groove_turn_at(t, count, 1010000)) < Q(0.01));
+    assert_true(cub_groove_turn_at(t, count, 1500000) < Q(-2.8));
+    assert_true(cub_groove_turn_at(t, count, 1990000) - Q(-3.5) < Q(0.01));
 }
 
 /* The bear's skeleton (assets/bear/bear.xml). */
@@ -278,9 +285,10 @@ static void test_pose_reaches_keys_and_keeps_feet(void **state)
     cub_groove_handles_make(&plan.params, n, 3, k, h);
     cub_groove_turns(n, 3, plan.end_us, Q(7), waist, &plan.waist_count);
     cub_groove_turns(n, 3, plan.end_us, Q(10), head, &plan.head_count);
-    /* at a key's time the wrist is on it */
-    cub_groove_key w = cub_groove_wrist_at(&plan, 500000);
-    assert_true(w.x_mm == k[1].x_mm && w.y_mm == k[1].y_mm);
+    /* at a beat key's time the wrist is on it (a non-beat key is passed
+     * on the way, test_non_beat_key_passed_at_speed) */
+    cub_groove_key w = cub_groove_wrist_at(&plan, 1000000);
+    assert_true(w.x_mm == k[2].x_mm && w.y_mm == k[2].y_mm);
     static cub_pose pose, rest;
     cub_vec3 world[CUB_MOTION_MAX_JOINTS], rest_w[CUB_MOTION_MAX_JOINTS];
     cub_quat rot[CUB_MOTION_MAX_JOINTS];
@@ -301,10 +309,99 @@ static void test_pose_reaches_keys_and_keeps_feet(void **state)
     }
 }
 
+/* Off-beat keys 40 mm apart, set a's smooth 100 mm: each handle is kept
+ * within half its path's chord (no loop); a beat key keeps its handles. */
+static void test_non_beat_handles_within_half_the_chord(void **state)
+{
+    (void)state;
+    cub_groove_params p = set_a();
+    cub_groove_note n[4] = {note(0, 0.25, false, 90), note(200000, 0.25, false, 90),
+                            note(400000, 0.25, false, 90), note(600000, 1, true, 120)};
+    cub_groove_key k[4] = {{0, 0}, {Q(40), 0}, {Q(80), 0}, {Q(200), 0}};
+    cub_groove_handles h[4];
+    cub_groove_handles_make(&p, n, 4, k, h);
+    assert_true(abs(h[1].in_mm.x_mm - Q(20)) < Q(0.1) && abs(h[1].out_mm.x_mm - Q(60)) < Q(0.1));
+    /* both scaled by the shorter side's 20 / 50: the time shares kept */
+    assert_true(abs(h[2].out_mm.x_mm - Q(100)) < Q(0.1));
+    /* the beat key keeps its handle in (G1 above it, to the pace: 80 mm), not half the chord */
+    assert_true(h[3].in_mm.y_mm > Q(79));
+}
+
+static void test_stretch_runs_beat_to_beat(void **state)
+{
+    (void)state;
+    cub_groove_note n[40];
+    for (int i = 0; i < 40; i++) /* beats on 0, 4, 8; none from 9 on */
+        n[i] = note(i * 100000, 0.25, i < 9 && i % 4 == 0, 90);
+    int a, b;
+    cub_groove_stretch_of(n, 40, 1, &a, &b);
+    assert_true(a == 0 && b == 4);
+    cub_groove_stretch_of(n, 40, 4, &a, &b);
+    assert_true(a == 4 && b == 8);
+    cub_groove_stretch_of(n, 40, 10, &a, &b); /* no beat: broken at note 16 */
+    assert_true(a == 8 && b == 16);
+    cub_groove_stretch_of(n, 40, 37, &a, &b); /* the last stretch ends on the last key */
+    assert_true(a == 32 && b == 39);
+}
+
+static void test_path_u_inverts_arc_length(void **state)
+{
+    (void)state;
+    /* a straight line with its handles at thirds: arc length = u x 90 */
+    const cub_groove_key line[4] = {{0, 0}, {Q(30), 0}, {Q(60), 0}, {Q(90), 0}};
+    assert_true(fabs(d(cub_groove_path_length(line)) - 90) < 0.01);
+    assert_true(abs(cub_groove_path_u(line, Q(45)) - ONE / 2) <= 4);
+    /* a curve with long handles: the point at u(s) is s along, monotone */
+    const cub_groove_key pt[4] = {{0, 0}, {Q(0), Q(80)}, {Q(100), Q(80)}, {Q(100), 0}};
+    double len = d(cub_groove_path_length(pt)), along = 0, prev_u = 0;
+    cub_groove_key last = pt[0];
+    for (int i = 1; i <= 20; i++) {
+        cub_q16 u = cub_groove_path_u(pt, Q(len * i / 20));
+        cub_groove_key at = cub_groove_bezier(pt, u);
+        along += hypot(d(at.x_mm - last.x_mm), d(at.y_mm - last.y_mm));
+        last = at;
+        assert_true(d(u) > prev_u);
+        prev_u = d(u);
+        assert_true(fabs(along - len * i / 20) < len * 0.01 + 0.5); /* chords under arcs */
+    }
+    assert_true(prev_u > 0.999);
+}
+
+/* A beat, two off-beat notes, a beat: the wrist passes the off-beat keys
+ * without slowing; its only speed minima are the accent's, on the beats
+ * (and its drop, within the first 5 % of the stretch). */
+static void test_non_beat_key_passed_at_speed(void **state)
+{
+    (void)state;
+    cub_groove_note n[4] = {note(0, 1, true, 100), note(300000, 0.5, false, 80),
+                            note(450000, 0.5, false, 80), note(600000, 1, true, 100)};
+    /* the wrist rises to the off-beat keys and comes down on the beat key
+     * (its handle in above it): no reversal on the way */
+    cub_groove_key k[4] = {{0, 0}, {Q(150), Q(60)}, {Q(260), Q(80)}, {Q(360), Q(20)}};
+    cub_groove_handles h[4];
+    cub_groove_plan plan = {set_a(), n, 4, k, h, NULL, NULL, 0, 0, 1200000};
+    cub_groove_handles_make(&plan.params, n, 4, k, h);
+    double v[37], near1 = 1e9;
+    cub_groove_key prev = cub_groove_wrist_at(&plan, 0);
+    for (int t = 1; t <= 36; t++) { /* frames at 60 fps over the stretch */
+        cub_groove_key at = cub_groove_wrist_at(&plan, t * 1000000 / 60);
+        v[t] = hypot(d(at.x_mm - prev.x_mm), d(at.y_mm - prev.y_mm));
+        double to1 = hypot(d(at.x_mm - k[1].x_mm), d(at.y_mm - k[1].y_mm));
+        near1 = to1 < near1 ? to1 : near1;
+        prev = at;
+    }
+    assert_true(near1 < 5); /* the off-beat key is on the way (frames 8 mm apart) */
+    int minima = 0;
+    for (int t = 4; t < 36; t++) /* after the drop (5 % = 30 ms), to the stop */
+        minima += v[t] < v[t - 1] && v[t] < v[t + 1];
+    assert_int_equal(minima, 0);
+    assert_true(v[36] < v[18] / 3); /* it stops on the beat */
+}
+
 /* The poses of a small song at 300 times, hashed (FNV-1a over every joint's
  * rotation): the pinned value must come out on x86-64 and aarch64 alike
  * (the whole path is integer). */
-#define POSE_HASH 0xc36b963329d96c2dull
+#define POSE_HASH 0x3bcf75dda0fbb1feull
 
 static void test_poses_are_bit_identical_across_cpus(void **state)
 {
@@ -350,6 +447,10 @@ int main(void)
         cmocka_unit_test(test_timing_curves),
         cmocka_unit_test(test_turns_return_rotate_alternate),
         cmocka_unit_test(test_pose_reaches_keys_and_keeps_feet),
+        cmocka_unit_test(test_non_beat_handles_within_half_the_chord),
+        cmocka_unit_test(test_stretch_runs_beat_to_beat),
+        cmocka_unit_test(test_path_u_inverts_arc_length),
+        cmocka_unit_test(test_non_beat_key_passed_at_speed),
         cmocka_unit_test(test_poses_are_bit_identical_across_cpus),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -181,6 +181,7 @@ void cub_groove_keys_pace(const cub_groove_params *p, const cub_groove_note *not
  * out[i], in[i+1], key i+1. */
 typedef struct cub_groove_handles {
     cub_groove_key in_mm, out_mm;
+    cub_q16 len_mm; /* the arc length of the path from this key to the next (0 for the last) */
 } cub_groove_handles;
 
 /* Handles for every key. Non-beat key: in and out on the line through the
@@ -213,6 +214,18 @@ cub_groove_timing cub_groove_timing_of(const cub_groove_note *notes, int i);
 /* The timing curve: the path parameter u (0..1) at time fraction tau
  * (0..1), monotone, u(0) = 0, u(1) = 1 (piecewise cubic Bézier in tau). */
 cub_q16 cub_groove_timing_at(cub_groove_timing kind, cub_q16 tau);
+
+/* The beat stretch (ours, docs/groove.md): the paths from a beat note's key
+ * to the next beat note's key are one stretch; the accent runs over it by
+ * arc length, the non-beat keys between passed at speed. A stretch also
+ * starts at note 0 and every 16th note. [*first, *last] the keys of the
+ * stretch holding the path during note i (i + 1 < n). */
+void cub_groove_stretch_of(const cub_groove_note *notes, int n, int i, int *first, int *last);
+/* The arc length of a path (mm, Q16: |B'| sampled 8 times, linear between). */
+cub_q16 cub_groove_path_length(const cub_groove_key pt[4]);
+/* The parameter u where the arc length along the path reaches s_mm, the
+ * inverse of cub_groove_path_length's measure (the speed continuous). */
+cub_q16 cub_groove_path_u(const cub_groove_key pt[4], cub_q16 s_mm);
 
 /* ---- waist, head, left hand (SEEDS.md § 001, fig. 10) ----------------------- */
 
