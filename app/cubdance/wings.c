@@ -155,7 +155,10 @@ void cub_wings_close(cub_wings *w)
     w->loaded = 0;
 }
 
-void cub_wings_move(cub_wings *w, int move_clip) { w->move_clip = move_clip; }
+void cub_wings_move(cub_wings *w, int move_clip)
+{
+    w->move_clip = move_clip;
+}
 
 /* Open or close a step toward whether clip (or the coach's move) is the
  * winged one; the frame follows the player in the winged clip, the clock

@@ -327,7 +327,8 @@ static int write_sheet(const char *path, const cub_evolve_motion *const m[3])
     }
     rc = rc || cub_retarget_sheet_multi_png(path, clips, titles, 3, SHEET_COLUMNS);
     if (rc) fprintf(stderr, "cubtool evolve: cannot write %s\n", path);
-    for (int i = 0; i < 3; i++) cub_io_motion_free(&io[i]);
+    for (int i = 0; i < 3; i++)
+        cub_io_motion_free(&io[i]);
     return rc;
 }
 

@@ -73,7 +73,8 @@ static double sheet_scale(const cub_clip *const *clips, int n, int columns)
     for (int i = 0; i < n; i++)
         for (int col = 0; col < columns; col++) {
             pose_at(clips[i], frame_of(clips[i], col, columns), pos);
-            for (int j = 0; j < clips[i]->skel->joint_count; j++) top = fmax(top, pos[j].y);
+            for (int j = 0; j < clips[i]->skel->joint_count; j++)
+                top = fmax(top, pos[j].y);
         }
     return fmax(5.5, top / (CELL_H - 30));
 }

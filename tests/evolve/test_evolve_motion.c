@@ -311,7 +311,8 @@ static void evolve_checked(const cub_evolve_motion *p1, const cub_evolve_motion 
     cub_dv3 w[CUB_EVOLVE_MAX_JOINTS];
     for (int f = 0; f < child->frames; f++) {
         cub_evolve_forward(child, f, w);
-        for (int j = 0; j < child->skel.joint_count; j++) assert_true(w[j].y >= -1e-6);
+        for (int j = 0; j < child->skel.joint_count; j++)
+            assert_true(w[j].y >= -1e-6);
     }
     assert_true(cub_evolve_bone_error_mm(child, &pop, &m) < 1e-3);
 }
