@@ -281,6 +281,15 @@ cub_err cub_dance_pose(cub_dance *d, float *xyz, float *rot_xyzw)
     return CUB_OK;
 }
 
+/* The clip of the song move the coach is dancing or correcting; -1 when
+ * it is on none (the wings follow the move, not only its clip). */
+static int move_clip(const cub_dance *d)
+{
+    const cub_coach *c = &d->dir.coach;
+    int on = c->state == CUB_COACH_DANCE || c->state == CUB_COACH_CORRECT;
+    return on && c->move >= 0 && c->move < c->desc.move_count ? d->dir.moves[c->move].clip : -1;
+}
+
 void cub_dance_picture(cub_dance *d, int64_t t_us, const cub_character **ch,
                        const cub_skeleton **skel, const float **xyz, const float **rot,
                        const float **icon)
@@ -288,6 +297,7 @@ void cub_dance_picture(cub_dance *d, int64_t t_us, const cub_character **ch,
     cub_wings *w = &d->wings;
     *ch = w->loaded ? &w->ch : &d->cl.bear;
     const cub_bridge_player *p = &d->dir.player;
+    cub_wings_move(w, move_clip(d));
     if (!cub_wings_pose(w, p->clip, p->pos_q16, t_us, *xyz, *rot)) return;
     *skel = &w->skel;
     *xyz = w->xyz;

@@ -128,6 +128,7 @@ int cub_wings_open(cub_wings *w, const char *character_path, const char *clip_na
 {
     char xml[512], bvh[512];
     memset(w, 0, sizeof *w);
+    w->move_clip = -1;
     const char *dot = strrchr(character_path, '.'), *slash = strrchr(character_path, '/');
     int stem = dot && (!slash || dot > slash) ? (int)(dot - character_path) : (int)strlen(character_path);
     int dir = slash ? (int)(slash - character_path + 1) : 0;
@@ -154,16 +155,22 @@ void cub_wings_close(cub_wings *w)
     w->loaded = 0;
 }
 
-/* Open or close a step toward whether clip is the winged one; the frame
- * follows the player in it, the clock after it. */
+void cub_wings_move(cub_wings *w, int move_clip)
+{
+    w->move_clip = move_clip;
+}
+
+/* Open or close a step toward whether clip (or the coach's move) is the
+ * winged one; the frame follows the player in the winged clip, the clock
+ * outside it (the wings beat on through a correction). */
 static void step(cub_wings *w, int clip, int64_t pos_q16, int64_t t_us)
 {
     float dt = w->last_us && t_us > w->last_us ? (float)(t_us - w->last_us) * 1e-6f : 0;
     w->last_us = t_us;
-    int in = clip == w->clip;
+    int playing = clip == w->clip, in = playing || w->move_clip == w->clip;
     w->open += (in ? dt : -dt) / WINGS_OPEN_S;
     w->open = w->open < 0 ? 0 : w->open > 1 ? 1 : w->open;
-    w->frame = in ? pos_q16 / 65536.0 : w->frame + dt * WINGS_FPS;
+    w->frame = playing ? pos_q16 / 65536.0 : w->frame + dt * WINGS_FPS;
 }
 
 /* World rotation and position of every optional joint at w->frame. */

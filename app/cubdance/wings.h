@@ -8,8 +8,9 @@
  * the renderer draws their parts (assets/bear/bear_winged.xml).
  *
  * In and out (bridges): the wings unfold from a fold along the back over
- * WINGS_OPEN_S when bird_flying starts, and fold back the same way after it
- * ends, still beating while they fold; folded, they are hidden. The fold
+ * WINGS_OPEN_S when bird_flying starts (or the coach's move becomes it),
+ * and fold back the same way after it ends and the move is another, still
+ * beating while they fold; folded, they are hidden. The fold
  * is the same for any optional joints: the first bone of a chain lies
  * down the back, each further bone doubles back on the one before. */
 #ifndef CUB_APP_WINGS_H
@@ -26,6 +27,7 @@ typedef struct cub_wings {
     cub_character ch;     /* the winged bear: the bear's joints and parts, then the wings */
     cub_io_motion motion; /* the child's clip: every joint of ch */
     int clip;             /* the library clip that has the wings (bird_flying) */
+    int move_clip;        /* the clip of the move the coach is on; -1 none */
     int extra;            /* optional joints of ch (the last ones) */
     int src[CUB_MOTION_MAX_JOINTS];  /* per optional joint: its joint in motion */
     float fold[CUB_MOTION_MAX_JOINTS][4]; /* per optional joint: the folded rotation, xyzw */
@@ -44,6 +46,10 @@ typedef struct cub_wings {
 int cub_wings_open(cub_wings *w, const char *character_path, const char *clip_name,
                    const cub_skeleton *lib_skel, int clip, char *err, size_t err_size);
 void cub_wings_close(cub_wings *w);
+/* The clip of the song move the coach is dancing or correcting (-1: none).
+ * While it is the winged clip the wings stay out, whatever clip plays (a
+ * correcting head shake or watch_me): they belong to the move. */
+void cub_wings_move(cub_wings *w, int move_clip);
 /* This tick: the player plays clip at pos_q16 (frames, Q16). 1 when the
  * wings show: w->skel, w->xyz and w->rot are the scene's (the bear's
  * joints as given, then the wings). */

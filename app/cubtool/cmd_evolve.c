@@ -13,6 +13,7 @@
 
 #define EVOLVE_MAX_WEIGHTS 32
 #define EVOLVE_BENCH_RUNS 30
+#define SHEET_COLUMNS 4 /* frames a clip on the contact sheet */
 
 static void usage(FILE *f)
 {
@@ -33,8 +34,8 @@ static void usage(FILE *f)
             "  --blend X         x in C_mp = C_m1 + x d (default 0.5; negative allowed)\n"
             "  --fps F           both parents resampled at F (default 30)\n"
             "  --max-frames N    each parent cut to its first N frames (after --fps)\n"
-            "  --sheet FILE      also PNG contact sheets: FILE the child, FILE's name with\n"
-            "                    _p1 and _p2 before .png the parents (as crossed: resampled)\n"
+            "  --sheet FILE      also a PNG contact sheet: parent 1, parent 2 and the child\n"
+            "                    side by side, %d frames each (the parents as crossed)\n"
             "  --out-character F also the child as a character file: parent 1's parts, and\n"
             "                    parent 2's on the joints it gave (optional=\"1\": drawn only\n"
             "                    while a clip moves them)\n"
@@ -44,7 +45,7 @@ static void usage(FILE *f)
             "  --help            this text\n"
             "\n"
             "Progress on stderr; one line of figures on stdout.\n",
-            CUB_EVOLVE_MUTATIONS_DEFAULT, EVOLVE_BENCH_RUNS);
+            CUB_EVOLVE_MUTATIONS_DEFAULT, SHEET_COLUMNS, EVOLVE_BENCH_RUNS);
 }
 
 typedef struct evolve_args {
@@ -311,18 +312,23 @@ static int bench(const evolve_args *a, const cub_evolve_map *map, const cub_evol
     return 0;
 }
 
-/* A contact sheet of m at path, with tag ("_p1") before its ".png" when
- * tag is not empty. 0 ok. */
-static int sheet_of(const cub_evolve_motion *m, const char *path, const char *tag)
+/* One contact sheet at path: parent 1, parent 2 and the child side by
+ * side, SHEET_COLUMNS frames each (the parents as crossed: resampled).
+ * 0 ok. */
+static int write_sheet(const char *path, const cub_evolve_motion *const m[3])
 {
-    static cub_io_motion io;
-    char name[600];
-    size_t n = strlen(path);
-    int png = n > 4 && !strcmp(path + n - 4, ".png");
-    snprintf(name, sizeof name, "%.*s%s%s", (int)(png ? n - 4 : n), path, tag, png ? ".png" : "");
-    int rc = cub_evolve_to_io(m, 10, &io) || cub_retarget_sheet_png(name, &io.clip, 8);
-    if (rc) fprintf(stderr, "cubtool evolve: cannot write %s\n", name);
-    cub_io_motion_free(&io);
+    static cub_io_motion io[3];
+    static const char *const titles[3] = {"parent 1", "parent 2", "child"};
+    const cub_clip *clips[3];
+    int rc = 0;
+    for (int i = 0; i < 3; i++) {
+        rc = rc || cub_evolve_to_io(m[i], 10, &io[i]);
+        clips[i] = &io[i].clip;
+    }
+    rc = rc || cub_retarget_sheet_multi_png(path, clips, titles, 3, SHEET_COLUMNS);
+    if (rc) fprintf(stderr, "cubtool evolve: cannot write %s\n", path);
+    for (int i = 0; i < 3; i++)
+        cub_io_motion_free(&io[i]);
     return rc;
 }
 
@@ -338,7 +344,7 @@ static int write_child(const evolve_args *a, const evolve_run *r, double unit_mm
         rc = fail("write", &d);
     }
     cub_io_motion_free(&io);
-    return rc || (a->sheet && sheet_of(&r->child, a->sheet, ""));
+    return rc;
 }
 
 /* The mean foot slide (mm a contact frame) of the feet (and a quadruped's
@@ -416,7 +422,8 @@ static int run(const evolve_args *a, cub_evolve_map *map, evolve_run *r)
     }
     if (write_child(a, r, unit1)) goto out;
     if (a->out_char && write_character(a, r, ch, has_ch)) goto out;
-    if (a->sheet && (sheet_of(&p1, a->sheet, "_p1") || sheet_of(&p2, a->sheet, "_p2"))) goto out;
+    if (a->sheet && write_sheet(a->sheet, (const cub_evolve_motion *const[3]){&p1, &p2, &r->child}))
+        goto out;
     double bone = cub_evolve_bone_error_mm(&r->child, &r->pop, &r->meta);
     double ms = r->ms[0] + r->ms[1] + r->ms[2] + r->ms[3], rt_max = 0;
     double rt = round_trip_mm(&p1, &r->child, &rt_max);

@@ -47,29 +47,76 @@ static void draw_figure(canvas *c, int cx, int cy, const cub_skeleton *s, const 
     }
 }
 
-cub_err cub_retarget_sheet_png(const char *path, const cub_clip *clip, int columns)
+/* The posed joints of clip's frame f in pos. */
+static void pose_at(const cub_clip *clip, int f, cub_dv3 *pos)
 {
-    if (!path || !clip || !clip->skel || clip->frame_count < 1 || columns < 1 || columns > 64)
-        return CUB_ERR_ARG;
-    canvas c = {NULL, CELL_W * columns, CELL_H * 2};
+    const cub_skeleton *s = clip->skel;
+    cub_dq rot[CUB_MOTION_MAX_JOINTS], wrot[CUB_MOTION_MAX_JOINTS];
+    for (int j = 0; j < s->joint_count; j++)
+        rot[j] = cub_dq_norm(cub_dq_from_fx(clip->rot[(size_t)f * s->joint_count + j]));
+    rt_forward(s, cub_dv3_from_fx(clip->root_mm[f]), rot, NULL, pos, wrot);
+}
+
+/* The frame of column col when columns frames are spread over the clip. */
+static int frame_of(const cub_clip *clip, int col, int columns)
+{
+    return columns > 1 ? (int)((long)col * (clip->frame_count - 1) / (columns - 1)) : 0;
+}
+
+/* One scale for every figure of the sheet: 5.5 mm a pixel (the 0.93 m bear
+ * plus a jump fits a 240 px cell), coarser when a taller skeleton (a
+ * 1.7 m human crossed with a dog) would leave its cell. */
+static double sheet_scale(const cub_clip *const *clips, int n, int columns)
+{
+    cub_dv3 pos[CUB_MOTION_MAX_JOINTS];
+    double top = 0;
+    for (int i = 0; i < n; i++)
+        for (int col = 0; col < columns; col++) {
+            pose_at(clips[i], frame_of(clips[i], col, columns), pos);
+            for (int j = 0; j < clips[i]->skel->joint_count; j++)
+                top = fmax(top, pos[j].y);
+        }
+    return fmax(5.5, top / (CELL_H - 30));
+}
+
+static int sheet_ok(const cub_clip *clip)
+{
+    return clip && clip->skel && clip->frame_count >= 1 &&
+           clip->skel->joint_count <= CUB_MOTION_MAX_JOINTS;
+}
+
+cub_err cub_retarget_sheet_multi_png(const char *path, const cub_clip *const *clips,
+                                     const char *const *titles, int n, int columns)
+{
+    static const uint8_t ink[3] = {60, 45, 35}, rule[3] = {150, 150, 160};
+    if (!path || !clips || n < 1 || n > 8 || columns < 1 || columns > 64) return CUB_ERR_ARG;
+    for (int i = 0; i < n; i++)
+        if (!sheet_ok(clips[i])) return CUB_ERR_ARG;
+    int title_h = titles ? CUB_SHEET_TITLE_H : 0;
+    canvas c = {NULL, CELL_W * columns * n, title_h + CELL_H * 2};
     c.px = malloc((size_t)c.w * c.h * 4);
-    if (!c.px)
-        return CUB_ERR_NOMEM;
+    if (!c.px) return CUB_ERR_NOMEM;
     for (size_t i = 0; i < (size_t)c.w * c.h; i++)
         memcpy(c.px + i * 4, (const uint8_t[4]){235, 238, 242, 255}, 4);
-    const cub_skeleton *s = clip->skel;
     cub_dv3 pos[CUB_MOTION_MAX_JOINTS];
-    cub_dq rot[CUB_MOTION_MAX_JOINTS], wrot[CUB_MOTION_MAX_JOINTS];
-    double mm_per_px = 5.5; /* the 0.93 m bear plus a jump fits a 240 px cell */
-    for (int col = 0; col < columns; col++) {
-        int f = columns > 1 ? (int)((long)col * (clip->frame_count - 1) / (columns - 1)) : 0;
-        for (int j = 0; j < s->joint_count; j++)
-            rot[j] = cub_dq_norm(cub_dq_from_fx(clip->rot[(size_t)f * s->joint_count + j]));
-        rt_forward(s, cub_dv3_from_fx(clip->root_mm[f]), rot, NULL, pos, wrot);
-        for (int view = 0; view < 2; view++)
-            draw_figure(&c, col * CELL_W, view * CELL_H, s, pos, view, mm_per_px);
+    double mm_per_px = sheet_scale(clips, n, columns);
+    for (int i = 0; i < n; i++) {
+        int x0 = i * columns * CELL_W;
+        if (titles && titles[i]) cub_png_text(&c, x0 + 8, 5, 2, titles[i], ink);
+        if (i) line(&c, x0, 0, x0, c.h - 1, 0, rule); /* where one clip's block ends */
+        for (int col = 0; col < columns; col++) {
+            pose_at(clips[i], frame_of(clips[i], col, columns), pos);
+            for (int view = 0; view < 2; view++)
+                draw_figure(&c, x0 + col * CELL_W, title_h + view * CELL_H, clips[i]->skel, pos,
+                            view, mm_per_px);
+        }
     }
     cub_err err = cub_png_write(path, c.px, c.w, c.h);
     free(c.px);
     return err;
+}
+
+cub_err cub_retarget_sheet_png(const char *path, const cub_clip *clip, int columns)
+{
+    return cub_retarget_sheet_multi_png(path, &clip, NULL, 1, columns);
 }

@@ -84,6 +84,28 @@ static void test_wings_show_only_around_bird_flying(void **state)
     assert_int_equal(ticks(other, &t, 8), 0); /* folded away */
 }
 
+/* The wings belong to the move: while the coach is on bird_flying's move
+ * they stay out through another clip (a correction's head shake), beating
+ * on with the clock; they fold once the move is another. */
+static void test_wings_stay_through_a_correction_of_the_move(void **state)
+{
+    (void)state;
+    int bird = open_wings(), other = bird == 0 ? 1 : 0;
+    int64_t t = 1000000;
+    cub_wings_move(&g_w, bird);
+    assert_int_equal(ticks(bird, &t, 20), 1);
+    assert_true(g_w.open == 1.0f);
+    double frame = g_w.frame;
+    assert_int_equal(ticks(other, &t, 30), 1); /* the correcting clip: still open */
+    assert_true(g_w.open == 1.0f);
+    assert_true(fabs(g_w.frame - (frame + 30)) < 0.01); /* 30 ticks of 1/30 s beat on */
+    cub_wings_move(&g_w, other);
+    assert_int_equal(ticks(other, &t, 6), 1); /* the move is another: folding */
+    assert_true(g_w.open < 1.0f && g_w.open > 0);
+    assert_int_equal(ticks(other, &t, 8), 0);
+    cub_wings_move(&g_w, -1);
+}
+
 /* Open, the wings turn as the child clip's; the bear's joints are copied. */
 static void test_open_wings_flap_as_the_child_clip(void **state)
 {
@@ -120,6 +142,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_wings_show_only_around_bird_flying),
+        cmocka_unit_test(test_wings_stay_through_a_correction_of_the_move),
         cmocka_unit_test(test_open_wings_flap_as_the_child_clip),
         cmocka_unit_test(test_no_wings_file_means_no_wings),
     };

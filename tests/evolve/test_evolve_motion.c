@@ -289,6 +289,63 @@ static void test_child_exports_as_bvh_and_reads_back(void **state)
     cub_evolve_motion_free(&back);
 }
 
+/* The whole pipeline on p1 x p2 (no map, 2 mutations, x = 0.5, the floor
+ * step); asserts the invariants: no joint below the floor after the step,
+ * kept bones their rest length. */
+static void evolve_checked(const cub_evolve_motion *p1, const cub_evolve_motion *p2,
+                           cub_evolve_motion *child)
+{
+    static cub_evolve_corr c;
+    static cub_evolve_meta m;
+    static cub_evolve_pop pop;
+    assert_int_equal(cub_evolve_correspond(&p1->skel, &p2->skel, NULL, &c, NULL), CUB_OK);
+    assert_int_equal(cub_evolve_crossover(&p1->skel, &p2->skel, &c, &m, NULL), CUB_OK);
+    assert_int_equal(cub_evolve_mutate(&m, p1, p2, &(cub_evolve_mutation){.count = 2}, &pop, NULL),
+                     CUB_OK);
+    assert_int_equal(pop.removed_count, 2);
+    cub_evolve_survivor_cfg cfg = {0.5, 0, 0};
+    assert_int_equal(cub_evolve_survivor(&m, &pop, p1, p2, &cfg, child, NULL, NULL), CUB_OK);
+    cub_evolve_floor_report rep;
+    cub_evolve_floor(child, &rep);
+    assert_int_equal(rep.below_after, 0);
+    cub_dv3 w[CUB_EVOLVE_MAX_JOINTS];
+    for (int f = 0; f < child->frames; f++) {
+        cub_evolve_forward(child, f, w);
+        for (int j = 0; j < child->skel.joint_count; j++)
+            assert_true(w[j].y >= -1e-6);
+    }
+    assert_true(cub_evolve_bone_error_mm(child, &pop, &m) < 1e-3);
+}
+
+/* "The child can be evolved again": a child written as BVH, read back and
+ * crossed with a parent (its own parent 2, the fish) obeys the same floor
+ * and bone-length invariants as its first cross. */
+static void test_child_read_back_evolves_again(void **state)
+{
+    (void)state;
+    cross(-1, 24, 30);
+    static cub_evolve_motion child, back, grandchild;
+    evolve_checked(&fx.p1, &fx.p2, &child);
+    static cub_io_motion io, in;
+    assert_int_equal(cub_evolve_to_io(&child, 10, &io), CUB_OK);
+    char path[512];
+    const char *dir = getenv("CUB_BUILD_DIR");
+    snprintf(path, sizeof path, "%s/evolve_child_again.bvh", dir ? dir : ".");
+    cub_diag d = {0};
+    assert_int_equal(cub_io_save_bvh(path, &io, &d), CUB_OK);
+    assert_int_equal(cub_io_load_bvh(path, &(cub_io_desc){10}, &in, &d), CUB_OK);
+    assert_int_equal(cub_evolve_from_clip(&in.clip, 30, &back), CUB_OK);
+    evolve_checked(&back, &fx.p2, &grandchild);
+    assert_int_equal(grandchild.frames, 30); /* the longer parent's length */
+    assert_true(grandchild.skel.joint_count >= back.skel.joint_count - 2);
+    remove(path);
+    cub_io_motion_free(&io);
+    cub_io_motion_free(&in);
+    cub_evolve_motion_free(&child);
+    cub_evolve_motion_free(&back);
+    cub_evolve_motion_free(&grandchild);
+}
+
 /* A joint appended under an earlier one (as a crossed child's wings under
  * the chest, after the legs): the file lists it in the hierarchy before
  * the legs, and each frame's channels must follow that order. Read back,
@@ -386,6 +443,7 @@ int main(void)
         cmocka_unit_test(test_floor_step_raises_the_root_when_ik_cannot),
         cmocka_unit_test(test_slide_of_a_standing_and_a_sliding_foot),
         cmocka_unit_test(test_child_exports_as_bvh_and_reads_back),
+        cmocka_unit_test(test_child_read_back_evolves_again),
         cmocka_unit_test(test_bvh_keeps_channels_of_a_joint_added_under_an_earlier_one),
         cmocka_unit_test(test_cmu_human_crossed_with_a_dog),
     };

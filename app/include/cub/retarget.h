@@ -149,6 +149,13 @@ cub_err cub_retarget_load_source(const char *path, const char *amc_path, cub_io_
 /* A PNG contact sheet of a clip for a person to look at: `columns` evenly
  * spaced frames, front view above, side view below, floor line at y = 0. */
 cub_err cub_retarget_sheet_png(const char *path, const cub_clip *clip, int columns);
+/* Several clips side by side on one sheet (n <= 8; e.g. evolve's parents
+ * and child): each a block of `columns` frames as above, titles[i] (NULL:
+ * no title strip) written above its block. Size: 200 * columns * n by
+ * 480 (+ CUB_SHEET_TITLE_H with titles) pixels. */
+#define CUB_SHEET_TITLE_H 24
+cub_err cub_retarget_sheet_multi_png(const char *path, const cub_clip *const *clips,
+                                     const char *const *titles, int n, int columns);
 
 /* ---- the library recipe (assets/library/recipe.txt) -------------------- */
 
