@@ -5,26 +5,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-static int alloc_store(cub_groove_store *m, int cap)
-{
-    m->cap = cap;
-    m->notes = calloc((size_t)cap, sizeof *m->notes);
-    m->segs = calloc((size_t)cap, sizeof *m->segs);
-    m->keys = calloc((size_t)cap, sizeof *m->keys);
-    m->handles = calloc((size_t)cap, sizeof *m->handles);
-    m->waist = calloc((size_t)cap, sizeof *m->waist);
-    m->head = calloc((size_t)cap, sizeof *m->head);
-    m->work = malloc(sizeof *m->work);
-    return m->notes && m->segs && m->keys && m->handles && m->waist && m->head && m->work;
-}
-
-static void free_store(cub_groove_store *m)
-{
-    free(m->notes), free(m->segs), free(m->keys), free(m->handles);
-    free(m->waist), free(m->head), free(m->work);
-    memset(m, 0, sizeof *m);
-}
-
 /* The song's MIDI -> the plan (tracks chosen by the song: set a). */
 static cub_err plan_song(cub_groove_box *g, const cub_song *song, char *err, size_t size)
 {
@@ -36,7 +16,7 @@ static cub_err plan_song(cub_groove_box *g, const cub_song *song, char *err, siz
     }
     cub_groove_params p;
     cub_err e = cub_groove_pick_tracks(&g->midi.song, -1, -1, &g->pick);
-    if (!e) e = alloc_store(&g->mem, 2 * g->midi.song.note_count + 1) ? CUB_OK : CUB_ERR_NOMEM;
+    if (!e) e = cub_groove_store_alloc(&g->mem, g->midi.song.note_count);
     if (!e) e = cub_groove_params_set('a', &p);
     if (!e) e = cub_groove_plan_build(&g->midi.song, &g->pick, &p, 0, &g->mem, &g->plan, NULL, NULL);
     if (e) snprintf(err, size, "groove: %s: no dance from its notes (%s)", song->midi_path,
@@ -138,9 +118,11 @@ cub_err cub_groove_box_open(cub_groove_box *g, const cub_song *song, const cub_s
     memset(g, 0, sizeof *g);
     cub_err e = plan_song(g, song, err, size);
     if (e) return e;
+    /* A coach of another build (the seal) has no arms to groove with: it
+     * keeps to its clips. */
     if (cub_groove_rig_bind(skel, &g->rig)) {
-        snprintf(err, size, "groove: the bear's skeleton lacks a joint the groove moves");
-        return CUB_ERR_FORMAT;
+        cub_log_event(log, 0, "groove", "none", "why=skeleton");
+        return CUB_OK;
     }
     g->span_count = cub_song_groove_spans(song, g->spans, CUB_SONG_MAX_SPANS);
     for (int i = 0; !e && i < g->span_count; i++) {
@@ -156,7 +138,7 @@ void cub_groove_box_close(cub_groove_box *g)
 {
     for (int i = 0; i < CUB_SONG_MAX_SPANS; i++)
         free(g->clip_mem[i]), free(g->fuzzy[i]);
-    free_store(&g->mem);
+    cub_groove_store_free(&g->mem);
     cub_midi_groove_free(&g->midi);
     memset(g, 0, sizeof *g);
 }

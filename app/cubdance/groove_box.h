@@ -31,7 +31,9 @@ typedef struct cub_groove_box {
     cub_fuzzy_frame *fuzzy[CUB_SONG_MAX_SPANS]; /* [frame] per clip, owned */
 } cub_groove_box;
 
-/* Plan, fill and tag; log one line per span. On failure err names the file. */
+/* Plan, fill and tag; log one line per span. A skeleton the groove cannot
+ * move (no Spine, Chest, Head, two-bone arms: the seal) gets no clips and
+ * one line `groove none why=skeleton`. On failure err names the file. */
 cub_err cub_groove_box_open(cub_groove_box *g, const cub_song *song, const cub_skeleton *skel,
                             const cub_fuzzy_body *body, cub_log *log, char *err, size_t size);
 void cub_groove_box_close(cub_groove_box *g);
