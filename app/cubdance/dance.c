@@ -221,6 +221,23 @@ static cub_err open_director(cub_dance *d, const cub_app_options *o, cub_judge *
     return e;
 }
 
+/* The dance of the bars no move teaches. A song without moves reads (the
+ * format's groove song) but the coach cannot lead it yet (issue 23). */
+static cub_err open_groove(cub_dance *d, char *err, size_t size)
+{
+    d->groove = malloc(sizeof *d->groove);
+    if (!d->groove) return CUB_ERR_NOMEM;
+    cub_err e = cub_groove_box_open(d->groove, &d->song, &d->cl.lib.skel, &d->cl.table.desc.body,
+                                    d->log, err, size);
+    if (!e && d->song.move_count == 0) {
+        snprintf(err, size, "song: \"%s\" has no <move>: the box does not dance a groove song "
+                            "yet (issue 23)",
+                 d->song.name);
+        e = CUB_ERR_UNSUPPORTED;
+    }
+    return e;
+}
+
 cub_err cub_dance_open(cub_dance *d, const cub_app_options *o, cub_board *board, cub_log *log,
                        cub_judge *judge, int64_t now_us, char *err, size_t err_size)
 {
@@ -235,6 +252,7 @@ cub_err cub_dance_open(cub_dance *d, const cub_app_options *o, cub_board *board,
         cub_faults_load(d->song.faults_path, &d->cl.lib, &d->faults, &diag))
         return fail(err, err_size, &diag, "fault words");
     cub_err e = cub_dance_music_open(&d->music, o, board, d->song.midi_path, err, err_size);
+    if (!e) e = open_groove(d, err, err_size);
     if (!e) e = open_director(d, o, judge, now_us, err, err_size);
     if (!e && cub_wings_open(&d->wings, o->character_path, WINGS_CLIP, &d->cl.lib.skel,
                              cub_library_find(&d->cl.lib, WINGS_CLIP), err, err_size))
@@ -252,6 +270,8 @@ void cub_dance_close(cub_dance *d)
     free(d->dir_mem);
     cub_coachlib_free(&d->cl);
     cub_wings_close(&d->wings);
+    if (d->groove) cub_groove_box_close(d->groove);
+    free(d->groove);
     memset(d, 0, sizeof *d);
 }
 

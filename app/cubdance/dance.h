@@ -24,6 +24,7 @@
 #include "cub/song.h"
 #include "dance_music.h"
 #include "options.h"
+#include "groove_box.h"
 #include "wings.h"
 
 typedef struct cub_dance {
@@ -47,6 +48,7 @@ typedef struct cub_dance {
     int speech;         /* the config's speech=1: words are said as shown */
     int32_t said_state; /* the coach state the last tick's words were for */
     cub_wings wings;    /* the bear's wings in bird_flying (picture only) */
+    cub_groove_box *groove; /* the song's free bars, danced to its notes (owned) */
 } cub_dance;
 
 /* Load the coach's clips, the song and the music, and start the coach idle

@@ -20,19 +20,6 @@ static int fail(const char *who, const char *path, const char *what, cub_err e)
     return 1;
 }
 
-static int alloc_store(cub_groove_store *m, int cap)
-{
-    m->cap = cap;
-    m->notes = calloc((size_t)cap, sizeof *m->notes);
-    m->segs = calloc((size_t)cap, sizeof *m->segs);
-    m->keys = calloc((size_t)cap, sizeof *m->keys);
-    m->handles = calloc((size_t)cap, sizeof *m->handles);
-    m->waist = calloc((size_t)cap, sizeof *m->waist);
-    m->head = calloc((size_t)cap, sizeof *m->head);
-    m->work = malloc(sizeof *m->work);
-    return m->notes && m->segs && m->keys && m->handles && m->waist && m->head && m->work;
-}
-
 int groove_song_load(const groove_args *a, const char *who, groove_song *s)
 {
     *s = (groove_song){0};
@@ -46,7 +33,7 @@ int groove_song_load(const groove_args *a, const char *who, groove_song *s)
     if (e == CUB_ERR_RANGE) return fail(who, a->path, "no such track with notes", e);
     if (e == CUB_ERR_UNSUPPORTED) return fail(who, a->path, "more than 256 tracks", e);
     if (e) return fail(who, a->path, "no track with pitched notes", e);
-    if (!alloc_store(&s->mem, 2 * s->midi.song.note_count + 1))
+    if (cub_groove_store_alloc(&s->mem, s->midi.song.note_count))
         return fail(who, a->path, "out of memory", CUB_ERR_NOMEM);
     cub_groove_params p;
     cub_groove_params_set(a->set, &p);
@@ -59,9 +46,7 @@ int groove_song_load(const groove_args *a, const char *who, groove_song *s)
 
 void groove_song_free(groove_song *s)
 {
-    cub_groove_store *m = &s->mem;
-    free(m->notes), free(m->segs), free(m->keys), free(m->handles);
-    free(m->waist), free(m->head), free(m->work);
+    cub_groove_store_free(&s->mem);
     cub_midi_groove_free(&s->midi);
     *s = (groove_song){0};
 }

@@ -203,6 +203,59 @@ static cub_err get_faults(const cub_xml_el *el, const char *name, cub_song *s, c
                               sizeof(s->faults_path), diag);
 }
 
+/* <free bar="B" bars="N"/>: bars the bear grooves through (cub_song_spans). */
+static cub_err read_free(const cub_xml_el *el, cub_song *s, int prev_end_bar, cub_diag *diag)
+{
+    static const char *const known[] = {"bar", "bars", NULL};
+    if (s->free_count == CUB_SONG_MAX_FREE)
+        return cub_xml_fail(el, diag, "more than %d <free> spans", CUB_SONG_MAX_FREE);
+    cub_song_free *f = &s->frees[s->free_count];
+    memset(f, 0, sizeof(*f));
+    f->line = cub_xml_line(el);
+    cub_err e = known_attrs(el, known, diag);
+    if (!e) e = cub_xml_get_int(el, "bar", 1, s->bars, &f->bar, diag);
+    if (!e) e = cub_xml_get_int(el, "bars", 1, s->bars, &f->bars, diag);
+    if (e) return e;
+    if (f->bar < prev_end_bar)
+        return cub_xml_fail_attr(el, "bar", diag,
+                                 "bar=%d overlaps the move or <free> before, which lasts until "
+                                 "bar %d",
+                                 f->bar, prev_end_bar - 1);
+    if (f->bar + f->bars - 1 > s->bars)
+        return cub_xml_fail_attr(el, "bars", diag, "bars %d-%d pass the song's end (bar %d)",
+                                 f->bar, f->bar + f->bars - 1, s->bars);
+    f->start_us = cub_song_bar_us(s, f->bar);
+    f->end_us = cub_song_bar_us(s, f->bar + f->bars);
+    s->free_count++;
+    return CUB_OK;
+}
+
+/* One child of <song>, a <move> or a <free>, after the bar *prev_end_bar. */
+static cub_err read_child(const cub_xml_el *el, const cub_library *lib, cub_song *s,
+                          int *prev_end_bar, cub_diag *diag)
+{
+    if (strcmp(cub_xml_name(el), "free") == 0) {
+        cub_err e = read_free(el, s, *prev_end_bar, diag);
+        if (!e) *prev_end_bar = s->frees[s->free_count - 1].bar + s->frees[s->free_count - 1].bars;
+        return e;
+    }
+    if (strcmp(cub_xml_name(el), "move") != 0)
+        return cub_xml_fail(el, diag, "unknown element <%s> (a song holds <move>s and <free>s)",
+                            cub_xml_name(el));
+    if (s->move_count == CUB_SONG_MAX_MOVES)
+        return cub_xml_fail(el, diag, "more than %d moves", CUB_SONG_MAX_MOVES);
+    cub_song_move *mv = &s->moves[s->move_count];
+    cub_err e = read_move(el, lib, s, mv, *prev_end_bar, diag);
+    if (e) return e;
+    *prev_end_bar = mv->bar + mv->bars;
+    s->move_count++;
+    s->distinct_moves = count_distinct(s);
+    if (s->distinct_moves > CUB_SONG_MAX_DISTINCT)
+        return cub_xml_fail(el, diag, "'%s' is the song's %dth different move; at most %d",
+                            mv->clip, s->distinct_moves, CUB_SONG_MAX_DISTINCT);
+    return CUB_OK;
+}
+
 static cub_err read_song(const cub_xml_el *root, const char *name, const cub_library *lib,
                          cub_song *s, cub_diag *diag)
 {
@@ -224,25 +277,16 @@ static cub_err read_song(const cub_xml_el *root, const char *name, const cub_lib
     if (e) return e;
     int prev_end_bar = 1;
     const cub_xml_el *last = root;
-    for (const cub_xml_el *el = cub_xml_child(root, NULL); el; el = cub_xml_next(el, NULL)) {
+    for (const cub_xml_el *el = cub_xml_child(root, NULL); el && !e; el = cub_xml_next(el, NULL)) {
         last = el;
-        if (strcmp(cub_xml_name(el), "move") != 0)
-            return cub_xml_fail(el, diag, "unknown element <%s> (a song holds <move>s)",
-                                cub_xml_name(el));
-        if (s->move_count == CUB_SONG_MAX_MOVES)
-            return cub_xml_fail(el, diag, "more than %d moves", CUB_SONG_MAX_MOVES);
-        cub_song_move *mv = &s->moves[s->move_count];
-        e = read_move(el, lib, s, mv, prev_end_bar, diag);
-        if (e) return e;
-        prev_end_bar = mv->bar + mv->bars;
-        s->move_count++;
-        s->distinct_moves = count_distinct(s);
-        if (s->distinct_moves > CUB_SONG_MAX_DISTINCT)
-            return cub_xml_fail(el, diag, "'%s' is the song's %dth different move; at most %d",
-                                mv->clip, s->distinct_moves, CUB_SONG_MAX_DISTINCT);
+        e = read_child(el, lib, s, &prev_end_bar, diag);
     }
-    if (s->distinct_moves < CUB_SONG_MIN_MOVES)
-        return cub_xml_fail(last, diag, "the song uses %d different moves; it needs %d to %d",
+    if (e) return e;
+    /* No move at all: a groove song, danced to its own notes throughout. */
+    if (s->move_count > 0 && s->distinct_moves < CUB_SONG_MIN_MOVES)
+        return cub_xml_fail(last, diag,
+                            "the song uses %d different moves; it needs %d to %d (or none: "
+                            "a groove song)",
                             s->distinct_moves, CUB_SONG_MIN_MOVES, CUB_SONG_MAX_DISTINCT);
     return CUB_OK;
 }
@@ -296,4 +340,61 @@ int cub_song_move_at(const cub_song *song, int64_t t_us)
     for (int i = 0; song && i < song->move_count; i++)
         if (t_us >= song->moves[i].start_us && t_us < song->moves[i].end_us) return i;
     return -1;
+}
+
+/* ---- spans ---------------------------------------------------------------- */
+
+static int push_span(cub_song_span *out, int n, int max, cub_song_span sp)
+{
+    if (sp.bars <= 0) return n;
+    if (n < max) out[n] = sp;
+    return n + 1;
+}
+
+/* The unmarked bars [from, to) before the next move or free (or the end). */
+static cub_song_span plain_span(const cub_song *s, int from, int to, int moves_before)
+{
+    int kind = moves_before == 0                ? CUB_SONG_SPAN_INTRO
+               : moves_before == s->move_count ? CUB_SONG_SPAN_OUTRO
+                                                : CUB_SONG_SPAN_GAP;
+    return (cub_song_span){kind, -1, from, to - from, cub_song_bar_us(s, from),
+                           cub_song_bar_us(s, to)};
+}
+
+int cub_song_spans(const cub_song *song, cub_song_span *out, int max)
+{
+    if (!song || song->bars < 1 || (!out && max > 0)) return 0;
+    int n = 0, bar = 1, m = 0, f = 0;
+    while (m < song->move_count || f < song->free_count) {
+        /* moves and frees are each in bar order and never overlap */
+        int take_move = f == song->free_count ||
+                        (m < song->move_count && song->moves[m].bar < song->frees[f].bar);
+        int at = take_move ? song->moves[m].bar : song->frees[f].bar;
+        int bars = take_move ? song->moves[m].bars : song->frees[f].bars;
+        n = push_span(out, n, max, plain_span(song, bar, at, m));
+        cub_song_span sp = {take_move ? CUB_SONG_SPAN_MOVE : CUB_SONG_SPAN_FREE,
+                            take_move ? m : f, at, bars, cub_song_bar_us(song, at),
+                            cub_song_bar_us(song, at + bars)};
+        n = push_span(out, n, max, sp);
+        bar = at + bars;
+        m += take_move;
+        f += !take_move;
+    }
+    n = push_span(out, n, max, plain_span(song, bar, song->bars + 1, m));
+    return n < max ? n : max;
+}
+
+int cub_song_groove_spans(const cub_song *song, cub_song_span *out, int max)
+{
+    cub_song_span all[CUB_SONG_MAX_SPANS];
+    int n = cub_song_spans(song, all, CUB_SONG_MAX_SPANS), k = 0;
+    for (int i = 0; i < n; i++)
+        if (all[i].kind != CUB_SONG_SPAN_MOVE && k < max) out[k++] = all[i];
+    return k;
+}
+
+const char *cub_song_span_name(int kind)
+{
+    static const char *const names[] = {"move", "intro", "gap", "free", "outro"};
+    return kind >= 0 && kind <= CUB_SONG_SPAN_OUTRO ? names[kind] : "?";
 }

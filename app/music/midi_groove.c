@@ -205,3 +205,29 @@ void cub_midi_groove_free(cub_midi_groove *g)
     free(g->meters);
     memset(g, 0, sizeof(*g));
 }
+
+void cub_groove_store_free(cub_groove_store *m)
+{
+    free(m->notes), free(m->segs), free(m->keys), free(m->handles);
+    free(m->waist), free(m->head), free(m->work);
+    memset(m, 0, sizeof *m);
+}
+
+cub_err cub_groove_store_alloc(cub_groove_store *m, int note_count)
+{
+    memset(m, 0, sizeof *m);
+    if (note_count < 0) return CUB_ERR_ARG;
+    int cap = 2 * note_count + 1;
+    m->cap = cap;
+    m->notes = calloc((size_t)cap, sizeof *m->notes);
+    m->segs = calloc((size_t)cap, sizeof *m->segs);
+    m->keys = calloc((size_t)cap, sizeof *m->keys);
+    m->handles = calloc((size_t)cap, sizeof *m->handles);
+    m->waist = calloc((size_t)cap, sizeof *m->waist);
+    m->head = calloc((size_t)cap, sizeof *m->head);
+    m->work = malloc(sizeof *m->work);
+    if (m->notes && m->segs && m->keys && m->handles && m->waist && m->head && m->work)
+        return CUB_OK;
+    cub_groove_store_free(m);
+    return CUB_ERR_NOMEM;
+}

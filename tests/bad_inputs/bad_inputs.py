@@ -110,6 +110,10 @@ def base_of(kind, d, shared, build=""):
         shutil.copyfile(os.path.join(ASSETS, "songs", "twinkle.mid"), os.path.join(d, "twinkle.mid"))
         faults_beside(d)
         return read(os.path.join(ASSETS, "songs", "twinkle.song.xml")), "bad.song.xml"
+    if kind == "freesong":  # a song with <free> bars (issue 23): the groove's spans
+        shutil.copyfile(os.path.join(ASSETS, "songs", "twinkle.mid"), os.path.join(d, "twinkle.mid"))
+        faults_beside(d)
+        return read(os.path.join(SRC, "tests", "scenario", "free_twinkle.song.xml")), "bad.song.xml"
     if kind == "faults":
         song_beside(d, "twinkle.mid", "bad.words")
         return read(os.path.join(ASSETS, "songs", "faults.words")), "bad.words"

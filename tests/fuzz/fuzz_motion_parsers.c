@@ -283,6 +283,22 @@ static int fuzz_tags(const char *text, size_t len)
     return 0;
 }
 
+/* The spans of a song that reads run from its start to its end without a
+ * hole, <free>s and moves where the song put them. */
+static void fuzz_song_spans(const cub_song *song)
+{
+    static cub_song_span sp[CUB_SONG_MAX_SPANS];
+    int n = cub_song_spans(song, sp, CUB_SONG_MAX_SPANS), moves = 0, frees = 0;
+    if (n < 1 || sp[0].start_us != 0 || sp[n - 1].end_us != cub_song_length_us(song))
+        __builtin_trap();
+    for (int i = 0; i < n; i++) {
+        if (sp[i].bars < 1 || (i > 0 && sp[i].start_us != sp[i - 1].end_us)) __builtin_trap();
+        moves += sp[i].kind == CUB_SONG_SPAN_MOVE;
+        frees += sp[i].kind == CUB_SONG_SPAN_FREE;
+    }
+    if (moves != song->move_count || frees != song->free_count) __builtin_trap();
+}
+
 /* Songs are read against a library of nine 2-s kid moves "a".."i" and a
  * coach clip "w"; a song that reads must hold what the format promises. */
 static int fuzz_song(const char *text, size_t len)
@@ -301,8 +317,10 @@ static int fuzz_song(const char *text, size_t len)
     cub_err err = cub_song_parse(text, len, "fuzz.song.xml", &lib, &song, &d);
     cub_diag_str(&d, msg, sizeof(msg));
     if (err == CUB_OK) {
-        if (song.distinct_moves < CUB_SONG_MIN_MOVES || song.distinct_moves > CUB_SONG_MAX_DISTINCT)
+        if ((song.move_count > 0 && song.distinct_moves < CUB_SONG_MIN_MOVES) ||
+            song.distinct_moves > CUB_SONG_MAX_DISTINCT)
             __builtin_trap();
+        fuzz_song_spans(&song);
         for (int i = 0; i < song.move_count; i++)
             if (song.moves[i].reps < CUB_SONG_MIN_REPS ||
                 song.moves[i].end_us <= song.moves[i].start_us ||

@@ -236,6 +236,81 @@ static void test_song_shipped_songs_validate(void **state)
     cub_library_free(&shipped);
 }
 
+#define FREE(bar, bars) "<free bar=\"" bar "\" bars=\"" bars "\"/>\n"
+
+static void expect_span(const cub_song_span *sp, int kind, int index, int bar, int bars)
+{
+    printf("song: span %s %d bars %d+%d\n", cub_song_span_name(sp->kind), sp->index, sp->bar,
+           sp->bars);
+    assert_int_equal(sp->kind, kind);
+    assert_int_equal(sp->index, index);
+    assert_int_equal(sp->bar, bar);
+    assert_int_equal(sp->bars, bars);
+}
+
+/* <free> spans sit between moves; the spans cover the song from bar 1 to
+ * its end: intro, moves, gaps, frees, outro. */
+static void test_song_free_bars_and_spans(void **state)
+{
+    (void)state;
+    const char *text = HEAD SONG("24") MOVE("a", "3") MOVE("b", "5") FREE("7", "2") MOVE(
+        "c", "9") MOVE("d", "12") MOVE("e", "14") MOVE("f", "16") MOVE("g", "18") MOVE("h", "20")
+        "</song>\n";
+    cub_song *s = malloc(sizeof(*s));
+    cub_diag d = {0};
+    assert_int_equal(cub_song_parse(text, strlen(text), "songs/t.song.xml", &lib, s, &d), CUB_OK);
+    assert_int_equal(s->free_count, 1);
+    assert_int_equal(s->frees[0].line, 5);
+    assert_int_equal(s->frees[0].start_us, 12000000);
+    assert_int_equal(s->frees[0].end_us, 16000000);
+    cub_song_span sp[CUB_SONG_MAX_SPANS];
+    int n = cub_song_spans(s, sp, CUB_SONG_MAX_SPANS);
+    assert_int_equal(n, 12);
+    expect_span(&sp[0], CUB_SONG_SPAN_INTRO, -1, 1, 2);
+    expect_span(&sp[1], CUB_SONG_SPAN_MOVE, 0, 3, 2);
+    expect_span(&sp[3], CUB_SONG_SPAN_FREE, 0, 7, 2);
+    expect_span(&sp[4], CUB_SONG_SPAN_MOVE, 2, 9, 2);
+    expect_span(&sp[5], CUB_SONG_SPAN_GAP, -1, 11, 1);
+    expect_span(&sp[11], CUB_SONG_SPAN_OUTRO, -1, 22, 3);
+    assert_int_equal(sp[11].end_us, cub_song_length_us(s));
+    for (int i = 1; i < n; i++)
+        assert_int_equal(sp[i].start_us, sp[i - 1].end_us);
+    n = cub_song_groove_spans(s, sp, CUB_SONG_MAX_SPANS);
+    assert_int_equal(n, 4); /* intro, free, gap, outro */
+    expect_span(&sp[2], CUB_SONG_SPAN_GAP, -1, 11, 1);
+    free(s);
+}
+
+/* A song with no <move> is a groove song: one span, the whole song. */
+static void test_song_without_moves_grooves_throughout(void **state)
+{
+    (void)state;
+    const char *text = HEAD SONG("16") "</song>\n";
+    cub_song *s = malloc(sizeof(*s));
+    cub_diag d = {0};
+    assert_int_equal(cub_song_parse(text, strlen(text), "songs/t.song.xml", &lib, s, &d), CUB_OK);
+    assert_int_equal(s->move_count, 0);
+    cub_song_span sp[4];
+    assert_int_equal(cub_song_groove_spans(s, sp, 4), 1);
+    expect_span(&sp[0], CUB_SONG_SPAN_INTRO, -1, 1, 16);
+    assert_int_equal(sp[0].end_us, cub_song_length_us(s));
+    free(s);
+}
+
+static void test_song_rejects_bad_free_bars(void **state)
+{
+    (void)state;
+    expect_error(HEAD SONG("16") FREE("2", "2") MOVE("a", "3") "</song>\n", 4, "overlaps");
+    expect_error(HEAD SONG("16") MOVE("a", "3") FREE("4", "2") "</song>\n", 4,
+                 "overlaps the move or <free> before");
+    expect_error(HEAD SONG("16") FREE("15", "3") "</song>\n", 3, "pass the song's end");
+    expect_error(HEAD SONG("16") "<free bar=\"1\" bars=\"2\" why=\"x\"/>\n</song>\n", 3,
+                 "unknown attribute 'why'");
+    expect_error(HEAD SONG("16") "<free bar=\"1\"/>\n</song>\n", 3, "bars");
+    expect_error(HEAD SONG("16") FREE("0", "2") "</song>\n", 3, "bar");
+    expect_error(HEAD SONG("16") MOVE("a", "1") "</song>\n", 3, "(or none: a groove song)");
+}
+
 int main(void)
 {
     make_lib();
@@ -245,6 +320,9 @@ int main(void)
         cmocka_unit_test(test_song_rejects_bad_moves),
         cmocka_unit_test(test_song_rejects_bad_numbers_and_names),
         cmocka_unit_test(test_song_shipped_songs_validate),
+        cmocka_unit_test(test_song_free_bars_and_spans),
+        cmocka_unit_test(test_song_without_moves_grooves_throughout),
+        cmocka_unit_test(test_song_rejects_bad_free_bars),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

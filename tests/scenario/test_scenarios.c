@@ -19,7 +19,7 @@
 
 #define TICK_S (1.0 / 30)
 
-static const char *out_dir, *demo_log;
+static const char *out_dir, *demo_log, *groove_log;
 static char sync_songs[256]; /* comma-separated: the songs run with a skewed music clock */
 
 static void load(const char *name, logread *log)
@@ -487,6 +487,26 @@ static void test_every_hint_shown_is_said_at_its_tick(void **s)
     printf("scenario: %d hints shown and said at their tick, none missing from the voice\n", said);
 }
 
+/* Run `name` gave exactly the committed log `want_path`, line by line. */
+static void expect_committed_log(const char *name, const char *want_path)
+{
+    logread got, want;
+    load(name, &got);
+    assert_int_equal(logread_load(want_path, &want), 0);
+    for (int i = 0; i < got.count && i < want.count; i++) {
+        const logread_line *a = &want.lines[i], *b = &got.lines[i];
+        if (a->t_s != b->t_s || strcmp(a->source, b->source) || strcmp(a->event, b->event) ||
+            strcmp(a->rest, b->rest))
+            fail_msg("line %d differs:\n  committed: t=%.3f %s %s %s\n  got:       t=%.3f %s %s %s",
+                     i + 1, a->t_s, a->source, a->event, a->rest, b->t_s, b->source, b->event,
+                     b->rest);
+    }
+    assert_int_equal(got.count, want.count);
+    printf("scenario: %s: its %d log lines equal %s\n", name, got.count, want_path);
+    logread_free(&got);
+    logread_free(&want);
+}
+
 static void test_demo_song_log_is_the_committed_one(void **s)
 {
     char path[1024];
@@ -497,31 +517,40 @@ static void test_demo_song_log_is_the_committed_one(void **s)
         skip();
     }
     fclose(f);
-    logread got, want;
-    load("demo", &got);
-    assert_int_equal(logread_load(demo_log, &want), 0);
-    for (int i = 0; i < got.count && i < want.count; i++) {
-        const logread_line *a = &want.lines[i], *b = &got.lines[i];
-        if (a->t_s != b->t_s || strcmp(a->source, b->source) || strcmp(a->event, b->event) ||
-            strcmp(a->rest, b->rest))
-            fail_msg("line %d differs:\n  committed: t=%.3f %s %s %s\n  got:       t=%.3f %s %s %s",
-                     i + 1, a->t_s, a->source, a->event, a->rest, b->t_s, b->source, b->event,
-                     b->rest);
-    }
-    assert_int_equal(got.count, want.count);
-    printf("scenario: the demo song's %d log lines equal %s\n", got.count, demo_log);
-    logread_free(&got);
-    logread_free(&want);
+    expect_committed_log("demo", demo_log);
+}
+
+/* A song with <free> bars: one groove clip per span no move teaches (the
+ * intro, the <free>s), each logged with its frames and a hash of their
+ * fuzzy memberships, then the dance; all of it the committed log, on every
+ * CPU (issue 23). */
+static void test_free_bars_groove_log_is_the_committed_one(void **s)
+{
+    logread log;
+    load("groove_free", &log);
+    int spans = logread_count(&log, "groove", "span");
+    char kind[16];
+    int free_spans = 0;
+    for (int i = logread_find(&log, 0, "groove", "span"); i >= 0;
+         i = logread_find(&log, i + 1, "groove", "span"))
+        free_spans += !strcmp(field(&log, i, "kind", kind, sizeof kind), "free");
+    printf("scenario: groove_free: %d groove spans, %d of them <free>\n", spans, free_spans);
+    assert_int_equal(spans, 4);
+    assert_int_equal(free_spans, 3);
+    logread_free(&log);
+    expect_committed_log("groove_free", groove_log);
 }
 
 int main(int argc, char **argv)
 {
-    if (argc < 4) {
-        fprintf(stderr, "usage: %s OUT_DIR DEMO_LOG SYNC_SONG[,SYNC_SONG...]\n", argv[0]);
+    if (argc < 5) {
+        fprintf(stderr, "usage: %s OUT_DIR DEMO_LOG SYNC_SONG[,SYNC_SONG...] GROOVE_LOG\n",
+                argv[0]);
         return 2;
     }
     out_dir = argv[1];
     demo_log = argv[2];
+    groove_log = argv[4];
     snprintf(sync_songs, sizeof sync_songs, "%s", argv[3]);
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_wrong_verdict_reaches_a_correcting_clip_within_6_ticks),
@@ -537,6 +566,7 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_child_who_walks_away_pauses_then_attracts),
         cmocka_unit_test(test_every_hint_shown_is_said_at_its_tick),
         cmocka_unit_test(test_demo_song_log_is_the_committed_one),
+        cmocka_unit_test(test_free_bars_groove_log_is_the_committed_one),
     };
     return cmocka_run_group_tests_name("scenarios", tests, NULL, NULL);
 }

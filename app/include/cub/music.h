@@ -119,4 +119,10 @@ cub_err cub_midi_groove_read(const uint8_t *data, size_t len, const char *name, 
 cub_err cub_midi_groove_load(const char *path, cub_midi_groove *out, cub_diag *diag);
 void cub_midi_groove_free(cub_midi_groove *g);
 
+/* A plan's storage on the heap for a song of note_count MIDI notes (the
+ * cap cub_groove_store asks: 2 x notes + 1). CUB_ERR_NOMEM, with nothing
+ * left allocated. */
+cub_err cub_groove_store_alloc(cub_groove_store *m, int note_count);
+void cub_groove_store_free(cub_groove_store *m);
+
 #endif
