@@ -1,0 +1,130 @@
+/* gait — the footstep planner (SEEDS.md § 003, "Footstep planner"): the
+ * next n footholds, sequentially: step i+1 is planned only once step i
+ * succeeded; a step with no feasible foothold sends the planner back to
+ * its predecessor's next try, then further back; feasible footholds are
+ * not ranked, the first one found is taken. Q16.16 mm. */
+#include "cub/gait.h"
+
+#define DEFAULT_RISE_MM CUB_Q16_INT(200) /* ours: a knee-high stone is too much */
+#define DEFAULT_TILT_MM CUB_Q16_INT(30)  /* ours: ~7 degrees over a 25 cm foot */
+#define STEPS_FLAT 4                     /* the seed: 4-5 on flat ground */
+#define STEPS_ROUGH 3                    /* the seed: 2-3 */
+
+/* ours: the nominal stride first, then shorter and longer ones alternately. */
+static const cub_q16 default_factors[] = {CUB_Q16_ONE, 49152, 81920, 32768, 98304};
+
+typedef struct heading {
+    cub_q16 ux, uz; /* unit heading on the ground */
+} heading;
+
+static heading unit_heading(cub_q16 dx, cub_q16 dz)
+{
+    uint32_t len = cub_fx_isqrt64((uint64_t)((int64_t)dx * dx + (int64_t)dz * dz));
+    if (len == 0) return (heading){0, CUB_Q16_ONE};
+    return (heading){(cub_q16)((int64_t)dx * CUB_Q16_ONE / len),
+                     (cub_q16)((int64_t)dz * CUB_Q16_ONE / len)};
+}
+
+/* The ground point at along_mm ahead of (x, z). */
+static cub_vec3 ahead(const cub_gait_terrain *t, heading h, cub_q16 x, cub_q16 z, cub_q16 along)
+{
+    cub_q16 px = cub_fx_add(x, cub_fx_mul(h.ux, along));
+    cub_q16 pz = cub_fx_add(z, cub_fx_mul(h.uz, along));
+    return (cub_vec3){px, cub_gait_height(t, px, pz), pz};
+}
+
+static cub_q16 rise_limit(const cub_gait_plan_params *p)
+{
+    return p->max_rise_mm > 0 ? p->max_rise_mm : DEFAULT_RISE_MM;
+}
+
+static cub_q16 tilt_limit(const cub_gait_plan_params *p)
+{
+    return p->max_tilt_mm > 0 ? p->max_tilt_mm : DEFAULT_TILT_MM;
+}
+
+/* The foot's base rests on its highest ground point (ankle, middle, toe). */
+static cub_q16 base_range(const cub_gait_terrain *t, const cub_gait_plan_params *p, heading h,
+                          cub_q16 x, cub_q16 z, cub_q16 *top)
+{
+    cub_q16 lo = CUB_Q16_MAX, hi = CUB_Q16_MIN;
+    for (int k = 0; k <= 2; k++) {
+        cub_q16 y = ahead(t, h, x, z, (cub_q16)(((int64_t)p->foot_mm * k) / 2)).y;
+        if (y < lo) lo = y;
+        if (y > hi) hi = y;
+    }
+    *top = hi;
+    return cub_fx_sub(hi, lo);
+}
+
+bool cub_gait_foothold_ok(const cub_gait_terrain *t, const cub_gait_plan_params *p,
+                          cub_q16 from_y_mm, cub_q16 x_mm, cub_q16 z_mm, cub_q16 dir_x,
+                          cub_q16 dir_z)
+{
+    cub_q16 top;
+    cub_q16 tilt = base_range(t, p, unit_heading(dir_x, dir_z), x_mm, z_mm, &top);
+    return tilt <= tilt_limit(p) && cub_fx_abs(cub_fx_sub(top, from_y_mm)) <= rise_limit(p);
+}
+
+static int step_count(const cub_gait_terrain *t, const cub_gait_plan_params *p)
+{
+    int n = p->steps > 0 ? p->steps : (cub_gait_terrain_is_flat(t) ? STEPS_FLAT : STEPS_ROUGH);
+    return n < CUB_GAIT_MAX_STEPS ? n : CUB_GAIT_MAX_STEPS;
+}
+
+static cub_q16 factor(const cub_gait_plan_params *p, int k)
+{
+    return p->tries > 0 ? p->factors[k] : default_factors[k];
+}
+
+/* Try k of step i after prev: the foothold, or false when it is not
+ * feasible. The feet alternate; the lateral offset keeps them width apart. */
+static bool try_step(const cub_gait_terrain *t, const cub_gait_plan_params *p, heading h,
+                     const cub_gait_step *prev, int k, cub_gait_step *out)
+{
+    int left = !prev->left;
+    cub_q16 side = left ? p->width_mm : -p->width_mm; /* left of the heading is (uz, -ux) */
+    cub_q16 x = cub_fx_add(prev->foot_mm.x, cub_fx_mul(h.uz, side));
+    cub_q16 z = cub_fx_sub(prev->foot_mm.z, cub_fx_mul(h.ux, side));
+    cub_vec3 at = ahead(t, h, x, z, cub_fx_mul(p->stride_mm, factor(p, k)));
+    if (!cub_gait_foothold_ok(t, p, prev->foot_mm.y, at.x, at.z, h.ux, h.uz)) return false;
+    cub_q16 top;
+    base_range(t, p, h, at.x, at.z, &top);
+    *out = (cub_gait_step){{at.x, top, at.z}, left, k};
+    return true;
+}
+
+static bool params_ok(const cub_gait_plan_params *p)
+{
+    return p->stride_mm > 0 && p->foot_mm >= 0 && p->width_mm >= 0 && p->tries >= 0 &&
+           p->tries <= CUB_GAIT_MAX_TRIES;
+}
+
+cub_err cub_gait_plan_steps(const cub_gait_terrain *t, const cub_gait_plan_params *p,
+                            const cub_gait_start *start, cub_gait_plan *out)
+{
+    if (!t || !p || !start || !out || !params_ok(p)) return CUB_ERR_ARG;
+    *out = (cub_gait_plan){0};
+    heading h = unit_heading(start->dir_x, start->dir_z);
+    int n = step_count(t, p);
+    int tries = p->tries > 0 ? p->tries : (int)(sizeof default_factors / sizeof *default_factors);
+    cub_gait_step origin = {start->foot_mm, start->left, 0};
+    int k[CUB_GAIT_MAX_STEPS] = {0};
+    int i = 0;
+    while (i < n) {
+        if (k[i] >= tries) { /* step i has no foothold left: back up */
+            if (i == 0) return CUB_ERR_EMPTY;
+            k[i] = 0;
+            k[--i]++;
+            out->backtracks++;
+            continue;
+        }
+        out->tested++;
+        if (try_step(t, p, h, i ? &out->steps[i - 1] : &origin, k[i], &out->steps[i]))
+            i++;
+        else
+            k[i]++;
+    }
+    out->count = n;
+    return CUB_OK;
+}

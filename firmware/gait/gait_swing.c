@@ -1,0 +1,109 @@
+/* gait — the swing foot's path (SEEDS.md § 003, "Swing foot path"): the
+ * quartic Bézier of eq. 4-2 between the current foot and the next
+ * foothold, its three inner control points raised together until the
+ * path clears the terrain. Q16.16 mm. */
+#include "cub/gait.h"
+
+#define DEFAULT_CLEAR_MM CUB_Q16_INT(20) /* the 2 cm over obstacles */
+#define DEFAULT_RAISE_MM CUB_Q16_INT(10) /* ours */
+#define DEFAULT_MAX_RAISES 100           /* ours: a metre above the line */
+#define DEFAULT_SAMPLES 64               /* ours: ~1 cm apart on a 60 cm step */
+#define MAX_SAMPLES 1024
+
+/* sum of p[k] * b[k] over k, b Q16.16 weights. */
+static cub_q16 weigh(const cub_q16 *v, const cub_q16 *b)
+{
+    int64_t s = 0;
+    for (int k = 0; k < 5; k++) s += (int64_t)v[k] * b[k];
+    return (cub_q16)((s + (1 << 15)) >> 16);
+}
+
+cub_vec3 cub_gait_bezier4(const cub_vec3 p[5], cub_q16 t)
+{
+    t = cub_fx_clamp(t, 0, CUB_Q16_ONE);
+    cub_q16 s = CUB_Q16_ONE - t;
+    cub_q16 s2 = cub_fx_mul(s, s), t2 = cub_fx_mul(t, t);
+    cub_q16 b[5] = {0, 4 * cub_fx_mul(t, cub_fx_mul(s2, s)), 6 * cub_fx_mul(t2, s2),
+                    4 * cub_fx_mul(cub_fx_mul(t2, t), s), cub_fx_mul(t2, t2)};
+    /* The weights sum to exactly one, so points on a line stay on it. */
+    b[0] = CUB_Q16_ONE - b[1] - b[2] - b[3] - b[4];
+    cub_q16 xs[5], ys[5], zs[5];
+    for (int k = 0; k < 5; k++) {
+        xs[k] = p[k].x;
+        ys[k] = p[k].y;
+        zs[k] = p[k].z;
+    }
+    return (cub_vec3){weigh(xs, b), weigh(ys, b), weigh(zs, b)};
+}
+
+typedef struct swing_cfg {
+    cub_q16 clear, raise, foot;
+    int max_raises, samples;
+} swing_cfg;
+
+static swing_cfg config(const cub_gait_swing_params *p)
+{
+    swing_cfg c = {DEFAULT_CLEAR_MM, DEFAULT_RAISE_MM, 0, DEFAULT_MAX_RAISES, DEFAULT_SAMPLES};
+    if (!p) return c;
+    if (p->clearance_mm > 0) c.clear = p->clearance_mm;
+    if (p->raise_mm > 0) c.raise = p->raise_mm;
+    if (p->max_raises > 0) c.max_raises = p->max_raises;
+    if (p->samples > 0) c.samples = p->samples < MAX_SAMPLES ? p->samples : MAX_SAMPLES;
+    if (p->foot_mm > 0) c.foot = p->foot_mm;
+    return c;
+}
+
+/* The clearance asked at t: full over the middle half, ramping to 0 at
+ * the footholds, where the sole must touch [ours]. */
+static cub_q16 clearance_at(cub_q16 clear, cub_q16 t)
+{
+    cub_q16 edge = t < CUB_Q16_HALF ? t : CUB_Q16_ONE - t;
+    return cub_fx_mul(clear, cub_fx_clamp(edge * 4, 0, CUB_Q16_ONE));
+}
+
+static bool point_clears(const cub_gait_terrain *t, cub_vec3 q, cub_q16 need)
+{
+    return cub_fx_sub(q.y, cub_gait_height(t, q.x, q.z)) >= need;
+}
+
+/* Every sample of the path (ankle, and the toe ahead of it) clears. */
+static bool path_clears(const cub_gait_terrain *t, const swing_cfg *c, const cub_vec3 p[5],
+                        cub_vec3 toe_off)
+{
+    for (int i = 1; i < c->samples; i++) {
+        cub_q16 tt = (cub_q16)(((int64_t)i << 16) / c->samples);
+        cub_vec3 q = cub_gait_bezier4(p, tt);
+        cub_q16 need = clearance_at(c->clear, tt);
+        if (!point_clears(t, q, need)) return false;
+        if (c->foot > 0 && !point_clears(t, cub_fx_vec3_add(q, toe_off), need)) return false;
+    }
+    return true;
+}
+
+/* The toe's offset from the ankle: foot ahead along P0P4 on the ground. */
+static cub_vec3 toe_offset(cub_vec3 from, cub_vec3 to, cub_q16 foot)
+{
+    cub_vec3 d = {cub_fx_sub(to.x, from.x), 0, cub_fx_sub(to.z, from.z)};
+    uint32_t len = cub_fx_isqrt64((uint64_t)((int64_t)d.x * d.x + (int64_t)d.z * d.z));
+    if (len == 0 || foot == 0) return (cub_vec3){0, 0, 0};
+    return (cub_vec3){(cub_q16)((int64_t)d.x * foot / len), 0, (cub_q16)((int64_t)d.z * foot / len)};
+}
+
+cub_err cub_gait_swing_path(const cub_gait_terrain *t, const cub_gait_swing_params *p,
+                            cub_vec3 from_mm, cub_vec3 to_mm, cub_gait_swing *out)
+{
+    if (!t || !out) return CUB_ERR_ARG;
+    swing_cfg c = config(p);
+    *out = (cub_gait_swing){{from_mm, cub_fx_vec3_lerp(from_mm, to_mm, CUB_Q16_ONE / 4),
+                             cub_fx_vec3_lerp(from_mm, to_mm, CUB_Q16_HALF),
+                             cub_fx_vec3_lerp(from_mm, to_mm, 3 * CUB_Q16_ONE / 4), to_mm},
+                            0, 0};
+    cub_vec3 toe = toe_offset(from_mm, to_mm, c.foot);
+    while (!path_clears(t, &c, out->p, toe)) {
+        if (out->raises >= c.max_raises) return CUB_ERR_RANGE;
+        for (int k = 1; k <= 3; k++) out->p[k].y = cub_fx_add(out->p[k].y, c.raise);
+        out->raises++;
+    }
+    out->clear = 1;
+    return CUB_OK;
+}

@@ -1,0 +1,210 @@
+/* gait — seed 003 (SEEDS.md § 003): one captured walk cycle adapted to any
+ * ground. This slice: the phase analysis of a walk (per foot, from the
+ * ankle and toe heights and the foot's pitch: the foot length and the five
+ * key phases of each leg cycle), the terrain (flat, sloped, a rolling
+ * heightfield, box obstacles added at run time), the footstep planner
+ * (sequential, backtracking, first feasible step taken) and the swing
+ * path (the quartic Bézier raised until it clears the terrain).
+ *
+ * World frame as in cub/motion.h: Q16.16 millimetres, y up; the ground is
+ * a height y over the (x, z) plane. Fixed point, no allocation: the caller
+ * owns every array. Choices the seed leaves open are marked [ours] here and
+ * in docs/gait.md.
+ */
+#ifndef CUB_GAIT_H
+#define CUB_GAIT_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "cub/err.h"
+#include "cub/fx.h"
+#include "cub/motion.h"
+
+/* ---- phase analysis ------------------------------------------------------ */
+
+/* The seed's five key phases, in the order a leg cycle runs them. */
+typedef enum cub_gait_phase {
+    CUB_GAIT_STANCE = 0, /* ankle and toe on the ground */
+    CUB_GAIT_LIFT,       /* ankle up, toe still down */
+    CUB_GAIT_OFF,        /* both up: the swing */
+    CUB_GAIT_STRIKE,     /* first contact again, one of the two down */
+    CUB_GAIT_LAND,       /* both down, the foot still settling to flat */
+    CUB_GAIT_PHASE_COUNT_
+} cub_gait_phase;
+
+/* A short lowercase name ("stance", "lift", ...); never NULL. */
+const char *cub_gait_phase_name(cub_gait_phase p);
+
+/* Thresholds the seed does not give [ours]. All 0: the defaults.
+ * A point (ankle or toe) is down at a frame when it is within down_mm of
+ * its ground there and moves slower than still_mm_s. Its ground is its
+ * lowest height within half a second either side: a captured floor is not
+ * level (CMU 02_01's footfalls differ by 5 cm), one lowest height for the
+ * whole clip would leave later steps in the air. */
+typedef struct cub_gait_phase_params {
+    int fps;              /* frames per second of the tracks (0: 120) */
+    cub_q16 down_mm;      /* (0: 25 mm) */
+    cub_q16 still_mm_s;   /* (0: 1000 mm/s) */
+    cub_q16 settle_rad_s; /* land ends when the pitch turns slower (0: 30 deg/s) */
+} cub_gait_phase_params;
+
+/* What the analysis learnt of one foot. */
+typedef struct cub_gait_foot {
+    cub_q16 length_mm;         /* ankle -> toe, mean over the clip (the foot base) */
+    /* Over the frames with both points down (most are stance) [ours]: */
+    cub_q16 ankle_lift_mm;     /* the ankle's mean height over the toe's */
+    cub_q16 flat_pitch_rad;    /* the foot's mean pitch: its pitch when flat */
+    int cycles;                /* complete lift..land cycles seen */
+    int phase_frames[CUB_GAIT_PHASE_COUNT_]; /* frames spent in each phase */
+} cub_gait_foot;
+
+/* The foot's pitch: the angle of ankle -> toe below the horizontal
+ * (positive: the ankle is above the toe). */
+cub_q16 cub_gait_foot_pitch(cub_vec3 ankle_mm, cub_vec3 toe_mm);
+
+/* Per frame world positions of an ankle and a toe joint of a clip (FK on
+ * every frame). ankle_out and toe_out hold clip->frame_count entries. */
+cub_err cub_gait_track_clip(const cub_clip *clip, int ankle, int toe, cub_vec3 *ankle_out,
+                            cub_vec3 *toe_out);
+
+/* One foot's phases: phase_out[frames] gets one cub_gait_phase per frame,
+ * foot the lengths and counts. p may be NULL. Frames before the foot's
+ * first stance are labelled by what they look like (a clip may start mid
+ * swing). CUB_ERR_ARG for NULL arrays or fewer than 2 frames. */
+cub_err cub_gait_analyse(const cub_vec3 *ankle_mm, const cub_vec3 *toe_mm, int frames,
+                         const cub_gait_phase_params *p, uint8_t *phase_out,
+                         cub_gait_foot *foot);
+
+/* ---- terrain ------------------------------------------------------------- */
+
+typedef enum cub_gait_ground {
+    CUB_GAIT_FLAT = 0, /* y = base */
+    CUB_GAIT_SLOPE,    /* y = base + grad_x * x + grad_z * z */
+    CUB_GAIT_ROLLING   /* a heightfield, bilinear between its samples */
+} cub_gait_ground;
+
+/* An obstacle: an axis-aligned box (a log lying across, a stone). The
+ * ground under its footprint is its top, max_mm.y, where that is higher. */
+typedef struct cub_gait_box {
+    cub_vec3 min_mm, max_mm;
+} cub_gait_box;
+
+#define CUB_GAIT_MAX_OBSTACLES 16
+
+typedef struct cub_gait_terrain {
+    cub_gait_ground ground;
+    cub_q16 base_mm;        /* FLAT and SLOPE: the height at x = z = 0 */
+    cub_q16 grad_x, grad_z; /* SLOPE: rise per unit run (Q16.16, 1 = 45 degrees) */
+    /* ROLLING: nx * nz heights, row major (x fastest), sample (i, j) at
+     * origin + (i, j) * cell_mm; outside, the nearest edge sample holds. */
+    const cub_q16 *heights_mm;
+    int nx, nz;
+    cub_q16 cell_mm;
+    cub_q16 origin_x_mm, origin_z_mm;
+    cub_gait_box obstacles[CUB_GAIT_MAX_OBSTACLES];
+    int obstacle_count;
+} cub_gait_terrain;
+
+void cub_gait_terrain_flat(cub_gait_terrain *t, cub_q16 base_mm);
+void cub_gait_terrain_slope(cub_gait_terrain *t, cub_q16 base_mm, cub_q16 grad_x,
+                            cub_q16 grad_z);
+/* A rolling heightfield over heights_mm[nx * nz] (the caller's), filled
+ * here with gentle hills: amp_mm * sin(2 pi x / wave) * cos(2 pi z / wave)
+ * [ours: one smooth family, enough for a forest floor]. CUB_ERR_ARG for a
+ * grid under 2 x 2, cell or wave <= 0. */
+cub_err cub_gait_terrain_rolling(cub_gait_terrain *t, cub_q16 *heights_mm, int nx, int nz,
+                                 cub_q16 cell_mm, cub_q16 amp_mm, cub_q16 wave_mm);
+/* Add an obstacle at run time. CUB_ERR_FULL past CUB_GAIT_MAX_OBSTACLES,
+ * CUB_ERR_ARG for an empty box. */
+cub_err cub_gait_terrain_add(cub_gait_terrain *t, cub_gait_box box);
+/* The ground alone, and the ground with the obstacles on it. */
+cub_q16 cub_gait_ground_height(const cub_gait_terrain *t, cub_q16 x_mm, cub_q16 z_mm);
+cub_q16 cub_gait_height(const cub_gait_terrain *t, cub_q16 x_mm, cub_q16 z_mm);
+/* true for a terrain the planner may treat as flat: FLAT, no obstacles. */
+bool cub_gait_terrain_is_flat(const cub_gait_terrain *t);
+
+/* ---- footstep planner ----------------------------------------------------- */
+
+#define CUB_GAIT_MAX_STEPS 5
+#define CUB_GAIT_MAX_TRIES 8
+
+typedef struct cub_gait_plan_params {
+    int steps;             /* n; 0: by terrain, 4 on flat ground, 3 on rough */
+    cub_q16 stride_mm;     /* one step's nominal length (from the walk) */
+    cub_q16 width_mm;      /* lateral distance between the feet's lines */
+    cub_q16 foot_mm;       /* the foot base: ankle -> toe */
+    cub_q16 max_rise_mm;   /* step up or down at most this (0: 200 mm) */
+    cub_q16 max_tilt_mm;   /* the foot base's ground may differ by this (0: 30 mm) */
+    /* The step lengths tried, in order, as fractions of stride_mm; the
+     * first feasible is taken (the seed ranks none). tries 0: the default
+     * 1, 0.75, 1.25, 0.5, 1.5 [ours]. */
+    int tries;
+    cub_q16 factors[CUB_GAIT_MAX_TRIES];
+} cub_gait_plan_params;
+
+/* Where the walk stands: the last foothold (the ankle's ground point), its
+ * side, and the heading (x, z; any length but zero). */
+typedef struct cub_gait_start {
+    cub_vec3 foot_mm;
+    int left;              /* 1: the last foot down is the left one */
+    cub_q16 dir_x, dir_z;
+} cub_gait_start;
+
+typedef struct cub_gait_step {
+    cub_vec3 foot_mm;      /* the ankle's point on the ground */
+    int left;
+    int try_index;         /* which of the factors placed it */
+} cub_gait_step;
+
+typedef struct cub_gait_plan {
+    int count;             /* steps planned (== n when it succeeded) */
+    cub_gait_step steps[CUB_GAIT_MAX_STEPS];
+    int tested;            /* footholds tested */
+    int backtracks;        /* times a step was given up and its predecessor retried */
+} cub_gait_plan;
+
+/* true if a foot may stand at foot_mm (ankle ground point) heading along
+ * (dir_x, dir_z), coming from a foothold at from_y_mm: its base is level
+ * (ankle, middle and toe ground within max_tilt) and the rise from the last
+ * foothold is within max_rise. */
+bool cub_gait_foothold_ok(const cub_gait_terrain *t, const cub_gait_plan_params *p,
+                          cub_q16 from_y_mm, cub_q16 x_mm, cub_q16 z_mm, cub_q16 dir_x,
+                          cub_q16 dir_z);
+
+/* The next n footholds, sequentially (step i+1 only once i succeeded; on
+ * a failure back up to i-1, then i-2, ...; the first feasible step found
+ * is taken). When backtracking runs out: CUB_ERR_EMPTY with out->count 0
+ * [ours: the walk stops where it is]. CUB_ERR_ARG for bad parameters. */
+cub_err cub_gait_plan_steps(const cub_gait_terrain *t, const cub_gait_plan_params *p,
+                            const cub_gait_start *start, cub_gait_plan *out);
+
+/* ---- swing path ------------------------------------------------------------ */
+
+/* The seed's quartic Bézier (eq. 4-2): P0 the foot's current point, P4 the
+ * next foothold, P1..P3 start at the quartile, middle and third quartile
+ * of P0P4 and are raised together until the sole clears the terrain. */
+typedef struct cub_gait_swing {
+    cub_vec3 p[5];
+    int raises;            /* times P1..P3 were raised */
+    int clear;             /* 1: the path clears the terrain by clearance_mm */
+} cub_gait_swing;
+
+typedef struct cub_gait_swing_params {
+    cub_q16 clearance_mm;  /* the sole stays this far above (0: 20 mm) */
+    cub_q16 raise_mm;      /* each raise (0: 10 mm) [ours] */
+    int max_raises;        /* give up after (0: 100) [ours] */
+    int samples;           /* points tested along the path (0: 64) [ours] */
+    cub_q16 foot_mm;       /* the toe, this far ahead of the ankle along P0P4, is tested too */
+} cub_gait_swing_params;
+
+/* B(t), t in [0, 1] Q16.16. */
+cub_vec3 cub_gait_bezier4(const cub_vec3 p[5], cub_q16 t);
+
+/* The swing from from_mm to to_mm over t. The end points themselves are
+ * not tested (they are footholds). p may be NULL. CUB_ERR_RANGE when
+ * max_raises did not clear it (out holds the highest path tried). */
+cub_err cub_gait_swing_path(const cub_gait_terrain *t, const cub_gait_swing_params *p,
+                            cub_vec3 from_mm, cub_vec3 to_mm, cub_gait_swing *out);
+
+#endif

@@ -1,0 +1,229 @@
+/* test_gait — seed 003's firmware (cub/gait.h) on hand-made ground: the
+ * terrain's heights, the footstep planner (a blocked foothold forces a
+ * backtrack; the first feasible step is taken; a dead end stops the walk)
+ * and the swing path (it clears a log). The phase analysis on a captured
+ * walk is test_gait_walk. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+#include <stdlib.h>
+
+#include "cub/gait.h"
+
+#define MM(n) CUB_Q16_INT(n)
+#define Q(num, den) ((cub_q16)(((int64_t)(num) * CUB_Q16_ONE + (den) / 2) / (den)))
+
+static cub_gait_box box(int x0, int y0, int z0, int x1, int y1, int z1)
+{
+    return (cub_gait_box){{MM(x0), MM(y0), MM(z0)}, {MM(x1), MM(y1), MM(z1)}};
+}
+
+static void test_terrain_heights(void **state)
+{
+    (void)state;
+    cub_gait_terrain t;
+    cub_gait_terrain_flat(&t, MM(12));
+    assert_int_equal(cub_gait_height(&t, MM(-900), MM(4000)), MM(12));
+    assert_true(cub_gait_terrain_is_flat(&t));
+
+    cub_gait_terrain_slope(&t, MM(10), Q(1, 10), Q(-1, 5)); /* 10 % up x, 20 % down z */
+    /* 1/10 is not exact in Q16.16: within 0.01 mm over a metre. */
+    assert_in_range(cub_gait_height(&t, MM(1000), 0), MM(110) - 655, MM(110) + 655);
+    assert_in_range(cub_gait_height(&t, 0, MM(500)) + MM(1000), MM(910) - 655, MM(910) + 655);
+    assert_false(cub_gait_terrain_is_flat(&t));
+
+    static cub_q16 hf[9 * 7];
+    assert_int_equal(cub_gait_terrain_rolling(&t, hf, 1, 7, MM(250), MM(80), MM(2000)),
+                     CUB_ERR_ARG);
+    assert_int_equal(cub_gait_terrain_rolling(&t, hf, 9, 7, MM(250), MM(80), MM(2000)), CUB_OK);
+    /* x = 500 is a quarter wave: sin 1, cos(0) 1 at z = 0; the crest. */
+    assert_in_range(cub_gait_height(&t, MM(500), 0), MM(80) - 20, MM(80) + 20);
+    /* Between samples: bilinear, so the midpoint of two samples is their mean. */
+    cub_q16 mid = cub_gait_height(&t, MM(125), MM(250));
+    assert_in_range(mid, (hf[9 + 0] + hf[9 + 1]) / 2 - 2, (hf[9 + 0] + hf[9 + 1]) / 2 + 2);
+    /* Off the grid the edge holds. */
+    assert_int_equal(cub_gait_height(&t, MM(-5000), MM(-5000)), hf[0]);
+    assert_int_equal(cub_gait_height(&t, MM(9000), MM(9000)), hf[9 * 7 - 1]);
+}
+
+static void test_obstacles_raise_the_ground(void **state)
+{
+    (void)state;
+    cub_gait_terrain t;
+    cub_gait_terrain_flat(&t, 0);
+    assert_int_equal(cub_gait_terrain_add(&t, box(0, 0, 0, 0, 10, 10)), CUB_ERR_ARG);
+    /* A log across the path (x), 15 cm high; a stone. */
+    assert_int_equal(cub_gait_terrain_add(&t, box(-1000, 0, 300, 1000, 150, 450)), CUB_OK);
+    assert_int_equal(cub_gait_terrain_add(&t, box(200, 0, 900, 350, 90, 1050)), CUB_OK);
+    assert_int_equal(cub_gait_height(&t, 0, MM(350)), MM(150));
+    assert_int_equal(cub_gait_height(&t, MM(250), MM(1000)), MM(90));
+    assert_int_equal(cub_gait_height(&t, 0, MM(1000)), 0);
+    assert_int_equal(cub_gait_ground_height(&t, 0, MM(350)), 0);
+    for (int i = 2; i < CUB_GAIT_MAX_OBSTACLES; i++)
+        assert_int_equal(cub_gait_terrain_add(&t, box(0, 0, 0, 1, 1, 1)), CUB_OK);
+    assert_int_equal(cub_gait_terrain_add(&t, box(0, 0, 0, 1, 1, 1)), CUB_ERR_FULL);
+}
+
+/* A walk along +z from the left foot at the origin: stride 60 cm, feet
+ * 15 cm apart, foot base 25 cm. */
+static cub_gait_plan_params walk_params(void)
+{
+    return (cub_gait_plan_params){.stride_mm = MM(600), .width_mm = MM(150), .foot_mm = MM(250)};
+}
+
+static const cub_gait_start start = {{0, 0, 0}, 1, 0, CUB_Q16_ONE};
+
+static void test_plan_on_flat_ground(void **state)
+{
+    (void)state;
+    cub_gait_terrain t;
+    cub_gait_terrain_flat(&t, 0);
+    cub_gait_plan_params p = walk_params();
+    cub_gait_plan plan;
+    assert_int_equal(cub_gait_plan_steps(&t, &p, &start, &plan), CUB_OK);
+    assert_int_equal(plan.count, 4); /* flat: 4 steps ahead */
+    assert_int_equal(plan.tested, 4);
+    assert_int_equal(plan.backtracks, 0);
+    for (int i = 0; i < plan.count; i++) {
+        assert_int_equal(plan.steps[i].try_index, 0);
+        assert_int_equal(plan.steps[i].left, i % 2); /* right first */
+        assert_int_equal(plan.steps[i].foot_mm.z, MM(600 * (i + 1)));
+        assert_int_equal(plan.steps[i].foot_mm.x, i % 2 ? 0 : MM(-150));
+    }
+    p.stride_mm = 0;
+    assert_int_equal(cub_gait_plan_steps(&t, &p, &start, &plan), CUB_ERR_ARG);
+}
+
+/* Step 0 at the nominal 60 cm puts both of step 1's tries (60 and 45 cm
+ * on) across the edge of a raised slab at z = 125 cm: step 1 fails, the
+ * planner backs up to step 0's next try (45 cm), and from there step 1's
+ * first try still straddles the edge, its second (45 cm) is clear. */
+static void test_blocked_foothold_forces_a_backtrack(void **state)
+{
+    (void)state;
+    cub_gait_terrain t;
+    cub_gait_terrain_flat(&t, 0);
+    assert_int_equal(cub_gait_terrain_add(&t, box(-1000, 0, 1250, 1000, 100, 2000)), CUB_OK);
+    cub_gait_plan_params p = walk_params();
+    p.steps = 2;
+    p.tries = 2;
+    p.factors[0] = CUB_Q16_ONE;
+    p.factors[1] = Q(3, 4);
+    cub_gait_plan plan;
+    assert_int_equal(cub_gait_plan_steps(&t, &p, &start, &plan), CUB_OK);
+    assert_int_equal(plan.count, 2);
+    assert_int_equal(plan.backtracks, 1);
+    assert_int_equal(plan.tested, 6);
+    assert_int_equal(plan.steps[0].try_index, 1);
+    assert_int_equal(plan.steps[0].foot_mm.z, MM(450));
+    assert_int_equal(plan.steps[1].try_index, 1);
+    assert_int_equal(plan.steps[1].foot_mm.z, MM(900));
+    /* Each foothold taken is feasible; the rejected one is not. */
+    assert_true(cub_gait_foothold_ok(&t, &p, 0, 0, MM(900), 0, CUB_Q16_ONE));
+    assert_false(cub_gait_foothold_ok(&t, &p, 0, 0, MM(1050), 0, CUB_Q16_ONE));
+}
+
+/* A stone slab 72 cm on: the nominal step straddles its edge, the 0.75
+ * stride is clear, and so is 1.25 (on the slab's top): the first feasible
+ * in the tried order is taken, 0.75. */
+static void test_first_feasible_step_is_taken(void **state)
+{
+    (void)state;
+    cub_gait_terrain t;
+    cub_gait_terrain_flat(&t, 0);
+    assert_int_equal(cub_gait_terrain_add(&t, box(-1000, 0, 720, 1000, 100, 1100)), CUB_OK);
+    cub_gait_plan_params p = walk_params();
+    p.steps = 1;
+    cub_gait_plan plan;
+    assert_int_equal(cub_gait_plan_steps(&t, &p, &start, &plan), CUB_OK);
+    assert_int_equal(plan.steps[0].try_index, 1);
+    assert_int_equal(plan.steps[0].foot_mm.z, MM(450));
+    assert_int_equal(plan.tested, 2);
+    assert_true(cub_gait_foothold_ok(&t, &p, 0, 0, MM(750), 0, CUB_Q16_ONE));
+    /* Rough ground (an obstacle) plans 3 ahead by default. */
+    p.steps = 0;
+    assert_int_equal(cub_gait_plan_steps(&t, &p, &start, &plan), CUB_OK);
+    assert_int_equal(plan.count, 3);
+}
+
+/* A wall too high to step on: every try fails back to step 0: the walk
+ * stops (count 0). */
+static void test_dead_end_stops_the_walk(void **state)
+{
+    (void)state;
+    cub_gait_terrain t;
+    cub_gait_terrain_flat(&t, 0);
+    assert_int_equal(cub_gait_terrain_add(&t, box(-1000, 0, 400, 1000, 900, 3000)), CUB_OK);
+    cub_gait_plan_params p = walk_params();
+    p.steps = 3;
+    cub_gait_plan plan;
+    assert_int_equal(cub_gait_plan_steps(&t, &p, &start, &plan), CUB_ERR_EMPTY);
+    assert_int_equal(plan.count, 0);
+    assert_int_equal(plan.tested, 5);
+}
+
+static void test_bezier_ends_and_line(void **state)
+{
+    (void)state;
+    cub_vec3 p[5];
+    for (int k = 0; k < 5; k++) p[k] = (cub_vec3){MM(100 * k), MM(40), MM(-30 * k)};
+    cub_vec3 a = cub_gait_bezier4(p, 0), b = cub_gait_bezier4(p, CUB_Q16_ONE);
+    assert_int_equal(a.x, p[0].x);
+    assert_int_equal(b.z, p[4].z);
+    /* Evenly spaced control points on a line: B(t) runs along it linearly. */
+    cub_vec3 m = cub_gait_bezier4(p, Q(3, 10));
+    assert_in_range(m.x, MM(120) - 3277, MM(120) + 3277); /* within 0.05 mm */
+    assert_in_range(m.y, MM(40) - 3277, MM(40) + 3277);
+}
+
+/* A log 15 cm high and 10 cm deep midway through a 60 cm step: the path
+ * rises over it; checked densely here (the firmware samples 64 points),
+ * it never enters the ground and is >= 2 cm above the log, toe included. */
+static void test_swing_clears_a_log(void **state)
+{
+    (void)state;
+    cub_gait_terrain t;
+    cub_gait_terrain_flat(&t, 0);
+    assert_int_equal(cub_gait_terrain_add(&t, box(-1000, 0, 250, 1000, 150, 350)), CUB_OK);
+    cub_gait_swing_params sp = {.foot_mm = MM(250)};
+    cub_vec3 from = {0, 0, MM(-200)}, to = {0, 0, MM(600)};
+    cub_gait_swing sw;
+    assert_int_equal(cub_gait_swing_path(&t, &sp, from, to, &sw), CUB_OK);
+    assert_true(sw.clear);
+    assert_true(sw.raises > 0);
+    double min_over_log = 1e9;
+    for (int i = 0; i <= 4000; i++) {
+        cub_q16 tt = (cub_q16)(((int64_t)i << 16) / 4000);
+        cub_vec3 q = cub_gait_bezier4(sw.p, tt);
+        for (int toe = 0; toe <= 1; toe++) {
+            cub_q16 z = toe ? cub_fx_add(q.z, MM(250)) : q.z;
+            double gap = (q.y - cub_gait_height(&t, q.x, z)) / 65536.0;
+            assert_true(gap >= -0.01);
+            if (z >= MM(250) && z <= MM(350) && gap < min_over_log) min_over_log = gap;
+        }
+    }
+    assert_true(min_over_log >= 19.5);
+    /* One raise fewer would not have cleared it. */
+    cub_gait_swing_params fewer = sp;
+    fewer.max_raises = sw.raises - 1;
+    assert_int_equal(cub_gait_swing_path(&t, &fewer, from, to, &sw), CUB_ERR_RANGE);
+    assert_false(sw.clear);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_terrain_heights),
+        cmocka_unit_test(test_obstacles_raise_the_ground),
+        cmocka_unit_test(test_plan_on_flat_ground),
+        cmocka_unit_test(test_blocked_foothold_forces_a_backtrack),
+        cmocka_unit_test(test_first_feasible_step_is_taken),
+        cmocka_unit_test(test_dead_end_stops_the_walk),
+        cmocka_unit_test(test_bezier_ends_and_line),
+        cmocka_unit_test(test_swing_clears_a_log),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
