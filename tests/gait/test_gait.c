@@ -1,7 +1,7 @@
 /* test_gait — seed 003's firmware (cub/gait.h) on hand-made ground: the
  * terrain's heights, the footstep planner (a blocked foothold forces a
  * backtrack; the first feasible step is taken; a dead end stops the walk)
- * and the swing path (it clears a log). The phase analysis on a captured
+ * the swing path (it clears a log) and the leg IK's limits. The phase analysis on a captured
  * walk is test_gait_walk. */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -9,6 +9,7 @@
 #include <stdint.h>
 
 #include <cmocka.h>
+#include <math.h>
 #include <stdlib.h>
 
 #include "cub/gait.h"
@@ -213,6 +214,96 @@ static void test_swing_clears_a_log(void **state)
     assert_false(sw.clear);
 }
 
+#define DEG(d) ((cub_q16)(((int64_t)(d) * CUB_Q16_PI + 90) / 180))
+
+/* A right leg: hip 90 cm up, thigh 45 cm, shin 43 cm, the knee bending
+ * toward +z. */
+static const cub_gait_leg leg = {{0, MM(900), 0}, MM(450), MM(430), {0, MM(500), MM(500)}};
+
+static double dist(cub_vec3 a, cub_vec3 b)
+{
+    return cub_fx_vec3_length(cub_fx_vec3_sub(a, b)) / 65536.0;
+}
+
+/* Thigh and knee: a target beyond reach (or at the straight knee's) is
+ * pulled in and the knee stays at <= 175 degrees; one by the hip keeps it
+ * >= 25 degrees; one in range is met exactly and uncorrected. */
+static void test_leg_ik_keeps_the_knee_in_range(void **state)
+{
+    (void)state;
+    cub_gait_leg_pose pose;
+    cub_vec3 far = {0, 0, 0}, toe_far = {0, 0, MM(140)};
+    assert_int_equal(cub_gait_leg_solve(&leg, NULL, far, toe_far, &pose), CUB_OK);
+    assert_true(pose.corrected & CUB_GAIT_LEG_REACH);
+    assert_true(pose.knee_rad <= DEG(175) + 100);
+    assert_true(pose.knee_rad >= DEG(170));
+    cub_vec3 straight = {0, MM(21), 0}, toe_s = {0, MM(21), MM(140)}; /* 879 mm: 178 degrees */
+    assert_int_equal(cub_gait_leg_solve(&leg, NULL, straight, toe_s, &pose), CUB_OK);
+    assert_true(pose.knee_rad <= DEG(175) + 100);
+    cub_vec3 near = {0, MM(850), MM(100)}, toe_n = {0, MM(850), MM(240)};
+    assert_int_equal(cub_gait_leg_solve(&leg, NULL, near, toe_n, &pose), CUB_OK);
+    assert_true(pose.knee_rad >= DEG(25) - 100);
+    cub_vec3 ok = {0, MM(150), MM(150)}, toe_ok = {0, MM(120), MM(285)};
+    assert_int_equal(cub_gait_leg_solve(&leg, NULL, ok, toe_ok, &pose), CUB_OK);
+    assert_int_equal(pose.corrected, 0);
+    assert_true(dist(pose.ankle_mm, ok) < 0.1);
+    assert_true(dist(pose.toe_mm, toe_ok) < 0.1);
+    assert_true(fabs(dist(pose.knee_mm, leg.hip_mm) - 450) < 0.1);
+    assert_true(fabs(dist(pose.knee_mm, pose.ankle_mm) - 430) < 0.1);
+    assert_true(pose.knee_mm.z > 0); /* toward the pole */
+}
+
+/* The ankle: a foot pointed down the shin, or back up it, is turned to
+ * the nearest end of its range (50..150 degrees by default, or the
+ * caller's), keeping its length. */
+static void test_leg_ik_keeps_the_ankle_in_range(void **state)
+{
+    (void)state;
+    cub_gait_leg_pose pose;
+    cub_vec3 ankle = {0, MM(150), MM(150)};
+    cub_vec3 down = {0, MM(10), MM(150)}, up = {0, MM(290), MM(150)};
+    assert_int_equal(cub_gait_leg_solve(&leg, NULL, ankle, down, &pose), CUB_OK);
+    assert_true(pose.corrected & CUB_GAIT_LEG_ANKLE);
+    assert_in_range(pose.ankle_rad, DEG(50) - 200, DEG(50) + 200);
+    assert_true(fabs(dist(pose.toe_mm, pose.ankle_mm) - 140) < 0.2);
+    assert_int_equal(cub_gait_leg_solve(&leg, NULL, ankle, up, &pose), CUB_OK);
+    assert_in_range(pose.ankle_rad, DEG(150) - 200, DEG(150) + 200);
+    cub_gait_leg_limits lim = {0, 0, DEG(70), DEG(110)};
+    cub_vec3 flat = {0, MM(150), MM(290)};
+    assert_int_equal(cub_gait_leg_solve(&leg, &lim, ankle, flat, &pose), CUB_OK);
+    assert_true(pose.ankle_rad >= DEG(70) - 200 && pose.ankle_rad <= DEG(110) + 200);
+}
+
+/* The pelvis lowers so both feet reach: a left ankle target 90 cm under
+ * its hip needs the hips ~21 mm lower (reach 878.9 mm at 175 degrees);
+ * lowered by that the leg reaches it uncorrected, by 5 mm less it does not. */
+static void test_pelvis_lowers_so_both_feet_reach(void **state)
+{
+    (void)state;
+    cub_gait_leg legs[2] = {leg, leg};
+    legs[0].hip_mm.x = MM(100);
+    legs[1].hip_mm.x = MM(-100);
+    legs[0].pole_mm.x = MM(100);
+    legs[1].pole_mm.x = MM(-100);
+    cub_vec3 targets[2] = {{MM(100), 0, 0}, {MM(-100), MM(100), 0}};
+    cub_q16 drop = cub_gait_pelvis_drop(legs, NULL, targets);
+    assert_in_range(drop, MM(20), MM(22));
+    cub_gait_leg_pose pose;
+    cub_gait_leg low = legs[0];
+    low.hip_mm.y -= drop + MM(1);
+    low.pole_mm.y -= drop + MM(1);
+    cub_vec3 toe = {MM(100), 0, MM(140)};
+    assert_int_equal(cub_gait_leg_solve(&low, NULL, targets[0], toe, &pose), CUB_OK);
+    assert_false(pose.corrected & CUB_GAIT_LEG_REACH);
+    low = legs[0];
+    low.hip_mm.y -= drop - MM(5);
+    assert_int_equal(cub_gait_leg_solve(&low, NULL, targets[0], toe, &pose), CUB_OK);
+    assert_true(pose.corrected & CUB_GAIT_LEG_REACH);
+    /* Both within reach already: no drop. */
+    targets[0].y = MM(100);
+    assert_int_equal(cub_gait_pelvis_drop(legs, NULL, targets), 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -224,6 +315,9 @@ int main(void)
         cmocka_unit_test(test_dead_end_stops_the_walk),
         cmocka_unit_test(test_bezier_ends_and_line),
         cmocka_unit_test(test_swing_clears_a_log),
+        cmocka_unit_test(test_leg_ik_keeps_the_knee_in_range),
+        cmocka_unit_test(test_leg_ik_keeps_the_ankle_in_range),
+        cmocka_unit_test(test_pelvis_lowers_so_both_feet_reach),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -207,4 +207,48 @@ cub_vec3 cub_gait_bezier4(const cub_vec3 p[5], cub_q16 t);
 cub_err cub_gait_swing_path(const cub_gait_terrain *t, const cub_gait_swing_params *p,
                             cub_vec3 from_mm, cub_vec3 to_mm, cub_gait_swing *out);
 
+/* ---- leg IK with limits ----------------------------------------------------- */
+
+/* The seed's IK formula is missing: ours is cub/motion.h's two-bone
+ * solve (hip, knee, ankle) plus the ankle, with the seed's three
+ * corrections: the foot to a reachable position (the ankle target pulled
+ * in along the hip's ray), thigh and knee to reasonable angles (the knee's
+ * inner angle kept in its range), the ankle to a reasonable angle (the
+ * foot turned, in the shin's plane, back into its range). */
+typedef struct cub_gait_leg_limits {
+    cub_q16 knee_min_rad, knee_max_rad;   /* inner angle, pi straight (0, 0: 25..175 deg) */
+    cub_q16 ankle_min_rad, ankle_max_rad; /* shin to foot (0, 0: 50..150 deg) [ours] */
+} cub_gait_leg_limits;
+
+typedef struct cub_gait_leg {
+    cub_vec3 hip_mm;           /* the thigh's root */
+    cub_q16 thigh_mm, shin_mm; /* > 0 */
+    cub_vec3 pole_mm;          /* a point the knee bends toward (ahead of the leg) */
+} cub_gait_leg;
+
+#define CUB_GAIT_LEG_REACH 1  /* the ankle target was out of reach (or too near) */
+#define CUB_GAIT_LEG_ANKLE 2  /* the foot was turned back into the ankle's range */
+
+typedef struct cub_gait_leg_pose {
+    cub_vec3 knee_mm, ankle_mm, toe_mm;
+    cub_q16 knee_rad;  /* inner angle at the knee */
+    cub_q16 ankle_rad; /* between the shin (knee -> ankle) and the foot (ankle -> toe) */
+    int corrected;     /* CUB_GAIT_LEG_* flags */
+} cub_gait_leg_pose;
+
+/* The angle between the shin and the foot. */
+cub_q16 cub_gait_ankle_angle(cub_vec3 knee_mm, cub_vec3 ankle_mm, cub_vec3 toe_mm);
+
+/* Put the ankle at ankle_target and the toe toward toe_target (the foot
+ * keeps its length |toe_target - ankle_target|). lim may be NULL.
+ * CUB_ERR_ARG for a bone <= 0 or a zero-length foot. */
+cub_err cub_gait_leg_solve(const cub_gait_leg *leg, const cub_gait_leg_limits *lim,
+                           cub_vec3 ankle_target, cub_vec3 toe_target, cub_gait_leg_pose *out);
+
+/* How far the pelvis must lower (>= 0, mm) so that both hips reach their
+ * ankle targets with the knees inside their range: the seed's "the pelvis
+ * lowers so both feet reach". */
+cub_q16 cub_gait_pelvis_drop(const cub_gait_leg legs[2], const cub_gait_leg_limits *lim,
+                             const cub_vec3 ankle_targets[2]);
+
 #endif

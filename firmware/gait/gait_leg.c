@@ -1,0 +1,117 @@
+/* gait — leg IK with limits (SEEDS.md § 003, "Leg IK"; the formula is
+ * missing from the seed, the method is ours): cub/motion.h's two-bone
+ * solve for hip, knee and ankle, the knee's range enforced there; the
+ * foot then turned in the plane of shin and foot into the ankle's range.
+ * Q16.16 mm and radians. */
+#include "cub/gait.h"
+
+#define DEG(d) ((cub_q16)(((int64_t)(d) * CUB_Q16_PI + 90) / 180))
+
+typedef struct leg_range {
+    cub_q16 knee_min, knee_max, ankle_min, ankle_max;
+} leg_range;
+
+/* ours: a knee folds to 25 degrees and straightens short of 180 (a
+ * straight knee flips its bend); the ankle's 50..150 spans a walk's
+ * dorsi- and plantar flexion with room (02_01 stays inside). */
+static leg_range range(const cub_gait_leg_limits *lim)
+{
+    leg_range r = {DEG(25), DEG(175), DEG(50), DEG(150)};
+    if (lim && (lim->knee_min_rad || lim->knee_max_rad)) {
+        r.knee_min = lim->knee_min_rad;
+        r.knee_max = lim->knee_max_rad;
+    }
+    if (lim && (lim->ankle_min_rad || lim->ankle_max_rad)) {
+        r.ankle_min = lim->ankle_min_rad;
+        r.ankle_max = lim->ankle_max_rad;
+    }
+    return r;
+}
+
+cub_q16 cub_gait_ankle_angle(cub_vec3 knee_mm, cub_vec3 ankle_mm, cub_vec3 toe_mm)
+{
+    return cub_fx_vec3_angle(cub_fx_vec3_sub(ankle_mm, knee_mm),
+                             cub_fx_vec3_sub(toe_mm, ankle_mm));
+}
+
+/* v scaled to length len (a zero v stays zero). */
+static cub_vec3 with_length(cub_vec3 v, cub_q16 len)
+{
+    cub_q16 l = cub_fx_vec3_length(v);
+    if (l == 0) return v;
+    return (cub_vec3){(cub_q16)((int64_t)v.x * len / l), (cub_q16)((int64_t)v.y * len / l),
+                      (cub_q16)((int64_t)v.z * len / l)};
+}
+
+/* The foot at angle a from the shin, in the plane of shin and foot: unit
+ * s along the shin, unit p across it toward the foot. */
+static cub_vec3 turn_foot(cub_vec3 shin, cub_vec3 foot, cub_q16 a, cub_q16 len)
+{
+    cub_vec3 s = with_length(shin, CUB_Q16_ONE);
+    cub_vec3 f = with_length(foot, CUB_Q16_ONE);
+    cub_vec3 p = cub_fx_vec3_sub(f, cub_fx_vec3_scale(s, cub_fx_vec3_dot(f, s)));
+    if (cub_fx_vec3_length(p) < 64) /* foot along the shin: any side; take +x of it */
+        p = cub_fx_vec3_cross(s, (cub_vec3){0, 0, CUB_Q16_ONE});
+    p = with_length(p, CUB_Q16_ONE);
+    cub_vec3 dir = cub_fx_vec3_add(cub_fx_vec3_scale(s, cub_fx_cos(a)),
+                                   cub_fx_vec3_scale(p, cub_fx_sin(a)));
+    return with_length(dir, len);
+}
+
+cub_err cub_gait_leg_solve(const cub_gait_leg *leg, const cub_gait_leg_limits *lim,
+                           cub_vec3 ankle_target, cub_vec3 toe_target, cub_gait_leg_pose *out)
+{
+    if (!leg || !out) return CUB_ERR_ARG;
+    cub_q16 foot_len = cub_fx_vec3_length(cub_fx_vec3_sub(toe_target, ankle_target));
+    if (foot_len <= 0) return CUB_ERR_ARG;
+    leg_range r = range(lim);
+    cub_ik_limits kl = {r.knee_min, r.knee_max};
+    cub_ik_solution sol;
+    cub_err e = cub_motion_ik_solve(leg->hip_mm, leg->thigh_mm, leg->shin_mm, ankle_target,
+                                    leg->pole_mm, &kl, &sol);
+    if (e) return e;
+    *out = (cub_gait_leg_pose){.knee_mm = sol.mid_mm, .ankle_mm = sol.end_mm};
+    out->corrected = sol.clamped ? CUB_GAIT_LEG_REACH : 0;
+    out->knee_rad = cub_fx_vec3_angle(cub_fx_vec3_sub(leg->hip_mm, sol.mid_mm),
+                                      cub_fx_vec3_sub(sol.end_mm, sol.mid_mm));
+    /* The foot keeps its direction from the target ankle, moved with it. */
+    cub_vec3 shin = cub_fx_vec3_sub(sol.end_mm, sol.mid_mm);
+    cub_vec3 foot = cub_fx_vec3_sub(toe_target, ankle_target);
+    cub_q16 a = cub_fx_vec3_angle(shin, foot);
+    cub_q16 bounded = cub_fx_clamp(a, r.ankle_min, r.ankle_max);
+    if (bounded != a) {
+        foot = turn_foot(shin, foot, bounded, foot_len);
+        out->corrected |= CUB_GAIT_LEG_ANKLE;
+    }
+    out->toe_mm = cub_fx_vec3_add(sol.end_mm, foot);
+    out->ankle_rad = cub_gait_ankle_angle(sol.mid_mm, sol.end_mm, out->toe_mm);
+    return CUB_OK;
+}
+
+/* The reach of a leg with its knee opened to at most knee_max (law of
+ * cosines), squared, in 64 bits of Q16.16 squared. */
+static int64_t reach2(const cub_gait_leg *leg, cub_q16 knee_max)
+{
+    int64_t a = leg->thigh_mm, b = leg->shin_mm;
+    int64_t c = cub_fx_cos(knee_max);
+    return a * a + b * b - ((2 * a * b) >> 16) * c;
+}
+
+static cub_q16 leg_drop(const cub_gait_leg *leg, cub_q16 knee_max, cub_vec3 target)
+{
+    cub_vec3 d = cub_fx_vec3_sub(leg->hip_mm, target);
+    int64_t h2 = (int64_t)d.x * d.x + (int64_t)d.z * d.z;
+    int64_t r2 = reach2(leg, knee_max);
+    if (h2 >= r2) return 0; /* too far ahead to reach by lowering: the planner's to fix */
+    cub_q16 v_max = (cub_q16)cub_fx_isqrt64((uint64_t)(r2 - h2));
+    return d.y > v_max ? d.y - v_max : 0;
+}
+
+cub_q16 cub_gait_pelvis_drop(const cub_gait_leg legs[2], const cub_gait_leg_limits *lim,
+                             const cub_vec3 ankle_targets[2])
+{
+    cub_q16 knee_max = range(lim).knee_max;
+    cub_q16 a = leg_drop(&legs[0], knee_max, ankle_targets[0]);
+    cub_q16 b = leg_drop(&legs[1], knee_max, ankle_targets[1]);
+    return a > b ? a : b;
+}
