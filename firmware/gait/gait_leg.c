@@ -12,11 +12,14 @@ typedef struct leg_range {
 } leg_range;
 
 /* ours: a knee folds to 25 degrees and straightens short of 180 (a
- * straight knee flips its bend); the ankle's 50..150 spans a walk's
- * dorsi- and plantar flexion with room (02_01 stays inside). */
+ * straight knee flips its bend); the ankle's 35..150 spans a walk's
+ * dorsi- and plantar flexion with room. The angle is to the toe joint,
+ * wherever the skeleton puts it: CMU's "toe" is the ball of the foot,
+ * below the ankle, so its neutral angle is ~60 degrees, not 90 (02_01
+ * walks within 41..74). */
 static leg_range range(const cub_gait_leg_limits *lim)
 {
-    leg_range r = {DEG(25), DEG(175), DEG(50), DEG(150)};
+    leg_range r = {DEG(25), DEG(175), DEG(35), DEG(150)};
     if (lim && (lim->knee_min_rad || lim->knee_max_rad)) {
         r.knee_min = lim->knee_min_rad;
         r.knee_max = lim->knee_max_rad;
@@ -30,8 +33,7 @@ static leg_range range(const cub_gait_leg_limits *lim)
 
 cub_q16 cub_gait_ankle_angle(cub_vec3 knee_mm, cub_vec3 ankle_mm, cub_vec3 toe_mm)
 {
-    return cub_fx_vec3_angle(cub_fx_vec3_sub(ankle_mm, knee_mm),
-                             cub_fx_vec3_sub(toe_mm, ankle_mm));
+    return cub_fx_vec3_angle(cub_fx_vec3_sub(ankle_mm, knee_mm), cub_fx_vec3_sub(toe_mm, ankle_mm));
 }
 
 /* v scaled to length len (a zero v stays zero). */
@@ -53,8 +55,8 @@ static cub_vec3 turn_foot(cub_vec3 shin, cub_vec3 foot, cub_q16 a, cub_q16 len)
     if (cub_fx_vec3_length(p) < 64) /* foot along the shin: any side; take +x of it */
         p = cub_fx_vec3_cross(s, (cub_vec3){0, 0, CUB_Q16_ONE});
     p = with_length(p, CUB_Q16_ONE);
-    cub_vec3 dir = cub_fx_vec3_add(cub_fx_vec3_scale(s, cub_fx_cos(a)),
-                                   cub_fx_vec3_scale(p, cub_fx_sin(a)));
+    cub_vec3 dir =
+        cub_fx_vec3_add(cub_fx_vec3_scale(s, cub_fx_cos(a)), cub_fx_vec3_scale(p, cub_fx_sin(a)));
     return with_length(dir, len);
 }
 

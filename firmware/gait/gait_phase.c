@@ -27,8 +27,7 @@ cub_err cub_gait_track_clip(const cub_clip *clip, int ankle, int toe, cub_vec3 *
                             cub_vec3 *toe_out)
 {
     if (!clip || !clip->skel || !ankle_out || !toe_out) return CUB_ERR_ARG;
-    if (ankle < 0 || toe < 0 || ankle >= clip->skel->joint_count ||
-        toe >= clip->skel->joint_count)
+    if (ankle < 0 || toe < 0 || ankle >= clip->skel->joint_count || toe >= clip->skel->joint_count)
         return CUB_ERR_RANGE;
     cub_pose pose;
     cub_quat rot; /* unused, but joint_world fills it */
@@ -44,7 +43,7 @@ cub_err cub_gait_track_clip(const cub_clip *clip, int ankle, int toe, cub_vec3 *
 typedef struct phase_cfg {
     int half;            /* frames either side for the local ground */
     cub_q16 down, still; /* mm; mm per frame */
-    cub_q16 settle; /* radians per frame */
+    cub_q16 settle;      /* radians per frame */
 } phase_cfg;
 
 static phase_cfg config(const cub_gait_phase_params *p)
@@ -84,16 +83,16 @@ static bool is_down(const cub_vec3 *pt, int frames, int f, const phase_cfg *c)
 static cub_q16 pitch_rate(const cub_vec3 *ankle, const cub_vec3 *toe, int frames, int f)
 {
     int a = f > 0 ? f - 1 : 0, b = f < frames - 1 ? f + 1 : frames - 1;
-    cub_q16 d = cub_fx_sub(cub_gait_foot_pitch(ankle[b], toe[b]),
-                           cub_gait_foot_pitch(ankle[a], toe[a]));
+    cub_q16 d =
+        cub_fx_sub(cub_gait_foot_pitch(ankle[b], toe[b]), cub_gait_foot_pitch(ankle[a], toe[a]));
     return cub_fx_abs(d) / (b - a);
 }
 
 /* Length and flat pitch of the foot over the clip: the mean ankle -> toe
  * distance; the mean pitch and ankle-over-toe height of the frames with
  * both points down [ours: most of those are stance, so the mean is flat]. */
-static void measure_foot(const cub_vec3 *ankle, const cub_vec3 *toe, int frames,
-                         const phase_cfg *c, cub_gait_foot *foot)
+static void measure_foot(const cub_vec3 *ankle, const cub_vec3 *toe, int frames, const phase_cfg *c,
+                         cub_gait_foot *foot)
 {
     int64_t len = 0, lift = 0, pitch = 0;
     int down = 0;
@@ -127,8 +126,7 @@ static cub_gait_phase next_phase(int prev, bool ankle_down, bool toe_down, bool 
 }
 
 cub_err cub_gait_analyse(const cub_vec3 *ankle_mm, const cub_vec3 *toe_mm, int frames,
-                         const cub_gait_phase_params *p, uint8_t *phase_out,
-                         cub_gait_foot *foot)
+                         const cub_gait_phase_params *p, uint8_t *phase_out, cub_gait_foot *foot)
 {
     if (!ankle_mm || !toe_mm || !phase_out || !foot || frames < 2) return CUB_ERR_ARG;
     phase_cfg c = config(p);

@@ -14,7 +14,8 @@
 static cub_q16 weigh(const cub_q16 *v, const cub_q16 *b)
 {
     int64_t s = 0;
-    for (int k = 0; k < 5; k++) s += (int64_t)v[k] * b[k];
+    for (int k = 0; k < 5; k++)
+        s += (int64_t)v[k] * b[k];
     return (cub_q16)((s + (1 << 15)) >> 16);
 }
 
@@ -86,7 +87,8 @@ static cub_vec3 toe_offset(cub_vec3 from, cub_vec3 to, cub_q16 foot)
     cub_vec3 d = {cub_fx_sub(to.x, from.x), 0, cub_fx_sub(to.z, from.z)};
     uint32_t len = cub_fx_isqrt64((uint64_t)((int64_t)d.x * d.x + (int64_t)d.z * d.z));
     if (len == 0 || foot == 0) return (cub_vec3){0, 0, 0};
-    return (cub_vec3){(cub_q16)((int64_t)d.x * foot / len), 0, (cub_q16)((int64_t)d.z * foot / len)};
+    return (cub_vec3){(cub_q16)((int64_t)d.x * foot / len), 0,
+                      (cub_q16)((int64_t)d.z * foot / len)};
 }
 
 cub_err cub_gait_swing_path(const cub_gait_terrain *t, const cub_gait_swing_params *p,
@@ -97,11 +99,13 @@ cub_err cub_gait_swing_path(const cub_gait_terrain *t, const cub_gait_swing_para
     *out = (cub_gait_swing){{from_mm, cub_fx_vec3_lerp(from_mm, to_mm, CUB_Q16_ONE / 4),
                              cub_fx_vec3_lerp(from_mm, to_mm, CUB_Q16_HALF),
                              cub_fx_vec3_lerp(from_mm, to_mm, 3 * CUB_Q16_ONE / 4), to_mm},
-                            0, 0};
+                            0,
+                            0};
     cub_vec3 toe = toe_offset(from_mm, to_mm, c.foot);
     while (!path_clears(t, &c, out->p, toe)) {
         if (out->raises >= c.max_raises) return CUB_ERR_RANGE;
-        for (int k = 1; k <= 3; k++) out->p[k].y = cub_fx_add(out->p[k].y, c.raise);
+        for (int k = 1; k <= 3; k++)
+            out->p[k].y = cub_fx_add(out->p[k].y, c.raise);
         out->raises++;
     }
     out->clear = 1;

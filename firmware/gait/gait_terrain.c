@@ -14,8 +14,7 @@ void cub_gait_terrain_flat(cub_gait_terrain *t, cub_q16 base_mm)
     reset(t, CUB_GAIT_FLAT, base_mm);
 }
 
-void cub_gait_terrain_slope(cub_gait_terrain *t, cub_q16 base_mm, cub_q16 grad_x,
-                            cub_q16 grad_z)
+void cub_gait_terrain_slope(cub_gait_terrain *t, cub_q16 base_mm, cub_q16 grad_x, cub_q16 grad_z)
 {
     reset(t, CUB_GAIT_SLOPE, base_mm);
     t->grad_x = grad_x;
@@ -25,16 +24,15 @@ void cub_gait_terrain_slope(cub_gait_terrain *t, cub_q16 base_mm, cub_q16 grad_x
 cub_err cub_gait_terrain_rolling(cub_gait_terrain *t, cub_q16 *heights_mm, int nx, int nz,
                                  cub_q16 cell_mm, cub_q16 amp_mm, cub_q16 wave_mm)
 {
-    if (!t || !heights_mm || nx < 2 || nz < 2 || cell_mm <= 0 || wave_mm <= 0)
-        return CUB_ERR_ARG;
+    if (!t || !heights_mm || nx < 2 || nz < 2 || cell_mm <= 0 || wave_mm <= 0) return CUB_ERR_ARG;
     reset(t, CUB_GAIT_ROLLING, 0);
     t->heights_mm = heights_mm;
     t->nx = nx;
     t->nz = nz;
     t->cell_mm = cell_mm;
     for (int j = 0; j < nz; j++) {
-        cub_q16 az = cub_fx_mul(CUB_Q16_TWO_PI, cub_fx_div(cub_fx_mul(CUB_Q16_INT(j), cell_mm),
-                                                           wave_mm));
+        cub_q16 az =
+            cub_fx_mul(CUB_Q16_TWO_PI, cub_fx_div(cub_fx_mul(CUB_Q16_INT(j), cell_mm), wave_mm));
         for (int i = 0; i < nx; i++) {
             cub_q16 ax = cub_fx_mul(CUB_Q16_TWO_PI,
                                     cub_fx_div(cub_fx_mul(CUB_Q16_INT(i), cell_mm), wave_mm));
@@ -84,11 +82,9 @@ cub_q16 cub_gait_ground_height(const cub_gait_terrain *t, cub_q16 x_mm, cub_q16 
     case CUB_GAIT_SLOPE:
         return cub_fx_add(t->base_mm,
                           cub_fx_add(cub_fx_mul(t->grad_x, x_mm), cub_fx_mul(t->grad_z, z_mm)));
-    case CUB_GAIT_ROLLING:
-        return t->heights_mm ? rolling_height(t, x_mm, z_mm) : 0;
+    case CUB_GAIT_ROLLING: return t->heights_mm ? rolling_height(t, x_mm, z_mm) : 0;
     case CUB_GAIT_FLAT:
-    default:
-        return t->base_mm;
+    default: return t->base_mm;
     }
 }
 

@@ -91,7 +91,8 @@ static void report(const foot_track *f)
         printf(" %s %d", cub_gait_phase_name((cub_gait_phase)p), f->info.phase_frames[p]);
     printf("\ngait: runs");
     for (int i = 0; i < walk.clip.frame_count; i++)
-        if (i == 0 || f->phase[i] != f->phase[i - 1]) printf(" %d:%s", i, cub_gait_phase_name(f->phase[i]));
+        if (i == 0 || f->phase[i] != f->phase[i - 1])
+            printf(" %d:%s", i, cub_gait_phase_name(f->phase[i]));
     printf("\n");
 }
 
@@ -147,10 +148,49 @@ static void test_phases_in_order_and_stance_covers_contact(void **state)
     }
 }
 
+/* The leg IK's default ranges (knee 25..175 degrees, ankle 35..150) hold
+ * the captured walk: the limits would not bend the reference. */
+static void test_walk_stays_in_the_leg_ranges(void **state)
+{
+    (void)state;
+    SYNTH_NEED_DATA(CLIP);
+    static const char *const names[2][4] = {
+        {"LeftUpLeg", "LeftLeg", "LeftFoot", "LeftToeBase"},
+        {"RightUpLeg", "RightLeg", "RightFoot", "RightToeBase"}};
+    static cub_pose pose;
+    for (int k = 0; k < 2; k++) {
+        int j[4];
+        for (int i = 0; i < 4; i++)
+            assert_true((j[i] = cub_motion_skeleton_find(&walk.skel, names[k][i])) >= 0);
+        double kmin = 1e9, kmax = -1e9, amin = 1e9, amax = -1e9;
+        for (int f = 0; f < walk.clip.frame_count; f++) {
+            cub_vec3 p[4];
+            cub_quat r;
+            assert_int_equal(cub_motion_clip_get_frame(&walk.clip, f, &pose), CUB_OK);
+            for (int i = 0; i < 4; i++)
+                assert_int_equal(cub_motion_joint_world(&walk.skel, &pose, j[i], &p[i], &r),
+                                 CUB_OK);
+            double knee =
+                cub_fx_vec3_angle(cub_fx_vec3_sub(p[0], p[1]), cub_fx_vec3_sub(p[2], p[1])) *
+                (180.0 / 205887.0);
+            double ankle = cub_gait_ankle_angle(p[1], p[2], p[3]) * (180.0 / 205887.0);
+            kmin = knee < kmin ? knee : kmin;
+            kmax = knee > kmax ? knee : kmax;
+            amin = ankle < amin ? ankle : amin;
+            amax = ankle > amax ? ankle : amax;
+        }
+        printf("gait: %s knee %.1f..%.1f deg, ankle %.1f..%.1f deg\n", names[k][0], kmin, kmax,
+               amin, amax);
+        assert_true(kmin >= 25 && kmax <= 175);
+        assert_true(amin >= 35 && amax <= 150);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_phases_in_order_and_stance_covers_contact),
+        cmocka_unit_test(test_walk_stays_in_the_leg_ranges),
     };
     return cmocka_run_group_tests(tests, load, unload);
 }

@@ -51,11 +51,11 @@ typedef struct cub_gait_phase_params {
 
 /* What the analysis learnt of one foot. */
 typedef struct cub_gait_foot {
-    cub_q16 length_mm;         /* ankle -> toe, mean over the clip (the foot base) */
+    cub_q16 length_mm; /* ankle -> toe, mean over the clip (the foot base) */
     /* Over the frames with both points down (most are stance) [ours]: */
-    cub_q16 ankle_lift_mm;     /* the ankle's mean height over the toe's */
-    cub_q16 flat_pitch_rad;    /* the foot's mean pitch: its pitch when flat */
-    int cycles;                /* complete lift..land cycles seen */
+    cub_q16 ankle_lift_mm;                   /* the ankle's mean height over the toe's */
+    cub_q16 flat_pitch_rad;                  /* the foot's mean pitch: its pitch when flat */
+    int cycles;                              /* complete lift..land cycles seen */
     int phase_frames[CUB_GAIT_PHASE_COUNT_]; /* frames spent in each phase */
 } cub_gait_foot;
 
@@ -73,8 +73,7 @@ cub_err cub_gait_track_clip(const cub_clip *clip, int ankle, int toe, cub_vec3 *
  * first stance are labelled by what they look like (a clip may start mid
  * swing). CUB_ERR_ARG for NULL arrays or fewer than 2 frames. */
 cub_err cub_gait_analyse(const cub_vec3 *ankle_mm, const cub_vec3 *toe_mm, int frames,
-                         const cub_gait_phase_params *p, uint8_t *phase_out,
-                         cub_gait_foot *foot);
+                         const cub_gait_phase_params *p, uint8_t *phase_out, cub_gait_foot *foot);
 
 /* ---- terrain ------------------------------------------------------------- */
 
@@ -107,8 +106,7 @@ typedef struct cub_gait_terrain {
 } cub_gait_terrain;
 
 void cub_gait_terrain_flat(cub_gait_terrain *t, cub_q16 base_mm);
-void cub_gait_terrain_slope(cub_gait_terrain *t, cub_q16 base_mm, cub_q16 grad_x,
-                            cub_q16 grad_z);
+void cub_gait_terrain_slope(cub_gait_terrain *t, cub_q16 base_mm, cub_q16 grad_x, cub_q16 grad_z);
 /* A rolling heightfield over heights_mm[nx * nz] (the caller's), filled
  * here with gentle hills: amp_mm * sin(2 pi x / wave) * cos(2 pi z / wave)
  * [ours: one smooth family, enough for a forest floor]. CUB_ERR_ARG for a
@@ -130,12 +128,12 @@ bool cub_gait_terrain_is_flat(const cub_gait_terrain *t);
 #define CUB_GAIT_MAX_TRIES 8
 
 typedef struct cub_gait_plan_params {
-    int steps;             /* n; 0: by terrain, 4 on flat ground, 3 on rough */
-    cub_q16 stride_mm;     /* one step's nominal length (from the walk) */
-    cub_q16 width_mm;      /* lateral distance between the feet's lines */
-    cub_q16 foot_mm;       /* the foot base: ankle -> toe */
-    cub_q16 max_rise_mm;   /* step up or down at most this (0: 200 mm) */
-    cub_q16 max_tilt_mm;   /* the foot base's ground may differ by this (0: 30 mm) */
+    int steps;           /* n; 0: by terrain, 4 on flat ground, 3 on rough */
+    cub_q16 stride_mm;   /* one step's nominal length (from the walk) */
+    cub_q16 width_mm;    /* lateral distance between the feet's lines */
+    cub_q16 foot_mm;     /* the foot base: ankle -> toe */
+    cub_q16 max_rise_mm; /* step up or down at most this (0: 200 mm) */
+    cub_q16 max_tilt_mm; /* the foot base's ground may differ by this (0: 30 mm) */
     /* The step lengths tried, in order, as fractions of stride_mm; the
      * first feasible is taken (the seed ranks none). tries 0: the default
      * 1, 0.75, 1.25, 0.5, 1.5 [ours]. */
@@ -147,21 +145,21 @@ typedef struct cub_gait_plan_params {
  * side, and the heading (x, z; any length but zero). */
 typedef struct cub_gait_start {
     cub_vec3 foot_mm;
-    int left;              /* 1: the last foot down is the left one */
+    int left; /* 1: the last foot down is the left one */
     cub_q16 dir_x, dir_z;
 } cub_gait_start;
 
 typedef struct cub_gait_step {
-    cub_vec3 foot_mm;      /* the ankle's point on the ground */
+    cub_vec3 foot_mm; /* the ankle's point on the ground */
     int left;
-    int try_index;         /* which of the factors placed it */
+    int try_index; /* which of the factors placed it */
 } cub_gait_step;
 
 typedef struct cub_gait_plan {
-    int count;             /* steps planned (== n when it succeeded) */
+    int count; /* steps planned (== n when it succeeded) */
     cub_gait_step steps[CUB_GAIT_MAX_STEPS];
-    int tested;            /* footholds tested */
-    int backtracks;        /* times a step was given up and its predecessor retried */
+    int tested;     /* footholds tested */
+    int backtracks; /* times a step was given up and its predecessor retried */
 } cub_gait_plan;
 
 /* true if a foot may stand at foot_mm (ankle ground point) heading along
@@ -186,16 +184,16 @@ cub_err cub_gait_plan_steps(const cub_gait_terrain *t, const cub_gait_plan_param
  * of P0P4 and are raised together until the sole clears the terrain. */
 typedef struct cub_gait_swing {
     cub_vec3 p[5];
-    int raises;            /* times P1..P3 were raised */
-    int clear;             /* 1: the path clears the terrain by clearance_mm */
+    int raises; /* times P1..P3 were raised */
+    int clear;  /* 1: the path clears the terrain by clearance_mm */
 } cub_gait_swing;
 
 typedef struct cub_gait_swing_params {
-    cub_q16 clearance_mm;  /* the sole stays this far above (0: 20 mm) */
-    cub_q16 raise_mm;      /* each raise (0: 10 mm) [ours] */
-    int max_raises;        /* give up after (0: 100) [ours] */
-    int samples;           /* points tested along the path (0: 64) [ours] */
-    cub_q16 foot_mm;       /* the toe, this far ahead of the ankle along P0P4, is tested too */
+    cub_q16 clearance_mm; /* the sole stays this far above (0: 20 mm) */
+    cub_q16 raise_mm;     /* each raise (0: 10 mm) [ours] */
+    int max_raises;       /* give up after (0: 100) [ours] */
+    int samples;          /* points tested along the path (0: 64) [ours] */
+    cub_q16 foot_mm;      /* the toe, this far ahead of the ankle along P0P4, is tested too */
 } cub_gait_swing_params;
 
 /* B(t), t in [0, 1] Q16.16. */
@@ -217,7 +215,7 @@ cub_err cub_gait_swing_path(const cub_gait_terrain *t, const cub_gait_swing_para
  * foot turned, in the shin's plane, back into its range). */
 typedef struct cub_gait_leg_limits {
     cub_q16 knee_min_rad, knee_max_rad;   /* inner angle, pi straight (0, 0: 25..175 deg) */
-    cub_q16 ankle_min_rad, ankle_max_rad; /* shin to foot (0, 0: 50..150 deg) [ours] */
+    cub_q16 ankle_min_rad, ankle_max_rad; /* shin to foot (0, 0: 35..150 deg) [ours] */
 } cub_gait_leg_limits;
 
 typedef struct cub_gait_leg {
@@ -226,8 +224,8 @@ typedef struct cub_gait_leg {
     cub_vec3 pole_mm;          /* a point the knee bends toward (ahead of the leg) */
 } cub_gait_leg;
 
-#define CUB_GAIT_LEG_REACH 1  /* the ankle target was out of reach (or too near) */
-#define CUB_GAIT_LEG_ANKLE 2  /* the foot was turned back into the ankle's range */
+#define CUB_GAIT_LEG_REACH 1 /* the ankle target was out of reach (or too near) */
+#define CUB_GAIT_LEG_ANKLE 2 /* the foot was turned back into the ankle's range */
 
 typedef struct cub_gait_leg_pose {
     cub_vec3 knee_mm, ankle_mm, toe_mm;
