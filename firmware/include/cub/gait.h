@@ -108,7 +108,8 @@ typedef struct cub_gait_terrain {
 void cub_gait_terrain_flat(cub_gait_terrain *t, cub_q16 base_mm);
 void cub_gait_terrain_slope(cub_gait_terrain *t, cub_q16 base_mm, cub_q16 grad_x, cub_q16 grad_z);
 /* A rolling heightfield over heights_mm[nx * nz] (the caller's), filled
- * here with gentle hills: amp_mm * sin(2 pi x / wave) * cos(2 pi z / wave)
+ * here with gentle hills: amp_mm * sin(2 pi x / wave) * cos(2 pi z / wave), x
+ * and z from the grid's origin (origin_*_mm, 0 here; the caller may move it)
  * [ours: one smooth family, enough for a forest floor]. CUB_ERR_ARG for a
  * grid under 2 x 2, cell or wave <= 0. */
 cub_err cub_gait_terrain_rolling(cub_gait_terrain *t, cub_q16 *heights_mm, int nx, int nz,
