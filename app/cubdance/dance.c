@@ -199,7 +199,8 @@ static cub_err open_director(cub_dance *d, const cub_app_options *o, cub_judge *
     const int most = (int)(sizeof d->clip_names / sizeof *d->clip_names);
     if (n > most) n = most;
     for (int i = 0; i < n; i++) d->clip_names[i] = d->cl.lib.clips[i].name;
-    for (int g = 0; g < d->groove_count && n + g < most; g++)
+    const int grooves = d->cl.table.desc.clip_count - n; /* appended by hand_grooves */
+    for (int g = 0; g < grooves && n + g < most; g++)
         d->clip_names[n + g] = d->groove->names[g];
     cub_coach_move moves[CUB_SONG_MAX_MOVES];
     fill_program(d, moves);
@@ -208,7 +209,7 @@ static cub_err open_director(cub_dance *d, const cub_app_options *o, cub_judge *
         .song_length_ms = (int32_t)(cub_song_length_us(&d->song) / 1000), .judge = judge,
         .coach = {.moves = moves, .move_count = d->song.move_count,
                   .grooves = d->grooves, .groove_count = d->groove_count,
-                  .clip_count = n + d->groove_count,
+                  .clip_count = d->cl.table.desc.clip_count,
                   .clip_names = d->clip_names, .log = d->log,
                   .attract_after_ms = (uint32_t)(o->attract_after_s * 1000),
                   .doze_after_ms = (uint32_t)(o->doze_after_s * 1000)}};
@@ -224,6 +225,16 @@ static cub_err open_director(cub_dance *d, const cub_app_options *o, cub_judge *
                            : CUB_ERR_NOMEM;
     if (e) snprintf(err, size, "coach: the song cannot be danced (%s)", cub_err_str(e));
     return e;
+}
+
+/* Which groove spans the coach dances. In a song with moves, only the
+ * <free> bars: the intro, the gaps and the outro keep the idle clip, so
+ * the six shipped songs (none has free bars) are led exactly as before and
+ * their e2e cues hold (docs/groove.md "The box", fourth slice). Every clip
+ * is in the table all the same (logged, measured). */
+static bool danced(const cub_song *song, const cub_song_span *sp)
+{
+    return sp->kind == CUB_SONG_SPAN_FREE || song->move_count == 0;
 }
 
 /* The groove clips into the bridge table, after the library's clips, and
@@ -244,11 +255,12 @@ static cub_err hand_grooves(cub_dance *d, char *err, size_t size)
     if (cub_coachlib_add_clips(&d->cl, g->clips, (const cub_fuzzy_frame *const *)g->fuzzy,
                                g->span_count, &diag))
         return fail(err, size, &diag, "groove");
+    d->groove_count = 0;
     for (int i = 0; i < g->span_count; i++)
-        d->grooves[i] = (cub_coach_groove){
-            .clip = first + i, .tag_ms = (int32_t)(g->spans[i].start_us / 1000),
-            .span_ms = (int32_t)((g->spans[i].end_us - g->spans[i].start_us) / 1000)};
-    d->groove_count = g->span_count;
+        if (danced(&d->song, &g->spans[i]))
+            d->grooves[d->groove_count++] = (cub_coach_groove){
+                .clip = first + i, .tag_ms = (int32_t)(g->spans[i].start_us / 1000),
+                .span_ms = (int32_t)((g->spans[i].end_us - g->spans[i].start_us) / 1000)};
     return CUB_OK;
 }
 
