@@ -264,8 +264,9 @@ static cub_err hand_grooves(cub_dance *d, char *err, size_t size)
     return CUB_OK;
 }
 
-/* The dance of the bars no move teaches. A song without moves reads (the
- * format's groove song) but the coach cannot lead it yet (issue 23). */
+/* The dance of the bars no move teaches; a song without moves (the
+ * format's groove song) is all groove, unless the coach has no arms for it
+ * (the seal). */
 static cub_err open_groove(cub_dance *d, char *err, size_t size)
 {
     d->groove = malloc(sizeof *d->groove);
@@ -273,10 +274,9 @@ static cub_err open_groove(cub_dance *d, char *err, size_t size)
     cub_err e = cub_groove_box_open(d->groove, &d->song, &d->cl.lib.skel, &d->cl.table.desc.body,
                                     d->log, err, size);
     if (!e) e = hand_grooves(d, err, size);
-    if (!e && d->song.move_count == 0) {
-        snprintf(err, size, "song: \"%s\" has no <move>: the box does not dance a groove song "
-                            "yet (issue 23)",
-                 d->song.name);
+    if (!e && d->song.move_count == 0 && d->groove_count == 0) {
+        snprintf(err, size, "song: \"%s\" has no <move> and its bear cannot groove (%s)",
+                 d->song.name, d->song.midi_path);
         e = CUB_ERR_UNSUPPORTED;
     }
     return e;

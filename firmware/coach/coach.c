@@ -43,7 +43,10 @@ static bool clip_ok(const cub_coach_desc *d, int32_t clip)
 
 static cub_err check_desc(const cub_coach_desc *d)
 {
-    if (!d->moves || d->move_count <= 0 || d->clip_count <= 0) return CUB_ERR_ARG;
+    /* A groove song (issue 23) has no move: its spans are all it dances. */
+    const bool groove_song = d->move_count == 0 && d->groove_count > 0;
+    if ((!d->moves && !groove_song) || (d->move_count <= 0 && !groove_song) || d->clip_count <= 0)
+        return CUB_ERR_ARG;
     const cub_coach_roles *r = &d->roles;
     const int32_t roles[] = {r->idle,       r->wake_up,  r->attract, r->doze,
                              r->head_shake, r->watch_me, r->worried, r->cheer};
@@ -258,7 +261,7 @@ static void go_outro(cub_coach *c, int32_t music_ms)
 
 static void start_dance(cub_coach *c)
 {
-    c->move = 0;
+    c->move = c->desc.move_count > 0 ? 0 : -1;
     c->rep = 0;
     c->misses = 0;
     c->sync_q16 = CUB_Q16_ONE;
@@ -266,8 +269,12 @@ static void start_dance(cub_coach *c)
     coach_out_music(c, true, CUB_COACH_WHY_WOKE);
     c->music_start_us = c->now_us;
     c->away_since_us = c->now_us; /* a child not in view yet has the grace too */
-    /* The audio clock the app passed was read before this start. */
-    begin_or_wait(c, 0, CUB_COACH_WHY_MOVE, CUB_COACH_NO_MUSIC);
+    /* The audio clock the app passed was read before this start. A groove
+     * song has nothing to wait for: the outro from the first bar. */
+    if (c->desc.move_count == 0)
+        go_outro(c, CUB_COACH_NO_MUSIC);
+    else
+        begin_or_wait(c, 0, CUB_COACH_WHY_MOVE, CUB_COACH_NO_MUSIC);
 }
 
 /* A wrong verdict: the correcting clip at once (head shake and watch me in
@@ -305,6 +312,11 @@ static void resume(cub_coach *c, int32_t music_ms, int32_t why)
 {
     int32_t m = c->move, rep = c->rep;
     const int32_t last = c->desc.move_count - 1;
+    if (m < 0) { /* a groove song: no move to go back to */
+        coach_out_state(c, CUB_COACH_DANCE, why);
+        go_outro(c, music_ms);
+        return;
+    }
     if (music_ms >= 0 && music_ms < c->desc.moves[m].tag_ms) { /* the intro, a gap */
         coach_out_state(c, CUB_COACH_DANCE, why);
         begin_or_wait(c, m, CUB_COACH_WHY_RESUME, music_ms);

@@ -693,6 +693,33 @@ static void test_groove_is_not_begun_late(void **s)
     assert_null(act(&c, CUB_COACH_ACT_CLIP, 0));
 }
 
+/* A groove song: no move, one span for the whole song, danced from the
+ * music's start; the song's end cheers as after any song. */
+static void test_groove_song_dances_its_span_then_cheers(void **s)
+{
+    (void)s;
+    static const cub_coach_groove whole = {.clip = C_GROOVE, .tag_ms = 0, .span_ms = 20000};
+    cub_coach c;
+    cub_coach_desc d = make_desc();
+    d.moves = NULL;
+    d.move_count = 0;
+    assert_int_equal(cub_coach_init(&c, &d, 0), CUB_ERR_ARG); /* no move, no groove */
+    d.grooves = &whole;
+    d.groove_count = 1;
+    d.clip_count = C_COUNT + 1;
+    d.clip_names = groove_names;
+    assert_int_equal(cub_coach_init(&c, &d, 0), CUB_OK);
+    to_dance(&c, 0);
+    assert_non_null(act(&c, CUB_COACH_ACT_MUSIC_START, 0));
+    expect_clip(&c, C_GROOVE, CUB_Q16_ONE, false, CUB_COACH_WHY_GROOVE);
+    assert_int_equal(c.move, -1);
+    tick(&c, 5000, 4000);
+    assert_null(act(&c, CUB_COACH_ACT_CLIP, 0));
+    send(&c, 21000, CUB_EV_SONG_END, 0, 0, 20000);
+    assert_int_equal(c.state, CUB_COACH_CHEER);
+    expect_clip(&c, C_CHEER, CUB_Q16_ONE, false, CUB_COACH_WHY_CHEER);
+}
+
 static void test_bad_groove_is_refused(void **s)
 {
     (void)s;
@@ -1202,6 +1229,7 @@ int main(void)
         cmocka_unit_test(test_gap_dances_its_groove_then_the_next_move),
         cmocka_unit_test(test_groove_is_not_begun_late),
         cmocka_unit_test(test_bad_groove_is_refused),
+        cmocka_unit_test(test_groove_song_dances_its_span_then_cheers),
     };
     return cmocka_run_group_tests_name("coach", tests, NULL, NULL);
 }

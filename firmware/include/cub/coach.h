@@ -220,7 +220,8 @@ typedef struct cub_coach {
 } cub_coach;
 
 /* Check desc, fill defaults, start idle at now_us. The actions then hold
- * the idle clip's request. CUB_ERR_ARG for a NULL pointer, no moves, a move
+ * the idle clip's request. CUB_ERR_ARG for a NULL pointer, no moves (a
+ * groove song, no moves but groove spans, is fine: it dances them), a move
  * with reps < 2, span_ms <= 0, tags that go back or overlap, a clip or
  * role index outside [0, clip_count), or doze_after_ms <= attract_after_ms. */
 cub_err cub_coach_init(cub_coach *c, const cub_coach_desc *desc, int64_t now_us);
