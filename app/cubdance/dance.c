@@ -196,14 +196,20 @@ static cub_err open_director(cub_dance *d, const cub_app_options *o, cub_judge *
                              int64_t now_us, char *err, size_t size)
 {
     int n = d->cl.lib.clip_count;
-    if (n > (int)(sizeof d->clip_names / sizeof *d->clip_names)) n = 256;
+    const int most = (int)(sizeof d->clip_names / sizeof *d->clip_names);
+    if (n > most) n = most;
     for (int i = 0; i < n; i++) d->clip_names[i] = d->cl.lib.clips[i].name;
+    const int grooves = d->cl.table.desc.clip_count - n; /* appended by hand_grooves */
+    for (int g = 0; g < grooves && n + g < most; g++)
+        d->clip_names[n + g] = d->groove->names[g];
     cub_coach_move moves[CUB_SONG_MAX_MOVES];
     fill_program(d, moves);
     cub_director_desc dd = {
         .table = &d->cl.table, .keys = d->keys, .bpm = d->song.bpm, .song_name = d->song.name,
         .song_length_ms = (int32_t)(cub_song_length_us(&d->song) / 1000), .judge = judge,
-        .coach = {.moves = moves, .move_count = d->song.move_count, .clip_count = n,
+        .coach = {.moves = moves, .move_count = d->song.move_count,
+                  .grooves = d->grooves, .groove_count = d->groove_count,
+                  .clip_count = d->cl.table.desc.clip_count,
                   .clip_names = d->clip_names, .log = d->log,
                   .attract_after_ms = (uint32_t)(o->attract_after_s * 1000),
                   .doze_after_ms = (uint32_t)(o->doze_after_s * 1000)}};
@@ -221,18 +227,56 @@ static cub_err open_director(cub_dance *d, const cub_app_options *o, cub_judge *
     return e;
 }
 
-/* The dance of the bars no move teaches. A song without moves reads (the
- * format's groove song) but the coach cannot lead it yet (issue 23). */
+/* Which groove spans the coach dances. In a song with moves, only the
+ * <free> bars: the intro, the gaps and the outro keep the idle clip, so
+ * the six shipped songs (none has free bars) are led exactly as before and
+ * their e2e cues hold (docs/groove.md "The box", fourth slice). Every clip
+ * is in the table all the same (logged, measured). */
+static bool danced(const cub_song *song, const cub_song_span *sp)
+{
+    return sp->kind == CUB_SONG_SPAN_FREE || song->move_count == 0;
+}
+
+/* The groove clips into the bridge table, after the library's clips, and
+ * their spans on the music clock for the coach. */
+static cub_err hand_grooves(cub_dance *d, char *err, size_t size)
+{
+    const cub_groove_box *g = d->groove;
+    const int first = d->cl.table.desc.clip_count;
+    cub_diag diag = {0};
+    if (first + g->span_count > (int)(sizeof d->clip_names / sizeof *d->clip_names))
+    {
+        snprintf(err, size, "groove: %s: %d clips and %d groove spans, more than the box "
+                            "names (%d)",
+                 d->song.midi_path, first, g->span_count,
+                 (int)(sizeof d->clip_names / sizeof *d->clip_names));
+        return CUB_ERR_FULL;
+    }
+    if (cub_coachlib_add_clips(&d->cl, g->clips, (const cub_fuzzy_frame *const *)g->fuzzy,
+                               g->span_count, &diag))
+        return fail(err, size, &diag, "groove");
+    d->groove_count = 0;
+    for (int i = 0; i < g->span_count; i++)
+        if (danced(&d->song, &g->spans[i]))
+            d->grooves[d->groove_count++] = (cub_coach_groove){
+                .clip = first + i, .tag_ms = (int32_t)(g->spans[i].start_us / 1000),
+                .span_ms = (int32_t)((g->spans[i].end_us - g->spans[i].start_us) / 1000)};
+    return CUB_OK;
+}
+
+/* The dance of the bars no move teaches; a song without moves (the
+ * format's groove song) is all groove, unless the coach has no arms for it
+ * (the seal). */
 static cub_err open_groove(cub_dance *d, char *err, size_t size)
 {
     d->groove = malloc(sizeof *d->groove);
     if (!d->groove) return CUB_ERR_NOMEM;
     cub_err e = cub_groove_box_open(d->groove, &d->song, &d->cl.lib.skel, &d->cl.table.desc.body,
                                     d->log, err, size);
-    if (!e && d->song.move_count == 0) {
-        snprintf(err, size, "song: \"%s\" has no <move>: the box does not dance a groove song "
-                            "yet (issue 23)",
-                 d->song.name);
+    if (!e) e = hand_grooves(d, err, size);
+    if (!e && d->song.move_count == 0 && d->groove_count == 0) {
+        snprintf(err, size, "song: \"%s\" has no <move> and its bear cannot groove (%s)",
+                 d->song.name, d->song.midi_path);
         e = CUB_ERR_UNSUPPORTED;
     }
     return e;
@@ -268,7 +312,7 @@ void cub_dance_close(cub_dance *d)
 {
     cub_dance_music_close(&d->music);
     free(d->dir_mem);
-    cub_coachlib_free(&d->cl);
+    cub_coachlib_free(&d->cl); /* before the groove: its table plays the groove's frames */
     cub_wings_close(&d->wings);
     if (d->groove) cub_groove_box_close(d->groove);
     free(d->groove);

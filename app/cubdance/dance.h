@@ -49,6 +49,8 @@ typedef struct cub_dance {
     int32_t said_state; /* the coach state the last tick's words were for */
     cub_wings wings;    /* the bear's wings in bird_flying (picture only) */
     cub_groove_box *groove; /* the song's free bars, danced to its notes (owned) */
+    cub_coach_groove grooves[CUB_SONG_MAX_SPANS]; /* its clips' spans, for the coach */
+    int groove_count;
 } cub_dance;
 
 /* Load the coach's clips, the song and the music, and start the coach idle

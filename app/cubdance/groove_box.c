@@ -83,6 +83,8 @@ static cub_err fill_span(cub_groove_box *g, int i, const cub_fuzzy_body *body)
                                      0, g->clip_mem[i], size);
     if (!e) e = cub_groove_clip_fill(&g->plan, &g->rig, sp->start_us, &g->clips[i]);
     if (!e) e = tag_clip(&g->clips[i], body, g->fuzzy[i]);
+    snprintf(g->names[i], sizeof g->names[i], "groove_%s_%d", cub_song_span_name(sp->kind),
+             sp->bar);
     return e;
 }
 

@@ -6,7 +6,8 @@
  * frame as the bridge table tags the library's clips. Each span is logged:
  *   t=0.000 groove span kind=free bar=7 bars=2 start_ms=.. frames=.. classes=.. fuzzy=..
  * (fuzzy: a hash of every frame's memberships, so a log pins the motion).
- * Not yet handed to the director: the bear still idles through these bars. */
+ * dance.c appends the clips to the bridge table and hands the spans to the
+ * coach (cub_coach_groove), which dances them instead of idling. */
 #ifndef CUB_GROOVE_BOX_H
 #define CUB_GROOVE_BOX_H
 
@@ -29,6 +30,7 @@ typedef struct cub_groove_box {
     cub_clip clips[CUB_SONG_MAX_SPANS];        /* one per span, on the library's skeleton */
     void *clip_mem[CUB_SONG_MAX_SPANS];        /* owned */
     cub_fuzzy_frame *fuzzy[CUB_SONG_MAX_SPANS]; /* [frame] per clip, owned */
+    char names[CUB_SONG_MAX_SPANS][24];         /* groove_<kind>_<bar>, for the log */
 } cub_groove_box;
 
 /* Plan, fill and tag; log one line per span. A skeleton the groove cannot

@@ -16,43 +16,99 @@ static cub_err tween_clip(const cub_coachlib *cl, int frames, unsigned char **me
     return e;
 }
 
-/* The table again, every clip and link as before, the tween (two passes,
- * every frame a bridge frame) appended. */
-static cub_err rebuild(const cub_bridge_table *old, const cub_clip *unrolled, int pass,
-                       cub_bridge_table *t, void **mem_out)
+/* Clips appended to the table: every frame a bridge frame (they have no
+ * tags of their own); fuzzy[i] NULL: measured by the table. */
+typedef struct extra_clips {
+    const cub_clip *clips;
+    const cub_fuzzy_frame *const *fuzzy;
+    int count;
+    int tween_pass; /* > 0: the first is the tween of that pass */
+} extra_clips;
+
+static cub_bridge_table_desc grown_desc(const cub_bridge_table *old, const extra_clips *x,
+                                        int *most)
 {
-    int n = old->desc.clip_count, frames = unrolled->frame_count;
     cub_bridge_table_desc d = old->desc;
-    d.clip_count = n + 1;
-    d.frame_total += frames;
-    d.bridge_total += frames;
-    size_t size = cub_bridge_table_mem_size(&d);
-    void *mem = malloc(size);
-    int most = frames > old->desc.bridge_total ? frames : old->desc.bridge_total;
-    int *all = malloc(sizeof(int) * (size_t)most); /* one clip's bridge frames at a time */
-    cub_err e = mem && all ? cub_bridge_table_init(t, &d, mem, size) : CUB_ERR_NOMEM;
-    for (int c = 0; c < n && !e; c++) {
+    *most = old->desc.bridge_total;
+    d.clip_count += x->count;
+    for (int i = 0; i < x->count; i++) {
+        d.frame_total += x->clips[i].frame_count;
+        d.bridge_total += x->clips[i].frame_count;
+        if (x->clips[i].frame_count > *most) *most = x->clips[i].frame_count;
+    }
+    return d;
+}
+
+static cub_err add_old_clips(const cub_bridge_table *old, cub_bridge_table *t, int *all)
+{
+    cub_err e = CUB_OK;
+    for (int c = 0; c < old->desc.clip_count && !e; c++) {
         const cub_bridge_clip *bc = &old->clips[c];
         for (int i = 0; i < bc->bridge_count; i++)
             all[i] = old->bridges[bc->first_bridge + i];
         e = cub_bridge_table_add_clip(t, &bc->clip, all, bc->bridge_count,
                                       old->fuzzy + bc->first_frame);
     }
-    for (int f = 0; f < frames && !e; f++)
-        all[f] = f;
-    if (!e) e = cub_bridge_table_add_clip(t, unrolled, all, frames, NULL);
+    return e;
+}
+
+/* The table again, every clip and link as before, the extra clips
+ * appended. */
+static cub_err rebuild(const cub_bridge_table *old, const extra_clips *x, cub_bridge_table *t,
+                       void **mem_out)
+{
+    int n = old->desc.clip_count, most;
+    cub_bridge_table_desc d = grown_desc(old, x, &most);
+    size_t size = cub_bridge_table_mem_size(&d);
+    void *mem = malloc(size);
+    int *all = malloc(sizeof(int) * (size_t)(most + 1)); /* one clip's bridge frames at a time */
+    cub_err e = mem && all ? cub_bridge_table_init(t, &d, mem, size) : CUB_ERR_NOMEM;
+    if (!e) e = add_old_clips(old, t, all);
+    for (int i = 0; i < x->count && !e; i++) {
+        for (int f = 0; f < x->clips[i].frame_count; f++)
+            all[f] = f;
+        e = cub_bridge_table_add_clip(t, &x->clips[i], all, x->clips[i].frame_count,
+                                      x->fuzzy ? x->fuzzy[i] : NULL);
+    }
     for (int a = 0; a < n && !e; a++)
         for (int b = 0; b < n && !e; b++) {
             const cub_bridge_pair *p = &old->pairs[a * n + b];
             e = cub_bridge_table_set_links(t, a, b, old->links + p->first, p->count);
         }
-    if (!e) e = cub_bridge_table_set_tween(t, n, pass);
+    /* the tween, new or kept (clips are appended after it) */
+    int tween = x->tween_pass > 0 ? n : old->tween_clip;
+    int pass = x->tween_pass > 0 ? x->tween_pass : old->tween_pass;
+    if (!e && tween >= 0) e = cub_bridge_table_set_tween(t, tween, pass);
     if (!e) e = cub_bridge_table_finish(t);
     if (!e && old->route_count > 0) e = cub_bridge_table_set_routes(t, old->routes, old->route_count);
     free(all);
     if (e) free(mem);
     *mem_out = e ? NULL : mem;
     return e;
+}
+
+/* The rebuilt table replaces the old one. */
+static void take_table(cub_coachlib *cl, const cub_bridge_table *t, void *mem)
+{
+    free(cl->table_mem);
+    cl->table_mem = mem;
+    cl->table = *t;
+}
+
+cub_err cub_coachlib_add_clips(cub_coachlib *cl, const cub_clip *clips,
+                               const cub_fuzzy_frame *const *fuzzy, int count, cub_diag *diag)
+{
+    if (!cl || !cl->table.finished || count < 0 || (count > 0 && !clips)) return CUB_ERR_ARG;
+    if (count == 0) return CUB_OK;
+    extra_clips x = {.clips = clips, .fuzzy = fuzzy, .count = count};
+    cub_bridge_table t;
+    void *mem = NULL;
+    cub_err e = rebuild(&cl->table, &x, &t, &mem);
+    if (e)
+        return cub_diag_fail(diag, e, "coachlib", 0, "cannot add %d clips to the table (%s)",
+                             count, cub_err_str(e));
+    take_table(cl, &t, mem);
+    return CUB_OK;
 }
 
 cub_err cub_coachlib_add_tween(cub_coachlib *cl, const cub_bridge_tween_config *cfg, cub_diag *diag)
@@ -76,7 +132,8 @@ cub_err cub_coachlib_add_tween(cub_coachlib *cl, const cub_bridge_tween_config *
     void *table_mem = NULL;
     e = tween_clip(cl, pass, &mem, &cl->tween_clip);
     if (!e) e = tween_clip(cl, 2 * pass, &mem, &unrolled);
-    if (!e) e = rebuild(&cl->table, &unrolled, pass, &t, &table_mem);
+    extra_clips x = {.clips = &unrolled, .count = 1, .tween_pass = pass};
+    if (!e) e = rebuild(&cl->table, &x, &t, &table_mem);
     if (e) {
         free(cl->tween_mem);
         cl->tween_mem = NULL;
@@ -84,9 +141,7 @@ cub_err cub_coachlib_add_tween(cub_coachlib *cl, const cub_bridge_tween_config *
         return cub_diag_fail(diag, e, "coachlib", 0, "cannot add the tween to the table (%s)",
                              cub_err_str(e));
     }
-    free(cl->table_mem);
-    cl->table_mem = table_mem;
-    cl->table = t;
+    take_table(cl, &t, table_mem);
     cl->tween_index = cl->lib.clip_count;
     return CUB_OK;
 }

@@ -43,7 +43,10 @@ static bool clip_ok(const cub_coach_desc *d, int32_t clip)
 
 static cub_err check_desc(const cub_coach_desc *d)
 {
-    if (!d->moves || d->move_count <= 0 || d->clip_count <= 0) return CUB_ERR_ARG;
+    /* A groove song (issue 23) has no move: its spans are all it dances. */
+    const bool groove_song = d->move_count == 0 && d->groove_count > 0;
+    if ((!d->moves && !groove_song) || (d->move_count <= 0 && !groove_song) || d->clip_count <= 0)
+        return CUB_ERR_ARG;
     const cub_coach_roles *r = &d->roles;
     const int32_t roles[] = {r->idle,       r->wake_up,  r->attract, r->doze,
                              r->head_shake, r->watch_me, r->worried, r->cheer};
@@ -58,6 +61,9 @@ static cub_err check_desc(const cub_coach_desc *d)
         prev_end_ms = (int64_t)m->tag_ms + m->span_ms;
         if (prev_end_ms > INT32_MAX) return CUB_ERR_ARG;
     }
+    if (d->groove_count < 0 || (d->groove_count > 0 && !d->grooves)) return CUB_ERR_ARG;
+    for (int32_t i = 0; i < d->groove_count; i++)
+        if (!clip_ok(d, d->grooves[i].clip) || d->grooves[i].span_ms <= 0) return CUB_ERR_ARG;
     if (d->doze_after_ms <= d->attract_after_ms || d->demo_speed_q16 < 0) return CUB_ERR_ARG;
     return CUB_OK;
 }
@@ -109,6 +115,7 @@ static void leave_song(cub_coach *c)
     c->tag_pending = false;
     c->show_again = false;
     c->fix = 0;
+    c->groove = -1;
 }
 
 /* ---- entering states ----------------------------------------------------- */
@@ -184,6 +191,7 @@ static void begin_move(cub_coach *c, int32_t m, int32_t rep, int32_t reason)
     c->rep = rep;
     c->show_again = false;
     c->fix = 0;
+    c->groove = -1;
     c->phase = COACH_PH_MOVES;
     c->tag_pending = true;
     coach_out_clip(c, cur_move(c)->clip, move_speed(c, m, c->sync_q16), false, reason);
@@ -196,6 +204,32 @@ static bool time_to_begin(const cub_coach *c, int32_t m, int32_t music_ms)
 {
     const cub_coach_move *mv = &c->desc.moves[m];
     return song_now_ms(c, music_ms) + bounded_lead_ms(mv, mv->entry_lead_ms) >= mv->tag_ms;
+}
+
+/* The groove span the music is in now, begun at most
+ * CUB_COACH_GROOVE_LATE_MS ago; -1 when none. */
+static int32_t groove_now(const cub_coach *c, int32_t music_ms)
+{
+    const int64_t now_ms = song_now_ms(c, music_ms);
+    for (int32_t g = 0; g < c->desc.groove_count; g++) {
+        const cub_coach_groove *s = &c->desc.grooves[g];
+        int64_t into_ms = now_ms - s->tag_ms;
+        if (into_ms >= 0 && into_ms < CUB_COACH_GROOVE_LATE_MS && into_ms < s->span_ms) return g;
+    }
+    return -1;
+}
+
+/* While no move plays (waiting for a tag, the outro): the span's groove
+ * when one begins now, else the idle clip. */
+static void wait_clip(cub_coach *c, int32_t reason, int32_t music_ms)
+{
+    const int32_t g = groove_now(c, music_ms);
+    if (g < 0) {
+        coach_out_clip(c, c->desc.roles.idle, CUB_Q16_ONE, true, reason);
+        return;
+    }
+    c->groove = g;
+    coach_out_clip(c, c->desc.grooves[g].clip, CUB_Q16_ONE, false, CUB_COACH_WHY_GROOVE);
 }
 
 /* Move m starts now, or, when the song has an intro or a gap before it,
@@ -213,22 +247,21 @@ static void begin_or_wait(cub_coach *c, int32_t m, int32_t reason, int32_t music
     }
     c->phase = COACH_PH_WAIT;
     c->tag_pending = false;
-    coach_out_clip(c, c->desc.roles.idle, CUB_Q16_ONE, true,
-                   m == 0 ? CUB_COACH_WHY_INTRO : CUB_COACH_WHY_IDLE);
+    wait_clip(c, m == 0 ? CUB_COACH_WHY_INTRO : CUB_COACH_WHY_IDLE, music_ms);
     show_move_hint(c, reason);
 }
 
-static void go_outro(cub_coach *c)
+static void go_outro(cub_coach *c, int32_t music_ms)
 {
     c->phase = COACH_PH_OUTRO;
     c->tag_pending = false;
-    coach_out_clip(c, c->desc.roles.idle, CUB_Q16_ONE, true, CUB_COACH_WHY_OUTRO);
+    wait_clip(c, CUB_COACH_WHY_OUTRO, music_ms);
     if (c->hint >= 0) coach_out_hint(c, CUB_COACH_HINT_NONE, CUB_COACH_WHY_OUTRO);
 }
 
 static void start_dance(cub_coach *c)
 {
-    c->move = 0;
+    c->move = c->desc.move_count > 0 ? 0 : -1;
     c->rep = 0;
     c->misses = 0;
     c->sync_q16 = CUB_Q16_ONE;
@@ -236,8 +269,12 @@ static void start_dance(cub_coach *c)
     coach_out_music(c, true, CUB_COACH_WHY_WOKE);
     c->music_start_us = c->now_us;
     c->away_since_us = c->now_us; /* a child not in view yet has the grace too */
-    /* The audio clock the app passed was read before this start. */
-    begin_or_wait(c, 0, CUB_COACH_WHY_MOVE, CUB_COACH_NO_MUSIC);
+    /* The audio clock the app passed was read before this start. A groove
+     * song has nothing to wait for: the outro from the first bar. */
+    if (c->desc.move_count == 0)
+        go_outro(c, CUB_COACH_NO_MUSIC);
+    else
+        begin_or_wait(c, 0, CUB_COACH_WHY_MOVE, CUB_COACH_NO_MUSIC);
 }
 
 /* A wrong verdict: the correcting clip at once (head shake and watch me in
@@ -275,6 +312,11 @@ static void resume(cub_coach *c, int32_t music_ms, int32_t why)
 {
     int32_t m = c->move, rep = c->rep;
     const int32_t last = c->desc.move_count - 1;
+    if (m < 0) { /* a groove song: no move to go back to */
+        coach_out_state(c, CUB_COACH_DANCE, why);
+        go_outro(c, music_ms);
+        return;
+    }
     if (music_ms >= 0 && music_ms < c->desc.moves[m].tag_ms) { /* the intro, a gap */
         coach_out_state(c, CUB_COACH_DANCE, why);
         begin_or_wait(c, m, CUB_COACH_WHY_RESUME, music_ms);
@@ -301,7 +343,7 @@ static void resume(cub_coach *c, int32_t music_ms, int32_t why)
         c->move = m;
         c->rep = c->desc.moves[m].reps - 1;
         coach_out_state(c, CUB_COACH_DANCE, why);
-        go_outro(c);
+        go_outro(c, music_ms);
     }
 }
 
@@ -403,13 +445,15 @@ static void on_clip_done(cub_coach *c, const cub_event *ev, int32_t music_ms)
     switch (c->state) {
     case CUB_COACH_WAKE: start_dance(c); break;
     case CUB_COACH_DANCE:
+        if (c->phase == COACH_PH_WAIT || c->phase == COACH_PH_OUTRO) /* a groove ended */
+            coach_out_clip(c, c->desc.roles.idle, CUB_Q16_ONE, true, CUB_COACH_WHY_IDLE);
         if (c->phase != COACH_PH_MOVES) break;
         if (c->rep + 1 < cur_move(c)->reps)
             begin_move(c, c->move, c->rep + 1, CUB_COACH_WHY_REP);
         else if (c->move + 1 < c->desc.move_count)
             begin_or_wait(c, c->move + 1, CUB_COACH_WHY_MOVE, music_ms);
         else
-            go_outro(c);
+            go_outro(c, music_ms);
         break;
     case CUB_COACH_CORRECT:
         if (c->phase == COACH_PH_DEMO) /* watched: now the attempt, with the music */
@@ -478,7 +522,7 @@ static void resume_song(cub_coach *c, int32_t music_ms, int32_t why)
     coach_out_hint(c, c->player_in_view ? CUB_COACH_HINT_NONE : away_hint(c), why);
     if (c->paused_phase == COACH_PH_OUTRO) {
         coach_out_state(c, CUB_COACH_DANCE, why);
-        go_outro(c);
+        go_outro(c, music_ms);
         return;
     }
     resume(c, music_ms, why);
@@ -558,6 +602,7 @@ cub_err cub_coach_init(cub_coach *c, const cub_coach_desc *desc, int64_t now_us)
     c->state = CUB_COACH_IDLE;
     c->move = -1;
     c->clip = -1;
+    c->groove = -1;
     c->speed_q16 = c->sync_q16 = c->rate_q16 = CUB_Q16_ONE;
     c->player_in_view = true; /* no "come closer" until told nobody is there */
     c->hint = CUB_COACH_HINT_NONE;
@@ -605,6 +650,11 @@ cub_err cub_coach_tick(cub_coach *c, int64_t now_us, int32_t music_ms)
     if (c->state == CUB_COACH_DANCE && c->phase == COACH_PH_WAIT &&
         time_to_begin(c, c->move, music_ms))
         begin_move(c, c->move, 0, CUB_COACH_WHY_MOVE);
+    const bool waiting = c->phase == COACH_PH_WAIT || c->phase == COACH_PH_OUTRO;
+    if (c->state == CUB_COACH_DANCE && waiting) {
+        const int32_t g = groove_now(c, music_ms);
+        if (g >= 0 && g != c->groove) wait_clip(c, CUB_COACH_WHY_GROOVE, music_ms);
+    }
     if (away_too_long(c)) pause_song(c, CUB_COACH_WHY_AWAY);
     const int64_t quiet_ms = (c->now_us - c->quiet_since_us) / 1000;
     switch (c->state) {

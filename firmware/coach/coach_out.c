@@ -14,7 +14,7 @@ static const char *const reason_names[CUB_COACH_WHY_COUNT] = {
     "init",  "start", "clap",     "stop",  "woke",    "intro",   "move",   "rep",
     "wrong", "right", "correct",  "demo",  "misses",  "worried", "calmed", "resume",
     "sync",  "outro", "song_end", "cheer", "cheered", "quiet",   "player", "idle",
-    "camera", "moved_on", "away", "watched",
+    "camera", "moved_on", "away", "watched", "groove",
 };
 
 const char *cub_coach_state_name(int32_t state)

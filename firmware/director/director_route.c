@@ -38,7 +38,8 @@ static bool enters_at_start(int32_t reason)
  * 0.4), not only at a tagged one: the quickest way in. */
 static int start_frames(const cub_director *d, const cub_coach_action *a)
 {
-    if (enters_at_start(a->reason)) return d->desc.start_frames;
+    if (enters_at_start(a->reason) || a->reason == CUB_COACH_WHY_GROOVE)
+        return d->desc.start_frames;
     if (a->reason == CUB_COACH_WHY_CORRECT) return clip_of(d, a->clip)->frame_count / 2;
     return 0;
 }
@@ -169,14 +170,33 @@ static bool plan_routed(const cub_bridge_plan *plan)
     return plan->step_count > 0 && plan->step[0].via == CUB_BRIDGE_ROUTE;
 }
 
+static bool groove_clip(const cub_director *d, int clip)
+{
+    for (int32_t g = 0; g < d->desc.coach.groove_count; g++)
+        if (d->desc.coach.grooves[g].clip == clip) return true;
+    return false;
+}
+
+/* A groove clip (a span no move teaches) has no tagged links to or from
+ * the library's clips, so no chain reaches it and none leaves it: into it
+ * and out of it, the planner enters within react_frames at the closest of
+ * the start frames when nothing within the threshold comes sooner. The
+ * music does not wait for the bear either way. */
+static int reach_frames(const cub_director *d, const cub_coach_action *a)
+{
+    return groove_clip(d, a->clip) || groove_clip(d, d->player.clip) ? d->desc.react_frames : 0;
+}
+
 void director_request(cub_director *d, const cub_coach_action *a, int64_t t_us)
 {
     cub_bridge_player_set_start_frames(&d->player, start_frames(d, a));
+    cub_bridge_player_set_reach_frames(&d->player, reach_frames(d, a));
     d->played_clip = d->requested_clip = -1;
     cub_bridge_plan plan;
     cub_bridge_player_set_no_routes(&d->player, !routes_allowed(d, a));
     cub_err err = plan_correction(d, a, &plan, t_us);
     cub_bridge_player_set_no_routes(&d->player, 0); /* the leads' previews take them */
+    cub_bridge_player_set_reach_frames(&d->player, 0);
     judge_clip(d, a, t_us, err ? NULL : &plan);
     if (!err) {
         cub_log_event(dlog(d), t_us, "bridge", "plan", "to=%s steps=%d wait_frames=%d via=%s",

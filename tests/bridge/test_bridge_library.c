@@ -419,6 +419,44 @@ static void test_a_late_route_falls_back_to_the_search(void **state)
     assert_int_equal(cub_bridge_table_set_routes(&t, twice, 1), CUB_ERR_ARG); /* set once */
 }
 
+/* The groove's way into the table (issue 23): a clip appended after the
+ * library, every frame a bridge frame, no links; the library's clips,
+ * links and routes as they were; the planner reaches the new clip by
+ * reach_frames and leaves it for a library clip. A copy of clip 0 stands
+ * in for a groove clip (same skeleton, same rate). */
+static void test_appended_clip_is_entered_and_left(void **state)
+{
+    if (!*state) skip();
+    char assets[1024];
+    snprintf(assets, sizeof assets, "%s/assets", src_dir());
+    cub_coachlib cl;
+    cub_diag d = {0};
+    assert_int_equal(cub_coachlib_load_assets(assets, &cl, &d), CUB_OK);
+    const int n = cl.lib.clip_count, links = cl.table.desc.link_total;
+    const cub_clip extra = cl.lib.clips[0].clip;
+    assert_int_equal(cub_coachlib_add_clips(&cl, &extra, NULL, 1, &d), CUB_OK);
+    const cub_bridge_table *t = &cl.table;
+    assert_true(t->finished);
+    assert_int_equal(t->desc.clip_count, n + 1);
+    assert_int_equal(t->clips[n].bridge_count, extra.frame_count);
+    assert_int_equal(t->desc.link_total, links);
+    assert_int_equal(t->route_count, g_cl.table.route_count);
+    assert_int_equal(t->pairs[0].count, g_cl.table.pairs[0].count);
+    size_t ws = cub_bridge_plan_work_size(t); /* the grown table's */
+    void *work = malloc(ws);
+    assert_non_null(work);
+    cub_bridge_query q = {.from_clip = 1, .to_clip = n, .start_frames = 4, .reach_frames = 5};
+    cub_bridge_plan plan;
+    assert_int_equal(cub_bridge_plan_switch(t, &q, &plan, work, ws), CUB_OK);
+    assert_true(plan.total_frames <= 6);
+    assert_true(plan.step[plan.step_count - 1].to_frame < 4);
+    q = (cub_bridge_query){.from_clip = n, .to_clip = 1, .start_frames = 4, .reach_frames = 5};
+    assert_int_equal(cub_bridge_plan_switch(t, &q, &plan, work, ws), CUB_OK);
+    free(work);
+    assert_int_equal(cub_coachlib_add_clips(&cl, NULL, NULL, 1, &d), CUB_ERR_ARG);
+    cub_coachlib_free(&cl);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -429,6 +467,7 @@ int main(void)
         cmocka_unit_test(test_sample_switches_react_fast_without_a_jump),
         cmocka_unit_test(test_route_pairs_take_their_route_and_keep_the_feet),
         cmocka_unit_test(test_a_late_route_falls_back_to_the_search),
+        cmocka_unit_test(test_appended_clip_is_entered_and_left),
     };
     return cmocka_run_group_tests_name("bridge_library", tests, setup, teardown);
 }

@@ -520,6 +520,19 @@ static void test_demo_song_log_is_the_committed_one(void **s)
     expect_committed_log("demo", demo_log);
 }
 
+/* The coach's requests for a groove clip whose name begins with prefix. */
+static int groove_requests(const logread *log, const char *prefix)
+{
+    int n = 0;
+    char why[16], clip[40];
+    for (int i = logread_find(log, 0, "coach", "request"); i >= 0;
+         i = logread_find(log, i + 1, "coach", "request"))
+        if (!strcmp(field(log, i, "reason", why, sizeof why), "groove") &&
+            !strncmp(field(log, i, "clip", clip, sizeof clip), prefix, strlen(prefix)))
+            n++;
+    return n;
+}
+
 /* A song with <free> bars: one groove clip per span no move teaches (the
  * intro, the <free>s), each logged with its frames and a hash of their
  * fuzzy memberships, then the dance; all of it the committed log, on every
@@ -537,8 +550,27 @@ static void test_free_bars_groove_log_is_the_committed_one(void **s)
     printf("scenario: groove_free: %d groove spans, %d of them <free>\n", spans, free_spans);
     assert_int_equal(spans, 4);
     assert_int_equal(free_spans, 3);
+    /* danced: bar 14's (26 and 39 lie past the 40 s); the intro idles */
+    assert_int_equal(groove_requests(&log, "groove_free_"), 1);
+    assert_int_equal(groove_requests(&log, ""), 1);
     logread_free(&log);
     expect_committed_log("groove_free", groove_log);
+}
+
+/* A groove song (no <move>): the whole song one span, danced from the
+ * music's start; no move is begun, nothing judged. */
+static void test_groove_song_is_danced(void **s)
+{
+    logread log;
+    load("groove_song", &log);
+    assert_int_equal(logread_count(&log, "groove", "span"), 1);
+    assert_int_equal(groove_requests(&log, "groove_intro_1"), 1);
+    assert_int_equal(logread_count(&log, "judge", "window"), 0);
+    int i = logread_find(&log, 0, "coach", "request");
+    char why[16];
+    for (; i >= 0; i = logread_find(&log, i + 1, "coach", "request"))
+        assert_string_not_equal(field(&log, i, "reason", why, sizeof why), "move");
+    logread_free(&log);
 }
 
 int main(int argc, char **argv)
@@ -567,6 +599,7 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_every_hint_shown_is_said_at_its_tick),
         cmocka_unit_test(test_demo_song_log_is_the_committed_one),
         cmocka_unit_test(test_free_bars_groove_log_is_the_committed_one),
+        cmocka_unit_test(test_groove_song_is_danced),
     };
     return cmocka_run_group_tests_name("scenarios", tests, NULL, NULL);
 }

@@ -640,6 +640,98 @@ static void test_song_end_cheers_then_idles(void **s)
     assert_null(act(&c, CUB_COACH_ACT_MUSIC_STOP, 0)); /* it ended by itself */
 }
 
+/* ---- groove spans (issue 23) --------------------------------------------- */
+
+#define C_GROOVE C_COUNT /* the gap's groove clip, after the library's */
+static const char *const groove_names[C_COUNT + 1] = {
+    "idle",  "wake_up", "wave", "doze",  "head_shake",   "watch_me",
+    "worried", "cheer", "clap", "sway", "robot", "groove_gap_7"};
+static const cub_coach_groove gap_groove = {.clip = C_GROOVE, .tag_ms = 12000, .span_ms = 1000};
+
+/* Dance to the end of sway (move 1, the gap after it) with the groove
+ * span in the gap; the music stands at gap_ms when sway ends. */
+static void dance_to_gap(cub_coach *c, int32_t gap_ms)
+{
+    cub_coach_desc d = make_desc();
+    d.grooves = &gap_groove;
+    d.groove_count = 1;
+    d.clip_count = C_COUNT + 1;
+    d.clip_names = groove_names;
+    assert_int_equal(cub_coach_init(c, &d, 0), CUB_OK);
+    to_dance(c, 0);
+    for (int rep = 1; rep <= 4; rep++) /* clap's repetitions, then sway */
+        send(c, 1000 + 2000 * rep, CUB_EV_CLIP_DONE, C_CLAP, 0, 2000 * rep);
+    send(c, 11000, CUB_EV_CLIP_DONE, C_SWAY, 0, 10000);
+    send(c, 1000 + gap_ms, CUB_EV_CLIP_DONE, C_SWAY, 0, gap_ms);
+}
+
+static void test_gap_dances_its_groove_then_the_next_move(void **s)
+{
+    (void)s;
+    cub_coach c;
+    dance_to_gap(&c, 12000);
+    assert_int_equal(c.state, CUB_COACH_DANCE);
+    expect_clip(&c, C_GROOVE, CUB_Q16_ONE, false, CUB_COACH_WHY_GROOVE);
+    assert_int_equal(c.move, 2); /* waiting for robot: the groove is no move */
+    assert_true(logged("coach request clip=groove_gap_7 speed=1.000 loop=0 reason=groove "
+                       "move=2 rep=0"));
+    tick(&c, 13500, 12500); /* once per span */
+    assert_null(act(&c, CUB_COACH_ACT_CLIP, 0));
+    send(&c, 13990, CUB_EV_CLIP_DONE, C_GROOVE, 0, 12990); /* its end: idle till the tag */
+    expect_clip(&c, C_IDLE, CUB_Q16_ONE, true, CUB_COACH_WHY_IDLE);
+    tick(&c, 14000, 13000);
+    expect_clip(&c, C_ROBOT, 0, false, CUB_COACH_WHY_MOVE);
+}
+
+static void test_groove_is_not_begun_late(void **s)
+{
+    (void)s;
+    cub_coach c;
+    dance_to_gap(&c, 12000 + CUB_COACH_GROOVE_LATE_MS); /* its clip would trail the music */
+    expect_clip(&c, C_IDLE, CUB_Q16_ONE, true, CUB_COACH_WHY_IDLE);
+    tick(&c, 13600, 12600);
+    assert_null(act(&c, CUB_COACH_ACT_CLIP, 0));
+}
+
+/* A groove song: no move, one span for the whole song, danced from the
+ * music's start; the song's end cheers as after any song. */
+static void test_groove_song_dances_its_span_then_cheers(void **s)
+{
+    (void)s;
+    static const cub_coach_groove whole = {.clip = C_GROOVE, .tag_ms = 0, .span_ms = 20000};
+    cub_coach c;
+    cub_coach_desc d = make_desc();
+    d.moves = NULL;
+    d.move_count = 0;
+    assert_int_equal(cub_coach_init(&c, &d, 0), CUB_ERR_ARG); /* no move, no groove */
+    d.grooves = &whole;
+    d.groove_count = 1;
+    d.clip_count = C_COUNT + 1;
+    d.clip_names = groove_names;
+    assert_int_equal(cub_coach_init(&c, &d, 0), CUB_OK);
+    to_dance(&c, 0);
+    assert_non_null(act(&c, CUB_COACH_ACT_MUSIC_START, 0));
+    expect_clip(&c, C_GROOVE, CUB_Q16_ONE, false, CUB_COACH_WHY_GROOVE);
+    assert_int_equal(c.move, -1);
+    tick(&c, 5000, 4000);
+    assert_null(act(&c, CUB_COACH_ACT_CLIP, 0));
+    send(&c, 21000, CUB_EV_SONG_END, 0, 0, 20000);
+    assert_int_equal(c.state, CUB_COACH_CHEER);
+    expect_clip(&c, C_CHEER, CUB_Q16_ONE, false, CUB_COACH_WHY_CHEER);
+}
+
+static void test_bad_groove_is_refused(void **s)
+{
+    (void)s;
+    cub_coach c;
+    cub_coach_desc d = make_desc();
+    d.grooves = &gap_groove;
+    d.groove_count = 1; /* its clip is outside the library */
+    assert_int_equal(cub_coach_init(&c, &d, 0), CUB_ERR_ARG);
+    d.grooves = NULL;
+    assert_int_equal(cub_coach_init(&c, &d, 0), CUB_ERR_ARG);
+}
+
 /* Bring a fresh coach into state s. */
 static void drive_to(cub_coach *c, int s)
 {
@@ -1134,6 +1226,10 @@ int main(void)
         cmocka_unit_test(test_music_tag_sets_the_moves_speed),
         cmocka_unit_test(test_sync_keeps_the_dance_on_a_skewed_music_clock),
         cmocka_unit_test(test_scripted_session_gives_the_same_log_every_time),
+        cmocka_unit_test(test_gap_dances_its_groove_then_the_next_move),
+        cmocka_unit_test(test_groove_is_not_begun_late),
+        cmocka_unit_test(test_bad_groove_is_refused),
+        cmocka_unit_test(test_groove_song_dances_its_span_then_cheers),
     };
     return cmocka_run_group_tests_name("coach", tests, NULL, NULL);
 }

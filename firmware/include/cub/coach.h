@@ -84,6 +84,7 @@ typedef enum cub_coach_reason {
     CUB_COACH_WHY_MOVED_ON, /* the music left the corrected move: dance on with it */
     CUB_COACH_WHY_AWAY,     /* the child has been out of view mid-song for a while */
     CUB_COACH_WHY_WATCHED,  /* the slower demonstration was watched: the attempt now */
+    CUB_COACH_WHY_GROOVE,   /* a span no move teaches: the bear's own dance to the music */
     CUB_COACH_WHY_COUNT
 } cub_coach_reason;
 
@@ -146,6 +147,20 @@ typedef struct cub_coach_move {
                               before each call); 0 = none */
 } cub_coach_move;
 
+/* A span of the song no move teaches (the intro, a gap, free bars, the
+ * outro), danced by a clip made for it whose frame 0 is the span's start
+ * on the music clock (issue 23, docs/groove.md "The box"). Untaught: never
+ * a move, so never judged, corrected or hinted. */
+typedef struct cub_coach_groove {
+    int32_t clip;    /* index in the clip library (the table's clips) */
+    int32_t tag_ms;  /* music time of the clip's first frame */
+    int32_t span_ms; /* music time the clip lasts */
+} cub_coach_groove;
+
+/* A groove span is begun only this late into it at most (after a
+ * correction, a pause): later, its clip would trail the music. */
+#define CUB_COACH_GROOVE_LATE_MS 500
+
 /* The coach's own clips (indices in the clip library). No defaults: see
  * cub_coach_roles_by_name to find them by their names. */
 typedef struct cub_coach_roles {
@@ -158,6 +173,10 @@ typedef struct cub_coach_roles {
 typedef struct cub_coach_desc {
     const cub_coach_move *moves; /* required, move_count of them */
     int32_t move_count;
+    const cub_coach_groove *grooves; /* optional: groove_count spans, in music order;
+                                        danced instead of the idle clip while the
+                                        coach waits for a move's tag or the end */
+    int32_t groove_count;
     cub_coach_roles roles;         /* required */
     int32_t clip_count;            /* clips in the library (> every index) */
     const char *const *clip_names; /* optional: clip_count names for the log */
@@ -175,6 +194,7 @@ typedef struct cub_coach {
     int32_t phase;        /* a step inside the state (coach.c) */
     int32_t move, rep;    /* the song position being danced or corrected */
     int32_t clip;         /* the clip last requested */
+    int32_t groove;       /* the groove span last requested while waiting; -1 none */
     cub_q16 speed_q16;    /* ... at this speed */
     cub_q16 sync_q16;     /* music-sync factor applied to the move's speed */
     cub_q16 rate_q16;     /* music ms per loop ms, as measured */
@@ -200,7 +220,8 @@ typedef struct cub_coach {
 } cub_coach;
 
 /* Check desc, fill defaults, start idle at now_us. The actions then hold
- * the idle clip's request. CUB_ERR_ARG for a NULL pointer, no moves, a move
+ * the idle clip's request. CUB_ERR_ARG for a NULL pointer, no moves (a
+ * groove song, no moves but groove spans, is fine: it dances them), a move
  * with reps < 2, span_ms <= 0, tags that go back or overlap, a clip or
  * role index outside [0, clip_count), or doze_after_ms <= attract_after_ms. */
 cub_err cub_coach_init(cub_coach *c, const cub_coach_desc *desc, int64_t now_us);
