@@ -105,6 +105,8 @@ void cub_groove_keys_pace(const cub_groove_params *p, const cub_groove_note *not
     int64_t pace = p->pace_mm_s > 0 ? p->pace_mm_s : DEFAULT_PACE_MM_S;
     for (int i = 1; i < n; i++) {
         int64_t t = notes[i].start_us - notes[i - 1].start_us;
+        /* so long a wait (hours, in a damaged tempo map) that no key needs pacing */
+        if (t > INT64_MAX / pace) continue;
         int64_t dx = keys[i].x_mm - keys[i - 1].x_mm, dy = keys[i].y_mm - keys[i - 1].y_mm;
         int64_t d = cub_fx_isqrt64((uint64_t)(dx * dx + dy * dy)), most = pace * t / 1000000;
         if (t <= 0 || d <= most) continue;

@@ -70,10 +70,11 @@ static cub_groove_key pace_handle(const cub_groove_params *p, cub_groove_key key
                                   int64_t t)
 {
     int64_t pace = p->pace_mm_s > 0 ? p->pace_mm_s : CUB_Q16_INT(1200);
+    if (t <= 0 || t > INT64_MAX / pace) return h; /* unknown, or hours: no cap */
     cub_groove_key d = key_sub(h, key);
     int64_t len = cub_fx_isqrt64((uint64_t)((int64_t)d.x_mm * d.x_mm + (int64_t)d.y_mm * d.y_mm));
     int64_t most = pace * t / 3000000;
-    return t > 0 && len > most ? key_add(key, with_length(d, (cub_q16)most)) : h;
+    return len > most ? key_add(key, with_length(d, (cub_q16)most)) : h;
 }
 
 static int64_t dist(cub_groove_key a, cub_groove_key b)

@@ -46,7 +46,8 @@ static void check_config(const char *text, size_t len)
     char *argv[] = {"cubdance", "--headless", NULL};
     cub_app_options o;
     if (cub_app_parse_options(2, argv, &o, null_out, null_out) != CUB_APP_RUN) abort();
-    (void)cub_app_apply_config(&o, &c, 1, "/assets", null_out);
+    /* refused (e.g. coach= names no coach under /assets): the box stops there */
+    if (cub_app_apply_config(&o, &c, 1, "/assets", null_out) != 0) return;
     if (o.audio_volume != CUB_BOARD_MUTE && (o.audio_volume < 1 || o.audio_volume > 100)) abort();
 }
 
