@@ -199,9 +199,8 @@ static cub_err open_director(cub_dance *d, const cub_app_options *o, cub_judge *
     const int most = (int)(sizeof d->clip_names / sizeof *d->clip_names);
     if (n > most) n = most;
     for (int i = 0; i < n; i++) d->clip_names[i] = d->cl.lib.clips[i].name;
-    const int grooves = d->cl.table.desc.clip_count - n; /* appended by hand_grooves */
-    for (int g = 0; g < grooves && n + g < most; g++)
-        d->clip_names[n + g] = d->groove->names[g];
+    for (int g = 0; g < d->groove_count && n + g < most; g++) /* appended by hand_grooves */
+        d->clip_names[n + g] = d->groove->names[d->groove_span[g]];
     cub_coach_move moves[CUB_SONG_MAX_MOVES];
     fill_program(d, moves);
     cub_director_desc dd = {
@@ -230,37 +229,45 @@ static cub_err open_director(cub_dance *d, const cub_app_options *o, cub_judge *
 /* Which groove spans the coach dances. In a song with moves, only the
  * <free> bars: the intro, the gaps and the outro keep the idle clip, so
  * the six shipped songs (none has free bars) are led exactly as before and
- * their e2e cues hold (docs/groove.md "The box", fourth slice). Every clip
- * is in the table all the same (logged, measured). */
+ * their e2e cues hold (docs/groove.md "The box", fourth slice). Every span's
+ * clip is made and logged all the same (measured). */
 static bool danced(const cub_song *song, const cub_song_span *sp)
 {
     return sp->kind == CUB_SONG_SPAN_FREE || song->move_count == 0;
 }
 
-/* The groove clips into the bridge table, after the library's clips, and
- * their spans on the music clock for the coach. */
+/* The clips of the danced spans into the bridge table, after the library's
+ * clips, and their spans on the music clock for the coach. Only those: the
+ * table is rebuilt to take them, so a song none of whose spans is danced
+ * (every shipped song) keeps its table as loaded. */
 static cub_err hand_grooves(cub_dance *d, char *err, size_t size)
 {
     const cub_groove_box *g = d->groove;
     const int first = d->cl.table.desc.clip_count;
-    cub_diag diag = {0};
-    if (first + g->span_count > (int)(sizeof d->clip_names / sizeof *d->clip_names))
-    {
+    cub_clip clips[CUB_SONG_MAX_SPANS];
+    const cub_fuzzy_frame *fuzzy[CUB_SONG_MAX_SPANS];
+    d->groove_count = 0;
+    for (int i = 0; i < g->span_count; i++) {
+        if (!danced(&d->song, &g->spans[i])) continue;
+        int k = d->groove_count++;
+        clips[k] = g->clips[i];
+        fuzzy[k] = g->fuzzy[i];
+        d->groove_span[k] = i;
+        d->grooves[k] = (cub_coach_groove){
+            .clip = first + k, .tag_ms = (int32_t)(g->spans[i].start_us / 1000),
+            .span_ms = (int32_t)((g->spans[i].end_us - g->spans[i].start_us) / 1000)};
+    }
+    if (d->groove_count == 0) return CUB_OK;
+    if (first + d->groove_count > (int)(sizeof d->clip_names / sizeof *d->clip_names)) {
         snprintf(err, size, "groove: %s: %d clips and %d groove spans, more than the box "
                             "names (%d)",
-                 d->song.midi_path, first, g->span_count,
+                 d->song.midi_path, first, d->groove_count,
                  (int)(sizeof d->clip_names / sizeof *d->clip_names));
         return CUB_ERR_FULL;
     }
-    if (cub_coachlib_add_clips(&d->cl, g->clips, (const cub_fuzzy_frame *const *)g->fuzzy,
-                               g->span_count, &diag))
+    cub_diag diag = {0};
+    if (cub_coachlib_add_clips(&d->cl, clips, fuzzy, d->groove_count, &diag))
         return fail(err, size, &diag, "groove");
-    d->groove_count = 0;
-    for (int i = 0; i < g->span_count; i++)
-        if (danced(&d->song, &g->spans[i]))
-            d->grooves[d->groove_count++] = (cub_coach_groove){
-                .clip = first + i, .tag_ms = (int32_t)(g->spans[i].start_us / 1000),
-                .span_ms = (int32_t)((g->spans[i].end_us - g->spans[i].start_us) / 1000)};
     return CUB_OK;
 }
 

@@ -50,6 +50,7 @@ typedef struct cub_dance {
     cub_wings wings;    /* the bear's wings in bird_flying (picture only) */
     cub_groove_box *groove; /* the song's free bars, danced to its notes (owned) */
     cub_coach_groove grooves[CUB_SONG_MAX_SPANS]; /* its clips' spans, for the coach */
+    int groove_span[CUB_SONG_MAX_SPANS];          /* each one's span in the groove box */
     int groove_count;
 } cub_dance;
 
