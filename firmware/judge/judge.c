@@ -163,6 +163,27 @@ static cub_err arm_aware_features(cub_judge *j, const cub_track_skeleton *skel)
     return CUB_OK;
 }
 
+/* Both legs' length, hip-knee-ankle (twice the mean leg), in mm. */
+static int64_t legs_mm(const cub_fuzzy_body *b, const cub_vec3 *w)
+{
+    int64_t legs = 0;
+    for (int k = 0; k < 2; k++)
+        legs += judge_dist_mm(w[b->hip[k]], w[b->knee[k]]) +
+                judge_dist_mm(w[b->knee[k]], w[b->ankle[k]]);
+    return legs;
+}
+
+/* mm in lengths of the legs (their mean; Q16) against a ramp: 0 at lo, 1
+ * (CUB_FUZZY_ONE) at lo + span. */
+static uint16_t leg_ramp(int64_t mm, int64_t legs, int64_t lo, int64_t span)
+{
+    if (legs <= 0 || span <= 0) return 0;
+    int64_t share = mm * 2 * CUB_Q16_ONE / legs;
+    if (share <= lo) return 0;
+    if (share >= lo + span) return CUB_FUZZY_ONE;
+    return (uint16_t)(((share - lo) * CUB_FUZZY_ONE + span / 2) / span);
+}
+
 /* How far a foot is lifted, 0..CUB_FUZZY_ONE: its ankle's height above the
  * other ankle in lengths of the legs (their mean, hip-knee-ankle), 0 at
  * kick_lift / 2 (a foot on the floor reads less: the Kinect's jitter and a
@@ -173,29 +194,44 @@ static cub_err arm_aware_features(cub_judge *j, const cub_track_skeleton *skel)
 static uint16_t foot_lift(const cub_judge *j, const cub_vec3 *w, int side)
 {
     const cub_fuzzy_body *b = &j->body;
-    int64_t legs = 0;
-    for (int k = 0; k < 2; k++)
-        legs += judge_dist_mm(w[b->hip[k]], w[b->knee[k]]) +
-                judge_dist_mm(w[b->knee[k]], w[b->ankle[k]]);
-    if (legs <= 0) return 0;
     int64_t lift = (int64_t)judge_mm(w[b->ankle[side]].y) - judge_mm(w[b->ankle[1 - side]].y);
-    /* lift / (legs / 2) against [lo, hi] = kick_lift x [1/2, 3/2], in Q16 */
-    int64_t share = lift * 2 * CUB_Q16_ONE / legs;
-    int64_t lo = j->d.kick_lift / 2, span = j->d.kick_lift;
-    if (share <= lo) return 0;
-    if (share >= lo + span) return CUB_FUZZY_ONE;
-    return (uint16_t)(((share - lo) * CUB_FUZZY_ONE + span / 2) / span);
+    return leg_ramp(lift, legs_mm(b, w), j->d.kick_lift / 2, j->d.kick_lift);
 }
 
-/* A leg is out only as far as its foot is lifted (cub/judge.h): the
- * outward membership capped by the lift's. Inward is left as it is. */
+/* Is the body over the foot it stands on while the other is out,
+ * 0..CUB_FUZZY_ONE: the hip centre's offset from the standing ankle along
+ * the hips' line, toward the lifted leg, in lengths of the legs; 0 at
+ * -kick_lift / 2, 1 at +kick_lift / 2 (the Kinect's jitter either side
+ * of the ankle). A leg held out is balanced on the other: its weight
+ * shifts the pelvis toward it, never past the standing foot. A pelvis
+ * beyond that foot, away from the lifted one, is on its way over it: a
+ * step onto it, a throw's weight shift, the legs of a bend or a swing
+ * misplaced by the Kinect. */
+static uint16_t foot_balanced(const cub_judge *j, const cub_vec3 *w, int side)
+{
+    const cub_fuzzy_body *b = &j->body;
+    cub_vec3 hs = w[b->hip[side]], ho = w[b->hip[1 - side]], ao = w[b->ankle[1 - side]];
+    cub_vec3 hc = w[b->hip_centre];
+    int64_t hips = judge_dist_mm(hs, ho);
+    if (hips <= 0) return 0;
+    int64_t along = ((int64_t)judge_mm(hs.x) - judge_mm(ho.x)) * (judge_mm(hc.x) - judge_mm(ao.x)) +
+                    ((int64_t)judge_mm(hs.y) - judge_mm(ho.y)) * (judge_mm(hc.y) - judge_mm(ao.y)) +
+                    ((int64_t)judge_mm(hs.z) - judge_mm(ho.z)) * (judge_mm(hc.z) - judge_mm(ao.z));
+    return leg_ramp(along / hips, legs_mm(b, w), -j->d.kick_lift / 2, j->d.kick_lift);
+}
+
+/* A leg is out only as far as its foot is lifted and the body balanced
+ * on the other (cub/judge.h): the outward membership capped by both.
+ * Inward is left as it is. */
 static void lifted_legs(cub_judge *j, const cub_track_skeleton *skel)
 {
     static const int32_t feature[2] = {CUB_FUZZY_LF, CUB_FUZZY_RF}; /* body side 0 left */
     for (int side = 0; side < 2; side++) {
         uint16_t lift = foot_lift(j, skel->joint_mm, side);
+        uint16_t balanced = foot_balanced(j, skel->joint_mm, side);
         uint16_t *out = &j->last.mu[feature[side]][1];
         if (lift < *out) *out = lift;
+        if (balanced < *out) *out = balanced;
     }
 }
 
@@ -211,9 +247,10 @@ static uint32_t feature_joints(const cub_fuzzy_body *b, int32_t f)
     case CUB_FUZZY_LHE:
         return 1u << b->shoulder[side] | 1u << b->elbow[side] | 1u << b->wrist[side];
     case CUB_FUZZY_RF:
-    case CUB_FUZZY_LF: /* and the other ankle: the lift is measured from it */
+    case CUB_FUZZY_LF: /* and the other leg's hip and ankle, the hip centre:
+                          the lift and the balance are measured from them */
         return 1u << b->hip[side] | 1u << b->knee[side] | 1u << b->ankle[side] |
-               1u << b->ankle[1 - side];
+               1u << b->hip[1 - side] | 1u << b->ankle[1 - side] | 1u << b->hip_centre;
     case CUB_FUZZY_RFK:
     case CUB_FUZZY_LFK: return 1u << b->hip[side] | 1u << b->knee[side] | 1u << b->ankle[side];
     case CUB_FUZZY_TRUNK:

@@ -40,7 +40,7 @@ typedef struct pose {
     int clap_up;      /* with clap_gap: the hands one above the other at x 0 */
 } pose;
 
-enum { LEG_DOWN, LEG_STANCE, LEG_KICK };
+enum { LEG_DOWN, LEG_STANCE, LEG_KICK, LEG_KICK_OFF_BALANCE };
 
 static cub_track_skeleton child(pose p)
 {
@@ -89,10 +89,17 @@ static cub_track_skeleton child(pose p)
             j[hip + 2] = mm(385, 100, z);
             j[hip + 3] = mm(385, 30, z - 80);
         }
-        if (side == 1 && p.right_leg == LEG_KICK) { /* 35 degrees out, straight: lifted */
+        if (side == 1 && p.right_leg >= LEG_KICK) { /* 35 degrees out, straight: lifted */
             j[hip + 1] = mm(269, 510, z);
             j[hip + 2] = mm(470, 223, z);
             j[hip + 3] = mm(490, 160, z - 80);
+        }
+        if (side == 0 && p.right_leg == LEG_KICK_OFF_BALANCE) {
+            /* the standing left foot 90 mm right of the hip centre: the
+             * pelvis beyond it, away from the kick (a step across) */
+            j[hip + 1] = mm(10, 450, z);
+            j[hip + 2] = mm(90, 100, z);
+            j[hip + 3] = mm(90, 30, z - 80);
         }
     }
     for (int k = 0; k < CUB_KJ_COUNT; k++)
@@ -393,6 +400,34 @@ static void test_leg_out_needs_the_foot_lifted(void **state)
     assert_int_equal(cub_judge_begin_rep(r.j, &rep), CUB_OK);
     play(&r, 100, 20, 40, kick);
     assert_int_equal(first(&r, CUB_JUDGE_VERDICT)->ev.b, 0);
+}
+
+/* A leg held out is balanced on the other foot: the same kick with the
+ * pelvis past the standing foot, away from the kick (a step across onto
+ * it, a throw's weight shift), is no kick. */
+static void test_leg_out_is_balanced_on_the_other_foot(void **state)
+{
+    (void)state;
+    cub_judge_rep rep = rep_rhe(0, 0, 60);
+    rep.keys[0] = (cub_judge_key){CUB_FUZZY_RF, 1};
+    pose stepping = STILL;
+    stepping.right_leg = LEG_KICK_OFF_BALANCE;
+    rec r;
+    rec_init(&r, NULL);
+    assert_int_equal(cub_judge_begin_rep(r.j, &rep), CUB_OK);
+    play(&r, 100, 20, 40, stepping);
+    assert_int_equal(count(&r, CUB_JUDGE_VERDICT), 1);
+    assert_int_equal(first(&r, CUB_JUDGE_VERDICT)->ev.b, 0);
+    /* the feature itself, in the last frame of each: the kick is out, the
+     * same leg with the pelvis past the standing foot is not */
+    pose kick = STILL;
+    kick.right_leg = LEG_KICK;
+    rec_init(&r, NULL);
+    play(&r, 30, 10, 30, kick);
+    assert_true(cub_judge_last_features(r.j)->mu[CUB_FUZZY_RF][1] >= CUB_FUZZY_ONE / 2);
+    rec_init(&r, NULL);
+    play(&r, 30, 10, 30, stepping);
+    assert_int_equal(cub_judge_last_features(r.j)->mu[CUB_FUZZY_RF][1], 0);
 }
 
 /* ---- early verdicts, from the coach's key moment ------------------------ */
@@ -1354,6 +1389,7 @@ int main(void)
         cmocka_unit_test(test_wrong_arm_is_wrong_naming_the_key),
         cmocka_unit_test(test_standing_still_is_wrong),
         cmocka_unit_test(test_leg_out_needs_the_foot_lifted),
+        cmocka_unit_test(test_leg_out_is_balanced_on_the_other_foot),
         cmocka_unit_test(test_standing_still_is_wrong_a_lag_after_the_key),
         cmocka_unit_test(test_child_a_beat_late_is_still_right),
         cmocka_unit_test(test_lag_is_a_tunable),
