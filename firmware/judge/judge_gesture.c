@@ -9,6 +9,11 @@
 #include "judge_internal.h"
 
 #define MIN_WIDTH_MM 150 /* a shoulder width below this is tracker noise */
+/* A wave's swing, reversal to reversal, takes at least this long: no arm
+ * waves 6 times a second (half a cycle 83 ms; people wave 1-4 times); a
+ * hand that turns back sooner is the recoil of a hit or a racket's
+ * follow-through (at 15 fps: one frame, 67 ms). */
+#define WAVE_SWING_MIN_MS 80
 
 /* ratio (Q16.16) of width_mm, in mm. */
 static int32_t part_of(cub_q16 ratio, int32_t width_mm)
@@ -221,10 +226,13 @@ static int wave_sideways(const wave_state *w)
  * it restarts the count. */
 static void wave_swing_done(wave_state *w, int64_t t_us, int32_t x, int32_t y)
 {
-    if (wave_sideways(w)) {
-        w->reversals++;
+    int swung = t_us - w->last_us >= (int64_t)WAVE_SWING_MIN_MS * 1000;
+    if (swung) { /* a turn, sideways or not, for wave_paired */
         w->turn_us = t_us;
         w->turn_dir = w->dir;
+    }
+    if (swung && wave_sideways(w)) {
+        w->reversals++;
     } else {
         w->reversals = 0;
     }
@@ -259,17 +267,24 @@ static void wave_track(wave_state *w, int64_t t_us, int32_t x, int32_t y, int32_
     }
 }
 
-/* Both arms swept overhead in mirror, each turning back sideways within
- * wave_pair_ms of the other: a two-hand wave, seen at its first reversal
- * (one arc out and over the head and back is a two-hand wave; no
- * one-armed movement, a throw, a serve, a loop, turns both hands apart at
- * once). */
-static int wave_mirrored(const cub_judge *j, int side, int64_t t_us)
+/* Both arms swept overhead together, each turning back within
+ * wave_pair_ms of the other, the other hand still up: a two-hand wave,
+ * seen at its first reversal (one arc out and over the head and back is
+ * a two-hand wave). The turns need not be sideways (wave_sideways is for
+ * one hand's loops): arms swept up from the sides rise as they go out.
+ * In mirror (the hands turn apart), no one-armed movement (a throw, a
+ * serve, a loop) does it. In step (both turn the same way) the hands
+ * must also be at least a shoulder width apart: hands that hold one
+ * thing (a club, a ball) move in step as well, but together; and a golf
+ * swing's lower hand drops below its shoulder (the other hand up). */
+static int wave_paired(const cub_judge *j, int side, int64_t t_us, int32_t gap_mm,
+                       int32_t width_mm)
 {
     const wave_state *w = &j->wave[side], *o = &j->wave[!side];
-    return w->reversals > 0 && w->turn_us == t_us && o->active && !o->fired &&
-           o->reversals > 0 && o->turn_dir == -w->turn_dir &&
-           t_us - o->turn_us <= (int64_t)j->d.wave_pair_ms * 1000;
+    if (!(w->turn_us == t_us && o->active && !o->fired && !o->dipped &&
+          o->turn_us > 0 && t_us - o->turn_us <= (int64_t)j->d.wave_pair_ms * 1000))
+        return 0;
+    return o->turn_dir == -w->turn_dir || gap_mm >= width_mm;
 }
 
 static void wave_step(cub_judge *j, int64_t t_us, const cub_track_skeleton *s, int side,
@@ -299,7 +314,8 @@ static void wave_step(cub_judge *j, int64_t t_us, const cub_track_skeleton *s, i
         w->fired = fired;
     }
     wave_track(w, t_us, x, y, part_of(j->d.wave_swing, width_mm));
-    int both = !w->fired && wave_mirrored(j, side, t_us);
+    int32_t gap = judge_dist_mm(p[CUB_KJ_HAND_L], p[CUB_KJ_HAND_R]);
+    int both = !w->fired && wave_paired(j, side, t_us, gap, width_mm);
     if (w->fired || (w->reversals < j->d.wave_reversals && !both)) return;
     w->fired = 1;
     if (both) j->wave[!side].fired = 1; /* one event for the two hands */

@@ -74,7 +74,7 @@ typedef struct wave_state {
     int32_t from_mm;           /* x where the current swing began */
     int32_t ylo_mm, yhi_mm;    /* the hand's height range during it */
     int64_t last_us;  /* the last direction change */
-    int64_t turn_us;  /* the last counted reversal, and the direction after it */
+    int64_t turn_us;  /* the last turn of a swing (sideways or not), the direction after it */
     int32_t turn_dir;
 } wave_state;
 

@@ -38,9 +38,12 @@ typedef struct pose {
     int unconfident[2]; /* the arm found, not confident (a quarter): 0 left, 1 right */
     int mirror;       /* with waving: the left hand raised too, mirrored */
     int clap_up;      /* with clap_gap: the hands one above the other at x 0 */
+    int in_step;      /* with waving: the left hand raised too, moving the same way,
+                         STEP_APART (520 mm from the right) or STEP_TOGETHER (100) */
 } pose;
 
 enum { LEG_DOWN, LEG_STANCE, LEG_KICK, LEG_KICK_OFF_BALANCE };
+enum { STEP_NONE, STEP_APART, STEP_TOGETHER };
 
 static cub_track_skeleton child(pose p)
 {
@@ -79,6 +82,12 @@ static cub_track_skeleton child(pose p)
             j[sh + 1] = mm(260 * sx, 1150, z);
             j[sh + 2] = mm((260 + p.wave_dx) * sx, 1380 + p.wave_dy, z);
             j[sh + 3] = mm((260 + p.wave_dx) * sx, 1450 + p.wave_dy, z);
+        }
+        if (p.waving && side == 0 && p.in_step) {
+            int hx = p.wave_dx + (p.in_step == STEP_APART ? -260 : 160);
+            j[sh + 1] = mm(-260, 1150, z);
+            j[sh + 2] = mm(hx, 1380 + p.wave_dy, z);
+            j[sh + 3] = mm(hx, 1450 + p.wave_dy, z);
         }
         j[hip] = mm(80 * sx, 780, z);
         j[hip + 1] = mm(85 * sx, 450, z);
@@ -192,7 +201,7 @@ static cub_judge_rep rep_rhe(int rep, int from, int to)
     return r;
 }
 
-static const pose STILL = {{0, 0}, 0, 0, 0, 0, 0, 0, CUB_TRACK_OK, 0, LEG_DOWN, {0, 0}, 0, 0};
+static const pose STILL = {{0, 0}, 0, 0, 0, 0, 0, 0, CUB_TRACK_OK, 0, LEG_DOWN, {0, 0}, 0, 0, STEP_NONE};
 
 static pose bent_right(void)
 {
@@ -1168,14 +1177,16 @@ static void test_clap_closes_sideways(void **state)
 }
 
 /* One swing out and back over the head (one reversal, 7 frames), with
- * the right hand alone or both hands in mirror. */
+ * the right hand alone (both = 0) or both hands in mirror (1), or both
+ * rising twice as far as they swing out (2: arms swept up from the sides). */
 static pose one_swing_at(int f, int both)
 {
     static const int dx[] = {0, 60, 120, 150, 120, 60, 0};
     pose p = STILL;
     p.waving = f < 7;
     p.wave_dx = f < 7 ? dx[f] : 0;
-    p.mirror = both;
+    p.wave_dy = both == 2 ? 2 * p.wave_dx : 0;
+    p.mirror = both > 0;
     return p;
 }
 
@@ -1186,6 +1197,50 @@ static void test_two_hand_wave_one_arc(void **state)
     (void)state;
     assert_int_equal(events_over(CUB_JUDGE_WAVE, one_swing_at, 0), 0);
     assert_int_equal(events_over(CUB_JUDGE_WAVE, one_swing_at, 1), 1);
+    /* the two hands' arc need not be sideways: arms swept up from the
+     * sides rise as they go out, and no one-armed movement turns both */
+    assert_int_equal(events_over(CUB_JUDGE_WAVE, one_swing_at, 2), 1);
+}
+
+/* Both hands over the head in one swing out and back together, the same
+ * way (one reversal each): apart (variant STEP_APART), or 100 mm apart as
+ * if holding one thing (STEP_TOGETHER). */
+static pose in_step_at(int f, int variant)
+{
+    pose p = one_swing_at(f, 0);
+    p.in_step = variant;
+    return p;
+}
+
+/* A two-hand wave may swing both arms the same way: one arc of both hands
+ * in step is one wave when they are apart, none when they move together
+ * (a club, a ball held overhead). One arm alone is none (above). */
+static void test_two_hand_wave_in_step(void **state)
+{
+    (void)state;
+    assert_int_equal(events_over(CUB_JUDGE_WAVE, in_step_at, STEP_APART), 1);
+    assert_int_equal(events_over(CUB_JUDGE_WAVE, in_step_at, STEP_TOGETHER), 0);
+}
+
+/* The right hand back and forth over the head for 48 frames, 150 mm
+ * across: each swing 2 frames (67 ms, variant 1: a flutter no arm makes,
+ * the recoil of a hit) or 4 frames (133 ms: waving 3.75 times a second). */
+static pose flutter_at(int f, int fast)
+{
+    static const int slow_dx[] = {0, 40, 75, 110, 150, 110, 75, 40};
+    static const int fast_dx[] = {0, 75, 150, 75};
+    pose p = STILL;
+    p.waving = f < 48;
+    p.wave_dx = fast ? fast_dx[f % 4] : slow_dx[f % 8];
+    return p;
+}
+
+/* A wave's swing takes at least 80 ms (no arm waves 6 times a second). */
+static void test_wave_swings_are_not_a_flutter(void **state)
+{
+    (void)state;
+    assert_int_equal(events_over(CUB_JUDGE_WAVE, flutter_at, 1), 0);
+    assert_int_equal(events_over(CUB_JUDGE_WAVE, flutter_at, 0), 1);
 }
 
 /* The right hand drawing a circle 600 mm wide for 48 frames whose lower
@@ -1390,6 +1445,8 @@ int main(void)
         cmocka_unit_test(test_standing_still_is_wrong),
         cmocka_unit_test(test_leg_out_needs_the_foot_lifted),
         cmocka_unit_test(test_leg_out_is_balanced_on_the_other_foot),
+        cmocka_unit_test(test_two_hand_wave_in_step),
+        cmocka_unit_test(test_wave_swings_are_not_a_flutter),
         cmocka_unit_test(test_standing_still_is_wrong_a_lag_after_the_key),
         cmocka_unit_test(test_child_a_beat_late_is_still_right),
         cmocka_unit_test(test_lag_is_a_tunable),

@@ -23,7 +23,11 @@
  *   (the body's lowest point, so the floor need not be known and a jump
  *   lifts both) in lengths of the legs (hip-knee-ankle, the mean of both),
  *   0 at kick_lift / 2 and 1 at 3/2 kick_lift. A foot out with both feet
- *   on the floor is a stance (golf, a bend, a throw), not a kick.
+ *   on the floor is a stance (golf, a bend, a throw), not a kick. And it is
+ *   capped by the balance's: a leg held out stands on the other foot, the
+ *   hip centre not past that ankle away from the lifted leg (its offset
+ *   along the hips' line, in lengths of the legs: 0 at -kick_lift / 2, 1
+ *   at +kick_lift / 2); a pelvis past it is a step or a weight shift.
  * - A frame MATCHES r when the tracker says CUB_TRACK_OK, every key's
  *   membership mu(feature, set) >= key_mu, and, if r has an expected
  *   frame, cub_fuzzy_distance(child, expected) <= pose_d_max.
@@ -129,12 +133,17 @@
  * relative to its shoulder) with at least wave_reversals reversals, each
  * swing at least wave_swing of the shoulder width, reversals at most
  * wave_gap_ms apart; a swing counts only when the hand rises during it no
- * more than it crosses (a loop, a throw or a serve restarts the count).
+ * more than it crosses (a loop, a throw or a serve restarts the count)
+ * and took at least 80 ms (no arm waves 6 times a second: a faster turn
+ * is a hit's recoil, and restarts the count too).
  * A hand that comes back up from below its elbow or shoulder starts its
  * swings afresh (drawing a big circle is no wave); a clap clears the
- * count. Both hands each turning back sideways in mirror within
- * wave_pair_ms of each other is a two-hand wave at once (one arc of both
- * arms over the head). One event per
+ * count. Both hands raised, each turning back (a swing of 80 ms or more,
+ * sideways or not: arms swept up from the sides rise) within
+ * wave_pair_ms of each other, is a two-hand wave at once (one arc of both
+ * arms over the head): in mirror, or in step with the hands at least a
+ * shoulder width apart (hands holding one thing move in step together).
+ * One event per
  * waving episode (an episode ends when wave_gap_ms passes without a
  * reversal).
  * Presence: in view after present_frames CUB_TRACK_OK frames in a row, out
@@ -192,7 +201,8 @@ typedef struct cub_judge_desc {
     int32_t wave_reversals;    /* 2 */
     int32_t wave_gap_ms;       /* 2000 */
     int32_t wave_pair_ms;      /* 250: both hands turning back within this is a
-                                  two-hand wave (mirrored, one reversal each) */
+                                  two-hand wave (mirrored or in step apart, one
+                                  turn each) */
     cub_q16 floor_y_mm;        /* with stand_cog_mm > 0: fixed calibration */
     cub_q16 stand_cog_mm;      /* 0: estimate online */
     int32_t lag_ms;            /* 500: how late a child may follow the coach: the
