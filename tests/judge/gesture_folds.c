@@ -300,13 +300,15 @@ static const int speeds[] = {30, 20, 40, 50, 60}; /* tenths */
 static const int slacks[] = {50, 0};              /* percent */
 static const int sides[] = {50, 25, 75};          /* percent */
 static const int pairs[] = {250, 125, 500};       /* ms */
+static const int lifts[] = {10, 5, 15};           /* kick_lift, percent of the leg */
 #define N_SPEED (int)(sizeof speeds / sizeof speeds[0])
 #define N_SLACK (int)(sizeof slacks / sizeof slacks[0])
 #define N_SIDE (int)(sizeof sides / sizeof sides[0])
 #define N_PAIR (int)(sizeof pairs / sizeof pairs[0])
+#define N_LIFT (int)(sizeof lifts / sizeof lifts[0])
 #define GRID (N_SPEED * N_SLACK * N_SIDE)
 
-static void set_grid(int g, int pair)
+static void set_grid(int g, int pair, int lift)
 {
     int speed = speeds[g % N_SPEED], slack = slacks[g / N_SPEED % N_SLACK];
     int side = sides[g / (N_SPEED * N_SLACK)];
@@ -315,6 +317,7 @@ static void set_grid(int g, int pair)
     g_desc.clap_slack = slack ? slack * CUB_Q16_ONE / 100 : CUB_JUDGE_NO_SLACK;
     g_desc.clap_side = side * CUB_Q16_ONE / 100;
     g_desc.wave_pair_ms = pairs[pair];
+    g_desc.kick_lift = lifts[lift] * CUB_Q16_ONE / 100;
 }
 
 /* The point of n with the best F1 of what `which` picks, pooled over every
@@ -337,27 +340,34 @@ static int best_on_others(int n, fold by[][FOLDS], int held, const pr *(*which)(
 
 static const pr *clap_of(const fold *f) { return &f->clap; }
 static const pr *wave_of(const fold *f) { return &f->wave; }
+static const pr *leg_of(const fold *f) { return &f->leg; }
 
-/* Leave one subject out: for each fold, the clap's grid point and the
- * wave's pairing window with the best F1 over the nine other folds, then
- * that fold scored with them (the leg-out key with the defaults). */
+/* Leave one subject out: for each fold, the clap's grid point, the
+ * wave's pairing window and the leg-out key's lift with the best F1 over
+ * the nine other folds, then that fold scored with them. */
 static void loso(const char *msr, const char *utk, const utk_interval *iv, int n, fold out[FOLDS],
-                 int chosen[FOLDS][2])
+                 int chosen[FOLDS][3])
 {
-    static fold by_grid[GRID][FOLDS], by_pair[N_PAIR][FOLDS];
+    static fold by_grid[GRID][FOLDS], by_pair[N_PAIR][FOLDS], by_lift[N_LIFT][FOLDS];
     for (int g = 0; g < GRID; g++) {
-        set_grid(g, 0);
+        set_grid(g, 0, 0);
         run_folds(msr, utk, iv, n, by_grid[g]);
     }
     for (int p = 0; p < N_PAIR; p++) {
-        set_grid(0, p);
+        set_grid(0, p, 0);
         run_folds(msr, utk, iv, n, by_pair[p]);
+    }
+    for (int l = 0; l < N_LIFT; l++) {
+        set_grid(0, 0, l);
+        run_folds(msr, NULL, iv, n, by_lift[l]);
     }
     for (int i = 0; i < FOLDS; i++) {
         chosen[i][0] = best_on_others(GRID, by_grid, i, clap_of);
         chosen[i][1] = best_on_others(N_PAIR, by_pair, i, wave_of);
+        chosen[i][2] = best_on_others(N_LIFT, by_lift, i, leg_of);
         out[i].clap = by_grid[chosen[i][0]][i].clap;
         out[i].wave = by_pair[chosen[i][1]][i].wave;
+        out[i].leg = by_lift[chosen[i][2]][i].leg;
     }
     memset(&g_desc, 0, sizeof g_desc);
 }
@@ -400,12 +410,13 @@ int main(int argc, char **argv)
         }
     }
     fold folds[FOLDS];
-    int chosen[FOLDS][2] = {{0}};
+    int chosen[FOLDS][3] = {{0}};
     int bad = !run_folds(want_msr ? msr : NULL, want_utk ? utk : NULL, iv, n, folds);
     if (by_fold) loso(want_msr ? msr : NULL, want_utk ? utk : NULL, iv, n, folds, chosen);
     printf("| set | held-out subject | clap precision | clap recall | wave precision | "
            "wave recall | leg-out precision | leg-out recall |%s\n",
-           by_fold ? " clap speed, slack, side; wave pair ms (chosen on the other folds) |" : "");
+           by_fold ? " clap speed, slack, side; wave pair ms; kick lift (chosen on the other folds) |"
+                   : "");
     printf("|---|---|---|---|---|---|---|---|%s\n", by_fold ? "---|" : "");
     fold total = {.set = "all"};
     for (int i = 0; i < FOLDS; i++) {
@@ -414,9 +425,10 @@ int main(int argc, char **argv)
         char extra[80] = "";
         if (by_fold) {
             int g = chosen[i][0];
-            snprintf(extra, sizeof extra, " %.1f, %.2f, %.2f; %d |", speeds[g % N_SPEED] / 10.0,
-                     slacks[g / N_SPEED % N_SLACK] / 100.0, sides[g / (N_SPEED * N_SLACK)] / 100.0,
-                     pairs[chosen[i][1]]);
+            snprintf(extra, sizeof extra, " %.1f, %.2f, %.2f; %d; %.2f |",
+                     speeds[g % N_SPEED] / 10.0, slacks[g / N_SPEED % N_SLACK] / 100.0,
+                     sides[g / (N_SPEED * N_SLACK)] / 100.0, pairs[chosen[i][1]],
+                     lifts[chosen[i][2]] / 100.0);
         }
         print_row(f, extra);
         bad |= check >= 0 && below(&f->clap, check);
