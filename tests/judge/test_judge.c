@@ -381,62 +381,61 @@ static void test_standing_still_is_wrong(void **state)
     assert_int_equal(first(&r, CUB_JUDGE_VERDICT)->why, CUB_JUDGE_WHY_MISSED);
 }
 
+/* A fresh judge (d, or the defaults) with a repetition keyed RF = outward
+ * over frames [0, 60), the child's right leg as `leg` in frames [20, 40):
+ * the repetition's one verdict (1 right, 0 wrong), at frame *at. */
+static int leg_out_verdict(const cub_judge_desc *d, int leg, int *at)
+{
+    cub_judge_rep rep = rep_rhe(0, 0, 60);
+    rep.keys[0] = (cub_judge_key){CUB_FUZZY_RF, 1};
+    pose p = STILL;
+    p.right_leg = leg;
+    rec r;
+    rec_init(&r, d);
+    assert_int_equal(cub_judge_begin_rep(r.j, &rep), CUB_OK);
+    play(&r, 100, 20, 40, p);
+    assert_int_equal(count(&r, CUB_JUDGE_VERDICT), 1);
+    *at = (int)(first(&r, CUB_JUDGE_VERDICT)->ev.t_us / FRAME_US);
+    return first(&r, CUB_JUDGE_VERDICT)->ev.b;
+}
+
 /* The leg-out key needs the foot lifted: a foot out on the floor (a wide
  * stance) reads out by its angle alone, but is no kick. */
 static void test_leg_out_needs_the_foot_lifted(void **state)
 {
     (void)state;
-    cub_judge_rep rep = rep_rhe(0, 0, 60);
-    rep.keys[0] = (cub_judge_key){CUB_FUZZY_RF, 1};
-    pose stance = STILL, kick = STILL;
-    stance.right_leg = LEG_STANCE;
-    kick.right_leg = LEG_KICK;
-    rec r;
-    rec_init(&r, NULL);
-    assert_int_equal(cub_judge_begin_rep(r.j, &rep), CUB_OK);
-    play(&r, 100, 20, 40, stance);
-    assert_int_equal(count(&r, CUB_JUDGE_VERDICT), 1);
-    assert_int_equal(first(&r, CUB_JUDGE_VERDICT)->ev.b, 0);
-    rec_init(&r, NULL);
-    assert_int_equal(cub_judge_begin_rep(r.j, &rep), CUB_OK);
-    play(&r, 100, 20, 40, kick);
-    assert_int_equal(count(&r, CUB_JUDGE_VERDICT), 1);
-    assert_verdict(&r, 0, 0, 1, 24);
+    int at;
+    assert_int_equal(leg_out_verdict(NULL, LEG_STANCE, &at), 0);
+    assert_int_equal(leg_out_verdict(NULL, LEG_KICK, &at), 1);
+    assert_int_equal(at, 24);
     /* the lift is what decides: the same kick (its foot 0.18 of the leg up)
      * is no kick when a kick must lift it 0.35 */
     cub_judge_desc d = {.kick_lift = CUB_Q16_ONE * 35 / 100};
-    rec_init(&r, &d);
-    assert_int_equal(cub_judge_begin_rep(r.j, &rep), CUB_OK);
-    play(&r, 100, 20, 40, kick);
-    assert_int_equal(first(&r, CUB_JUDGE_VERDICT)->ev.b, 0);
+    assert_int_equal(leg_out_verdict(&d, LEG_KICK, &at), 0);
+}
+
+/* The right leg's outward membership in the last of 30 frames, `leg` from
+ * frame 10 on. */
+static uint16_t leg_out_mu(int leg)
+{
+    pose p = STILL;
+    p.right_leg = leg;
+    rec r;
+    rec_init(&r, NULL);
+    play(&r, 30, 10, 30, p);
+    return cub_judge_last_features(r.j)->mu[CUB_FUZZY_RF][1];
 }
 
 /* A leg held out is balanced on the other foot: the same kick with the
  * pelvis past the standing foot, away from the kick (a step across onto
- * it, a throw's weight shift), is no kick. */
+ * it, a throw's weight shift), is no kick, and its feature reads 0. */
 static void test_leg_out_is_balanced_on_the_other_foot(void **state)
 {
     (void)state;
-    cub_judge_rep rep = rep_rhe(0, 0, 60);
-    rep.keys[0] = (cub_judge_key){CUB_FUZZY_RF, 1};
-    pose stepping = STILL;
-    stepping.right_leg = LEG_KICK_OFF_BALANCE;
-    rec r;
-    rec_init(&r, NULL);
-    assert_int_equal(cub_judge_begin_rep(r.j, &rep), CUB_OK);
-    play(&r, 100, 20, 40, stepping);
-    assert_int_equal(count(&r, CUB_JUDGE_VERDICT), 1);
-    assert_int_equal(first(&r, CUB_JUDGE_VERDICT)->ev.b, 0);
-    /* the feature itself, in the last frame of each: the kick is out, the
-     * same leg with the pelvis past the standing foot is not */
-    pose kick = STILL;
-    kick.right_leg = LEG_KICK;
-    rec_init(&r, NULL);
-    play(&r, 30, 10, 30, kick);
-    assert_true(cub_judge_last_features(r.j)->mu[CUB_FUZZY_RF][1] >= CUB_FUZZY_ONE / 2);
-    rec_init(&r, NULL);
-    play(&r, 30, 10, 30, stepping);
-    assert_int_equal(cub_judge_last_features(r.j)->mu[CUB_FUZZY_RF][1], 0);
+    int at;
+    assert_int_equal(leg_out_verdict(NULL, LEG_KICK_OFF_BALANCE, &at), 0);
+    assert_true(leg_out_mu(LEG_KICK) >= CUB_FUZZY_ONE / 2);
+    assert_int_equal(leg_out_mu(LEG_KICK_OFF_BALANCE), 0);
 }
 
 /* ---- early verdicts, from the coach's key moment ------------------------ */
