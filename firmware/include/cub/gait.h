@@ -250,4 +250,96 @@ cub_err cub_gait_leg_solve(const cub_gait_leg *leg, const cub_gait_leg_limits *l
 cub_q16 cub_gait_pelvis_drop(const cub_gait_leg legs[2], const cub_gait_leg_limits *lim,
                              const cub_vec3 ankle_targets[2]);
 
+/* ---- walker: a captured walk cycle driven over a terrain -------------------- */
+
+/* Footstep events, for the box's event log. */
+typedef enum cub_gait_event_kind {
+    CUB_GAIT_EV_PLANNED = 0, /* one foothold of a new plan (index = its place in the plan) */
+    CUB_GAIT_EV_BACKTRACKED, /* the plan just made backed up count times */
+    CUB_GAIT_EV_TAKEN,       /* a foot came down on its foothold */
+    CUB_GAIT_EV_BLOCKED      /* no plan: the foot lands on its unadapted point [ours] */
+} cub_gait_event_kind;
+
+typedef struct cub_gait_event {
+    cub_gait_event_kind kind;
+    int left;         /* 1: the left foot (the clip's, not the planner's side label) */
+    int step;         /* the walker's step number (one per swing, from 0) */
+    int index, count; /* PLANNED: place in the plan; BACKTRACKED: backtracks */
+    cub_vec3 foot_mm; /* the foothold (ankle's ground point), world */
+} cub_gait_event;
+
+typedef void (*cub_gait_event_fn)(void *ctx, const cub_gait_event *e);
+
+/* The walk the walker plays: the caller's clip and its analysis (arrays
+ * from cub_gait_track_clip and cub_gait_analyse, frame_count entries each;
+ * [0] the left foot, [1] the right). The leg chain is ankle's parent
+ * (knee) and grandparent (hip). The walker keeps these pointers. */
+typedef struct cub_gait_walk_clip {
+    const cub_clip *clip;
+    int ankle[2], toe[2];
+    const cub_vec3 *ankle_mm[2], *toe_mm[2];
+    const uint8_t *phase[2];
+    cub_gait_foot foot[2];
+} cub_gait_walk_clip;
+
+typedef struct cub_gait_walk_params {
+    cub_vec3 start_mm;            /* where the root starts (x, z; y from the terrain) */
+    cub_q16 dir_x, dir_z;         /* the first heading (0, 0: the clip's own) */
+    cub_q16 max_turn_rad;         /* heading change per step (0: 10 degrees) [ours] */
+    cub_gait_leg_limits limits;   /* 0: cub_gait_leg_solve's defaults */
+    cub_gait_swing_params swing;  /* 0: cub_gait_swing_path's defaults */
+    int steps;                    /* footholds planned ahead (0: 4 flat, 3 rough) */
+    cub_gait_event_fn on_event;   /* may be NULL */
+    void *ctx;
+} cub_gait_walk_params;
+
+/* One foot of the walker (read only for the caller). */
+typedef struct cub_gait_walk_foot {
+    int swinging;                 /* 1: between foot-off and the next strike */
+    cub_vec3 hold_mm;             /* the foothold it stands on / swings from */
+    cub_vec3 next_mm;             /* swinging: the foothold it swings to */
+    cub_vec3 ankle_mm, toe_mm;    /* this frame's targets (after the sole guard) */
+    cub_gait_leg_pose leg;        /* this frame's IK result */
+    /* internal */
+    cub_vec3 plant_u, next_u;     /* the clip's ankle where it planted (unwrapped) */
+    cub_q16 floor_u, next_floor;  /* the clip's floor there */
+    cub_q16 yaw_c, yaw_s;         /* the heading when it planted */
+    cub_vec3 pin_u[2], skate_u[2];/* ankle, toe: where stance began; the clip's slide so far */
+    int swing_at, swing_len;
+    uint8_t last_phase;
+    cub_gait_swing path;
+    int rough;
+} cub_gait_walk_foot;
+
+typedef struct cub_gait_walker {
+    const cub_gait_walk_clip *c;
+    const cub_gait_terrain *t;
+    cub_gait_walk_params p;
+    int a, b;                     /* the cycle played: frames [a, b) */
+    int frame, loops, ticks, steps;
+    cub_vec3 cycle_u;             /* the root's travel over one cycle */
+    cub_vec3 origin_mm, ref_u;    /* world = origin + yaw (u - ref), horizontal */
+    cub_q16 yaw_c, yaw_s;         /* the clip's heading turned to the walker's */
+    cub_q16 dir_x, dir_z;         /* the walker's heading (unit) */
+    cub_q16 drop_mm;              /* this frame's pelvis drop */
+    cub_gait_plan plan;           /* the last plan */
+    cub_gait_walk_foot feet[2];
+    int arrived;                  /* 1: the root is within a stride of the target */
+    cub_pose pose;                /* this frame's pose of the clip's skeleton */
+} cub_gait_walker;
+
+/* Start at params->start_mm on t (both kept). CUB_ERR_ARG for NULLs,
+ * CUB_ERR_FORMAT when the clip has no full left-foot cycle. */
+cub_err cub_gait_walker_init(cub_gait_walker *w, const cub_gait_walk_clip *c,
+                             const cub_gait_terrain *t, const cub_gait_walk_params *p);
+/* One frame (the clip's frame period) toward target_mm (x, z): *out is
+ * the pose (root translation, mm; local rotations, Q2.30), valid until the
+ * next call. Turns at each foot-off by at most max_turn_rad. */
+cub_err cub_gait_walker_step(cub_gait_walker *w, cub_vec3 target_mm, const cub_pose **out);
+/* The sole box of a foot [ours]: 6 points (heel, toe tip, and their
+ * corners a fifth of the foot length either side), from the ankle and toe
+ * joints, the foot length and the ankle's standing height over the sole. */
+void cub_gait_sole_points(cub_vec3 ankle_mm, cub_vec3 toe_mm, cub_q16 foot_mm, cub_q16 ankle_h_mm,
+                          cub_vec3 out[6]);
+
 #endif
