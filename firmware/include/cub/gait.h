@@ -47,6 +47,7 @@ typedef struct cub_gait_phase_params {
     cub_q16 down_mm;      /* (0: 25 mm) */
     cub_q16 still_mm_s;   /* (0: 1000 mm/s) */
     cub_q16 settle_rad_s; /* land ends when the pitch turns slower (0: 30 deg/s) */
+    int min_frames;       /* a point's contact change shorter than this is noise (0: fps / 24) */
 } cub_gait_phase_params;
 
 /* What the analysis learnt of one foot. */
