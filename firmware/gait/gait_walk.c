@@ -238,10 +238,19 @@ static void begin_swing(cub_gait_walker *w, int foot, int f, int k, cub_vec3 tar
 {
     cub_gait_walk_foot *ft = &w->feet[foot];
     int p = f, kk = k, len = 0;
+    ft->key_u[0] = ft->key_u[1] = unwrap(w, track(w, foot, 0)[f], k);
+    ft->key_at[0] = ft->key_at[1] = 0;
     while (phase_at(w, foot, p) == CUB_GAIT_OFF && len < w->b - w->a) {
+        cub_vec3 u = unwrap(w, track(w, foot, 0)[p], kk);
+        if (u.y > ft->key_u[1].y) {
+            ft->key_u[1] = u;
+            ft->key_at[1] = len;
+        }
         p = next_frame(w, p, &kk);
         len++;
     }
+    ft->key_u[2] = unwrap(w, track(w, foot, 0)[p], kk);
+    ft->key_at[2] = len;
     steer(w, unwrap(w, w->c->clip->root_mm[f], k), target);
     ft->next_u = unwrap(w, track(w, foot, 0)[p], kk);
     ft->next_floor = clip_floor(w, foot, p);
@@ -323,6 +332,28 @@ static cub_q16 point_y(const cub_gait_walker *w, const cub_gait_walk_foot *ft, c
     return cub_fx_add(ground, over);
 }
 
+/* The ankle at swing key k (its place blended as any swinging point's). */
+static cub_vec3 key_point(const cub_gait_walker *w, const cub_gait_walk_foot *ft, int k)
+{
+    cub_q16 s = (cub_q16)(((int64_t)ft->key_at[k] << 16) / ft->swing_len);
+    cub_vec3 a = swinging(w, ft, 0, ft->key_u[k], s);
+    a.y = point_y(w, ft, a, ft->key_u[k].y, s);
+    return a;
+}
+
+/* Flat ground (the seed's rule): the swinging ankle on straight segments
+ * between its places at the swing's key frames (foot-off, the apex
+ * [ours: a swing has no key frame between off and strike, and a straight
+ * off-strike line would drag the foot], strike). */
+static cub_vec3 flat_swing(const cub_gait_walker *w, const cub_gait_walk_foot *ft)
+{
+    int t = w->ticks - ft->swing_at;
+    int k = t >= ft->key_at[1] ? 1 : 0;
+    int span = ft->key_at[k + 1] - ft->key_at[k];
+    cub_q16 s = span > 0 ? (cub_q16)(((int64_t)(t - ft->key_at[k]) << 16) / span) : 0;
+    return cub_fx_vec3_lerp(key_point(w, ft, k), key_point(w, ft, k + 1), cub_fx_clamp(s, 0, CUB_Q16_ONE));
+}
+
 static void foot_targets(cub_gait_walker *w, int foot, int f, int k)
 {
     cub_gait_walk_foot *ft = &w->feet[foot];
@@ -332,6 +363,11 @@ static void foot_targets(cub_gait_walker *w, int foot, int f, int k)
     cub_vec3 t = ft->swinging ? swinging(w, ft, 1, tu, s) : planted(w, ft, 1, tu);
     a.y = point_y(w, ft, a, au.y, s);
     t.y = point_y(w, ft, t, tu.y, s);
+    if (ft->swinging && !ft->rough && w->p.clip_swing == 0) {
+        cub_vec3 seg = flat_swing(w, ft);
+        t = cub_fx_vec3_add(t, cub_fx_vec3_sub(seg, a)); /* the foot moves with its ankle */
+        a = seg;
+    }
     /* The sole guard: the whole foot lifts until no sole point is below. */
     cub_q16 dip = sole_dip(w, foot, a, t);
     a.y += dip;

@@ -290,6 +290,8 @@ typedef struct cub_gait_walk_params {
     cub_gait_leg_limits limits;   /* 0: cub_gait_leg_solve's defaults */
     cub_gait_swing_params swing;  /* 0: cub_gait_swing_path's defaults */
     int steps;                    /* footholds planned ahead (0: 4 flat, 3 rough) */
+    int clip_swing;               /* 1: on flat ground the clip's own swing path, not the
+                                     seed's key-frame segments (a comparison) */
     cub_gait_event_fn on_event;   /* may be NULL */
     void *ctx;
 } cub_gait_walk_params;
@@ -307,6 +309,8 @@ typedef struct cub_gait_walk_foot {
     cub_q16 yaw_c, yaw_s;         /* the heading when it planted */
     cub_vec3 pin_u[2], skate_u[2];/* ankle, toe: where stance began; the clip's slide so far */
     int swing_at, swing_len;
+    cub_vec3 key_u[3];            /* flat ground: the ankle at foot-off, apex, strike */
+    int key_at[3];                /* their frames into the swing */
     uint8_t last_phase;
     cub_gait_swing path;
     int rough;
