@@ -389,21 +389,6 @@ static cub_q16 ground_shift(const cub_gait_walker *w, int foot)
 
 /* ---- the pose --------------------------------------------------------------------- */
 
-/* A joint's bone length: its offset from its parent (or its translation). */
-static cub_q16 bone(const cub_gait_walker *w, int j)
-{
-    const cub_pose *p = &w->pose;
-    return cub_fx_vec3_length(p->has_trans ? p->trans_mm[j] : w->c->clip->skel->joints[j].offset_mm);
-}
-
-static cub_vec3 joint_at(const cub_gait_walker *w, int j, cub_quat *rot)
-{
-    cub_vec3 at = {0};
-    cub_quat r;
-    cub_motion_joint_world(w->c->clip->skel, &w->pose, j, &at, rot ? rot : &r);
-    return at;
-}
-
 static void place_root(cub_gait_walker *w, int f, int k)
 {
     const cub_clip *c = w->c->clip;
@@ -417,55 +402,25 @@ static void place_root(cub_gait_walker *w, int f, int k)
     w->pose.rot[0] = cub_fx_quat_normalize(cub_fx_quat_mul(yaw, w->pose.rot[0]));
 }
 
-static void leg_of(const cub_gait_walker *w, int foot, cub_gait_leg *leg)
+static cub_vec3 ahead(const cub_gait_walker *w)
 {
-    const cub_skeleton *sk = w->c->clip->skel;
-    int knee = sk->joints[w->c->ankle[foot]].parent;
-    int hip = sk->joints[knee].parent;
-    cub_vec3 hw = joint_at(w, hip, NULL), kw = joint_at(w, knee, NULL);
-    cub_vec3 ahead = cub_fx_vec3_scale((cub_vec3){w->dir_x, 0, w->dir_z}, CUB_Q16_INT(100));
-    *leg = (cub_gait_leg){hw, bone(w, knee), bone(w, w->c->ankle[foot]),
-                          cub_fx_vec3_add(kw, ahead)};
-}
-
-/* Turn the ankle joint so the toe points at toe_mm (world). */
-static void aim_foot(cub_gait_walker *w, int foot, cub_vec3 toe_mm)
-{
-    const cub_skeleton *sk = w->c->clip->skel;
-    int ankle = w->c->ankle[foot];
-    cub_quat parent_rot;
-    joint_at(w, sk->joints[ankle].parent, &parent_rot);
-    cub_vec3 aw = joint_at(w, ankle, NULL), tw = joint_at(w, w->c->toe[foot], NULL);
-    cub_quat turn =
-        cub_motion_quat_between(cub_fx_vec3_sub(tw, aw), cub_fx_vec3_sub(toe_mm, aw));
-    cub_quat local = cub_fx_quat_mul(cub_fx_quat_conj(parent_rot), cub_fx_quat_mul(turn, parent_rot));
-    w->pose.rot[ankle] = cub_fx_quat_normalize(cub_fx_quat_mul(local, w->pose.rot[ankle]));
+    return (cub_vec3){w->dir_x, 0, w->dir_z};
 }
 
 static cub_err solve_leg(cub_gait_walker *w, int foot)
 {
     cub_gait_walk_foot *ft = &w->feet[foot];
-    cub_gait_leg leg;
-    leg_of(w, foot, &leg);
-    cub_err e = cub_gait_leg_solve(&leg, &w->p.limits, ft->ankle_mm, ft->toe_mm, &ft->leg);
-    if (e) return e;
-    const cub_skeleton *sk = w->c->clip->skel;
-    int hip = sk->joints[sk->joints[w->c->ankle[foot]].parent].parent;
-    cub_gait_leg_limits lim = w->p.limits;
-    cub_ik_limits kl = {lim.knee_min_rad ? lim.knee_min_rad : DEG(25),
-                        lim.knee_max_rad ? lim.knee_max_rad : DEG(175)};
-    e = cub_motion_ik_apply(sk, &w->pose, hip, ft->ankle_mm, leg.pole_mm, &kl, NULL);
-    if (e) return e;
-    aim_foot(w, foot, ft->leg.toe_mm);
-    return CUB_OK;
+    cub_gait_leg_target t = {w->c->ankle[foot], w->c->toe[foot], ft->ankle_mm, ft->toe_mm, ahead(w)};
+    return cub_gait_leg_apply(w->c->clip->skel, &w->pose, &t, &w->p.limits, &ft->leg);
 }
 
 static cub_err pose_frame(cub_gait_walker *w, int f, int k)
 {
     place_root(w, f, k);
     cub_gait_leg legs[2];
-    leg_of(w, 0, &legs[0]);
-    leg_of(w, 1, &legs[1]);
+    const cub_skeleton *sk = w->c->clip->skel;
+    cub_gait_pose_leg(sk, &w->pose, w->c->ankle[0], ahead(w), &legs[0]);
+    cub_gait_pose_leg(sk, &w->pose, w->c->ankle[1], ahead(w), &legs[1]);
     cub_vec3 targets[2] = {w->feet[0].ankle_mm, w->feet[1].ankle_mm};
     w->drop_mm = cub_gait_pelvis_drop(legs, &w->p.limits, targets);
     w->pose.root_mm.y -= w->drop_mm;

@@ -245,6 +245,24 @@ cub_q16 cub_gait_ankle_angle(cub_vec3 knee_mm, cub_vec3 ankle_mm, cub_vec3 toe_m
 cub_err cub_gait_leg_solve(const cub_gait_leg *leg, const cub_gait_leg_limits *lim,
                            cub_vec3 ankle_target, cub_vec3 toe_target, cub_gait_leg_pose *out);
 
+/* The leg of a skeleton's pose: the ankle joint's grandparent is the hip
+ * (thigh root), its parent the knee; the pole is the knee 10 cm along
+ * ahead (a unit heading). CUB_ERR_ARG for a chain too short. */
+cub_err cub_gait_pose_leg(const cub_skeleton *sk, const cub_pose *pose, int ankle, cub_vec3 ahead,
+                          cub_gait_leg *leg);
+
+typedef struct cub_gait_leg_target {
+    int ankle, toe;             /* joint indices */
+    cub_vec3 ankle_mm, toe_mm;  /* world targets */
+    cub_vec3 ahead;             /* unit heading (the knee's pole side) */
+} cub_gait_leg_target;
+
+/* cub_gait_leg_solve on a pose: rewrites the hip's and knee's rotations
+ * (cub_motion_ik_apply) and turns the ankle so the toe joint points at
+ * the solved toe. out: the solved geometry. */
+cub_err cub_gait_leg_apply(const cub_skeleton *sk, cub_pose *pose, const cub_gait_leg_target *t,
+                           const cub_gait_leg_limits *lim, cub_gait_leg_pose *out);
+
 /* How far the pelvis must lower (>= 0, mm) so that both hips reach their
  * ankle targets with the knees inside their range: the seed's "the pelvis
  * lowers so both feet reach". */
