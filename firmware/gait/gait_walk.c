@@ -99,10 +99,19 @@ static int next_frame(const cub_gait_walker *w, int f, int *k)
 
 /* ---- feet ------------------------------------------------------------------ */
 
-static cub_q16 clip_floor(const cub_gait_walker *w, int foot, int f)
+/* The clip's floor under a foot planted at frame p: its lowest point
+ * (ankle or toe) over the contact that begins there in the clip
+ * (strike's first frame may have the other point still high). */
+static cub_q16 clip_floor(const cub_gait_walker *w, int foot, int p)
 {
-    cub_q16 a = track(w, foot, 0)[f].y, t = track(w, foot, 1)[f].y;
-    return a < t ? a : t;
+    cub_q16 lo = CUB_Q16_MAX;
+    int n = w->c->clip->frame_count;
+    for (int f = p; f < n && (f == p || phase_at(w, foot, f) != CUB_GAIT_OFF); f++) {
+        cub_q16 a = track(w, foot, 0)[f].y, t = track(w, foot, 1)[f].y;
+        if (a < lo) lo = a;
+        if (t < lo) lo = t;
+    }
+    return lo;
 }
 
 static cub_q16 foot_len(const cub_gait_walker *w, int foot)
@@ -368,6 +377,13 @@ static void foot_targets(cub_gait_walker *w, int foot, int f, int k)
         t = cub_fx_vec3_add(t, cub_fx_vec3_sub(seg, a)); /* the foot moves with its ankle */
         a = seg;
     }
+    /* The toe at the skeleton's foot length along the aimed direction:
+     * the pose's toe lands where the sole guard looks. */
+    const cub_skeleton *sk = w->c->clip->skel;
+    cub_q16 len = cub_fx_vec3_length(sk->joints[w->c->toe[foot]].offset_mm);
+    cub_vec3 d = cub_fx_vec3_sub(t, a);
+    cub_q16 dl = cub_fx_vec3_length(d);
+    if (dl > 0 && len > 0) t = cub_fx_vec3_add(a, cub_fx_vec3_scale(d, cub_fx_div(len, dl)));
     /* The sole guard: the whole foot lifts until no sole point is below. */
     cub_q16 dip = sole_dip(w, foot, a, t);
     a.y += dip;
@@ -389,11 +405,29 @@ static cub_q16 ground_shift(const cub_gait_walker *w, int foot)
 
 /* ---- the pose --------------------------------------------------------------------- */
 
+/* The captured cycle does not close: frame b is not frame a. Each joint
+ * is turned, and the root raised, by a growing share of the mismatch
+ * across the cycle, so the loop joins without a pop [ours]. */
+static void close_cycle(cub_gait_walker *w, int f)
+{
+    const cub_clip *c = w->c->clip;
+    int nj = c->skel->joint_count;
+    cub_q16 s = (cub_q16)(((int64_t)(f - w->a) << 16) / (w->b - w->a));
+    for (int j = 0; j < nj; j++) {
+        cub_quat delta = cub_fx_quat_mul(cub_fx_quat_conj(c->rot[w->b * nj + j]), c->rot[w->a * nj + j]);
+        cub_quat part = cub_fx_quat_nlerp(cub_fx_quat_identity(), delta, s);
+        w->pose.rot[j] = cub_fx_quat_normalize(cub_fx_quat_mul(w->pose.rot[j], part));
+    }
+    w->pose.root_mm.y += cub_fx_mul(c->root_mm[w->a].y - c->root_mm[w->b].y, s);
+}
+
 static void place_root(cub_gait_walker *w, int f, int k)
 {
     const cub_clip *c = w->c->clip;
     cub_motion_clip_get_frame(c, f, &w->pose);
+    close_cycle(w, f);
     cub_vec3 ru = unwrap(w, c->root_mm[f], k);
+    ru.y = w->pose.root_mm.y;
     cub_vec3 r = to_world(w, ru);
     r.y = ru.y + (ground_shift(w, 0) + ground_shift(w, 1)) / 2;
     w->pose.root_mm = r;
