@@ -71,6 +71,7 @@ static int check(const char *clip, const char *terrain, const gait_figures *g)
     BOUND(g->pen_max_mm <= 0.5, "penetration over 0.5 mm");
     BOUND(g->slide_max_mm <= 5.0, "stance slide over 5 mm");
     BOUND(g->clear_frames == 0 || g->clear_min_mm >= 0, "a swinging foot inside an obstacle");
+    BOUND(g->rot_max_deg <= 10.0, "a foot turning over 10 degrees in a frame");
     BOUND(g->err_all_mm < 0 || g->err_all_mm <= 30.0, "mean joint error on flat over 30 mm");
     BOUND(g->steps >= 6, "fewer than 6 steps");
     BOUND(g->blocked == 0, "a step found no foothold");

@@ -274,6 +274,7 @@ static void begin_swing(cub_gait_walker *w, int foot, int f, int k, cub_vec3 tar
         emit(w, (cub_gait_event){CUB_GAIT_EV_BLOCKED, !foot, w->steps, 0, 0, hold});
     }
     ft->next_mm = hold;
+    ft->step = w->steps;
     ft->rough = !cub_gait_terrain_is_flat(w->t);
     cub_gait_swing_params sp = w->p.swing;
     sp.foot_mm = foot_len(w, foot);
@@ -292,7 +293,7 @@ static void land(cub_gait_walker *w, int foot)
     ft->yaw_c = w->yaw_c;
     ft->yaw_s = w->yaw_s;
     ft->skate_u[0] = ft->skate_u[1] = (cub_vec3){0};
-    emit(w, (cub_gait_event){CUB_GAIT_EV_TAKEN, !foot, w->steps, 0, 0, ft->hold_mm});
+    emit(w, (cub_gait_event){CUB_GAIT_EV_TAKEN, !foot, ft->step, 0, 0, ft->hold_mm});
 }
 
 /* ---- per frame targets --------------------------------------------------------- */
@@ -326,7 +327,9 @@ static cub_vec3 swinging(const cub_gait_walker *w, const cub_gait_walk_foot *ft,
 
 /* The height a point keeps over the ground: the clip's over its floor
  * (never below it); on rough ground, in the swing, over the raised
- * Bézier's height where that is higher. */
+ * Bézier's height where that is higher. (Adding only the point's resting
+ * height to the Bézier, not its captured swing height, was tried: the
+ * foot then grazed the log, 0 mm, and turned 20 degrees in a frame.) */
 static cub_q16 point_y(const cub_gait_walker *w, const cub_gait_walk_foot *ft, cub_vec3 at,
                        cub_q16 clip_y, cub_q16 s)
 {
@@ -445,6 +448,15 @@ static cub_err solve_leg(cub_gait_walker *w, int foot)
 {
     cub_gait_walk_foot *ft = &w->feet[foot];
     cub_gait_leg_target t = {w->c->ankle[foot], w->c->toe[foot], ft->ankle_mm, ft->toe_mm, ahead(w)};
+    cub_err e = cub_gait_leg_apply(w->c->clip->skel, &w->pose, &t, &w->p.limits, &ft->leg);
+    /* The limits may have turned the foot into the ground, or the leg fallen
+     * short: once more, the whole foot raised by what still dips. */
+    cub_q16 dip = e ? 0 : sole_dip(w, foot, ft->leg.ankle_mm, ft->leg.toe_mm);
+    if (dip <= 0) return e;
+    ft->ankle_mm.y += dip;
+    ft->toe_mm.y += dip;
+    t.ankle_mm = ft->ankle_mm;
+    t.toe_mm = ft->toe_mm;
     return cub_gait_leg_apply(w->c->clip->skel, &w->pose, &t, &w->p.limits, &ft->leg);
 }
 

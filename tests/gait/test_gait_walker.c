@@ -187,19 +187,22 @@ static void events_in_order(void **state)
     static log l;
     l.n = 0;
     walk_rolling(&l);
-    int planned_first = -1, expect_left = -1, taken = 0;
+    int planned_first = -1, expect_left = -1, taken = 0, planned_step = -1;
     cub_vec3 promised = {0};
     for (int i = 0; i < l.n; i++) {
         const cub_gait_event *e = &l.e[i];
         if (e->kind == CUB_GAIT_EV_PLANNED && e->index == 0) {
             assert_int_equal(planned_first, -1); /* one open plan at a time per step */
             planned_first = e->left;
+            planned_step = e->step;
             promised = e->foot_mm;
             if (expect_left >= 0) assert_int_equal(e->left, expect_left);
             expect_left = !e->left;
         }
         if (e->kind == CUB_GAIT_EV_TAKEN) {
             assert_int_equal(e->left, planned_first);
+            assert_int_equal(e->step, planned_step); /* the step planned is the one taken */
+            assert_int_equal(e->step, taken);         /* steps counted from 0, none skipped */
             assert_memory_equal(&e->foot_mm, &promised, sizeof promised);
             planned_first = -1;
             taken++;

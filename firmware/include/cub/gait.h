@@ -326,7 +326,7 @@ typedef struct cub_gait_walk_foot {
     cub_q16 floor_u, next_floor;  /* the clip's floor there */
     cub_q16 yaw_c, yaw_s;         /* the heading when it planted */
     cub_vec3 pin_u[2], skate_u[2];/* ankle, toe: where stance began; the clip's slide so far */
-    int swing_at, swing_len;
+    int swing_at, swing_len, step;
     cub_vec3 key_u[3];            /* flat ground: the ankle at foot-off, apex, strike */
     int key_at[3];                /* their frames into the swing */
     uint8_t last_phase;
