@@ -19,13 +19,15 @@
 #define MAX_OBST 8
 
 static const char *const usage_text =
-    "usage: cubtool gait CLIP [--terrain flat|slope|rolling|steps] [--obstacle log|stone]...\n"
+    "usage: cubtool gait CLIP [--terrain flat|slope|rolling|steps|FILE] [--obstacle log|stone]...\n"
     "                    --frames DIR [--count N] [--data DIR]\n"
     "Drive the walk in CLIP (a BVH file, or a CMU name under DIR/mocap/cmu)\n"
     "over the terrain (rolling by default) with the obstacles added, and\n"
     "write N (240) side-view PNG frames into DIR: the ground along the walk,\n"
     "the obstacles, the skeleton (left leg blue, right red), footholds taken\n"
-    "(black) and planned (green). The footstep events print to stdout.\n";
+    "(black) and planned (green). The footstep events print to stdout.\n"
+    "A terrain FILE is text (app/cubtool/gait_tool.h): 'flat B', 'slope B GX GZ'\n"
+    "or 'grid NX NZ CELL X0 Z0' and NZ 'row H..' lines, then 'box X0 Y0 Z0 X1 Y1 Z1'.\n";
 
 static const uint8_t INK[3] = {30, 30, 30}, GROUND[3] = {110, 80, 50}, LOG[3] = {150, 100, 40},
                      LEFT[3] = {40, 90, 220}, RIGHT[3] = {220, 50, 40}, PLAN[3] = {30, 160, 60},
@@ -200,7 +202,8 @@ int cub_cmd_gait(int argc, char **argv)
     if (p) return p == 1 ? 0 : 2;
     if (!a.data) a.data = getenv("CUB_DATA_DIR") ? getenv("CUB_DATA_DIR") : CUB_DATA_DIR_DEFAULT;
     static gait_ground g;
-    if (gait_ground_make(&g, a.terrain, WHO)) return 2;
+    int bad = gait_ground_make(&g, a.terrain, WHO);
+    if (bad) return bad;
     for (int i = 0; i < a.n_obst; i++)
         if (gait_ground_add(&g, a.obstacles[i], WHO)) return 2;
     static gait_src s;

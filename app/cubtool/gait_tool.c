@@ -147,10 +147,18 @@ int gait_ground_make(gait_ground *g, const char *name, const char *who)
         grid(g);
     } else if (!strcmp(name, "steps")) {
         steps(g);
+    } else if (access(name, F_OK) == 0) {
+        cub_diag d = {0};
+        char msg[700];
+        if (gait_terrain_load(name, g, &d)) {
+            fprintf(stderr, "cubtool %s: %s\n", who, cub_diag_str(&d, msg, sizeof msg));
+            return 1;
+        }
     } else {
-        fprintf(stderr, "cubtool %s: unknown terrain '%s' (flat, slope, rolling, steps)\n", who,
-                name);
-        return 1;
+        fprintf(stderr,
+                "cubtool %s: unknown terrain '%s' (flat, slope, rolling, steps, or a terrain file)\n",
+                who, name);
+        return 2;
     }
     return 0;
 }
