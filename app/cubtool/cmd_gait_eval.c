@@ -16,7 +16,7 @@
 static const char *const usage_text =
     "usage: cubtool gait-eval [--clips A,B,..] [--held-out A,B,..] [--reference A,B,..]\n"
     "                         [--terrains flat,slope,rolling,forest] [--frames N] [--data DIR]\n"
-    "                         [--check]\n"
+    "                         [--check] [--clip-swing]\n"
     "The walker (firmware/gait) and the game-engine baseline on each clip and\n"
     "terrain (forest = rolling + a log + two stones), N frames each (720):\n"
     "penetration of the sole box, stance slide per step, clearance over\n"
@@ -26,7 +26,8 @@ static const char *const usage_text =
     "walks on uneven ground) are measured on their own floor only.\n"
     "Defaults: --clips 02_01 (tuning), --held-out 16_11,07_01,08_01,\n"
     "--reference 03_01,03_02. --check: exit 1 when a walker figure of the\n"
-    "tuning clips is out of its sanity bound (docs/gait.md).\n";
+    "tuning clips is out of its sanity bound (docs/gait.md). --clip-swing: on\n"
+    "flat ground the walker keeps the captured swing, not the seed's segments.\n";
 
 static int split(char *s, const char **out)
 {
@@ -79,6 +80,8 @@ static int check(const char *clip, const char *terrain, const gait_figures *g)
     return bad;
 }
 
+static int clip_swing; /* --clip-swing: the captured swing on flat ground */
+
 static int run_clip(const char *clip, const char *set, const char **terrains, int nt, int frames,
                     const char *data, int do_check)
 {
@@ -98,7 +101,7 @@ static int run_clip(const char *clip, const char *set, const char **terrains, in
         }
         for (int m = GAIT_WALKER; m <= GAIT_BASELINE; m++) {
             gait_run r = {.method = (gait_method)m, .frames = frames,
-                          .params = {.dir_z = CUB_Q16_ONE}};
+                          .params = {.dir_z = CUB_Q16_ONE, .clip_swing = clip_swing}};
             if (gait_measure(&src, &ground, &r, &g, WHO)) {
                 bad = 1;
                 break;
@@ -120,7 +123,7 @@ int cub_cmd_gait_eval(int argc, char **argv)
     const cub_tool_opt opts[] = {{"--clips", &clips, NULL},     {"--held-out", &held, NULL},
                                  {"--reference", &ref, NULL},   {"--terrains", &ters, NULL},
                                  {"--frames", &nframes, NULL},  {"--data", &data, NULL},
-                                 {"--check", NULL, &do_check}};
+                                 {"--check", NULL, &do_check},  {"--clip-swing", NULL, &clip_swing}};
     switch (cub_tool_parse_opts(argc, argv, opts, sizeof opts / sizeof *opts, NULL, 0)) {
     case CUB_TOOL_HELP: fputs(usage_text, stdout); return 0;
     case CUB_TOOL_BAD: fputs(usage_text, stderr); return 2;
