@@ -213,7 +213,13 @@ static cub_vec3 clip_dir(const cub_gait_walker *w)
 
 /* The planner from the other foot's foothold; the step's length and width
  * are the clip's own for this step (so flat ground gives back the capture). */
-static cub_err plan(cub_gait_walker *w, int foot, cub_vec3 *hold)
+/* The step lengths the planner tries, as fractions of the clip's step. */
+typedef struct step_tries {
+    int n;
+    cub_q16 f[CUB_GAIT_MAX_TRIES];
+} step_tries;
+
+static cub_err plan(cub_gait_walker *w, int foot, const step_tries *tries, cub_vec3 *hold)
 {
     const cub_gait_walk_foot *o = &w->feet[!foot];
     cub_vec3 d0 = clip_dir(w);
@@ -223,7 +229,10 @@ static cub_err plan(cub_gait_walker *w, int foot, cub_vec3 *hold)
     cub_gait_plan_params pp = {.steps = w->p.steps,
                                .stride_mm = along > CUB_Q16_ONE ? along : CUB_Q16_ONE,
                                .width_mm = cub_fx_abs(lateral),
-                               .foot_mm = foot_len(w, foot)};
+                               .foot_mm = foot_len(w, foot),
+                               .tries = tries->n};
+    for (int i = 0; i < tries->n; i++)
+        pp.factors[i] = tries->f[i];
     /* The planner's "left" is a side label: left of the heading gets +width. */
     cub_gait_start st = {o->hold_mm, lateral < 0, w->dir_x, w->dir_z};
     cub_err e = cub_gait_plan_steps(w->t, &pp, &st, &w->plan);
@@ -240,6 +249,36 @@ static void report_plan(cub_gait_walker *w, int foot)
     if (w->plan.backtracks)
         emit(w, (cub_gait_event){CUB_GAIT_EV_BACKTRACKED, !foot, w->steps, 0, w->plan.backtracks,
                                  w->plan.steps[0].foot_mm});
+}
+
+/* Plan the step and the swing to it. A swing that cannot clear the way
+ * to the foothold (the swing path gives up) sends the planner back: that
+ * step length is dropped and the plan made again [ours: the seed's
+ * planner tests footholds only]. The drops count as backtracks. */
+static cub_err plan_swing(cub_gait_walker *w, int foot, cub_vec3 *hold)
+{
+    /* the planner's default order: the nominal step, then shorter and
+     * longer ones alternately */
+    step_tries tries = {5, {CUB_Q16_ONE, 49152, 81920, 32768, 98304}};
+    cub_gait_walk_foot *ft = &w->feet[foot];
+    cub_gait_swing_params sp = w->p.swing;
+    sp.foot_mm = foot_len(w, foot) + foot_len(w, foot) / 3; /* to the sole box's toe tip */
+    int dropped = 0;
+    while (plan(w, foot, &tries, hold) == CUB_OK) {
+        ft->path = (cub_gait_swing){0};
+        if (!ft->rough || cub_gait_swing_path(w->t, &sp, ft->hold_mm, *hold, &ft->path) == CUB_OK) {
+            w->plan.backtracks += dropped;
+            report_plan(w, foot);
+            return CUB_OK;
+        }
+        int k = w->plan.steps[0].try_index;
+        for (int i = k; i + 1 < tries.n; i++)
+            tries.f[i] = tries.f[i + 1];
+        dropped++;
+        if (--tries.n == 0) break;
+    }
+    ft->path = (cub_gait_swing){0};
+    return CUB_ERR_EMPTY;
 }
 
 /* Foot-off at frame f, loop k: find where the clip lands it, plan, shape the swing. */
@@ -266,20 +305,17 @@ static void begin_swing(cub_gait_walker *w, int foot, int f, int k, cub_vec3 tar
     ft->swing_at = w->ticks;
     ft->swing_len = len > 0 ? len : 1;
     ft->swinging = 1;
+    ft->rough = !cub_gait_terrain_is_flat(w->t);
     cub_vec3 hold;
-    if (plan(w, foot, &hold) == CUB_OK) {
-        report_plan(w, foot);
-    } else {
+    if (plan_swing(w, foot, &hold)) {
         hold = ground_of(w, ft->next_u);
         emit(w, (cub_gait_event){CUB_GAIT_EV_BLOCKED, !foot, w->steps, 0, 0, hold});
+        /* the best path there is, cleared or not */
+        cub_gait_swing_params sp = w->p.swing;
+        cub_gait_swing_path(w->t, &sp, ft->hold_mm, hold, &ft->path);
     }
     ft->next_mm = hold;
     ft->step = w->steps;
-    ft->rough = !cub_gait_terrain_is_flat(w->t);
-    cub_gait_swing_params sp = w->p.swing;
-    sp.foot_mm = foot_len(w, foot);
-    ft->path = (cub_gait_swing){0};
-    if (ft->rough) cub_gait_swing_path(w->t, &sp, ft->hold_mm, hold, &ft->path);
     w->steps++;
 }
 
