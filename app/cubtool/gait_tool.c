@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -132,6 +133,14 @@ static void steps(gait_ground *g)
     grid(g);
 }
 
+/* A terrain names a file when something is there (even a link that
+ * leads nowhere: the reader says why it cannot be read). */
+static int is_file(const char *name)
+{
+    struct stat st;
+    return lstat(name, &st) == 0;
+}
+
 int gait_ground_make(gait_ground *g, const char *name, const char *who)
 {
     memset(g, 0, sizeof *g);
@@ -147,7 +156,7 @@ int gait_ground_make(gait_ground *g, const char *name, const char *who)
         grid(g);
     } else if (!strcmp(name, "steps")) {
         steps(g);
-    } else if (access(name, F_OK) == 0) {
+    } else if (is_file(name)) {
         cub_diag d = {0};
         char msg[700];
         if (gait_terrain_load(name, g, &d)) {
