@@ -271,6 +271,14 @@ cub_q16 cub_gait_pelvis_drop(const cub_gait_leg legs[2], const cub_gait_leg_limi
 
 /* ---- walker: a captured walk cycle driven over a terrain -------------------- */
 
+/* Use: per foot, cub_gait_track_clip then cub_gait_analyse on the clip
+ * (once); fill a cub_gait_walk_clip; cub_gait_walker_init; then one
+ * cub_gait_walker_step per clip frame (1/fps s), the pose out of it. The
+ * clip, its arrays and the terrain must outlive the walker (it keeps
+ * pointers); obstacles added to the terrain meanwhile count from the next
+ * plan (the next foot-off). Events come from inside step. The walker is a
+ * plain struct (4.5 kB on x86-64, most of it the pose); no allocation. */
+
 /* Footstep events, for the box's event log. */
 typedef enum cub_gait_event_kind {
     CUB_GAIT_EV_PLANNED = 0, /* one foothold of a new plan (index = its place in the plan) */
