@@ -30,5 +30,7 @@ int cub_cmd_coach(int argc, char **argv);        /* a second coach's library fro
 int cub_cmd_wings(int argc, char **argv);        /* the winged bear's assets, through evolve */
 int cub_cmd_groove(int argc, char **argv);       /* seed 001: a MIDI melody, its segments, keys */
 int cub_cmd_groove_eval(int argc, char **argv);  /* seed 001: beat alignment, speed, time */
+int cub_cmd_gait(int argc, char **argv);         /* seed 003: a walk over a terrain, PNG frames */
+int cub_cmd_gait_eval(int argc, char **argv);    /* seed 003: the figures, vs the baseline */
 
 #endif

@@ -32,6 +32,8 @@ static const command commands[] = {
     {"trc-info", cub_cmd_trc_info, "a TRC marker file: its markers, frames, rate, lost markers"},
     {"groove", cub_cmd_groove, "seed 001 on a MIDI file: melody, segments, keys; the bear dancing it (BVH, PNG)"},
     {"groove-eval", cub_cmd_groove_eval, "seed 001 figures: beat alignment (FACT, Bailando), joint speed, time"},
+    {"gait", cub_cmd_gait, "seed 003: a captured walk over a terrain (PNG frames, footholds drawn)"},
+    {"gait-eval", cub_cmd_gait_eval, "seed 003 figures: penetration, slide, clearance, ... vs a foot-IK baseline"},
     {"join", cub_cmd_join, "join two clips through a searched transition, feet planted; --all: the table"},
     {"graph", cub_cmd_graph, "the motion graph by support points (feet, hands, knees, hip); --png"},
     {"evolve", cub_cmd_evolve, "cross two clips of different skeletons into a child (seed 004), as BVH"},

@@ -117,3 +117,68 @@ cub_q16 cub_gait_pelvis_drop(const cub_gait_leg legs[2], const cub_gait_leg_limi
     cub_q16 b = leg_drop(&legs[1], knee_max, ankle_targets[1]);
     return a > b ? a : b;
 }
+
+/* ---- the leg of a skeleton's pose ---------------------------------------- */
+
+static cub_q16 bone(const cub_skeleton *sk, const cub_pose *pose, int j)
+{
+    return cub_fx_vec3_length(pose->has_trans ? pose->trans_mm[j] : sk->joints[j].offset_mm);
+}
+
+static cub_vec3 joint_at(const cub_skeleton *sk, const cub_pose *pose, int j, cub_quat *rot)
+{
+    cub_vec3 at = {0};
+    cub_quat r;
+    cub_motion_joint_world(sk, pose, j, &at, rot ? rot : &r);
+    return at;
+}
+
+static bool leg_chain_ok(const cub_skeleton *sk, int ankle)
+{
+    if (!sk || ankle <= 0 || ankle >= sk->joint_count) return false;
+    int knee = sk->joints[ankle].parent;
+    return knee > 0 && sk->joints[knee].parent >= 0;
+}
+
+cub_err cub_gait_pose_leg(const cub_skeleton *sk, const cub_pose *pose, int ankle, cub_vec3 ahead,
+                          cub_gait_leg *leg)
+{
+    if (!pose || !leg || !leg_chain_ok(sk, ankle)) return CUB_ERR_ARG;
+    int knee = sk->joints[ankle].parent, hip = sk->joints[knee].parent;
+    /* ours: the knee bends toward where it is now, a hand ahead, so a
+     * straight leg still has a plane */
+    cub_vec3 pole = cub_fx_vec3_add(joint_at(sk, pose, knee, NULL),
+                                    cub_fx_vec3_scale(ahead, CUB_Q16_INT(100)));
+    *leg = (cub_gait_leg){joint_at(sk, pose, hip, NULL), bone(sk, pose, knee),
+                          bone(sk, pose, ankle), pole};
+    return CUB_OK;
+}
+
+/* Turn the ankle joint so the toe joint points at toe_mm (world). */
+static void aim_foot(const cub_skeleton *sk, cub_pose *pose, int ankle, int toe, cub_vec3 toe_mm)
+{
+    cub_quat parent_rot;
+    joint_at(sk, pose, sk->joints[ankle].parent, &parent_rot);
+    cub_vec3 aw = joint_at(sk, pose, ankle, NULL), tw = joint_at(sk, pose, toe, NULL);
+    cub_quat turn = cub_motion_quat_between(cub_fx_vec3_sub(tw, aw), cub_fx_vec3_sub(toe_mm, aw));
+    cub_quat local =
+        cub_fx_quat_mul(cub_fx_quat_conj(parent_rot), cub_fx_quat_mul(turn, parent_rot));
+    pose->rot[ankle] = cub_fx_quat_normalize(cub_fx_quat_mul(local, pose->rot[ankle]));
+}
+
+cub_err cub_gait_leg_apply(const cub_skeleton *sk, cub_pose *pose, const cub_gait_leg_target *t,
+                           const cub_gait_leg_limits *lim, cub_gait_leg_pose *out)
+{
+    if (!t || !out || t->toe <= 0 || !sk || t->toe >= sk->joint_count) return CUB_ERR_ARG;
+    cub_gait_leg leg;
+    cub_err e = cub_gait_pose_leg(sk, pose, t->ankle, t->ahead, &leg);
+    if (!e) e = cub_gait_leg_solve(&leg, lim, t->ankle_mm, t->toe_mm, out);
+    if (e) return e;
+    leg_range r = range(lim);
+    cub_ik_limits kl = {r.knee_min, r.knee_max};
+    int hip = sk->joints[sk->joints[t->ankle].parent].parent;
+    e = cub_motion_ik_apply(sk, pose, hip, t->ankle_mm, leg.pole_mm, &kl, NULL);
+    if (e) return e;
+    aim_foot(sk, pose, t->ankle, t->toe, out->toe_mm);
+    return CUB_OK;
+}

@@ -7,6 +7,7 @@
 #define DEFAULT_DOWN_MM CUB_Q16_INT(25) /* ours: CMU walks' ankles jitter ~1 cm at rest */
 #define DEFAULT_SETTLE_RAD_S 34315      /* ours: 30 degrees per second */
 #define DEFAULT_FPS 120
+#define DEFAULT_MIN_RUN_DIV 24 /* ours: 1/24 s, 5 frames at 120 fps (see docs/gait.md) */
 #define DEFAULT_STILL_MM_S CUB_Q16_INT(1000) /* ours: a swinging foot moves 3-4 m/s */
 
 const char *cub_gait_phase_name(cub_gait_phase p)
@@ -44,6 +45,7 @@ typedef struct phase_cfg {
     int half;            /* frames either side for the local ground */
     cub_q16 down, still; /* mm; mm per frame */
     cub_q16 settle;      /* radians per frame */
+    int min_run;         /* shortest contact change counted, frames */
 } phase_cfg;
 
 static phase_cfg config(const cub_gait_phase_params *p)
@@ -51,9 +53,10 @@ static phase_cfg config(const cub_gait_phase_params *p)
     int fps = p && p->fps > 0 ? p->fps : DEFAULT_FPS;
     cub_q16 still = p && p->still_mm_s > 0 ? p->still_mm_s : DEFAULT_STILL_MM_S;
     cub_q16 settle = p && p->settle_rad_s > 0 ? p->settle_rad_s : DEFAULT_SETTLE_RAD_S;
+    int min_run = p && p->min_frames > 0 ? p->min_frames : fps / DEFAULT_MIN_RUN_DIV;
     return (phase_cfg){fps / 2 > 0 ? fps / 2 : 1,
                        p && p->down_mm > 0 ? p->down_mm : DEFAULT_DOWN_MM, still / fps,
-                       settle / fps};
+                       settle / fps, min_run > 1 ? min_run : 1};
 }
 
 /* The lowest height of a point within half frames of f. */
@@ -125,6 +128,40 @@ static cub_gait_phase next_phase(int prev, bool ankle_down, bool toe_down, bool 
     return CUB_GAIT_LIFT;
 }
 
+#define ANKLE_BIT 1
+#define TOE_BIT 2
+
+/* Runs of one contact bit shorter than min frames, with the other state
+ * on both sides, take the state around them: a toe brushing the ground
+ * mid-swing, or a planted point jittering past down_mm for a frame, is
+ * noise, not a phase [ours]. Runs at the clip's ends are kept (their
+ * other side is unknown). */
+static void debounce(uint8_t *bits, int frames, uint8_t bit, int min)
+{
+    int start = 0;
+    while (start < frames) {
+        int end = start;
+        while (end < frames && (bits[end] & bit) == (bits[start] & bit))
+            end++;
+        if (start > 0 && end < frames && end - start < min)
+            for (int f = start; f < end; f++)
+                bits[f] ^= bit;
+        start = end;
+    }
+}
+
+/* Each frame's contact bits, debounced, into out (the phase array, reused
+ * as scratch: no allocation). */
+static void contacts(const cub_vec3 *ankle, const cub_vec3 *toe, int frames, const phase_cfg *c,
+                     uint8_t *out)
+{
+    for (int f = 0; f < frames; f++)
+        out[f] = (uint8_t)((is_down(ankle, frames, f, c) ? ANKLE_BIT : 0) |
+                           (is_down(toe, frames, f, c) ? TOE_BIT : 0));
+    debounce(out, frames, ANKLE_BIT, c->min_run);
+    debounce(out, frames, TOE_BIT, c->min_run);
+}
+
 cub_err cub_gait_analyse(const cub_vec3 *ankle_mm, const cub_vec3 *toe_mm, int frames,
                          const cub_gait_phase_params *p, uint8_t *phase_out, cub_gait_foot *foot)
 {
@@ -132,10 +169,11 @@ cub_err cub_gait_analyse(const cub_vec3 *ankle_mm, const cub_vec3 *toe_mm, int f
     phase_cfg c = config(p);
     *foot = (cub_gait_foot){0};
     measure_foot(ankle_mm, toe_mm, frames, &c, foot);
+    contacts(ankle_mm, toe_mm, frames, &c, phase_out);
     int prev = -1;
     bool seen_lift = false, seen_off = false;
     for (int f = 0; f < frames; f++) {
-        bool a = is_down(ankle_mm, frames, f, &c), t = is_down(toe_mm, frames, f, &c);
+        bool a = phase_out[f] & ANKLE_BIT, t = phase_out[f] & TOE_BIT;
         bool settled = pitch_rate(ankle_mm, toe_mm, frames, f) <= c.settle;
         cub_gait_phase ph = next_phase(prev, a, t, settled);
         seen_lift |= ph == CUB_GAIT_LIFT;

@@ -43,13 +43,15 @@ static cub_q16 tilt_limit(const cub_gait_plan_params *p)
     return p->max_tilt_mm > 0 ? p->max_tilt_mm : DEFAULT_TILT_MM;
 }
 
-/* The foot's base rests on its highest ground point (ankle, middle, toe). */
+/* The foot's base rests on its highest ground point (heel, ankle, middle,
+ * toe). The heel, a quarter foot behind the ankle [ours], keeps a foothold
+ * from hugging an obstacle's far edge, where no swing can come down. */
 static cub_q16 base_range(const cub_gait_terrain *t, const cub_gait_plan_params *p, heading h,
                           cub_q16 x, cub_q16 z, cub_q16 *top)
 {
     cub_q16 lo = CUB_Q16_MAX, hi = CUB_Q16_MIN;
-    for (int k = 0; k <= 2; k++) {
-        cub_q16 y = ahead(t, h, x, z, (cub_q16)(((int64_t)p->foot_mm * k) / 2)).y;
+    for (int k = -1; k <= 4; k++) {
+        cub_q16 y = ahead(t, h, x, z, (cub_q16)(((int64_t)p->foot_mm * k) / 4)).y;
         if (y < lo) lo = y;
         if (y > hi) hi = y;
     }

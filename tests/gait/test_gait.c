@@ -128,8 +128,9 @@ static void test_blocked_foothold_forces_a_backtrack(void **state)
 }
 
 /* A stone slab 72 cm on: the nominal step straddles its edge, the 0.75
- * stride is clear, and so is 1.25 (on the slab's top): the first feasible
- * in the tried order is taken, 0.75. */
+ * stride is clear: the first feasible in the tried order is taken, 0.75.
+ * On the slab's top, a foothold whose heel (a quarter foot behind the
+ * ankle) hangs over the edge is refused; one further on is not. */
 static void test_first_feasible_step_is_taken(void **state)
 {
     (void)state;
@@ -143,7 +144,8 @@ static void test_first_feasible_step_is_taken(void **state)
     assert_int_equal(plan.steps[0].try_index, 1);
     assert_int_equal(plan.steps[0].foot_mm.z, MM(450));
     assert_int_equal(plan.tested, 2);
-    assert_true(cub_gait_foothold_ok(&t, &p, 0, 0, MM(750), 0, CUB_Q16_ONE));
+    assert_false(cub_gait_foothold_ok(&t, &p, 0, 0, MM(750), 0, CUB_Q16_ONE));
+    assert_true(cub_gait_foothold_ok(&t, &p, 0, 0, MM(790), 0, CUB_Q16_ONE));
     /* Rough ground (an obstacle) plans 3 ahead by default. */
     p.steps = 0;
     assert_int_equal(cub_gait_plan_steps(&t, &p, &start, &plan), CUB_OK);

@@ -17,7 +17,14 @@
 #include "cub/gait.h"
 #include "cub/io.h"
 
-#define CLIP "02_01"
+/* $CUB_GAIT_CLIP names another CMU BVH clip (a held-out run by hand). */
+#define CLIP clip_name()
+
+static const char *clip_name(void)
+{
+    const char *c = getenv("CUB_GAIT_CLIP");
+    return c && *c ? c : "02_01";
+}
 
 static cub_io_motion walk;
 

@@ -47,6 +47,7 @@ typedef struct cub_gait_phase_params {
     cub_q16 down_mm;      /* (0: 25 mm) */
     cub_q16 still_mm_s;   /* (0: 1000 mm/s) */
     cub_q16 settle_rad_s; /* land ends when the pitch turns slower (0: 30 deg/s) */
+    int min_frames;       /* a point's contact change shorter than this is noise (0: fps / 24) */
 } cub_gait_phase_params;
 
 /* What the analysis learnt of one foot. */
@@ -244,10 +245,132 @@ cub_q16 cub_gait_ankle_angle(cub_vec3 knee_mm, cub_vec3 ankle_mm, cub_vec3 toe_m
 cub_err cub_gait_leg_solve(const cub_gait_leg *leg, const cub_gait_leg_limits *lim,
                            cub_vec3 ankle_target, cub_vec3 toe_target, cub_gait_leg_pose *out);
 
+/* The leg of a skeleton's pose: the ankle joint's grandparent is the hip
+ * (thigh root), its parent the knee; the pole is the knee 10 cm along
+ * ahead (a unit heading). CUB_ERR_ARG for a chain too short. */
+cub_err cub_gait_pose_leg(const cub_skeleton *sk, const cub_pose *pose, int ankle, cub_vec3 ahead,
+                          cub_gait_leg *leg);
+
+typedef struct cub_gait_leg_target {
+    int ankle, toe;             /* joint indices */
+    cub_vec3 ankle_mm, toe_mm;  /* world targets */
+    cub_vec3 ahead;             /* unit heading (the knee's pole side) */
+} cub_gait_leg_target;
+
+/* cub_gait_leg_solve on a pose: rewrites the hip's and knee's rotations
+ * (cub_motion_ik_apply) and turns the ankle so the toe joint points at
+ * the solved toe. out: the solved geometry. */
+cub_err cub_gait_leg_apply(const cub_skeleton *sk, cub_pose *pose, const cub_gait_leg_target *t,
+                           const cub_gait_leg_limits *lim, cub_gait_leg_pose *out);
+
 /* How far the pelvis must lower (>= 0, mm) so that both hips reach their
  * ankle targets with the knees inside their range: the seed's "the pelvis
  * lowers so both feet reach". */
 cub_q16 cub_gait_pelvis_drop(const cub_gait_leg legs[2], const cub_gait_leg_limits *lim,
                              const cub_vec3 ankle_targets[2]);
+
+/* ---- walker: a captured walk cycle driven over a terrain -------------------- */
+
+/* Use: per foot, cub_gait_track_clip then cub_gait_analyse on the clip
+ * (once); fill a cub_gait_walk_clip; cub_gait_walker_init; then one
+ * cub_gait_walker_step per clip frame (1/fps s), the pose out of it. The
+ * clip, its arrays and the terrain must outlive the walker (it keeps
+ * pointers); obstacles added to the terrain meanwhile count from the next
+ * plan (the next foot-off). Events come from inside step. The walker is a
+ * plain struct (4.5 kB on x86-64, most of it the pose); no allocation. */
+
+/* Footstep events, for the box's event log. */
+typedef enum cub_gait_event_kind {
+    CUB_GAIT_EV_PLANNED = 0, /* one foothold of a new plan (index = its place in the plan) */
+    CUB_GAIT_EV_BACKTRACKED, /* the plan just made backed up count times */
+    CUB_GAIT_EV_TAKEN,       /* a foot came down on its foothold */
+    CUB_GAIT_EV_BLOCKED      /* no plan: the foot lands on its unadapted point [ours] */
+} cub_gait_event_kind;
+
+typedef struct cub_gait_event {
+    cub_gait_event_kind kind;
+    int left;         /* 1: the left foot (the clip's, not the planner's side label) */
+    int step;         /* the walker's step number (one per swing, from 0) */
+    int index, count; /* PLANNED: place in the plan; BACKTRACKED: backtracks */
+    cub_vec3 foot_mm; /* the foothold (ankle's ground point), world */
+} cub_gait_event;
+
+typedef void (*cub_gait_event_fn)(void *ctx, const cub_gait_event *e);
+
+/* The walk the walker plays: the caller's clip and its analysis (arrays
+ * from cub_gait_track_clip and cub_gait_analyse, frame_count entries each;
+ * [0] the left foot, [1] the right). The leg chain is ankle's parent
+ * (knee) and grandparent (hip). The walker keeps these pointers. */
+typedef struct cub_gait_walk_clip {
+    const cub_clip *clip;
+    int ankle[2], toe[2];
+    const cub_vec3 *ankle_mm[2], *toe_mm[2];
+    const uint8_t *phase[2];
+    cub_gait_foot foot[2];
+} cub_gait_walk_clip;
+
+typedef struct cub_gait_walk_params {
+    cub_vec3 start_mm;            /* where the root starts (x, z; y from the terrain) */
+    cub_q16 dir_x, dir_z;         /* the first heading (0, 0: the clip's own) */
+    cub_q16 max_turn_rad;         /* heading change per step (0: 10 degrees) [ours] */
+    cub_gait_leg_limits limits;   /* 0: cub_gait_leg_solve's defaults */
+    cub_gait_swing_params swing;  /* 0: cub_gait_swing_path's defaults */
+    int steps;                    /* footholds planned ahead (0: 4 flat, 3 rough) */
+    int clip_swing;               /* 1: on flat ground the clip's own swing path, not the
+                                     seed's key-frame segments (a comparison) */
+    cub_gait_event_fn on_event;   /* may be NULL */
+    void *ctx;
+} cub_gait_walk_params;
+
+/* One foot of the walker (read only for the caller). */
+typedef struct cub_gait_walk_foot {
+    int swinging;                 /* 1: between foot-off and the next strike */
+    cub_vec3 hold_mm;             /* the foothold it stands on / swings from */
+    cub_vec3 next_mm;             /* swinging: the foothold it swings to */
+    cub_vec3 ankle_mm, toe_mm;    /* this frame's targets (after the sole guard) */
+    cub_gait_leg_pose leg;        /* this frame's IK result */
+    /* internal */
+    cub_vec3 plant_u, next_u;     /* the clip's ankle where it planted (unwrapped) */
+    cub_q16 floor_u, next_floor;  /* the clip's floor there */
+    cub_q16 yaw_c, yaw_s;         /* the heading when it planted */
+    cub_vec3 pin_u[2], skate_u[2];/* ankle, toe: where stance began; the clip's slide so far */
+    int swing_at, swing_len, step;
+    cub_vec3 key_u[3];            /* flat ground: the ankle at foot-off, apex, strike */
+    int key_at[3];                /* their frames into the swing */
+    uint8_t last_phase;
+    cub_gait_swing path;
+    int rough;
+} cub_gait_walk_foot;
+
+typedef struct cub_gait_walker {
+    const cub_gait_walk_clip *c;
+    const cub_gait_terrain *t;
+    cub_gait_walk_params p;
+    int a, b;                     /* the cycle played: frames [a, b) */
+    int frame, loops, ticks, steps;
+    cub_vec3 cycle_u;             /* the root's travel over one cycle */
+    cub_vec3 origin_mm, ref_u;    /* world = origin + yaw (u - ref), horizontal */
+    cub_q16 yaw_c, yaw_s;         /* the clip's heading turned to the walker's */
+    cub_q16 dir_x, dir_z;         /* the walker's heading (unit) */
+    cub_q16 drop_mm;              /* this frame's pelvis drop */
+    cub_gait_plan plan;           /* the last plan */
+    cub_gait_walk_foot feet[2];
+    int arrived;                  /* 1: the root is within a stride of the target */
+    cub_pose pose;                /* this frame's pose of the clip's skeleton */
+} cub_gait_walker;
+
+/* Start at params->start_mm on t (both kept). CUB_ERR_ARG for NULLs,
+ * CUB_ERR_FORMAT when the clip has no full left-foot cycle. */
+cub_err cub_gait_walker_init(cub_gait_walker *w, const cub_gait_walk_clip *c,
+                             const cub_gait_terrain *t, const cub_gait_walk_params *p);
+/* One frame (the clip's frame period) toward target_mm (x, z): *out is
+ * the pose (root translation, mm; local rotations, Q2.30), valid until the
+ * next call. Turns at each foot-off by at most max_turn_rad. */
+cub_err cub_gait_walker_step(cub_gait_walker *w, cub_vec3 target_mm, const cub_pose **out);
+/* The sole box of a foot [ours]: 6 points (heel, toe tip, and their
+ * corners a fifth of the foot length either side), from the ankle and toe
+ * joints, the foot length and the ankle's standing height over the sole. */
+void cub_gait_sole_points(cub_vec3 ankle_mm, cub_vec3 toe_mm, cub_q16 foot_mm, cub_q16 ankle_h_mm,
+                          cub_vec3 out[6]);
 
 #endif

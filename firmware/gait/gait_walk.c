@@ -1,0 +1,575 @@
+/* gait — the walker (SEEDS.md § 003, the method put together): one
+ * captured walk cycle played over a terrain, one frame per call. At each
+ * foot-off the planner places the next footholds from the other foot's;
+ * the swinging ankle goes from its foothold to the new one (the clip's own
+ * path on flat ground, the raised quartic Bézier elsewhere); a planted foot
+ * stays on its foothold and follows the clip's roll over it; each foot
+ * point keeps its captured height over the ground under it; the pelvis
+ * rides the mean ground of the feet and drops so both feet reach; the leg
+ * IK (with limits) then sets the hip, knee and ankle rotations.
+ *
+ * Clip coordinates are "unwrapped": frame f of loop k sits at the clip's
+ * position plus k cycles of root travel, so a foot planted before the
+ * cycle wraps keeps its place. Q16.16 mm, Q2.30 rotations, no allocation. */
+#include "cub/gait.h"
+
+#define DEG(d) ((cub_q16)(((int64_t)(d) * CUB_Q16_PI + 90) / 180))
+#define UP ((cub_vec3){0, CUB_Q16_ONE, 0})
+
+static const cub_vec3 *track(const cub_gait_walker *w, int foot, int toe)
+{
+    return toe ? w->c->toe_mm[foot] : w->c->ankle_mm[foot];
+}
+
+static cub_vec3 flat_xz(cub_vec3 v)
+{
+    return (cub_vec3){v.x, 0, v.z};
+}
+
+/* A clip point of frame f, loop k, unwrapped (its height untouched). */
+static cub_vec3 unwrap(const cub_gait_walker *w, cub_vec3 v, int k)
+{
+    return (cub_vec3){v.x + k * w->cycle_u.x, v.y, v.z + k * w->cycle_u.z};
+}
+
+static cub_vec3 yaw_rotate(cub_q16 c, cub_q16 s, cub_vec3 v)
+{
+    /* about y: x' = c x + s z, z' = -s x + c z */
+    return (cub_vec3){cub_fx_add(cub_fx_mul(c, v.x), cub_fx_mul(s, v.z)), v.y,
+                      cub_fx_sub(cub_fx_mul(c, v.z), cub_fx_mul(s, v.x))};
+}
+
+/* World (x, z) of an unwrapped clip point; y is left to the caller. */
+static cub_vec3 to_world(const cub_gait_walker *w, cub_vec3 u)
+{
+    cub_vec3 d = yaw_rotate(w->yaw_c, w->yaw_s, flat_xz(cub_fx_vec3_sub(u, w->ref_u)));
+    return cub_fx_vec3_add(flat_xz(w->origin_mm), d);
+}
+
+static cub_vec3 unit_xz(cub_vec3 v)
+{
+    cub_q16 l = cub_fx_vec3_length(flat_xz(v));
+    if (l == 0) return (cub_vec3){0, 0, CUB_Q16_ONE};
+    return (cub_vec3){cub_fx_div(v.x, l), 0, cub_fx_div(v.z, l)};
+}
+
+static void emit(const cub_gait_walker *w, cub_gait_event e)
+{
+    if (w->p.on_event) w->p.on_event(w->p.ctx, &e);
+}
+
+static uint8_t phase_at(const cub_gait_walker *w, int foot, int f)
+{
+    return w->c->phase[foot][f];
+}
+
+/* ---- the cycle ------------------------------------------------------------- */
+
+static int off_start(const cub_gait_walker *w, int foot, int from)
+{
+    int n = w->c->clip->frame_count;
+    for (int f = from > 1 ? from : 1; f < n; f++)
+        if (phase_at(w, foot, f) == CUB_GAIT_OFF && phase_at(w, foot, f - 1) != CUB_GAIT_OFF)
+            return f;
+    return -1;
+}
+
+/* The cycle: from a left foot-off with the right foot down to the next
+ * left foot-off. */
+static bool find_cycle(cub_gait_walker *w)
+{
+    for (int a = off_start(w, 0, 1); a > 0; a = off_start(w, 0, a + 1)) {
+        if (phase_at(w, 1, a) == CUB_GAIT_OFF) continue;
+        int b = off_start(w, 0, a + 1);
+        if (b < 0) return false;
+        w->a = a;
+        w->b = b;
+        return true;
+    }
+    return false;
+}
+
+/* Frame f advanced by one inside the cycle; *k counts the wraps. */
+static int next_frame(const cub_gait_walker *w, int f, int *k)
+{
+    if (++f < w->b) return f;
+    ++*k;
+    return w->a;
+}
+
+/* ---- feet ------------------------------------------------------------------ */
+
+/* The clip's floor under a foot planted at frame p: its lowest point
+ * (ankle or toe) over the contact that begins there in the clip
+ * (strike's first frame may have the other point still high). */
+static cub_q16 clip_floor(const cub_gait_walker *w, int foot, int p)
+{
+    cub_q16 lo = CUB_Q16_MAX;
+    int n = w->c->clip->frame_count;
+    for (int f = p; f < n && (f == p || phase_at(w, foot, f) != CUB_GAIT_OFF); f++) {
+        cub_q16 a = track(w, foot, 0)[f].y, t = track(w, foot, 1)[f].y;
+        if (a < lo) lo = a;
+        if (t < lo) lo = t;
+    }
+    return lo;
+}
+
+static cub_q16 foot_len(const cub_gait_walker *w, int foot)
+{
+    return w->c->foot[foot].length_mm;
+}
+
+/* Ground point (ankle, world) a clip point maps to, on the terrain. */
+static cub_vec3 ground_of(const cub_gait_walker *w, cub_vec3 u)
+{
+    cub_vec3 g = to_world(w, u);
+    g.y = cub_gait_height(w->t, g.x, g.z);
+    return g;
+}
+
+/* A foot at rest before the cycle starts: planted where the clip last put it. */
+static void plant_initial(cub_gait_walker *w, int foot)
+{
+    int p = w->a - 1;
+    while (p > 0 && phase_at(w, foot, p - 1) != CUB_GAIT_OFF)
+        p--;
+    cub_gait_walk_foot *ft = &w->feet[foot];
+    ft->plant_u = track(w, foot, 0)[p];
+    ft->floor_u = clip_floor(w, foot, p);
+    ft->hold_mm = ground_of(w, ft->plant_u);
+    ft->yaw_c = w->yaw_c;
+    ft->yaw_s = w->yaw_s;
+    ft->last_phase = phase_at(w, foot, w->a - 1);
+    ft->pin_u[0] = track(w, foot, 0)[w->a - 1];
+    ft->pin_u[1] = track(w, foot, 1)[w->a - 1];
+}
+
+void cub_gait_sole_points(cub_vec3 ankle_mm, cub_vec3 toe_mm, cub_q16 foot_mm, cub_q16 ankle_h_mm,
+                          cub_vec3 out[6])
+{
+    cub_vec3 heel0 = {ankle_mm.x, ankle_mm.y - ankle_h_mm, ankle_mm.z};
+    cub_vec3 d = cub_fx_vec3_sub(toe_mm, heel0);
+    cub_q16 l = cub_fx_vec3_length(d);
+    d = l ? cub_fx_vec3_scale(d, cub_fx_div(CUB_Q16_ONE, l)) : (cub_vec3){0, 0, CUB_Q16_ONE};
+    cub_vec3 side = unit_xz(cub_fx_vec3_cross(d, UP));
+    cub_q16 w = foot_mm / 5;
+    /* ours: the heel a quarter foot behind the ankle, the toe tip a third
+     * ahead of the ball (CMU's "toe" joint) */
+    out[0] = cub_fx_vec3_sub(heel0, cub_fx_vec3_scale(d, foot_mm / 4));
+    out[1] = cub_fx_vec3_add(toe_mm, cub_fx_vec3_scale(d, foot_mm / 3));
+    out[2] = cub_fx_vec3_add(out[0], cub_fx_vec3_scale(side, w));
+    out[3] = cub_fx_vec3_sub(out[0], cub_fx_vec3_scale(side, w));
+    out[4] = cub_fx_vec3_add(out[1], cub_fx_vec3_scale(side, w));
+    out[5] = cub_fx_vec3_sub(out[1], cub_fx_vec3_scale(side, w));
+}
+
+/* How far the sole dips below the terrain (>= 0). */
+static cub_q16 sole_dip(const cub_gait_walker *w, int foot, cub_vec3 ankle, cub_vec3 toe)
+{
+    cub_vec3 pts[6];
+    cub_gait_sole_points(ankle, toe, foot_len(w, foot), w->c->foot[foot].ankle_lift_mm, pts);
+    cub_q16 dip = 0;
+    for (int i = 0; i < 6; i++) {
+        cub_q16 d = cub_fx_sub(cub_gait_height(w->t, pts[i].x, pts[i].z), pts[i].y);
+        if (d > dip) dip = d;
+    }
+    return dip;
+}
+
+/* ---- planning at foot-off --------------------------------------------------- */
+
+/* Turn the heading toward the target by at most max_turn; the mapping is
+ * rebased at the root so the body does not jump. */
+static void steer(cub_gait_walker *w, cub_vec3 root_u, cub_vec3 target)
+{
+    cub_vec3 root = to_world(w, root_u);
+    cub_vec3 want = flat_xz(cub_fx_vec3_sub(target, root));
+    cub_q16 dist = cub_fx_vec3_length(want);
+    cub_q16 stride = cub_fx_vec3_length(flat_xz(w->cycle_u)) / 2;
+    w->arrived = dist <= stride;
+    if (w->arrived || dist == 0) return;
+    cub_vec3 h = {w->dir_x, 0, w->dir_z};
+    cub_vec3 u = unit_xz(want);
+    cub_q16 ang = cub_fx_atan2(cub_fx_vec3_cross(h, u).y, cub_fx_vec3_dot(h, u));
+    cub_q16 lim = w->p.max_turn_rad > 0 ? w->p.max_turn_rad : DEG(10);
+    ang = cub_fx_clamp(ang, -lim, lim);
+    if (ang == 0) return;
+    cub_q16 c = cub_fx_cos(ang), s = cub_fx_sin(ang);
+    cub_vec3 nh = unit_xz(yaw_rotate(c, s, h));
+    w->dir_x = nh.x;
+    w->dir_z = nh.z;
+    cub_q16 yc = cub_fx_sub(cub_fx_mul(w->yaw_c, c), cub_fx_mul(w->yaw_s, s));
+    cub_q16 ys = cub_fx_add(cub_fx_mul(w->yaw_s, c), cub_fx_mul(w->yaw_c, s));
+    w->origin_mm = root;
+    w->ref_u = root_u;
+    w->yaw_c = yc;
+    w->yaw_s = ys;
+}
+
+static cub_vec3 clip_dir(const cub_gait_walker *w)
+{
+    return unit_xz(w->cycle_u);
+}
+
+/* The planner from the other foot's foothold; the step's length and width
+ * are the clip's own for this step (so flat ground gives back the capture). */
+/* The step lengths the planner tries, as fractions of the clip's step. */
+typedef struct step_tries {
+    int n;
+    cub_q16 f[CUB_GAIT_MAX_TRIES];
+} step_tries;
+
+static cub_err plan(cub_gait_walker *w, int foot, const step_tries *tries, cub_vec3 *hold)
+{
+    const cub_gait_walk_foot *o = &w->feet[!foot];
+    cub_vec3 d0 = clip_dir(w);
+    cub_vec3 rel = flat_xz(cub_fx_vec3_sub(w->feet[foot].next_u, o->plant_u));
+    cub_q16 along = cub_fx_vec3_dot(rel, d0);
+    cub_q16 lateral = cub_fx_sub(cub_fx_mul(rel.x, d0.z), cub_fx_mul(rel.z, d0.x));
+    cub_gait_plan_params pp = {.steps = w->p.steps,
+                               .stride_mm = along > CUB_Q16_ONE ? along : CUB_Q16_ONE,
+                               .width_mm = cub_fx_abs(lateral),
+                               .foot_mm = foot_len(w, foot),
+                               .tries = tries->n};
+    for (int i = 0; i < tries->n; i++)
+        pp.factors[i] = tries->f[i];
+    /* The planner's "left" is a side label: left of the heading gets +width. */
+    cub_gait_start st = {o->hold_mm, lateral < 0, w->dir_x, w->dir_z};
+    cub_err e = cub_gait_plan_steps(w->t, &pp, &st, &w->plan);
+    if (e) return e;
+    *hold = w->plan.steps[0].foot_mm;
+    return CUB_OK;
+}
+
+static void report_plan(cub_gait_walker *w, int foot)
+{
+    for (int i = 0; i < w->plan.count; i++)
+        emit(w, (cub_gait_event){CUB_GAIT_EV_PLANNED, !foot, w->steps, i, 0,
+                                 w->plan.steps[i].foot_mm});
+    if (w->plan.backtracks)
+        emit(w, (cub_gait_event){CUB_GAIT_EV_BACKTRACKED, !foot, w->steps, 0, w->plan.backtracks,
+                                 w->plan.steps[0].foot_mm});
+}
+
+/* Plan the step and the swing to it. A swing that cannot clear the way
+ * to the foothold (the swing path gives up) sends the planner back: that
+ * step length is dropped and the plan made again [ours: the seed's
+ * planner tests footholds only]. The drops count as backtracks. */
+static cub_err plan_swing(cub_gait_walker *w, int foot, cub_vec3 *hold)
+{
+    /* the planner's default order: the nominal step, then shorter and
+     * longer ones alternately */
+    step_tries tries = {5, {CUB_Q16_ONE, 49152, 81920, 32768, 98304}};
+    cub_gait_walk_foot *ft = &w->feet[foot];
+    cub_gait_swing_params sp = w->p.swing;
+    sp.foot_mm = foot_len(w, foot) + foot_len(w, foot) / 3; /* to the sole box's toe tip */
+    int dropped = 0;
+    while (plan(w, foot, &tries, hold) == CUB_OK) {
+        ft->path = (cub_gait_swing){0};
+        if (!ft->rough || cub_gait_swing_path(w->t, &sp, ft->hold_mm, *hold, &ft->path) == CUB_OK) {
+            w->plan.backtracks += dropped;
+            report_plan(w, foot);
+            return CUB_OK;
+        }
+        int k = w->plan.steps[0].try_index;
+        for (int i = k; i + 1 < tries.n; i++)
+            tries.f[i] = tries.f[i + 1];
+        dropped++;
+        if (--tries.n == 0) break;
+    }
+    ft->path = (cub_gait_swing){0};
+    return CUB_ERR_EMPTY;
+}
+
+/* Foot-off at frame f, loop k: find where the clip lands it, plan, shape the swing. */
+static void begin_swing(cub_gait_walker *w, int foot, int f, int k, cub_vec3 target)
+{
+    cub_gait_walk_foot *ft = &w->feet[foot];
+    int p = f, kk = k, len = 0;
+    ft->key_u[0] = ft->key_u[1] = unwrap(w, track(w, foot, 0)[f], k);
+    ft->key_at[0] = ft->key_at[1] = 0;
+    while (phase_at(w, foot, p) == CUB_GAIT_OFF && len < w->b - w->a) {
+        cub_vec3 u = unwrap(w, track(w, foot, 0)[p], kk);
+        if (u.y > ft->key_u[1].y) {
+            ft->key_u[1] = u;
+            ft->key_at[1] = len;
+        }
+        p = next_frame(w, p, &kk);
+        len++;
+    }
+    ft->key_u[2] = unwrap(w, track(w, foot, 0)[p], kk);
+    ft->key_at[2] = len;
+    steer(w, unwrap(w, w->c->clip->root_mm[f], k), target);
+    ft->next_u = unwrap(w, track(w, foot, 0)[p], kk);
+    ft->next_floor = clip_floor(w, foot, p);
+    ft->swing_at = w->ticks;
+    ft->swing_len = len > 0 ? len : 1;
+    ft->swinging = 1;
+    ft->rough = !cub_gait_terrain_is_flat(w->t);
+    cub_vec3 hold;
+    if (plan_swing(w, foot, &hold)) {
+        hold = ground_of(w, ft->next_u);
+        emit(w, (cub_gait_event){CUB_GAIT_EV_BLOCKED, !foot, w->steps, 0, 0, hold});
+        /* the best path there is, cleared or not */
+        cub_gait_swing_params sp = w->p.swing;
+        cub_gait_swing_path(w->t, &sp, ft->hold_mm, hold, &ft->path);
+    }
+    ft->next_mm = hold;
+    ft->step = w->steps;
+    w->steps++;
+}
+
+static void land(cub_gait_walker *w, int foot)
+{
+    cub_gait_walk_foot *ft = &w->feet[foot];
+    ft->swinging = 0;
+    ft->hold_mm = ft->next_mm;
+    ft->plant_u = ft->next_u;
+    ft->floor_u = ft->next_floor;
+    ft->yaw_c = w->yaw_c;
+    ft->yaw_s = w->yaw_s;
+    ft->skate_u[0] = ft->skate_u[1] = (cub_vec3){0};
+    emit(w, (cub_gait_event){CUB_GAIT_EV_TAKEN, !foot, ft->step, 0, 0, ft->hold_mm});
+}
+
+/* ---- per frame targets --------------------------------------------------------- */
+
+/* Progress through the swing, Q16.16 in [0, 1]. */
+static cub_q16 swing_s(const cub_gait_walker *w, const cub_gait_walk_foot *ft)
+{
+    int64_t s = ((int64_t)(w->ticks - ft->swing_at) << 16) / ft->swing_len;
+    return cub_fx_clamp((cub_q16)s, 0, CUB_Q16_ONE);
+}
+
+/* A planted point (0 ankle, 1 toe): on its foothold, moved as the clip
+ * rolls it, less the clip's own slide in stance (a flat foot is pinned). */
+static cub_vec3 planted(const cub_gait_walker *w, const cub_gait_walk_foot *ft, int pt, cub_vec3 u)
+{
+    if (ft->last_phase == CUB_GAIT_STANCE && !ft->swinging) u = ft->pin_u[pt];
+    cub_vec3 rel = cub_fx_vec3_sub(cub_fx_vec3_sub(u, ft->plant_u), ft->skate_u[pt]);
+    cub_vec3 d = yaw_rotate(ft->yaw_c, ft->yaw_s, flat_xz(rel));
+    return cub_fx_vec3_add(flat_xz(ft->hold_mm), d);
+}
+
+/* A swinging point: its planted places at both ends, blended by s. */
+static cub_vec3 swinging(const cub_gait_walker *w, const cub_gait_walk_foot *ft, int pt,
+                         cub_vec3 u, cub_q16 s)
+{
+    cub_vec3 from = planted(w, ft, pt, u);
+    cub_vec3 d = yaw_rotate(w->yaw_c, w->yaw_s, flat_xz(cub_fx_vec3_sub(u, ft->next_u)));
+    cub_vec3 to = cub_fx_vec3_add(flat_xz(ft->next_mm), d);
+    return cub_fx_vec3_lerp(from, to, s);
+}
+
+/* The height a point keeps over the ground: the clip's over its floor
+ * (never below it); on rough ground, in the swing, over the raised
+ * Bézier's height where that is higher. (Adding only the point's resting
+ * height to the Bézier, not its captured swing height, was tried: the
+ * foot then grazed the log, 0 mm, and turned 20 degrees in a frame.) */
+static cub_q16 point_y(const cub_gait_walker *w, const cub_gait_walk_foot *ft, cub_vec3 at,
+                       cub_q16 clip_y, cub_q16 s)
+{
+    cub_q16 floor = ft->swinging ? cub_fx_lerp(ft->floor_u, ft->next_floor, s) : ft->floor_u;
+    cub_q16 over = cub_fx_sub(clip_y, floor);
+    if (over < 0) over = 0;
+    cub_q16 ground = cub_gait_height(w->t, at.x, at.z);
+    if (ft->swinging && ft->rough) {
+        cub_q16 path = cub_gait_bezier4(ft->path.p, s).y;
+        if (path > ground) ground = path;
+    }
+    return cub_fx_add(ground, over);
+}
+
+/* The ankle at swing key k (its place blended as any swinging point's). */
+static cub_vec3 key_point(const cub_gait_walker *w, const cub_gait_walk_foot *ft, int k)
+{
+    cub_q16 s = (cub_q16)(((int64_t)ft->key_at[k] << 16) / ft->swing_len);
+    cub_vec3 a = swinging(w, ft, 0, ft->key_u[k], s);
+    a.y = point_y(w, ft, a, ft->key_u[k].y, s);
+    return a;
+}
+
+/* Flat ground (the seed's rule): the swinging ankle on straight segments
+ * between its places at the swing's key frames (foot-off, the apex
+ * [ours: a swing has no key frame between off and strike, and a straight
+ * off-strike line would drag the foot], strike). */
+static cub_vec3 flat_swing(const cub_gait_walker *w, const cub_gait_walk_foot *ft)
+{
+    int t = w->ticks - ft->swing_at;
+    int k = t >= ft->key_at[1] ? 1 : 0;
+    int span = ft->key_at[k + 1] - ft->key_at[k];
+    cub_q16 s = span > 0 ? (cub_q16)(((int64_t)(t - ft->key_at[k]) << 16) / span) : 0;
+    return cub_fx_vec3_lerp(key_point(w, ft, k), key_point(w, ft, k + 1), cub_fx_clamp(s, 0, CUB_Q16_ONE));
+}
+
+static void foot_targets(cub_gait_walker *w, int foot, int f, int k)
+{
+    cub_gait_walk_foot *ft = &w->feet[foot];
+    cub_q16 s = ft->swinging ? swing_s(w, ft) : 0;
+    cub_vec3 au = unwrap(w, track(w, foot, 0)[f], k), tu = unwrap(w, track(w, foot, 1)[f], k);
+    cub_vec3 a = ft->swinging ? swinging(w, ft, 0, au, s) : planted(w, ft, 0, au);
+    cub_vec3 t = ft->swinging ? swinging(w, ft, 1, tu, s) : planted(w, ft, 1, tu);
+    a.y = point_y(w, ft, a, au.y, s);
+    t.y = point_y(w, ft, t, tu.y, s);
+    if (ft->swinging && !ft->rough && w->p.clip_swing == 0) {
+        cub_vec3 seg = flat_swing(w, ft);
+        t = cub_fx_vec3_add(t, cub_fx_vec3_sub(seg, a)); /* the foot moves with its ankle */
+        a = seg;
+    }
+    /* The toe at the skeleton's foot length along the aimed direction:
+     * the pose's toe lands where the sole guard looks. */
+    const cub_skeleton *sk = w->c->clip->skel;
+    cub_q16 len = cub_fx_vec3_length(sk->joints[w->c->toe[foot]].offset_mm);
+    cub_vec3 d = cub_fx_vec3_sub(t, a);
+    cub_q16 dl = cub_fx_vec3_length(d);
+    if (dl > 0 && len > 0) t = cub_fx_vec3_add(a, cub_fx_vec3_scale(d, cub_fx_div(len, dl)));
+    /* The sole guard: the whole foot lifts until no sole point is below. */
+    cub_q16 dip = sole_dip(w, foot, a, t);
+    a.y += dip;
+    t.y += dip;
+    ft->ankle_mm = a;
+    ft->toe_mm = t;
+}
+
+/* The pelvis height: the clip's over the mean shift of the two feet's
+ * ground from the clip's floor. */
+static cub_q16 ground_shift(const cub_gait_walker *w, int foot)
+{
+    const cub_gait_walk_foot *ft = &w->feet[foot];
+    cub_q16 from = cub_fx_sub(ft->hold_mm.y, ft->floor_u);
+    if (!ft->swinging) return from;
+    cub_q16 to = cub_fx_sub(ft->next_mm.y, ft->next_floor);
+    return cub_fx_lerp(from, to, swing_s(w, ft));
+}
+
+/* ---- the pose --------------------------------------------------------------------- */
+
+/* The captured cycle does not close: frame b is not frame a. Each joint
+ * is turned, and the root raised, by a growing share of the mismatch
+ * across the cycle, so the loop joins without a pop [ours]. */
+static void close_cycle(cub_gait_walker *w, int f)
+{
+    const cub_clip *c = w->c->clip;
+    int nj = c->skel->joint_count;
+    cub_q16 s = (cub_q16)(((int64_t)(f - w->a) << 16) / (w->b - w->a));
+    for (int j = 0; j < nj; j++) {
+        cub_quat delta = cub_fx_quat_mul(cub_fx_quat_conj(c->rot[w->b * nj + j]), c->rot[w->a * nj + j]);
+        cub_quat part = cub_fx_quat_nlerp(cub_fx_quat_identity(), delta, s);
+        w->pose.rot[j] = cub_fx_quat_normalize(cub_fx_quat_mul(w->pose.rot[j], part));
+    }
+    w->pose.root_mm.y += cub_fx_mul(c->root_mm[w->a].y - c->root_mm[w->b].y, s);
+}
+
+static void place_root(cub_gait_walker *w, int f, int k)
+{
+    const cub_clip *c = w->c->clip;
+    cub_motion_clip_get_frame(c, f, &w->pose);
+    close_cycle(w, f);
+    cub_vec3 ru = unwrap(w, c->root_mm[f], k);
+    ru.y = w->pose.root_mm.y;
+    cub_vec3 r = to_world(w, ru);
+    r.y = ru.y + (ground_shift(w, 0) + ground_shift(w, 1)) / 2;
+    w->pose.root_mm = r;
+    cub_q16 ang = cub_fx_atan2(w->yaw_s, w->yaw_c);
+    cub_quat yaw = cub_fx_quat_from_axis_angle(UP, ang);
+    w->pose.rot[0] = cub_fx_quat_normalize(cub_fx_quat_mul(yaw, w->pose.rot[0]));
+}
+
+static cub_vec3 ahead(const cub_gait_walker *w)
+{
+    return (cub_vec3){w->dir_x, 0, w->dir_z};
+}
+
+static cub_err solve_leg(cub_gait_walker *w, int foot)
+{
+    cub_gait_walk_foot *ft = &w->feet[foot];
+    cub_gait_leg_target t = {w->c->ankle[foot], w->c->toe[foot], ft->ankle_mm, ft->toe_mm, ahead(w)};
+    cub_err e = cub_gait_leg_apply(w->c->clip->skel, &w->pose, &t, &w->p.limits, &ft->leg);
+    /* The limits may have turned the foot into the ground, or the leg fallen
+     * short: once more, the whole foot raised by what still dips. */
+    cub_q16 dip = e ? 0 : sole_dip(w, foot, ft->leg.ankle_mm, ft->leg.toe_mm);
+    if (dip <= 0) return e;
+    ft->ankle_mm.y += dip;
+    ft->toe_mm.y += dip;
+    t.ankle_mm = ft->ankle_mm;
+    t.toe_mm = ft->toe_mm;
+    return cub_gait_leg_apply(w->c->clip->skel, &w->pose, &t, &w->p.limits, &ft->leg);
+}
+
+static cub_err pose_frame(cub_gait_walker *w, int f, int k)
+{
+    place_root(w, f, k);
+    cub_gait_leg legs[2];
+    const cub_skeleton *sk = w->c->clip->skel;
+    cub_gait_pose_leg(sk, &w->pose, w->c->ankle[0], ahead(w), &legs[0]);
+    cub_gait_pose_leg(sk, &w->pose, w->c->ankle[1], ahead(w), &legs[1]);
+    cub_vec3 targets[2] = {w->feet[0].ankle_mm, w->feet[1].ankle_mm};
+    w->drop_mm = cub_gait_pelvis_drop(legs, &w->p.limits, targets);
+    w->pose.root_mm.y -= w->drop_mm;
+    cub_err e = solve_leg(w, 0);
+    return e ? e : solve_leg(w, 1);
+}
+
+/* Stance pins the foot where it began; leaving stance adds the clip's
+ * slide meanwhile to what the foot's later roll discounts. */
+static void pin(cub_gait_walker *w, int foot, uint8_t ph, int f, int k)
+{
+    cub_gait_walk_foot *ft = &w->feet[foot];
+    bool was = ft->last_phase == CUB_GAIT_STANCE, is = ph == CUB_GAIT_STANCE;
+    for (int pt = 0; pt < 2; pt++) {
+        cub_vec3 u = unwrap(w, track(w, foot, pt)[f], k);
+        if (is && !was) ft->pin_u[pt] = u;
+        if (was && !is)
+            ft->skate_u[pt] =
+                cub_fx_vec3_add(ft->skate_u[pt], flat_xz(cub_fx_vec3_sub(u, ft->pin_u[pt])));
+    }
+}
+
+/* ---- the public calls ------------------------------------------------------------ */
+
+cub_err cub_gait_walker_init(cub_gait_walker *w, const cub_gait_walk_clip *c,
+                             const cub_gait_terrain *t, const cub_gait_walk_params *p)
+{
+    if (!w || !c || !t || !p || !c->clip || !c->clip->skel) return CUB_ERR_ARG;
+    for (int i = 0; i < 2; i++)
+        if (!c->ankle_mm[i] || !c->toe_mm[i] || !c->phase[i] || c->foot[i].length_mm <= 0)
+            return CUB_ERR_ARG;
+    *w = (cub_gait_walker){.c = c, .t = t, .p = *p};
+    if (!find_cycle(w)) return CUB_ERR_FORMAT;
+    const cub_vec3 *root = c->clip->root_mm;
+    w->cycle_u = flat_xz(cub_fx_vec3_sub(root[w->b], root[w->a]));
+    cub_vec3 d0 = clip_dir(w);
+    cub_vec3 h = (p->dir_x || p->dir_z) ? unit_xz((cub_vec3){p->dir_x, 0, p->dir_z}) : d0;
+    w->dir_x = h.x;
+    w->dir_z = h.z;
+    /* yaw taking d0 to h, in yaw_rotate's sense */
+    w->yaw_c = cub_fx_add(cub_fx_mul(d0.x, h.x), cub_fx_mul(d0.z, h.z));
+    w->yaw_s = cub_fx_sub(cub_fx_mul(d0.z, h.x), cub_fx_mul(d0.x, h.z));
+    w->origin_mm = flat_xz(p->start_mm);
+    w->ref_u = root[w->a];
+    w->frame = w->a;
+    plant_initial(w, 0);
+    plant_initial(w, 1);
+    return CUB_OK;
+}
+
+cub_err cub_gait_walker_step(cub_gait_walker *w, cub_vec3 target_mm, const cub_pose **out)
+{
+    if (!w || !out) return CUB_ERR_ARG;
+    int f = w->frame, k = w->loops;
+    for (int foot = 0; foot < 2; foot++) {
+        uint8_t ph = phase_at(w, foot, f);
+        cub_gait_walk_foot *ft = &w->feet[foot];
+        if (ph == CUB_GAIT_OFF && !ft->swinging) begin_swing(w, foot, f, k, target_mm);
+        else if (ph != CUB_GAIT_OFF && ft->swinging) land(w, foot);
+        pin(w, foot, ph, f, k);
+        ft->last_phase = ph;
+    }
+    foot_targets(w, 0, f, k);
+    foot_targets(w, 1, f, k);
+    cub_err e = pose_frame(w, f, k);
+    w->frame = next_frame(w, f, &w->loops);
+    w->ticks++;
+    *out = &w->pose;
+    return e;
+}

@@ -1,0 +1,35 @@
+#!/bin/bash
+# cubtool gait-eval on the tuning clip (CMU 02_01) with its sanity bounds
+# (--check: penetration, slide, clearance, foot turn, flat error, steps),
+# and cubtool gait's refusals of bad input (a terrain file too). Skipped (77)
+# without the data.
+set -u
+tool=$1 data=$2 out=$3
+[ -r "$data/mocap/cmu/02_01.bvh" ] || { echo "skipped: no CMU 02_01 under $data"; exit 77; }
+"$tool" gait-eval --clips 02_01 --frames 480 --data "$data" --check || exit 1
+fail=0
+refuse() { # expected exit code, a word the message must hold, the arguments
+    local want=$1 word=$2
+    shift 2
+    local msg
+    msg=$("$tool" gait "$@" 2>&1 >/dev/null)
+    local rc=$?
+    if [ $rc -ne "$want" ] || ! grep -q -- "$word" <<<"$msg"; then
+        echo "FAIL: cubtool gait $*: exit $rc, said: $msg"
+        fail=1
+    fi
+}
+refuse 1 "no such file" nosuch_clip --data "$data" --frames "$out"
+refuse 2 "unknown terrain" 02_01 --data "$data" --terrain lava --frames "$out"
+refuse 2 "unknown obstacle" 02_01 --data "$data" --obstacle tree --frames "$out"
+refuse 2 "--frames" 02_01 --data "$data"
+# A terrain file: a bad one is refused at its line, a good one walked on.
+mkdir -p "$out"
+printf 'grid 2 2 500 -500 0\nrow 0 0\nrow 0 oops\n' >"$out/bad.terrain"
+refuse 1 "bad.terrain:3: 'oops' is not a number" 02_01 --data "$data" --terrain "$out/bad.terrain" --frames "$out"
+printf 'grid 2 2 500 -500 0\nrow 0 0\n' >"$out/short.terrain"
+refuse 1 "the grid has 1 rows of the 2" 02_01 --data "$data" --terrain "$out/short.terrain" --frames "$out"
+printf '# a ramp and a log\ngrid 2 2 4000 -4000 -2000\nrow 0 0\nrow 300 300\nbox -1000 0 1425 1000 150 1575\n' >"$out/ramp.terrain"
+"$tool" gait 02_01 --data "$data" --terrain "$out/ramp.terrain" --frames "$out/ramp" --count 3 >/dev/null || fail=1
+[ -s "$out/ramp/frame_0002.png" ] || { echo "FAIL: no frames from a terrain file"; fail=1; }
+exit $fail
