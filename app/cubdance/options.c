@@ -2,6 +2,8 @@
  * that each error can say which option and why. */
 #include "options.h"
 
+#include "cub/floor_file.h"
+
 #include <errno.h>
 #include <stdlib.h>
 #include <string.h>
@@ -285,6 +287,21 @@ static int default_forest(cub_app_options *o, const char *assets, FILE *err)
     return 0;
 }
 
+/* The forest floor (cub/floor_file.h): the assets' own when they have
+ * one; assets without one (an old tree) keep the flat meadow and say so. */
+static int default_floor(cub_app_options *o, const char *assets, FILE *err)
+{
+    const char *p = join(o, 7, assets, CUB_FLOOR_ASSET, "");
+    if (!p) {
+        fprintf(err, "cubdance: assets_dir %s: path too long\n", assets);
+        return -1;
+    }
+    FILE *f = fopen(p, "rb");
+    if (f) fclose(f), o->floor_path = p;
+    else fprintf(err, "cubdance: no floor at %s: the coach stands on a flat meadow\n", p);
+    return 0;
+}
+
 /* The coach's name (--coach, else the config's coach=): letters, digits
  * and '_', and a character file in the assets; -1 with a message naming
  * where the name came from. */
@@ -347,6 +364,7 @@ static int apply_assets(cub_app_options *o, const cub_boxconf *c, const char *bu
         return -1;
     }
     if (default_forest(o, assets, err)) return -1;
+    if (default_floor(o, assets, err)) return -1;
     if (!o->song_path && c->song[0]) {
         char songs[CUB_BOXCONF_PATH_MAX + 16];
         snprintf(songs, sizeof songs, "%s%s", c->songs_dir[0] ? c->songs_dir : assets,
