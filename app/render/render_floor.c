@@ -4,7 +4,7 @@
 #include <math.h>
 
 #define PI_F 3.14159265f
-#define LOG_SEGMENTS 14
+#define LOG_SEGMENTS 16
 #define ROCK_SEGMENTS 7
 #define MAX_LINES (CUB_FLOOR_MAX_SIDE * CUB_RENDER_FLOOR_SUB + 2)
 
@@ -178,7 +178,8 @@ void cub_render_floor_thing(cub_render_mesh *m, const cub_floor *f, int k,
                             const cub_gait_terrain *t)
 {
     const cub_floor_thing *th = &f->things[k];
-    float base = cub_render_floor_y(t, (float)th->x_mm, (float)th->z_mm);
+    if (k >= t->obstacle_count) return;
+    float base = mm(t->obstacles[k].min_mm.y);
     if (th->kind == CUB_FLOOR_LOG) log_mesh(m, th, base);
     else rock_mesh(m, th, base);
 }

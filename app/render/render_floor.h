@@ -24,7 +24,8 @@ float cub_render_floor_y(const cub_gait_terrain *t, float x_mm, float z_mm);
  * CUB_RENDER_FLOOR_DROP_MM below the terrain; rgb its colour. */
 void cub_render_floor_ground(cub_render_mesh *m, const cub_floor *f, const cub_gait_terrain *t,
                              const float rgb[3]);
-/* Thing k of f on the ground of t (its top where the terrain's box has it). */
+/* Thing k of f resting where t's obstacle k (cub_floor_terrain) has it:
+ * on the box's bottom, its top at the box's top. */
 void cub_render_floor_thing(cub_render_mesh *m, const cub_floor *f, int k,
                             const cub_gait_terrain *t);
 

@@ -62,11 +62,25 @@ static void ground(const cub_floor *f, cub_gait_terrain *t)
     t->origin_z_mm = CUB_Q16_INT(f->origin_z_mm);
 }
 
+/* The lowest ground under a footprint (a 5 x 5 lattice over it): a thing
+ * rests there, sunk into higher ground rather than floating over lower. */
+static cub_q16 rest_height(const cub_gait_terrain *t, cub_q16 x, cub_q16 z, cub_q16 hx,
+                           cub_q16 hz)
+{
+    cub_q16 low = cub_gait_ground_height(t, x, z);
+    for (int i = -2; i <= 2; i++)
+        for (int j = -2; j <= 2; j++) {
+            cub_q16 h = cub_gait_ground_height(t, x + i * (hx / 2), z + j * (hz / 2));
+            low = h < low ? h : low;
+        }
+    return low;
+}
+
 static cub_gait_box thing_box(const cub_gait_terrain *t, const cub_floor_thing *th)
 {
     cub_q16 x = CUB_Q16_INT(th->x_mm), z = CUB_Q16_INT(th->z_mm);
     cub_q16 hx = CUB_Q16_INT(th->half_x_mm), hz = CUB_Q16_INT(th->half_z_mm);
-    cub_q16 base = cub_gait_ground_height(t, x, z);
+    cub_q16 base = rest_height(t, x, z, hx, hz);
     return (cub_gait_box){.min_mm = {x - hx, base, z - hz},
                           .max_mm = {x + hx, base + CUB_Q16_INT(th->height_mm), z + hz}};
 }

@@ -30,13 +30,13 @@ typedef enum cub_floor_kind {
     CUB_FLOOR_STONE    /* a rock resting on the ground */
 } cub_floor_kind;
 
-/* A thing on the ground, resting where the ground is at its middle. */
+/* A thing on the ground, resting on the lowest ground under its footprint. */
 typedef struct cub_floor_thing {
     cub_floor_kind kind;
     int32_t x_mm, z_mm;           /* the middle of its footprint */
     int32_t half_x_mm, half_z_mm; /* its footprint's half sides; a log lies along the longer,
                                      its radius is the shorter */
-    int32_t height_mm;            /* its top over the ground at its middle (a log: 2 radii) */
+    int32_t height_mm;            /* its top over where it rests (a log: 2 radii) */
 } cub_floor_thing;
 
 typedef struct cub_floor {
@@ -54,8 +54,8 @@ typedef struct cub_floor {
  * sample too high, a thing too small or too large or off the extent). */
 cub_err cub_floor_check(const cub_floor *f);
 /* The terrain the gait planner and the renderer read: the heightfield
- * (pointing into f, which must outlive t) and one box obstacle per thing,
- * from the ground at its middle to its top. CUB_ERR_ARG as cub_floor_check. */
+ * (pointing into f, which must outlive t) and box obstacle k per thing k,
+ * from the lowest ground under its footprint to its top. CUB_ERR_ARG as cub_floor_check. */
 cub_err cub_floor_terrain(const cub_floor *f, cub_gait_terrain *t);
 
 #endif
