@@ -70,6 +70,8 @@ static void usage(FILE *f, const char *prog)
 "  --forest FILE|off      the body-part forest the tracker also reads (default\n"
 "                         " CUB_ASSETS_DIR "/forest/body.forest, docs/forest.md):\n"
 "                         its confident joints replace the tracker's unsure ones\n"
+"  --floor FILE|off       the forest floor the coach stands on (default\n"
+"                         " CUB_ASSETS_DIR "/floor/forest.floor; off: a flat meadow)\n"
 "  --voice FILE           the bear's spoken words (default " CUB_VOICE_PATH ");\n"
 "                         speech=0 in the config keeps it quiet\n"
 "  --attract-after S      attract after S seconds without interaction\n"
@@ -187,6 +189,7 @@ static int apply_valued(cub_app_options *o, const char *opt, const char *val, FI
                             : !strcmp(opt, "--character")    ? &o->character_path
                             : !strcmp(opt, "--coach")        ? &o->coach
                             : !strcmp(opt, "--forest")       ? &o->forest_path
+                            : !strcmp(opt, "--floor")        ? &o->floor_path
                             : !strcmp(opt, "--font")         ? &o->font_path
                             : !strcmp(opt, "--voice")        ? &o->voice_path
                                                              : NULL;
@@ -202,7 +205,7 @@ static int takes_value(const char *opt)
                                          "--depth", "--frames", "--replay", "--buttons",
                                          "--gpio-config", "--config", "--audio-driver", "--clip", "--log",
                                          "--song", "--timeline", "--library", "--tags",
-                                         "--character", "--coach", "--forest", "--font", "--voice", "--attract-after", "--doze-after",
+                                         "--character", "--coach", "--forest", "--floor", "--font", "--voice", "--attract-after", "--doze-after",
                                          "--music-clock-scale", "--record"};
     for (size_t i = 0; i < sizeof valued / sizeof *valued; i++)
         if (!strcmp(opt, valued[i])) return 1;
@@ -287,10 +290,15 @@ static int default_forest(cub_app_options *o, const char *assets, FILE *err)
     return 0;
 }
 
-/* The forest floor (cub/floor_file.h): the assets' own when they have
- * one; assets without one (an old tree) keep the flat meadow and say so. */
+/* The forest floor (cub/floor_file.h): --floor FILE, else the assets'
+ * own when they have one; --floor off or assets without one (an old tree)
+ * keep the flat meadow, the latter saying so. */
 static int default_floor(cub_app_options *o, const char *assets, FILE *err)
 {
+    if (o->floor_path) {
+        if (!strcmp(o->floor_path, "off")) o->floor_path = NULL;
+        return 0;
+    }
     const char *p = join(o, 7, assets, CUB_FLOOR_ASSET, "");
     if (!p) {
         fprintf(err, "cubdance: assets_dir %s: path too long\n", assets);

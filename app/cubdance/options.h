@@ -32,8 +32,8 @@ typedef struct cub_app_options {
     const char *coach;          /* --coach NAME: the three above by name (NULL: the config's) */
     const char *forest_path;    /* the body-part forest the tracker takes joints from (default
                                  * assets/forest/body.forest when there; "off": none), or NULL */
-    const char *floor_path;     /* the forest floor the coach stands on (default
-                                 * assets/floor/forest.floor when there), or NULL: the meadow */
+    const char *floor_path;     /* the forest floor the coach stands on (--floor; default
+                                 * assets/floor/forest.floor when there; "off"), or NULL: the meadow */
     double attract_after_s;     /* 0 = the coach's default */
     double doze_after_s;        /* 0 = the coach's default */
     double music_clock_scale;   /* 1 = true; 0.95 / 1.05 simulate a drifting audio clock */

@@ -156,6 +156,8 @@ def base_of(kind, d, shared, build=""):
         return read(os.path.join(SRC, "tests", "labels", "skeltrack_labels.txt")), "bad_labels.txt"
     if kind == "trc":  # a small marker file, made by tests/fuzz/make_seeds.py
         return read(os.path.join(SRC, "tests", "fuzz", "seeds_trc", "small_mm.trc")), "bad.trc"
+    if kind == "floor":  # the box's forest floor (the format: cub/floor_file.h)
+        return read(os.path.join(ASSETS, "floor", "forest.floor")), "bad.floor"
     if kind == "keyscript":  # cubtool play's scripted keys (the format: cub/keyscript.h)
         write(os.path.join(d, "hello.bvh"), bear_bvh)
         return b"# pause, select B, move it, numbers, zoom\n0 Space\n2 2 L L\n4 N\n6 Up Up\n", "bad.keys"
