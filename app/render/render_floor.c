@@ -6,7 +6,6 @@
 #define PI_F 3.14159265f
 #define LOG_SEGMENTS 16
 #define ROCK_SEGMENTS 7
-#define MAX_LINES (CUB_FLOOR_MAX_SIDE * CUB_RENDER_FLOOR_SUB + 2)
 
 static const float BARK_RGB[3] = {0.45f, 0.30f, 0.18f};
 static const float CUT_RGB[3] = {0.82f, 0.66f, 0.44f};  /* the sawn ends */
@@ -52,7 +51,7 @@ static void ground_normal(const cub_gait_terrain *t, float d, float x, float z, 
 void cub_render_floor_ground(cub_render_mesh *m, const cub_floor *f, const cub_gait_terrain *t,
                              const float rgb[3])
 {
-    float xs[MAX_LINES], zs[MAX_LINES];
+    float xs[CUB_RENDER_FLOOR_MAX_LINES], zs[CUB_RENDER_FLOOR_MAX_LINES];
     int nx = lines(f->origin_x_mm, f->cell_mm, f->nx, xs);
     int nz = lines(f->origin_z_mm, f->cell_mm, f->nz, zs);
     int first = cub_render_mesh_room(m, nx * nz, (nx - 1) * (nz - 1) * 6);
@@ -122,11 +121,12 @@ static void log_mesh(cub_render_mesh *m, const cub_floor_thing *th, float base)
     }
 }
 
-/* A fixed lumpiness per corner (0.8 .. 1.1 of the radius): every stone
- * looks hewn, and the same on every frame and machine. */
+/* A fixed lumpiness per corner (0.74 .. 1 of the half side): every stone
+ * looks hewn, the same on every frame and machine, and stays within the
+ * footprint the planner steps around. */
 static float lump(int k, int s)
 {
-    static const float L[] = {1.0f, 0.86f, 1.08f, 0.93f, 0.81f, 1.04f, 0.9f, 1.1f, 0.84f, 0.97f};
+    static const float L[] = {0.91f, 0.78f, 0.98f, 0.85f, 0.74f, 0.95f, 0.82f, 1.0f, 0.76f, 0.88f};
     return L[(3 * k + 7 * s) % 10];
 }
 
@@ -158,7 +158,7 @@ static void rock_mesh(cub_render_mesh *m, const cub_floor_thing *th, float base)
     float h = (float)th->height_mm, rx = (float)th->half_x_mm, rz = (float)th->half_z_mm;
     float ring[2][ROCK_SEGMENTS][3], top[3] = {(float)th->x_mm, base + h, (float)th->z_mm};
     const float heart[3] = {top[0], base + 0.3f * h, top[2]};
-    const float share[2] = {1.0f, 0.7f}, lift[2] = {-0.15f, 0.6f};
+    const float share[2] = {1.0f, 0.75f}, lift[2] = {-0.15f, 0.6f};
     for (int k = 0; k < 2; k++)
         for (int s = 0; s < S; s++) {
             float th_s = 2.0f * PI_F * ((float)s + 0.5f * (float)k) / S, l = lump(k, s) * share[k];

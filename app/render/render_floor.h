@@ -14,7 +14,9 @@
 #define CUB_RENDER_FLOOR_DROP_MM 2.0f
 /* Heightfield vertices per grid cell along x and z: the bilinear ground
  * between samples, near enough in flat triangles. */
-#define CUB_RENDER_FLOOR_SUB 2
+#define CUB_RENDER_FLOOR_SUB 3
+/* Vertex lines along x or z at most: the grid's, and one past each end. */
+#define CUB_RENDER_FLOOR_MAX_LINES ((CUB_FLOOR_MAX_SIDE - 1) * CUB_RENDER_FLOOR_SUB + 3)
 /* How far past the grid the ground goes on (its edge heights held). */
 #define CUB_RENDER_FLOOR_BEYOND_MM 20000.0f
 

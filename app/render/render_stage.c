@@ -12,9 +12,11 @@
 #define GROUND_RADIUS_MM 30000.0f
 #define STAGE_VERTS 12000
 #define STAGE_INDICES 66000
-/* With a floor: its heightfield (at most 98 x 98 lines) and things on top. */
-#define FLOOR_VERTS (STAGE_VERTS + 98 * 98 + 2000)
-#define FLOOR_INDICES (STAGE_INDICES + 97 * 97 * 6 + 6000)
+/* With a floor: its heightfield and the things on it (at most 12 x 63
+ * vertices and 12 x 192 indices). */
+#define FLOOR_LINES CUB_RENDER_FLOOR_MAX_LINES
+#define FLOOR_VERTS (STAGE_VERTS + FLOOR_LINES * FLOOR_LINES + 1000)
+#define FLOOR_INDICES (STAGE_INDICES + (FLOOR_LINES - 1) * (FLOOR_LINES - 1) * 6 + 3000)
 
 static const float GRASS_RGB[3] = {0.50f, 0.76f, 0.35f};
 static const float TRUNK_RGB[3] = {0.55f, 0.36f, 0.20f};

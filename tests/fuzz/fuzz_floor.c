@@ -30,7 +30,7 @@ static void check_terrain(const cub_floor *f, const cub_gait_terrain *t)
 static void check_mesh(const cub_floor *f, const cub_gait_terrain *t)
 {
     static cub_render_mesh m;
-    if (!cub_render_mesh_init(&m, 20000, 120000)) abort();
+    if (!cub_render_mesh_init(&m, 25000, 130000)) abort();
     cub_render_floor_ground(&m, f, t, (const float[3]){0.5f, 0.7f, 0.3f});
     int ground = m.nv;
     for (int k = 0; k < f->thing_count; k++)

@@ -693,7 +693,7 @@ static void test_winged_bear_mid_flap_matches_golden(void **state)
 /* ---- the forest floor (issue 24) ------------------------------------------- */
 
 /* Where the bear stands in bear_on_forest_floor: on a hillock of the
- * shipped floor (184 mm at this sample), 3.6 m from its dancing spot. */
+ * shipped floor (177 mm at this sample), 3.6 m from its dancing spot. */
 #define FLOOR_SPOT_X 3000.0f
 #define FLOOR_SPOT_Z (-2000.0f)
 
