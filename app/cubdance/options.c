@@ -2,8 +2,6 @@
  * that each error can say which option and why. */
 #include "options.h"
 
-#include "cub/floor_file.h"
-
 #include <errno.h>
 #include <stdlib.h>
 #include <string.h>
@@ -299,7 +297,7 @@ static int default_floor(cub_app_options *o, const char *assets, FILE *err)
         if (!strcmp(o->floor_path, "off")) o->floor_path = NULL;
         return 0;
     }
-    const char *p = join(o, 7, assets, CUB_FLOOR_ASSET, "");
+    const char *p = join(o, 7, assets, "floor/forest.floor", ""); /* CUB_FLOOR_ASSET */
     if (!p) {
         fprintf(err, "cubdance: assets_dir %s: path too long\n", assets);
         return -1;
