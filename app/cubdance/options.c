@@ -267,45 +267,44 @@ static const char *join(cub_app_options *o, int slot, const char *dir, const cha
     return n < 0 || (size_t)n >= sizeof o->path_buf[slot] ? NULL : buf;
 }
 
-/* The tracker's body-part forest (docs/forest.md, "In the box": it
- * measured better on every held-out fold): the assets' own unless --forest
- * FILE or --forest off; assets without one (an old tree) run the tracker
- * alone and say so. */
-static int default_forest(cub_app_options *o, const char *assets, FILE *err)
+/* An asset the box runs without: where it is by default under the assets,
+ * its name in the message, and what runs without it. */
+typedef struct optional_asset {
+    int slot; /* of o->path_buf */
+    const char *rel, *what, *without;
+} optional_asset;
+
+/* *path as given (--forest FILE, "off": none), else the assets' own when
+ * it is there; assets without it (an old tree) run without it and say so. */
+static int default_optional(cub_app_options *o, const char *assets, const optional_asset *a,
+                            const char **path, FILE *err)
 {
-    if (o->forest_path) {
-        if (!strcmp(o->forest_path, "off")) o->forest_path = NULL;
+    if (*path) {
+        if (!strcmp(*path, "off")) *path = NULL;
         return 0;
     }
-    const char *p = join(o, 6, assets, "forest/body.forest", "");
+    const char *p = join(o, a->slot, assets, a->rel, "");
     if (!p) {
         fprintf(err, "cubdance: assets_dir %s: path too long\n", assets);
         return -1;
     }
     FILE *f = fopen(p, "rb");
-    if (f) fclose(f), o->forest_path = p;
-    else fprintf(err, "cubdance: no forest at %s: the tracker runs without it\n", p);
+    if (f) fclose(f), *path = p;
+    else fprintf(err, "cubdance: no %s at %s: %s\n", a->what, p, a->without);
     return 0;
 }
 
-/* The forest floor (cub/floor_file.h): --floor FILE, else the assets'
- * own when they have one; --floor off or assets without one (an old tree)
- * keep the flat meadow, the latter saying so. */
-static int default_floor(cub_app_options *o, const char *assets, FILE *err)
+/* The tracker's body-part forest (docs/forest.md, "In the box": it
+ * measured better on every held-out fold) and the forest floor the coach
+ * stands on (cub/floor_file.h, CUB_FLOOR_ASSET; docs/floor.md). */
+static int default_forests(cub_app_options *o, const char *assets, FILE *err)
 {
-    if (o->floor_path) {
-        if (!strcmp(o->floor_path, "off")) o->floor_path = NULL;
-        return 0;
-    }
-    const char *p = join(o, 7, assets, "floor/forest.floor", ""); /* CUB_FLOOR_ASSET */
-    if (!p) {
-        fprintf(err, "cubdance: assets_dir %s: path too long\n", assets);
-        return -1;
-    }
-    FILE *f = fopen(p, "rb");
-    if (f) fclose(f), o->floor_path = p;
-    else fprintf(err, "cubdance: no floor at %s: the coach stands on a flat meadow\n", p);
-    return 0;
+    static const optional_asset forest = {6, "forest/body.forest", "forest",
+                                          "the tracker runs without it"};
+    static const optional_asset floor = {7, "floor/forest.floor", "floor",
+                                         "the coach stands on a flat meadow"};
+    if (default_optional(o, assets, &forest, &o->forest_path, err)) return -1;
+    return default_optional(o, assets, &floor, &o->floor_path, err);
 }
 
 /* The coach's name (--coach, else the config's coach=): letters, digits
@@ -369,8 +368,7 @@ static int apply_assets(cub_app_options *o, const cub_boxconf *c, const char *bu
         fprintf(err, "cubdance: assets_dir %s: path too long\n", assets);
         return -1;
     }
-    if (default_forest(o, assets, err)) return -1;
-    if (default_floor(o, assets, err)) return -1;
+    if (default_forests(o, assets, err)) return -1;
     if (!o->song_path && c->song[0]) {
         char songs[CUB_BOXCONF_PATH_MAX + 16];
         snprintf(songs, sizeof songs, "%s%s", c->songs_dir[0] ? c->songs_dir : assets,
