@@ -45,7 +45,7 @@ static cub_err grid(floor_parse *p, const cub_text_at *at, char **w, int n)
     cub_floor *f = p->out;
     if (p->seen_grid) return cub_text_fail(at, "a second grid");
     if (n != 6) return cub_text_fail(at, "grid needs NX NZ CELL_MM X0_MM Z0_MM");
-    int32_t nx, nz;
+    int32_t nx = 0, nz = 0;
     cub_err r = get_int(at, w[1], "NX", 2, CUB_FLOOR_MAX_SIDE, &nx);
     if (!r) r = get_int(at, w[2], "NZ", 2, CUB_FLOOR_MAX_SIDE, &nz);
     if (!r) r = get_int(at, w[3], "CELL_MM", CUB_FLOOR_MIN_CELL_MM, CUB_FLOOR_MAX_CELL_MM, &f->cell_mm);
@@ -74,7 +74,7 @@ static cub_err row(floor_parse *p, const cub_text_at *at, char **w, int n)
                              f->nx);
     const long top = CUB_FLOOR_MAX_RISE_MM;
     for (int i = 0; i < f->nx; i++) {
-        int32_t h;
+        int32_t h = 0;
         cub_err r = get_int(at, w[i + 1], "height", -top, top, &h);
         if (r) return r;
         f->heights_mm[p->rows * f->nx + i] = CUB_Q16_INT(h);
@@ -95,7 +95,7 @@ static cub_err log_thing(const cub_text_at *at, char **w, int n, cub_floor_thing
 {
     const long lo = CUB_FLOOR_MIN_SIZE_MM, hi = CUB_FLOOR_MAX_SIZE_MM;
     if (n != 6) return cub_text_fail(at, "log needs X_MM Z_MM LENGTH_MM RADIUS_MM x|z");
-    int32_t len, rad;
+    int32_t len = 0, rad = 0;
     cub_err r = middle(at, w, t);
     if (!r) r = get_int(at, w[3], "LENGTH_MM", 2 * lo, 2 * hi, &len);
     if (!r) r = get_int(at, w[4], "RADIUS_MM", lo, hi / 2, &rad);
