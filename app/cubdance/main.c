@@ -10,6 +10,7 @@
 
 #include "cub/board.h"
 #include "cub/boxconf.h"
+#include "cub/floor_file.h"
 #include "cub/io.h"
 #include "cub/loop.h"
 #include "cub/render.h"
@@ -117,6 +118,17 @@ static cub_record *open_recorder(const cub_app_options *o, cub_board *board, cub
     return rec;
 }
 
+/* The forest floor the coach stands on (the gait planner's terrain too:
+ * cub_floor_terrain); a broken file stops the box, naming file and line. */
+static int load_floor(const char *path, cub_floor *out)
+{
+    cub_diag d = {0};
+    char msg[600];
+    if (!cub_floor_load(path, out, &d)) return 0;
+    fprintf(stderr, "cubdance: %s\n", cub_diag_str(&d, msg, sizeof msg));
+    return -1;
+}
+
 static int run(const cub_app_options *o, cub_board *board, cub_event_log_file *log,
                const cub_io_motion *clip)
 {
@@ -159,6 +171,8 @@ static int run(const cub_app_options *o, cub_board *board, cub_event_log_file *l
                       cub_board_name(), display, w, h, cub_board_depth_source(board), clock,
                       s.clip_name, clip->skel.joint_count);
     if (open_extras(o, board, &loop, t0, &s)) goto done;
+    static cub_floor floor; /* 9 kB: not on the stack */
+    if (o->floor_path && load_floor(o->floor_path, &floor)) goto done;
     if (cub_board_display_active(board)) {
         /* Frame the coach: the bear is a toy, about a metre tall. */
         char why[600] = "";
@@ -170,6 +184,10 @@ static int run(const cub_app_options *o, cub_board *board, cub_event_log_file *l
             /* A missing font says which file and why; else it is GL. */
             if (why[0]) fprintf(stderr, "cubdance: %s\n", why);
             else fprintf(stderr, "cubdance: the renderer could not start (GLES2)\n");
+            goto done;
+        }
+        if (o->floor_path && cub_render_set_floor(s.render, &floor)) {
+            fprintf(stderr, "cubdance: the renderer could not draw the floor (GLES2)\n");
             goto done;
         }
     }

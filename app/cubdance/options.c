@@ -68,6 +68,8 @@ static void usage(FILE *f, const char *prog)
 "  --forest FILE|off      the body-part forest the tracker also reads (default\n"
 "                         " CUB_ASSETS_DIR "/forest/body.forest, docs/forest.md):\n"
 "                         its confident joints replace the tracker's unsure ones\n"
+"  --floor FILE|off       the forest floor the coach stands on (default\n"
+"                         " CUB_ASSETS_DIR "/floor/forest.floor; off: a flat meadow)\n"
 "  --voice FILE           the bear's spoken words (default " CUB_VOICE_PATH ");\n"
 "                         speech=0 in the config keeps it quiet\n"
 "  --attract-after S      attract after S seconds without interaction\n"
@@ -185,6 +187,7 @@ static int apply_valued(cub_app_options *o, const char *opt, const char *val, FI
                             : !strcmp(opt, "--character")    ? &o->character_path
                             : !strcmp(opt, "--coach")        ? &o->coach
                             : !strcmp(opt, "--forest")       ? &o->forest_path
+                            : !strcmp(opt, "--floor")        ? &o->floor_path
                             : !strcmp(opt, "--font")         ? &o->font_path
                             : !strcmp(opt, "--voice")        ? &o->voice_path
                                                              : NULL;
@@ -200,7 +203,7 @@ static int takes_value(const char *opt)
                                          "--depth", "--frames", "--replay", "--buttons",
                                          "--gpio-config", "--config", "--audio-driver", "--clip", "--log",
                                          "--song", "--timeline", "--library", "--tags",
-                                         "--character", "--coach", "--forest", "--font", "--voice", "--attract-after", "--doze-after",
+                                         "--character", "--coach", "--forest", "--floor", "--font", "--voice", "--attract-after", "--doze-after",
                                          "--music-clock-scale", "--record"};
     for (size_t i = 0; i < sizeof valued / sizeof *valued; i++)
         if (!strcmp(opt, valued[i])) return 1;
@@ -264,25 +267,44 @@ static const char *join(cub_app_options *o, int slot, const char *dir, const cha
     return n < 0 || (size_t)n >= sizeof o->path_buf[slot] ? NULL : buf;
 }
 
-/* The tracker's body-part forest (docs/forest.md, "In the box": it
- * measured better on every held-out fold): the assets' own unless --forest
- * FILE or --forest off; assets without one (an old tree) run the tracker
- * alone and say so. */
-static int default_forest(cub_app_options *o, const char *assets, FILE *err)
+/* An asset the box runs without: where it is by default under the assets,
+ * its name in the message, and what runs without it. */
+typedef struct optional_asset {
+    int slot; /* of o->path_buf */
+    const char *rel, *what, *without;
+} optional_asset;
+
+/* *path as given (--forest FILE, "off": none), else the assets' own when
+ * it is there; assets without it (an old tree) run without it and say so. */
+static int default_optional(cub_app_options *o, const char *assets, const optional_asset *a,
+                            const char **path, FILE *err)
 {
-    if (o->forest_path) {
-        if (!strcmp(o->forest_path, "off")) o->forest_path = NULL;
+    if (*path) {
+        if (!strcmp(*path, "off")) *path = NULL;
         return 0;
     }
-    const char *p = join(o, 6, assets, "forest/body.forest", "");
+    const char *p = join(o, a->slot, assets, a->rel, "");
     if (!p) {
         fprintf(err, "cubdance: assets_dir %s: path too long\n", assets);
         return -1;
     }
     FILE *f = fopen(p, "rb");
-    if (f) fclose(f), o->forest_path = p;
-    else fprintf(err, "cubdance: no forest at %s: the tracker runs without it\n", p);
+    if (f) fclose(f), *path = p;
+    else fprintf(err, "cubdance: no %s at %s: %s\n", a->what, p, a->without);
     return 0;
+}
+
+/* The tracker's body-part forest (docs/forest.md, "In the box": it
+ * measured better on every held-out fold) and the forest floor the coach
+ * stands on (cub/floor_file.h, CUB_FLOOR_ASSET; docs/floor.md). */
+static int default_forests(cub_app_options *o, const char *assets, FILE *err)
+{
+    static const optional_asset forest = {6, "forest/body.forest", "forest",
+                                          "the tracker runs without it"};
+    static const optional_asset floor = {7, "floor/forest.floor", "floor",
+                                         "the coach stands on a flat meadow"};
+    if (default_optional(o, assets, &forest, &o->forest_path, err)) return -1;
+    return default_optional(o, assets, &floor, &o->floor_path, err);
 }
 
 /* The coach's name (--coach, else the config's coach=): letters, digits
@@ -346,7 +368,7 @@ static int apply_assets(cub_app_options *o, const cub_boxconf *c, const char *bu
         fprintf(err, "cubdance: assets_dir %s: path too long\n", assets);
         return -1;
     }
-    if (default_forest(o, assets, err)) return -1;
+    if (default_forests(o, assets, err)) return -1;
     if (!o->song_path && c->song[0]) {
         char songs[CUB_BOXCONF_PATH_MAX + 16];
         snprintf(songs, sizeof songs, "%s%s", c->songs_dir[0] ? c->songs_dir : assets,

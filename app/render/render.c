@@ -116,6 +116,7 @@ void cub_render_destroy(cub_render *r)
     cub_render_text_free(&r->text);
     glDeleteBuffers(1, &r->stage_vbo);
     glDeleteBuffers(1, &r->stage_ibo);
+    free(r->floor);
     free(r->batch.v);
     free(r->depth_lum);
     free(r);
@@ -220,22 +221,43 @@ static void figure_in_view(cub_render *r, const cub_render_scene *scene)
     cub_render_figure(r, &turned);
 }
 
-/* The camera and the stage follow the root, so the bear stays in the
- * middle of a forest that stands still on screen. */
+/* The camera follows the root (and on a floor the ground under it), so
+ * the bear stays in the middle of the frame. The meadow follows it too, so
+ * it stands still on screen; a floor stays where it is, so the bear walks
+ * over it. */
 static void coach_on_stage(cub_render *r, const cub_render_scene *scene)
 {
     const float *root = scene->world_xyz_mm;
     float at[3] = {0.0f, 0.0f, 0.0f};
     if (isfinite(root[0]) && isfinite(root[2]))
         at[0] = root[0], at[2] = root[2];
+    at[1] = cub_render_stage_ground_y(r, at[0], at[2]);
     cub_render_lit_camera(r, at);
     if (!default_view(r))
         view_on_lit(r, (const float[3]){at[0], r->lit.eye[1], at[2]});
     float *q = r->lit.rot, *t = r->lit.pos; /* slot 0: the stage */
     q[0] = q[1] = q[2] = 0.0f, q[3] = 1.0f;
-    t[0] = at[0], t[1] = 0.0f, t[2] = at[2];
+    t[0] = r->floor ? 0.0f : at[0], t[1] = 0.0f, t[2] = r->floor ? 0.0f : at[2];
     cub_render_bear_draw(r, scene);
     cub_render_stage_draw(r);
+}
+
+cub_err cub_render_set_floor(cub_render *r, const cub_floor *floor)
+{
+    if (!r) return CUB_ERR_ARG;
+    cub_floor *copy = NULL;
+    cub_gait_terrain t;
+    if (floor) {
+        if (cub_floor_check(floor)) return CUB_ERR_ARG;
+        copy = malloc(sizeof *copy);
+        if (!copy) return CUB_ERR_NOMEM;
+        *copy = *floor;
+        cub_floor_terrain(copy, &t); /* checked above */
+    }
+    free(r->floor);
+    r->floor = copy;
+    if (copy) r->terrain = t;
+    return cub_render_stage_init(r);
 }
 
 cub_err cub_render_frame(cub_render *r, const cub_render_scene *scene)

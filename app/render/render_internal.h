@@ -9,6 +9,7 @@
 #include <stdint.h>
 
 #include "cub/render.h"
+#include "render_floor.h"
 #include "render_mesh.h"
 
 #define CUB_RENDER_DEPTH_W 640
@@ -113,6 +114,10 @@ struct cub_render {
     cub_render_bear bear;
     GLuint stage_vbo, stage_ibo;
     cub_render_range stage;
+    /* The forest floor (cub_render_set_floor; NULL: the flat meadow) and
+     * the terrain made of it, pointing into it. */
+    cub_floor *floor;
+    cub_gait_terrain terrain;
     cub_render_text text;
     cub_render_label hint_label, title_label, cue_label;
 };
@@ -159,8 +164,11 @@ cub_err cub_render_bear_prepare(cub_render *r, const cub_render_scene *scene, in
 void cub_render_bear_draw(cub_render *r, const cub_render_scene *scene);
 void cub_render_bear_free(cub_render_bear *b);
 
-/* render_stage.c: the forest, built once at create. */
+/* render_stage.c: the forest, built at create and again when the floor
+ * is set (on r->floor when there is one); the old buffers are freed. */
 cub_err cub_render_stage_init(cub_render *r);
+/* The ground's height under (x, z): the floor's, else the meadow's 0. */
+float cub_render_stage_ground_y(const cub_render *r, float x_mm, float z_mm);
 void cub_render_stage_draw(cub_render *r);
 
 /* render_inset.c */

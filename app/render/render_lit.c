@@ -102,7 +102,8 @@ void cub_render_lit_camera(cub_render *r, const float root_mm[3])
         view_h = WIDTH_PER_HEIGHT * fh / FILL_SHARE / aspect; /* narrower than 1.1:1 */
     float f = 1.0f / tanf(0.5f * FOV_Y_DEG * 3.14159265f / 180.0f);
     float dist = 0.5f * view_h * f;
-    float eye[3] = {root_mm[0], -FLOOR_SHARE * view_h + 0.5f * view_h, root_mm[2] + dist};
+    float eye[3] = {root_mm[0], root_mm[1] - FLOOR_SHARE * view_h + 0.5f * view_h,
+                    root_mm[2] + dist};
     float near_mm = 0.25f * dist, far_mm = dist + 12000.0f;
     float *m = r->lit.vp;
     for (int i = 0; i < 16; i++)

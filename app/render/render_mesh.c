@@ -76,6 +76,28 @@ static void put(cub_render_mesh *m, const float p[3], const float n[3], const fl
     v->skin[2] = slot_b >= 0 ? w_b : 0.0f;
 }
 
+int cub_render_mesh_room(cub_render_mesh *m, int nv, int ni)
+{
+    if (m->full || m->nv + nv > m->cap_v || m->nv + nv > 65535 || m->ni + ni > m->cap_i) {
+        m->full = 1;
+        return -1;
+    }
+    return m->nv;
+}
+
+void cub_render_mesh_vertex(cub_render_mesh *m, const float p[3], const float n[3],
+                            const float rgb[3])
+{
+    put(m, p, n, rgb, -1, 0.0f);
+}
+
+void cub_render_mesh_tri(cub_render_mesh *m, int a, int b, int c)
+{
+    m->idx[m->ni++] = (GLushort)a;
+    m->idx[m->ni++] = (GLushort)b;
+    m->idx[m->ni++] = (GLushort)c;
+}
+
 void cub_render_mesh_ellipsoid(cub_render_mesh *m, const float c[3], const float radii[3],
                                const float rgb[3])
 {

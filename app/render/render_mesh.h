@@ -51,4 +51,13 @@ void cub_render_mesh_tube(cub_render_mesh *m, const float (*pts)[3], int n, floa
 void cub_render_mesh_lathe(cub_render_mesh *m, const float base[3], const float (*prof)[2],
                            int n, const float rgb[3]);
 
+/* Free-form pieces (the floor's heightfield and rocks): room for nv
+ * vertices and ni indices, returning the first new vertex's index, or -1
+ * (full set) when they do not fit; then the vertices, rigid on m->slot,
+ * and the triangles by vertex index. */
+int cub_render_mesh_room(cub_render_mesh *m, int nv, int ni);
+void cub_render_mesh_vertex(cub_render_mesh *m, const float p[3], const float n[3],
+                            const float rgb[3]);
+void cub_render_mesh_tri(cub_render_mesh *m, int a, int b, int c);
+
 #endif

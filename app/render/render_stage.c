@@ -2,13 +2,21 @@
  * cartoon trees behind the bear and a few bushes, all static and built once
  * at create (one index range, one draw a frame). The sky is the flat
  * gradient drawn before it. Coordinates: mm, the bear's spot at the origin,
- * the camera on +z looking at it; the stage follows the figure's root the
- * way the camera does, so it stands still on screen. */
+ * the camera on +z looking at it. On the flat meadow the stage follows the
+ * figure's root the way the camera does, so it stands still on screen; on
+ * a forest floor (cub_render_set_floor) the ground has its place, so the
+ * stage stays put, the rolling ground with its log and stones is drawn
+ * instead of the disc, and the trees and bushes stand on it. */
 #include "render_internal.h"
 
 #define GROUND_RADIUS_MM 30000.0f
 #define STAGE_VERTS 12000
 #define STAGE_INDICES 66000
+/* With a floor: its heightfield and the things on it (at most 12 x 63
+ * vertices and 12 x 192 indices). */
+#define FLOOR_LINES CUB_RENDER_FLOOR_MAX_LINES
+#define FLOOR_VERTS (STAGE_VERTS + FLOOR_LINES * FLOOR_LINES + 1000)
+#define FLOOR_INDICES (STAGE_INDICES + (FLOOR_LINES - 1) * (FLOOR_LINES - 1) * 6 + 3000)
 
 static const float GRASS_RGB[3] = {0.50f, 0.76f, 0.35f};
 static const float TRUNK_RGB[3] = {0.55f, 0.36f, 0.20f};
@@ -28,17 +36,29 @@ static const struct {
 };
 #define TREE_COUNT ((int)(sizeof TREES / sizeof TREES[0]))
 
-static void ground(cub_render_mesh *m)
+float cub_render_stage_ground_y(const cub_render *r, float x_mm, float z_mm)
 {
+    return r->floor ? cub_render_floor_y(&r->terrain, x_mm, z_mm) : 0.0f;
+}
+
+static void ground(cub_render *r, cub_render_mesh *m)
+{
+    if (r->floor) {
+        cub_render_floor_ground(m, r->floor, &r->terrain, GRASS_RGB);
+        for (int k = 0; k < r->floor->thing_count; k++)
+            cub_render_floor_thing(m, r->floor, k, &r->terrain);
+        return;
+    }
     /* A wide flat disc a hair below the feet, so soles never flicker. */
     const float prof[2][2] = {{GROUND_RADIUS_MM, 0.0f}, {0.0f, 0.0f}};
-    const float base[3] = {0.0f, -2.0f, 0.0f};
+    const float base[3] = {0.0f, -CUB_RENDER_FLOOR_DROP_MM, 0.0f};
     cub_render_mesh_lathe(m, base, prof, 2, GRASS_RGB);
 }
 
-static void tree(cub_render_mesh *m, float x, float z, float h, int pine)
+/* A tree standing on the ground at (x, y, z). */
+static void tree(cub_render_mesh *m, float x, float y, float z, float h, int pine)
 {
-    const float base[3] = {x, 0.0f, z};
+    const float base[3] = {x, y, z};
     const float trunk[3][2] = {{0.06f * h, 0.0f}, {0.05f * h, 0.40f * h}, {0.0f, 0.40f * h}};
     cub_render_mesh_lathe(m, base, trunk, 3, TRUNK_RGB);
     if (pine) {
@@ -51,9 +71,9 @@ static void tree(cub_render_mesh *m, float x, float z, float h, int pine)
         cub_render_mesh_lathe(m, base, high, 3, PINE_RGB);
     } else {
         /* A cluster of three balls: a round leafy crown. */
-        const float c0[3] = {x, 0.66f * h, z}, r0[3] = {0.30f * h, 0.26f * h, 0.30f * h};
-        const float c1[3] = {x - 0.18f * h, 0.52f * h, z + 0.05f * h};
-        const float c2[3] = {x + 0.19f * h, 0.55f * h, z + 0.03f * h};
+        const float c0[3] = {x, y + 0.66f * h, z}, r0[3] = {0.30f * h, 0.26f * h, 0.30f * h};
+        const float c1[3] = {x - 0.18f * h, y + 0.52f * h, z + 0.05f * h};
+        const float c2[3] = {x + 0.19f * h, y + 0.55f * h, z + 0.03f * h};
         const float r1[3] = {0.19f * h, 0.17f * h, 0.19f * h};
         cub_render_mesh_ellipsoid(m, c0, r0, LEAF_RGB);
         cub_render_mesh_ellipsoid(m, c1, r1, LEAF_RGB);
@@ -61,27 +81,37 @@ static void tree(cub_render_mesh *m, float x, float z, float h, int pine)
     }
 }
 
-static void bushes(cub_render_mesh *m)
+static void bushes(const cub_render *r, cub_render_mesh *m)
 {
-    const float spots[][3] = {{-1100, 0, -700}, {1250, 0, -900}, {-2300, 0, -300}};
+    const float spots[][2] = {{-1100, -700}, {1250, -900}, {-2300, -300}};
     for (int i = 0; i < 3; i++) {
-        const float r[3] = {260.0f, 190.0f, 220.0f};
-        cub_render_mesh_ellipsoid(m, spots[i], r, BUSH_RGB);
+        const float rad[3] = {260.0f, 190.0f, 220.0f};
+        float c[3] = {spots[i][0], cub_render_stage_ground_y(r, spots[i][0], spots[i][1]),
+                      spots[i][1]};
+        cub_render_mesh_ellipsoid(m, c, rad, BUSH_RGB);
     }
 }
 
 cub_err cub_render_stage_init(cub_render *r)
 {
     cub_render_mesh m;
-    if (!cub_render_mesh_init(&m, STAGE_VERTS, STAGE_INDICES)) {
+    int floor = r->floor != NULL;
+    glDeleteBuffers(1, &r->stage_vbo); /* name 0 (none yet) is a no-op */
+    glDeleteBuffers(1, &r->stage_ibo);
+    r->stage_vbo = r->stage_ibo = 0;
+    r->stage = (cub_render_range){0, 0};
+    if (!cub_render_mesh_init(&m, floor ? FLOOR_VERTS : STAGE_VERTS,
+                              floor ? FLOOR_INDICES : STAGE_INDICES)) {
         cub_render_mesh_free(&m);
         return CUB_ERR_NOMEM;
     }
     m.slot = 0;
-    ground(&m);
-    for (int i = 0; i < TREE_COUNT; i++)
-        tree(&m, TREES[i].x, TREES[i].z, TREES[i].height, TREES[i].pine);
-    bushes(&m);
+    ground(r, &m);
+    for (int i = 0; i < TREE_COUNT; i++) {
+        float y = cub_render_stage_ground_y(r, TREES[i].x, TREES[i].z);
+        tree(&m, TREES[i].x, y, TREES[i].z, TREES[i].height, TREES[i].pine);
+    }
+    bushes(r, &m);
     int bad = m.full || cub_render_lit_upload(&m, &r->stage_vbo, &r->stage_ibo);
     r->stage = (cub_render_range){0, m.ni};
     cub_render_mesh_free(&m);

@@ -158,6 +158,8 @@ def base_of(kind, d, shared, build=""):
         return read(os.path.join(SRC, "tests", "fuzz", "seeds_trc", "small_mm.trc")), "bad.trc"
     if kind == "terrain":  # cubtool gait's terrain file, made by tests/fuzz/make_seeds.py
         return read(os.path.join(SRC, "tests", "fuzz", "seeds_terrain", "grid.terrain")), "bad.terrain"
+    if kind == "floor":  # the box's forest floor (the format: cub/floor_file.h)
+        return read(os.path.join(ASSETS, "floor", "forest.floor")), "bad.floor"
     if kind == "keyscript":  # cubtool play's scripted keys (the format: cub/keyscript.h)
         write(os.path.join(d, "hello.bvh"), bear_bvh)
         return b"# pause, select B, move it, numbers, zoom\n0 Space\n2 2 L L\n4 N\n6 Up Up\n", "bad.keys"

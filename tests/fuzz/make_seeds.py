@@ -2,7 +2,7 @@
 """Write the fuzz targets' small seed inputs (issue 18) into tests/fuzz/:
 seeds_dump/ (fuzz_fakenect_dump, fuzz_track_dump), seeds_synth/,
 seeds_cli/, seeds_font/, seeds_forest/, seeds_map/, seeds_codec/, seeds_keys/, seeds_voice/, seeds_trc/,
-seeds_ase/, seeds_keyscript/, seeds_evolve/, seeds_terrain/. Everything is made
+seeds_ase/, seeds_keyscript/, seeds_evolve/, seeds_terrain/, seeds_floor/. Everything is made
 here from the formats' rules, nothing copied from the shared data; run it again
 after changing a format:
 
@@ -421,8 +421,20 @@ def terrain_seeds():
         ("grid 4 3 250 -500 -250\n" + rows + "box 0 0 0 160 70 160\n").encode())
 
 
+def floor_seeds():
+    """The forest floor (app/include/cub/floor_file.h): a small hill with a
+    log and a stone, and the smallest grid with nothing on it."""
+    rows = "".join("row %s\n" % " ".join(str(60 * (i + j) - 120) for i in range(4))
+                   for j in range(3))
+    put("seeds_floor", "hill.floor",
+        ("# a small hill\ncubfloor 1\ngrid 4 3 500 -750 -500\n" + rows +
+         "log 0 -300 900 120 x\nstone 400 200 150 100 90\n").encode())
+    put("seeds_floor", "bare.floor", b"cubfloor 1\r\ngrid 2 2 100 0 0\r\nrow 0 0\r\nrow 0 -5\r\n")
+
+
 def main():
     terrain_seeds()
+    floor_seeds()
     forest_seeds()
     keyscript_seeds()
     ase_seeds()

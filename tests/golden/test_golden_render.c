@@ -34,6 +34,7 @@
 #include <math.h>
 
 #include "cub/character.h"
+#include "cub/floor_file.h"
 #include "cub/io.h"
 #include "cub/judge.h"
 #include "cub/pack.h"
@@ -689,6 +690,83 @@ static void test_winged_bear_mid_flap_matches_golden(void **state)
     cub_io_motion_free(&g_winged_clip);
 }
 
+/* ---- the forest floor (issue 24) ------------------------------------------- */
+
+/* Where the bear stands in bear_on_forest_floor: on a hillock of the
+ * shipped floor (177 mm at this sample), 3.6 m from its dancing spot. */
+#define FLOOR_SPOT_X 3000.0f
+#define FLOOR_SPOT_Z (-2000.0f)
+
+static cub_floor g_floor;
+
+/* assets/floor/forest.floor and the terrain of it (the gait planner's). */
+static void load_floor(cub_gait_terrain *t)
+{
+    cub_diag diag = {0};
+    char path[1024];
+    const char *src = getenv("CUB_SOURCE_DIR");
+    snprintf(path, sizeof path, "%s/assets/floor/%s", src ? src : ".", "forest.floor");
+    assert_int_equal(cub_floor_load(path, &g_floor, &diag), CUB_OK);
+    assert_int_equal(cub_floor_terrain(&g_floor, t), CUB_OK);
+}
+
+/* The posed coach of g_bs moved so its root is over (x, z) of the floor
+ * and its feet as high as the terrain there (they stood on y = 0): the
+ * bear's root position over the floor, as the walker's mid-step golden
+ * will place it. Returns that height. */
+static float stand_over(const cub_render_scene *scene, const cub_gait_terrain *t, float x, float z)
+{
+    float y = (float)cub_gait_height(t, (cub_q16)lroundf(x * 65536.0f),
+                                     (cub_q16)lroundf(z * 65536.0f)) / 65536.0f;
+    float dx = x - g_bs.xyz[0], dz = z - g_bs.xyz[2];
+    for (int j = 0; j < scene->skel->joint_count; j++) {
+        g_bs.xyz[3 * j + 0] += dx;
+        g_bs.xyz[3 * j + 1] += y;
+        g_bs.xyz[3 * j + 2] += dz;
+    }
+    return y;
+}
+
+/* The bear on the box's forest floor: rolling ground, the trees and
+ * bushes standing on it, the bear on a hillock with its feet on the
+ * ground; the camera follows it there. Then the whole floor seen from
+ * further back. The same renderer back on the
+ * meadow (no floor) draws bear_dance_happy again, and a floor that breaks
+ * cub/floor.h's limits is refused. */
+static void test_bear_on_the_forest_floor_matches_golden(void **state)
+{
+    fixture *f = *state;
+    cub_gait_terrain t;
+    load_floor(&t);
+    cub_render *r = NULL;
+    cub_render_desc d = {.width = W, .height = H, .figure_height_mm = 1215.0f};
+    assert_int_equal(cub_render_create(&d, &r), CUB_OK);
+    assert_int_equal(cub_render_set_floor(r, &g_floor), CUB_OK);
+    cub_render_scene scene = bear_pose(BENDS(DANCE), CUB_RENDER_FACE_HAPPY);
+    float y = stand_over(&scene, &t, FLOOR_SPOT_X, FLOOR_SPOT_Z);
+    printf("golden: the bear stands at x=%.0f z=%.0f on ground %.1f mm high\n", FLOOR_SPOT_X,
+           FLOOR_SPOT_Z, y);
+    assert_true(y > 150.0f);
+    draw_with(f, r, &scene);
+    check_golden_within(f->rgba, "bear_on_forest_floor", 1, BEAR_MAX_SHARE);
+    /* The box's own view of its floor from further back and above: the
+     * bear dancing on its flat spot, the log behind it, the stones. */
+    scene = bear_pose(BENDS(DANCE), CUB_RENDER_FACE_HAPPY);
+    cub_render_set_view(r, &(cub_render_view){.pitch_deg = 20.0f, .zoom = 0.4f});
+    draw_with(f, r, &scene);
+    cub_render_set_view(r, NULL);
+    check_golden_within(f->rgba, "forest_floor_wide", 1, BEAR_MAX_SHARE);
+
+    cub_floor bad = g_floor;
+    bad.nx = 1;
+    assert_int_equal(cub_render_set_floor(r, &bad), CUB_ERR_ARG);
+    assert_int_equal(cub_render_set_floor(r, NULL), CUB_OK);
+    scene = bear_pose(BENDS(DANCE), CUB_RENDER_FACE_HAPPY);
+    draw_with(f, r, &scene);
+    check_golden_within(f->rgba, "bear_dance_happy", 0, BEAR_MAX_SHARE);
+    cub_render_destroy(r);
+}
+
 /* A clip without the wings (the bear's skeleton): the winged bear is the
  * bear, pixel for pixel as its golden. */
 static void test_winged_bear_without_wings_is_the_bear(void **state)
@@ -979,6 +1057,7 @@ int main(void)
         cmocka_unit_test(test_bear_rejects_bad_character),
         cmocka_unit_test(test_winged_bear_mid_flap_matches_golden),
         cmocka_unit_test(test_winged_bear_without_wings_is_the_bear),
+        cmocka_unit_test(test_bear_on_the_forest_floor_matches_golden),
         cmocka_unit_test(test_frames_are_deterministic),
         cmocka_unit_test(test_inset_maps_no_reading_to_black_and_near_brighter),
         cmocka_unit_test(test_render_rejects_bad_input),

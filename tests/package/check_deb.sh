@@ -41,7 +41,7 @@ trap 'rm -rf "$expected" "$listed" "$scratch"' EXIT
 {
     echo ./usr/bin/cubdance-pi
     [ "$arch" = amd64 ] && echo ./usr/bin/cubdance
-    for d in bear clips songs forest; do
+    for d in bear clips songs forest floor; do
         (cd "$src/assets" && find "$d" -type f | sed 's|^|./usr/share/cubdance/|')
     done
     # the bear's spoken words, made by the build (app/voice; docs/speech.md)

@@ -17,6 +17,7 @@
 
 #include "cub/character.h"
 #include "cub/err.h"
+#include "cub/floor.h"
 #include "cub/motion.h"
 #include "cub/track.h"
 
@@ -118,6 +119,14 @@ cub_err cub_render_frame(cub_render *r, const cub_render_scene *scene);
  * and scales the coach (and the stage) about a point at mid-height of the
  * frame above the root; the background and the depth inset stay put. */
 void cub_render_set_view(cub_render *r, const cub_render_view *view);
+/* The ground the character stands on (cub/floor.h; copied): the rolling
+ * floor with its logs and stones, drawn where it is (the camera follows the
+ * root over it, at the ground's height under the root), the trees and
+ * bushes on it. The caller puts the character on it: the scene's joints
+ * are world positions, their heights the floor's (cub_floor_terrain).
+ * NULL: the flat meadow that follows the root (the default). CUB_ERR_ARG
+ * for a floor cub_floor_check refuses, CUB_ERR_DEVICE when GL fails. */
+cub_err cub_render_set_floor(cub_render *r, const cub_floor *floor);
 
 /* ---- the motion player's scene (cubtool play, SEEDS.md § 002) ----------- */
 
