@@ -20,7 +20,7 @@ static cub_groove_work work; /* 25 KB: not on the stack */
 /* A pitched note of 1 beat (4/4, division 480) unless len_beats says. */
 static cub_groove_note note(int pitch, int len_beats, bool beat)
 {
-    return (cub_groove_note){0, 0, CUB_Q16_INT(len_beats), (uint8_t)pitch, 100, beat};
+    return (cub_groove_note){0, 0, CUB_Q16_INT(len_beats), (uint8_t)pitch, 100, beat, 0, 0};
 }
 
 static void assert_near(cub_q16 got, cub_q16 want)
