@@ -316,6 +316,7 @@ int cub_cmd_groove_eval(int argc, char **argv)
     const char *fold = NULL;
     char set = 'a';
     double stop[2] = {-1, -1};
+    int power = 0;
     char *paths[MAX_FILES];
     int n = 0;
     for (int i = 1; i < argc; i++) {
@@ -326,10 +327,10 @@ int cub_cmd_groove_eval(int argc, char **argv)
         else if (!strcmp(argv[i], "--fold") && i + 1 < argc && argv[i + 1][0])
             fold = argv[++i];
         else if (!strcmp(argv[i], "--stop") && i + 1 < argc &&
-                 sscanf(argv[i + 1], "%lf,%lf", &stop[0], &stop[1]) == 2)
+                 sscanf(argv[i + 1], "%lf,%lf,%d", &stop[0], &stop[1], &power) >= 2)
             i++;
         else if (!strcmp(argv[i], "--help") || argv[i][0] == '-') {
-            printf("usage: cubtool groove-eval [--set a|b] [--fold dev|held|STYLE|-STYLE] [--stop B,A]\n"
+            printf("usage: cubtool groove-eval [--set a|b] [--fold dev|held|STYLE|-STYLE] [--stop B,A[,K]]\n"
                    "                           [--dump F.txt] [FILE.mid...]\n"
                    "Seed 001's figures: beat alignment (FACT's and Bailando's), fastest joint\n"
                    "vs the clip library's p99, feet, generation time. Default files: every\n"
@@ -337,8 +338,8 @@ int cub_cmd_groove_eval(int argc, char **argv)
                    "speed curve (frame, summed speed, smoothed, music beat) to F.txt.\n"
                    "--fold: only round 1's dev or held-out files, or one style (box: the\n"
                    "box's songs), or all but one (-STYLE); means per style (docs/groove.md).\n"
-                   "--stop B,A: the beat stop's ramps before and after a beat (fractions of\n"
-                   "a beat; 0,0: none) instead of the set's.\n",
+                   "--stop B,A[,K]: the beat stop's ramps before and after a beat (fractions\n"
+                   "of a beat; 0,0: none) and their power K (1..3) instead of the set's.\n",
                    CUB_ASSETS_DIR);
             return argv[i][0] == '-' && strcmp(argv[i], "--help") ? 2 : 0;
         } else if (n < MAX_FILES && (paths[n] = malloc(strlen(argv[i]) + 1)))
@@ -370,7 +371,8 @@ int cub_cmd_groove_eval(int argc, char **argv)
         rc = groove_song_load(&a, "groove-eval", &s);
         if (!rc && stop[0] >= 0)
             s.plan.params.stop_before = (cub_q16)lround(stop[0] * CUB_Q16_ONE),
-            s.plan.params.stop_after = (cub_q16)lround(stop[1] * CUB_Q16_ONE);
+            s.plan.params.stop_after = (cub_q16)lround(stop[1] * CUB_Q16_ONE),
+            s.plan.params.stop_power = power ? power : s.plan.params.stop_power;
         if (!rc) rc = measure(&s, &rig, &f);
         means *m = rc ? NULL : style_means(styles, &style_count, paths[i]);
         if (!rc) print_row(paths[i], &s, &f), means_add(&all, &f);

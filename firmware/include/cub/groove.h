@@ -118,8 +118,10 @@ typedef struct cub_groove_params {
     /* The beat stop (ours): the pose's clock slows to a stop on every meter
      * beat over stop_before of a beat before it and starts again over
      * stop_after after it (fractions of a beat, each < 1, sum <= 1; 0 and 0:
-     * no stop). */
+     * no stop); the speed ramps as the stop_power-th (1..3) power of the
+     * time from the beat. */
     cub_q16 stop_before, stop_after;
+    int stop_power;
 } cub_groove_params;
 
 /* Set 'a' or 'b' of the seed's table 1 (reflectance from percent).
@@ -294,8 +296,9 @@ cub_err cub_groove_plan_build(const cub_groove_song *song, const cub_groove_pick
 /* The beat stop (ours): the music time t_us as the motion reads it. Every
  * meter beat stays where it is; between two beats the clock's speed rises
  * from 0 on the beat over params.stop_after of a beat, stays level, and
- * falls to 0 on the next beat over params.stop_before (each ramp linear in
- * speed). So every beat, inside a long note too, is a short stop. */
+ * falls to 0 on the next beat over params.stop_before (each ramp a power
+ * params.stop_power of the time from the beat). So every beat, inside a
+ * long note too, is a short stop. */
 int64_t cub_groove_clock(const cub_groove_plan *plan, int64_t t_us);
 
 /* The right wrist in key space at t_us (mm): on the path of the note
