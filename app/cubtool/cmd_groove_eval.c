@@ -241,12 +241,32 @@ static int held_out(const char *path)
     return !strncmp(name, "jazz_", 5) || !strncmp(name, "classical_mozart", 16);
 }
 
-/* Keep only the fold's files (fold 0: all); returns the new count. */
-static int keep_fold(char **paths, int n, char fold)
+/* A file's style for round 2's folds: the box's songs are "box", the
+ * others the name's part before its first '_'. */
+static void style_of(const char *path, char *out, size_t cap)
+{
+    const char *name = strrchr(path, '/') ? strrchr(path, '/') + 1 : path;
+    size_t len = strcspn(name, "_.");
+    if (strstr(path, "/songs/")) name = "box", len = 3;
+    snprintf(out, cap, "%.*s", (int)(len < cap ? len : cap - 1), name);
+}
+
+/* fold: NULL (all), "dev", "held" (round 1), STYLE or -STYLE (round 2). */
+static int in_fold(const char *path, const char *fold)
+{
+    char style[32];
+    if (!fold) return 1;
+    if (!strcmp(fold, "dev") || !strcmp(fold, "held")) return (fold[0] == 'h') == held_out(path);
+    style_of(path, style, sizeof style);
+    return fold[0] == '-' ? strcmp(style, fold + 1) != 0 : !strcmp(style, fold);
+}
+
+/* Keep only the fold's files; returns the new count. */
+static int keep_fold(char **paths, int n, const char *fold)
 {
     int k = 0;
     for (int i = 0; i < n; i++) {
-        if (fold && (fold == 'h') != held_out(paths[i])) {
+        if (!in_fold(paths[i], fold)) {
             free(paths[i]);
             continue;
         }
@@ -256,9 +276,26 @@ static int keep_fold(char **paths, int n, char fold)
 }
 
 typedef struct means {
+    char style[32];
     double fact, bail;
     int files, fact_ok, bail_ok;
 } means;
+
+#define MAX_STYLES 16
+
+/* The means of path's style among styles[*count] (a new one if room). */
+static means *style_means(means *styles, int *count, const char *path)
+{
+    char style[32];
+    style_of(path, style, sizeof style);
+    for (int i = 0; i < *count; i++)
+        if (!strcmp(styles[i].style, style)) return &styles[i];
+    if (*count == MAX_STYLES) return NULL;
+    means *m = &styles[(*count)++];
+    *m = (means){0};
+    memcpy(m->style, style, sizeof style);
+    return m;
+}
 
 static void means_add(means *m, const figures *f)
 {
@@ -269,14 +306,17 @@ static void means_add(means *m, const figures *f)
 static void means_print(const means *m)
 {
     if (!m->files) return;
+    if (m->style[0]) printf("style %-9s ", m->style);
     printf("mean FACT %.3f (%d of %d >= 0.5), Bailando %.3f (%d of %d >= 0.5)\n",
            m->fact / m->files, m->fact_ok, m->files, m->bail / m->files, m->bail_ok, m->files);
 }
 
 int cub_cmd_groove_eval(int argc, char **argv)
 {
-    char fold = 0;
+    const char *fold = NULL;
     char set = 'a';
+    double stop[2] = {-1, -1};
+    int power = 0;
     char *paths[MAX_FILES];
     int n = 0;
     for (int i = 1; i < argc; i++) {
@@ -284,16 +324,22 @@ int cub_cmd_groove_eval(int argc, char **argv)
             set = argv[++i][0];
         else if (!strcmp(argv[i], "--dump") && i + 1 < argc)
             dump_path = argv[++i];
-        else if (!strcmp(argv[i], "--fold") && i + 1 < argc && strchr("dh", argv[i + 1][0]) &&
-                 argv[i + 1][0])
-            fold = argv[++i][0];
+        else if (!strcmp(argv[i], "--fold") && i + 1 < argc && argv[i + 1][0])
+            fold = argv[++i];
+        else if (!strcmp(argv[i], "--stop") && i + 1 < argc &&
+                 sscanf(argv[i + 1], "%lf,%lf,%d", &stop[0], &stop[1], &power) >= 2)
+            i++;
         else if (!strcmp(argv[i], "--help") || argv[i][0] == '-') {
-            printf("usage: cubtool groove-eval [--set a|b] [--fold dev|held] [--dump F.txt] [FILE.mid...]\n"
+            printf("usage: cubtool groove-eval [--set a|b] [--fold dev|held|STYLE|-STYLE] [--stop B,A[,K]]\n"
+                   "                           [--dump F.txt] [FILE.mid...]\n"
                    "Seed 001's figures: beat alignment (FACT's and Bailando's), fastest joint\n"
                    "vs the clip library's p99, feet, generation time. Default files: every\n"
                    ".mid of <data>/midi and %s/songs. --dump writes the last file's\n"
                    "speed curve (frame, summed speed, smoothed, music beat) to F.txt.\n"
-                   "--fold: only the dev or the held-out files (docs/groove.md), and means.\n",
+                   "--fold: only round 1's dev or held-out files, or one style (box: the\n"
+                   "box's songs), or all but one (-STYLE); means per style (docs/groove.md).\n"
+                   "--stop B,A[,K]: the beat stop's ramps before and after a beat (fractions\n"
+                   "of a beat; 0,0: none) and their power K (1..3) instead of the set's.\n",
                    CUB_ASSETS_DIR);
             return argv[i][0] == '-' && strcmp(argv[i], "--help") ? 2 : 0;
         } else if (n < MAX_FILES && (paths[n] = malloc(strlen(argv[i]) + 1)))
@@ -307,7 +353,8 @@ int cub_cmd_groove_eval(int argc, char **argv)
         n = list_mid(CUB_ASSETS_DIR "/songs", paths, n);
     }
     n = keep_fold(paths, n, fold);
-    means all = {0};
+    means all = {0}, styles[MAX_STYLES];
+    int style_count = 0;
     double p99 = library_p99(CUB_ASSETS_DIR "/clips/bear.cubclips");
     printf("clip library joint speed p99 %.0f mm/s; set %c, %d fps, sigma %.0f frames\n", p99, set,
            FPS, SIGMA);
@@ -322,10 +369,18 @@ int cub_cmd_groove_eval(int argc, char **argv)
         figures f = {0};
         groove_args a = {paths[i], -1, -1, 0, set};
         rc = groove_song_load(&a, "groove-eval", &s);
+        if (!rc && stop[0] >= 0)
+            s.plan.params.stop_before = (cub_q16)lround(stop[0] * CUB_Q16_ONE),
+            s.plan.params.stop_after = (cub_q16)lround(stop[1] * CUB_Q16_ONE),
+            s.plan.params.stop_power = power ? power : s.plan.params.stop_power;
         if (!rc) rc = measure(&s, &rig, &f);
+        means *m = rc ? NULL : style_means(styles, &style_count, paths[i]);
         if (!rc) print_row(paths[i], &s, &f), means_add(&all, &f);
+        if (m) means_add(m, &f);
         groove_song_free(&s);
     }
+    for (int i = 0; i < style_count && !rc; i++)
+        means_print(&styles[i]);
     if (!rc) means_print(&all);
     for (int i = 0; i < n; i++)
         free(paths[i]);

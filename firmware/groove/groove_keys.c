@@ -3,6 +3,12 @@
 #include "cub/groove.h"
 
 #define DEFAULT_X_SPAN_MM CUB_Q16_INT(400)
+/* The beat stop (ours): chosen by docs/groove.md's leave-one-style-out
+ * protocol, round 3 (every fold chose these): a short slowing into the
+ * beat, a longer, cubic start after it. */
+#define STOP_BEFORE ((CUB_Q16_ONE + 5) / 10) /* rounded, as the candidates were run */
+#define STOP_AFTER (CUB_Q16_ONE / 5)
+#define STOP_POWER 3
 #define DEFAULT_Y_REACH_MM CUB_Q16_INT(250)
 #define DEFAULT_PACE_MM_S CUB_Q16_INT(1200)
 
@@ -23,6 +29,9 @@ cub_err cub_groove_params_set(char set, cub_groove_params *out)
         .l2_mm = CUB_Q16_INT(a ? 50 : 58),
         .x_span_mm = DEFAULT_X_SPAN_MM,
         .y_reach_mm = DEFAULT_Y_REACH_MM,
+        .stop_before = STOP_BEFORE,
+        .stop_after = STOP_AFTER,
+        .stop_power = STOP_POWER,
     };
     return CUB_OK;
 }

@@ -61,6 +61,19 @@ static cub_q16 beats(walk *w, int32_t from, int32_t to)
     return (cub_q16)(q > max ? max : q);
 }
 
+/* The meter's grid at tick: the beat at or before it, and its length. */
+static void grid(walk *w, cub_groove_note *n)
+{
+    cub_groove_meter m = groove_meter_at(w->song, n->tick, &w->meter_cursor);
+    int32_t beat = groove_beat_ticks(w->song, m), off = (n->tick - m.tick) % beat;
+    int32_t b0 = off < 0 ? n->tick - off - beat : n->tick - off;
+    int64_t at = cub_groove_tick_us(w->song, b0);
+    int64_t len = cub_groove_tick_us(w->song, b0 + beat) - at, back = n->start_us - at;
+    bool fits = len > 0 && len <= INT32_MAX && back >= 0 && back <= INT32_MAX;
+    n->grid_us = fits ? (int32_t)-back : 0;
+    n->beat_us = fits ? (int32_t)len : 0;
+}
+
 static void emit(walk *w, int32_t tick, int32_t end, int pitch, int velocity)
 {
     if (w->count < w->cap) {
@@ -74,6 +87,7 @@ static void emit(walk *w, int32_t tick, int32_t end, int pitch, int velocity)
         if (pitch != CUB_GROOVE_REST)
             n->is_beat = w->pick->rhythm == CUB_GROOVE_RHYTHM_METER ? on_meter_beat(w, tick)
                                                                     : on_rhythm_note(w, tick);
+        grid(w, n);
     }
     w->count++;
 }

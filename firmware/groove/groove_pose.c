@@ -97,6 +97,7 @@ cub_err cub_groove_pose_at(const cub_groove_plan *plan, const cub_groove_rig *ri
                            cub_pose *out)
 {
     if (!plan || !rig || !out || plan->n < 1) return CUB_ERR_ARG;
+    t_us = cub_groove_clock(plan, t_us);
     const cub_skeleton *skel = rig->skel;
     cub_motion_pose_rest(skel, out);
     out->root_mm = skel->joints[0].offset_mm;

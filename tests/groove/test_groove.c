@@ -20,7 +20,7 @@ static cub_groove_work work; /* 25 KB: not on the stack */
 /* A pitched note of 1 beat (4/4, division 480) unless len_beats says. */
 static cub_groove_note note(int pitch, int len_beats, bool beat)
 {
-    return (cub_groove_note){0, 0, CUB_Q16_INT(len_beats), (uint8_t)pitch, 100, beat};
+    return (cub_groove_note){0, 0, CUB_Q16_INT(len_beats), (uint8_t)pitch, 100, beat, 0, 0};
 }
 
 static void assert_near(cub_q16 got, cub_q16 want)
@@ -158,6 +158,12 @@ static void test_meter_sets_beat_length(void **state)
     assert_int_equal(n[0].length_beats, CUB_Q16_INT(2));
     assert_true(n[0].is_beat);
     assert_false(n[1].is_beat);
+    /* the grid for the beat stop: an eighth at 120 quarters a minute is
+     * 250 ms; tick 560 lies 80 ticks (83 333 us) after the beat at 480 */
+    assert_int_equal(n[0].grid_us, 0);
+    assert_int_equal(n[0].beat_us, 250000);
+    assert_int_equal(n[1].grid_us, -83333);
+    assert_int_equal(n[1].beat_us, 250000);
 }
 
 /* By hand, set a (w = 1, v = 2), global density 2/4 = 1/2:

@@ -22,9 +22,12 @@ static double d(cub_q16 v)
     return v / 65536.0;
 }
 
+/* A note of a song at 120 beats a minute (the meter's grid: a beat every
+ * 500 ms from 0). */
 static cub_groove_note note(int64_t start_us, double beats, bool beat, int intensity)
 {
-    return (cub_groove_note){start_us, 0, Q(beats), 60, (uint8_t)intensity, beat};
+    return (cub_groove_note){start_us,           0,     Q(beats), 60, (uint8_t)intensity, beat,
+                             -(int32_t)(start_us % 500000), 500000};
 }
 
 static cub_groove_params set_a(void)
@@ -300,7 +303,7 @@ static void test_pose_reaches_keys_and_keeps_feet(void **state)
         cub_motion_forward(&bear, &pose, world, rot);
         assert_true(dist(world[16], rest_w[16]) == 0); /* a foot, planted */
         /* the right wrist: its key about its home in the chest's frame */
-        cub_groove_key at = cub_groove_wrist_at(&plan, t);
+        cub_groove_key at = cub_groove_wrist_at(&plan, cub_groove_clock(&plan, t));
         cub_vec3 local = {Q(-210) + (cub_q16)((int64_t)at.x_mm * 2 / 5),
                           Q(-40) + (cub_q16)((int64_t)at.y_mm * 2 / 5), Q(160)};
         cub_vec3 want = cub_fx_vec3_add(world[2], cub_fx_quat_rotate(rot[2], local));
@@ -398,10 +401,49 @@ static void test_non_beat_key_passed_at_speed(void **state)
     assert_true(v[36] < v[18] / 3); /* it stops on the beat */
 }
 
+/* The beat stop: every beat of the grid, the three inside a four-beat
+ * note too, keeps its time; the clock stands still on it, runs faster
+ * between, never backwards; with no stop it is the music's own time. */
+static void stop_keeps_beats(cub_groove_plan *plan, int k)
+{
+    plan->params.stop_power = k;
+    for (int64_t b = 0; b <= 2500000; b += 500000) {
+        assert_true(cub_groove_clock(plan, b) == b);
+        /* 10 ms either side of the beat: the clock moves under 10 % of that */
+        assert_true(cub_groove_clock(plan, b + 10000) - b < 1000);
+        if (b > 0) assert_true(b - cub_groove_clock(plan, b - 10000) < 1000);
+    }
+    for (int64_t t = 1, last = 0; t <= 2500000; t += 997) {
+        int64_t c = cub_groove_clock(plan, t);
+        assert_true(c >= last);
+        last = c;
+    }
+}
+
+static void test_beat_stop_on_every_beat(void **state)
+{
+    (void)state;
+    cub_groove_note n[2] = {note(0, 4, true, 100), note(2000000, 1, true, 100)};
+    cub_groove_plan plan = {set_a(), n, 2, NULL, NULL, NULL, NULL, 0, 0, 2500000};
+    plan.params.stop_before = plan.params.stop_after = Q(0.2);
+    for (int k = 1; k <= 3; k++)
+        stop_keeps_beats(&plan, k);
+    /* k = 3 (set a's): mid-beat the level, 1 / (1 - (0.2 + 0.2) x 3 / 4) = 1.43 */
+    int64_t mid = cub_groove_clock(&plan, 760000) - cub_groove_clock(&plan, 740000);
+    assert_true(mid >= 28500 && mid <= 28650);
+    plan.params = set_a(); /* 0.1 before, 0.2 after */
+    stop_keeps_beats(&plan, 3);
+    plan.params.stop_before = plan.params.stop_after = 0;
+    assert_true(cub_groove_clock(&plan, 740000) == 740000);
+    n[0].beat_us = 0; /* no grid: no stop */
+    plan.params.stop_before = Q(0.2);
+    assert_true(cub_groove_clock(&plan, 740000) == 740000);
+}
+
 /* The poses of a small song at 300 times, hashed (FNV-1a over every joint's
  * rotation): the pinned value must come out on x86-64 and aarch64 alike
  * (the whole path is integer). */
-#define POSE_HASH 0x3bcf75dda0fbb1feull
+#define POSE_HASH 0x21f5229d441d96b0ull
 
 static void test_poses_are_bit_identical_across_cpus(void **state)
 {
@@ -451,6 +493,7 @@ int main(void)
         cmocka_unit_test(test_stretch_runs_beat_to_beat),
         cmocka_unit_test(test_path_u_inverts_arc_length),
         cmocka_unit_test(test_non_beat_key_passed_at_speed),
+        cmocka_unit_test(test_beat_stop_on_every_beat),
         cmocka_unit_test(test_poses_are_bit_identical_across_cpus),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -88,6 +88,11 @@ typedef struct cub_groove_note {
     uint8_t pitch;        /* 0..127, or CUB_GROOVE_REST */
     uint8_t intensity;    /* 0..120 (velocity scaled) */
     bool is_beat;         /* a rhythm note (or a meter beat) starts with it */
+    /* The meter's beat grid where the note starts (ours, for the beat stop):
+     * the meter beat at or before the onset, as an offset (<= 0) from
+     * start_us, and that beat's length through the tempo map. beat_us 0:
+     * no grid (then the motion has no stop on the beats). */
+    int32_t grid_us, beat_us;
 } cub_groove_note;
 
 /* The melody as the seed's notes, rests between them where the line is
@@ -110,6 +115,13 @@ typedef struct cub_groove_params {
     cub_q16 x_span_mm;    /* the usable x span of the wrist (0: 400) */
     cub_q16 y_reach_mm;   /* |y| beyond this is scaled in (0: 250) */
     cub_q16 pace_mm_s;    /* the fastest a key may follow the last (0: 1200) */
+    /* The beat stop (ours): the pose's clock slows to a stop on every meter
+     * beat over stop_before of a beat before it and starts again over
+     * stop_after after it (fractions of a beat, each < 1, sum <= 1; 0 and 0:
+     * no stop); the speed ramps as the stop_power-th (1..3) power of the
+     * time from the beat. */
+    cub_q16 stop_before, stop_after;
+    int stop_power;
 } cub_groove_params;
 
 /* Set 'a' or 'b' of the seed's table 1 (reflectance from percent).
@@ -280,6 +292,14 @@ typedef struct cub_groove_store {
 cub_err cub_groove_plan_build(const cub_groove_song *song, const cub_groove_pick *pick,
                               const cub_groove_params *p, int window, cub_groove_store *mem,
                               cub_groove_plan *out, int *seg_count, cub_groove_cost *cost);
+
+/* The beat stop (ours): the music time t_us as the motion reads it. Every
+ * meter beat stays where it is; between two beats the clock's speed rises
+ * from 0 on the beat over params.stop_after of a beat, stays level, and
+ * falls to 0 on the next beat over params.stop_before (each ramp a power
+ * params.stop_power of the time from the beat). So every beat, inside a
+ * long note too, is a short stop. */
+int64_t cub_groove_clock(const cub_groove_plan *plan, int64_t t_us);
 
 /* The right wrist in key space at t_us (mm): on the path of the note
  * sounding, along its timing curve; key 0 before the first note. */
