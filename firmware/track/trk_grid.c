@@ -317,11 +317,26 @@ static bool joins_someone_else(const cub_tracker *t, int32_t pid, int32_t pz, in
                 if (l >= 0 && l != k && d < step[l]) step[l] = d;
             }
         }
+    int32_t mine = pid >= 0 ? step[pid] : INT32_MAX;
     for (int32_t l = 0; l < t->ncomps; l++)
-        if (l != pid && step[l] <= JOIN_OTHER_MM && step[l] < step[pid] &&
+        if (l != pid && step[l] <= JOIN_OTHER_MM && step[l] < mine &&
             (person_like(&t->comps[l]) || part_of_someone_in_front(t, pid, pz, &t->comps[l])))
             return true;
     return false;
+}
+
+/* How far before the player's blob its own hand may be: an arm's length
+ * (shoulder to fingertip, of the stature learnt) and the body's half
+ * depth; 900 mm before a stature is known. A piece farther before it is
+ * not the player's: the hand of someone crossing close before the hidden
+ * child (830 mm before it) was merged as the child's and drew its torso
+ * to the crosser. */
+#define FRONT_MAX_MM 900
+#define FRONT_BODY_MM 100
+static int32_t front_reach_mm(const cub_tracker *t)
+{
+    int32_t r = pm(t->stature_mm, P_UPPER_ARM + P_FOREARM + P_HAND_REACH) + FRONT_BODY_MM;
+    return t->stature_mm > 0 && r < FRONT_MAX_MM ? r : FRONT_MAX_MM;
 }
 
 /* Small blobs in front of the player and overlapping it in the image are
@@ -338,7 +353,7 @@ static void merge_front_parts(cub_tracker *t, int32_t pid)
         if (k == pid || c->n < 3 || c->area_mm2 > 80000) continue;
         if (c->gx1 < p->gx0 - 2 || c->gx0 > p->gx1 + 2 || c->gy1 < p->gy0 - 2 || c->gy0 > p->gy1 + 2) continue;
         trk_p3 cc = comp_centre(c);
-        if (cc.z > pz + 100 || cc.z < pz - 900 || trk_abs(cc.x - pc.x) > 1000) continue;
+        if (cc.z > pz + 100 || cc.z < pz - front_reach_mm(t) || trk_abs(cc.x - pc.x) > 1000) continue;
         if (part_of_someone_in_front(t, pid, pz, c) || joins_someone_else(t, pid, pz, k)) continue;
         front[k] = 1;
         for (int32_t i = 0; i < TRK_CELLS; i++)
@@ -666,7 +681,8 @@ static int32_t player_part(const cub_tracker *t, trk_p3 pred)
         if (c->n < ID_PART_CELLS || (best >= 0 && c->n <= t->comps[best].n)) continue;
         trk_p3 cc = comp_centre(c);
         if (trk_abs(cc.z - pred.z) > ID_PART_DZ_MM || track_gap(t, pred, cc) < 0) continue;
-        if (part_of_someone_in_front(t, -1, pred.z, c)) continue; /* the hider's own arm */
+        if (part_of_someone_in_front(t, -1, pred.z, c) || joins_someone_else(t, -1, pred.z, k))
+            continue; /* the hider's own arm */
         best = k;
     }
     return best;
