@@ -497,17 +497,20 @@ static void test_player_keeps_its_identity(void **st)
  * 350 mm before it, a blob of its own by depth, lying over the child in
  * the image. crossing_from and crossing_hand: that arm this frame. */
 static p3 crossing_hand, crossing_from;
+static bool crossing_hand_only; /* the variant: a crosser 1100 mm before the child, only its hand seen behind it */
 static p3 crosser_reaching_back(int k)
 {
     crossing_hand = crossing_from = (p3){0, 0, 0};
     if (k < 10) return (p3){0, 0, 0};
     p3 b[CUB_KJ_COUNT];
-    child_pose(1000 - 50 * (k - 10), 1600, 0, 1400, b);
+    int32_t z = crossing_hand_only ? 1300 : 1600;
+    child_pose(1000 - 50 * (k - 10), z, 0, 1400, b);
     for (int jj = 0; jj < CUB_KJ_COUNT; jj++) b[jj].y += 800 * 400 / 1000 - 320;
     draw_child(b, 1400);
     p3 sh = b[CUB_KJ_SHOULDER_R];
     p3 from = {sh.x + 100, sh.y - 260, 1780}, to = {sh.x + 420, 80, 2050};
-    capsule(from, to, 40);
+    if (crossing_hand_only) from = to = (p3){sh.x + 420, 80, 1600};
+    else capsule(from, to, 40);
     sphere(to, 50);
     crossing_hand = to, crossing_from = from;
     return b[CUB_KJ_SPINE];
@@ -549,6 +552,24 @@ static void test_crossers_arm_is_not_the_players_hand(void **st)
     int on_arm, wrong;
     crossing_with_arm_back(&on_arm, &wrong);
     printf("track crossing, the crosser's arm swung back: a joint of the player on it in %d frames, %d wrong-person\n",
+           on_arm, wrong);
+    assert_int_equal(on_arm, 0);
+    assert_int_equal(wrong, 0);
+}
+
+/* A piece farther before the player than its arm's reach is not its hand
+ * (front_reach_mm): the hand of a crosser 1100 mm before the child, held
+ * back 300 mm behind the crosser (too far to join it), 800 mm before the
+ * child and over it in the image. */
+static void test_a_piece_beyond_an_arms_reach_is_not_the_players_hand(void **st)
+{
+    (void)st;
+    int on_arm, wrong;
+    crossing_hand_only = true;
+    crossing_with_arm_back(&on_arm, &wrong);
+    crossing_hand_only = false;
+    printf("track crossing, the crosser's hand 800 mm before the child: a joint of the player on it in %d frames, %d "
+           "wrong-person\n",
            on_arm, wrong);
     assert_int_equal(on_arm, 0);
     assert_int_equal(wrong, 0);
@@ -913,6 +934,7 @@ int main(void)
         cmocka_unit_test(test_player_keeps_its_identity),
         cmocka_unit_test(test_taller_one_squeezing_past_is_not_the_player),
         cmocka_unit_test(test_crossers_arm_is_not_the_players_hand),
+        cmocka_unit_test(test_a_piece_beyond_an_arms_reach_is_not_the_players_hand),
         cmocka_unit_test(test_adult_just_behind_is_not_the_players_part),
         cmocka_unit_test(test_start_chooses_the_player_afresh),
         cmocka_unit_test(test_start_takes_the_child_beside_its_sibling),
