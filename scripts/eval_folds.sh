@@ -4,7 +4,7 @@
 # every fold reported, in the scenes a child's room has (facing, turning,
 # travel, a second person, loose clothes).
 #
-#   scripts/eval_folds.sh BUILD_DIR [dev|heldout|all] [--quick] [--identity [--draw 2|3] [--no-prelude]]
+#   scripts/eval_folds.sh BUILD_DIR [dev|heldout|all] [--quick] [--identity [--draw 2|3|4] [--no-prelude]]
 #                         [--fold NAME] [--scene NAME] [--csv FILE]
 #   (also: scripts/eval_tracker.sh BUILD_DIR --folds ...)
 #
@@ -29,6 +29,9 @@
 # --draw 3  the third draw (round 6, drawn unseen): seed 4, each clip with
 #          a mode it never met in draws 1-2, the second persons from the
 #          fold after next (a style no earlier draw put beside this fold)
+# --draw 4  the fourth draw (session 34, drawn unseen): seed 5, each clip
+#          again with a mode it never met in draws 1-3, the second persons
+#          from the fold three on
 # --no-prelude  the identity renders as rounds 1-3 had them (the child
 #          there from the first frame)
 #
@@ -43,7 +46,7 @@
 set -eu
 
 usage() {
-    echo "usage: scripts/eval_folds.sh BUILD_DIR [dev|heldout|all] [--quick] [--identity [--draw 2|3] [--no-prelude]] [--fold NAME] [--scene NAME] [--csv FILE]" >&2
+    echo "usage: scripts/eval_folds.sh BUILD_DIR [dev|heldout|all] [--quick] [--identity [--draw 2|3|4] [--no-prelude]] [--fold NAME] [--scene NAME] [--csv FILE]" >&2
     exit 2
 }
 HERE=$(cd "$(dirname "$0")" && pwd)
@@ -85,7 +88,7 @@ while [ $# -gt 0 ]; do
     --quick) QUICK=1 ;;
     --identity) IDENTITY=1 ;;
     --no-prelude) PRELUDE=0 ;;
-    --draw) [ $# -ge 2 ] && { [ "$2" = 1 ] || [ "$2" = 2 ] || [ "$2" = 3 ]; } || usage; DRAW=$2; shift ;;
+    --draw) [ $# -ge 2 ] && { [ "$2" = 1 ] || [ "$2" = 2 ] || [ "$2" = 3 ] || [ "$2" = 4 ]; } || usage; DRAW=$2; shift ;;
     --fold) [ $# -ge 2 ] || usage; ONLY=$2; shift ;;
     --csv) [ $# -ge 2 ] || usage; CSV=$2; shift ;;
     --scene) [ $# -ge 2 ] || usage; SCENE=$2; shift ;;
@@ -157,6 +160,10 @@ scene_args() { # scene fold_index clip_index second_clip
 # c_{k+4} sibling, c_{k+7} crossed slowly (in a 10-clip fold no clip meets
 # a mode it met before), the second person e_m (e_4 for the slow
 # crossing) of the fold after next, turning when k + m is odd.
+# Draw 4: c_{k+8} behind, c_{k+7} walk-in, c_{k+0} cross, c_{k+5}
+# sibling, c_{k+3} crossed slowly (again no clip meets a mode it met in
+# draws 1-3), the second person f_m (f_4) of the fold three on, turning
+# when k + m is even.
 identity_jobs() { # fold set k clips second_persons_clips
     n=$(printf '%s\n' "$4" | tr ';' '\n' | wc -l)
     nn=$(printf '%s\n' "$5" | tr ';' '\n' | wc -l)
@@ -168,6 +175,8 @@ identity_jobs() { # fold set k clips second_persons_clips
             i=$((($3 + $(nth $m 3 5 6 8 9)) % n)) sm=$((m + 4))
         elif [ "$DRAW" = 3 ]; then
             i=$((($3 + $(nth $m 6 2 9 4 7)) % n)) sm=$m
+        elif [ "$DRAW" = 4 ]; then
+            i=$((($3 + $(nth $m 8 7 0 5 3)) % n)) sm=$m
         fi
         clip=$(printf '%s\n' "$4" | tr ';' '\n' | sed -n "$((i + 1))p")
         other=$(printf '%s\n' "$5" | tr ';' '\n' | sed -n "$((sm % nn + 1))p" | cut -d' ' -f1)
@@ -191,6 +200,7 @@ jobs() {
             if { [ "$SET" = all ] || [ "$SET" = "$set" ]; } && { [ -z "$ONLY" ] || [ "$ONLY" = "$fold" ]; }; then
                 step=1
                 [ "$DRAW" != 3 ] || step=2
+                [ "$DRAW" != 4 ] || step=3
                 identity_jobs "$fold" "$set" $k "$clips" "$(sed -n "$(((k + step) % nf + 1))p" "$RESULTS/folds" | cut -d'|' -f3)"
             fi
             k=$((k + 1))

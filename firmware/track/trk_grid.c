@@ -294,6 +294,51 @@ static bool part_of_someone_in_front(const cub_tracker *t, int32_t pid, int32_t 
     return false;
 }
 
+/* A piece belongs to the body it joins with the smaller depth step: blob
+ * k touches (4-neighbours in the image) someone else (a person-like blob
+ * not the player's pid, or a piece of someone in front) with a step of
+ * at most JOIN_OTHER_MM and smaller than any step to pid. A limb is
+ * continuous in depth with its own body and only overlaps the others':
+ * the arm a crosser swings back toward the hidden child (270 mm behind
+ * the crosser's chest, 420 mm before the child) is the crosser's, not a
+ * hand before the child's chest. */
+#define JOIN_OTHER_MM 250
+static bool joins_someone_else(const cub_tracker *t, int32_t pid, int32_t pz, int32_t k)
+{
+    int32_t step[TRK_MAX_COMPS];
+    for (int32_t l = 0; l < t->ncomps; l++) step[l] = INT32_MAX;
+    for (int32_t gy = 1; gy < TRK_GH - 1; gy++)
+        for (int32_t i = gy * TRK_GW + 1; i < gy * TRK_GW + TRK_GW - 1; i++) {
+            if (t->label[i] != k) continue;
+            const int32_t nb[4] = {i - 1, i + 1, i - TRK_GW, i + TRK_GW};
+            for (int n = 0; n < 4; n++) {
+                int16_t l = t->label[nb[n]];
+                int32_t d = trk_abs(t->z[i] - t->z[nb[n]]);
+                if (l >= 0 && l != k && d < step[l]) step[l] = d;
+            }
+        }
+    int32_t mine = pid >= 0 ? step[pid] : INT32_MAX;
+    for (int32_t l = 0; l < t->ncomps; l++)
+        if (l != pid && step[l] <= JOIN_OTHER_MM && step[l] < mine &&
+            (person_like(&t->comps[l]) || part_of_someone_in_front(t, pid, pz, &t->comps[l])))
+            return true;
+    return false;
+}
+
+/* How far before the player's blob its own hand may be: an arm's length
+ * (shoulder to fingertip, of the stature learnt) and the body's half
+ * depth; 900 mm before a stature is known. A piece farther before it is
+ * not the player's: the hand of someone crossing close before the hidden
+ * child (830 mm before it) was merged as the child's and drew its torso
+ * to the crosser. */
+#define FRONT_MAX_MM 900
+#define FRONT_BODY_MM 100
+static int32_t front_reach_mm(const cub_tracker *t)
+{
+    int32_t r = pm(t->stature_mm, P_UPPER_ARM + P_FOREARM + P_HAND_REACH) + FRONT_BODY_MM;
+    return t->stature_mm > 0 && r < FRONT_MAX_MM ? r : FRONT_MAX_MM;
+}
+
 /* Small blobs in front of the player and overlapping it in the image are
  * its own hands and forearms (a hand before the chest is a depth jump),
  * unless they are someone else's who stands in front. */
@@ -308,8 +353,8 @@ static void merge_front_parts(cub_tracker *t, int32_t pid)
         if (k == pid || c->n < 3 || c->area_mm2 > 80000) continue;
         if (c->gx1 < p->gx0 - 2 || c->gx0 > p->gx1 + 2 || c->gy1 < p->gy0 - 2 || c->gy0 > p->gy1 + 2) continue;
         trk_p3 cc = comp_centre(c);
-        if (cc.z > pz + 100 || cc.z < pz - 900 || trk_abs(cc.x - pc.x) > 1000) continue;
-        if (part_of_someone_in_front(t, pid, pz, c)) continue;
+        if (cc.z > pz + 100 || cc.z < pz - front_reach_mm(t) || trk_abs(cc.x - pc.x) > 1000) continue;
+        if (part_of_someone_in_front(t, pid, pz, c) || joins_someone_else(t, pid, pz, k)) continue;
         front[k] = 1;
         for (int32_t i = 0; i < TRK_CELLS; i++)
             if (t->label[i] == k) t->mask[i] = 1;
@@ -636,7 +681,8 @@ static int32_t player_part(const cub_tracker *t, trk_p3 pred)
         if (c->n < ID_PART_CELLS || (best >= 0 && c->n <= t->comps[best].n)) continue;
         trk_p3 cc = comp_centre(c);
         if (trk_abs(cc.z - pred.z) > ID_PART_DZ_MM || track_gap(t, pred, cc) < 0) continue;
-        if (part_of_someone_in_front(t, -1, pred.z, c)) continue; /* the hider's own arm */
+        if (part_of_someone_in_front(t, -1, pred.z, c) || joins_someone_else(t, -1, pred.z, k))
+            continue; /* the hider's own arm */
         best = k;
     }
     return best;

@@ -491,6 +491,90 @@ static void test_player_keeps_its_identity(void **st)
     expect_same_player(sibling, -150, 20, "sibling");
 }
 
+/* From frame 10 on an adult crosses 800 mm before the child at 1 m/s,
+ * its trailing arm swung back toward the child: the arm leaves the
+ * adult's upper arm 180 mm behind it and ends at the child's chest height
+ * 350 mm before it, a blob of its own by depth, lying over the child in
+ * the image. crossing_from and crossing_hand: that arm this frame. */
+static p3 crossing_hand, crossing_from;
+static bool crossing_hand_only; /* the variant: a crosser 1100 mm before the child, only its hand seen behind it */
+static p3 crosser_reaching_back(int k)
+{
+    crossing_hand = crossing_from = (p3){0, 0, 0};
+    if (k < 10) return (p3){0, 0, 0};
+    p3 b[CUB_KJ_COUNT];
+    int32_t z = crossing_hand_only ? 1300 : 1600;
+    child_pose(1000 - 50 * (k - 10), z, 0, 1400, b);
+    for (int jj = 0; jj < CUB_KJ_COUNT; jj++) b[jj].y += 800 * 400 / 1000 - 320;
+    draw_child(b, 1400);
+    p3 sh = b[CUB_KJ_SHOULDER_R];
+    p3 from = {sh.x + 100, sh.y - 260, 1780}, to = {sh.x + 420, 80, 2050};
+    if (crossing_hand_only) from = to = (p3){sh.x + 420, 80, 1600};
+    else capsule(from, to, 40);
+    sphere(to, 50);
+    crossing_hand = to, crossing_from = from;
+    return b[CUB_KJ_SPINE];
+}
+
+/* A joint of skeleton s within 100 mm of the crosser's forearm (its
+ * middle or its hand). */
+static bool joint_on_crossing_arm(const cub_track_skeleton *s)
+{
+    p3 mid = {(crossing_from.x + crossing_hand.x) / 2, (crossing_from.y + crossing_hand.y) / 2,
+              (crossing_from.z + crossing_hand.z) / 2};
+    for (int j = 0; j < CUB_KJ_COUNT; j++)
+        if (joint_err(s, j, crossing_hand) < 100 || joint_err(s, j, mid) < 100) return true;
+    return false;
+}
+
+/* The frames of 50 with a joint of the player on the crosser's forearm,
+ * and those whose player is the crosser. */
+static void crossing_with_arm_back(int *on_arm, int *wrong)
+{
+    cub_tracker *t = new_tracker();
+    cub_track_skeleton s;
+    double e[2];
+    *on_arm = *wrong = 0;
+    for (int k = 0; k < 50; k++) {
+        identity_frame(t, k, 0, 2400, crosser_reaching_back, &s, e);
+        if (s.status == CUB_TRACK_NO_PLAYER) continue;
+        *wrong += e[1] <= e[0];
+        *on_arm += crossing_hand.z && joint_on_crossing_arm(&s);
+    }
+}
+
+/* A piece joined by depth to someone else (the crosser's arm swung back,
+ * continuous with the crosser, a depth jump from the child) is not a
+ * hand before the hidden child's chest (joins_someone_else). */
+static void test_crossers_arm_is_not_the_players_hand(void **st)
+{
+    (void)st;
+    int on_arm, wrong;
+    crossing_with_arm_back(&on_arm, &wrong);
+    printf("track crossing, the crosser's arm swung back: a joint of the player on it in %d frames, %d wrong-person\n",
+           on_arm, wrong);
+    assert_int_equal(on_arm, 0);
+    assert_int_equal(wrong, 0);
+}
+
+/* A piece farther before the player than its arm's reach is not its hand
+ * (front_reach_mm): the hand of a crosser 1100 mm before the child, held
+ * back 300 mm behind the crosser (too far to join it), 800 mm before the
+ * child and over it in the image. */
+static void test_a_piece_beyond_an_arms_reach_is_not_the_players_hand(void **st)
+{
+    (void)st;
+    int on_arm, wrong;
+    crossing_hand_only = true;
+    crossing_with_arm_back(&on_arm, &wrong);
+    crossing_hand_only = false;
+    printf("track crossing, the crosser's hand 800 mm before the child: a joint of the player on it in %d frames, %d "
+           "wrong-person\n",
+           on_arm, wrong);
+    assert_int_equal(on_arm, 0);
+    assert_int_equal(wrong, 0);
+}
+
 /* Attract mode: for 2 s only an adult stands in the room, 900 mm right of
  * the centre, and the tracker follows it; then the child appears in the
  * middle, nearer. The track keeps the adult (its track is alive, the child
@@ -849,6 +933,8 @@ int main(void)
         cmocka_unit_test(test_second_person_never_becomes_the_player),
         cmocka_unit_test(test_player_keeps_its_identity),
         cmocka_unit_test(test_taller_one_squeezing_past_is_not_the_player),
+        cmocka_unit_test(test_crossers_arm_is_not_the_players_hand),
+        cmocka_unit_test(test_a_piece_beyond_an_arms_reach_is_not_the_players_hand),
         cmocka_unit_test(test_adult_just_behind_is_not_the_players_part),
         cmocka_unit_test(test_start_chooses_the_player_afresh),
         cmocka_unit_test(test_start_takes_the_child_beside_its_sibling),
