@@ -11,6 +11,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "cub/floor_file.h"
 #include "tool_util.h"
 
 #define MM(q) ((q) / 65536.0)
@@ -159,13 +160,13 @@ int gait_ground_make(gait_ground *g, const char *name, const char *who)
     } else if (is_file(name)) {
         cub_diag d = {0};
         char msg[700];
-        if (gait_terrain_load(name, g, &d)) {
+        if (cub_floor_load(name, &g->floor, &d) || cub_floor_terrain(&g->floor, &g->t)) {
             fprintf(stderr, "cubtool %s: %s\n", who, cub_diag_str(&d, msg, sizeof msg));
             return 1;
         }
     } else {
         fprintf(stderr,
-                "cubtool %s: unknown terrain '%s' (flat, slope, rolling, steps, or a terrain file)\n",
+                "cubtool %s: unknown terrain '%s' (flat, slope, rolling, steps, or a floor file)\n",
                 who, name);
         return 2;
     }
