@@ -19,10 +19,12 @@
 
 /* ---- loading ---------------------------------------------------------------- */
 
-/* Leg joint names by skeleton family: CMU's BVH, then Daz's (CMU 03, 07, 08). */
+/* Leg joint names by skeleton family: CMU's BVH, Daz's (CMU 03, 07, 08),
+ * then the bear's (a retargeted clip: the toe is the foot's end site). */
 static const char *const leg_names[][4] = {
     {"LeftFoot", "LeftToeBase", "RightFoot", "RightToeBase"},
     {"lFoot", "lFoot_end", "rFoot", "rFoot_end"},
+    {"LeftFoot", "LeftFoot_end", "RightFoot", "RightFoot_end"},
 };
 
 static int resolve(const char *clip, const char *data_dir, char *path, size_t n)
@@ -52,6 +54,9 @@ static int find_legs(gait_src *s)
 static int analyse(gait_src *s)
 {
     int n = s->m.clip.frame_count;
+    /* the clip's own rate (the bear's clips are 30 fps, CMU's 120) */
+    cub_gait_phase_params pp = {.fps = (int)((1000000000u + s->m.clip.frame_ns / 2) /
+                                             s->m.clip.frame_ns)};
     for (int i = 0; i < 2; i++) {
         s->track[2 * i] = calloc((size_t)n, sizeof(cub_vec3));
         s->track[2 * i + 1] = calloc((size_t)n, sizeof(cub_vec3));
@@ -59,7 +64,7 @@ static int analyse(gait_src *s)
         if (!s->track[2 * i] || !s->track[2 * i + 1] || !s->phase[i]) return -1;
         if (cub_gait_track_clip(&s->m.clip, s->wc.ankle[i], s->wc.toe[i], s->track[2 * i],
                                 s->track[2 * i + 1]) ||
-            cub_gait_analyse(s->track[2 * i], s->track[2 * i + 1], n, NULL, s->phase[i],
+            cub_gait_analyse(s->track[2 * i], s->track[2 * i + 1], n, &pp, s->phase[i],
                              &s->wc.foot[i]))
             return -1;
         s->wc.ankle_mm[i] = s->track[2 * i];
