@@ -54,25 +54,13 @@ static int find_legs(gait_src *s)
 static int analyse(gait_src *s)
 {
     int n = s->m.clip.frame_count;
-    /* the clip's own rate (the bear's clips are 30 fps, CMU's 120) */
-    cub_gait_phase_params pp = {.fps = (int)((1000000000u + s->m.clip.frame_ns / 2) /
-                                             s->m.clip.frame_ns)};
-    for (int i = 0; i < 2; i++) {
-        s->track[2 * i] = calloc((size_t)n, sizeof(cub_vec3));
-        s->track[2 * i + 1] = calloc((size_t)n, sizeof(cub_vec3));
-        s->phase[i] = calloc((size_t)n, 1);
-        if (!s->track[2 * i] || !s->track[2 * i + 1] || !s->phase[i]) return -1;
-        if (cub_gait_track_clip(&s->m.clip, s->wc.ankle[i], s->wc.toe[i], s->track[2 * i],
-                                s->track[2 * i + 1]) ||
-            cub_gait_analyse(s->track[2 * i], s->track[2 * i + 1], n, &pp, s->phase[i],
-                             &s->wc.foot[i]))
-            return -1;
-        s->wc.ankle_mm[i] = s->track[2 * i];
-        s->wc.toe_mm[i] = s->track[2 * i + 1];
-        s->wc.phase[i] = s->phase[i];
-    }
-    s->wc.clip = &s->m.clip;
-    return 0;
+    for (int i = 0; i < 4; i++)
+        if (!(s->track[i] = calloc((size_t)n, sizeof(cub_vec3)))) return -1;
+    for (int i = 0; i < 2; i++)
+        if (!(s->phase[i] = calloc((size_t)n, 1))) return -1;
+    const int ankle[2] = {s->wc.ankle[0], s->wc.ankle[1]}, toe[2] = {s->wc.toe[0], s->wc.toe[1]};
+    cub_vec3 *const am[2] = {s->track[0], s->track[2]}, *const tm[2] = {s->track[1], s->track[3]};
+    return cub_gait_walk_clip_make(&s->m.clip, ankle, toe, am, tm, s->phase, &s->wc) ? -1 : 0;
 }
 
 int gait_src_load(gait_src *s, const char *clip, const char *data_dir, const char *who)
