@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "walk_box.h"
 #include "words.h"
 
 /* The music clock in song milliseconds, or CUB_COACH_NO_MUSIC. */
@@ -163,6 +164,7 @@ void cub_dance_tick(cub_dance *d, cub_loop *loop, int64_t t_us)
     (void)loop;
     if (cub_director_tick(&d->dir, t_us, music_ms(d)) == CUB_OK) carry_out(d, t_us);
     say_state(d, t_us);
+    if (d->walk) cub_walk_box_tick(d->walk, d->dir.coach.state, t_us);
 }
 
 /* ---- set-up ------------------------------------------------------------- */
@@ -323,6 +325,8 @@ void cub_dance_close(cub_dance *d)
     cub_wings_close(&d->wings);
     if (d->groove) cub_groove_box_close(d->groove);
     free(d->groove);
+    if (d->walk) cub_walk_box_close(d->walk);
+    free(d->walk);
     memset(d, 0, sizeof *d);
 }
 
@@ -339,6 +343,7 @@ cub_err cub_dance_pose(cub_dance *d, float *xyz, float *rot_xyzw)
     cub_quat rot[CUB_MOTION_MAX_JOINTS];
     const cub_skeleton *skel = &d->cl.lib.skel;
     cub_err e = cub_bridge_player_pose(&d->dir.player, &d->pose);
+    if (!e && d->walk) cub_walk_box_pose(d->walk, &d->pose);
     if (!e) e = cub_motion_forward(skel, &d->pose, d->world_mm, rot_xyzw ? rot : NULL);
     if (e) return e;
     cub_motion_world_to_float(d->world_mm, skel->joint_count, xyz);

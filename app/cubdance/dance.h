@@ -27,6 +27,8 @@
 #include "groove_box.h"
 #include "wings.h"
 
+struct cub_walk_box;
+
 typedef struct cub_dance {
     cub_coachlib cl;
     cub_song song;
@@ -52,6 +54,7 @@ typedef struct cub_dance {
     cub_coach_groove grooves[CUB_SONG_MAX_SPANS]; /* its clips' spans, for the coach */
     int groove_span[CUB_SONG_MAX_SPANS];          /* each one's span in the groove box */
     int groove_count;
+    struct cub_walk_box *walk; /* the bear's walks (walk_box.h; owned), or NULL */
 } cub_dance;
 
 /* Load the coach's clips, the song and the music, and start the coach idle

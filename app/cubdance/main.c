@@ -19,6 +19,7 @@
 #include "record.h"
 #include "replay.h"
 #include "session.h"
+#include "walk_box.h"
 
 static int make_dir(const char *dir)
 {
@@ -101,6 +102,10 @@ static int open_extras(const cub_app_options *o, cub_board *board, cub_loop *loo
         fprintf(stderr, "cubdance: %s\n", s->dance ? err : "out of memory");
         return -1;
     }
+    if (o->walk_path && cub_dance_open_walk(s->dance, o->walk_path, s->floor, err, sizeof err)) {
+        fprintf(stderr, "cubdance: %s\n", err);
+        return -1;
+    }
     return 0;
 }
 
@@ -120,13 +125,16 @@ static cub_record *open_recorder(const cub_app_options *o, cub_board *board, cub
 
 /* The forest floor the coach stands on (the gait planner's terrain too:
  * cub_floor_terrain); a broken file stops the box, naming file and line. */
-static int load_floor(const char *path, cub_floor *out)
+static cub_floor *load_floor(const char *path)
 {
     cub_diag d = {0};
     char msg[600];
-    if (!cub_floor_load(path, out, &d)) return 0;
-    fprintf(stderr, "cubdance: %s\n", cub_diag_str(&d, msg, sizeof msg));
-    return -1;
+    cub_floor *f = calloc(1, sizeof *f); /* 9 kB: not on the stack */
+    if (!f) fprintf(stderr, "cubdance: out of memory\n");
+    else if (!cub_floor_load(path, f, &d)) return f;
+    else fprintf(stderr, "cubdance: %s\n", cub_diag_str(&d, msg, sizeof msg));
+    free(f);
+    return NULL;
 }
 
 static int run(const cub_app_options *o, cub_board *board, cub_event_log_file *log,
@@ -170,9 +178,9 @@ static int run(const cub_app_options *o, cub_board *board, cub_event_log_file *l
                       "board=%s display=%s size=%dx%d depth=%s clock=%s clip=%s joints=%d",
                       cub_board_name(), display, w, h, cub_board_depth_source(board), clock,
                       s.clip_name, clip->skel.joint_count);
+    /* The floor first: the walks go over it. */
+    if (o->floor_path && !(s.floor = load_floor(o->floor_path))) goto done;
     if (open_extras(o, board, &loop, t0, &s)) goto done;
-    static cub_floor floor; /* 9 kB: not on the stack */
-    if (o->floor_path && load_floor(o->floor_path, &floor)) goto done;
     if (cub_board_display_active(board)) {
         /* Frame the coach: the bear is a toy, about a metre tall. */
         char why[600] = "";
@@ -186,7 +194,7 @@ static int run(const cub_app_options *o, cub_board *board, cub_event_log_file *l
             else fprintf(stderr, "cubdance: the renderer could not start (GLES2)\n");
             goto done;
         }
-        if (o->floor_path && cub_render_set_floor(s.render, &floor)) {
+        if (s.floor && cub_render_set_floor(s.render, s.floor)) {
             fprintf(stderr, "cubdance: the renderer could not draw the floor (GLES2)\n");
             goto done;
         }
@@ -223,6 +231,7 @@ done:
     free(s.depth_copy);
     free(s.rgba);
     free(s.tick_hist);
+    free(s.floor);
     return rc;
 }
 

@@ -70,6 +70,9 @@ static void usage(FILE *f, const char *prog)
 "                         its confident joints replace the tracker's unsure ones\n"
 "  --floor FILE|off       the forest floor the coach stands on (default\n"
 "                         " CUB_ASSETS_DIR "/floor/forest.floor; off: a flat meadow)\n"
+"  --walk FILE|off        the bear's walk clip: it walks in at START, off after a\n"
+"                         song, about while attracting (default\n"
+"                         " CUB_ASSETS_DIR "/clips/bear_walk.bvh; off: it stands)\n"
 "  --voice FILE           the bear's spoken words (default " CUB_VOICE_PATH ");\n"
 "                         speech=0 in the config keeps it quiet\n"
 "  --attract-after S      attract after S seconds without interaction\n"
@@ -188,6 +191,7 @@ static int apply_valued(cub_app_options *o, const char *opt, const char *val, FI
                             : !strcmp(opt, "--coach")        ? &o->coach
                             : !strcmp(opt, "--forest")       ? &o->forest_path
                             : !strcmp(opt, "--floor")        ? &o->floor_path
+                            : !strcmp(opt, "--walk")         ? &o->walk_path
                             : !strcmp(opt, "--font")         ? &o->font_path
                             : !strcmp(opt, "--voice")        ? &o->voice_path
                                                              : NULL;
@@ -203,7 +207,7 @@ static int takes_value(const char *opt)
                                          "--depth", "--frames", "--replay", "--buttons",
                                          "--gpio-config", "--config", "--audio-driver", "--clip", "--log",
                                          "--song", "--timeline", "--library", "--tags",
-                                         "--character", "--coach", "--forest", "--floor", "--font", "--voice", "--attract-after", "--doze-after",
+                                         "--character", "--coach", "--forest", "--floor", "--walk", "--font", "--voice", "--attract-after", "--doze-after",
                                          "--music-clock-scale", "--record"};
     for (size_t i = 0; i < sizeof valued / sizeof *valued; i++)
         if (!strcmp(opt, valued[i])) return 1;
@@ -295,15 +299,19 @@ static int default_optional(cub_app_options *o, const char *assets, const option
 }
 
 /* The tracker's body-part forest (docs/forest.md, "In the box": it
- * measured better on every held-out fold) and the forest floor the coach
- * stands on (cub/floor_file.h, CUB_FLOOR_ASSET; docs/floor.md). */
+ * measured better on every held-out fold), the forest floor the coach
+ * stands on (cub/floor_file.h, CUB_FLOOR_ASSET; docs/floor.md) and the
+ * bear's walk over it (docs/gait.md). */
 static int default_forests(cub_app_options *o, const char *assets, FILE *err)
 {
     static const optional_asset forest = {6, "forest/body.forest", "forest",
                                           "the tracker runs without it"};
     static const optional_asset floor = {7, "floor/forest.floor", "floor",
                                          "the coach stands on a flat meadow"};
+    static const optional_asset walk = {8, "clips/bear_walk.bvh", "walk clip",
+                                        "the bear stands at its place"};
     if (default_optional(o, assets, &forest, &o->forest_path, err)) return -1;
+    if (default_optional(o, assets, &walk, &o->walk_path, err)) return -1;
     return default_optional(o, assets, &floor, &o->floor_path, err);
 }
 

@@ -34,6 +34,8 @@ typedef struct cub_app_options {
                                  * assets/forest/body.forest when there; "off": none), or NULL */
     const char *floor_path;     /* the forest floor the coach stands on (--floor; default
                                  * assets/floor/forest.floor when there; "off"), or NULL: the meadow */
+    const char *walk_path;      /* the bear's walk clip (--walk; default assets/clips/bear_walk.bvh
+                                 * when there; "off"), or NULL: the bear does not walk */
     double attract_after_s;     /* 0 = the coach's default */
     double doze_after_s;        /* 0 = the coach's default */
     double music_clock_scale;   /* 1 = true; 0.95 / 1.05 simulate a drifting audio clock */
@@ -52,7 +54,7 @@ typedef struct cub_app_options {
     int record_each_dance;      /* 1: from the config (a folder per dance) */
     int record_max_mb;          /* recording_max_mb */
     int log_max_kb;             /* the event log's cap (log_max_kb); 0 = none */
-    char path_buf[8][CUB_BOXCONF_PATH_MAX + 64]; /* joined asset paths */
+    char path_buf[9][CUB_BOXCONF_PATH_MAX + 64]; /* joined asset paths */
 } cub_app_options;
 
 typedef enum cub_app_parse {

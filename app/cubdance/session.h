@@ -8,6 +8,7 @@
 #include <stdio.h>
 
 #include "cub/board.h"
+#include "cub/floor.h"
 #include "cub/io.h"
 #include "cub/loop.h"
 #include "cub/render.h"
@@ -24,6 +25,7 @@ typedef struct cub_session {
     const cub_app_options *opt;
     cub_board *board;
     cub_render *render;      /* NULL when there is no display */
+    cub_floor *floor;        /* the forest floor (owned), or NULL: the flat meadow */
     const cub_io_motion *clip; /* without a song: the clip played on START */
     cub_dance *dance;          /* with a song: the coach leads it (else NULL) */
     cub_timeline *timeline;    /* scripted judge events, or NULL */

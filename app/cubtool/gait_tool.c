@@ -11,6 +11,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "cub/floor_file.h"
 #include "tool_util.h"
 
 #define MM(q) ((q) / 65536.0)
@@ -18,10 +19,12 @@
 
 /* ---- loading ---------------------------------------------------------------- */
 
-/* Leg joint names by skeleton family: CMU's BVH, then Daz's (CMU 03, 07, 08). */
+/* Leg joint names by skeleton family: CMU's BVH, Daz's (CMU 03, 07, 08),
+ * then the bear's (a retargeted clip: the toe is the foot's end site). */
 static const char *const leg_names[][4] = {
     {"LeftFoot", "LeftToeBase", "RightFoot", "RightToeBase"},
     {"lFoot", "lFoot_end", "rFoot", "rFoot_end"},
+    {"LeftFoot", "LeftFoot_end", "RightFoot", "RightFoot_end"},
 };
 
 static int resolve(const char *clip, const char *data_dir, char *path, size_t n)
@@ -51,22 +54,13 @@ static int find_legs(gait_src *s)
 static int analyse(gait_src *s)
 {
     int n = s->m.clip.frame_count;
-    for (int i = 0; i < 2; i++) {
-        s->track[2 * i] = calloc((size_t)n, sizeof(cub_vec3));
-        s->track[2 * i + 1] = calloc((size_t)n, sizeof(cub_vec3));
-        s->phase[i] = calloc((size_t)n, 1);
-        if (!s->track[2 * i] || !s->track[2 * i + 1] || !s->phase[i]) return -1;
-        if (cub_gait_track_clip(&s->m.clip, s->wc.ankle[i], s->wc.toe[i], s->track[2 * i],
-                                s->track[2 * i + 1]) ||
-            cub_gait_analyse(s->track[2 * i], s->track[2 * i + 1], n, NULL, s->phase[i],
-                             &s->wc.foot[i]))
-            return -1;
-        s->wc.ankle_mm[i] = s->track[2 * i];
-        s->wc.toe_mm[i] = s->track[2 * i + 1];
-        s->wc.phase[i] = s->phase[i];
-    }
-    s->wc.clip = &s->m.clip;
-    return 0;
+    for (int i = 0; i < 4; i++)
+        if (!(s->track[i] = calloc((size_t)n, sizeof(cub_vec3)))) return -1;
+    for (int i = 0; i < 2; i++)
+        if (!(s->phase[i] = calloc((size_t)n, 1))) return -1;
+    const int ankle[2] = {s->wc.ankle[0], s->wc.ankle[1]}, toe[2] = {s->wc.toe[0], s->wc.toe[1]};
+    cub_vec3 *const am[2] = {s->track[0], s->track[2]}, *const tm[2] = {s->track[1], s->track[3]};
+    return cub_gait_walk_clip_make(&s->m.clip, ankle, toe, am, tm, s->phase, &s->wc) ? -1 : 0;
 }
 
 int gait_src_load(gait_src *s, const char *clip, const char *data_dir, const char *who)
@@ -159,13 +153,13 @@ int gait_ground_make(gait_ground *g, const char *name, const char *who)
     } else if (is_file(name)) {
         cub_diag d = {0};
         char msg[700];
-        if (gait_terrain_load(name, g, &d)) {
+        if (cub_floor_load(name, &g->floor, &d) || cub_floor_terrain(&g->floor, &g->t)) {
             fprintf(stderr, "cubtool %s: %s\n", who, cub_diag_str(&d, msg, sizeof msg));
             return 1;
         }
     } else {
         fprintf(stderr,
-                "cubtool %s: unknown terrain '%s' (flat, slope, rolling, steps, or a terrain file)\n",
+                "cubtool %s: unknown terrain '%s' (flat, slope, rolling, steps, or a floor file)\n",
                 who, name);
         return 2;
     }

@@ -5,6 +5,7 @@
 #ifndef CUB_CUBTOOL_GAIT_TOOL_H
 #define CUB_CUBTOOL_GAIT_TOOL_H
 
+#include "cub/floor.h"
 #include "cub/gait.h"
 #include "cub/io.h"
 
@@ -29,24 +30,17 @@ void gait_src_free(gait_src *s);
 typedef struct gait_ground {
     cub_gait_terrain t;
     cub_q16 heights[GAIT_GRID * GAIT_GRID];
+    cub_floor floor; /* a terrain file's floor (the terrain points into it) */
     char name[48];
 } gait_ground;
 
 /* name: flat, slope (5 degrees up), rolling, steps (10 cm every 1.2 m),
- * or a terrain file (below). The walk goes along +z from the origin. 0;
- * 2 for an unknown name, 1 for a bad file, the reason said. */
+ * or a floor file (the box's format, cub/floor_file.h: a heightfield with
+ * logs and stones; cub_floor_terrain makes the terrain). The walk goes
+ * along +z from the origin. 0; 2 for an unknown name, 1 for a bad file,
+ * the reason said. */
 int gait_ground_make(gait_ground *g, const char *name, const char *who);
 
-/* A terrain file: text, one item a line, '#' comments, millimetres.
- *   flat BASE                      a level ground, or
- *   slope BASE GRAD_X GRAD_Z       rise per run, each in -1..1, or
- *   grid NX NZ CELL X0 Z0          a heightfield (2..96 samples a side,
- *   row H1 .. HNX                  cell 10..5000 mm), then NZ rows;
- *   box X0 Y0 Z0 X1 Y1 Z1          up to 16 obstacles, after the ground.
- * Values within +-100 m. CUB_ERR_FORMAT with "file:line: what" in d. */
-cub_err gait_terrain_parse(const char *s, size_t len, const char *name, gait_ground *g,
-                           cub_diag *d);
-cub_err gait_terrain_load(const char *path, gait_ground *g, cub_diag *d);
 /* obstacle: log (15 cm across the path at z = 1.5 m), stone (the n-th at
  * z = 3 m, 4.2 m, ... alternately under the two feet' lines). */
 int gait_ground_add(gait_ground *g, const char *obstacle, const char *who);

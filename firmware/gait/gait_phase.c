@@ -188,3 +188,23 @@ cub_err cub_gait_analyse(const cub_vec3 *ankle_mm, const cub_vec3 *toe_mm, int f
     }
     return CUB_OK;
 }
+
+cub_err cub_gait_walk_clip_make(const cub_clip *clip, const int ankle[2], const int toe[2],
+                                cub_vec3 *const ankle_mm[2], cub_vec3 *const toe_mm[2],
+                                uint8_t *const phase[2], cub_gait_walk_clip *out)
+{
+    if (!clip || !clip->frame_ns || !out) return CUB_ERR_ARG;
+    /* the clip's own rate: the bear's clips are 30 fps, CMU's 120 */
+    cub_gait_phase_params pp = {.fps = (int)((1000000000u + clip->frame_ns / 2) / clip->frame_ns)};
+    *out = (cub_gait_walk_clip){.clip = clip};
+    for (int i = 0; i < 2; i++) {
+        cub_err e = cub_gait_track_clip(clip, ankle[i], toe[i], ankle_mm[i], toe_mm[i]);
+        if (!e)
+            e = cub_gait_analyse(ankle_mm[i], toe_mm[i], clip->frame_count, &pp, phase[i],
+                                 &out->foot[i]);
+        if (e) return e;
+        out->ankle[i] = ankle[i], out->toe[i] = toe[i];
+        out->ankle_mm[i] = ankle_mm[i], out->toe_mm[i] = toe_mm[i], out->phase[i] = phase[i];
+    }
+    return CUB_OK;
+}

@@ -156,8 +156,6 @@ def base_of(kind, d, shared, build=""):
         return read(os.path.join(SRC, "tests", "labels", "skeltrack_labels.txt")), "bad_labels.txt"
     if kind == "trc":  # a small marker file, made by tests/fuzz/make_seeds.py
         return read(os.path.join(SRC, "tests", "fuzz", "seeds_trc", "small_mm.trc")), "bad.trc"
-    if kind == "terrain":  # cubtool gait's terrain file, made by tests/fuzz/make_seeds.py
-        return read(os.path.join(SRC, "tests", "fuzz", "seeds_terrain", "grid.terrain")), "bad.terrain"
     if kind == "floor":  # the box's forest floor (the format: cub/floor_file.h)
         return read(os.path.join(ASSETS, "floor", "forest.floor")), "bad.floor"
     if kind == "keyscript":  # cubtool play's scripted keys (the format: cub/keyscript.h)

@@ -2,7 +2,7 @@
 """Write the fuzz targets' small seed inputs (issue 18) into tests/fuzz/:
 seeds_dump/ (fuzz_fakenect_dump, fuzz_track_dump), seeds_synth/,
 seeds_cli/, seeds_font/, seeds_forest/, seeds_map/, seeds_codec/, seeds_keys/, seeds_voice/, seeds_trc/,
-seeds_ase/, seeds_keyscript/, seeds_evolve/, seeds_terrain/, seeds_floor/. Everything is made
+seeds_ase/, seeds_keyscript/, seeds_evolve/, seeds_floor/. Everything is made
 here from the formats' rules, nothing copied from the shared data; run it again
 after changing a format:
 
@@ -412,15 +412,6 @@ def keyscript_seeds():
         b"10 Plus minus C V F G Space Home Left Right Esc\n")
 
 
-def terrain_seeds():
-    put("seeds_terrain", "flat.terrain", b"# level\nflat 0\nbox -1000 0 1425 1000 150 1575\n")
-    put("seeds_terrain", "slope.terrain", b"slope 10 0.0 0.0875\n")
-    rows = "".join("row " + " ".join("%d" % (10 * ((i + j) % 5)) for i in range(4)) + "\n"
-                   for j in range(3))
-    put("seeds_terrain", "grid.terrain",
-        ("grid 4 3 250 -500 -250\n" + rows + "box 0 0 0 160 70 160\n").encode())
-
-
 def floor_seeds():
     """The forest floor (app/include/cub/floor_file.h): a small hill with a
     log and a stone, and the smallest grid with nothing on it."""
@@ -433,7 +424,6 @@ def floor_seeds():
 
 
 def main():
-    terrain_seeds()
     floor_seeds()
     forest_seeds()
     keyscript_seeds()

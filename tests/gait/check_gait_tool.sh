@@ -23,13 +23,17 @@ refuse 1 "no such file" nosuch_clip --data "$data" --frames "$out"
 refuse 2 "unknown terrain" 02_01 --data "$data" --terrain lava --frames "$out"
 refuse 2 "unknown obstacle" 02_01 --data "$data" --obstacle tree --frames "$out"
 refuse 2 "--frames" 02_01 --data "$data"
-# A terrain file: a bad one is refused at its line, a good one walked on.
+# A floor file (the box's format): a bad one is refused at its line, a
+# good one walked on, the shipped forest floor too.
 mkdir -p "$out"
-printf 'grid 2 2 500 -500 0\nrow 0 0\nrow 0 oops\n' >"$out/bad.terrain"
-refuse 1 "bad.terrain:3: 'oops' is not a number" 02_01 --data "$data" --terrain "$out/bad.terrain" --frames "$out"
-printf 'grid 2 2 500 -500 0\nrow 0 0\n' >"$out/short.terrain"
-refuse 1 "the grid has 1 rows of the 2" 02_01 --data "$data" --terrain "$out/short.terrain" --frames "$out"
-printf '# a ramp and a log\ngrid 2 2 4000 -4000 -2000\nrow 0 0\nrow 300 300\nbox -1000 0 1425 1000 150 1575\n' >"$out/ramp.terrain"
-"$tool" gait 02_01 --data "$data" --terrain "$out/ramp.terrain" --frames "$out/ramp" --count 3 >/dev/null || fail=1
+printf 'cubfloor 1\ngrid 2 2 500 -500 0\nrow 0 0\nrow 0 oops\n' >"$out/bad.floor"
+refuse 1 "bad.floor:4: height 'oops' is not a whole number" 02_01 --data "$data" --terrain "$out/bad.floor" --frames "$out"
+printf 'cubfloor 1\ngrid 2 2 500 -500 0\nrow 0 0\n' >"$out/short.floor"
+refuse 1 "1 rows, the grid has NZ = 2" 02_01 --data "$data" --terrain "$out/short.floor" --frames "$out"
+printf '# a ramp and a stone\ncubfloor 1\ngrid 2 2 4000 -4000 -2000\nrow 0 0\nrow 300 300\nstone 0 1500 80 80 70\n' >"$out/ramp.floor"
+"$tool" gait 02_01 --data "$data" --terrain "$out/ramp.floor" --frames "$out/ramp" --count 3 >/dev/null || fail=1
+forest="$(dirname "$0")/../../assets/floor/forest.floor"
+"$tool" gait 02_01 --data "$data" --terrain "$forest" --frames "$out/forest" --count 3 >/dev/null || fail=1
+[ -s "$out/forest/frame_0002.png" ] || { echo "FAIL: no frames on the forest floor"; fail=1; }
 [ -s "$out/ramp/frame_0002.png" ] || { echo "FAIL: no frames from a terrain file"; fail=1; }
 exit $fail

@@ -767,6 +767,90 @@ static void test_bear_on_the_forest_floor_matches_golden(void **state)
     cub_render_destroy(r);
 }
 
+/* The bear's walk (assets/clips/bear_walk.bvh) through the gait walker
+ * over the shipped floor, across the camera's view (along +x) up the
+ * hillock of bear_on_forest_floor: WALK_FRAMES frames in, one foot
+ * swinging and the other planted, as the box draws it. */
+#define WALK_FRAMES 52
+static cub_io_motion g_walk;
+static cub_vec3 g_walk_track[4][256];
+static uint8_t g_walk_phase[2][256];
+static cub_gait_walk_clip g_walk_clip;
+static cub_gait_walker g_walker;
+
+static void walk_on_floor(const cub_gait_terrain *t)
+{
+    cub_diag diag = {0};
+    char path[1024];
+    const char *src = getenv("CUB_SOURCE_DIR");
+    snprintf(path, sizeof path, "%s/assets/clips/bear_walk.bvh", src ? src : ".");
+    assert_int_equal(cub_io_load_bvh(path, &(cub_io_desc){0}, &g_walk, &diag), CUB_OK);
+    assert_true(g_walk.clip.frame_count <= 256);
+    const cub_skeleton *s = &g_walk.skel;
+    const int ankle[2] = {cub_motion_skeleton_find(s, "LeftFoot"),
+                          cub_motion_skeleton_find(s, "RightFoot")};
+    const int toe[2] = {cub_motion_skeleton_find(s, "LeftFoot_end"),
+                        cub_motion_skeleton_find(s, "RightFoot_end")};
+    cub_vec3 *const am[2] = {g_walk_track[0], g_walk_track[2]};
+    cub_vec3 *const tm[2] = {g_walk_track[1], g_walk_track[3]};
+    uint8_t *const ph[2] = {g_walk_phase[0], g_walk_phase[1]};
+    assert_int_equal(cub_gait_walk_clip_make(&g_walk.clip, ankle, toe, am, tm, ph, &g_walk_clip),
+                     CUB_OK);
+    cub_gait_walk_params p = {.start_mm = {CUB_Q16_INT(1900), 0, CUB_Q16_INT((int)FLOOR_SPOT_Z)},
+                              .dir_x = CUB_Q16_INT(1)};
+    assert_int_equal(cub_gait_walker_init(&g_walker, &g_walk_clip, t, &p), CUB_OK);
+    const cub_vec3 to = {CUB_Q16_INT(5000), 0, CUB_Q16_INT((int)FLOOR_SPOT_Z)};
+    const cub_pose *pose = NULL;
+    for (int i = 0; i < WALK_FRAMES; i++)
+        assert_int_equal(cub_gait_walker_step(&g_walker, to, &pose), CUB_OK);
+}
+
+/* The walker's pose (the clip's skeleton, written by the retargeter from
+ * the bear) as the bear's: the same joints in the same order, only the
+ * end sites named otherwise (LeftFoot_end for LeftToe_end). */
+static void walker_as_bear(void)
+{
+    const cub_skeleton *a = &g_walk.skel, *b = &g_bear.skel;
+    assert_int_equal(a->joint_count, b->joint_count);
+    for (int j = 0; j < b->joint_count; j++)
+        if (!b->joints[j].is_end_site) assert_string_equal(a->joints[j].name, b->joints[j].name);
+    g_bs.pose = g_walker.pose;
+}
+
+/* The acceptance's image: the bear mid-step on the rolling floor. */
+static void test_bear_walks_mid_step_on_the_floor_matches_golden(void **state)
+{
+    fixture *f = *state;
+    cub_gait_terrain t;
+    load_floor(&t);
+    walk_on_floor(&t);
+    const cub_gait_walk_foot *l = &g_walker.feet[0], *r = &g_walker.feet[1];
+    assert_int_equal(l->swinging + r->swinging, 1); /* mid-step: one foot up */
+    const cub_gait_walk_foot *down = l->swinging ? r : l;
+    cub_q16 ground = cub_gait_height(&t, down->hold_mm.x, down->hold_mm.z);
+    cub_q16 root_ground = cub_gait_ground_height(&t, g_walker.pose.root_mm.x,
+                                                 g_walker.pose.root_mm.z);
+    printf("golden: the walking bear after %d frames: root at x=%.0f z=%.0f over ground %.1f mm; "
+           "%s foot swinging, the other planted at y=%.1f (ground under its ankle %.1f mm)\n",
+           WALK_FRAMES, g_walker.pose.root_mm.x / 65536.0, g_walker.pose.root_mm.z / 65536.0,
+           root_ground / 65536.0, l->swinging ? "left" : "right", down->hold_mm.y / 65536.0,
+           ground / 65536.0);
+    /* planted: on the highest ground under its base (ankle, middle, toe),
+     * which the planner keeps within 30 mm of the ankle's */
+    assert_true(down->hold_mm.y >= ground && down->hold_mm.y <= ground + CUB_Q16_INT(30));
+    assert_true(abs(root_ground) > CUB_Q16_INT(30)); /* on the hills, not the flat spot */
+    walker_as_bear();
+    cub_render *r3 = NULL;
+    cub_render_desc d = {.width = W, .height = H, .figure_height_mm = 1215.0f};
+    assert_int_equal(cub_render_create(&d, &r3), CUB_OK);
+    assert_int_equal(cub_render_set_floor(r3, &g_floor), CUB_OK);
+    cub_render_scene scene = posed(&g_bear, CUB_RENDER_FACE_HAPPY);
+    draw_with(f, r3, &scene);
+    check_golden_within(f->rgba, "bear_walks_on_forest_floor", 1, BEAR_MAX_SHARE);
+    cub_render_destroy(r3);
+    cub_io_motion_free(&g_walk);
+}
+
 /* A clip without the wings (the bear's skeleton): the winged bear is the
  * bear, pixel for pixel as its golden. */
 static void test_winged_bear_without_wings_is_the_bear(void **state)
@@ -1058,6 +1142,7 @@ int main(void)
         cmocka_unit_test(test_winged_bear_mid_flap_matches_golden),
         cmocka_unit_test(test_winged_bear_without_wings_is_the_bear),
         cmocka_unit_test(test_bear_on_the_forest_floor_matches_golden),
+        cmocka_unit_test(test_bear_walks_mid_step_on_the_floor_matches_golden),
         cmocka_unit_test(test_frames_are_deterministic),
         cmocka_unit_test(test_inset_maps_no_reading_to_black_and_near_brighter),
         cmocka_unit_test(test_render_rejects_bad_input),

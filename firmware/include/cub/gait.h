@@ -309,6 +309,14 @@ typedef struct cub_gait_walk_clip {
     cub_gait_foot foot[2];
 } cub_gait_walk_clip;
 
+/* Fill *out for clip: per foot (ankle[i], toe[i] joint indices; [0] the
+ * left) its tracks and phases into the caller's arrays (frame_count
+ * entries each), analysed at the clip's own frame rate with the default
+ * thresholds. Errors as cub_gait_track_clip and cub_gait_analyse. */
+cub_err cub_gait_walk_clip_make(const cub_clip *clip, const int ankle[2], const int toe[2],
+                                cub_vec3 *const ankle_mm[2], cub_vec3 *const toe_mm[2],
+                                uint8_t *const phase[2], cub_gait_walk_clip *out);
+
 typedef struct cub_gait_walk_params {
     cub_vec3 start_mm;            /* where the root starts (x, z; y from the terrain) */
     cub_q16 dir_x, dir_z;         /* the first heading (0, 0: the clip's own) */
