@@ -281,10 +281,13 @@ static cub_err plan_swing(cub_gait_walker *w, int foot, cub_vec3 *hold)
     return CUB_ERR_EMPTY;
 }
 
-/* Foot-off at frame f, loop k: find where the clip lands it, plan, shape the swing. */
-static void begin_swing(cub_gait_walker *w, int foot, int f, int k, cub_vec3 target)
+/* Foot-off at frame f, loop k: find where the clip lands it, plan, shape
+ * the swing. False: no swing (arrived, or BLOCKED): the walker stops. */
+static bool begin_swing(cub_gait_walker *w, int foot, int f, int k, cub_vec3 target)
 {
     cub_gait_walk_foot *ft = &w->feet[foot];
+    steer(w, unwrap(w, w->c->clip->root_mm[f], k), target);
+    if (w->arrived) return false;
     int p = f, kk = k, len = 0;
     ft->key_u[0] = ft->key_u[1] = unwrap(w, track(w, foot, 0)[f], k);
     ft->key_at[0] = ft->key_at[1] = 0;
@@ -299,24 +302,23 @@ static void begin_swing(cub_gait_walker *w, int foot, int f, int k, cub_vec3 tar
     }
     ft->key_u[2] = unwrap(w, track(w, foot, 0)[p], kk);
     ft->key_at[2] = len;
-    steer(w, unwrap(w, w->c->clip->root_mm[f], k), target);
     ft->next_u = unwrap(w, track(w, foot, 0)[p], kk);
     ft->next_floor = clip_floor(w, foot, p);
     ft->swing_at = w->ticks;
     ft->swing_len = len > 0 ? len : 1;
-    ft->swinging = 1;
     ft->rough = !cub_gait_terrain_is_flat(w->t);
     cub_vec3 hold;
     if (plan_swing(w, foot, &hold)) {
-        hold = ground_of(w, ft->next_u);
-        emit(w, (cub_gait_event){CUB_GAIT_EV_BLOCKED, !foot, w->steps, 0, 0, hold});
-        /* the best path there is, cleared or not */
-        cub_gait_swing_params sp = w->p.swing;
-        cub_gait_swing_path(w->t, &sp, ft->hold_mm, hold, &ft->path);
+        /* [ours] a step with no foothold or no clear way is not taken */
+        emit(w, (cub_gait_event){CUB_GAIT_EV_BLOCKED, !foot, w->steps, 0, 0, ground_of(w, ft->next_u)});
+        w->blocked = 1;
+        return false;
     }
+    ft->swinging = 1;
     ft->next_mm = hold;
     ft->step = w->steps;
     w->steps++;
+    return true;
 }
 
 static void land(cub_gait_walker *w, int foot)
@@ -429,6 +431,11 @@ static void foot_targets(cub_gait_walker *w, int foot, int f, int k)
     t.y += dip;
     ft->ankle_mm = a;
     ft->toe_mm = t;
+    if (!ft->swinging && ft->last_phase == CUB_GAIT_STANCE) {
+        ft->rest_mm[0] = a;
+        ft->rest_mm[1] = t;
+        ft->has_rest = 1;
+    }
 }
 
 /* The pelvis height: the clip's over the mean shift of the two feet's
@@ -553,15 +560,66 @@ cub_err cub_gait_walker_init(cub_gait_walker *w, const cub_gait_walk_clip *c,
     return CUB_OK;
 }
 
+/* ---- stopping ---------------------------------------------------------------------- */
+
+#define SETTLE_FRAMES 12 /* [ours] the lifting foot flattens over 0.1 s at 120 fps */
+
+static cub_q16 root_to(const cub_gait_walker *w, cub_vec3 target)
+{
+    cub_vec3 root = to_world(w, unwrap(w, w->c->clip->root_mm[w->frame], w->loops));
+    return cub_fx_vec3_length(flat_xz(cub_fx_vec3_sub(target, root)));
+}
+
+/* Walk on: the target is beyond a stride again (after BLOCKED, only once
+ * the caller has moved it: the same target would block again). */
+static bool want_on(const cub_gait_walker *w, cub_vec3 target)
+{
+    if (w->blocked && target.x == w->stop_target.x && target.z == w->stop_target.z) return false;
+    return root_to(w, target) > cub_fx_vec3_length(flat_xz(w->cycle_u)) / 2;
+}
+
+/* The held frame: the one before the foot-off that stopped the walk. */
+static cub_err hold_still(cub_gait_walker *w, const cub_pose **out)
+{
+    int f = w->frame - 1, k = w->loops;
+    if (f < w->a) f = w->b - 1, k--;
+    foot_targets(w, 0, f, k);
+    foot_targets(w, 1, f, k);
+    cub_gait_walk_foot *ft = &w->feet[w->stop_foot];
+    cub_q16 s = ft->has_rest ? (cub_q16)(((int64_t)w->settle << 16) / SETTLE_FRAMES) : 0;
+    ft->ankle_mm = cub_fx_vec3_lerp(ft->ankle_mm, ft->rest_mm[0], s);
+    ft->toe_mm = cub_fx_vec3_lerp(ft->toe_mm, ft->rest_mm[1], s);
+    cub_err e = pose_frame(w, f, k);
+    *out = &w->pose;
+    return e;
+}
+
+static void stop(cub_gait_walker *w, int foot, cub_vec3 target)
+{
+    w->stopped = 1;
+    w->stop_foot = foot;
+    w->stop_target = target;
+    w->settle = 0;
+}
+
 cub_err cub_gait_walker_step(cub_gait_walker *w, cub_vec3 target_mm, const cub_pose **out)
 {
     if (!w || !out) return CUB_ERR_ARG;
+    if (w->stopped) {
+        bool on = want_on(w, target_mm);
+        w->settle += on ? -1 : (w->settle < SETTLE_FRAMES);
+        if (!on || w->settle > 0) return hold_still(w, out);
+        w->stopped = w->blocked = w->settle = 0;
+    }
     int f = w->frame, k = w->loops;
     for (int foot = 0; foot < 2; foot++) {
         uint8_t ph = phase_at(w, foot, f);
         cub_gait_walk_foot *ft = &w->feet[foot];
-        if (ph == CUB_GAIT_OFF && !ft->swinging) begin_swing(w, foot, f, k, target_mm);
-        else if (ph != CUB_GAIT_OFF && ft->swinging) land(w, foot);
+        if (ph == CUB_GAIT_OFF && !ft->swinging && !begin_swing(w, foot, f, k, target_mm)) {
+            stop(w, foot, target_mm);
+            return hold_still(w, out);
+        }
+        if (ph != CUB_GAIT_OFF && ft->swinging) land(w, foot);
         pin(w, foot, ph, f, k);
         ft->last_phase = ph;
     }

@@ -284,7 +284,7 @@ typedef enum cub_gait_event_kind {
     CUB_GAIT_EV_PLANNED = 0, /* one foothold of a new plan (index = its place in the plan) */
     CUB_GAIT_EV_BACKTRACKED, /* the plan just made backed up count times */
     CUB_GAIT_EV_TAKEN,       /* a foot came down on its foothold */
-    CUB_GAIT_EV_BLOCKED      /* no plan: the foot lands on its unadapted point [ours] */
+    CUB_GAIT_EV_BLOCKED      /* no plan: the walker stops on both feet [ours] */
 } cub_gait_event_kind;
 
 typedef struct cub_gait_event {
@@ -340,6 +340,8 @@ typedef struct cub_gait_walk_foot {
     uint8_t last_phase;
     cub_gait_swing path;
     int rough;
+    cub_vec3 rest_mm[2];          /* ankle, toe targets of its last stance frame (flat down) */
+    int has_rest;                 /* rest_mm is set */
 } cub_gait_walk_foot;
 
 typedef struct cub_gait_walker {
@@ -356,6 +358,10 @@ typedef struct cub_gait_walker {
     cub_gait_plan plan;           /* the last plan */
     cub_gait_walk_foot feet[2];
     int arrived;                  /* 1: the root is within a stride of the target */
+    int stopped;                  /* 1: at rest on both feet (arrived, or BLOCKED) */
+    int blocked;                  /* 1: stopped by a BLOCKED step */
+    int stop_foot, settle;        /* the foot that would have lifted; frames into its settling */
+    cub_vec3 stop_target;         /* the target when it stopped */
     cub_pose pose;                /* this frame's pose of the clip's skeleton */
 } cub_gait_walker;
 
@@ -365,7 +371,12 @@ cub_err cub_gait_walker_init(cub_gait_walker *w, const cub_gait_walk_clip *c,
                              const cub_gait_terrain *t, const cub_gait_walk_params *p);
 /* One frame (the clip's frame period) toward target_mm (x, z): *out is
  * the pose (root translation, mm; local rotations, Q2.30), valid until the
- * next call. Turns at each foot-off by at most max_turn_rad. */
+ * next call. Turns at each foot-off by at most max_turn_rad. At a foot-off
+ * within a stride of the target, or when the step is BLOCKED, it stops
+ * instead: the frame before the foot-off is held and the lifting foot
+ * settles flat on its foothold (stopped = 1). It walks on when the target
+ * is again farther than a stride (after BLOCKED: when the target moved),
+ * the foot lifted again first. */
 cub_err cub_gait_walker_step(cub_gait_walker *w, cub_vec3 target_mm, const cub_pose **out);
 /* The sole box of a foot [ours]: 6 points (heel, toe tip, and their
  * corners a fifth of the foot length either side), from the ankle and toe
