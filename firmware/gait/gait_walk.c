@@ -106,6 +106,11 @@ static cub_q16 clip_floor(const cub_gait_walker *w, int foot, int p)
 {
     cub_q16 lo = CUB_Q16_MAX;
     int n = w->c->clip->frame_count;
+    if (w->p.without & CUB_GAIT_NO_FLOOR) /* the whole clip's lowest foot point */
+        for (int f = 0; f < n; f++)
+            for (int i = 0; i < 4; i++)
+                if (track(w, i / 2, i % 2)[f].y < lo) lo = track(w, i / 2, i % 2)[f].y;
+    if (lo < CUB_Q16_MAX) return lo;
     for (int f = p; f < n && (f == p || phase_at(w, foot, f) != CUB_GAIT_OFF); f++) {
         cub_q16 a = track(w, foot, 0)[f].y, t = track(w, foot, 1)[f].y;
         if (a < lo) lo = a;
@@ -347,8 +352,10 @@ static cub_q16 swing_s(const cub_gait_walker *w, const cub_gait_walk_foot *ft)
  * rolls it, less the clip's own slide in stance (a flat foot is pinned). */
 static cub_vec3 planted(const cub_gait_walker *w, const cub_gait_walk_foot *ft, int pt, cub_vec3 u)
 {
-    if (ft->last_phase == CUB_GAIT_STANCE && !ft->swinging) u = ft->pin_u[pt];
-    cub_vec3 rel = cub_fx_vec3_sub(cub_fx_vec3_sub(u, ft->plant_u), ft->skate_u[pt]);
+    bool pin = !(w->p.without & CUB_GAIT_NO_PIN);
+    if (pin && ft->last_phase == CUB_GAIT_STANCE && !ft->swinging) u = ft->pin_u[pt];
+    cub_vec3 rel = cub_fx_vec3_sub(u, ft->plant_u);
+    if (pin) rel = cub_fx_vec3_sub(rel, ft->skate_u[pt]);
     cub_vec3 d = yaw_rotate(ft->yaw_c, ft->yaw_s, flat_xz(rel));
     return cub_fx_vec3_add(flat_xz(ft->hold_mm), d);
 }
@@ -456,6 +463,7 @@ static cub_q16 ground_shift(const cub_gait_walker *w, int foot)
  * across the cycle, so the loop joins without a pop [ours]. */
 static void close_cycle(cub_gait_walker *w, int f)
 {
+    if (w->p.without & CUB_GAIT_NO_CLOSE) return;
     const cub_clip *c = w->c->clip;
     int nj = c->skel->joint_count;
     cub_q16 s = (cub_q16)(((int64_t)(f - w->a) << 16) / (w->b - w->a));
@@ -512,6 +520,7 @@ static cub_err pose_frame(cub_gait_walker *w, int f, int k)
     cub_gait_pose_leg(sk, &w->pose, w->c->ankle[1], ahead(w), &legs[1]);
     cub_vec3 targets[2] = {w->feet[0].ankle_mm, w->feet[1].ankle_mm};
     w->drop_mm = cub_gait_pelvis_drop(legs, &w->p.limits, targets);
+    if (w->p.without & CUB_GAIT_NO_DROP) w->drop_mm = 0;
     w->pose.root_mm.y -= w->drop_mm;
     cub_err e = solve_leg(w, 0);
     return e ? e : solve_leg(w, 1);

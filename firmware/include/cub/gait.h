@@ -309,6 +309,15 @@ typedef struct cub_gait_walk_clip {
     cub_gait_foot foot[2];
 } cub_gait_walk_clip;
 
+/* The walker's parts that cub_gait_walk_params.without may leave out
+ * (measurement only: the walk then slides, pops or floats). */
+enum {
+    CUB_GAIT_NO_PIN = 1,   /* stance feet follow the clip's own slide */
+    CUB_GAIT_NO_CLOSE = 2, /* the cycle's mismatch is not spread (it pops at the wrap) */
+    CUB_GAIT_NO_DROP = 4,  /* the pelvis does not lower */
+    CUB_GAIT_NO_FLOOR = 8  /* one floor for the clip (its lowest foot point), not one per step */
+};
+
 typedef struct cub_gait_walk_params {
     cub_vec3 start_mm;            /* where the root starts (x, z; y from the terrain) */
     cub_q16 dir_x, dir_z;         /* the first heading (0, 0: the clip's own) */
@@ -318,6 +327,8 @@ typedef struct cub_gait_walk_params {
     int steps;                    /* footholds planned ahead (0: 4 flat, 3 rough) */
     int clip_swing;               /* 1: on flat ground the clip's own swing path, not the
                                      seed's key-frame segments (a comparison) */
+    int without;                  /* CUB_GAIT_NO_* bits: parts left out, to price each
+                                     one's share of the error (cubtool gait-eval --without) */
     cub_gait_event_fn on_event;   /* may be NULL */
     void *ctx;
 } cub_gait_walk_params;
