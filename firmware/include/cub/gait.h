@@ -327,6 +327,8 @@ typedef struct cub_gait_walk_params {
     int steps;                    /* footholds planned ahead (0: 4 flat, 3 rough) */
     int clip_swing;               /* 1: on flat ground the clip's own swing path, not the
                                      seed's key-frame segments (a comparison) */
+    int straight_swing;           /* 1: on flat ground the seed's straight segments between
+                                     the key frames, not the Bezier through them (a comparison) */
     int without;                  /* CUB_GAIT_NO_* bits: parts left out, to price each
                                      one's share of the error (cubtool gait-eval --without) */
     cub_gait_event_fn on_event;   /* may be NULL */
@@ -347,6 +349,7 @@ typedef struct cub_gait_walk_foot {
     cub_vec3 pin_u[2], skate_u[2];/* ankle, toe: where stance began; the clip's slide so far */
     int swing_at, swing_len, step;
     cub_vec3 key_u[3];            /* flat ground: the ankle at foot-off, apex, strike */
+    cub_vec3 key_v[3];            /* ... its captured velocity there, mm per frame (clip axes) */
     int key_at[3];                /* their frames into the swing */
     uint8_t last_phase;
     cub_gait_swing path;
