@@ -228,7 +228,8 @@ static cub_vec3 clip_dir(const cub_gait_walker *w)
 }
 
 /* The planner from the other foot's foothold; the step's length and width
- * are the clip's own for this step (so flat ground gives back the capture). */
+ * are the clip's own for this step (so flat ground gives back the capture);
+ * its foot base reaches the sole box's toe tip (a third past the toe). */
 /* The step lengths the planner tries, as fractions of the clip's step. */
 typedef struct step_tries {
     int n;
@@ -245,7 +246,7 @@ static cub_err plan(cub_gait_walker *w, int foot, const step_tries *tries, cub_v
     cub_gait_plan_params pp = {.steps = w->p.steps,
                                .stride_mm = along > CUB_Q16_ONE ? along : CUB_Q16_ONE,
                                .width_mm = cub_fx_abs(lateral),
-                               .foot_mm = foot_len(w, foot),
+                               .foot_mm = foot_len(w, foot) + foot_len(w, foot) / 3,
                                .tries = tries->n};
     for (int i = 0; i < tries->n; i++)
         pp.factors[i] = tries->f[i];

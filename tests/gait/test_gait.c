@@ -131,6 +131,26 @@ static void test_blocked_foothold_forces_a_backtrack(void **state)
  * stride is clear: the first feasible in the tried order is taken, 0.75.
  * On the slab's top, a foothold whose heel (a quarter foot behind the
  * ankle) hangs over the edge is refused; one further on is not. */
+/* A stone (16 cm across, 7 cm high) 1 m on: a foot base (heel a quarter
+ * foot behind the ankle to the toe, a fifth of the foot either side) that
+ * ends within 20 mm of it, ahead or beside, is refused; one 20 mm clear
+ * is not (a foot lands on an obstacle's top or clear of it). */
+static void test_foothold_beside_a_stone_is_refused(void **state)
+{
+    (void)state;
+    cub_gait_terrain t;
+    cub_gait_terrain_flat(&t, 0);
+    assert_int_equal(cub_gait_terrain_add(&t, box(-80, 0, 1000, 80, 70, 1160)), CUB_OK);
+    cub_gait_plan_params p = walk_params();
+    assert_false(cub_gait_foothold_ok(&t, &p, 0, 0, MM(740), 0, CUB_Q16_ONE)); /* toe 10 mm short */
+    assert_true(cub_gait_foothold_ok(&t, &p, 0, 0, MM(725), 0, CUB_Q16_ONE));  /* toe 25 mm short */
+    assert_false(cub_gait_foothold_ok(&t, &p, 0, MM(140), MM(1000), 0, CUB_Q16_ONE)); /* edge 10 mm off */
+    assert_true(cub_gait_foothold_ok(&t, &p, 0, MM(180), MM(1000), 0, CUB_Q16_ONE));  /* 50 mm off */
+    assert_false(cub_gait_foothold_ok(&t, &p, 0, 0, MM(1210), 0, CUB_Q16_ONE)); /* heel 12.5 mm past */
+    p.obstacle_gap_mm = -1; /* the test off: only the base's tilt counts */
+    assert_true(cub_gait_foothold_ok(&t, &p, 0, 0, MM(740), 0, CUB_Q16_ONE));
+}
+
 static void test_first_feasible_step_is_taken(void **state)
 {
     (void)state;
@@ -315,6 +335,7 @@ int main(void)
         cmocka_unit_test(test_plan_on_flat_ground),
         cmocka_unit_test(test_blocked_foothold_forces_a_backtrack),
         cmocka_unit_test(test_first_feasible_step_is_taken),
+        cmocka_unit_test(test_foothold_beside_a_stone_is_refused),
         cmocka_unit_test(test_dead_end_stops_the_walk),
         cmocka_unit_test(test_bezier_ends_and_line),
         cmocka_unit_test(test_swing_clears_a_log),

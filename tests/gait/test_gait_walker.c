@@ -226,6 +226,10 @@ static int taken(const log *l)
  * again (a backtrack), and the step taken stops short of the log, no sole
  * point entering it. (Past that the way is shut for every length: the
  * walker reports BLOCKED and stops: blocked_walker_stops.) */
+/* The log's near face (mm): far enough that a half step (the shortest the
+ * planner tries) lands with its toe tip 20 mm short of it. */
+#define WALL_Z 1500
+
 static void swing_that_cannot_clear_is_replanned(void **state)
 {
     (void)state;
@@ -234,8 +238,8 @@ static void swing_that_cannot_clear_is_replanned(void **state)
     l.n = 0;
     cub_gait_terrain t;
     cub_gait_terrain_flat(&t, 0);
-    cub_gait_box wall = {{CUB_Q16_INT(-1000), 0, CUB_Q16_INT(1400)},
-                         {CUB_Q16_INT(1000), CUB_Q16_INT(150), CUB_Q16_INT(1550)}};
+    cub_gait_box wall = {{CUB_Q16_INT(-1000), 0, CUB_Q16_INT(WALL_Z)},
+                         {CUB_Q16_INT(1000), CUB_Q16_INT(150), CUB_Q16_INT(WALL_Z + 150)}};
     assert_int_equal(cub_gait_terrain_add(&t, wall), CUB_OK);
     cub_gait_walk_params p = {.dir_z = CUB_Q16_ONE, .on_event = record, .ctx = &l};
     p.swing.max_raises = 5;
@@ -259,9 +263,9 @@ static void swing_that_cannot_clear_is_replanned(void **state)
         const cub_gait_event *e = &l.e[i];
         if (e->kind == CUB_GAIT_EV_BACKTRACKED) backtracked = e->step;
         if (e->kind == CUB_GAIT_EV_TAKEN && e->step == backtracked && backtracked) {
-            printf("gait walker: step %d replanned, taken at z %.0f mm (the log from 1400)\n",
-                   e->step, e->foot_mm.z / 65536.0);
-            assert_true(e->foot_mm.z < CUB_Q16_INT(1400));
+            printf("gait walker: step %d replanned, taken at z %.0f mm (the log from %d)\n",
+                   e->step, e->foot_mm.z / 65536.0, WALL_Z);
+            assert_true(e->foot_mm.z < CUB_Q16_INT(WALL_Z));
         }
         assert_int_not_equal(e->kind, CUB_GAIT_EV_BLOCKED);
     }
@@ -356,8 +360,8 @@ static void blocked_walker_stops(void **state)
     l.n = 0;
     cub_gait_terrain t;
     cub_gait_terrain_flat(&t, 0);
-    cub_gait_box wall = {{CUB_Q16_INT(-1000), 0, CUB_Q16_INT(1400)},
-                         {CUB_Q16_INT(1000), CUB_Q16_INT(150), CUB_Q16_INT(1550)}};
+    cub_gait_box wall = {{CUB_Q16_INT(-1000), 0, CUB_Q16_INT(WALL_Z)},
+                         {CUB_Q16_INT(1000), CUB_Q16_INT(150), CUB_Q16_INT(WALL_Z + 150)}};
     assert_int_equal(cub_gait_terrain_add(&t, wall), CUB_OK);
     cub_gait_walk_params p = {.dir_z = CUB_Q16_ONE, .on_event = record, .ctx = &l};
     p.swing.max_raises = 5;
@@ -377,7 +381,7 @@ static void blocked_walker_stops(void **state)
     assert_int_equal(taken_after, 0);
     assert_true(walker.stopped && walker.blocked);
     assert_true(still > 100);
-    assert_true(walker.pose.root_mm.z < CUB_Q16_INT(1400));
+    assert_true(walker.pose.root_mm.z < CUB_Q16_INT(WALL_Z));
     for (int f = 0; f < 2; f++)
         assert_true(sole_gap(&t, f) <= CUB_Q16_INT(10));
 }

@@ -136,6 +136,8 @@ typedef struct cub_gait_plan_params {
     cub_q16 foot_mm;     /* the foot base: ankle -> toe */
     cub_q16 max_rise_mm; /* step up or down at most this (0: 200 mm) */
     cub_q16 max_tilt_mm; /* the foot base's ground may differ by this (0: 30 mm) */
+    cub_q16 obstacle_gap_mm; /* the foot base is on an obstacle's top or this far off its
+                                footprint, never just beside (0: 20 mm; < 0: no test) [ours] */
     /* The step lengths tried, in order, as fractions of stride_mm; the
      * first feasible is taken (the seed ranks none). tries 0: the default
      * 1, 0.75, 1.25, 0.5, 1.5 [ours]. */
@@ -166,8 +168,10 @@ typedef struct cub_gait_plan {
 
 /* true if a foot may stand at foot_mm (ankle ground point) heading along
  * (dir_x, dir_z), coming from a foothold at from_y_mm: its base is level
- * (ankle, middle and toe ground within max_tilt) and the rise from the last
- * foothold is within max_rise. */
+ * (ankle, middle and toe ground within max_tilt), the rise from the last
+ * foothold is within max_rise, and its base is on an obstacle's top or
+ * obstacle_gap clear of it (heel a quarter foot behind the ankle, a fifth
+ * of the foot either side). */
 bool cub_gait_foothold_ok(const cub_gait_terrain *t, const cub_gait_plan_params *p,
                           cub_q16 from_y_mm, cub_q16 x_mm, cub_q16 z_mm, cub_q16 dir_x,
                           cub_q16 dir_z);
