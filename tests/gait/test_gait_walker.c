@@ -347,6 +347,13 @@ static void comes_to_rest_at_target(void **state)
     walk_to(target, 240, &t);
     assert_false(walker.stopped);
     assert_true(walker.steps > steps);
+    /* Already there: it stops at its first foot-off, without a step. */
+    assert_int_equal(cub_gait_walker_init(&walker, &wc, &t, &p), CUB_OK);
+    still = walk_to((cub_vec3){0}, 60, &t);
+    printf("gait walker: started at the target: %d steps, still %d frames, root %.0f mm off\n",
+           walker.steps, still, root_dist((cub_vec3){0}) / 65536.0);
+    assert_true(walker.stopped && walker.steps == 0 && still > 40);
+    assert_true(root_dist((cub_vec3){0}) <= stride);
 }
 
 /* The log of swing_that_cannot_clear_is_replanned, walked on: once every
