@@ -7,6 +7,7 @@
 
 #define DEFAULT_RISE_MM CUB_Q16_INT(200) /* ours: a knee-high stone is too much */
 #define DEFAULT_TILT_MM CUB_Q16_INT(30)  /* ours: ~7 degrees over a 25 cm foot */
+#define DEFAULT_GAP_MM CUB_Q16_INT(20)   /* ours: the swing's clearance, sideways */
 #define STEPS_FLAT 4                     /* the seed: 4-5 on flat ground */
 #define STEPS_ROUGH 3                    /* the seed: 2-3 */
 
@@ -59,13 +60,54 @@ static cub_q16 base_range(const cub_gait_terrain *t, const cub_gait_plan_params 
     return cub_fx_sub(hi, lo);
 }
 
+/* Inside an obstacle's footprint grown by gap (x, z). */
+static bool in_box(const cub_gait_box *b, cub_q16 x, cub_q16 z, cub_q16 gap)
+{
+    return x > b->min_mm.x - gap && x < b->max_mm.x + gap && z > b->min_mm.z - gap &&
+           z < b->max_mm.z + gap;
+}
+
+/* A point of the sole next to an obstacle: within gap of its footprint,
+ * not on it. */
+static bool beside_obstacle(const cub_gait_terrain *t, cub_q16 x, cub_q16 z, cub_q16 gap)
+{
+    for (int k = 0; k < t->obstacle_count; k++)
+        if (in_box(&t->obstacles[k], x, z, gap) && !in_box(&t->obstacles[k], x, z, 0)) return true;
+    return false;
+}
+
+/* The foot base (the heel a quarter foot behind the ankle to the toe, a
+ * fifth of the foot either side; sampled every eighth of its length on
+ * its middle and both edges) lands either on an obstacle's top (the tilt
+ * test keeps it whole there) or gap clear of it: never just beside, where
+ * the swing's last frames come down too low over the edge (CMU 16_11's
+ * heel passed 4 mm over a stone) [ours]. */
+static bool base_beside_obstacle(const cub_gait_terrain *t, const cub_gait_plan_params *p,
+                                 heading h, cub_q16 x, cub_q16 z)
+{
+    cub_q16 gap = p->obstacle_gap_mm ? p->obstacle_gap_mm : DEFAULT_GAP_MM;
+    if (gap < 0 || t->obstacle_count == 0) return false;
+    cub_q16 back = p->foot_mm / 4, len = back + p->foot_mm, half = p->foot_mm / 5;
+    for (int i = 0; i <= 8; i++) {
+        cub_q16 along = cub_fx_sub((cub_q16)(((int64_t)len * i) / 8), back);
+        for (int s = -1; s <= 1; s++) {
+            cub_q16 px = cub_fx_add(x, cub_fx_sub(cub_fx_mul(h.ux, along), s * cub_fx_mul(h.uz, half)));
+            cub_q16 pz = cub_fx_add(z, cub_fx_add(cub_fx_mul(h.uz, along), s * cub_fx_mul(h.ux, half)));
+            if (beside_obstacle(t, px, pz, gap)) return true;
+        }
+    }
+    return false;
+}
+
 bool cub_gait_foothold_ok(const cub_gait_terrain *t, const cub_gait_plan_params *p,
                           cub_q16 from_y_mm, cub_q16 x_mm, cub_q16 z_mm, cub_q16 dir_x,
                           cub_q16 dir_z)
 {
     cub_q16 top;
-    cub_q16 tilt = base_range(t, p, unit_heading(dir_x, dir_z), x_mm, z_mm, &top);
-    return tilt <= tilt_limit(p) && cub_fx_abs(cub_fx_sub(top, from_y_mm)) <= rise_limit(p);
+    heading h = unit_heading(dir_x, dir_z);
+    cub_q16 tilt = base_range(t, p, h, x_mm, z_mm, &top);
+    return tilt <= tilt_limit(p) && cub_fx_abs(cub_fx_sub(top, from_y_mm)) <= rise_limit(p) &&
+           !base_beside_obstacle(t, p, h, x_mm, z_mm);
 }
 
 static int step_count(const cub_gait_terrain *t, const cub_gait_plan_params *p)

@@ -62,9 +62,14 @@ static cub_q16 clearance_at(cub_q16 clear, cub_q16 t)
     return cub_fx_mul(clear, cub_fx_clamp(edge * 4, 0, CUB_Q16_ONE));
 }
 
-static bool point_clears(const cub_gait_terrain *t, cub_vec3 q, cub_q16 need)
+/* Over an obstacle the full clearance holds, ramp or not: no foothold
+ * touches an obstacle's side (the planner keeps the foot base on its top
+ * or 20 mm clear), so only the ground needs the ramp [ours]. */
+static bool point_clears(const cub_gait_terrain *t, cub_vec3 q, cub_q16 need, cub_q16 clear)
 {
-    return cub_fx_sub(q.y, cub_gait_height(t, q.x, q.z)) >= need;
+    cub_q16 h = cub_gait_height(t, q.x, q.z);
+    if (h > cub_gait_ground_height(t, q.x, q.z) && need < clear) need = clear;
+    return cub_fx_sub(q.y, h) >= need;
 }
 
 /* Every sample of the path (ankle, and the toe ahead of it) clears. */
@@ -75,8 +80,9 @@ static bool path_clears(const cub_gait_terrain *t, const swing_cfg *c, const cub
         cub_q16 tt = (cub_q16)(((int64_t)i << 16) / c->samples);
         cub_vec3 q = cub_gait_bezier4(p, tt);
         cub_q16 need = clearance_at(c->clear, tt);
-        if (!point_clears(t, q, need)) return false;
-        if (c->foot > 0 && !point_clears(t, cub_fx_vec3_add(q, toe_off), need)) return false;
+        if (!point_clears(t, q, need, c->clear)) return false;
+        if (c->foot > 0 && !point_clears(t, cub_fx_vec3_add(q, toe_off), need, c->clear))
+            return false;
     }
     return true;
 }

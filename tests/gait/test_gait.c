@@ -9,6 +9,7 @@
 #include <stdint.h>
 
 #include <cmocka.h>
+#include <stdio.h>
 #include <math.h>
 #include <stdlib.h>
 
@@ -131,6 +132,26 @@ static void test_blocked_foothold_forces_a_backtrack(void **state)
  * stride is clear: the first feasible in the tried order is taken, 0.75.
  * On the slab's top, a foothold whose heel (a quarter foot behind the
  * ankle) hangs over the edge is refused; one further on is not. */
+/* A stone (16 cm across, 7 cm high) 1 m on: a foot base (heel a quarter
+ * foot behind the ankle to the toe, a fifth of the foot either side) that
+ * ends within 20 mm of it, ahead or beside, is refused; one 20 mm clear
+ * is not (a foot lands on an obstacle's top or clear of it). */
+static void test_foothold_beside_a_stone_is_refused(void **state)
+{
+    (void)state;
+    cub_gait_terrain t;
+    cub_gait_terrain_flat(&t, 0);
+    assert_int_equal(cub_gait_terrain_add(&t, box(-80, 0, 1000, 80, 70, 1160)), CUB_OK);
+    cub_gait_plan_params p = walk_params();
+    assert_false(cub_gait_foothold_ok(&t, &p, 0, 0, MM(740), 0, CUB_Q16_ONE)); /* toe 10 mm short */
+    assert_true(cub_gait_foothold_ok(&t, &p, 0, 0, MM(725), 0, CUB_Q16_ONE));  /* toe 25 mm short */
+    assert_false(cub_gait_foothold_ok(&t, &p, 0, MM(140), MM(1000), 0, CUB_Q16_ONE)); /* edge 10 mm off */
+    assert_true(cub_gait_foothold_ok(&t, &p, 0, MM(180), MM(1000), 0, CUB_Q16_ONE));  /* 50 mm off */
+    assert_false(cub_gait_foothold_ok(&t, &p, 0, 0, MM(1210), 0, CUB_Q16_ONE)); /* heel 12.5 mm past */
+    p.obstacle_gap_mm = -1; /* the test off: only the base's tilt counts */
+    assert_true(cub_gait_foothold_ok(&t, &p, 0, 0, MM(740), 0, CUB_Q16_ONE));
+}
+
 static void test_first_feasible_step_is_taken(void **state)
 {
     (void)state;
@@ -215,6 +236,35 @@ static void test_swing_clears_a_log(void **state)
     fewer.max_raises = sw.raises - 1;
     assert_int_equal(cub_gait_swing_path(&t, &fewer, from, to, &sw), CUB_ERR_RANGE);
     assert_false(sw.clear);
+}
+
+/* A stone just behind the landing foothold (its far face 85 mm before
+ * the ankle comes down: the heel, a quarter foot behind, 22.5 mm clear,
+ * as the planner allows): the clearance that ramps to 0 at the footholds
+ * let the ankle pass over it low; over an obstacle the full 20 mm
+ * holds, ramp or not (checked at 4000 points, ankle and toe). */
+static void test_swing_clears_a_stone_by_the_foothold(void **state)
+{
+    (void)state;
+    cub_gait_terrain t;
+    cub_gait_terrain_flat(&t, 0);
+    assert_int_equal(cub_gait_terrain_add(&t, box(-80, 0, 355, 80, 70, 515)), CUB_OK);
+    cub_gait_swing_params sp = {.foot_mm = MM(250)};
+    cub_vec3 from = {0, 0, MM(-200)}, to = {0, 0, MM(600)};
+    cub_gait_swing sw;
+    assert_int_equal(cub_gait_swing_path(&t, &sp, from, to, &sw), CUB_OK);
+    double min_over = 1e9;
+    for (int i = 0; i <= 4000; i++) {
+        cub_q16 tt = (cub_q16)(((int64_t)i << 16) / 4000);
+        cub_vec3 q = cub_gait_bezier4(sw.p, tt);
+        for (int toe = 0; toe <= 1; toe++) {
+            cub_q16 z = toe ? cub_fx_add(q.z, MM(250)) : q.z;
+            double gap = (q.y - cub_gait_height(&t, q.x, z)) / 65536.0;
+            if (z >= MM(355) && z <= MM(515) && gap < min_over) min_over = gap;
+        }
+    }
+    printf("gait: a stone by the foothold cleared by %.1f mm after %d raises\n", min_over, sw.raises);
+    assert_true(min_over >= 19.5);
 }
 
 #define DEG(d) ((cub_q16)(((int64_t)(d) * CUB_Q16_PI + 90) / 180))
@@ -315,6 +365,8 @@ int main(void)
         cmocka_unit_test(test_plan_on_flat_ground),
         cmocka_unit_test(test_blocked_foothold_forces_a_backtrack),
         cmocka_unit_test(test_first_feasible_step_is_taken),
+        cmocka_unit_test(test_foothold_beside_a_stone_is_refused),
+        cmocka_unit_test(test_swing_clears_a_stone_by_the_foothold),
         cmocka_unit_test(test_dead_end_stops_the_walk),
         cmocka_unit_test(test_bezier_ends_and_line),
         cmocka_unit_test(test_swing_clears_a_log),

@@ -11,6 +11,7 @@
 #include <cmocka.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "../synth/synth_data.h"
 #include "cub/gait.h"
@@ -224,7 +225,11 @@ static int taken(const log *l)
  * step length whose swing would cross it is dropped and the plan made
  * again (a backtrack), and the step taken stops short of the log, no sole
  * point entering it. (Past that the way is shut for every length: the
- * walker reports BLOCKED and walks through: see docs/gait.md.) */
+ * walker reports BLOCKED and stops: blocked_walker_stops.) */
+/* The log's near face (mm): far enough that a half step (the shortest the
+ * planner tries) lands with its toe tip 20 mm short of it. */
+#define WALL_Z 1500
+
 static void swing_that_cannot_clear_is_replanned(void **state)
 {
     (void)state;
@@ -233,8 +238,8 @@ static void swing_that_cannot_clear_is_replanned(void **state)
     l.n = 0;
     cub_gait_terrain t;
     cub_gait_terrain_flat(&t, 0);
-    cub_gait_box wall = {{CUB_Q16_INT(-1000), 0, CUB_Q16_INT(1400)},
-                         {CUB_Q16_INT(1000), CUB_Q16_INT(150), CUB_Q16_INT(1550)}};
+    cub_gait_box wall = {{CUB_Q16_INT(-1000), 0, CUB_Q16_INT(WALL_Z)},
+                         {CUB_Q16_INT(1000), CUB_Q16_INT(150), CUB_Q16_INT(WALL_Z + 150)}};
     assert_int_equal(cub_gait_terrain_add(&t, wall), CUB_OK);
     cub_gait_walk_params p = {.dir_z = CUB_Q16_ONE, .on_event = record, .ctx = &l};
     p.swing.max_raises = 5;
@@ -258,13 +263,134 @@ static void swing_that_cannot_clear_is_replanned(void **state)
         const cub_gait_event *e = &l.e[i];
         if (e->kind == CUB_GAIT_EV_BACKTRACKED) backtracked = e->step;
         if (e->kind == CUB_GAIT_EV_TAKEN && e->step == backtracked && backtracked) {
-            printf("gait walker: step %d replanned, taken at z %.0f mm (the log from 1400)\n",
-                   e->step, e->foot_mm.z / 65536.0);
-            assert_true(e->foot_mm.z < CUB_Q16_INT(1400));
+            printf("gait walker: step %d replanned, taken at z %.0f mm (the log from %d)\n",
+                   e->step, e->foot_mm.z / 65536.0, WALL_Z);
+            assert_true(e->foot_mm.z < CUB_Q16_INT(WALL_Z));
         }
         assert_int_not_equal(e->kind, CUB_GAIT_EV_BLOCKED);
     }
     assert_true(backtracked >= 1);
+}
+
+/* The lowest sole point of a foot above the terrain (its IK result). */
+static cub_q16 sole_gap(const cub_gait_terrain *t, int f)
+{
+    const cub_gait_walk_foot *ft = &walker.feet[f];
+    cub_vec3 pts[6];
+    cub_gait_sole_points(ft->leg.ankle_mm, ft->leg.toe_mm, wc.foot[f].length_mm,
+                         wc.foot[f].ankle_lift_mm, pts);
+    cub_q16 lo = CUB_Q16_MAX;
+    for (int k = 0; k < 6; k++) {
+        cub_q16 g = pts[k].y - cub_gait_height(t, pts[k].x, pts[k].z);
+        if (g < lo) lo = g;
+    }
+    return lo;
+}
+
+static bool same_pose(const cub_pose *a, const cub_pose *b)
+{
+    return !memcmp(&a->root_mm, &b->root_mm, sizeof a->root_mm) &&
+           !memcmp(a->rot, b->rot, sizeof(cub_quat) * (size_t)walk.skel.joint_count);
+}
+
+static cub_q16 root_dist(cub_vec3 target)
+{
+    cub_vec3 d = cub_fx_vec3_sub(walker.pose.root_mm, target);
+    d.y = 0;
+    return cub_fx_vec3_length(d);
+}
+
+/* Walk n frames toward target; the number of frames the pose held still at the end. */
+static int walk_to(cub_vec3 target, int n, const cub_gait_terrain *t)
+{
+    static cub_pose last;
+    int still = 0;
+    for (int i = 0; i < n; i++) {
+        const cub_pose *pose;
+        assert_int_equal(cub_gait_walker_step(&walker, target, &pose), CUB_OK);
+        still = i > 0 && same_pose(pose, &last) ? still + 1 : 0;
+        last = *pose;
+        for (int f = 0; f < 2; f++)
+            assert_true(sole_gap(t, f) >= -CUB_Q16_ONE / 2);
+    }
+    return still;
+}
+
+/* A target 3 m ahead on flat ground: the walker comes to rest there on
+ * both feet (each foot's lowest sole point within 10 mm of the ground:
+ * the settled foot stands as in its captured stance, 8 mm up in 02_01;
+ * the pose still); the target moved on, it walks again. */
+static void comes_to_rest_at_target(void **state)
+{
+    (void)state;
+    SYNTH_NEED_DATA(CLIP);
+    cub_gait_terrain t;
+    cub_gait_terrain_flat(&t, 0);
+    cub_gait_walk_params p = {.dir_z = CUB_Q16_ONE};
+    assert_int_equal(cub_gait_walker_init(&walker, &wc, &t, &p), CUB_OK);
+    cub_vec3 target = {0, 0, CUB_Q16_INT(3000)};
+    int still = walk_to(target, 900, &t);
+    cub_q16 stride = cub_fx_vec3_length(walker.cycle_u) / 2;
+    printf("gait walker: at rest %.0f mm from the target (stride %.0f), still %d frames, soles "
+           "%.1f / %.1f mm up, %d steps\n",
+           root_dist(target) / 65536.0, stride / 65536.0, still, sole_gap(&t, 0) / 65536.0,
+           sole_gap(&t, 1) / 65536.0, walker.steps);
+    assert_true(walker.stopped && !walker.blocked);
+    assert_true(still > 100);
+    assert_true(root_dist(target) <= stride + CUB_Q16_INT(200)); /* the root, not the feet */
+    for (int f = 0; f < 2; f++) {
+        assert_false(walker.feet[f].swinging);
+        assert_true(sole_gap(&t, f) <= CUB_Q16_INT(10));
+    }
+    int steps = walker.steps;
+    target.z = CUB_Q16_INT(6000);
+    walk_to(target, 240, &t);
+    assert_false(walker.stopped);
+    assert_true(walker.steps > steps);
+    /* Already there: it stops at its first foot-off, without a step. */
+    assert_int_equal(cub_gait_walker_init(&walker, &wc, &t, &p), CUB_OK);
+    still = walk_to((cub_vec3){0}, 60, &t);
+    printf("gait walker: started at the target: %d steps, still %d frames, root %.0f mm off\n",
+           walker.steps, still, root_dist((cub_vec3){0}) / 65536.0);
+    assert_true(walker.stopped && walker.steps == 0 && still > 40);
+    assert_true(root_dist((cub_vec3){0}) <= stride);
+}
+
+/* The log of swing_that_cannot_clear_is_replanned, walked on: once every
+ * step length is shut the step is BLOCKED and the walker stops before the
+ * log, on both feet, no sole point ever inside it; no foot is taken after. */
+static void blocked_walker_stops(void **state)
+{
+    (void)state;
+    SYNTH_NEED_DATA(CLIP);
+    static log l;
+    l.n = 0;
+    cub_gait_terrain t;
+    cub_gait_terrain_flat(&t, 0);
+    cub_gait_box wall = {{CUB_Q16_INT(-1000), 0, CUB_Q16_INT(WALL_Z)},
+                         {CUB_Q16_INT(1000), CUB_Q16_INT(150), CUB_Q16_INT(WALL_Z + 150)}};
+    assert_int_equal(cub_gait_terrain_add(&t, wall), CUB_OK);
+    cub_gait_walk_params p = {.dir_z = CUB_Q16_ONE, .on_event = record, .ctx = &l};
+    p.swing.max_raises = 5;
+    assert_int_equal(cub_gait_walker_init(&walker, &wc, &t, &p), CUB_OK);
+    cub_vec3 target = {0, 0, CUB_Q16_INT(30000)};
+    int still = walk_to(target, 900, &t);
+    int blocked = -1, taken_after = 0;
+    for (int i = 0; i < l.n; i++) {
+        if (l.e[i].kind == CUB_GAIT_EV_BLOCKED && blocked < 0) blocked = i;
+        if (l.e[i].kind == CUB_GAIT_EV_TAKEN && blocked >= 0) taken_after++;
+    }
+    printf("gait walker: blocked at step %d, root at z %.0f mm, still %d frames, soles %.1f / "
+           "%.1f mm up\n",
+           walker.steps, walker.pose.root_mm.z / 65536.0, still, sole_gap(&t, 0) / 65536.0,
+           sole_gap(&t, 1) / 65536.0);
+    assert_true(blocked >= 0);
+    assert_int_equal(taken_after, 0);
+    assert_true(walker.stopped && walker.blocked);
+    assert_true(still > 100);
+    assert_true(walker.pose.root_mm.z < CUB_Q16_INT(WALL_Z));
+    for (int f = 0; f < 2; f++)
+        assert_true(sole_gap(&t, f) <= CUB_Q16_INT(10));
 }
 
 int main(void)
@@ -274,6 +400,8 @@ int main(void)
         cmocka_unit_test(stance_foot_stays),
         cmocka_unit_test(events_in_order),
         cmocka_unit_test(swing_that_cannot_clear_is_replanned),
+        cmocka_unit_test(comes_to_rest_at_target),
+        cmocka_unit_test(blocked_walker_stops),
     };
     return cmocka_run_group_tests(tests, load, unload);
 }

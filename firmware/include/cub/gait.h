@@ -136,6 +136,8 @@ typedef struct cub_gait_plan_params {
     cub_q16 foot_mm;     /* the foot base: ankle -> toe */
     cub_q16 max_rise_mm; /* step up or down at most this (0: 200 mm) */
     cub_q16 max_tilt_mm; /* the foot base's ground may differ by this (0: 30 mm) */
+    cub_q16 obstacle_gap_mm; /* the foot base is on an obstacle's top or this far off its
+                                footprint, never just beside (0: 20 mm; < 0: no test) [ours] */
     /* The step lengths tried, in order, as fractions of stride_mm; the
      * first feasible is taken (the seed ranks none). tries 0: the default
      * 1, 0.75, 1.25, 0.5, 1.5 [ours]. */
@@ -166,8 +168,10 @@ typedef struct cub_gait_plan {
 
 /* true if a foot may stand at foot_mm (ankle ground point) heading along
  * (dir_x, dir_z), coming from a foothold at from_y_mm: its base is level
- * (ankle, middle and toe ground within max_tilt) and the rise from the last
- * foothold is within max_rise. */
+ * (ankle, middle and toe ground within max_tilt), the rise from the last
+ * foothold is within max_rise, and its base is on an obstacle's top or
+ * obstacle_gap clear of it (heel a quarter foot behind the ankle, a fifth
+ * of the foot either side). */
 bool cub_gait_foothold_ok(const cub_gait_terrain *t, const cub_gait_plan_params *p,
                           cub_q16 from_y_mm, cub_q16 x_mm, cub_q16 z_mm, cub_q16 dir_x,
                           cub_q16 dir_z);
@@ -284,7 +288,7 @@ typedef enum cub_gait_event_kind {
     CUB_GAIT_EV_PLANNED = 0, /* one foothold of a new plan (index = its place in the plan) */
     CUB_GAIT_EV_BACKTRACKED, /* the plan just made backed up count times */
     CUB_GAIT_EV_TAKEN,       /* a foot came down on its foothold */
-    CUB_GAIT_EV_BLOCKED      /* no plan: the foot lands on its unadapted point [ours] */
+    CUB_GAIT_EV_BLOCKED      /* no plan: the walker stops on both feet [ours] */
 } cub_gait_event_kind;
 
 typedef struct cub_gait_event {
@@ -317,6 +321,15 @@ cub_err cub_gait_walk_clip_make(const cub_clip *clip, const int ankle[2], const 
                                 cub_vec3 *const ankle_mm[2], cub_vec3 *const toe_mm[2],
                                 uint8_t *const phase[2], cub_gait_walk_clip *out);
 
+/* The walker's parts that cub_gait_walk_params.without may leave out
+ * (measurement only: the walk then slides, pops or floats). */
+enum {
+    CUB_GAIT_NO_PIN = 1,   /* stance feet follow the clip's own slide */
+    CUB_GAIT_NO_CLOSE = 2, /* the cycle's mismatch is not spread (it pops at the wrap) */
+    CUB_GAIT_NO_DROP = 4,  /* the pelvis does not lower */
+    CUB_GAIT_NO_FLOOR = 8  /* one floor for the clip (its lowest foot point), not one per step */
+};
+
 typedef struct cub_gait_walk_params {
     cub_vec3 start_mm;            /* where the root starts (x, z; y from the terrain) */
     cub_q16 dir_x, dir_z;         /* the first heading (0, 0: the clip's own) */
@@ -326,6 +339,10 @@ typedef struct cub_gait_walk_params {
     int steps;                    /* footholds planned ahead (0: 4 flat, 3 rough) */
     int clip_swing;               /* 1: on flat ground the clip's own swing path, not the
                                      seed's key-frame segments (a comparison) */
+    int straight_swing;           /* 1: on flat ground the seed's straight segments between
+                                     the key frames, not the Bezier through them (a comparison) */
+    int without;                  /* CUB_GAIT_NO_* bits: parts left out, to price each
+                                     one's share of the error (cubtool gait-eval --without) */
     cub_gait_event_fn on_event;   /* may be NULL */
     void *ctx;
 } cub_gait_walk_params;
@@ -344,10 +361,13 @@ typedef struct cub_gait_walk_foot {
     cub_vec3 pin_u[2], skate_u[2];/* ankle, toe: where stance began; the clip's slide so far */
     int swing_at, swing_len, step;
     cub_vec3 key_u[3];            /* flat ground: the ankle at foot-off, apex, strike */
+    cub_vec3 key_v[3];            /* ... its captured velocity there, mm per frame (clip axes) */
     int key_at[3];                /* their frames into the swing */
     uint8_t last_phase;
     cub_gait_swing path;
     int rough;
+    cub_vec3 rest_mm[2];          /* ankle, toe targets of its last stance frame (flat down) */
+    int has_rest;                 /* rest_mm is set */
 } cub_gait_walk_foot;
 
 typedef struct cub_gait_walker {
@@ -364,6 +384,10 @@ typedef struct cub_gait_walker {
     cub_gait_plan plan;           /* the last plan */
     cub_gait_walk_foot feet[2];
     int arrived;                  /* 1: the root is within a stride of the target */
+    int stopped;                  /* 1: at rest on both feet (arrived, or BLOCKED) */
+    int blocked;                  /* 1: stopped by a BLOCKED step */
+    int stop_foot, settle;        /* the foot that would have lifted; frames into its settling */
+    cub_vec3 stop_target;         /* the target when it stopped */
     cub_pose pose;                /* this frame's pose of the clip's skeleton */
 } cub_gait_walker;
 
@@ -373,7 +397,12 @@ cub_err cub_gait_walker_init(cub_gait_walker *w, const cub_gait_walk_clip *c,
                              const cub_gait_terrain *t, const cub_gait_walk_params *p);
 /* One frame (the clip's frame period) toward target_mm (x, z): *out is
  * the pose (root translation, mm; local rotations, Q2.30), valid until the
- * next call. Turns at each foot-off by at most max_turn_rad. */
+ * next call. Turns at each foot-off by at most max_turn_rad. At a foot-off
+ * within a stride of the target, or when the step is BLOCKED, it stops
+ * instead: the frame before the foot-off is held and the lifting foot
+ * settles flat on its foothold (stopped = 1). It walks on when the target
+ * is again farther than a stride (after BLOCKED: when the target moved),
+ * the foot lifted again first. */
 cub_err cub_gait_walker_step(cub_gait_walker *w, cub_vec3 target_mm, const cub_pose **out);
 /* The sole box of a foot [ours]: 6 points (heel, toe tip, and their
  * corners a fifth of the foot length either side), from the ankle and toe
