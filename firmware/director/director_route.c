@@ -329,7 +329,11 @@ void director_entry_leads(cub_director *d)
     d->lead_clip = p->clip;
     d->lead_pos_q16 = p->pos_q16;
     d->lead_loop = p->loop;
-    cub_bridge_query here = {.from_clip = -1};
+    /* Out of a groove clip the request will take the reach (reach_frames):
+     * preview it the same way, so the move is asked for that much before
+     * its tag and its first frame lands on its beat. */
+    cub_bridge_query here = {.from_clip = -1,
+                             .reach_frames = groove_clip(d, p->clip) ? d->desc.react_frames : 0};
     for (int m = 0; m < d->desc.coach.move_count; m++)
         if (after_gap(d, m)) d->moves[m].entry_lead_ms = lead_from(d, here, m, NULL);
 }
