@@ -228,20 +228,19 @@ static cub_err open_director(cub_dance *d, const cub_app_options *o, cub_judge *
     return e;
 }
 
-/* Which groove spans the coach dances. In a song with moves, only the
- * <free> bars: the intro, the gaps and the outro keep the idle clip, so
- * the six shipped songs (none has free bars) are led exactly as before and
- * their e2e cues hold (docs/groove.md "The box", fourth slice). Every span's
- * clip is made and logged all the same (measured). */
-static bool danced(const cub_song *song, const cub_song_span *sp)
+/* Which groove spans the coach dances: every span no move teaches (the
+ * intro, the gaps, the <free> bars, the outro up to the cheer); the bear
+ * enters and leaves them through the bridge planner (docs/groove.md, the
+ * fifth slice). */
+static bool danced(const cub_song_span *sp)
 {
-    return sp->kind == CUB_SONG_SPAN_FREE || song->move_count == 0;
+    return sp->kind != CUB_SONG_SPAN_MOVE;
 }
 
 /* The clips of the danced spans into the bridge table, after the library's
  * clips, and their spans on the music clock for the coach. Only those: the
  * table is rebuilt to take them, so a song none of whose spans is danced
- * (every shipped song) keeps its table as loaded. */
+ * (every bar a move) keeps its table as loaded. */
 static cub_err hand_grooves(cub_dance *d, char *err, size_t size)
 {
     const cub_groove_box *g = d->groove;
@@ -250,7 +249,7 @@ static cub_err hand_grooves(cub_dance *d, char *err, size_t size)
     const cub_fuzzy_frame *fuzzy[CUB_SONG_MAX_SPANS];
     d->groove_count = 0;
     for (int i = 0; i < g->span_count; i++) {
-        if (!danced(&d->song, &g->spans[i])) continue;
+        if (!danced(&g->spans[i])) continue;
         int k = d->groove_count++;
         clips[k] = g->clips[i];
         fuzzy[k] = g->fuzzy[i];

@@ -135,7 +135,8 @@ static void walk_on(cub_walk_box *w, int64_t t_us)
             return;
         }
         w->frames++;
-        if (arrived(w)) stop(w, t_us, "arrived");
+        if (w->walker.blocked) stop(w, t_us, "blocked");
+        else if (arrived(w) || w->walker.stopped) stop(w, t_us, "arrived");
     }
     if (w->walking && w->deadline_us && t_us >= w->deadline_us) stop(w, t_us, "time");
 }

@@ -514,7 +514,8 @@ static int query_ok(const cub_bridge_table *t, const cub_bridge_query *q)
     return q->from_clip >= 0 && q->from_clip < n && q->to_clip >= 0 && q->to_clip < n &&
            q->pos_q16 >= 0 && q->pos_q16 < ((int64_t)1 << 46) && q->window_frames >= 0 &&
            q->wait_cost_mm >= 0 && q->start_frames >= 0 && q->reach_frames >= 0 &&
-           (q->strict == 0 || q->strict == 1) && (q->via_tween == 0 || q->via_tween == 1) && (q->no_routes == 0 || q->no_routes == 1);
+           (q->strict == 0 || q->strict == 1) && (q->via_tween == 0 || q->via_tween == 1) && (q->no_routes == 0 || q->no_routes == 1) &&
+           (q->direct_only == 0 || (q->direct_only == 1 && q->reach_frames > 0));
 }
 
 /* The first frame still to come; a clip that does not loop holds its
@@ -584,12 +585,30 @@ static int route_search(const cub_bridge_table *t, const cub_bridge_query *q, in
     return 0;
 }
 
+/* direct_only: a switch within the threshold into a start frame, when it
+ * comes within reach_frames; else the reach (the closest pair). */
+static cub_err plan_direct(const cub_bridge_table *t, const cub_bridge_query *q,
+                           cub_bridge_plan *out)
+{
+    int nf = frames_of(t, q->from_clip);
+    int64_t g0 = first_upcoming(t, q);
+    hit h;
+    if (q->start_frames > 0 && start_search(t, q, g0, q->reach_frames, &h)) {
+        write_direct(q, nf, &h, q->reach_frames, out);
+        return CUB_OK;
+    }
+    if (!reach_search(t, q, g0, q->reach_frames, &h)) return CUB_ERR_RANGE;
+    write_direct(q, nf, &h, q->reach_frames, out);
+    return CUB_OK;
+}
+
 cub_err cub_bridge_plan_switch(const cub_bridge_table *t, const cub_bridge_query *q,
                                cub_bridge_plan *out, void *work, size_t work_size)
 {
     if (out) memset(out, 0, sizeof *out);
     if (!t || !q || !out || !t->finished || !query_ok(t, q)) return CUB_ERR_ARG;
     if (!work || work_size < cub_bridge_plan_work_size(t)) return CUB_ERR_NOMEM;
+    if (q->direct_only) return plan_direct(t, q, out);
     cub_err e = plan_within(t, q, out, work);
     if (q->reach_frames <= 0 || (!e && out->total_frames <= q->reach_frames)) return e;
     hit h;

@@ -98,7 +98,8 @@ cub_err cub_bridge_player_request(cub_bridge_player *p, int clip, cub_q16 speed_
     if (clip < 0 || clip >= p->desc.table->desc.clip_count) return CUB_ERR_ARG;
     cub_bridge_query q = {p->clip, p->pos_q16, p->loop, clip, p->desc.window_frames,
                           p->desc.wait_cost_mm, p->desc.start_frames, p->desc.reach_frames,
-                          p->desc.strict, p->desc.via_tween, p->desc.no_routes};
+                          p->desc.strict, p->desc.via_tween, p->desc.no_routes,
+                          p->desc.direct_only};
     cub_bridge_plan plan;
     cub_err e = cub_bridge_plan_switch(p->desc.table, &q, &plan, p->work, p->work_size);
     if (e) return e;
@@ -126,6 +127,7 @@ cub_err cub_bridge_player_preview(cub_bridge_player *p, const cub_bridge_query *
     here.strict |= p->desc.strict;
     here.via_tween |= p->desc.via_tween;
     here.no_routes |= p->desc.no_routes;
+    here.direct_only |= p->desc.direct_only;
     return cub_bridge_plan_switch(p->desc.table, &here, out, p->work, p->work_size);
 }
 
@@ -522,6 +524,13 @@ cub_err cub_bridge_player_set_no_routes(cub_bridge_player *p, int no_routes)
 {
     if (!p || (no_routes != 0 && no_routes != 1)) return CUB_ERR_ARG;
     p->desc.no_routes = no_routes;
+    return CUB_OK;
+}
+
+cub_err cub_bridge_player_set_direct_only(cub_bridge_player *p, int direct_only)
+{
+    if (!p || (direct_only != 0 && direct_only != 1)) return CUB_ERR_ARG;
+    p->desc.direct_only = direct_only;
     return CUB_OK;
 }
 

@@ -179,9 +179,11 @@ static bool groove_clip(const cub_director *d, int clip)
 
 /* A groove clip (a span no move teaches) has no tagged links to or from
  * the library's clips, so no chain reaches it and none leaves it: into it
- * and out of it, the planner enters within react_frames at the closest of
- * the start frames when nothing within the threshold comes sooner. The
- * music does not wait for the bear either way. */
+ * and out of it, one direct switch within react_frames (direct_only): into
+ * a start frame within the threshold, else the closest, and the blend
+ * covers the distance. A tween through another move's frames on the way
+ * (two frames of jumping jacks before the still intro) read as a twitch.
+ * The music does not wait for the bear either way. */
 static int reach_frames(const cub_director *d, const cub_coach_action *a)
 {
     return groove_clip(d, a->clip) || groove_clip(d, d->player.clip) ? d->desc.react_frames : 0;
@@ -190,13 +192,16 @@ static int reach_frames(const cub_director *d, const cub_coach_action *a)
 void director_request(cub_director *d, const cub_coach_action *a, int64_t t_us)
 {
     cub_bridge_player_set_start_frames(&d->player, start_frames(d, a));
-    cub_bridge_player_set_reach_frames(&d->player, reach_frames(d, a));
+    const int reach = reach_frames(d, a);
+    cub_bridge_player_set_reach_frames(&d->player, reach);
+    cub_bridge_player_set_direct_only(&d->player, reach > 0);
     d->played_clip = d->requested_clip = -1;
     cub_bridge_plan plan;
     cub_bridge_player_set_no_routes(&d->player, !routes_allowed(d, a));
     cub_err err = plan_correction(d, a, &plan, t_us);
     cub_bridge_player_set_no_routes(&d->player, 0); /* the leads' previews take them */
     cub_bridge_player_set_reach_frames(&d->player, 0);
+    cub_bridge_player_set_direct_only(&d->player, 0);
     judge_clip(d, a, t_us, err ? NULL : &plan);
     if (!err) {
         cub_log_event(dlog(d), t_us, "bridge", "plan", "to=%s steps=%d wait_frames=%d via=%s",
@@ -329,7 +334,11 @@ void director_entry_leads(cub_director *d)
     d->lead_clip = p->clip;
     d->lead_pos_q16 = p->pos_q16;
     d->lead_loop = p->loop;
-    cub_bridge_query here = {.from_clip = -1};
+    /* Out of a groove clip the request will take the reach (reach_frames):
+     * preview it the same way, so the move is asked for that much before
+     * its tag and its first frame lands on its beat. */
+    const int reach = groove_clip(d, p->clip) ? d->desc.react_frames : 0;
+    cub_bridge_query here = {.from_clip = -1, .reach_frames = reach, .direct_only = reach > 0};
     for (int m = 0; m < d->desc.coach.move_count; m++)
         if (after_gap(d, m)) d->moves[m].entry_lead_ms = lead_from(d, here, m, NULL);
 }

@@ -201,8 +201,10 @@ static void steer(cub_gait_walker *w, cub_vec3 root_u, cub_vec3 target)
     cub_vec3 root = to_world(w, root_u);
     cub_vec3 want = flat_xz(cub_fx_vec3_sub(target, root));
     cub_q16 dist = cub_fx_vec3_length(want);
-    cub_q16 stride = cub_fx_vec3_length(flat_xz(w->cycle_u)) / 2;
-    w->arrived = dist <= stride;
+    /* Half a step: the last step lands at most that far from the target
+     * (a whole step left the box's bear a step short of its place). */
+    cub_q16 half_step = cub_fx_vec3_length(flat_xz(w->cycle_u)) / 4;
+    w->arrived = dist <= half_step;
     if (w->arrived || dist == 0) return;
     cub_vec3 h = {w->dir_x, 0, w->dir_z};
     cub_vec3 u = unit_xz(want);
@@ -634,12 +636,12 @@ static cub_q16 root_to(const cub_gait_walker *w, cub_vec3 target)
     return cub_fx_vec3_length(flat_xz(cub_fx_vec3_sub(target, root)));
 }
 
-/* Walk on: the target is beyond a stride again (after BLOCKED, only once
+/* Walk on: the target is beyond half a step again (after BLOCKED, only once
  * the caller has moved it: the same target would block again). */
 static bool want_on(const cub_gait_walker *w, cub_vec3 target)
 {
     if (w->blocked && target.x == w->stop_target.x && target.z == w->stop_target.z) return false;
-    return root_to(w, target) > cub_fx_vec3_length(flat_xz(w->cycle_u)) / 2;
+    return root_to(w, target) > cub_fx_vec3_length(flat_xz(w->cycle_u)) / 4;
 }
 
 /* The held frame: the one before the foot-off that stopped the walk. */

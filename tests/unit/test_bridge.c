@@ -379,6 +379,29 @@ static void test_reach_enters_within_its_frames(void **s)
                      CUB_ERR_ARG);
 }
 
+/* Into a clip no chain belongs to (a groove): direct_only makes one
+ * direct switch where the planner would tween through another clip, even
+ * when the tween (18 frames) comes within reach_frames; it needs a reach. */
+static void test_direct_only_never_tweens(void **s)
+{
+    (void)s;
+    build_tween_table(1);
+    cub_bridge_query q = {.from_clip = 0, .pos_q16 = (int64_t)7 << 16, .from_loops = 1,
+                          .to_clip = 1, .reach_frames = 20};
+    cub_bridge_plan plan;
+    assert_int_equal(cub_bridge_plan_switch(&S.table, &q, &plan, S.work, sizeof S.work), CUB_OK);
+    assert_int_equal(plan.step_count, 2); /* the tween is soon enough */
+    q.direct_only = 1;
+    assert_int_equal(cub_bridge_plan_switch(&S.table, &q, &plan, S.work, sizeof S.work), CUB_OK);
+    assert_int_equal(plan.step_count, 1);
+    assert_int_equal(plan.step[0].via, CUB_BRIDGE_DIRECT);
+    assert_int_equal(plan.step[0].to_clip, 1);
+    assert_true(plan.total_frames < 20);
+    q.reach_frames = 0;
+    assert_int_equal(cub_bridge_plan_switch(&S.table, &q, &plan, S.work, sizeof S.work),
+                     CUB_ERR_ARG);
+}
+
 /* ---- the player -------------------------------------------------------- */
 
 static void test_speed_bounds(void **s)
@@ -600,6 +623,7 @@ int main(void)
         cmocka_unit_test(test_tween_when_no_direct_link),
         cmocka_unit_test(test_no_link_is_a_clear_error),
         cmocka_unit_test(test_reach_enters_within_its_frames),
+        cmocka_unit_test(test_direct_only_never_tweens),
         cmocka_unit_test(test_speed_bounds),
         cmocka_unit_test(test_player_switches_exactly_at_the_planned_frame),
         cmocka_unit_test(test_pose_is_continuous_at_the_switch),

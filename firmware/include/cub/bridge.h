@@ -241,6 +241,13 @@ typedef struct cub_bridge_query {
                           0: when the table has a route for this pair and the
                           current clip reaches its frame a within the first
                           window (200 ms), take it before any search */
+    int direct_only;   /* 1: one direct switch, never a chain or tween through
+                          other clips' frames: within the threshold into one
+                          of the start frames when that comes within
+                          reach_frames, else the reach (needs reach_frames >
+                          0). For a clip no chain belongs to (a groove): two
+                          frames of an unrelated move on the way in read as a
+                          twitch, a blend does not. 0: the searches above */
 } cub_bridge_query;
 
 /* Scratch memory the planner needs for this table (the tween search). */
@@ -363,6 +370,7 @@ typedef struct cub_bridge_player_desc {
     int no_legs;          /* 1: no leg phase (for measuring); 0: inertial cuts hold
                              planted feet (cub_bridge_legs) */
     int no_routes;        /* the planner's, see cub_bridge_query; 0 = take routes */
+    int direct_only;      /* the planner's, see cub_bridge_query; 0 = off */
 } cub_bridge_player_desc;
 
 typedef enum cub_bridge_event_type {
@@ -448,6 +456,9 @@ cub_err cub_bridge_player_set_reach_frames(cub_bridge_player *p, int reach_frame
  * (cub_bridge_query.no_routes): the director allows them only where the
  * music has time for the route's frames. CUB_ERR_ARG unless 0 or 1. */
 cub_err cub_bridge_player_set_no_routes(cub_bridge_player *p, int no_routes);
+/* Whether later requests take one direct switch only (cub_bridge_query.
+ * direct_only). CUB_ERR_ARG unless 0 or 1. */
+cub_err cub_bridge_player_set_direct_only(cub_bridge_player *p, int direct_only);
 /* Move time on by dt_us (>= 0): switch exactly at the planned frames,
  * report events into ev[max_ev] (count in *n_ev; events past max_ev are
  * dropped, the playback is not). */

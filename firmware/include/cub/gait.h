@@ -383,7 +383,7 @@ typedef struct cub_gait_walker {
     cub_q16 drop_mm;              /* this frame's pelvis drop */
     cub_gait_plan plan;           /* the last plan */
     cub_gait_walk_foot feet[2];
-    int arrived;                  /* 1: the root is within a stride of the target */
+    int arrived;                  /* 1: the root is within half a step of the target */
     int stopped;                  /* 1: at rest on both feet (arrived, or BLOCKED) */
     int blocked;                  /* 1: stopped by a BLOCKED step */
     int stop_foot, settle;        /* the foot that would have lifted; frames into its settling */
@@ -398,10 +398,10 @@ cub_err cub_gait_walker_init(cub_gait_walker *w, const cub_gait_walk_clip *c,
 /* One frame (the clip's frame period) toward target_mm (x, z): *out is
  * the pose (root translation, mm; local rotations, Q2.30), valid until the
  * next call. Turns at each foot-off by at most max_turn_rad. At a foot-off
- * within a stride of the target, or when the step is BLOCKED, it stops
+ * within half a step of the target, or when the step is BLOCKED, it stops
  * instead: the frame before the foot-off is held and the lifting foot
  * settles flat on its foothold (stopped = 1). It walks on when the target
- * is again farther than a stride (after BLOCKED: when the target moved),
+ * is again farther than half a step (after BLOCKED: when the target moved),
  * the foot lifted again first. */
 cub_err cub_gait_walker_step(cub_gait_walker *w, cub_vec3 target_mm, const cub_pose **out);
 /* The sole box of a foot [ours]: 6 points (heel, toe tip, and their
