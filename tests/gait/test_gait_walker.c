@@ -230,20 +230,28 @@ static int taken(const log *l)
  * planner tries) lands with its toe tip 20 mm short of it. */
 #define WALL_Z 1500
 
+/* The walker at the origin heading +z on flat ground with the log at
+ * WALL_Z, its events into *l; only 5 raises of a swing (so some step
+ * lengths cannot clear the log). */
+static void walker_before_wall(log *l, cub_gait_terrain *t)
+{
+    l->n = 0;
+    cub_gait_terrain_flat(t, 0);
+    cub_gait_box wall = {{CUB_Q16_INT(-1000), 0, CUB_Q16_INT(WALL_Z)},
+                         {CUB_Q16_INT(1000), CUB_Q16_INT(150), CUB_Q16_INT(WALL_Z + 150)}};
+    assert_int_equal(cub_gait_terrain_add(t, wall), CUB_OK);
+    cub_gait_walk_params p = {.dir_z = CUB_Q16_ONE, .on_event = record, .ctx = l};
+    p.swing.max_raises = 5;
+    assert_int_equal(cub_gait_walker_init(&walker, &wc, t, &p), CUB_OK);
+}
+
 static void swing_that_cannot_clear_is_replanned(void **state)
 {
     (void)state;
     SYNTH_NEED_DATA(CLIP);
     static log l;
-    l.n = 0;
     cub_gait_terrain t;
-    cub_gait_terrain_flat(&t, 0);
-    cub_gait_box wall = {{CUB_Q16_INT(-1000), 0, CUB_Q16_INT(WALL_Z)},
-                         {CUB_Q16_INT(1000), CUB_Q16_INT(150), CUB_Q16_INT(WALL_Z + 150)}};
-    assert_int_equal(cub_gait_terrain_add(&t, wall), CUB_OK);
-    cub_gait_walk_params p = {.dir_z = CUB_Q16_ONE, .on_event = record, .ctx = &l};
-    p.swing.max_raises = 5;
-    assert_int_equal(cub_gait_walker_init(&walker, &wc, &t, &p), CUB_OK);
+    walker_before_wall(&l, &t);
     cub_vec3 target = {0, 0, CUB_Q16_INT(30000)};
     for (int i = 0; i < 600 && taken(&l) < 2; i++) {
         const cub_pose *pose;
@@ -364,15 +372,8 @@ static void blocked_walker_stops(void **state)
     (void)state;
     SYNTH_NEED_DATA(CLIP);
     static log l;
-    l.n = 0;
     cub_gait_terrain t;
-    cub_gait_terrain_flat(&t, 0);
-    cub_gait_box wall = {{CUB_Q16_INT(-1000), 0, CUB_Q16_INT(WALL_Z)},
-                         {CUB_Q16_INT(1000), CUB_Q16_INT(150), CUB_Q16_INT(WALL_Z + 150)}};
-    assert_int_equal(cub_gait_terrain_add(&t, wall), CUB_OK);
-    cub_gait_walk_params p = {.dir_z = CUB_Q16_ONE, .on_event = record, .ctx = &l};
-    p.swing.max_raises = 5;
-    assert_int_equal(cub_gait_walker_init(&walker, &wc, &t, &p), CUB_OK);
+    walker_before_wall(&l, &t);
     cub_vec3 target = {0, 0, CUB_Q16_INT(30000)};
     int still = walk_to(target, 900, &t);
     int blocked = -1, taken_after = 0;
