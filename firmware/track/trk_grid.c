@@ -681,7 +681,7 @@ static int32_t player_part(const cub_tracker *t, trk_p3 pred)
         if (c->n < ID_PART_CELLS || (best >= 0 && c->n <= t->comps[best].n)) continue;
         trk_p3 cc = comp_centre(c);
         if (trk_abs(cc.z - pred.z) > ID_PART_DZ_MM || track_gap(t, pred, cc) < 0) continue;
-        if (part_of_someone_in_front(t, -1, pred.z, c) || joins_someone_else(t, -1, pred.z, k))
+        if (part_of_someone_in_front(t, -1, pred.z, c))
             continue; /* the hider's own arm */
         best = k;
     }
