@@ -8,6 +8,7 @@
  * the atlas's codepoints map to, composites included — and checks each
  * offset and length against the file size. CFF outlines (.otf) are
  * refused: stb's CFF reader bounds itself by 512 MB, not by the file. */
+#include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <string.h>
@@ -174,8 +175,89 @@ static int glyph_bytes(font *f, unsigned gi, uint64_t *at, uint64_t *len)
     return 1;
 }
 
-static int check_glyph(font *f, unsigned gi, int depth)
+/* How far a glyph's points reach from its origin (the largest |x|, |y|
+ * stb_truetype will hold for it), so a component's placement can be
+ * checked against the 16-bit vertices stb keeps. */
+typedef struct extent {
+    double x, y;
+} extent;
+
+static int wrap16(int32_t v)
 {
+    return (int)(((v + 32768) & 0xFFFF) - 32768);
+}
+
+/* One axis of a simple glyph's points, as stb_truetype decodes them: a
+ * short delta (flag `short_bit`, sign by `same_bit`), a repeat of the last
+ * value (`same_bit` alone), or a 16-bit delta; the sum kept in 16 bits.
+ * Reads from *p (bounds already checked); the largest |value| out. */
+static double axis_extent(const font *in, uint64_t flags_at, unsigned points, uint64_t *p,
+                          unsigned char short_bit, unsigned char same_bit)
+{
+    int ok = 1;
+    int32_t v = 0;
+    double most = 0;
+    unsigned char flags = 0, repeat = 0;
+    uint64_t fp = flags_at;
+    for (unsigned i = 0; i < points; i++) {
+        if (repeat == 0) {
+            flags = in->d[fp++];
+            if (flags & 8) repeat = in->d[fp++];
+        } else {
+            --repeat;
+        }
+        if (flags & short_bit) {
+            int d = in->d[(*p)++];
+            v += (flags & same_bit) ? d : -d;
+        } else if (!(flags & same_bit)) {
+            v += (int16_t)u16(in, *p, &ok);
+            *p += 2;
+        }
+        v = wrap16(v);
+        if (v < 0 ? -v > most : v > most) most = v < 0 ? -v : v;
+    }
+    return most;
+}
+
+/* Where a component lands (stb_truetype's transform: a 2x2 matrix in
+ * F2Dot14, an offset, then each axis scaled by its column's length), from
+ * the component's own extent. */
+static extent placed(const double mtx[6], extent e)
+{
+    double m = sqrt(mtx[0] * mtx[0] + mtx[1] * mtx[1]);
+    double n = sqrt(mtx[2] * mtx[2] + mtx[3] * mtx[3]);
+    return (extent){m * (fabs(mtx[0]) * e.x + fabs(mtx[2]) * e.y + fabs(mtx[4])),
+                    n * (fabs(mtx[1]) * e.x + fabs(mtx[3]) * e.y + fabs(mtx[5]))};
+}
+
+/* A component's matrix and offset, as stb_truetype reads them at p. */
+static void component_matrix(const font *in, uint64_t p, unsigned flags, double mtx[6])
+{
+    int ok = 1;
+    mtx[0] = mtx[3] = 1;
+    mtx[1] = mtx[2] = 0;
+    if (flags & 1) {
+        mtx[4] = (int16_t)u16(in, p, &ok);
+        mtx[5] = (int16_t)u16(in, p + 2, &ok);
+        p += 4;
+    } else {
+        mtx[4] = (signed char)in->d[p];
+        mtx[5] = (signed char)in->d[p + 1];
+        p += 2;
+    }
+    if (flags & 8) {
+        mtx[0] = mtx[3] = (int16_t)u16(in, p, &ok) / 16384.0;
+    } else if (flags & 0x40) {
+        mtx[0] = (int16_t)u16(in, p, &ok) / 16384.0;
+        mtx[3] = (int16_t)u16(in, p + 2, &ok) / 16384.0;
+    } else if (flags & 0x80) {
+        for (int i = 0; i < 4; i++) mtx[i] = (int16_t)u16(in, p + 2 * (uint64_t)i, &ok) / 16384.0;
+    }
+}
+
+static int check_glyph(font *f, unsigned gi, int depth, extent *reach)
+{
+    *reach = (extent){0, 0};
     uint64_t g, len;
     if (!glyph_bytes(f, gi, &g, &len))
         return 0;
@@ -231,6 +313,9 @@ static int check_glyph(font *f, unsigned gi, int depth)
         }
         if (!ok || p + xy > in.n)
             return bad(f, "the outline of glyph %u runs past its end", gi, 0);
+        uint64_t flags_at = ends + 2 * (uint64_t)contours + 2 + ins, at = p;
+        reach->x = axis_extent(&in, flags_at, points, &at, 2, 16);
+        reach->y = axis_extent(&in, flags_at, points, &at, 4, 32);
     } else if (contours < 0) {
         if (depth >= MAX_COMPOSITE_DEPTH)
             return bad(f, "glyph %u nests its components too deep (a cycle?)", gi, 0);
@@ -243,14 +328,27 @@ static int check_glyph(font *f, unsigned gi, int depth)
                 break;
             if (!(flags & 2))
                 return bad(f, "glyph %u places a component by points (unsupported)", gi, 0);
+            uint64_t args = p + 4;
             p += 4 + ((flags & 1) ? 4 : 2);
             p += (flags & 8) ? 2 : (flags & 0x40) ? 4 : (flags & 0x80) ? 8 : 0;
+            extent part_reach;
             if (p > in.n)
                 ok = 0;
             else if (part >= f->num_glyphs)
                 return bad(f, "glyph %u uses glyph %u, past the last", gi, part);
-            else if (!check_glyph(f, part, depth + 1))
+            else if (!check_glyph(f, part, depth + 1, &part_reach))
                 return 0;
+            if (!ok)
+                break;
+            /* stb_truetype keeps vertices in 16 bits: a component placed
+             * beyond them would be converted out of range (undefined). */
+            double mtx[6];
+            component_matrix(&in, args, flags, mtx);
+            extent e = placed(mtx, part_reach);
+            if (e.x > 32767 || e.y > 32767)
+                return bad(f, "glyph %u places glyph %u beyond 16-bit coordinates", gi, part);
+            reach->x = fmax(reach->x, e.x);
+            reach->y = fmax(reach->y, e.y);
         } while (ok && (flags & 0x20));
         if (!ok)
             return bad(f, "the components of glyph %u run past its end", gi, 0);
@@ -332,7 +430,8 @@ int cub_render_font_check(const unsigned char *data, size_t n, char *why, size_t
 
     for (unsigned cp = CUB_RENDER_GLYPH_FIRST; cp < CUB_RENDER_GLYPH_FIRST + CUB_RENDER_GLYPH_COUNT; cp++) {
         unsigned gi;
-        if (!glyph_of(&f, map, cp, &gi) || !check_glyph(&f, gi, 0))
+        extent reach;
+        if (!glyph_of(&f, map, cp, &gi) || !check_glyph(&f, gi, 0, &reach))
             return 0;
     }
     return 1;
