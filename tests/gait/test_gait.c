@@ -204,6 +204,26 @@ static void test_bezier_ends_and_line(void **state)
     assert_in_range(m.y, MM(40) - 3277, MM(40) + 3277);
 }
 
+/* The swing sampled densely (4000 points; the firmware samples 64), the
+ * ankle and the toe 250 mm ahead of it: the lowest gap to the ground
+ * anywhere (returned) and over z0..z1 mm (*over), in mm. */
+static double swing_gaps(const cub_gait_swing *sw, const cub_gait_terrain *t, int z0, int z1,
+                         double *over)
+{
+    double lowest = 1e9;
+    *over = 1e9;
+    for (int i = 0; i <= 4000; i++) {
+        cub_vec3 q = cub_gait_bezier4(sw->p, (cub_q16)(((int64_t)i << 16) / 4000));
+        for (int toe = 0; toe <= 1; toe++) {
+            cub_q16 z = toe ? cub_fx_add(q.z, MM(250)) : q.z;
+            double gap = (q.y - cub_gait_height(t, q.x, z)) / 65536.0;
+            lowest = fmin(lowest, gap);
+            if (z >= MM(z0) && z <= MM(z1)) *over = fmin(*over, gap);
+        }
+    }
+    return lowest;
+}
+
 /* A log 15 cm high and 10 cm deep midway through a 60 cm step: the path
  * rises over it; checked densely here (the firmware samples 64 points),
  * it never enters the ground and is >= 2 cm above the log, toe included. */
@@ -219,17 +239,8 @@ static void test_swing_clears_a_log(void **state)
     assert_int_equal(cub_gait_swing_path(&t, &sp, from, to, &sw), CUB_OK);
     assert_true(sw.clear);
     assert_true(sw.raises > 0);
-    double min_over_log = 1e9;
-    for (int i = 0; i <= 4000; i++) {
-        cub_q16 tt = (cub_q16)(((int64_t)i << 16) / 4000);
-        cub_vec3 q = cub_gait_bezier4(sw.p, tt);
-        for (int toe = 0; toe <= 1; toe++) {
-            cub_q16 z = toe ? cub_fx_add(q.z, MM(250)) : q.z;
-            double gap = (q.y - cub_gait_height(&t, q.x, z)) / 65536.0;
-            assert_true(gap >= -0.01);
-            if (z >= MM(250) && z <= MM(350) && gap < min_over_log) min_over_log = gap;
-        }
-    }
+    double min_over_log;
+    assert_true(swing_gaps(&sw, &t, 250, 350, &min_over_log) >= -0.01);
     assert_true(min_over_log >= 19.5);
     /* One raise fewer would not have cleared it. */
     cub_gait_swing_params fewer = sp;
@@ -253,16 +264,8 @@ static void test_swing_clears_a_stone_by_the_foothold(void **state)
     cub_vec3 from = {0, 0, MM(-200)}, to = {0, 0, MM(600)};
     cub_gait_swing sw;
     assert_int_equal(cub_gait_swing_path(&t, &sp, from, to, &sw), CUB_OK);
-    double min_over = 1e9;
-    for (int i = 0; i <= 4000; i++) {
-        cub_q16 tt = (cub_q16)(((int64_t)i << 16) / 4000);
-        cub_vec3 q = cub_gait_bezier4(sw.p, tt);
-        for (int toe = 0; toe <= 1; toe++) {
-            cub_q16 z = toe ? cub_fx_add(q.z, MM(250)) : q.z;
-            double gap = (q.y - cub_gait_height(&t, q.x, z)) / 65536.0;
-            if (z >= MM(355) && z <= MM(515) && gap < min_over) min_over = gap;
-        }
-    }
+    double min_over;
+    swing_gaps(&sw, &t, 355, 515, &min_over);
     printf("gait: a stone by the foothold cleared by %.1f mm after %d raises\n", min_over, sw.raises);
     assert_true(min_over >= 19.5);
 }
