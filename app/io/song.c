@@ -134,6 +134,23 @@ static cub_err check_clip(const cub_xml_el *el, const cub_library *lib, cub_song
     return CUB_OK;
 }
 
+/* bar="B" bars="N" of a <move> or <free>: inside the song, after the bar
+ * *before* ends (prev_end_bar). */
+static cub_err read_bar_span(const cub_xml_el *el, const cub_song *s, int prev_end_bar,
+                             const char *before, int *bar, int *bars, cub_diag *diag)
+{
+    cub_err e = cub_xml_get_int(el, "bar", 1, s->bars, bar, diag);
+    if (!e) e = cub_xml_get_int(el, "bars", 1, s->bars, bars, diag);
+    if (e) return e;
+    if (*bar < prev_end_bar)
+        return cub_xml_fail_attr(el, "bar", diag, "bar=%d overlaps %s, which lasts until bar %d",
+                                 *bar, before, prev_end_bar - 1);
+    if (*bar + *bars - 1 > s->bars)
+        return cub_xml_fail_attr(el, "bars", diag, "bars %d-%d pass the song's end (bar %d)",
+                                 *bar, *bar + *bars - 1, s->bars);
+    return CUB_OK;
+}
+
 static cub_err read_move(const cub_xml_el *el, const cub_library *lib, cub_song *s,
                          cub_song_move *mv, int prev_end_bar, cub_diag *diag)
 {
@@ -148,16 +165,8 @@ static cub_err read_move(const cub_xml_el *el, const cub_library *lib, cub_song 
         return cub_xml_fail_attr(el, "reps", diag,
                                  "reps=%d: each move plays at least %d times in a row", mv->reps,
                                  CUB_SONG_MIN_REPS);
-    if (!e) e = cub_xml_get_int(el, "bar", 1, s->bars, &mv->bar, diag);
-    if (!e) e = cub_xml_get_int(el, "bars", 1, s->bars, &mv->bars, diag);
+    if (!e) e = read_bar_span(el, s, prev_end_bar, "the previous move", &mv->bar, &mv->bars, diag);
     if (e) return e;
-    if (mv->bar < prev_end_bar)
-        return cub_xml_fail_attr(el, "bar", diag,
-                                 "bar=%d overlaps the previous move, which lasts until bar %d",
-                                 mv->bar, prev_end_bar - 1);
-    if (mv->bar + mv->bars - 1 > s->bars)
-        return cub_xml_fail_attr(el, "bars", diag, "bars %d-%d pass the song's end (bar %d)",
-                                 mv->bar, mv->bar + mv->bars - 1, s->bars);
     mv->start_us = cub_song_bar_us(s, mv->bar);
     mv->end_us = cub_song_bar_us(s, mv->bar + mv->bars);
     e = get_keys(el, mv, diag);
@@ -213,17 +222,9 @@ static cub_err read_free(const cub_xml_el *el, cub_song *s, int prev_end_bar, cu
     memset(f, 0, sizeof(*f));
     f->line = cub_xml_line(el);
     cub_err e = known_attrs(el, known, diag);
-    if (!e) e = cub_xml_get_int(el, "bar", 1, s->bars, &f->bar, diag);
-    if (!e) e = cub_xml_get_int(el, "bars", 1, s->bars, &f->bars, diag);
+    if (!e) e = read_bar_span(el, s, prev_end_bar, "the move or <free> before", &f->bar, &f->bars,
+                              diag);
     if (e) return e;
-    if (f->bar < prev_end_bar)
-        return cub_xml_fail_attr(el, "bar", diag,
-                                 "bar=%d overlaps the move or <free> before, which lasts until "
-                                 "bar %d",
-                                 f->bar, prev_end_bar - 1);
-    if (f->bar + f->bars - 1 > s->bars)
-        return cub_xml_fail_attr(el, "bars", diag, "bars %d-%d pass the song's end (bar %d)",
-                                 f->bar, f->bar + f->bars - 1, s->bars);
     f->start_us = cub_song_bar_us(s, f->bar);
     f->end_us = cub_song_bar_us(s, f->bar + f->bars);
     s->free_count++;
