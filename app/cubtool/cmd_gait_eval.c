@@ -17,7 +17,7 @@ static const char *const usage_text =
     "usage: cubtool gait-eval [--clips A,B,..] [--held-out A,B,..] [--reference A,B,..]\n"
     "                         [--terrains flat,slope,rolling,forest] [--frames N] [--data DIR]\n"
     "                         [--check] [--clip-swing] [--straight]\n"
-    "                         [--without pin,close,drop,floor]\n"
+    "                         [--without pin,close,drop,floor,keys]\n"
     "The walker (firmware/gait) and the game-engine baseline on each clip and\n"
     "terrain (forest = rolling + a log + two stones), N frames each (720):\n"
     "penetration of the sole box, stance slide per step, clearance over\n"
@@ -31,7 +31,8 @@ static const char *const usage_text =
     "flat ground the walker keeps the captured swing, not the Bezier through\n"
     "the swing's key frames; --straight: the seed's straight segments instead.\n"
     "--without: the walker with those parts left out (the stance pin, the\n"
-    "cycle's closing, the pelvis drop, the per-step floor), to price each one's\n"
+    "cycle's closing, the pelvis drop, the per-step floor, the key configurations\n"
+    "by height difference), to price each one's\n"
     "share of the joint error.\n";
 
 static int split(char *s, const char **out)
@@ -89,16 +90,16 @@ static int clip_swing; /* --clip-swing: the captured swing on flat ground */
 static int without;    /* --without: CUB_GAIT_NO_* bits */
 static int straight;   /* --straight: the seed's straight key-frame segments on flat ground */
 
-/* "pin,close,drop,floor" to CUB_GAIT_NO_* bits; -1 for an unknown name. */
+/* "pin,close,drop,floor,keys" to CUB_GAIT_NO_* bits; -1 for an unknown name. */
 static int parse_without(char *s)
 {
-    static const char *const names[] = {"pin", "close", "drop", "floor"};
+    static const char *const names[] = {"pin", "close", "drop", "floor", "keys"};
     int bits = 0;
     for (char *t = strtok(s, ","); t; t = strtok(NULL, ",")) {
         int i = 0;
-        while (i < 4 && strcmp(t, names[i]))
+        while (i < 5 && strcmp(t, names[i]))
             i++;
-        if (i == 4) return -1;
+        if (i == 5) return -1;
         bits |= 1 << i;
     }
     return bits;
@@ -157,7 +158,7 @@ int cub_cmd_gait_eval(int argc, char **argv)
     snprintf(wb, sizeof wb, "%s", wo ? wo : "");
     without = parse_without(wb);
     if (without < 0) {
-        fprintf(stderr, "cubtool " WHO ": --without %s: expected pin, close, drop, floor\n", wo);
+        fprintf(stderr, "cubtool " WHO ": --without %s: expected pin, close, drop, floor, keys\n", wo);
         return 2;
     }
     int frames = nframes ? atoi(nframes) : 720;

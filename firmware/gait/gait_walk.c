@@ -338,6 +338,9 @@ static bool begin_swing(cub_gait_walker *w, int foot, int f, int k, cub_vec3 tar
     }
     ft->swinging = 1;
     ft->next_mm = hold;
+    ft->key_mm = (w->p.without & CUB_GAIT_NO_KEYS)
+                     ? 0
+                     : cub_gait_key_pelvis(cub_fx_sub(hold.y, w->feet[!foot].hold_mm.y));
     ft->step = w->steps;
     w->steps++;
     return true;
@@ -353,6 +356,7 @@ static void land(cub_gait_walker *w, int foot)
     ft->yaw_c = w->yaw_c;
     ft->yaw_s = w->yaw_s;
     ft->skate_u[0] = ft->skate_u[1] = (cub_vec3){0};
+    w->key_mm = ft->key_mm;
     emit(w, (cub_gait_event){CUB_GAIT_EV_TAKEN, !foot, ft->step, 0, 0, ft->hold_mm});
 }
 
@@ -499,6 +503,28 @@ static cub_q16 ground_shift(const cub_gait_walker *w, int foot)
     return cub_fx_lerp(from, to, swing_s(w, ft));
 }
 
+cub_q16 cub_gait_key_pelvis(cub_q16 dh_mm)
+{
+    cub_q16 dh = cub_fx_clamp(cub_fx_abs(dh_mm), 0, CUB_Q16_INT(200));
+    return -dh / 4;
+}
+
+/* The pelvis key offset this frame: from the last strike's key to the
+ * swinging foot's strike key along a cubic Bezier in time whose inner
+ * control points repeat the ends (3s^2 - 2s^3: the pelvis neither jumps
+ * nor starts at speed at a key); held while both feet are down. */
+static cub_q16 key_offset(const cub_gait_walker *w)
+{
+    for (int foot = 0; foot < 2; foot++) {
+        const cub_gait_walk_foot *ft = &w->feet[foot];
+        if (!ft->swinging) continue;
+        cub_q16 s = swing_s(w, ft);
+        cub_q16 e = cub_fx_mul(cub_fx_mul(s, s), CUB_Q16_INT(3) - 2 * s);
+        return cub_fx_add(w->key_mm, cub_fx_mul(cub_fx_sub(ft->key_mm, w->key_mm), e));
+    }
+    return w->key_mm;
+}
+
 /* ---- the pose --------------------------------------------------------------------- */
 
 /* The share of the cycle's mismatch a frame takes, Q16.16: from -1/2 at
@@ -578,7 +604,10 @@ static cub_err pose_frame(cub_gait_walker *w, int f, int k)
     cub_vec3 targets[2] = {w->feet[0].ankle_mm, w->feet[1].ankle_mm};
     w->drop_mm = cub_gait_pelvis_drop(legs, &w->p.limits, targets);
     if (w->p.without & CUB_GAIT_NO_DROP) w->drop_mm = 0;
-    w->pose.root_mm.y -= w->drop_mm;
+    /* The key lowers the pelvis past what the reach needs: before the
+     * drop it was swallowed by it (at a strike across a step the longer
+     * leg is at full stretch, and the drop already sets the pelvis). */
+    w->pose.root_mm.y += key_offset(w) - w->drop_mm;
     cub_err e = solve_leg(w, 0);
     return e ? e : solve_leg(w, 1);
 }
