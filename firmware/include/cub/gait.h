@@ -200,6 +200,9 @@ typedef struct cub_gait_swing_params {
     int max_raises;       /* give up after (0: 100) [ours] */
     int samples;          /* points tested along the path (0: 64) [ours] */
     cub_q16 foot_mm;      /* the toe, this far ahead of the ankle along P0P4, is tested too */
+    cub_q16 heel_mm;      /* the heel, this far behind the ankle along P0P4, is tested too */
+    cub_q16 side_mm[2];   /* ... and ankle, toe and heel this far off the line: [0] toward
+                             (d.z, 0, -d.x), d the direction P0 -> P4; [1] the other way */
 } cub_gait_swing_params;
 
 /* B(t), t in [0, 1] Q16.16. */
@@ -380,8 +383,10 @@ typedef struct cub_gait_walk_foot {
     int key_at[3];                /* their frames into the swing */
     uint8_t last_phase;
     cub_gait_swing path;
+    cub_q16 path_u0, path_lift0;  /* the ankle's progress on the path at foot-off, the path's rise there */
     int rough;
     cub_q16 key_mm;               /* swinging: the pelvis key at this step's strike (<= 0) */
+    cub_q16 sway_mm[2];           /* swinging: the captured ankle's stray off its line, each way */
     cub_vec3 rest_mm[2];          /* ankle, toe targets of its last stance frame (flat down) */
     int has_rest;                 /* rest_mm is set */
 } cub_gait_walk_foot;
