@@ -686,6 +686,28 @@ static cub_err solve_leg(cub_gait_walker *w, int foot)
     return cub_gait_leg_apply(w->c->clip->skel, &w->pose, &t, &w->p.limits, &ft->leg);
 }
 
+#define DROP_KNEE_DEG 165        /* [ours] the drop keeps each knee this open at most */
+#define DROP_RELEASE_MM_S 120    /* [ours] the pelvis rises back at most this fast */
+
+/* How far the pelvis lowers: so both feet reach with each knee at most
+ * DROP_KNEE_DEG open, not at its limit (near straight the knee's angle
+ * swings ~3 degrees per mm of reach: a leg held at full stretch by the
+ * pinned foot popped the knee, 02_01's leg joints 4.2 % over the
+ * source's p99 on flat); and rising back at most DROP_RELEASE_MM_S (the
+ * drop fell by up to 15 mm in a frame at foot-off). Lowering is at once:
+ * the feet must reach [ours]. */
+static cub_q16 pelvis_drop(const cub_gait_walker *w, const cub_gait_leg legs[2],
+                           const cub_vec3 targets[2])
+{
+    cub_gait_leg_limits dl = w->p.limits;
+    if (dl.knee_min_rad == 0 && dl.knee_max_rad == 0) dl.knee_min_rad = DEG(25);
+    if (dl.knee_max_rad == 0 || dl.knee_max_rad > DEG(DROP_KNEE_DEG)) dl.knee_max_rad = DEG(DROP_KNEE_DEG);
+    cub_q16 want = cub_gait_pelvis_drop(legs, &dl, targets);
+    uint32_t ns = w->c->clip->frame_ns ? w->c->clip->frame_ns : 8333333u;
+    cub_q16 step = (cub_q16)((int64_t)CUB_Q16_INT(DROP_RELEASE_MM_S) * ns / 1000000000);
+    return want < w->drop_mm - step ? w->drop_mm - step : want;
+}
+
 static cub_err pose_frame(cub_gait_walker *w, int f, int k)
 {
     place_root(w, f, k);
@@ -694,7 +716,7 @@ static cub_err pose_frame(cub_gait_walker *w, int f, int k)
     cub_gait_pose_leg(sk, &w->pose, w->c->ankle[0], ahead(w), &legs[0]);
     cub_gait_pose_leg(sk, &w->pose, w->c->ankle[1], ahead(w), &legs[1]);
     cub_vec3 targets[2] = {w->feet[0].ankle_mm, w->feet[1].ankle_mm};
-    w->drop_mm = cub_gait_pelvis_drop(legs, &w->p.limits, targets);
+    w->drop_mm = pelvis_drop(w, legs, targets);
     if (w->p.without & CUB_GAIT_NO_DROP) w->drop_mm = 0;
     /* The key lowers the pelvis past what the reach needs: before the
      * drop it was swallowed by it (at a strike across a step the longer
