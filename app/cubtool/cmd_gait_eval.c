@@ -25,7 +25,8 @@ static const char *const usage_text =
     "source's 99th percentile, mean joint error against the source on flat\n"
     "ground, time per frame (printed, never checked). Reference clips (real\n"
     "walks on uneven ground) are measured on their own floor only.\n"
-    "Defaults: --clips 02_01 (tuning), --held-out 16_11,07_01,08_01,\n"
+    "Defaults: --clips 02_01 (tuning), --held-out 16_11,07_01,08_01 (labelled\n"
+    "\"seen\": each has been looked at, docs/gait.md),\n"
     "--reference 03_01,03_02. --check: exit 1 when a walker figure of the\n"
     "tuning clips is out of its sanity bound (docs/gait.md). --clip-swing: on\n"
     "flat ground the walker keeps the captured swing, not the Bezier through\n"
@@ -182,7 +183,7 @@ int cub_cmd_gait_eval(int argc, char **argv)
     for (int i = 0; i < nc; i++)
         bad |= run_clip(cl[i], "tuning", tl, nt, frames, data, do_check);
     for (int i = 0; i < nh; i++)
-        bad |= run_clip(hl[i], "held out", tl, nt, frames, data, 0);
+        bad |= run_clip(hl[i], "seen", tl, nt, frames, data, 0);
     for (int i = 0; i < nr; i++)
         bad |= run_clip(rl[i], "reference", tl, nt, frames, data, 0);
     return bad ? (bad == 2 ? 2 : 1) : 0;
