@@ -17,7 +17,7 @@ static const char *const usage_text =
     "usage: cubtool gait-eval [--clips A,B,..] [--held-out A,B,..] [--reference A,B,..]\n"
     "                         [--terrains flat,slope,rolling,forest] [--frames N] [--data DIR]\n"
     "                         [--check] [--clip-swing] [--straight]\n"
-    "                         [--without pin,close,drop,floor]\n"
+    "                         [--without pin,close,drop,floor,keys]\n"
     "The walker (firmware/gait) and the game-engine baseline on each clip and\n"
     "terrain (forest = rolling + a log + two stones), N frames each (720):\n"
     "penetration of the sole box, stance slide per step, clearance over\n"
@@ -25,13 +25,15 @@ static const char *const usage_text =
     "source's 99th percentile, mean joint error against the source on flat\n"
     "ground, time per frame (printed, never checked). Reference clips (real\n"
     "walks on uneven ground) are measured on their own floor only.\n"
-    "Defaults: --clips 02_01 (tuning), --held-out 16_11,07_01,08_01,\n"
+    "Defaults: --clips 02_01 (tuning), --held-out 16_11,07_01,08_01 (labelled\n"
+    "\"seen\": each has been looked at, docs/gait.md),\n"
     "--reference 03_01,03_02. --check: exit 1 when a walker figure of the\n"
     "tuning clips is out of its sanity bound (docs/gait.md). --clip-swing: on\n"
     "flat ground the walker keeps the captured swing, not the Bezier through\n"
     "the swing's key frames; --straight: the seed's straight segments instead.\n"
     "--without: the walker with those parts left out (the stance pin, the\n"
-    "cycle's closing, the pelvis drop, the per-step floor), to price each one's\n"
+    "cycle's closing, the pelvis drop, the per-step floor, the key configurations\n"
+    "by height difference), to price each one's\n"
     "share of the joint error.\n";
 
 static int split(char *s, const char **out)
@@ -89,16 +91,16 @@ static int clip_swing; /* --clip-swing: the captured swing on flat ground */
 static int without;    /* --without: CUB_GAIT_NO_* bits */
 static int straight;   /* --straight: the seed's straight key-frame segments on flat ground */
 
-/* "pin,close,drop,floor" to CUB_GAIT_NO_* bits; -1 for an unknown name. */
+/* "pin,close,drop,floor,keys" to CUB_GAIT_NO_* bits; -1 for an unknown name. */
 static int parse_without(char *s)
 {
-    static const char *const names[] = {"pin", "close", "drop", "floor"};
+    static const char *const names[] = {"pin", "close", "drop", "floor", "keys"};
     int bits = 0;
     for (char *t = strtok(s, ","); t; t = strtok(NULL, ",")) {
         int i = 0;
-        while (i < 4 && strcmp(t, names[i]))
+        while (i < 5 && strcmp(t, names[i]))
             i++;
-        if (i == 4) return -1;
+        if (i == 5) return -1;
         bits |= 1 << i;
     }
     return bits;
@@ -157,7 +159,7 @@ int cub_cmd_gait_eval(int argc, char **argv)
     snprintf(wb, sizeof wb, "%s", wo ? wo : "");
     without = parse_without(wb);
     if (without < 0) {
-        fprintf(stderr, "cubtool " WHO ": --without %s: expected pin, close, drop, floor\n", wo);
+        fprintf(stderr, "cubtool " WHO ": --without %s: expected pin, close, drop, floor, keys\n", wo);
         return 2;
     }
     int frames = nframes ? atoi(nframes) : 720;
@@ -181,7 +183,7 @@ int cub_cmd_gait_eval(int argc, char **argv)
     for (int i = 0; i < nc; i++)
         bad |= run_clip(cl[i], "tuning", tl, nt, frames, data, do_check);
     for (int i = 0; i < nh; i++)
-        bad |= run_clip(hl[i], "held out", tl, nt, frames, data, 0);
+        bad |= run_clip(hl[i], "seen", tl, nt, frames, data, 0);
     for (int i = 0; i < nr; i++)
         bad |= run_clip(rl[i], "reference", tl, nt, frames, data, 0);
     return bad ? (bad == 2 ? 2 : 1) : 0;

@@ -135,17 +135,24 @@ static cub_gait_phase next_phase(int prev, bool ankle_down, bool toe_down, bool 
  * on both sides, take the state around them: a toe brushing the ground
  * mid-swing, or a planted point jittering past down_mm for a frame, is
  * noise, not a phase [ours]. Runs at the clip's ends are kept (their
- * other side is unknown). */
+ * other side is unknown). A flipped run joins the run before it and the
+ * one after, and the scan goes on from the joined run's start: a train
+ * of one-frame flickers (CMU 07_01's toe at foot-off: up, down, up) is
+ * merged, not passed along one frame at a time. */
 static void debounce(uint8_t *bits, int frames, uint8_t bit, int min)
 {
-    int start = 0;
+    int start = 0, prev = 0;
     while (start < frames) {
         int end = start;
         while (end < frames && (bits[end] & bit) == (bits[start] & bit))
             end++;
-        if (start > 0 && end < frames && end - start < min)
+        if (start > 0 && end < frames && end - start < min) {
             for (int f = start; f < end; f++)
                 bits[f] ^= bit;
+            start = prev;
+            continue;
+        }
+        prev = start;
         start = end;
     }
 }

@@ -38,19 +38,23 @@ cub_vec3 cub_gait_bezier4(const cub_vec3 p[5], cub_q16 t)
 }
 
 typedef struct swing_cfg {
-    cub_q16 clear, raise, foot;
+    cub_q16 clear, raise, foot, heel, side[2];
     int max_raises, samples;
 } swing_cfg;
 
 static swing_cfg config(const cub_gait_swing_params *p)
 {
-    swing_cfg c = {DEFAULT_CLEAR_MM, DEFAULT_RAISE_MM, 0, DEFAULT_MAX_RAISES, DEFAULT_SAMPLES};
+    swing_cfg c = {DEFAULT_CLEAR_MM, DEFAULT_RAISE_MM, 0, 0, {0, 0}, DEFAULT_MAX_RAISES,
+                   DEFAULT_SAMPLES};
     if (!p) return c;
     if (p->clearance_mm > 0) c.clear = p->clearance_mm;
     if (p->raise_mm > 0) c.raise = p->raise_mm;
     if (p->max_raises > 0) c.max_raises = p->max_raises;
     if (p->samples > 0) c.samples = p->samples < MAX_SAMPLES ? p->samples : MAX_SAMPLES;
     if (p->foot_mm > 0) c.foot = p->foot_mm;
+    if (p->heel_mm > 0) c.heel = p->heel_mm;
+    for (int i = 0; i < 2; i++)
+        if (p->side_mm[i] > 0) c.side[i] = p->side_mm[i];
     return c;
 }
 
@@ -72,17 +76,50 @@ static bool point_clears(const cub_gait_terrain *t, cub_vec3 q, cub_q16 need, cu
     return cub_fx_sub(q.y, h) >= need;
 }
 
-/* Every sample of the path (ankle, and the toe ahead of it) clears. */
+/* A sole point ahead of or behind the path's point clears the obstacles
+ * only: over the plain ground the walker keeps every foot point above the
+ * ground itself, and a flat foot's toe held to the path's height on a
+ * slope asked a 28-raise path at the swing's start (the toe's ground is
+ * above the ankle's there) [ours]. */
+static bool sole_clears(const cub_gait_terrain *t, cub_vec3 q, cub_q16 clear)
+{
+    cub_q16 h = cub_gait_height(t, q.x, q.z);
+    return h <= cub_gait_ground_height(t, q.x, q.z) || cub_fx_sub(q.y, h) >= clear;
+}
+
+/* The sole's points at one sample: the ankle's, the toe ahead and the
+ * heel behind it along P0P4, each also side[0] off the line toward
+ * (d.z, 0, -d.x) (d along P0P4) and side[1] the other way. */
+typedef struct sole_offsets {
+    cub_vec3 toe, heel, side[2];
+} sole_offsets;
+
+static bool sole_row_clears(const cub_gait_terrain *t, const swing_cfg *c, cub_vec3 q,
+                            const sole_offsets *o)
+{
+    for (int k = 0; k < 3; k++) {
+        cub_vec3 r = k < 2 ? cub_fx_vec3_add(q, o->side[k]) : q;
+        if (k < 2 && !sole_clears(t, r, c->clear)) return false;
+        if (c->foot > 0 && !sole_clears(t, cub_fx_vec3_add(r, o->toe), c->clear)) return false;
+        /* The heel lower than the flat sole the path models: the foot
+         * comes down toe up (~15 degrees at the strike), a fifth of the
+         * foot at the heel [ours]. */
+        cub_vec3 heel = cub_fx_vec3_sub(r, o->heel);
+        heel.y -= c->foot / 5;
+        if (c->heel > 0 && !sole_clears(t, heel, c->clear)) return false;
+    }
+    return true;
+}
+
+/* Every sample of the path (the ankle's point; the sole around it) clears. */
 static bool path_clears(const cub_gait_terrain *t, const swing_cfg *c, const cub_vec3 p[5],
-                        cub_vec3 toe_off)
+                        const sole_offsets *o)
 {
     for (int i = 1; i < c->samples; i++) {
         cub_q16 tt = (cub_q16)(((int64_t)i << 16) / c->samples);
         cub_vec3 q = cub_gait_bezier4(p, tt);
         cub_q16 need = clearance_at(c->clear, tt);
-        if (!point_clears(t, q, need, c->clear)) return false;
-        if (c->foot > 0 && !point_clears(t, cub_fx_vec3_add(q, toe_off), need, c->clear))
-            return false;
+        if (!point_clears(t, q, need, c->clear) || !sole_row_clears(t, c, q, o)) return false;
     }
     return true;
 }
@@ -107,8 +144,11 @@ cub_err cub_gait_swing_path(const cub_gait_terrain *t, const cub_gait_swing_para
                              cub_fx_vec3_lerp(from_mm, to_mm, 3 * CUB_Q16_ONE / 4), to_mm},
                             0,
                             0};
-    cub_vec3 toe = toe_offset(from_mm, to_mm, c.foot);
-    while (!path_clears(t, &c, out->p, toe)) {
+    cub_vec3 l = toe_offset(from_mm, to_mm, c.side[0]), r = toe_offset(from_mm, to_mm, c.side[1]);
+    sole_offsets o = {toe_offset(from_mm, to_mm, c.foot),
+                      toe_offset(from_mm, to_mm, c.heel),
+                      {{l.z, 0, -l.x}, {-r.z, 0, r.x}}};
+    while (!path_clears(t, &c, out->p, &o)) {
         if (out->raises >= c.max_raises) return CUB_ERR_RANGE;
         for (int k = 1; k <= 3; k++)
             out->p[k].y = cub_fx_add(out->p[k].y, c.raise);

@@ -110,6 +110,23 @@ static int next_frame(const cub_gait_walker *w, int f, int *k)
 
 /* ---- feet ------------------------------------------------------------------ */
 
+/* A foot point (0 ankle, 1 toe) of frame f, loop k, unwrapped, with its
+ * share of the cycle's mismatch (as close_cycle turns the joints): the
+ * captured foot at the cycle's end is not where the next loop's first
+ * frame puts it (08_01: 22 mm aside, the foot turned 16 degrees in the
+ * wrap's frame). From +1/2 of the mismatch at the cycle's first frame to
+ * -1/2 at its end, so the two meet [ours]. */
+static cub_vec3 clip_point(const cub_gait_walker *w, int foot, int pt, int f, int k)
+{
+    const cub_vec3 *tr = track(w, foot, pt);
+    cub_vec3 u = unwrap(w, tr[f], k);
+    if ((w->p.without & CUB_GAIT_NO_CLOSE) || f < w->a || f >= w->b) return u;
+    cub_vec3 miss = cub_fx_vec3_sub(tr[w->b], cub_fx_vec3_add(tr[w->a], w->cycle_u));
+    cub_q16 s = (cub_q16)(((int64_t)(f - w->a) << 16) / (w->b - w->a)) - CUB_Q16_ONE / 2;
+    return cub_fx_vec3_sub(u, cub_fx_vec3_scale(miss, s));
+}
+
+
 /* The clip's floor under a foot planted at frame p: its lowest point
  * (ankle or toe) over the contact that begins there in the clip
  * (strike's first frame may have the other point still high). */
@@ -270,6 +287,20 @@ static void report_plan(cub_gait_walker *w, int foot)
                                  w->plan.steps[0].foot_mm});
 }
 
+static cub_vec3 planted(const cub_gait_walker *w, const cub_gait_walk_foot *ft, int pt, cub_vec3 u);
+static cub_q16 path_u(const cub_gait_walk_foot *ft, cub_vec3 ankle);
+
+/* Where the ankle leaves the ground on the path, and the path's height
+ * there over its start (path_height fades it out). */
+static void fade_from_off(const cub_gait_walker *w, cub_gait_walk_foot *ft)
+{
+    ft->path_u0 = ft->path_lift0 = 0;
+    if (!ft->rough) return;
+    ft->path_u0 = path_u(ft, planted(w, ft, 0, ft->key_u[0]));
+    cub_q16 lift = cub_fx_sub(cub_gait_bezier4(ft->path.p, ft->path_u0).y, ft->path.p[0].y);
+    ft->path_lift0 = lift > 0 ? lift : 0;
+}
+
 /* Plan the step and the swing to it. A swing that cannot clear the way
  * to the foothold (the swing path gives up) sends the planner back: that
  * step length is dropped and the plan made again [ours: the seed's
@@ -282,11 +313,15 @@ static cub_err plan_swing(cub_gait_walker *w, int foot, cub_vec3 *hold)
     cub_gait_walk_foot *ft = &w->feet[foot];
     cub_gait_swing_params sp = w->p.swing;
     sp.foot_mm = foot_len(w, foot) + foot_len(w, foot) / 3; /* to the sole box's toe tip */
+    sp.heel_mm = foot_len(w, foot) / 4;                      /* ... and its heel */
+    for (int i = 0; i < 2; i++) /* its corners, and the sway */
+        sp.side_mm[i] = foot_len(w, foot) / 5 + ft->sway_mm[i];
     int dropped = 0;
     while (plan(w, foot, &tries, hold) == CUB_OK) {
         ft->path = (cub_gait_swing){0};
         if (!ft->rough || cub_gait_swing_path(w->t, &sp, ft->hold_mm, *hold, &ft->path) == CUB_OK) {
             w->plan.backtracks += dropped;
+            fade_from_off(w, ft);
             report_plan(w, foot);
             return CUB_OK;
         }
@@ -300,6 +335,25 @@ static cub_err plan_swing(cub_gait_walker *w, int foot, cub_vec3 *hold)
     return CUB_ERR_EMPTY;
 }
 
+/* How far the captured ankle strays sideways from the line between its
+ * places at foot-off and strike over the len frames of the swing from f,
+ * each way ([0] toward (d.z, 0, -d.x), d along the line, as the swing
+ * path's side_mm): the swing path is tested along that line, the foot
+ * passes beside it (08_01's foot swung 40 mm outside its line, over a
+ * stone's corner). */
+static void swing_sway(cub_gait_walker *w, int foot, int f, int k, int len)
+{
+    cub_gait_walk_foot *ft = &w->feet[foot];
+    cub_vec3 from = ft->key_u[0], d = unit_xz(cub_fx_vec3_sub(ft->next_u, from));
+    ft->sway_mm[0] = ft->sway_mm[1] = 0;
+    for (int i = 0; i < len; i++, f = next_frame(w, f, &k)) {
+        cub_vec3 r = flat_xz(cub_fx_vec3_sub(clip_point(w, foot, 0, f, k), from));
+        cub_q16 side = cub_fx_sub(cub_fx_mul(r.x, d.z), cub_fx_mul(r.z, d.x));
+        if (side > ft->sway_mm[0]) ft->sway_mm[0] = side;
+        if (-side > ft->sway_mm[1]) ft->sway_mm[1] = -side;
+    }
+}
+
 /* Foot-off at frame f, loop k: find where the clip lands it, plan, shape
  * the swing. False: no swing (arrived, or BLOCKED): the walker stops. */
 static bool begin_swing(cub_gait_walker *w, int foot, int f, int k, cub_vec3 target)
@@ -308,11 +362,11 @@ static bool begin_swing(cub_gait_walker *w, int foot, int f, int k, cub_vec3 tar
     steer(w, unwrap(w, w->c->clip->root_mm[f], k), target);
     if (w->arrived) return false;
     int p = f, kk = k, len = 0;
-    ft->key_u[0] = ft->key_u[1] = unwrap(w, track(w, foot, 0)[f], k);
+    ft->key_u[0] = ft->key_u[1] = clip_point(w, foot, 0, f, k);
     ft->key_v[0] = ft->key_v[1] = ankle_velocity(w, foot, f);
     ft->key_at[0] = ft->key_at[1] = 0;
     while (phase_at(w, foot, p) == CUB_GAIT_OFF && len < w->b - w->a) {
-        cub_vec3 u = unwrap(w, track(w, foot, 0)[p], kk);
+        cub_vec3 u = clip_point(w, foot, 0, p, kk);
         if (u.y > ft->key_u[1].y) {
             ft->key_u[1] = u;
             ft->key_v[1] = ankle_velocity(w, foot, p);
@@ -321,11 +375,12 @@ static bool begin_swing(cub_gait_walker *w, int foot, int f, int k, cub_vec3 tar
         p = next_frame(w, p, &kk);
         len++;
     }
-    ft->key_u[2] = unwrap(w, track(w, foot, 0)[p], kk);
+    ft->key_u[2] = clip_point(w, foot, 0, p, kk);
     ft->key_v[2] = ankle_velocity(w, foot, p);
     ft->key_at[2] = len;
-    ft->next_u = unwrap(w, track(w, foot, 0)[p], kk);
+    ft->next_u = clip_point(w, foot, 0, p, kk);
     ft->next_floor = clip_floor(w, foot, p);
+    swing_sway(w, foot, f, k, len);
     ft->swing_at = w->ticks;
     ft->swing_len = len > 0 ? len : 1;
     ft->rough = !cub_gait_terrain_is_flat(w->t);
@@ -338,6 +393,9 @@ static bool begin_swing(cub_gait_walker *w, int foot, int f, int k, cub_vec3 tar
     }
     ft->swinging = 1;
     ft->next_mm = hold;
+    ft->key_mm = (w->p.without & CUB_GAIT_NO_KEYS)
+                     ? 0
+                     : cub_gait_key_pelvis(cub_fx_sub(hold.y, w->feet[!foot].hold_mm.y));
     ft->step = w->steps;
     w->steps++;
     return true;
@@ -353,6 +411,7 @@ static void land(cub_gait_walker *w, int foot)
     ft->yaw_c = w->yaw_c;
     ft->yaw_s = w->yaw_s;
     ft->skate_u[0] = ft->skate_u[1] = (cub_vec3){0};
+    w->key_mm = ft->key_mm;
     emit(w, (cub_gait_event){CUB_GAIT_EV_TAKEN, !foot, ft->step, 0, 0, ft->hold_mm});
 }
 
@@ -387,21 +446,57 @@ static cub_vec3 swinging(const cub_gait_walker *w, const cub_gait_walk_foot *ft,
     return cub_fx_vec3_lerp(from, to, s);
 }
 
+/* The swinging ankle's progress along the path's line P0P4, Q16.16 in
+ * [0, 1] (the control points lie evenly on that line, so B(u) is over
+ * its u-th part). */
+static cub_q16 path_u(const cub_gait_walk_foot *ft, cub_vec3 ankle)
+{
+    cub_vec3 d = flat_xz(cub_fx_vec3_sub(ft->path.p[4], ft->path.p[0]));
+    int64_t dd = ((int64_t)d.x * d.x + (int64_t)d.z * d.z) >> 16; /* Q16.16 mm^2 */
+    if (dd == 0) return 0;
+    cub_vec3 r = flat_xz(cub_fx_vec3_sub(ankle, ft->path.p[0]));
+    int64_t along = (int64_t)r.x * d.x + (int64_t)r.z * d.z; /* Q32.32 */
+    int64_t u = along <= 0 ? 0 : along / dd;
+    return (cub_q16)(u > CUB_Q16_ONE ? CUB_Q16_ONE : u);
+}
+
+/* The raised path's height where the swinging ankle is now: the Bezier
+ * at the ankle's progress u, not at the swing's time (the captured ankle
+ * starts and ends slowly: the path at time s was ahead of the foot at the
+ * start and behind it at the end; 08_01's toe slid over a stone, 0 mm).
+ * The ankle leaves the ground already u0 along (it rolled forward over
+ * the toe through the lift), where the path is up by lift0: that lift
+ * fades out linearly by the foothold, so the foot does not jump up at
+ * the foot-off [ours]. */
+static cub_q16 path_height(const cub_gait_walk_foot *ft, cub_vec3 ankle)
+{
+    cub_q16 u = path_u(ft, ankle), y = cub_gait_bezier4(ft->path.p, u).y;
+    if (ft->path_u0 >= CUB_Q16_ONE) return y;
+    cub_q16 left = cub_fx_div(CUB_Q16_ONE - u, CUB_Q16_ONE - ft->path_u0);
+    return cub_fx_sub(y, cub_fx_mul(ft->path_lift0, cub_fx_clamp(left, 0, CUB_Q16_ONE)));
+}
+
 /* The height a point keeps over the ground: the clip's over its floor
- * (never below it); on rough ground, in the swing, over the raised
- * Bézier's height where that is higher. (Adding only the point's resting
+ * (never below it). On rough ground, in the swing, the ground is the
+ * higher of the ground alone (no obstacles) and the raised path where
+ * the ankle is (path_y): the path was raised until the sole box over it
+ * cleared every obstacle; the obstacle's own top under the point came in
+ * with a jump at its edge (the foot lifted by the stone's height in a
+ * frame) and only touching clearance. (Adding only the point's resting
  * height to the Bézier, not its captured swing height, was tried: the
  * foot then grazed the log, 0 mm, and turned 20 degrees in a frame.) */
 static cub_q16 point_y(const cub_gait_walker *w, const cub_gait_walk_foot *ft, cub_vec3 at,
-                       cub_q16 clip_y, cub_q16 s)
+                       cub_q16 clip_y, cub_q16 s, cub_q16 path_y)
 {
     cub_q16 floor = ft->swinging ? cub_fx_lerp(ft->floor_u, ft->next_floor, s) : ft->floor_u;
     cub_q16 over = cub_fx_sub(clip_y, floor);
     if (over < 0) over = 0;
-    cub_q16 ground = cub_gait_height(w->t, at.x, at.z);
+    cub_q16 ground;
     if (ft->swinging && ft->rough) {
-        cub_q16 path = cub_gait_bezier4(ft->path.p, s).y;
-        if (path > ground) ground = path;
+        ground = cub_gait_ground_height(w->t, at.x, at.z);
+        if (path_y > ground) ground = path_y;
+    } else {
+        ground = cub_gait_height(w->t, at.x, at.z);
     }
     return cub_fx_add(ground, over);
 }
@@ -411,7 +506,7 @@ static cub_vec3 key_point(const cub_gait_walker *w, const cub_gait_walk_foot *ft
 {
     cub_q16 s = (cub_q16)(((int64_t)ft->key_at[k] << 16) / ft->swing_len);
     cub_vec3 a = swinging(w, ft, 0, ft->key_u[k], s);
-    a.y = point_y(w, ft, a, ft->key_u[k].y, s);
+    a.y = point_y(w, ft, a, ft->key_u[k].y, s, 0);
     return a;
 }
 
@@ -458,11 +553,12 @@ static void foot_targets(cub_gait_walker *w, int foot, int f, int k)
 {
     cub_gait_walk_foot *ft = &w->feet[foot];
     cub_q16 s = ft->swinging ? swing_s(w, ft) : 0;
-    cub_vec3 au = unwrap(w, track(w, foot, 0)[f], k), tu = unwrap(w, track(w, foot, 1)[f], k);
+    cub_vec3 au = clip_point(w, foot, 0, f, k), tu = clip_point(w, foot, 1, f, k);
     cub_vec3 a = ft->swinging ? swinging(w, ft, 0, au, s) : planted(w, ft, 0, au);
     cub_vec3 t = ft->swinging ? swinging(w, ft, 1, tu, s) : planted(w, ft, 1, tu);
-    a.y = point_y(w, ft, a, au.y, s);
-    t.y = point_y(w, ft, t, tu.y, s);
+    cub_q16 py = ft->swinging && ft->rough ? path_height(ft, a) : 0;
+    a.y = point_y(w, ft, a, au.y, s, py);
+    t.y = point_y(w, ft, t, tu.y, s, py);
     if (ft->swinging && !ft->rough && w->p.clip_swing == 0) {
         cub_vec3 seg = flat_swing(w, ft);
         t = cub_fx_vec3_add(t, cub_fx_vec3_sub(seg, a)); /* the foot moves with its ankle */
@@ -497,6 +593,28 @@ static cub_q16 ground_shift(const cub_gait_walker *w, int foot)
     if (!ft->swinging) return from;
     cub_q16 to = cub_fx_sub(ft->next_mm.y, ft->next_floor);
     return cub_fx_lerp(from, to, swing_s(w, ft));
+}
+
+cub_q16 cub_gait_key_pelvis(cub_q16 dh_mm)
+{
+    cub_q16 dh = cub_fx_clamp(cub_fx_abs(dh_mm), 0, CUB_Q16_INT(200));
+    return -dh / 4;
+}
+
+/* The pelvis key offset this frame: from the last strike's key to the
+ * swinging foot's strike key along a cubic Bezier in time whose inner
+ * control points repeat the ends (3s^2 - 2s^3: the pelvis neither jumps
+ * nor starts at speed at a key); held while both feet are down. */
+static cub_q16 key_offset(const cub_gait_walker *w)
+{
+    for (int foot = 0; foot < 2; foot++) {
+        const cub_gait_walk_foot *ft = &w->feet[foot];
+        if (!ft->swinging) continue;
+        cub_q16 s = swing_s(w, ft);
+        cub_q16 e = cub_fx_mul(cub_fx_mul(s, s), CUB_Q16_INT(3) - 2 * s);
+        return cub_fx_add(w->key_mm, cub_fx_mul(cub_fx_sub(ft->key_mm, w->key_mm), e));
+    }
+    return w->key_mm;
 }
 
 /* ---- the pose --------------------------------------------------------------------- */
@@ -568,6 +686,28 @@ static cub_err solve_leg(cub_gait_walker *w, int foot)
     return cub_gait_leg_apply(w->c->clip->skel, &w->pose, &t, &w->p.limits, &ft->leg);
 }
 
+#define DROP_KNEE_DEG 165        /* [ours] the drop keeps each knee this open at most */
+#define DROP_RELEASE_MM_S 120    /* [ours] the pelvis rises back at most this fast */
+
+/* How far the pelvis lowers: so both feet reach with each knee at most
+ * DROP_KNEE_DEG open, not at its limit (near straight the knee's angle
+ * swings ~3 degrees per mm of reach: a leg held at full stretch by the
+ * pinned foot popped the knee, 02_01's leg joints 4.2 % over the
+ * source's p99 on flat); and rising back at most DROP_RELEASE_MM_S (the
+ * drop fell by up to 15 mm in a frame at foot-off). Lowering is at once:
+ * the feet must reach [ours]. */
+static cub_q16 pelvis_drop(const cub_gait_walker *w, const cub_gait_leg legs[2],
+                           const cub_vec3 targets[2])
+{
+    cub_gait_leg_limits dl = w->p.limits;
+    if (dl.knee_min_rad == 0 && dl.knee_max_rad == 0) dl.knee_min_rad = DEG(25);
+    if (dl.knee_max_rad == 0 || dl.knee_max_rad > DEG(DROP_KNEE_DEG)) dl.knee_max_rad = DEG(DROP_KNEE_DEG);
+    cub_q16 want = cub_gait_pelvis_drop(legs, &dl, targets);
+    uint32_t ns = w->c->clip->frame_ns ? w->c->clip->frame_ns : 8333333u;
+    cub_q16 step = (cub_q16)((int64_t)CUB_Q16_INT(DROP_RELEASE_MM_S) * ns / 1000000000);
+    return want < w->drop_mm - step ? w->drop_mm - step : want;
+}
+
 static cub_err pose_frame(cub_gait_walker *w, int f, int k)
 {
     place_root(w, f, k);
@@ -576,9 +716,12 @@ static cub_err pose_frame(cub_gait_walker *w, int f, int k)
     cub_gait_pose_leg(sk, &w->pose, w->c->ankle[0], ahead(w), &legs[0]);
     cub_gait_pose_leg(sk, &w->pose, w->c->ankle[1], ahead(w), &legs[1]);
     cub_vec3 targets[2] = {w->feet[0].ankle_mm, w->feet[1].ankle_mm};
-    w->drop_mm = cub_gait_pelvis_drop(legs, &w->p.limits, targets);
+    w->drop_mm = pelvis_drop(w, legs, targets);
     if (w->p.without & CUB_GAIT_NO_DROP) w->drop_mm = 0;
-    w->pose.root_mm.y -= w->drop_mm;
+    /* The key lowers the pelvis past what the reach needs: before the
+     * drop it was swallowed by it (at a strike across a step the longer
+     * leg is at full stretch, and the drop already sets the pelvis). */
+    w->pose.root_mm.y += key_offset(w) - w->drop_mm;
     cub_err e = solve_leg(w, 0);
     return e ? e : solve_leg(w, 1);
 }
@@ -590,7 +733,7 @@ static void pin(cub_gait_walker *w, int foot, uint8_t ph, int f, int k)
     cub_gait_walk_foot *ft = &w->feet[foot];
     bool was = ft->last_phase == CUB_GAIT_STANCE, is = ph == CUB_GAIT_STANCE;
     for (int pt = 0; pt < 2; pt++) {
-        cub_vec3 u = unwrap(w, track(w, foot, pt)[f], k);
+        cub_vec3 u = clip_point(w, foot, pt, f, k);
         if (is && !was) ft->pin_u[pt] = u;
         if (was && !is)
             ft->skate_u[pt] =

@@ -360,6 +360,57 @@ static void test_pelvis_lowers_so_both_feet_reach(void **state)
     assert_int_equal(cub_gait_pelvis_drop(legs, NULL, targets), 0);
 }
 
+/* ---- phase analysis: flickers ------------------------------------------------ */
+
+#define PH_FRAMES 240
+
+/* A made walk at 120 fps: both points down until 100, the ankle rising
+ * (lift) until 130 while the toe stays, both up and moving on (off) until
+ * 180, then both down again. The toe flickers twice at the lift's end
+ * (up 30 mm at 120 and at 122: two up runs with one down frame between,
+ * the train CMU 07_01's toe makes). */
+static void flicker_walk(cub_vec3 *ankle, cub_vec3 *toe)
+{
+    for (int f = 0; f < PH_FRAMES; f++) {
+        int swing = f >= 131 && f < 180, lift = f >= 100 && f <= 130;
+        int x = f < 131 ? 0 : (f < 180 ? 20 * (f - 130) : 20 * 49);
+        int ay = swing ? 200 : (lift ? 80 + 2 * (f - 100) : 80);
+        int ty = swing ? 100 : (f == 120 || f == 122 ? 50 : 20);
+        ankle[f] = (cub_vec3){MM(x), MM(ay), 0};
+        toe[f] = (cub_vec3){MM(x + 130), MM(ty), 0};
+    }
+}
+
+/* The contact debounce merges the train: one foot-off, after the lift. */
+static void test_flicker_train_is_one_foot_off(void **state)
+{
+    (void)state;
+    static cub_vec3 ankle[PH_FRAMES], toe[PH_FRAMES];
+    static uint8_t ph[PH_FRAMES];
+    flicker_walk(ankle, toe);
+    cub_gait_foot foot;
+    assert_int_equal(cub_gait_analyse(ankle, toe, PH_FRAMES, NULL, ph, &foot), CUB_OK);
+    int offs = 0;
+    for (int f = 1; f < PH_FRAMES; f++)
+        offs += ph[f] == CUB_GAIT_OFF && ph[f - 1] != CUB_GAIT_OFF;
+    assert_int_equal(offs, 1);
+    for (int f = 100; f < 129; f++) /* 129-130: the made swing's jump already moves them */
+        assert_int_not_equal(ph[f], CUB_GAIT_OFF);
+    assert_int_equal(ph[125], CUB_GAIT_LIFT);
+    assert_int_equal(ph[140], CUB_GAIT_OFF);
+}
+
+/* The key configuration's rule: a quarter of the height difference,
+ * either way, capped at a 200 mm step. */
+static void test_key_pelvis_by_height_difference(void **state)
+{
+    (void)state;
+    assert_int_equal(cub_gait_key_pelvis(0), 0);
+    assert_int_equal(cub_gait_key_pelvis(MM(100)), -MM(25));
+    assert_int_equal(cub_gait_key_pelvis(-MM(100)), -MM(25));
+    assert_int_equal(cub_gait_key_pelvis(MM(400)), -MM(50));
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -376,6 +427,8 @@ int main(void)
         cmocka_unit_test(test_leg_ik_keeps_the_knee_in_range),
         cmocka_unit_test(test_leg_ik_keeps_the_ankle_in_range),
         cmocka_unit_test(test_pelvis_lowers_so_both_feet_reach),
+        cmocka_unit_test(test_flicker_train_is_one_foot_off),
+        cmocka_unit_test(test_key_pelvis_by_height_difference),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -394,6 +394,91 @@ static void blocked_walker_stops(void **state)
         assert_true(sole_gap(&t, f) <= CUB_Q16_INT(10));
 }
 
+/* ---- key configurations by height difference ----------------------------- */
+
+#define STEP_Z 1200 /* the edge of the platform, mm along the walk */
+#define STEP_H 120  /* its height */
+
+/* The pose at the strike of the first step across a platform's edge. */
+typedef struct strike_pose {
+    cub_q16 land_knee, support_knee; /* inner angles, radians */
+    cub_q16 root_y, low_y;           /* the pelvis, the lower foothold */
+} strike_pose;
+
+/* Walk +z from the origin over a platform STEP_H high that begins at
+ * STEP_Z (up) or ends there (down); keys 0: CUB_GAIT_NO_KEYS. */
+static strike_pose strike_at_edge(int up, int keys)
+{
+    static log l;
+    l.n = 0;
+    cub_gait_terrain t;
+    cub_gait_terrain_flat(&t, 0);
+    cub_q16 z0 = up ? CUB_Q16_INT(STEP_Z) : CUB_Q16_INT(-20000);
+    cub_q16 z1 = up ? CUB_Q16_INT(20000) : CUB_Q16_INT(STEP_Z);
+    cub_gait_box b = {{CUB_Q16_INT(-3000), CUB_Q16_INT(-10), z0},
+                      {CUB_Q16_INT(3000), CUB_Q16_INT(STEP_H), z1}};
+    assert_int_equal(cub_gait_terrain_add(&t, b), CUB_OK);
+    cub_gait_walk_params p = {.dir_z = CUB_Q16_ONE, .on_event = record, .ctx = &l,
+                              .without = keys ? 0 : CUB_GAIT_NO_KEYS};
+    assert_int_equal(cub_gait_walker_init(&walker, &wc, &t, &p), CUB_OK);
+    cub_vec3 target = {0, 0, CUB_Q16_INT(30000)};
+    for (int i = 0; i < 600; i++) {
+        const cub_pose *pose;
+        int seen = l.n;
+        assert_int_equal(cub_gait_walker_step(&walker, target, &pose), CUB_OK);
+        for (int e = seen; e < l.n; e++) {
+            if (l.e[e].kind != CUB_GAIT_EV_TAKEN) continue;
+            int foot = !l.e[e].left; /* the event's left is the clip's left: foot 0 */
+            const cub_gait_walk_foot *land = &walker.feet[foot], *sup = &walker.feet[!foot];
+            cub_q16 dh = land->hold_mm.y - sup->hold_mm.y;
+            if (cub_fx_abs(dh) < CUB_Q16_INT(STEP_H) / 2) continue;
+            cub_q16 low = dh > 0 ? sup->hold_mm.y : land->hold_mm.y;
+            return (strike_pose){land->leg.knee_rad, sup->leg.knee_rad, pose->root_mm.y, low};
+        }
+    }
+    fail_msg("no step across the edge in 600 frames");
+    return (strike_pose){0};
+}
+
+static double deg(cub_q16 r)
+{
+    return r / 65536.0 * 180.0 / 3.14159265358979;
+}
+
+static void print_strike(const char *what, strike_pose s)
+{
+    printf("gait keys: %s: landing knee %.1f deg, supporting knee %.1f deg, pelvis %.1f mm over "
+           "the lower foothold\n",
+           what, deg(s.land_knee), deg(s.support_knee), (s.root_y - s.low_y) / 65536.0);
+}
+
+/* The seed's key configurations by height difference (ours: the pelvis a
+ * quarter of the step below the footholds' mean at the strike): a step up
+ * lands with the leading knee bent more and the pelvis lower than without
+ * the rule; a step down lowers the body on the supporting knee; and the
+ * two strikes differ from each other as a person's do. */
+static void strike_pose_depends_on_height_difference(void **state)
+{
+    (void)state;
+    SYNTH_NEED_DATA(CLIP);
+    strike_pose up = strike_at_edge(1, 1), up0 = strike_at_edge(1, 0);
+    strike_pose down = strike_at_edge(0, 1), down0 = strike_at_edge(0, 0);
+    print_strike("step up", up);
+    print_strike("step up, no keys", up0);
+    print_strike("step down", down);
+    print_strike("step down, no keys", down0);
+    cub_q16 quarter = CUB_Q16_INT(STEP_H) / 4 - CUB_Q16_INT(2);
+    /* Up: the pelvis a quarter step lower, the leading knee bent more. */
+    assert_true(up.root_y <= up0.root_y - quarter);
+    assert_true(deg(up.land_knee) <= deg(up0.land_knee) - 3.0);
+    /* Down: the pelvis a quarter step lower, the supporting knee bent more. */
+    assert_true(down.root_y <= down0.root_y - quarter);
+    assert_true(deg(down.support_knee) <= deg(down0.support_knee) - 3.0);
+    /* The two strikes differ: uphill the leading knee lands well bent,
+     * downhill it reaches down nearly straight. */
+    assert_true(deg(up.land_knee) <= deg(down.land_knee) - 20.0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -403,6 +488,7 @@ int main(void)
         cmocka_unit_test(swing_that_cannot_clear_is_replanned),
         cmocka_unit_test(comes_to_rest_at_target),
         cmocka_unit_test(blocked_walker_stops),
+        cmocka_unit_test(strike_pose_depends_on_height_difference),
     };
     return cmocka_run_group_tests(tests, load, unload);
 }

@@ -200,6 +200,9 @@ typedef struct cub_gait_swing_params {
     int max_raises;       /* give up after (0: 100) [ours] */
     int samples;          /* points tested along the path (0: 64) [ours] */
     cub_q16 foot_mm;      /* the toe, this far ahead of the ankle along P0P4, is tested too */
+    cub_q16 heel_mm;      /* the heel, this far behind the ankle along P0P4, is tested too */
+    cub_q16 side_mm[2];   /* ... and ankle, toe and heel this far off the line: [0] toward
+                             (d.z, 0, -d.x), d the direction P0 -> P4; [1] the other way */
 } cub_gait_swing_params;
 
 /* B(t), t in [0, 1] Q16.16. */
@@ -275,6 +278,20 @@ cub_q16 cub_gait_pelvis_drop(const cub_gait_leg legs[2], const cub_gait_leg_limi
 
 /* ---- walker: a captured walk cycle driven over a terrain -------------------- */
 
+/* The key configuration at a foot-strike by the step's height difference
+ * (the seed: "the key configuration may be set differently by the feet's
+ * height difference, uphill or downhill"; the rule is ours): the pelvis
+ * sits a quarter of |dh_mm| below the mean of the two footholds, so at
+ * the strike of a step up the leading knee bends more (the body is still
+ * over the lower foot), and at a step down the supporting knee bends more
+ * (the body lowers toward the lower foot before it takes the weight).
+ * dh_mm: the landing foothold's height minus the supporting one's; |dh|
+ * counts up to 200 mm. Returns the pelvis offset (<= 0, mm). The walker
+ * goes from one strike's key to the next with a cubic Bezier in time
+ * (smoothstep: no speed at the keys). */
+cub_q16 cub_gait_key_pelvis(cub_q16 dh_mm);
+
+
 /* Use: per foot, cub_gait_track_clip then cub_gait_analyse on the clip
  * (once); fill a cub_gait_walk_clip; cub_gait_walker_init; then one
  * cub_gait_walker_step per clip frame (1/fps s), the pose out of it. The
@@ -327,7 +344,8 @@ enum {
     CUB_GAIT_NO_PIN = 1,   /* stance feet follow the clip's own slide */
     CUB_GAIT_NO_CLOSE = 2, /* the cycle's mismatch is not spread (it pops at the wrap) */
     CUB_GAIT_NO_DROP = 4,  /* the pelvis does not lower */
-    CUB_GAIT_NO_FLOOR = 8  /* one floor for the clip (its lowest foot point), not one per step */
+    CUB_GAIT_NO_FLOOR = 8, /* one floor for the clip (its lowest foot point), not one per step */
+    CUB_GAIT_NO_KEYS = 16  /* the key configurations do not depend on the height difference */
 };
 
 typedef struct cub_gait_walk_params {
@@ -365,7 +383,10 @@ typedef struct cub_gait_walk_foot {
     int key_at[3];                /* their frames into the swing */
     uint8_t last_phase;
     cub_gait_swing path;
+    cub_q16 path_u0, path_lift0;  /* the ankle's progress on the path at foot-off, the path's rise there */
     int rough;
+    cub_q16 key_mm;               /* swinging: the pelvis key at this step's strike (<= 0) */
+    cub_q16 sway_mm[2];           /* swinging: the captured ankle's stray off its line, each way */
     cub_vec3 rest_mm[2];          /* ankle, toe targets of its last stance frame (flat down) */
     int has_rest;                 /* rest_mm is set */
 } cub_gait_walk_foot;
@@ -381,6 +402,7 @@ typedef struct cub_gait_walker {
     cub_q16 yaw_c, yaw_s;         /* the clip's heading turned to the walker's */
     cub_q16 dir_x, dir_z;         /* the walker's heading (unit) */
     cub_q16 drop_mm;              /* this frame's pelvis drop */
+    cub_q16 key_mm;               /* the pelvis key of the last strike (<= 0, mm) */
     cub_gait_plan plan;           /* the last plan */
     cub_gait_walk_foot feet[2];
     int arrived;                  /* 1: the root is within half a step of the target */
