@@ -106,7 +106,7 @@ static void draw_time(cub_png_canvas *c, const groove_song *s)
             const double d[4] = {
                 t0 + a * (t1 - t0), cub_groove_timing_at(kind, (cub_q16)(a * 65536)) / 65536.0,
                 t0 + z * (t1 - t0), cub_groove_timing_at(kind, (cub_q16)(z * 65536)) / 65536.0};
-            line(c, &curve, d, kind >= CUB_GROOVE_ACCENT ? RED : GREEN);
+            line(c, &curve, d, kind == CUB_GROOVE_ACCENT ? RED : GREEN);
         }
     }
     cub_groove_key prev = cub_groove_wrist_at(p, start_us);

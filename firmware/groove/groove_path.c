@@ -102,30 +102,6 @@ static void chord_cap(const cub_groove_key *keys, int n, int i, cub_groove_handl
     h->out_mm = key_lerp(keys[i], h->out_mm, f);
 }
 
-/* h's horizontal reach from key k at most half the x distance to other
- * (its sign kept, its height kept). */
-static cub_groove_key cap_x(cub_groove_key k, cub_groove_key h, cub_groove_key other)
-{
-    int64_t most = (int64_t)(other.x_mm > k.x_mm ? other.x_mm - k.x_mm : k.x_mm - other.x_mm) / 2,
-            dx = (int64_t)h.x_mm - k.x_mm;
-    if (dx > most) dx = most;
-    if (dx < -most) dx = -most;
-    return (cub_groove_key){(cub_q16)(k.x_mm + dx), h.y_mm};
-}
-
-/* A beat key's handles reach sideways at most half the x distance to the
- * key before (in) and after (out) (ours, session 35). The seed's G2 (L2
- * toward the previous key) and its mirror are wider than two close keys
- * are apart: the two handles of a path crossed, and the path looped or
- * made a cusp at its top (two beat keys 7 mm apart in Essen altdeu10 #1,
- * L2 50 mm): the wrist turned back at once, a speed dip and a motion beat
- * mid-beat. Their heights (G1's lift, the accent's shape) are kept. */
-static void beat_cap(const cub_groove_key *keys, int n, int i, cub_groove_handles *h)
-{
-    if (i > 0) h->in_mm = cap_x(keys[i], h->in_mm, keys[i - 1]);
-    if (i + 1 < n) h->out_mm = cap_x(keys[i], h->out_mm, keys[i + 1]);
-}
-
 cub_err cub_groove_handles_make(const cub_groove_params *p, const cub_groove_note *notes, int n,
                                 const cub_groove_key *keys, cub_groove_handles *out)
 {
@@ -137,10 +113,7 @@ cub_err cub_groove_handles_make(const cub_groove_params *p, const cub_groove_not
                 t_out = i + 1 < n ? notes[i + 1].start_us - notes[i].start_us : 0;
         out[i].in_mm = pace_handle(p, keys[i], h.in_mm, t_in);
         out[i].out_mm = pace_handle(p, keys[i], h.out_mm, t_out);
-        if (!notes[i].is_beat)
-            chord_cap(keys, n, i, &out[i]);
-        else
-            beat_cap(keys, n, i, &out[i]);
+        if (!notes[i].is_beat) chord_cap(keys, n, i, &out[i]);
     }
     for (int i = 0; i < n; i++) {
         const cub_groove_key pt[4] = {keys[i], out[i].out_mm, out[i + 1 < n ? i + 1 : i].in_mm,
@@ -193,16 +166,6 @@ static const piece accent[3] = {
     {CUB_Q16_ONE, {Q(0.7805), Q(0.9268), CUB_Q16_ONE, CUB_Q16_ONE}},
 };
 
-/* The accent read through the beat stop (ours, session 35): the seed's
- * accent without its fast start: speed 0.7 at the start rising steadily to
- * 1.51 by 0.7 (the level that keeps the end at 1), then the same stop over
- * the last 30 %. The clock's ramp after the beat starts it from rest, so
- * its speed rises from the beat to the accent's stop with no dip. */
-static const piece accent_stopped[2] = {
-    {Q(0.7000), {0, Q(0.1633), Q(0.4212), Q(0.7735)}},
-    {CUB_Q16_ONE, {Q(0.7735), Q(0.9245), CUB_Q16_ONE, CUB_Q16_ONE}},
-};
-
 static const piece ease_in[1] = {{CUB_Q16_ONE, {0, 0, Q(2.0 / 3.0), CUB_Q16_ONE}}};
 
 static cub_q16 pieces_at(const piece *p, int count, cub_q16 tau)
@@ -220,6 +183,5 @@ cub_q16 cub_groove_timing_at(cub_groove_timing kind, cub_q16 tau)
     tau = cub_fx_clamp(tau, 0, CUB_Q16_ONE);
     if (kind == CUB_GROOVE_EASE_IN) return pieces_at(ease_in, 1, tau);
     if (kind == CUB_GROOVE_ACCENT) return pieces_at(accent, 3, tau);
-    if (kind == CUB_GROOVE_ACCENT_STOPPED) return pieces_at(accent_stopped, 2, tau);
     return tau;
 }

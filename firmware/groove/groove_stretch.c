@@ -123,9 +123,7 @@ cub_groove_key cub_groove_wrist_at(const cub_groove_plan *plan, int64_t t_us)
     for (int k = a; k < b; k++)
         total += plan->handles[k].len_mm;
     cub_q16 tau = groove_tau(t_us, plan->notes[a].start_us, plan->notes[b].start_us);
-    cub_groove_timing kind = !plan->notes[a].is_beat  ? CUB_GROOVE_EASE_IN
-                             : groove_stops(plan, a) ? CUB_GROOVE_ACCENT_STOPPED
-                                                     : CUB_GROOVE_ACCENT;
+    cub_groove_timing kind = plan->notes[a].is_beat ? CUB_GROOVE_ACCENT : CUB_GROOVE_EASE_IN;
     int64_t s = total * cub_groove_timing_at(kind, tau) >> 16;
     int k = a;
     while (k + 1 < b && s > plan->handles[k].len_mm)
