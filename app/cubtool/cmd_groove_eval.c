@@ -9,6 +9,7 @@
  * percentile; the feet; the time to plan and make the frames. */
 #include <dirent.h>
 #include <math.h>
+#include <sys/stat.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -225,6 +226,12 @@ static int list_mid(const char *dir, char **paths, int n)
     return n;
 }
 
+static int is_dir(const char *path)
+{
+    struct stat st;
+    return stat(path, &st) == 0 && S_ISDIR(st.st_mode);
+}
+
 static void print_row(const char *path, const groove_song *s, const figures *f)
 {
     const char *name = strrchr(path, '/') ? strrchr(path, '/') + 1 : path;
@@ -331,18 +338,21 @@ int cub_cmd_groove_eval(int argc, char **argv)
             i++;
         else if (!strcmp(argv[i], "--help") || argv[i][0] == '-') {
             printf("usage: cubtool groove-eval [--set a|b] [--fold dev|held|STYLE|-STYLE] [--stop B,A[,K]]\n"
-                   "                           [--dump F.txt] [FILE.mid...]\n"
+                   "                           [--dump F.txt] [FILE.mid|DIR...]\n"
                    "Seed 001's figures: beat alignment (FACT's and Bailando's), fastest joint\n"
                    "vs the clip library's p99, feet, generation time. Default files: every\n"
-                   ".mid of <data>/midi and %s/songs. --dump writes the last file's\n"
-                   "speed curve (frame, summed speed, smoothed, music beat) to F.txt.\n"
+                   ".mid of <data>/midi and %s/songs; a DIR: its .mid files, sorted.\n"
+                   "--dump writes the last file's speed curve (frame, summed speed,\n"
+                   "smoothed, music beat) to F.txt.\n"
                    "--fold: only round 1's dev or held-out files, or one style (box: the\n"
                    "box's songs), or all but one (-STYLE); means per style (docs/groove.md).\n"
                    "--stop B,A[,K]: the beat stop's ramps before and after a beat (fractions\n"
                    "of a beat; 0,0: none) and their power K (1..3) instead of the set's.\n",
                    CUB_ASSETS_DIR);
             return argv[i][0] == '-' && strcmp(argv[i], "--help") ? 2 : 0;
-        } else if (n < MAX_FILES && (paths[n] = malloc(strlen(argv[i]) + 1)))
+        } else if (is_dir(argv[i]))
+            n = list_mid(argv[i], paths, n);
+        else if (n < MAX_FILES && (paths[n] = malloc(strlen(argv[i]) + 1)))
             strcpy(paths[n++], argv[i]);
     }
     if (n == 0) {

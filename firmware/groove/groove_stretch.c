@@ -8,7 +8,7 @@
 #include "groove_internal.h"
 
 #define STEPS 8        /* |B'| sampled at each step's ends and middle (Simpson) */
-#define MAX_STRETCH 16 /* notes: a stretch also breaks at every 16th note */
+#define MAX_STRETCH 16 /* notes: a stretch with no beat also breaks at every 16th note */
 
 /* |B'(u)| of the cubic Bézier pt (mm per unit u, Q16). */
 static cub_q16 speed_at(const cub_groove_key pt[4], cub_q16 u)
@@ -83,9 +83,18 @@ cub_q16 cub_groove_path_u(const cub_groove_key pt[4], cub_q16 s_mm)
     return CUB_Q16_ONE;
 }
 
+/* A stretch starts on a beat note, and on every 16th note only where the
+ * 15 notes before it have no beat (session 35: a break at every 16th note
+ * stopped the wrist on a passing key mid-beat, an off-beat motion beat
+ * every 16 notes in a reel; the bound stays: a stretch has at most 31
+ * notes). */
 static bool stretch_starts(const cub_groove_note *notes, int i)
 {
-    return i == 0 || notes[i].is_beat || i % MAX_STRETCH == 0;
+    if (i == 0 || notes[i].is_beat) return true;
+    if (i % MAX_STRETCH) return false;
+    for (int k = i - MAX_STRETCH + 1; k < i; k++)
+        if (notes[k].is_beat) return false;
+    return true;
 }
 
 void cub_groove_stretch_of(const cub_groove_note *notes, int n, int i, int *first, int *last)

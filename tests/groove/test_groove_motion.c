@@ -341,8 +341,10 @@ static void test_stretch_runs_beat_to_beat(void **state)
     assert_true(a == 0 && b == 4);
     cub_groove_stretch_of(n, 40, 4, &a, &b);
     assert_true(a == 4 && b == 8);
-    cub_groove_stretch_of(n, 40, 10, &a, &b); /* no beat: broken at note 16 */
-    assert_true(a == 8 && b == 16);
+    /* note 16 has a beat (8) among the 15 before it: no break there; note
+     * 32 has none: a stretch with no beat breaks at every 16th note */
+    cub_groove_stretch_of(n, 40, 10, &a, &b);
+    assert_true(a == 8 && b == 32);
     cub_groove_stretch_of(n, 40, 37, &a, &b); /* the last stretch ends on the last key */
     assert_true(a == 32 && b == 39);
 }
