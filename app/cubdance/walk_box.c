@@ -33,7 +33,7 @@
  * points are on the flat clearing within 0.65 m of its place. */
 static const int32_t home_xz[2] = {0, 0};
 static const int32_t start_xz[2] = {-1900, -2300}; /* among the trees, behind on the left */
-static const int32_t off_xz[2] = {450, -450};      /* off toward the trees on the right */
+static const int32_t off_xz[2] = {2200, -1100};    /* off to the trees on the right, by the log's end */
 static const int32_t wander_xz[][2] = {{-500, -350}, {150, -600}, {550, -250}};
 #define WANDERS ((int)(sizeof wander_xz / sizeof *wander_xz))
 static const char *const key_names[CUB_WALK_KEYS] = {"walk_start", "walk_stop_left",
