@@ -275,9 +275,11 @@ static void wander(cub_walk_box *w, int64_t t_us)
 static void follow(cub_walk_box *w, const cub_bridge_player *p, int32_t from, int32_t to,
                    int64_t t_us)
 {
+    int back = resting(to) && to != CUB_COACH_WAKE; /* STOP (or the like) while waking */
     w->leave_us = 0;
-    if (w->hand && resting(to) && to != CUB_COACH_WAKE) {
-        w->hand = 0;
+    if (back && w->walking && w->why == CUB_WALK_IN) stop(w, t_us, "state");
+    if (back && w->hand) {
+        w->hand = 0; /* the coach's own clip again, where the bear stands */
         switch_now(w, t_us);
     }
     if (to == CUB_COACH_WAKE)
@@ -289,8 +291,6 @@ static void follow(cub_walk_box *w, const cub_bridge_player *p, int32_t from, in
     else if (to == CUB_COACH_IDLE && !resting(from))
         go(w, at_xz(off_xz), CUB_WALK_OFF, t_us, 0);
     else if (w->walking && w->why == CUB_WALK_WANDER)
-        stop(w, t_us, "state");
-    else if (w->walking && w->why == CUB_WALK_IN && resting(to) && to != CUB_COACH_WAKE)
         stop(w, t_us, "state");
 }
 
