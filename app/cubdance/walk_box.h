@@ -1,14 +1,15 @@
 /* walk_box — the bear walks in the box (issue 24, seed 003's "what the
- * box gets"): in from the trees to its place while START wakes it, off
- * toward the trees at STOP or after the cheer, wandering while it
- * attracts. The walk clip (assets/clips/bear_walk.bvh, on the bear's
- * skeleton) plays through the gait walker (cub/gait.h) over the floor's
- * terrain; the footsteps go into the event log as `walk` lines.
+ * box gets"): in from the trees to its place when START wakes it, off
+ * to the trees at STOP or after the cheer, wandering while it attracts.
+ * The walk clip (assets/clips/bear_walk.bvh, on the bear's skeleton)
+ * plays through the gait walker (cub/gait.h) over the floor's terrain;
+ * the footsteps go into the event log as `walk` lines. The walk enters
+ * and leaves the dance at the bridge frames the coach's own planner
+ * gives for the walk's key poses (added to its table, cub/coachlib.h).
  *
  * The walk only draws and logs: it follows the coach's state and never
  * changes what the coach decides or when (the song's first beat stays at
- * the same tick after START). How the picture is handed over between the
- * walk and the coach's own clips: docs/gait.md "The bear walks in the box". */
+ * the same tick after START). docs/gait.md "The bear walks in the box". */
 #ifndef CUB_APP_WALK_BOX_H
 #define CUB_APP_WALK_BOX_H
 
