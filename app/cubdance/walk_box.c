@@ -11,12 +11,13 @@
 #include "cub/coach.h"
 #include "cub/coachlib.h"
 
-#define BLEND_US 400000       /* the picture's fade at a hand-over [ours: a little over a step's half] */
+/* The picture's fade at a hand-over [ours: a little over a step's half]. */
+#define BLEND_US 400000
 #define WANDER_REST_US 2000000 /* attracting: stand this long between wanders */
 #define ARRIVE_MM 60          /* the root this near the target: arrived */
 #define PASS_MM 30            /* ... or farther than its nearest by this, once within NEAR_MM */
 #define NEAR_MM 300
-/* The walk in comes from the trees (2.8 m) while the wake state lasts
+/* The walk in comes from the trees (3 m) while the wake state lasts
  * (2.23 s after START) and into the song's first bars: it hurries, at
  * twice the clip's rate (~0.8 m/s), and stops where it is after WALK_IN_US
  * at the latest [ours; docs/gait.md has the measured times]. */
@@ -29,11 +30,13 @@
 /* Where the bear goes (x, z mm; its place is the origin, the camera on
  * +z). It comes in from behind the nearest tree on the left (the
  * renderer's trees at (-1700, -1600), (1800, -2000)), over the rolling
- * ground that begins 2 m out, past the log's end (x >= -700); the other
- * points are on the flat clearing within 0.65 m of its place. */
+ * ground that begins 2 m out, past the log's left end (x >= -700); it
+ * walks off past the log's right end; it wanders on the flat clearing
+ * within 0.65 m of its place. */
 static const int32_t home_xz[2] = {0, 0};
 static const int32_t start_xz[2] = {-1900, -2300}; /* among the trees, behind on the left */
-static const int32_t off_xz[2] = {2200, -1100};    /* off to the trees on the right, by the log's end */
+/* off to the trees on the right, in front of the log's right end */
+static const int32_t off_xz[2] = {2200, -1100};
 static const int32_t wander_xz[][2] = {{-500, -350}, {150, -600}, {550, -250}};
 #define WANDERS ((int)(sizeof wander_xz / sizeof *wander_xz))
 static const char *const key_names[CUB_WALK_KEYS] = {"walk_start", "walk_stop_left",
@@ -220,7 +223,8 @@ static void go(cub_walk_box *w, cub_vec3 to, cub_walk_why why, int64_t t_us, int
     cub_gait_walk_params p = {.start_mm = at, .dir_x = to.x - at.x, .dir_z = to.z - at.z,
                               .on_event = on_event, .ctx = w};
     w->now_us = t_us;
-    if (cub_gait_walker_init(&w->walker, &w->walk.wc, &w->terrain, &p)) return; /* checked at open */
+    if (cub_gait_walker_init(&w->walker, &w->walk.wc, &w->terrain, &p))
+        return; /* checked at open */
     cub_log_event(w->log, t_us, "walk", "start", "why=%s from_x=%d from_z=%d to_x=%d to_z=%d",
                   why_name(why), mm(at.x), mm(at.z), mm(to.x), mm(to.z));
     w->walking = 1;

@@ -451,7 +451,8 @@ static int source_run(meter *m)
         cub_motion_clip_get_frame(c, f, &pose);
         cub_motion_forward(&m->s->m.skel, &pose, world, NULL);
         for (int ft = 0; ft < 2; ft++)
-            slide_figures(m, ft, world[m->s->walk.wc.ankle[ft]], m->s->walk.phase[ft][f] == CUB_GAIT_STANCE);
+            slide_figures(m, ft, world[m->s->walk.wc.ankle[ft]],
+                          m->s->walk.phase[ft][f] == CUB_GAIT_STANCE);
         turn_figures(m, &pose, world, f);
         m->fig->frames++;
     }
