@@ -177,11 +177,12 @@ static void hand_over(cub_walk_box *w, int64_t t_us)
 }
 
 /* Waiting at the stop: the dance has begun (the coach left the waking
- * states) and its player reaches the planned frame; a switch to another
+ * states and its player is in the clip it asked for, not finishing
+ * wake_up) and its player reaches the planned frame; a switch to another
  * clip first asks the planner again. */
 static void hand_on(cub_walk_box *w, const cub_bridge_player *p, int32_t st, int64_t t_us)
 {
-    if (resting(st)) return;
+    if (resting(st) || cub_bridge_player_pending(p)) return;
     if (w->hand == 1 || p->clip != w->hand_clip) {
         plan_in(w, p, t_us);
         w->hand = 2;
