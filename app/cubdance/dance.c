@@ -164,7 +164,7 @@ void cub_dance_tick(cub_dance *d, cub_loop *loop, int64_t t_us)
     (void)loop;
     if (cub_director_tick(&d->dir, t_us, music_ms(d)) == CUB_OK) carry_out(d, t_us);
     say_state(d, t_us);
-    if (d->walk) cub_walk_box_tick(d->walk, d->dir.coach.state, t_us);
+    if (d->walk) cub_walk_box_tick(d->walk, &d->dir.player, d->dir.coach.state, t_us);
 }
 
 /* ---- set-up ------------------------------------------------------------- */
@@ -290,8 +290,24 @@ static cub_err open_groove(cub_dance *d, char *err, size_t size)
     return e;
 }
 
+/* The bear's walks (walk_box.h), their key poses added to the bridge
+ * table after the groove's clips, before the director plans on it. */
+static cub_err open_walk(cub_dance *d, const char *path, const cub_floor *floor, char *err,
+                         size_t size)
+{
+    const int most = (int)(sizeof d->clip_names / sizeof *d->clip_names);
+    if (d->cl.table.desc.clip_count + CUB_WALK_KEYS > most) {
+        snprintf(err, size, "walk: %s: the table holds %d clips, the box names %d", path,
+                 d->cl.table.desc.clip_count + CUB_WALK_KEYS, most);
+        return CUB_ERR_FULL;
+    }
+    cub_err e = cub_dance_open_walk(d, path, floor, err, size);
+    return e ? e : cub_walk_box_add_keys(d->walk, &d->cl, d->clip_names, err, size);
+}
+
 cub_err cub_dance_open(cub_dance *d, const cub_app_options *o, cub_board *board, cub_log *log,
-                       cub_judge *judge, int64_t now_us, char *err, size_t err_size)
+                       cub_judge *judge, const cub_floor *floor, int64_t now_us, char *err,
+                       size_t err_size)
 {
     memset(d, 0, sizeof *d);
     d->log = log;
@@ -305,6 +321,7 @@ cub_err cub_dance_open(cub_dance *d, const cub_app_options *o, cub_board *board,
         return fail(err, err_size, &diag, "fault words");
     cub_err e = cub_dance_music_open(&d->music, o, board, d->song.midi_path, err, err_size);
     if (!e) e = open_groove(d, err, err_size);
+    if (!e && o->walk_path) e = open_walk(d, o->walk_path, floor, err, err_size);
     if (!e) e = open_director(d, o, judge, now_us, err, err_size);
     if (!e && cub_wings_open(&d->wings, o->character_path, WINGS_CLIP, &d->cl.lib.skel,
                              cub_library_find(&d->cl.lib, WINGS_CLIP), err, err_size))

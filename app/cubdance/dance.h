@@ -19,6 +19,7 @@
 #include "cub/coachlib.h"
 #include "cub/director.h"
 #include "cub/faults.h"
+#include "cub/floor.h"
 #include "cub/judge.h"
 #include "cub/loop.h"
 #include "cub/song.h"
@@ -57,11 +58,13 @@ typedef struct cub_dance {
     struct cub_walk_box *walk; /* the bear's walks (walk_box.h; owned), or NULL */
 } cub_dance;
 
-/* Load the coach's clips, the song and the music, and start the coach idle
- * at now_us; judge (or NULL) is told what is taught. On failure a message
- * naming the file and problem is in err. */
+/* Load the coach's clips, the song and the music (and the walk clip of
+ * o->walk_path over floor, which may be NULL and must outlive d), and
+ * start the coach idle at now_us; judge (or NULL) is told what is taught.
+ * On failure a message naming the file and problem is in err. */
 cub_err cub_dance_open(cub_dance *d, const cub_app_options *o, cub_board *board, cub_log *log,
-                       cub_judge *judge, int64_t now_us, char *err, size_t err_size);
+                       cub_judge *judge, const cub_floor *floor, int64_t now_us, char *err,
+                       size_t err_size);
 void cub_dance_close(cub_dance *d);
 /* An event from the loop (buttons, the judge's, the player's own). */
 void cub_dance_handle(cub_dance *d, cub_loop *loop, const cub_event *ev);

@@ -98,12 +98,9 @@ static int open_extras(const cub_app_options *o, cub_board *board, cub_loop *loo
     if (!o->song_path) return 0;
     s->dance = calloc(1, sizeof *s->dance);
     cub_judge *judge = s->watch ? s->watch->judge : NULL;
-    if (!s->dance || cub_dance_open(s->dance, o, board, &loop->log, judge, t0, err, sizeof err)) {
+    if (!s->dance || cub_dance_open(s->dance, o, board, &loop->log, judge, s->floor, t0, err,
+                                     sizeof err)) {
         fprintf(stderr, "cubdance: %s\n", s->dance ? err : "out of memory");
-        return -1;
-    }
-    if (o->walk_path && cub_dance_open_walk(s->dance, o->walk_path, s->floor, err, sizeof err)) {
-        fprintf(stderr, "cubdance: %s\n", err);
         return -1;
     }
     return 0;

@@ -1,33 +1,49 @@
 /* walk_box — the bear walks in the box (issue 24, seed 003's "what the
- * box gets"): in from the trees to its place while START wakes it, off
- * toward the trees at STOP or after the cheer, wandering while it
- * attracts. The walk clip (assets/clips/bear_walk.bvh, on the bear's
- * skeleton) plays through the gait walker (cub/gait.h) over the floor's
- * terrain; the footsteps go into the event log as `walk` lines.
+ * box gets"): in from the trees to its place when START wakes it, off
+ * to the trees at STOP or after the cheer, wandering while it attracts.
+ * The walk clip (assets/clips/bear_walk.bvh, on the bear's skeleton)
+ * plays through the gait walker (cub/gait.h) over the floor's terrain;
+ * the footsteps go into the event log as `walk` lines. The walk enters
+ * and leaves the dance at the bridge frames the coach's own planner
+ * gives for the walk's key poses (added to its table, cub/coachlib.h).
  *
  * The walk only draws and logs: it follows the coach's state and never
  * changes what the coach decides or when (the song's first beat stays at
- * the same tick after START). How the picture is handed over between the
- * walk and the coach's own clips: docs/gait.md "The bear walks in the box". */
+ * the same tick after START). docs/gait.md "The bear walks in the box". */
 #ifndef CUB_APP_WALK_BOX_H
 #define CUB_APP_WALK_BOX_H
 
 #include <stdint.h>
 
+#include "cub/bridge.h"
 #include "cub/floor.h"
 #include "cub/gait.h"
 #include "cub/io.h"
 #include "cub/loop.h"
+#include "cub/walk_clip.h"
 #include "dance.h"
 
 /* What a walk is for. */
 typedef enum cub_walk_why { CUB_WALK_IN = 0, CUB_WALK_OFF, CUB_WALK_WANDER } cub_walk_why;
 
+/* The walk's poses the bridge table holds, one frame each (every frame a
+ * bridge frame): where a walk begins, and the two it stops on. */
+enum { CUB_WALK_KEY_START = 0, CUB_WALK_KEY_STOP_LEFT, CUB_WALK_KEY_STOP_RIGHT, CUB_WALK_KEYS };
+
 typedef struct cub_walk_box {
     cub_io_motion m;               /* the walk clip */
-    cub_vec3 *track[4];            /* left ankle, left toe, right ankle, right toe */
-    uint8_t *phase[2];
-    cub_gait_walk_clip wc;
+    cub_walk_clip walk;            /* its analysis for the walker */
+    cub_clip keys[CUB_WALK_KEYS];  /* on the coach's skeleton, for the bridge table */
+    void *key_mem;
+    int key_first;                 /* keys[0]'s clip index in the table, -1: not added */
+    void *plan_work;               /* the bridge planner's scratch */
+    size_t plan_work_size;
+    int hand;                      /* 1: a walk in stopped, waiting for the dance's bridge frame */
+    int hand_clip, hand_frame;     /* ... planned: the coach's clip and frame it enters at */
+    int64_t hand_at_q16;           /* ... that frame on the clip's unwrapped time */
+    const char **names;            /* the table's clip names (the dance's) */
+    int64_t leave_us;              /* > 0: the walk off starts then (its bridge frame) */
+    int rate;                      /* walker frames per clip frame period */
     cub_gait_terrain terrain;      /* the floor's (points into it), or flat */
     cub_gait_walker walker;
     cub_log *log;
@@ -63,9 +79,15 @@ void cub_walk_box_close(cub_walk_box *w);
  * and problem is in err. */
 cub_err cub_dance_open_walk(cub_dance *d, const char *path, const cub_floor *floor, char *err,
                             size_t err_size);
+/* The walk's key poses (keys) into the coach's bridge table, after the
+ * clips it holds; before the director is built on the table. */
+cub_err cub_walk_box_add_keys(cub_walk_box *w, cub_coachlib *cl, const char **names,
+                              char *err, size_t err_size);
 /* Once per tick, after the coach's: follow its state (walks start and
- * stop), step the walker at the clip's rate, log its footsteps. */
-void cub_walk_box_tick(cub_walk_box *w, int32_t coach_state, int64_t t_us);
+ * stop, handed to and from the coach's clips at the bridge frames the
+ * planner finds on player's table), step the walker, log its footsteps. */
+void cub_walk_box_tick(cub_walk_box *w, const cub_bridge_player *player, int32_t coach_state,
+                       int64_t t_us);
 /* The picture: the coach's pose (local rotations, root) rewritten where
  * the bear walks or stands away from its place. */
 void cub_walk_box_pose(cub_walk_box *w, cub_pose *pose);

@@ -84,7 +84,7 @@ static int side_of(const gait_src *s, int j)
 {
     const cub_skeleton *sk = &s->m.skel;
     for (int f = 0; f < 2; f++)
-        for (int k = s->wc.toe[f]; k > 0; k = sk->joints[k].parent)
+        for (int k = s->walk.wc.toe[f]; k > 0; k = sk->joints[k].parent)
             if (k == j && sk->joints[sk->joints[k].parent].parent > 0) return f;
     return -1;
 }

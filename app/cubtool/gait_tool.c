@@ -36,31 +36,20 @@ static int resolve(const char *clip, const char *data_dir, char *path, size_t n)
     return access(path, R_OK) == 0 ? 0 : -1;
 }
 
-static int find_legs(gait_src *s)
+/* The clip's ankle and toe joints ([0] the left) by the first family
+ * that names all four; -1 when none does. */
+static int find_legs(const gait_src *s, int ankle[2], int toe[2])
 {
     for (size_t k = 0; k < sizeof leg_names / sizeof *leg_names; k++) {
         int j[4];
         for (int i = 0; i < 4; i++)
             j[i] = cub_motion_skeleton_find(&s->m.skel, leg_names[k][i]);
         if (j[0] > 0 && j[1] > 0 && j[2] > 0 && j[3] > 0) {
-            s->wc.ankle[0] = j[0], s->wc.toe[0] = j[1];
-            s->wc.ankle[1] = j[2], s->wc.toe[1] = j[3];
+            ankle[0] = j[0], toe[0] = j[1], ankle[1] = j[2], toe[1] = j[3];
             return 0;
         }
     }
     return -1;
-}
-
-static int analyse(gait_src *s)
-{
-    int n = s->m.clip.frame_count;
-    for (int i = 0; i < 4; i++)
-        if (!(s->track[i] = calloc((size_t)n, sizeof(cub_vec3)))) return -1;
-    for (int i = 0; i < 2; i++)
-        if (!(s->phase[i] = calloc((size_t)n, 1))) return -1;
-    const int ankle[2] = {s->wc.ankle[0], s->wc.ankle[1]}, toe[2] = {s->wc.toe[0], s->wc.toe[1]};
-    cub_vec3 *const am[2] = {s->track[0], s->track[2]}, *const tm[2] = {s->track[1], s->track[3]};
-    return cub_gait_walk_clip_make(&s->m.clip, ankle, toe, am, tm, s->phase, &s->wc) ? -1 : 0;
 }
 
 int gait_src_load(gait_src *s, const char *clip, const char *data_dir, const char *who)
@@ -79,12 +68,13 @@ int gait_src_load(gait_src *s, const char *clip, const char *data_dir, const cha
         fprintf(stderr, "cubtool %s: %s\n", who, cub_diag_str(&d, msg, sizeof msg));
         return 1;
     }
-    if (find_legs(s)) {
+    int ankle[2], toe[2];
+    if (find_legs(s, ankle, toe)) {
         fprintf(stderr, "cubtool %s: %s: no leg joints (LeftFoot/LeftToeBase or lFoot/rFoot)\n",
                 who, path);
         return 1;
     }
-    if (s->m.clip.frame_count < 4 || analyse(s)) {
+    if (s->m.clip.frame_count < 4 || cub_walk_clip_make(&s->walk, &s->m.clip, ankle, toe)) {
         fprintf(stderr, "cubtool %s: %s: too short to analyse as a walk\n", who, path);
         return 1;
     }
@@ -93,10 +83,7 @@ int gait_src_load(gait_src *s, const char *clip, const char *data_dir, const cha
 
 void gait_src_free(gait_src *s)
 {
-    for (int i = 0; i < 4; i++)
-        free(s->track[i]);
-    for (int i = 0; i < 2; i++)
-        free(s->phase[i]);
+    cub_walk_clip_free(&s->walk);
     if (s->m.frame_mem) cub_io_motion_free(&s->m);
     memset(s, 0, sizeof *s);
 }
@@ -219,7 +206,7 @@ static void leg_joints(const gait_src *s, int j[6])
 {
     const cub_skeleton *sk = &s->m.skel;
     for (int f = 0; f < 2; f++) {
-        j[3 * f + 2] = s->wc.ankle[f];
+        j[3 * f + 2] = s->walk.wc.ankle[f];
         j[3 * f + 1] = sk->joints[j[3 * f + 2]].parent;
         j[3 * f] = sk->joints[j[3 * f + 1]].parent;
     }
@@ -273,7 +260,7 @@ typedef struct meter {
 
 static void sole(const meter *m, int foot, const cub_vec3 *world, cub_vec3 pts[6])
 {
-    const cub_gait_walk_clip *wc = &m->s->wc;
+    const cub_gait_walk_clip *wc = &m->s->walk.wc;
     cub_gait_sole_points(world[wc->ankle[foot]], world[wc->toe[foot]], wc->foot[foot].length_mm,
                          wc->foot[foot].ankle_lift_mm, pts);
 }
@@ -330,7 +317,7 @@ static void slide_figures(meter *m, int foot, cub_vec3 ankle, int stance)
 
 static void turn_figures(meter *m, const cub_pose *pose, const cub_vec3 *world, int i)
 {
-    const cub_gait_walk_clip *wc = &m->s->wc;
+    const cub_gait_walk_clip *wc = &m->s->walk.wc;
     for (int f = 0; f < 2; f++) {
         cub_vec3 v = cub_fx_vec3_sub(world[wc->toe[f]], world[wc->ankle[f]]);
         if (i > 0) {
@@ -369,8 +356,8 @@ static void error_figures(meter *m, const cub_gait_walker *w, int f, const cub_v
         all += e;
         int is_leg = 0;
         for (int k = 0; k < 2; k++)
-            is_leg |= j == m->s->wc.ankle[k] || j == m->s->wc.toe[k] ||
-                      j == sk->joints[m->s->wc.ankle[k]].parent;
+            is_leg |= j == m->s->walk.wc.ankle[k] || j == m->s->walk.wc.toe[k] ||
+                      j == sk->joints[m->s->walk.wc.ankle[k]].parent;
         if (is_leg) leg += e, nleg++;
     }
     m->err_all += all / sk->joint_count;
@@ -400,15 +387,15 @@ static void baseline_pose(const meter *m, const cub_gait_walker *w, int f, int k
     cub_vec3 at[2], toe[2];
     cub_q16 lift[2];
     for (int ft = 0; ft < 2; ft++) {
-        at[ft] = world[m->s->wc.ankle[ft]];
-        toe[ft] = world[m->s->wc.toe[ft]];
+        at[ft] = world[m->s->walk.wc.ankle[ft]];
+        toe[ft] = world[m->s->walk.wc.toe[ft]];
         lift[ft] = cub_gait_height(t, at[ft].x, at[ft].z);
     }
     pose->root_mm.y += lift[0] < lift[1] ? lift[0] : lift[1];
     for (int ft = 0; ft < 2; ft++) {
         at[ft].y += lift[ft];
         toe[ft].y += cub_gait_height(t, toe[ft].x, toe[ft].z);
-        cub_gait_leg_target tg = {m->s->wc.ankle[ft], m->s->wc.toe[ft], at[ft], toe[ft],
+        cub_gait_leg_target tg = {m->s->walk.wc.ankle[ft], m->s->walk.wc.toe[ft], at[ft], toe[ft],
                                   {w->dir_x, 0, w->dir_z}};
         cub_gait_leg_pose out;
         cub_gait_leg_apply(sk, pose, &tg, NULL, &out);
@@ -451,7 +438,7 @@ static cub_q16 lowest_foot(const gait_src *s)
     cub_q16 lo = CUB_Q16_MAX;
     for (int i = 0; i < 4; i++)
         for (int f = 0; f < s->m.clip.frame_count; f++)
-            if (s->track[i][f].y < lo) lo = s->track[i][f].y;
+            if (s->walk.track[i][f].y < lo) lo = s->walk.track[i][f].y;
     return lo;
 }
 
@@ -464,7 +451,8 @@ static int source_run(meter *m)
         cub_motion_clip_get_frame(c, f, &pose);
         cub_motion_forward(&m->s->m.skel, &pose, world, NULL);
         for (int ft = 0; ft < 2; ft++)
-            slide_figures(m, ft, world[m->s->wc.ankle[ft]], m->s->phase[ft][f] == CUB_GAIT_STANCE);
+            slide_figures(m, ft, world[m->s->walk.wc.ankle[ft]],
+                          m->s->walk.phase[ft][f] == CUB_GAIT_STANCE);
         turn_figures(m, &pose, world, f);
         m->fig->frames++;
     }
@@ -492,7 +480,7 @@ int gait_measure(const gait_src *s, const gait_ground *g, const gait_run *r, gai
     cub_gait_walk_params p = r->params;
     p.on_event = chain_event;
     p.ctx = &ch;
-    if (cub_gait_walker_init(&w, &s->wc, &g->t, &p)) {
+    if (cub_gait_walker_init(&w, &s->walk.wc, &g->t, &p)) {
         fprintf(stderr, "cubtool %s: %s: no full walk cycle found (a left foot-off to the next)\n",
                 who, s->name);
         return 1;
@@ -517,11 +505,11 @@ int gait_measure(const gait_src *s, const gait_ground *g, const gait_run *r, gai
         if (us > out->us_max) out->us_max = us;
         cub_motion_forward(&s->m.skel, pose, world, NULL);
         for (int ft = 0; ft < 2; ft++) {
-            int stance = s->phase[ft][f] == CUB_GAIT_STANCE;
+            int stance = s->walk.phase[ft][f] == CUB_GAIT_STANCE;
             int swing = r->method == GAIT_WALKER ? w.feet[ft].swinging
-                                                 : s->phase[ft][f] == CUB_GAIT_OFF;
+                                                 : s->walk.phase[ft][f] == CUB_GAIT_OFF;
             ground_figures(&m, ft, world, swing);
-            slide_figures(&m, ft, world[s->wc.ankle[ft]], stance);
+            slide_figures(&m, ft, world[s->walk.wc.ankle[ft]], stance);
         }
         turn_figures(&m, pose, world, i);
         if (cub_gait_terrain_is_flat(&g->t)) error_figures(&m, &w, f, world);

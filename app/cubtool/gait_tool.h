@@ -8,13 +8,12 @@
 #include "cub/floor.h"
 #include "cub/gait.h"
 #include "cub/io.h"
+#include "cub/walk_clip.h"
 
 /* A walk, loaded and analysed. */
 typedef struct gait_src {
     cub_io_motion m;
-    cub_vec3 *track[4]; /* left ankle, left toe, right ankle, right toe */
-    uint8_t *phase[2];
-    cub_gait_walk_clip wc;
+    cub_walk_clip walk; /* its analysis for the walker */
     char name[64];
 } gait_src;
 

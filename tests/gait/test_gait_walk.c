@@ -14,6 +14,7 @@
 #include <stdlib.h>
 
 #include "../synth/synth_data.h"
+#include "gait_test_clip.h"
 #include "cub/gait.h"
 #include "cub/io.h"
 
@@ -38,16 +39,7 @@ typedef struct foot_track {
 static int load(void **state)
 {
     (void)state;
-    const char *dir = synth_data_dir(CLIP);
-    if (!dir) return 0;
-    char path[700];
-    snprintf(path, sizeof path, "%s/mocap/cmu/%s.bvh", dir, CLIP);
-    cub_diag d = {0};
-    if (cub_io_load_bvh(path, &(cub_io_desc){0}, &walk, &d)) {
-        printf("gait: %s:%d: %s\n", d.file, d.line, d.msg);
-        return -1;
-    }
-    return 0;
+    return gait_test_load(CLIP, &walk) < 0 ? -1 : 0;
 }
 
 static int unload(void **state)

@@ -14,6 +14,8 @@
 #include <string.h>
 
 #include "../synth/synth_data.h"
+#include "cub/walk_clip.h"
+#include "gait_test_clip.h"
 #include "cub/gait.h"
 #include "cub/io.h"
 
@@ -22,51 +24,24 @@
 #define MAX_EVENTS 512
 
 static cub_io_motion walk;
-static cub_vec3 *tracks[4];
-static uint8_t *phases[2];
-static cub_gait_walk_clip wc;
+static cub_walk_clip analysed; /* its tracks, phases and the walker's view */
 
 static int load(void **state)
 {
     (void)state;
-    const char *dir = synth_data_dir(CLIP);
-    if (!dir) return 0;
-    char path[700];
-    snprintf(path, sizeof path, "%s/mocap/cmu/%s.bvh", dir, CLIP);
-    cub_diag d = {0};
-    if (cub_io_load_bvh(path, &(cub_io_desc){0}, &walk, &d)) {
-        printf("gait: %s:%d: %s\n", d.file, d.line, d.msg);
-        return -1;
-    }
-    static const char *names[2][2] = {{"LeftFoot", "LeftToeBase"}, {"RightFoot", "RightToeBase"}};
-    int n = walk.clip.frame_count;
-    wc.clip = &walk.clip;
-    for (int i = 0; i < 2; i++) {
-        tracks[2 * i] = calloc((size_t)n, sizeof(cub_vec3));
-        tracks[2 * i + 1] = calloc((size_t)n, sizeof(cub_vec3));
-        phases[i] = calloc((size_t)n, 1);
-        if (!tracks[2 * i] || !tracks[2 * i + 1] || !phases[i]) return -1;
-        wc.ankle[i] = cub_motion_skeleton_find(&walk.skel, names[i][0]);
-        wc.toe[i] = cub_motion_skeleton_find(&walk.skel, names[i][1]);
-        if (cub_gait_track_clip(&walk.clip, wc.ankle[i], wc.toe[i], tracks[2 * i],
-                                tracks[2 * i + 1]))
-            return -1;
-        if (cub_gait_analyse(tracks[2 * i], tracks[2 * i + 1], n, NULL, phases[i], &wc.foot[i]))
-            return -1;
-        wc.ankle_mm[i] = tracks[2 * i];
-        wc.toe_mm[i] = tracks[2 * i + 1];
-        wc.phase[i] = phases[i];
-    }
-    return 0;
+    int e = gait_test_load(CLIP, &walk);
+    if (e) return e < 0 ? -1 : 0;
+    const int ankle[2] = {cub_motion_skeleton_find(&walk.skel, "LeftFoot"),
+                          cub_motion_skeleton_find(&walk.skel, "RightFoot")};
+    const int toe[2] = {cub_motion_skeleton_find(&walk.skel, "LeftToeBase"),
+                        cub_motion_skeleton_find(&walk.skel, "RightToeBase")};
+    return cub_walk_clip_make(&analysed, &walk.clip, ankle, toe) ? -1 : 0;
 }
 
 static int unload(void **state)
 {
     (void)state;
-    for (int i = 0; i < 4; i++)
-        free(tracks[i]);
-    for (int i = 0; i < 2; i++)
-        free(phases[i]);
+    cub_walk_clip_free(&analysed);
     if (walk.frame_mem) cub_io_motion_free(&walk);
     return 0;
 }
@@ -102,7 +77,7 @@ static void walk_rolling(log *l)
     cub_gait_terrain t;
     rolling(&t);
     cub_gait_walk_params p = {.on_event = record, .ctx = l};
-    assert_int_equal(cub_gait_walker_init(&walker, &wc, &t, &p), CUB_OK);
+    assert_int_equal(cub_gait_walker_init(&walker, &analysed.wc, &t, &p), CUB_OK);
     cub_vec3 target = {CUB_Q16_INT(6000), 0, CUB_Q16_INT(6000)};
     cub_vec3 last_hold[2] = {walker.feet[0].hold_mm, walker.feet[1].hold_mm};
     cub_q16 worst_dip = 0;
@@ -112,8 +87,8 @@ static void walk_rolling(log *l)
         for (int f = 0; f < 2; f++) {
             const cub_gait_walk_foot *ft = &walker.feet[f];
             cub_vec3 pts[6];
-            cub_gait_sole_points(ft->leg.ankle_mm, ft->leg.toe_mm, wc.foot[f].length_mm,
-                                 wc.foot[f].ankle_lift_mm, pts);
+            cub_gait_sole_points(ft->leg.ankle_mm, ft->leg.toe_mm, analysed.wc.foot[f].length_mm,
+                                 analysed.wc.foot[f].ankle_lift_mm, pts);
             for (int k = 0; k < 6; k++) {
                 cub_q16 dip = cub_gait_height(&t, pts[k].x, pts[k].z) - pts[k].y;
                 if (dip > worst_dip) worst_dip = dip;
@@ -152,7 +127,7 @@ static void stance_foot_stays(void **state)
     cub_gait_terrain t;
     rolling(&t);
     cub_gait_walk_params p = {0};
-    assert_int_equal(cub_gait_walker_init(&walker, &wc, &t, &p), CUB_OK);
+    assert_int_equal(cub_gait_walker_init(&walker, &analysed.wc, &t, &p), CUB_OK);
     cub_vec3 target = {CUB_Q16_INT(6000), 0, CUB_Q16_INT(-6000)};
     cub_vec3 first[2];
     int held[2] = {0, 0}, checked = 0;
@@ -242,7 +217,7 @@ static void walker_before_wall(log *l, cub_gait_terrain *t)
     assert_int_equal(cub_gait_terrain_add(t, wall), CUB_OK);
     cub_gait_walk_params p = {.dir_z = CUB_Q16_ONE, .on_event = record, .ctx = l};
     p.swing.max_raises = 5;
-    assert_int_equal(cub_gait_walker_init(&walker, &wc, t, &p), CUB_OK);
+    assert_int_equal(cub_gait_walker_init(&walker, &analysed.wc, t, &p), CUB_OK);
 }
 
 static void swing_that_cannot_clear_is_replanned(void **state)
@@ -259,8 +234,8 @@ static void swing_that_cannot_clear_is_replanned(void **state)
         for (int f = 0; f < 2; f++) {
             const cub_gait_walk_foot *ft = &walker.feet[f];
             cub_vec3 pts[6];
-            cub_gait_sole_points(ft->leg.ankle_mm, ft->leg.toe_mm, wc.foot[f].length_mm,
-                                 wc.foot[f].ankle_lift_mm, pts);
+            cub_gait_sole_points(ft->leg.ankle_mm, ft->leg.toe_mm, analysed.wc.foot[f].length_mm,
+                                 analysed.wc.foot[f].ankle_lift_mm, pts);
             for (int k = 0; k < 6; k++)
                 assert_true(pts[k].y >= cub_gait_height(&t, pts[k].x, pts[k].z) - CUB_Q16_ONE / 2);
         }
@@ -285,8 +260,8 @@ static cub_q16 sole_gap(const cub_gait_terrain *t, int f)
 {
     const cub_gait_walk_foot *ft = &walker.feet[f];
     cub_vec3 pts[6];
-    cub_gait_sole_points(ft->leg.ankle_mm, ft->leg.toe_mm, wc.foot[f].length_mm,
-                         wc.foot[f].ankle_lift_mm, pts);
+    cub_gait_sole_points(ft->leg.ankle_mm, ft->leg.toe_mm, analysed.wc.foot[f].length_mm,
+                         analysed.wc.foot[f].ankle_lift_mm, pts);
     cub_q16 lo = CUB_Q16_MAX;
     for (int k = 0; k < 6; k++) {
         cub_q16 g = pts[k].y - cub_gait_height(t, pts[k].x, pts[k].z);
@@ -335,7 +310,7 @@ static void comes_to_rest_at_target(void **state)
     cub_gait_terrain t;
     cub_gait_terrain_flat(&t, 0);
     cub_gait_walk_params p = {.dir_z = CUB_Q16_ONE};
-    assert_int_equal(cub_gait_walker_init(&walker, &wc, &t, &p), CUB_OK);
+    assert_int_equal(cub_gait_walker_init(&walker, &analysed.wc, &t, &p), CUB_OK);
     cub_vec3 target = {0, 0, CUB_Q16_INT(3000)};
     int still = walk_to(target, 900, &t);
     cub_q16 stride = cub_fx_vec3_length(walker.cycle_u) / 2;
@@ -356,7 +331,7 @@ static void comes_to_rest_at_target(void **state)
     assert_false(walker.stopped);
     assert_true(walker.steps > steps);
     /* Already there: it stops at its first foot-off, without a step. */
-    assert_int_equal(cub_gait_walker_init(&walker, &wc, &t, &p), CUB_OK);
+    assert_int_equal(cub_gait_walker_init(&walker, &analysed.wc, &t, &p), CUB_OK);
     still = walk_to((cub_vec3){0}, 60, &t);
     printf("gait walker: started at the target: %d steps, still %d frames, root %.0f mm off\n",
            walker.steps, still, root_dist((cub_vec3){0}) / 65536.0);

@@ -36,6 +36,7 @@
 #include "cub/character.h"
 #include "cub/floor_file.h"
 #include "cub/io.h"
+#include "cub/walk_clip.h"
 #include "cub/judge.h"
 #include "cub/pack.h"
 #include "cub/png.h"
@@ -797,9 +798,7 @@ static void test_bear_on_the_forest_floor_matches_golden(void **state)
  * swinging and the other planted, as the box draws it. */
 #define WALK_FRAMES 52
 static cub_io_motion g_walk;
-static cub_vec3 g_walk_track[4][256];
-static uint8_t g_walk_phase[2][256];
-static cub_gait_walk_clip g_walk_clip;
+static cub_walk_clip g_walk_clip; /* its tracks and phases for the walker */
 static cub_gait_walker g_walker;
 
 static void walk_on_floor(const cub_gait_terrain *t)
@@ -809,20 +808,15 @@ static void walk_on_floor(const cub_gait_terrain *t)
     const char *src = getenv("CUB_SOURCE_DIR");
     snprintf(path, sizeof path, "%s/assets/clips/bear_walk.bvh", src ? src : ".");
     assert_int_equal(cub_io_load_bvh(path, &(cub_io_desc){0}, &g_walk, &diag), CUB_OK);
-    assert_true(g_walk.clip.frame_count <= 256);
     const cub_skeleton *s = &g_walk.skel;
     const int ankle[2] = {cub_motion_skeleton_find(s, "LeftFoot"),
                           cub_motion_skeleton_find(s, "RightFoot")};
     const int toe[2] = {cub_motion_skeleton_find(s, "LeftFoot_end"),
                         cub_motion_skeleton_find(s, "RightFoot_end")};
-    cub_vec3 *const am[2] = {g_walk_track[0], g_walk_track[2]};
-    cub_vec3 *const tm[2] = {g_walk_track[1], g_walk_track[3]};
-    uint8_t *const ph[2] = {g_walk_phase[0], g_walk_phase[1]};
-    assert_int_equal(cub_gait_walk_clip_make(&g_walk.clip, ankle, toe, am, tm, ph, &g_walk_clip),
-                     CUB_OK);
+    assert_int_equal(cub_walk_clip_make(&g_walk_clip, &g_walk.clip, ankle, toe), CUB_OK);
     cub_gait_walk_params p = {.start_mm = {CUB_Q16_INT(1900), 0, CUB_Q16_INT((int)FLOOR_SPOT_Z)},
                               .dir_x = CUB_Q16_INT(1)};
-    assert_int_equal(cub_gait_walker_init(&g_walker, &g_walk_clip, t, &p), CUB_OK);
+    assert_int_equal(cub_gait_walker_init(&g_walker, &g_walk_clip.wc, t, &p), CUB_OK);
     const cub_vec3 to = {CUB_Q16_INT(5000), 0, CUB_Q16_INT((int)FLOOR_SPOT_Z)};
     const cub_pose *pose = NULL;
     for (int i = 0; i < WALK_FRAMES; i++)
@@ -872,6 +866,7 @@ static void test_bear_walks_mid_step_on_the_floor_matches_golden(void **state)
     draw_with(f, r3, &scene);
     check_golden_within(f->rgba, "bear_walks_on_forest_floor", 1, BEAR_MAX_SHARE);
     cub_render_destroy(r3);
+    cub_walk_clip_free(&g_walk_clip);
     cub_io_motion_free(&g_walk);
 }
 

@@ -547,17 +547,65 @@ static void expect_committed_log(const char *name, const char *want_path)
     logread_free(&want);
 }
 
+/* The demo's run needs the Skeltrack dump: without it, the test skips. */
+#define NEED_DEMO()                                                                                \
+    do {                                                                                           \
+        char path_[1024];                                                                          \
+        snprintf(path_, sizeof path_, "%s/demo.log", out_dir);                                     \
+        FILE *f_ = fopen(path_, "r");                                                              \
+        if (!f_) {                                                                                 \
+            print_message("SKIP: no demo run (the Skeltrack dump is absent)\n");                   \
+            skip();                                                                                \
+        }                                                                                          \
+        fclose(f_);                                                                                \
+    } while (0)
+
 static void test_demo_song_log_is_the_committed_one(void **s)
 {
-    char path[1024];
-    snprintf(path, sizeof path, "%s/demo.log", out_dir);
-    FILE *f = fopen(path, "r");
-    if (!f) {
-        print_message("SKIP: no demo run (the Skeltrack dump is absent)\n");
-        skip();
-    }
-    fclose(f);
+    NEED_DEMO();
     expect_committed_log("demo", demo_log);
+}
+
+/* The bear's walks in the demo (issue 24): in from among the trees (2 m
+ * and more from its place) over the rolling floor (a foot taken above the
+ * flat clearing), handed into the dance's first clip at the frame the
+ * bridge planner gave, once the dance has begun; after the cheer, off from
+ * the frame the planner gave for the walk's first pose. */
+static void test_the_bear_walks_in_and_off_through_bridge_frames(void **s)
+{
+    NEED_DEMO();
+    logread log;
+    load("demo", &log);
+    char clip[48], want[48], why[16];
+    int in = logread_find(&log, 0, "walk", "start");
+    assert_true(in >= 0);
+    assert_string_equal(field(&log, in, "why", why, sizeof why), "in");
+    double fx = number(&log, in, "from_x"), fz = number(&log, in, "from_z");
+    assert_true(sqrt(fx * fx + fz * fz) >= 2000);
+    int stop = logread_find(&log, in, "walk", "stop"), raised = 0;
+    assert_true(stop > in);
+    for (int i = logread_find(&log, in, "walk", "taken"); i >= 0 && i < stop;
+         i = logread_find(&log, i + 1, "walk", "taken"))
+        raised += number(&log, i, "y") > 0;
+    assert_true(raised > 0);
+    int dance = next_state(&log, in, "dance");
+    int first = logread_find(&log, dance, "coach", "request");
+    int bridge = logread_find(&log, stop, "walk", "bridge");
+    int enter = logread_find(&log, stop, "walk", "enter");
+    assert_true(dance > 0 && first > 0 && bridge > 0 && enter > bridge);
+    assert_true(log.lines[bridge].t_s >= log.lines[dance].t_s);
+    field(&log, first, "clip", want, sizeof want);
+    assert_string_equal(field(&log, enter, "clip", clip, sizeof clip), want);
+    printf("scenario: demo: walk in from %.0f mm, %d feet above the clearing, into %s at "
+           "frame %.0f, %.3f s after START's wake\n", sqrt(fx * fx + fz * fz), raised, clip,
+           number(&log, enter, "frame"), log.lines[enter].t_s - log.lines[in].t_s);
+    int cheered = next_state(&log, enter, "idle");
+    int off = logread_find(&log, cheered, "walk", "bridge");
+    int go = logread_find(&log, cheered, "walk", "start");
+    assert_true(cheered > 0 && off > 0 && go > off);
+    assert_string_equal(field(&log, go, "why", why, sizeof why), "off");
+    assert_string_equal(field(&log, off, "dir", why, sizeof why), "off");
+    logread_free(&log);
 }
 
 /* The coach's requests for a groove clip whose name begins with prefix. */
@@ -638,6 +686,7 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_garbage_frames_give_no_player_and_recover),
         cmocka_unit_test(test_child_who_walks_away_pauses_then_attracts),
         cmocka_unit_test(test_every_hint_shown_is_said_at_its_tick),
+        cmocka_unit_test(test_the_bear_walks_in_and_off_through_bridge_frames),
         cmocka_unit_test(test_demo_song_log_is_the_committed_one),
         cmocka_unit_test(test_free_bars_groove_log_is_the_committed_one),
         cmocka_unit_test(test_groove_song_is_danced),
