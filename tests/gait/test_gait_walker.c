@@ -395,7 +395,7 @@ static strike_pose strike_at_edge(int up, int keys)
     assert_int_equal(cub_gait_terrain_add(&t, b), CUB_OK);
     cub_gait_walk_params p = {.dir_z = CUB_Q16_ONE, .on_event = record, .ctx = &l,
                               .without = keys ? 0 : CUB_GAIT_NO_KEYS};
-    assert_int_equal(cub_gait_walker_init(&walker, &wc, &t, &p), CUB_OK);
+    assert_int_equal(cub_gait_walker_init(&walker, &analysed.wc, &t, &p), CUB_OK);
     cub_vec3 target = {0, 0, CUB_Q16_INT(30000)};
     for (int i = 0; i < 600; i++) {
         const cub_pose *pose;
