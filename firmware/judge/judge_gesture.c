@@ -296,7 +296,7 @@ static int wave_paired(const cub_judge *j, int side, int64_t t_us, int32_t gap_m
  * of it. A throw or a serve sweeps the arm over the head alike, but it
  * draws the hand back behind the shoulder first (the wind-up); a wave is
  * made facing whom one waves to. x, mid: the hand's and the shoulder
- * centre's x from the shoulder; out: +1 right (+x), -1 left. */
+ * centre's x from the shoulder; out: +1 when the arm's outside is +x. */
 static void wave_sweep_turned(wave_state *w, int64_t t_us, int32_t mid, int out)
 {
     if (w->turn_us != t_us) return;
@@ -335,7 +335,9 @@ static void wave_step(cub_judge *j, int64_t t_us, const cub_track_skeleton *s, i
         wave_restart(w, t_us, x, y);
         w->fired = fired;
     }
-    int outward = side ? 1 : -1;
+    /* the side of the body this arm is on, from the skeleton itself (the
+     * detectors are mirror-blind: the image may be mirrored) */
+    int outward = p[shoulder[side]].x >= p[CUB_KJ_SHOULDER_CENTRE].x ? 1 : -1;
     if (judge_mm(p[hand[side]].z) > judge_mm(p[shoulder[side]].z)) w->behind = 1;
     wave_track(w, t_us, x, y, part_of(j->d.wave_swing, width_mm));
     wave_sweep_turned(w, t_us, judge_mm(p[CUB_KJ_SHOULDER_CENTRE].x) - judge_mm(p[shoulder[side]].x),
