@@ -225,7 +225,7 @@ static const struct {
     const char *run, *action;
     int was_first, first, last;
 } label_audit[] = {
-    /* the fifth clap of the series: open 3.4 widths at 2234-2238, meet at
+    /* the sixth clap of the series: open 3.4 widths at 2234-2238, meet at
      * 2258, hands part and drop to rest by 2286 */
     {"s01_e01", "clapHands", 2110, 2110, 2286},
     /* both arms swept out and over the head, crossing, as in the labelled
