@@ -230,6 +230,7 @@ static void wave_swing_done(wave_state *w, int64_t t_us, int32_t x, int32_t y)
     if (swung) { /* a turn, sideways or not, for wave_paired */
         w->turn_us = t_us;
         w->turn_dir = w->dir;
+        w->swing_from_mm = w->from_mm;
     }
     if (swung && wave_sideways(w)) {
         w->reversals++;
@@ -287,6 +288,27 @@ static int wave_paired(const cub_judge *j, int side, int64_t t_us, int32_t gap_m
     return o->turn_dir == -w->turn_dir || gap_mm >= width_mm;
 }
 
+/* One sweep of one raised arm, seen as it ends: a wave made of a single
+ * arc (MSR's high arm wave of some people: out, over the head across the
+ * body and back out). The swing that ended at the last turn was sideways
+ * (counted), began outside the shoulder and crossed the body's midline;
+ * the hand is now back outside its shoulder, and all this time in front
+ * of it. A throw or a serve sweeps the arm over the head alike, but it
+ * draws the hand back behind the shoulder first (the wind-up); a wave is
+ * made facing whom one waves to. x, mid: the hand's and the shoulder
+ * centre's x from the shoulder; out: +1 when the arm's outside is +x. */
+static void wave_sweep_turned(wave_state *w, int64_t t_us, int32_t mid, int out)
+{
+    if (w->turn_us != t_us) return;
+    w->crossed = w->reversals > 0 && out * w->swing_from_mm >= 0 &&
+                 out * (w->from_mm - mid) < 0;
+}
+
+static int wave_swept(const wave_state *w, int32_t x, int out)
+{
+    return w->crossed && !w->behind && w->dir == out && out * x >= 0;
+}
+
 static void wave_step(cub_judge *j, int64_t t_us, const cub_track_skeleton *s, int side,
                       int32_t width_mm, cub_judge_out *out)
 {
@@ -313,10 +335,18 @@ static void wave_step(cub_judge *j, int64_t t_us, const cub_track_skeleton *s, i
         wave_restart(w, t_us, x, y);
         w->fired = fired;
     }
+    /* the side of the body this arm is on, from the skeleton itself (the
+     * detectors are mirror-blind: the image may be mirrored) */
+    int outward = p[shoulder[side]].x >= p[CUB_KJ_SHOULDER_CENTRE].x ? 1 : -1;
+    if (judge_mm(p[hand[side]].z) > judge_mm(p[shoulder[side]].z)) w->behind = 1;
     wave_track(w, t_us, x, y, part_of(j->d.wave_swing, width_mm));
+    wave_sweep_turned(w, t_us, judge_mm(p[CUB_KJ_SHOULDER_CENTRE].x) - judge_mm(p[shoulder[side]].x),
+                      outward);
     int32_t gap = judge_dist_mm(p[CUB_KJ_HAND_L], p[CUB_KJ_HAND_R]);
     int both = !w->fired && wave_paired(j, side, t_us, gap, width_mm);
-    if (w->fired || (w->reversals < j->d.wave_reversals && !both)) return;
+    if (w->fired ||
+        (w->reversals < j->d.wave_reversals && !both && !wave_swept(w, x, outward)))
+        return;
     w->fired = 1;
     if (both) j->wave[!side].fired = 1; /* one event for the two hands */
     cub_judge_event e = {

@@ -76,6 +76,9 @@ typedef struct wave_state {
     int64_t last_us;  /* the last direction change */
     int64_t turn_us;  /* the last turn of a swing (sideways or not), the direction after it */
     int32_t turn_dir;
+    int32_t swing_from_mm; /* x where the swing that ended at the last turn began */
+    int crossed;      /* that swing was a sweep from outside the shoulder across the midline */
+    int behind;       /* the raised hand went behind its shoulder (a throw's wind-up) */
 } wave_state;
 
 struct cub_judge {

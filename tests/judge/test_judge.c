@@ -40,6 +40,8 @@ typedef struct pose {
     int clap_up;      /* with clap_gap: the hands one above the other at x 0 */
     int in_step;      /* with waving: the left hand raised too, moving the same way,
                          STEP_APART (520 mm from the right) or STEP_TOGETHER (100) */
+    int wave_dz;      /* with waving: the right hand moved back, away from the camera
+                         (mm; 0: level with the shoulder) */
 } pose;
 
 enum { LEG_DOWN, LEG_STANCE, LEG_KICK, LEG_KICK_OFF_BALANCE };
@@ -80,8 +82,8 @@ static cub_track_skeleton child(pose p)
         }
         if (p.waving && (side == 1 || p.mirror)) {
             j[sh + 1] = mm(260 * sx, 1150, z);
-            j[sh + 2] = mm((260 + p.wave_dx) * sx, 1380 + p.wave_dy, z);
-            j[sh + 3] = mm((260 + p.wave_dx) * sx, 1450 + p.wave_dy, z);
+            j[sh + 2] = mm((260 + p.wave_dx) * sx, 1380 + p.wave_dy, z + p.wave_dz);
+            j[sh + 3] = mm((260 + p.wave_dx) * sx, 1450 + p.wave_dy, z + p.wave_dz);
         }
         if (p.waving && side == 0 && p.in_step) {
             int hx = p.wave_dx + (p.in_step == STEP_APART ? -260 : 160);
@@ -201,7 +203,7 @@ static cub_judge_rep rep_rhe(int rep, int from, int to)
     return r;
 }
 
-static const pose STILL = {{0, 0}, 0, 0, 0, 0, 0, 0, CUB_TRACK_OK, 0, LEG_DOWN, {0, 0}, 0, 0, STEP_NONE};
+static const pose STILL = {{0, 0}, 0, 0, 0, 0, 0, 0, CUB_TRACK_OK, 0, LEG_DOWN, {0, 0}, 0, 0, STEP_NONE, 0};
 
 static pose bent_right(void)
 {
@@ -1221,6 +1223,40 @@ static void test_two_hand_wave_in_step(void **state)
     assert_int_equal(events_over(CUB_JUDGE_WAVE, in_step_at, STEP_TOGETHER), 0);
 }
 
+/* One sweep of the right arm over the head: the hand from outside its
+ * shoulder across the body's midline to 190 mm left of it and back out
+ * (13 frames), 200 mm in front of the shoulder (behind = 0), or first drawn
+ * 100 mm behind it for 3 frames (1: a throw's wind-up). */
+static pose sweep_at(int f, int behind)
+{
+    static const int dx[] = {0, -75, -150, -225, -300, -375, -450, -375, -300, -225, -150, -75, 0};
+    pose p = STILL;
+    p.waving = f < 13;
+    p.wave_dx = f < 13 ? dx[f] : 0;
+    p.wave_dz = behind && f < 3 ? 100 : -200;
+    return p;
+}
+
+/* One arm swept out, across over the head and back out, in front of the
+ * body, is a wave (a single arc; one reversal); the same sweep after
+ * drawing the hand behind the shoulder is a throw's, no wave. A swing
+ * that stays on its own side is none (test_wave_needs_two_reversals). */
+static void test_one_arm_sweep_across_is_a_wave(void **state)
+{
+    (void)state;
+    rec r;
+    rec_init(&r, NULL);
+    for (int f = 0; f < 60; f++)
+        feed(&r, f, sweep_at(f, 0));
+    assert_int_equal(count(&r, CUB_JUDGE_WAVE), 1);
+    const cub_judge_event *w = first(&r, CUB_JUDGE_WAVE);
+    assert_int_equal(w->side, 1);
+    /* turned at -450 + 85 (frame 8), back outside the shoulder (hand x
+     * 260 - 75 >= 170) at frame 11 */
+    assert_int_equal(w->ev.t_us, 11LL * FRAME_US);
+    assert_int_equal(events_over(CUB_JUDGE_WAVE, sweep_at, 1), 0);
+}
+
 /* The right hand back and forth over the head for 48 frames, 150 mm
  * across: each swing 2 frames (67 ms, variant 1: a flutter no arm makes,
  * the recoil of a hit) or 4 frames (133 ms: waving 3.75 times a second). */
@@ -1446,6 +1482,7 @@ int main(void)
         cmocka_unit_test(test_leg_out_is_balanced_on_the_other_foot),
         cmocka_unit_test(test_two_hand_wave_in_step),
         cmocka_unit_test(test_wave_swings_are_not_a_flutter),
+        cmocka_unit_test(test_one_arm_sweep_across_is_a_wave),
         cmocka_unit_test(test_standing_still_is_wrong_a_lag_after_the_key),
         cmocka_unit_test(test_child_a_beat_late_is_still_right),
         cmocka_unit_test(test_lag_is_a_tunable),
