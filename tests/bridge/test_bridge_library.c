@@ -19,6 +19,7 @@
 
 #include <cmocka.h>
 
+#include "bear_coachlib.h"
 #include "cub/coachlib.h"
 
 static cub_coachlib g_cl;
@@ -27,22 +28,14 @@ static size_t g_work_size;
 
 static const char *src_dir(void)
 {
-    const char *s = getenv("CUB_SOURCE_DIR");
-    return s ? s : ".";
+    return support_src_dir();
 }
 
 static int setup(void **state)
 {
-    char assets[1024], lib[1200], buf[600];
-    snprintf(assets, sizeof assets, "%s/assets", src_dir());
-    snprintf(lib, sizeof lib, "%s/clips/bear.cubclips", assets);
     *state = NULL;
-    if (access(lib, R_OK) != 0) return 0; /* the tests skip */
-    cub_diag d = {0};
-    if (cub_coachlib_load_assets(assets, &g_cl, &d)) {
-        fprintf(stderr, "bridge: %s\n", cub_diag_str(&d, buf, sizeof buf));
-        return -1;
-    }
+    int got = support_bear_coachlib(&g_cl, "bridge");
+    if (got <= 0) return got; /* 0: the tests skip */
     /* Enough for the planner alone and for the player (its contacts too). */
     cub_bridge_player_desc pd = {.table = &g_cl.table};
     g_work_size = cub_bridge_player_mem_size(&pd);

@@ -12,10 +12,10 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
 #include <cmocka.h>
 
+#include "bear_coachlib.h"
 #include "cub/coachlib.h"
 #include "cub/groove.h"
 #include "cub/music.h"
@@ -28,24 +28,11 @@ typedef struct fixture {
 
 static fixture g;
 
-static const char *src_dir(void)
-{
-    const char *s = getenv("CUB_SOURCE_DIR");
-    return s ? s : ".";
-}
-
 static int setup(void **state)
 {
-    char assets[1024], lib[1100], buf[600];
-    snprintf(assets, sizeof assets, "%s/assets", src_dir());
-    snprintf(lib, sizeof lib, "%s/clips/bear.cubclips", assets);
     *state = NULL;
-    if (access(lib, R_OK) != 0) return 0; /* the tests skip */
-    cub_diag d = {0};
-    if (cub_coachlib_load_assets(assets, &g.cl, &d)) {
-        fprintf(stderr, "made: %s\n", cub_diag_str(&d, buf, sizeof buf));
-        return -1;
-    }
+    int got = support_bear_coachlib(&g.cl, "made");
+    if (got <= 0) return got; /* 0: the tests skip */
     if (cub_tag_table_classes(&g.cl.table, g.cl.lib.clip_count, &g.cl.tags.params, &g.freq))
         return -1;
     *state = &g;
@@ -94,7 +81,7 @@ static int frequent(uint32_t c)
 static void groove_clip(cub_clip *clip, void **mem, cub_midi_groove *midi, cub_groove_store *st)
 {
     char path[1100];
-    snprintf(path, sizeof path, "%s/assets/songs/twinkle.mid", src_dir());
+    snprintf(path, sizeof path, "%s/assets/songs/twinkle.mid", support_src_dir());
     cub_diag d = {0};
     cub_groove_pick pick;
     cub_groove_params p;
