@@ -245,14 +245,13 @@ static cub_err hand_grooves(cub_dance *d, char *err, size_t size)
 {
     const cub_groove_box *g = d->groove;
     const int first = d->cl.table.desc.clip_count;
-    cub_clip clips[CUB_SONG_MAX_SPANS];
-    const cub_fuzzy_frame *fuzzy[CUB_SONG_MAX_SPANS];
+    cub_coachlib_extra clips[CUB_SONG_MAX_SPANS];
     d->groove_count = 0;
     for (int i = 0; i < g->span_count; i++) {
         if (!danced(&g->spans[i])) continue;
         int k = d->groove_count++;
-        clips[k] = g->clips[i];
-        fuzzy[k] = g->fuzzy[i];
+        clips[k] = (cub_coachlib_extra){&g->clips[i], g->fuzzy[i], g->bridges[i],
+                                        g->bridge_count[i]};
         d->groove_span[k] = i;
         d->grooves[k] = (cub_coach_groove){
             .clip = first + k, .tag_ms = (int32_t)(g->spans[i].start_us / 1000),
@@ -267,7 +266,7 @@ static cub_err hand_grooves(cub_dance *d, char *err, size_t size)
         return CUB_ERR_FULL;
     }
     cub_diag diag = {0};
-    if (cub_coachlib_add_clips(&d->cl, clips, fuzzy, d->groove_count, &diag))
+    if (cub_coachlib_add_clips(&d->cl, clips, d->groove_count, &diag))
         return fail(err, size, &diag, "groove");
     return CUB_OK;
 }
@@ -279,8 +278,7 @@ static cub_err open_groove(cub_dance *d, char *err, size_t size)
 {
     d->groove = malloc(sizeof *d->groove);
     if (!d->groove) return CUB_ERR_NOMEM;
-    cub_err e = cub_groove_box_open(d->groove, &d->song, &d->cl.lib.skel, &d->cl.table.desc.body,
-                                    d->log, err, size);
+    cub_err e = cub_groove_box_open(d->groove, &d->song, &d->cl, d->log, err, size);
     if (!e) e = hand_grooves(d, err, size);
     if (!e && d->song.move_count == 0 && d->groove_count == 0) {
         snprintf(err, size, "song: \"%s\" has no <move> and its bear cannot groove (%s)",

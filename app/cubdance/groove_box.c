@@ -24,21 +24,27 @@ static cub_err plan_song(cub_groove_box *g, const cub_song *song, char *err, siz
     return e;
 }
 
-/* Every frame's fuzzy features, as cub_bridge_table_add_clip measures a
- * clip it is not given them for (forward kinematics, then the features). */
-static cub_err tag_clip(const cub_clip *clip, const cub_fuzzy_body *body, cub_fuzzy_frame *out)
+/* Every frame's fuzzy features (as cub_bridge_table_add_clip measures a
+ * clip) and the clip's bridge frames by the tagger's rules: frames of a
+ * pose class frequent in the library, the head still, thinned (app/tag). */
+static cub_err tag_clip(cub_groove_box *g, int i, const cub_coachlib *cl,
+                        const cub_tag_classes *freq)
 {
-    int n = clip->skel->joint_count;
-    cub_pose *pose = malloc(sizeof *pose);
-    cub_vec3 *world = malloc(sizeof *world * (size_t)n);
-    cub_quat *rot = malloc(sizeof *rot * (size_t)n);
-    cub_err e = pose && world && rot ? CUB_OK : CUB_ERR_NOMEM;
-    for (int f = 0; !e && f < clip->frame_count; f++) {
-        e = cub_motion_clip_get_frame(clip, f, pose);
-        if (!e) e = cub_motion_forward(clip->skel, pose, world, rot);
-        if (!e) e = cub_fuzzy_features(body, world, n, &out[f]);
-    }
-    free(pose), free(world), free(rot);
+    const cub_clip *clip = &g->clips[i];
+    cub_tag_frame *frames = malloc(sizeof *frames * (size_t)clip->frame_count);
+    cub_tag_clip picked = {0};
+    cub_err e = frames ? cub_tag_made_clip(clip, &cl->table.desc.body, freq, &cl->tags.params,
+                                           frames, &picked)
+                       : CUB_ERR_NOMEM;
+    g->bridges[i] = e ? NULL : malloc(sizeof *g->bridges[i] * (size_t)(picked.bridge_count + 1));
+    if (!e && !g->bridges[i]) e = CUB_ERR_NOMEM;
+    for (int f = 0; !e && f < clip->frame_count; f++)
+        g->fuzzy[i][f] = frames[f].fuzzy;
+    for (int b = 0; !e && b < picked.bridge_count; b++)
+        g->bridges[i][b] = picked.bridges[b].frame;
+    g->bridge_count[i] = e ? 0 : picked.bridge_count;
+    free(picked.bridges);
+    free(frames);
     return e;
 }
 
@@ -71,7 +77,8 @@ static int class_count(const cub_fuzzy_frame *f, int frames)
 }
 
 /* Span i's clip: frame f is the groove at the span's start + f frames. */
-static cub_err fill_span(cub_groove_box *g, int i, const cub_fuzzy_body *body)
+static cub_err fill_span(cub_groove_box *g, int i, const cub_coachlib *cl,
+                         const cub_tag_classes *freq)
 {
     const cub_song_span *sp = &g->spans[i];
     int frames = (int)((sp->end_us - sp->start_us) * 1000 / CUB_GROOVE_BOX_FRAME_NS) + 1;
@@ -82,7 +89,7 @@ static cub_err fill_span(cub_groove_box *g, int i, const cub_fuzzy_body *body)
     cub_err e = cub_motion_clip_init(&g->clips[i], g->rig.skel, frames, CUB_GROOVE_BOX_FRAME_NS,
                                      0, g->clip_mem[i], size);
     if (!e) e = cub_groove_clip_fill(&g->plan, &g->rig, sp->start_us, &g->clips[i]);
-    if (!e) e = tag_clip(&g->clips[i], body, g->fuzzy[i]);
+    if (!e) e = tag_clip(g, i, cl, freq);
     snprintf(g->names[i], sizeof g->names[i], "groove_%s_%d", cub_song_span_name(sp->kind),
              sp->bar);
     return e;
@@ -108,29 +115,39 @@ static void log_span(const cub_groove_box *g, int i, cub_log *log)
     input_range(f, frames, CUB_FUZZY_RHE, &rhe_lo, &rhe_hi);
     cub_log_event(log, 0, "groove", "span",
                   "kind=%s bar=%d bars=%d start_ms=%d end_ms=%d frames=%d classes=%d "
-                  "rh_deg=%q..%q rhe_deg=%q..%q fuzzy=%x",
+                  "rh_deg=%q..%q rhe_deg=%q..%q fuzzy=%x bridges=%d",
                   cub_song_span_name(sp->kind), sp->bar, sp->bars, (int)(sp->start_us / 1000),
                   (int)(sp->end_us / 1000), frames, class_count(f, frames), rh_lo, rh_hi, rhe_lo,
-                  rhe_hi, fuzzy_hash(f, frames));
+                  rhe_hi, fuzzy_hash(f, frames), g->bridge_count[i]);
 }
 
-cub_err cub_groove_box_open(cub_groove_box *g, const cub_song *song, const cub_skeleton *skel,
-                            const cub_fuzzy_body *body, cub_log *log, char *err, size_t size)
+/* The spans' clips, made and tagged against the library's classes. */
+static cub_err fill_spans(cub_groove_box *g, const cub_coachlib *cl, cub_log *log)
+{
+    cub_tag_classes freq = {0};
+    cub_err e = cub_tag_table_classes(&cl->table, cl->lib.clip_count, &cl->tags.params, &freq);
+    for (int i = 0; !e && i < g->span_count; i++) {
+        e = fill_span(g, i, cl, &freq);
+        if (!e) log_span(g, i, log);
+    }
+    free(freq.classes);
+    return e;
+}
+
+cub_err cub_groove_box_open(cub_groove_box *g, const cub_song *song, const cub_coachlib *cl,
+                            cub_log *log, char *err, size_t size)
 {
     memset(g, 0, sizeof *g);
     cub_err e = plan_song(g, song, err, size);
     if (e) return e;
     /* A coach of another build (the seal) has no arms to groove with: it
      * keeps to its clips. */
-    if (cub_groove_rig_bind(skel, &g->rig)) {
+    if (cub_groove_rig_bind(&cl->lib.skel, &g->rig)) {
         cub_log_event(log, 0, "groove", "none", "why=skeleton");
         return CUB_OK;
     }
     g->span_count = cub_song_groove_spans(song, g->spans, CUB_SONG_MAX_SPANS);
-    for (int i = 0; !e && i < g->span_count; i++) {
-        e = fill_span(g, i, body);
-        if (!e) log_span(g, i, log);
-    }
+    e = fill_spans(g, cl, log);
     if (e) snprintf(err, size, "groove: %s: the dance of its free bars (%s)", song->midi_path,
                     cub_err_str(e));
     return e;
@@ -139,7 +156,7 @@ cub_err cub_groove_box_open(cub_groove_box *g, const cub_song *song, const cub_s
 void cub_groove_box_close(cub_groove_box *g)
 {
     for (int i = 0; i < CUB_SONG_MAX_SPANS; i++)
-        free(g->clip_mem[i]), free(g->fuzzy[i]);
+        free(g->clip_mem[i]), free(g->fuzzy[i]), free(g->bridges[i]);
     cub_groove_store_free(&g->mem);
     cub_midi_groove_free(&g->midi);
     memset(g, 0, sizeof *g);

@@ -16,14 +16,17 @@ static cub_err tween_clip(const cub_coachlib *cl, int frames, unsigned char **me
     return e;
 }
 
-/* Clips appended to the table: every frame a bridge frame (they have no
- * tags of their own); fuzzy[i] NULL: measured by the table. */
+/* Clips appended to the table. */
 typedef struct extra_clips {
-    const cub_clip *clips;
-    const cub_fuzzy_frame *const *fuzzy;
+    const cub_coachlib_extra *items;
     int count;
     int tween_pass; /* > 0: the first is the tween of that pass */
 } extra_clips;
+
+static int extra_bridges(const cub_coachlib_extra *x)
+{
+    return x->bridges ? x->bridge_count : x->clip->frame_count;
+}
 
 static cub_bridge_table_desc grown_desc(const cub_bridge_table *old, const extra_clips *x,
                                         int *most)
@@ -32,11 +35,21 @@ static cub_bridge_table_desc grown_desc(const cub_bridge_table *old, const extra
     *most = old->desc.bridge_total;
     d.clip_count += x->count;
     for (int i = 0; i < x->count; i++) {
-        d.frame_total += x->clips[i].frame_count;
-        d.bridge_total += x->clips[i].frame_count;
-        if (x->clips[i].frame_count > *most) *most = x->clips[i].frame_count;
+        const cub_clip *c = x->items[i].clip;
+        d.frame_total += c->frame_count;
+        d.bridge_total += extra_bridges(&x->items[i]);
+        if (c->frame_count > *most) *most = c->frame_count;
     }
     return d;
+}
+
+/* One appended clip: its bridge frames as given, else every frame. */
+static cub_err add_extra(cub_bridge_table *t, const cub_coachlib_extra *x, int *all)
+{
+    int n = extra_bridges(x);
+    for (int f = 0; f < n; f++)
+        all[f] = x->bridges ? x->bridges[f] : f;
+    return cub_bridge_table_add_clip(t, x->clip, all, n, x->fuzzy);
 }
 
 static cub_err add_old_clips(const cub_bridge_table *old, cub_bridge_table *t, int *all)
@@ -64,12 +77,8 @@ static cub_err rebuild(const cub_bridge_table *old, const extra_clips *x, cub_br
     int *all = malloc(sizeof(int) * (size_t)(most + 1)); /* one clip's bridge frames at a time */
     cub_err e = mem && all ? cub_bridge_table_init(t, &d, mem, size) : CUB_ERR_NOMEM;
     if (!e) e = add_old_clips(old, t, all);
-    for (int i = 0; i < x->count && !e; i++) {
-        for (int f = 0; f < x->clips[i].frame_count; f++)
-            all[f] = f;
-        e = cub_bridge_table_add_clip(t, &x->clips[i], all, x->clips[i].frame_count,
-                                      x->fuzzy ? x->fuzzy[i] : NULL);
-    }
+    for (int i = 0; i < x->count && !e; i++)
+        e = add_extra(t, &x->items[i], all);
     for (int a = 0; a < n && !e; a++)
         for (int b = 0; b < n && !e; b++) {
             const cub_bridge_pair *p = &old->pairs[a * n + b];
@@ -95,12 +104,24 @@ static void take_table(cub_coachlib *cl, const cub_bridge_table *t, void *mem)
     cl->table = *t;
 }
 
-cub_err cub_coachlib_add_clips(cub_coachlib *cl, const cub_clip *clips,
-                               const cub_fuzzy_frame *const *fuzzy, int count, cub_diag *diag)
+static int extras_ok(const cub_coachlib_extra *clips, int count)
+{
+    for (int i = 0; i < count; i++) {
+        const cub_coachlib_extra *x = &clips[i];
+        if (!x->clip || x->clip->frame_count < 1 || x->bridge_count < 0 ||
+            (x->bridges && x->bridge_count > x->clip->frame_count))
+            return 0;
+    }
+    return 1;
+}
+
+cub_err cub_coachlib_add_clips(cub_coachlib *cl, const cub_coachlib_extra *clips, int count,
+                               cub_diag *diag)
 {
     if (!cl || !cl->table.finished || count < 0 || (count > 0 && !clips)) return CUB_ERR_ARG;
     if (count == 0) return CUB_OK;
-    extra_clips x = {.clips = clips, .fuzzy = fuzzy, .count = count};
+    if (!extras_ok(clips, count)) return CUB_ERR_ARG;
+    extra_clips x = {.items = clips, .count = count};
     cub_bridge_table t;
     void *mem = NULL;
     cub_err e = rebuild(&cl->table, &x, &t, &mem);
@@ -132,7 +153,8 @@ cub_err cub_coachlib_add_tween(cub_coachlib *cl, const cub_bridge_tween_config *
     void *table_mem = NULL;
     e = tween_clip(cl, pass, &mem, &cl->tween_clip);
     if (!e) e = tween_clip(cl, 2 * pass, &mem, &unrolled);
-    extra_clips x = {.clips = &unrolled, .count = 1, .tween_pass = pass};
+    cub_coachlib_extra one = {.clip = &unrolled}; /* every frame a bridge frame */
+    extra_clips x = {.items = &one, .count = 1, .tween_pass = pass};
     if (!e) e = rebuild(&cl->table, &x, &t, &table_mem);
     if (e) {
         free(cl->tween_mem);

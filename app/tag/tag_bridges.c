@@ -26,24 +26,12 @@ static int cmp_u32(const void *pa, const void *pb)
     return (a > b) - (a < b);
 }
 
-/* The frequent classes, ascending (step 1). */
-static cub_err frequent_classes(const cub_library *lib, const cub_tag_measured *m,
-                                const cub_tag_params *p, uint32_t **out, int *out_count)
+/* The frequent classes, ascending (step 1), of the frames in use[0..total). */
+static cub_err frequent_of(class_use *use, size_t total, const cub_tag_params *p, uint32_t **out,
+                           int *out_count)
 {
-    size_t total = 0;
-    for (int c = 0; c < lib->clip_count; c++)
-        total += (size_t)lib->clips[c].clip.frame_count;
-    class_use *use = malloc(sizeof *use * (total ? total : 1));
     uint32_t *freq = malloc(sizeof *freq * (total ? total : 1));
-    if (!use || !freq) {
-        free(use);
-        free(freq);
-        return CUB_ERR_NOMEM;
-    }
-    size_t k = 0;
-    for (int c = 0; c < lib->clip_count; c++)
-        for (int f = 0; f < lib->clips[c].clip.frame_count; f++)
-            use[k++] = (class_use){m->frames[c][f].crisp_class, c};
+    if (!freq) return CUB_ERR_NOMEM;
     qsort(use, total, sizeof *use, cmp_use);
     int count = 0;
     for (size_t i = 0; i < total;) {
@@ -56,10 +44,40 @@ static cub_err frequent_classes(const cub_library *lib, const cub_tag_measured *
             freq[count++] = use[i].crisp_class;
         i = j;
     }
-    free(use);
     *out = freq;
     *out_count = count;
     return CUB_OK;
+}
+
+cub_err cub_tag_frequent_classes(const uint32_t *classes, const int *clips, size_t total,
+                                 const cub_tag_params *p, uint32_t **out, int *out_count)
+{
+    if (!classes || !clips || !p || !out || !out_count) return CUB_ERR_ARG;
+    class_use *use = malloc(sizeof *use * (total ? total : 1));
+    if (!use) return CUB_ERR_NOMEM;
+    for (size_t i = 0; i < total; i++)
+        use[i] = (class_use){classes[i], clips[i]};
+    cub_err e = frequent_of(use, total, p, out, out_count);
+    free(use);
+    return e;
+}
+
+/* The library's frequent classes (step 1). */
+static cub_err frequent_classes(const cub_library *lib, const cub_tag_measured *m,
+                                const cub_tag_params *p, uint32_t **out, int *out_count)
+{
+    size_t total = 0;
+    for (int c = 0; c < lib->clip_count; c++)
+        total += (size_t)lib->clips[c].clip.frame_count;
+    class_use *use = malloc(sizeof *use * (total ? total : 1));
+    if (!use) return CUB_ERR_NOMEM;
+    size_t k = 0;
+    for (int c = 0; c < lib->clip_count; c++)
+        for (int f = 0; f < lib->clips[c].clip.frame_count; f++)
+            use[k++] = (class_use){m->frames[c][f].crisp_class, c};
+    cub_err e = frequent_of(use, total, p, out, out_count);
+    free(use);
+    return e;
 }
 
 static int is_candidate(const cub_tag_frame *f, const uint32_t *freq, int freq_count,
@@ -109,9 +127,12 @@ static void thin_run(const cub_tag_frame *frames, int start, int end, int w, int
     }
 }
 
-static cub_err pick_clip(const cub_clip *clip, const cub_tag_frame *frames, const uint32_t *freq,
-                         int freq_count, const cub_tag_params *p, cub_tag_clip *out)
+cub_err cub_tag_pick_clip(const cub_clip *clip, const cub_tag_frame *frames, const uint32_t *freq,
+                          int freq_count, const cub_tag_params *p, cub_tag_clip *out)
 {
+    if (!clip || !frames || (freq_count > 0 && !freq) || !p || !out || clip->frame_count < 1 ||
+        clip->frame_ns == 0)
+        return CUB_ERR_ARG;
     int n = clip->frame_count, w = window_frames(clip, p->spacing_ms);
     int *order = malloc(sizeof *order * (size_t)n);
     unsigned char *taken = calloc((size_t)n, 1);
@@ -144,7 +165,7 @@ cub_err cub_tag_pick_bridges(const cub_library *lib, const cub_tag_measured *m,
     int freq_count = 0;
     cub_err e = frequent_classes(lib, m, p, &freq, &freq_count);
     for (int c = 0; !e && c < lib->clip_count; c++)
-        e = pick_clip(&lib->clips[c].clip, m->frames[c], freq, freq_count, p, &tags->clips[c]);
+        e = cub_tag_pick_clip(&lib->clips[c].clip, m->frames[c], freq, freq_count, p, &tags->clips[c]);
     free(freq);
     return e;
 }

@@ -515,7 +515,9 @@ static int query_ok(const cub_bridge_table *t, const cub_bridge_query *q)
            q->pos_q16 >= 0 && q->pos_q16 < ((int64_t)1 << 46) && q->window_frames >= 0 &&
            q->wait_cost_mm >= 0 && q->start_frames >= 0 && q->reach_frames >= 0 &&
            (q->strict == 0 || q->strict == 1) && (q->via_tween == 0 || q->via_tween == 1) && (q->no_routes == 0 || q->no_routes == 1) &&
-           (q->direct_only == 0 || (q->direct_only == 1 && q->reach_frames > 0));
+           (q->direct_only == 0 || (q->direct_only == 1 && q->reach_frames > 0)) &&
+           (q->on_clock == 0 || (q->on_clock == 1 && q->direct_only == 1)) &&
+           q->clock_q16 > -((int64_t)1 << 46) && q->clock_q16 < ((int64_t)1 << 46);
 }
 
 /* The first frame still to come; a clip that does not loop holds its
@@ -585,14 +587,55 @@ static int route_search(const cub_bridge_table *t, const cub_bridge_query *q, in
     return 0;
 }
 
+/* on_clock: the wanted clip's frame when the switch leaves at unwrapped
+ * position `at` (the clock runs on while the current clip plays to it). */
+static int clock_frame(const cub_bridge_table *t, const cub_bridge_query *q, int64_t at)
+{
+    int64_t ahead = (at << 16) - q->pos_q16;
+    int64_t f = (q->clock_q16 + (ahead > 0 ? ahead : 0) + 0x8000) >> 16;
+    int nt = frames_of(t, q->to_clip);
+    return f < 0 ? 0 : f >= nt ? nt - 1 : (int)f;
+}
+
+/* on_clock: of the next reach_frames frames, the soonest whose switch into
+ * the clock's frame is within the threshold, else the one of smallest d
+ * (the sooner on a tie). */
+static int clock_search(const cub_bridge_table *t, const cub_bridge_query *q, int64_t g0,
+                        hit *out)
+{
+    int found = 0;
+    for (int k = 0; k < q->reach_frames; k++) {
+        int64_t at;
+        int gf;
+        const cub_fuzzy_frame *now = leaving(t, q, g0, k, &gf, &at);
+        if (gf < 0) break;
+        if (!now) continue;
+        int b = clock_frame(t, q, at);
+        cub_q16 d = cub_fuzzy_distance(now, features(t, q->to_clip, b), &t->desc.fuzzy);
+        if (d < t->desc.fuzzy.threshold) {
+            *out = (hit){k, b, at, 0, d};
+            return 1;
+        }
+        if (!found || d < out->d) *out = (hit){k, b, at, 0, d};
+        found = 1;
+    }
+    return found;
+}
+
 /* direct_only: a switch within the threshold into a start frame, when it
- * comes within reach_frames; else the reach (the closest pair). */
+ * comes within reach_frames; else the reach (the closest pair). On a
+ * clock: into the clock's frame (clock_search). */
 static cub_err plan_direct(const cub_bridge_table *t, const cub_bridge_query *q,
                            cub_bridge_plan *out)
 {
     int nf = frames_of(t, q->from_clip);
     int64_t g0 = first_upcoming(t, q);
     hit h;
+    if (q->on_clock) {
+        if (!clock_search(t, q, g0, &h)) return CUB_ERR_RANGE;
+        write_direct(q, nf, &h, q->reach_frames, out);
+        return CUB_OK;
+    }
     if (q->start_frames > 0 && start_search(t, q, g0, q->reach_frames, &h)) {
         write_direct(q, nf, &h, q->reach_frames, out);
         return CUB_OK;

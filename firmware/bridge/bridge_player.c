@@ -99,7 +99,7 @@ cub_err cub_bridge_player_request(cub_bridge_player *p, int clip, cub_q16 speed_
     cub_bridge_query q = {p->clip, p->pos_q16, p->loop, clip, p->desc.window_frames,
                           p->desc.wait_cost_mm, p->desc.start_frames, p->desc.reach_frames,
                           p->desc.strict, p->desc.via_tween, p->desc.no_routes,
-                          p->desc.direct_only};
+                          p->desc.direct_only, p->desc.on_clock, p->desc.clock_q16};
     cub_bridge_plan plan;
     cub_err e = cub_bridge_plan_switch(p->desc.table, &q, &plan, p->work, p->work_size);
     if (e) return e;
@@ -531,6 +531,16 @@ cub_err cub_bridge_player_set_direct_only(cub_bridge_player *p, int direct_only)
 {
     if (!p || (direct_only != 0 && direct_only != 1)) return CUB_ERR_ARG;
     p->desc.direct_only = direct_only;
+    return CUB_OK;
+}
+
+cub_err cub_bridge_player_set_clock(cub_bridge_player *p, int on_clock, int64_t clock_q16)
+{
+    const int64_t lim = (int64_t)1 << 46;
+    if (!p || (on_clock != 0 && on_clock != 1) || clock_q16 <= -lim || clock_q16 >= lim)
+        return CUB_ERR_ARG;
+    p->desc.on_clock = on_clock;
+    p->desc.clock_q16 = clock_q16;
     return CUB_OK;
 }
 

@@ -56,7 +56,7 @@ static void carry_out(cub_director *d, int64_t t_us, int32_t music_ms)
     for (int i = 0; i < d->coach.action_count; i++) {
         const cub_coach_action *a = &d->coach.actions[i];
         switch (a->kind) {
-        case CUB_COACH_ACT_CLIP: director_request(d, a, t_us); break;
+        case CUB_COACH_ACT_CLIP: director_request(d, a, t_us, music_ms); break;
         case CUB_COACH_ACT_SPEED: cub_bridge_player_set_speed(&d->player, a->speed_q16); break;
         case CUB_COACH_ACT_MUSIC_START: music_start(d, t_us); break;
         case CUB_COACH_ACT_MUSIC_STOP: music_stop(d); break;

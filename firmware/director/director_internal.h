@@ -10,7 +10,7 @@
 const char *director_clip_name(const cub_director *d, int clip);
 /* Carry out one ACT_CLIP of the coach at t_us: the judge's window, the
  * entry policy, the plan (or a cut). */
-void director_request(cub_director *d, const cub_coach_action *a, int64_t t_us);
+void director_request(cub_director *d, const cub_coach_action *a, int64_t t_us, int32_t music_ms);
 /* Plan every move's lead_ms and rep_lead_ms (from the last frame of the
  * move before, of itself); one log line each. */
 void director_plan_leads(cub_director *d);

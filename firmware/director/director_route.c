@@ -170,11 +170,46 @@ static bool plan_routed(const cub_bridge_plan *plan)
     return plan->step_count > 0 && plan->step[0].via == CUB_BRIDGE_ROUTE;
 }
 
-static bool groove_clip(const cub_director *d, int clip)
+static const cub_coach_groove *groove_of(const cub_director *d, int clip)
 {
     for (int32_t g = 0; g < d->desc.coach.groove_count; g++)
-        if (d->desc.coach.grooves[g].clip == clip) return true;
-    return false;
+        if (d->desc.coach.grooves[g].clip == clip) return &d->desc.coach.grooves[g];
+    return NULL;
+}
+
+static bool groove_clip(const cub_director *d, int clip)
+{
+    return groove_of(d, clip) != NULL;
+}
+
+/* A groove's frame 0 is its span's start on the music clock: entered at
+ * the frame the music has reached when the switch comes (the planner adds
+ * the wait), so it plays on the beat, not as late as the wait. Without
+ * music (none plays): at its start frames, as before. */
+static void set_clock(cub_director *d, const cub_coach_action *a, int32_t music_ms)
+{
+    const cub_coach_groove *g = a->reason == CUB_COACH_WHY_GROOVE ? groove_of(d, a->clip) : NULL;
+    if (!g || music_ms == CUB_COACH_NO_MUSIC) {
+        cub_bridge_player_set_clock(&d->player, 0, 0);
+        return;
+    }
+    const int64_t frame_ns = clip_of(d, a->clip)->frame_ns;
+    const int64_t into_ns = (int64_t)(music_ms - g->tag_ms) * 1000000;
+    cub_bridge_player_set_clock(&d->player, 1, into_ns * CUB_Q16_ONE / frame_ns);
+}
+
+/* The log's word on a groove entered: how far the frame it shows now (the
+ * switch's overshoot played on) trails the music now (ms; negative: ahead). */
+static void log_groove_entry(const cub_director *d, int64_t t_us, int32_t music_ms,
+                             const cub_bridge_step *s)
+{
+    const cub_coach_groove *g = groove_of(d, s->to_clip);
+    if (!g || music_ms == CUB_COACH_NO_MUSIC || d->player.clip != s->to_clip) return;
+    const int64_t shown_ms =
+        (d->player.pos_q16 * (int64_t)clip_of(d, s->to_clip)->frame_ns / 1000000) >> 16;
+    cub_log_event(dlog(d), t_us, "groove", "enter", "clip=%s frame=%d music_ms=%d late_ms=%d",
+                  director_clip_name(d, s->to_clip), s->to_frame, music_ms,
+                  (int)(music_ms - g->tag_ms - shown_ms));
 }
 
 /* A groove clip (a span no move teaches) has no tagged links to or from
@@ -189,12 +224,15 @@ static int reach_frames(const cub_director *d, const cub_coach_action *a)
     return groove_clip(d, a->clip) || groove_clip(d, d->player.clip) ? d->desc.react_frames : 0;
 }
 
-void director_request(cub_director *d, const cub_coach_action *a, int64_t t_us)
+void director_request(cub_director *d, const cub_coach_action *a, int64_t t_us, int32_t music_ms)
 {
     cub_bridge_player_set_start_frames(&d->player, start_frames(d, a));
     const int reach = reach_frames(d, a);
     cub_bridge_player_set_reach_frames(&d->player, reach);
     cub_bridge_player_set_direct_only(&d->player, reach > 0);
+    /* The coach starts the music with the intro's request: its clock is at 0. */
+    const int32_t clock_ms = music_ms == CUB_COACH_NO_MUSIC && d->music_on ? 0 : music_ms;
+    set_clock(d, a, reach > 0 ? clock_ms : CUB_COACH_NO_MUSIC);
     d->played_clip = d->requested_clip = -1;
     cub_bridge_plan plan;
     cub_bridge_player_set_no_routes(&d->player, !routes_allowed(d, a));
@@ -202,6 +240,7 @@ void director_request(cub_director *d, const cub_coach_action *a, int64_t t_us)
     cub_bridge_player_set_no_routes(&d->player, 0); /* the leads' previews take them */
     cub_bridge_player_set_reach_frames(&d->player, 0);
     cub_bridge_player_set_direct_only(&d->player, 0);
+    cub_bridge_player_set_clock(&d->player, 0, 0);
     judge_clip(d, a, t_us, err ? NULL : &plan);
     if (!err) {
         cub_log_event(dlog(d), t_us, "bridge", "plan", "to=%s steps=%d wait_frames=%d via=%s",
@@ -381,6 +420,7 @@ static void on_switch(cub_director *d, cub_loop *loop, int64_t t_us, int64_t now
                   s->via == CUB_BRIDGE_TWEEN ? "tween"
                   : s->via == CUB_BRIDGE_ROUTE ? "route"
                                                : "direct");
+    log_groove_entry(d, t_us, music_ms, s);
     post_music_tag(d, loop, now_us, music_ms, s);
 }
 

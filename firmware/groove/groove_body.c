@@ -46,12 +46,13 @@ static cub_q16 swing_curve(cub_q16 u)
     return ease_in_out((cub_q16)(CUB_Q16_ONE - (s * s >> 16)));
 }
 
-cub_err cub_groove_turns(const cub_groove_note *notes, int n, int64_t end_us, cub_q16 amount_deg,
-                         cub_groove_turn *out, int *count)
+/* The melody's turns after the count-in's (k of them in out already, the
+ * last ending on the first note): from where it left the body. */
+static int melody_turns(const cub_groove_note *notes, int n, int64_t end_us, cub_q16 amount_deg,
+                        cub_groove_turn *out, int k)
 {
-    if (!notes || !out || !count || n < 1) return CUB_ERR_ARG;
-    int k = 0, direct = 1;
-    cub_q16 current = 0;
+    cub_q16 current = k ? out[k - 1].to_deg : 0;
+    int direct = current > 0 ? -1 : 1;
     int64_t since = notes[0].start_us; /* the seed's accumulate, as a time */
     for (int i = 0; i < n; i++) {
         if (!notes[i].is_beat || notes[i].length_beats < CUB_Q16_ONE) continue;
@@ -60,7 +61,51 @@ cub_err cub_groove_turns(const cub_groove_note *notes, int n, int64_t end_us, cu
         out[k++] = (cub_groove_turn){since, notes[i].start_us, end, current, to};
         current = to, since = end, direct = -direct;
     }
-    *count = k;
+    return k;
+}
+
+#define COUNT_IN_BEATS 64 /* ours: a longer intro is not a count-in */
+
+/* The count-in (ours, issue 23): before the melody's first note nothing
+ * of the seed moves (Twinkle's two bars of drums: a still bear). The
+ * meter's beats there sway the body as fig. 10 swings it on a beat note:
+ * to the full amount on a bar's first beat, half on the others,
+ * alternating sides, each swing leaving from rest on its beat (the speed's
+ * minimum on the beat) and arriving by the next. The last ends on the
+ * first note. At most cap turns and COUNT_IN_BEATS. */
+static int count_in(const cub_groove_song *song, int64_t first_us, cub_q16 amount_deg,
+                    cub_groove_turn *out, int cap)
+{
+    int cursor = 0, k = 0, direct = 1;
+    int32_t tick = 0;
+    cub_q16 current = 0;
+    while (k < cap && k < COUNT_IN_BEATS && cub_groove_tick_us(song, tick) < first_us) {
+        cub_groove_meter m = groove_meter_at(song, tick, &cursor);
+        int32_t beat = groove_beat_ticks(song, m);
+        int64_t at = cub_groove_tick_us(song, tick), next = cub_groove_tick_us(song, tick + beat);
+        bool downbeat = ((tick - m.tick) / beat) % m.numerator == 0;
+        cub_q16 to = (cub_q16)((downbeat ? amount_deg : amount_deg / 2) * direct);
+        out[k++] = (cub_groove_turn){at, at, next < first_us ? next : first_us, current, to};
+        current = to, direct = -direct, tick += beat;
+    }
+    return k;
+}
+
+cub_err groove_song_turns(const cub_groove_song *song, const cub_groove_note *notes, int n,
+                          int64_t end_us, cub_q16 amount_deg, cub_groove_turn *out, int cap,
+                          int *count)
+{
+    if (!song || !notes || !out || !count || n < 1 || cap < n) return CUB_ERR_ARG;
+    int k = count_in(song, notes[0].start_us, amount_deg, out, cap - n);
+    *count = melody_turns(notes, n, end_us, amount_deg, out, k);
+    return CUB_OK;
+}
+
+cub_err cub_groove_turns(const cub_groove_note *notes, int n, int64_t end_us, cub_q16 amount_deg,
+                         cub_groove_turn *out, int *count)
+{
+    if (!notes || !out || !count || n < 1) return CUB_ERR_ARG;
+    *count = melody_turns(notes, n, end_us, amount_deg, out, 0);
     return CUB_OK;
 }
 

@@ -20,8 +20,10 @@ cub_err cub_groove_plan_build(const cub_groove_song *song, const cub_groove_pick
     *out = (cub_groove_plan){
         *p,         mem->notes, n, mem->keys, mem->handles,
         mem->waist, mem->head,  0, 0,         cub_groove_tick_us(song, song->end_tick)};
-    cub_groove_turns(mem->notes, n, out->end_us, p->swing_deg, mem->waist, &out->waist_count);
-    cub_groove_turns(mem->notes, n, out->end_us, p->nod_deg, mem->head, &out->head_count);
+    groove_song_turns(song, mem->notes, n, out->end_us, p->swing_deg, mem->waist, mem->cap,
+                      &out->waist_count);
+    groove_song_turns(song, mem->notes, n, out->end_us, p->nod_deg, mem->head, mem->cap,
+                      &out->head_count);
     if (seg_count) *seg_count = k;
     return CUB_OK;
 }

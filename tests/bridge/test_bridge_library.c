@@ -19,6 +19,7 @@
 
 #include <cmocka.h>
 
+#include "bear_coachlib.h"
 #include "cub/coachlib.h"
 
 static cub_coachlib g_cl;
@@ -27,22 +28,14 @@ static size_t g_work_size;
 
 static const char *src_dir(void)
 {
-    const char *s = getenv("CUB_SOURCE_DIR");
-    return s ? s : ".";
+    return support_src_dir();
 }
 
 static int setup(void **state)
 {
-    char assets[1024], lib[1200], buf[600];
-    snprintf(assets, sizeof assets, "%s/assets", src_dir());
-    snprintf(lib, sizeof lib, "%s/clips/bear.cubclips", assets);
     *state = NULL;
-    if (access(lib, R_OK) != 0) return 0; /* the tests skip */
-    cub_diag d = {0};
-    if (cub_coachlib_load_assets(assets, &g_cl, &d)) {
-        fprintf(stderr, "bridge: %s\n", cub_diag_str(&d, buf, sizeof buf));
-        return -1;
-    }
+    int got = support_bear_coachlib(&g_cl, "bridge");
+    if (got <= 0) return got; /* 0: the tests skip */
     /* Enough for the planner alone and for the player (its contacts too). */
     cub_bridge_player_desc pd = {.table = &g_cl.table};
     g_work_size = cub_bridge_player_mem_size(&pd);
@@ -434,7 +427,8 @@ static void test_appended_clip_is_entered_and_left(void **state)
     assert_int_equal(cub_coachlib_load_assets(assets, &cl, &d), CUB_OK);
     const int n = cl.lib.clip_count, links = cl.table.desc.link_total;
     const cub_clip extra = cl.lib.clips[0].clip;
-    assert_int_equal(cub_coachlib_add_clips(&cl, &extra, NULL, 1, &d), CUB_OK);
+    const cub_coachlib_extra x = {.clip = &extra}; /* every frame a bridge frame */
+    assert_int_equal(cub_coachlib_add_clips(&cl, &x, 1, &d), CUB_OK);
     const cub_bridge_table *t = &cl.table;
     assert_true(t->finished);
     assert_int_equal(t->desc.clip_count, n + 1);
@@ -453,7 +447,7 @@ static void test_appended_clip_is_entered_and_left(void **state)
     q = (cub_bridge_query){.from_clip = n, .to_clip = 1, .start_frames = 4, .reach_frames = 5};
     assert_int_equal(cub_bridge_plan_switch(t, &q, &plan, work, ws), CUB_OK);
     free(work);
-    assert_int_equal(cub_coachlib_add_clips(&cl, NULL, NULL, 1, &d), CUB_ERR_ARG);
+    assert_int_equal(cub_coachlib_add_clips(&cl, NULL, 1, &d), CUB_ERR_ARG);
     cub_coachlib_free(&cl);
 }
 

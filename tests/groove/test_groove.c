@@ -304,6 +304,52 @@ static void test_parameter_sets_are_table_1(void **state)
         assert_int_equal(a.w[k], 1);
 }
 
+/* The count-in (issue 23): before the melody's first note (here a bar of
+ * 4/4 at 120 bpm) the meter's beats sway the waist: each swing leaves on
+ * its beat and arrives by the next, a bar's first beat by the full swing,
+ * the others by half, alternating sides; the melody's turns follow from
+ * where the last one left the body. */
+static void test_count_in_sways_on_the_beats(void **state)
+{
+    (void)state;
+    static const cub_groove_midi_note mel[] = {
+        {1920, 2400, 1, 0, 72, 127}, {2400, 2880, 1, 0, 74, 127}, {2880, 3840, 1, 0, 76, 127}};
+    cub_groove_song s = {.division = 480, .tracks = 2, .end_tick = 3840, .notes = mel,
+                         .note_count = 3};
+    enum { CAP = 16 };
+    static cub_groove_note notes[CAP];
+    static cub_groove_segment segs[CAP];
+    static cub_groove_key keys[CAP];
+    static cub_groove_handles handles[CAP];
+    static cub_groove_turn waist[CAP], head[CAP];
+    cub_groove_store mem = {CAP, notes, segs, keys, handles, waist, head, &work};
+    cub_groove_pick pick;
+    cub_groove_params p;
+    cub_groove_plan plan;
+    cub_groove_params_set('a', &p);
+    assert_int_equal(cub_groove_pick_tracks(&s, -1, -1, &pick), CUB_OK);
+    assert_int_equal(cub_groove_plan_build(&s, &pick, &p, 0, &mem, &plan, NULL, NULL), CUB_OK);
+    assert_true(plan.waist_count >= 5); /* 4 count-in beats, then the melody's */
+    for (int b = 0; b < 4; b++) {
+        const cub_groove_turn *t = &plan.waist[b];
+        assert_int_equal(t->start_us, b * 500000);
+        assert_int_equal(t->turn_us, t->start_us);
+        assert_int_equal(t->end_us, (b + 1) * 500000);
+        cub_q16 amount = b == 0 ? p.swing_deg : p.swing_deg / 2;
+        assert_int_equal(t->to_deg, b % 2 ? -amount : amount);
+        assert_int_equal(t->from_deg, b ? plan.waist[b - 1].to_deg : 0);
+        /* at rest on the beat, on its way by the middle */
+        assert_int_equal(cub_groove_turn_at(plan.waist, plan.waist_count, t->start_us),
+                         t->from_deg);
+        assert_true(cub_groove_turn_at(plan.waist, plan.waist_count, t->start_us + 250000) !=
+                    t->from_deg);
+    }
+    assert_int_equal(plan.waist[4].start_us, 2000000); /* the first note */
+    assert_int_equal(plan.waist[4].from_deg, plan.waist[3].to_deg);
+    assert_true(plan.waist[4].to_deg > 0); /* the other side */
+    assert_int_equal(plan.head[0].to_deg, p.nod_deg);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -317,6 +363,7 @@ int main(void)
         cmocka_unit_test(test_dp_windows_bound_long_melodies),
         cmocka_unit_test(test_keys_advance_flip_and_follow_pitch),
         cmocka_unit_test(test_parameter_sets_are_table_1),
+        cmocka_unit_test(test_count_in_sways_on_the_beats),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

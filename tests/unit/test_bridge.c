@@ -402,6 +402,31 @@ static void test_direct_only_never_tweens(void **s)
                      CUB_ERR_ARG);
 }
 
+/* A clip on a clock (a groove on the music's): the switch after waiting
+ * until upcoming frame k enters it at the clock's frame then, whatever
+ * frame is closest by d; half a frame into the clock rounds up. */
+static void test_on_clock_enters_at_the_clock_frame(void **s)
+{
+    (void)s;
+    build_tween_table(1);
+    cub_bridge_query q = {.from_clip = 0, .pos_q16 = ((int64_t)7 << 16) + 0x4000, .from_loops = 1,
+                          .to_clip = 1, .reach_frames = 5, .direct_only = 1, .on_clock = 1,
+                          .clock_q16 = ((int64_t)3 << 16) + 0x8000};
+    cub_bridge_plan plan;
+    assert_int_equal(cub_bridge_plan_switch(&S.table, &q, &plan, S.work, sizeof S.work), CUB_OK);
+    assert_int_equal(plan.step_count, 1);
+    assert_true(plan.wait_frames < 5);
+    /* leaving at upcoming frame 8 + wait: the clock has run 0.75 + wait frames */
+    const int64_t ahead_q16 = ((int64_t)(8 + plan.wait_frames) << 16) - q.pos_q16;
+    assert_int_equal(plan.step[0].to_frame, (int)((q.clock_q16 + ahead_q16 + 0x8000) >> 16));
+    q.clock_q16 = -((int64_t)40 << 16); /* before the clip's start: its frame 0 */
+    assert_int_equal(cub_bridge_plan_switch(&S.table, &q, &plan, S.work, sizeof S.work), CUB_OK);
+    assert_int_equal(plan.step[0].to_frame, 0);
+    q.direct_only = 0; /* a clock needs the one direct switch */
+    assert_int_equal(cub_bridge_plan_switch(&S.table, &q, &plan, S.work, sizeof S.work),
+                     CUB_ERR_ARG);
+}
+
 /* ---- the player -------------------------------------------------------- */
 
 static void test_speed_bounds(void **s)
@@ -624,6 +649,7 @@ int main(void)
         cmocka_unit_test(test_no_link_is_a_clear_error),
         cmocka_unit_test(test_reach_enters_within_its_frames),
         cmocka_unit_test(test_direct_only_never_tweens),
+        cmocka_unit_test(test_on_clock_enters_at_the_clock_frame),
         cmocka_unit_test(test_speed_bounds),
         cmocka_unit_test(test_player_switches_exactly_at_the_planned_frame),
         cmocka_unit_test(test_pose_is_continuous_at_the_switch),

@@ -416,7 +416,7 @@ static int32_t lead_at_the_request(cub_bridge_plan *plan)
     assert_int_equal(cub_bridge_player_start(&dir.player, C_CLAP, FRAMES - 1, 0, 0), CUB_OK);
     const cub_coach_action a = {.kind = CUB_COACH_ACT_CLIP, .reason = CUB_COACH_WHY_MOVE,
                                 .clip = C_SWAY, .move = 1, .rep = 0};
-    director_request(&dir, &a, 0);
+    director_request(&dir, &a, 0, CUB_COACH_NO_MUSIC);
     *plan = dir.player.plan;
     int to = plan->step[plan->step_count - 1].to_frame;
     return (int32_t)((int64_t)plan->total_frames * FRAME_NS / 1000000 -

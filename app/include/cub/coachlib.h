@@ -53,15 +53,21 @@ cub_err cub_coachlib_load_assets(const char *assets_dir, cub_coachlib *out, cub_
  * it. Once per coachlib; on failure the table is as it was. */
 cub_err cub_coachlib_add_tween(cub_coachlib *cl, const cub_bridge_tween_config *cfg,
                                cub_diag *diag);
-/* Rebuild the table with count clips (on lib.skel, their frames in the
- * caller's memory, which must outlive cl) appended after every clip it
- * holds, every frame of each a bridge frame, no links to or from them
- * (the planner reaches them by cub_bridge_query.start_frames and
- * reach_frames): the song's groove clips (issue 23). fuzzy (or NULL):
- * each clip's per-frame features, NULL ones measured. On failure the
- * table is as it was. */
-cub_err cub_coachlib_add_clips(cub_coachlib *cl, const cub_clip *clips,
-                               const cub_fuzzy_frame *const *fuzzy, int count, cub_diag *diag);
+/* A clip appended to the table by cub_coachlib_add_clips. */
+typedef struct cub_coachlib_extra {
+    const cub_clip *clip;         /* on lib.skel; its frames must outlive cl */
+    const cub_fuzzy_frame *fuzzy; /* per frame, or NULL: measured by the table */
+    const int *bridges;           /* its bridge frames, ascending (the tagger's
+                                     rules: cub_tag_pick_clip), or NULL: every frame */
+    int bridge_count;
+} cub_coachlib_extra;
+
+/* Rebuild the table with count clips appended after every clip it holds,
+ * no links to or from them (the planner reaches them by
+ * cub_bridge_query.start_frames and reach_frames): the song's groove clips
+ * (issue 23). On failure the table is as it was. */
+cub_err cub_coachlib_add_clips(cub_coachlib *cl, const cub_coachlib_extra *clips, int count,
+                               cub_diag *diag);
 /* Index of a clip by name, or -1. */
 int cub_coachlib_find(const cub_coachlib *cl, const char *name);
 /* Free what it owns; the struct is zeroed. NULL is fine. */

@@ -21,6 +21,7 @@
 
 #include <stdint.h>
 
+#include "cub/bridge.h"
 #include "cub/err.h"
 #include "cub/fuzzy.h"
 #include "cub/io.h"
@@ -118,6 +119,32 @@ typedef void (*cub_tag_progress)(void *user, const char *step, int done, int tot
 cub_err cub_tag_library(const cub_library *lib, const char *library_name,
                         const cub_fuzzy_body *body, const cub_tag_params *params, cub_tags *out,
                         cub_tag_progress progress, void *user);
+
+/* A clip made after the library was tagged (the groove's, issue 23) gets
+ * its bridge frames by the same rules: */
+/* Step 1 over frames given by their crisp class and clip index (total of
+ * each): the frequent classes, ascending (heap, free with free()). */
+cub_err cub_tag_frequent_classes(const uint32_t *classes, const int *clips, size_t total,
+                                 const cub_tag_params *p, uint32_t **out, int *out_count);
+/* Steps 1 and 2 and the thinning on one clip measured by
+ * cub_tag_analyse_clip: out->bridges (heap, free with free()) and
+ * out->bridge_count; the name and frame count are left as they are. */
+cub_err cub_tag_pick_clip(const cub_clip *clip, const cub_tag_frame *frames, const uint32_t *freq,
+                          int freq_count, const cub_tag_params *p, cub_tag_clip *out);
+/* A library's frequent classes as its bridge table holds them. */
+typedef struct cub_tag_classes {
+    uint32_t *classes; /* ascending; heap, free with free() */
+    int count;
+} cub_tag_classes;
+/* Step 1 over the table's first clip_count clips (the library's, not the
+ * clips appended after them), from the features the table measured. */
+cub_err cub_tag_table_classes(const cub_bridge_table *t, int clip_count, const cub_tag_params *p,
+                              cub_tag_classes *out);
+/* Measure a made clip (frames: frame_count of them) and pick its bridge
+ * frames against the library's classes (cub_tag_pick_clip). */
+cub_err cub_tag_made_clip(const cub_clip *clip, const cub_fuzzy_body *body,
+                          const cub_tag_classes *freq, const cub_tag_params *p,
+                          cub_tag_frame *frames, cub_tag_clip *out);
 
 /* Shortest chain of clips from clip `from` to clip `to` through links:
  * 1 = joined directly, k = through k-1 other clips, -1 = unreachable. */

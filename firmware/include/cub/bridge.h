@@ -248,6 +248,14 @@ typedef struct cub_bridge_query {
                           0). For a clip no chain belongs to (a groove): two
                           frames of an unrelated move on the way in read as a
                           twitch, a blend does not. 0: the searches above */
+    int on_clock;      /* 1 (with direct_only): the wanted clip runs on a clock
+                          (a groove on the music's): a switch after waiting
+                          until upcoming frame k enters it at the frame its
+                          clock reaches then, clock_q16 + (that frame - pos),
+                          rounded; the soonest k within the threshold, else
+                          the smallest d. start_frames is not used. 0: off */
+    int64_t clock_q16; /* on_clock: the wanted clip's frame on its clock now
+                          (Q16.16 frames; before its start: entered at 0) */
 } cub_bridge_query;
 
 /* Scratch memory the planner needs for this table (the tween search). */
@@ -371,6 +379,8 @@ typedef struct cub_bridge_player_desc {
                              planted feet (cub_bridge_legs) */
     int no_routes;        /* the planner's, see cub_bridge_query; 0 = take routes */
     int direct_only;      /* the planner's, see cub_bridge_query; 0 = off */
+    int on_clock;         /* the planner's, see cub_bridge_query; 0 = off */
+    int64_t clock_q16;
 } cub_bridge_player_desc;
 
 typedef enum cub_bridge_event_type {
@@ -459,6 +469,10 @@ cub_err cub_bridge_player_set_no_routes(cub_bridge_player *p, int no_routes);
 /* Whether later requests take one direct switch only (cub_bridge_query.
  * direct_only). CUB_ERR_ARG unless 0 or 1. */
 cub_err cub_bridge_player_set_direct_only(cub_bridge_player *p, int direct_only);
+/* Whether later requests enter their clip on a clock, and where that clock
+ * stands now (cub_bridge_query.on_clock, clock_q16). CUB_ERR_ARG unless
+ * on_clock is 0 or 1 and clock_q16 is within 2^46. */
+cub_err cub_bridge_player_set_clock(cub_bridge_player *p, int on_clock, int64_t clock_q16);
 /* Move time on by dt_us (>= 0): switch exactly at the planned frames,
  * report events into ev[max_ev] (count in *n_ev; events past max_ev are
  * dropped, the playback is not). */
