@@ -443,7 +443,10 @@ cub_err cub_walk_box_add_keys(cub_walk_box *w, cub_coachlib *cl, const char **na
     if (!w->joint_count) return CUB_OK;
     int first = cl->table.desc.clip_count;
     cub_diag diag = {0};
-    if (cub_coachlib_add_clips(cl, w->keys, NULL, CUB_WALK_KEYS, &diag)) {
+    cub_coachlib_extra extra[CUB_WALK_KEYS]; /* one frame each: itself the bridge frame */
+    for (int i = 0; i < CUB_WALK_KEYS; i++)
+        extra[i] = (cub_coachlib_extra){.clip = &w->keys[i]};
+    if (cub_coachlib_add_clips(cl, extra, CUB_WALK_KEYS, &diag)) {
         cub_diag_report(CUB_ERR_FORMAT, &diag, err, err_size);
         return CUB_ERR_FORMAT;
     }
