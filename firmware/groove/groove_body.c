@@ -46,6 +46,25 @@ static cub_q16 swing_curve(cub_q16 u)
     return ease_in_out((cub_q16)(CUB_Q16_ONE - (s * s >> 16)));
 }
 
+/* The speed bound for the turns (ours, session 35): no turn faster than
+ * TURN_DEG_S at its curve's steepest (the swing's 2.23 x its mean, the
+ * return's 1.5 x): a turn with too little time turns less, and a return
+ * with too little time lowers the turn it returns from. */
+#define TURN_DEG_S 90
+#define SWING_GAIN_PCT 224
+#define REST_GAIN_PCT 150
+
+static cub_q16 most_deg(int64_t dt_us, int gain_pct)
+{
+    int64_t d = (int64_t)CUB_Q16_INT(TURN_DEG_S) * 100 / gain_pct * dt_us / 1000000;
+    return (cub_q16)(d < INT32_MAX ? d : INT32_MAX);
+}
+
+static cub_q16 capped(cub_q16 v, cub_q16 from, cub_q16 most)
+{
+    return cub_fx_clamp(v, cub_fx_sub(from, most), cub_fx_add(from, most));
+}
+
 cub_err cub_groove_turns(const cub_groove_note *notes, int n, int64_t end_us, cub_q16 amount_deg,
                          cub_groove_turn *out, int *count)
 {
@@ -56,8 +75,13 @@ cub_err cub_groove_turns(const cub_groove_note *notes, int n, int64_t end_us, cu
     for (int i = 0; i < n; i++) {
         if (!notes[i].is_beat || notes[i].length_beats < CUB_Q16_ONE) continue;
         cub_q16 to = (cub_q16)((int64_t)amount_deg * notes[i].intensity / 120 * direct);
-        int64_t end = groove_note_end(notes, n, end_us, i);
-        out[k++] = (cub_groove_turn){since, notes[i].start_us, end, current, to};
+        int64_t end = groove_note_end(notes, n, end_us, i), turn = notes[i].start_us;
+        if (k > 0 && turn > since) { /* the return to rest in time */
+            current = capped(current, 0, most_deg(turn - since, REST_GAIN_PCT));
+            out[k - 1].to_deg = current;
+        }
+        to = capped(to, turn > since ? 0 : current, most_deg(end - turn, SWING_GAIN_PCT));
+        out[k++] = (cub_groove_turn){since, turn, end, current, to};
         current = to, since = end, direct = -direct;
     }
     *count = k;
