@@ -25,6 +25,7 @@
 #define MAX_FILES 64
 
 static int fastest_joint, fastest_frame; /* where max_v was, for --dump */
+static const char *fastest_name = "";
 
 /* Summed speed of every joint, mm per frame, frame f from f-1 (v[0] = v[1]);
  * *max_mm_s the fastest single joint, *feet_mm the feet's largest move. */
@@ -48,7 +49,7 @@ static double *joint_speed(const cub_clip *clip, double *max_mm_s, double *feet_
             v[f] += d;
             if (d * 1e9 / clip->frame_ns > *max_mm_s) {
                 *max_mm_s = d * 1e9 / clip->frame_ns;
-                fastest_joint = j, fastest_frame = f;
+                fastest_joint = j, fastest_frame = f, fastest_name = clip->skel->joints[j].name;
             }
         }
         for (int k = 0; k < 2; k++) {
@@ -135,8 +136,8 @@ static void dump(const double *v, const double *sm, int frames, const double *be
     }
     if (f) fclose(f);
     if (dump_path)
-        fprintf(stderr, "fastest joint %d at frame %d (%.3f s)\n", fastest_joint, fastest_frame,
-                fastest_frame / (double)FPS);
+        fprintf(stderr, "fastest joint %d (%s) at frame %d (%.3f s)\n", fastest_joint, fastest_name,
+                fastest_frame, fastest_frame / (double)FPS);
 }
 
 static int measure(const groove_song *s, const cub_groove_rig *rig, figures *fig)

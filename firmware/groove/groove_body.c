@@ -46,6 +46,25 @@ static cub_q16 swing_curve(cub_q16 u)
     return ease_in_out((cub_q16)(CUB_Q16_ONE - (s * s >> 16)));
 }
 
+/* The speed bound for the turns (ours, session 35): no turn faster than
+ * TURN_DEG_S at its curve's steepest (the swing's 2.23 x its mean, the
+ * return's 1.5 x): a turn with too little time turns less, and a return
+ * with too little time lowers the turn it returns from. */
+#define TURN_DEG_S 90
+#define SWING_GAIN_PCT 224
+#define REST_GAIN_PCT 150
+
+static cub_q16 most_deg(int64_t dt_us, int gain_pct)
+{
+    int64_t d = (int64_t)CUB_Q16_INT(TURN_DEG_S) * 100 / gain_pct * dt_us / 1000000;
+    return (cub_q16)(d < INT32_MAX ? d : INT32_MAX);
+}
+
+static cub_q16 capped(cub_q16 v, cub_q16 from, cub_q16 most)
+{
+    return cub_fx_clamp(v, cub_fx_sub(from, most), cub_fx_add(from, most));
+}
+
 /* The melody's turns after the count-in's (k of them in out already, the
  * last ending on the first note): from where it left the body. */
 static int melody_turns(const cub_groove_note *notes, int n, int64_t end_us, cub_q16 amount_deg,
@@ -57,8 +76,13 @@ static int melody_turns(const cub_groove_note *notes, int n, int64_t end_us, cub
     for (int i = 0; i < n; i++) {
         if (!notes[i].is_beat || notes[i].length_beats < CUB_Q16_ONE) continue;
         cub_q16 to = (cub_q16)((int64_t)amount_deg * notes[i].intensity / 120 * direct);
-        int64_t end = groove_note_end(notes, n, end_us, i);
-        out[k++] = (cub_groove_turn){since, notes[i].start_us, end, current, to};
+        int64_t end = groove_note_end(notes, n, end_us, i), turn = notes[i].start_us;
+        if (k > 0 && turn > since) { /* the return to rest in time */
+            current = capped(current, 0, most_deg(turn - since, REST_GAIN_PCT));
+            out[k - 1].to_deg = current;
+        }
+        to = capped(to, turn > since ? 0 : current, most_deg(end - turn, SWING_GAIN_PCT));
+        out[k++] = (cub_groove_turn){since, turn, end, current, to};
         current = to, since = end, direct = -direct;
     }
     return k;
@@ -131,6 +155,7 @@ cub_q16 cub_groove_turn_at(const cub_groove_turn *turns, int count, int64_t t_us
 #define REACH_OUT_MM CUB_Q16_INT(110) /* ours: a full reach, for 2 beats or more */
 #define REACH_UP_MM CUB_Q16_INT(40)
 #define LIFT_MM CUB_Q16_INT(60)
+#define REACH_MM CUB_Q16_INT(117) /* |(110, 40)| */
 
 static bool staccato(const cub_groove_note *notes, int n, int i)
 {
@@ -138,10 +163,33 @@ static bool staccato(const cub_groove_note *notes, int n, int i)
            notes[i + 1].pitch == CUB_GROOVE_REST;
 }
 
+/* The speed bound for the left hand (ours, session 35): a move of mm over
+ * t_us at most CUB_GROOVE_PEAK_MM_S at its curve's steepest (gain_pct of
+ * its mean: the reach's 300, the lift's 224, the drop's 200), smaller
+ * where the note is short. */
+static cub_q16 in_time(cub_q16 mm, int64_t t_us, int gain_pct)
+{
+    if (t_us > 1000000000) return mm; /* minutes: nothing to bound */
+    int64_t most = (int64_t)CUB_GROOVE_PEAK_MM_S * 100 / gain_pct * t_us / 1000000;
+    return most < mm ? (cub_q16)most : mm;
+}
+
+/* Staccato note i's lift: in time for its lift (swing curve, 2.24 x) and
+ * for the drop over the rest after it (1 - tau^2, 2 x). */
+static cub_q16 lift_height(const cub_groove_plan *plan, int i)
+{
+    const cub_groove_note *notes = plan->notes;
+    int64_t up = notes[i + 1].start_us - notes[i].start_us,
+            down = groove_note_end(notes, plan->n, plan->end_us, i + 1) - notes[i + 1].start_us;
+    return in_time(in_time(LIFT_MM, up, 224), down, 200);
+}
+
 /* Out and back over the note: eased up to the middle, eased down after. */
-static cub_groove_key reach(const cub_groove_note *note, cub_q16 tau)
+static cub_groove_key reach(const cub_groove_note *note, cub_q16 tau, int64_t t_us)
 {
     cub_q16 extra = cub_fx_clamp(note->length_beats - CUB_Q16_ONE, 0, CUB_Q16_ONE);
+    cub_q16 mm = in_time(cub_fx_mul(extra, REACH_MM), t_us, 300); /* ease 1.5 x 2 ways */
+    extra = (cub_q16)((int64_t)mm * CUB_Q16_ONE / REACH_MM);
     cub_q16 u = tau < CUB_Q16_HALF ? ease_in_out(2 * tau) : ease_in_out(2 * (CUB_Q16_ONE - tau));
     cub_q16 amount = cub_fx_mul(u, extra);
     return (cub_groove_key){cub_fx_mul(REACH_OUT_MM, amount), cub_fx_mul(REACH_UP_MM, amount)};
@@ -153,12 +201,14 @@ cub_groove_key cub_groove_left_at(const cub_groove_plan *plan, int64_t t_us)
     int n = plan->n, i = groove_note_at(notes, n, t_us);
     cub_groove_key none = {0, 0};
     if (i < 0) return none;
-    cub_q16 tau = groove_tau(t_us, notes[i].start_us, groove_note_end(notes, n, plan->end_us, i));
+    int64_t end = groove_note_end(notes, n, plan->end_us, i), t = end - notes[i].start_us;
+    cub_q16 tau = groove_tau(t_us, notes[i].start_us, end);
     if (notes[i].pitch != CUB_GROOVE_REST && notes[i].length_beats > CUB_Q16_ONE)
-        return reach(&notes[i], tau);
+        return reach(&notes[i], tau, t);
     if (staccato(notes, n, i)) /* lift, slowing to the top */
-        return (cub_groove_key){0, cub_fx_mul(LIFT_MM, swing_curve(tau))};
+        return (cub_groove_key){0, cub_fx_mul(lift_height(plan, i), swing_curve(tau))};
     if (i > 0 && staccato(notes, n, i - 1)) /* drop, accelerating, stop */
-        return (cub_groove_key){0, cub_fx_mul(LIFT_MM, CUB_Q16_ONE - cub_fx_mul(tau, tau))};
+        return (cub_groove_key){0, cub_fx_mul(lift_height(plan, i - 1),
+                                              CUB_Q16_ONE - cub_fx_mul(tau, tau))};
     return none;
 }

@@ -17,6 +17,7 @@ cub_err cub_groove_plan_build(const cub_groove_song *song, const cub_groove_pick
     if (!e) cub_groove_keys_pace(p, mem->notes, n, mem->keys);
     if (!e) e = cub_groove_handles_make(p, mem->notes, n, mem->keys, mem->handles);
     if (e) return e;
+    cub_groove_stretch_limit(p, mem->notes, n, mem->keys, mem->handles);
     *out = (cub_groove_plan){
         *p,         mem->notes, n, mem->keys, mem->handles,
         mem->waist, mem->head,  0, 0,         cub_groove_tick_us(song, song->end_tick)};

@@ -132,3 +132,61 @@ cub_groove_key cub_groove_wrist_at(const cub_groove_plan *plan, int64_t t_us)
     path_points(plan, k, pt);
     return cub_groove_bezier(pt, cub_groove_path_u(pt, (cub_q16)s));
 }
+
+/* The wrist's peak speed on a stretch over its mean (arc length / time),
+ * Q16: the timing curve's steepest (the accent's start 2.4, the ease-in's
+ * 4/3) times the beat stop's level (1 / (1 - (before + after) k / (k + 1)),
+ * the clock's fastest). An upper bound: the two peaks rarely meet. */
+static int64_t peak_gain(const cub_groove_params *p, bool beat)
+{
+    int64_t g = beat ? CUB_Q16_ONE * 12 / 5 : CUB_Q16_ONE * 4 / 3;
+    int k = p->stop_power;
+    int64_t ramps = ((int64_t)p->stop_before + p->stop_after) * k / (k + 1);
+    if (k < 1 || k > 3 || ramps <= 0 || ramps >= CUB_Q16_ONE) return g;
+    return g * CUB_Q16_ONE / (CUB_Q16_ONE - ramps);
+}
+
+static cub_groove_key toward(cub_groove_key from, cub_groove_key to, cub_q16 f)
+{
+    return (cub_groove_key){cub_fx_lerp(from.x_mm, to.x_mm, f), cub_fx_lerp(from.y_mm, to.y_mm, f)};
+}
+
+static cub_q16 path_len(const cub_groove_key *keys, const cub_groove_handles *h, int i)
+{
+    const cub_groove_key pt[4] = {keys[i], h[i].out_mm, h[i + 1].in_mm, keys[i + 1]};
+    return cub_groove_path_length(pt);
+}
+
+/* Stretch [a, b) drawn in about key a by f: keys, handles and lengths; key
+ * b's out handle moves with it, the next path's length is measured again. */
+static void shrink(cub_groove_key *keys, cub_groove_handles *h, int n, int a, int b, cub_q16 f)
+{
+    cub_groove_key o = keys[a], old_b = keys[b];
+    h[a].out_mm = toward(o, h[a].out_mm, f);
+    for (int k = a + 1; k <= b; k++) {
+        keys[k] = toward(o, keys[k], f);
+        h[k].in_mm = toward(o, h[k].in_mm, f);
+        if (k < b) h[k].out_mm = toward(o, h[k].out_mm, f);
+    }
+    h[b].out_mm.x_mm += keys[b].x_mm - old_b.x_mm;
+    h[b].out_mm.y_mm += keys[b].y_mm - old_b.y_mm;
+    for (int k = a; k < b; k++)
+        h[k].len_mm = path_len(keys, h, k);
+    if (b + 1 < n) h[b].len_mm = path_len(keys, h, b);
+}
+
+void cub_groove_stretch_limit(const cub_groove_params *p, const cub_groove_note *notes, int n,
+                              cub_groove_key *keys, cub_groove_handles *h)
+{
+    int64_t most = p->peak_mm_s > 0 ? p->peak_mm_s : CUB_GROOVE_PEAK_MM_S;
+    for (int a = 0, first, b; a + 1 < n; a = b) {
+        cub_groove_stretch_of(notes, n, a, &first, &b);
+        int64_t t = notes[b].start_us - notes[a].start_us, total = 0;
+        for (int k = a; k < b; k++)
+            total += h[k].len_mm;
+        if (t <= 0 || t > INT64_MAX / most || total <= 0) continue;
+        /* the peak, mm/s: total x gain / t; over the most, drawn in */
+        int64_t allowed = most * t / 1000000 * CUB_Q16_ONE / peak_gain(p, notes[a].is_beat);
+        if (total > allowed) shrink(keys, h, n, a, b, (cub_q16)(allowed * CUB_Q16_ONE / total));
+    }
+}

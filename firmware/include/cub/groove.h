@@ -115,6 +115,7 @@ typedef struct cub_groove_params {
     cub_q16 x_span_mm;    /* the usable x span of the wrist (0: 400) */
     cub_q16 y_reach_mm;   /* |y| beyond this is scaled in (0: 250) */
     cub_q16 pace_mm_s;    /* the fastest a key may follow the last (0: 1200) */
+    cub_q16 peak_mm_s;    /* the wrist's fastest along its path (0: CUB_GROOVE_PEAK_MM_S) */
     /* The beat stop (ours): the pose's clock slows to a stop on every meter
      * beat over stop_before of a beat before it and starts again over
      * stop_after after it (fractions of a beat, each < 1, sum <= 1; 0 and 0:
@@ -178,6 +179,10 @@ typedef struct cub_groove_key {
 cub_err cub_groove_keys(const cub_groove_params *p, const cub_groove_note *notes, int n,
                         const cub_groove_segment *segs, int seg_count, cub_groove_key *keys);
 
+/* The wrist's peak speed along its path, key mm/s (ours, session 35;
+ * the bear's wrist moves 0.4 of it; docs/groove.md "The speed bound"). */
+#define CUB_GROOVE_PEAK_MM_S CUB_Q16_INT(2400)
+
 /* Too fast to follow (ours): a key farther from the previous one than
  * pace_mm_s x the time between their notes is pulled toward it along the
  * same line, so no path asks the arm for more than the clip library's own
@@ -208,6 +213,13 @@ typedef struct cub_groove_handles {
  * of its key, the most a Bézier end may run at that pace. */
 cub_err cub_groove_handles_make(const cub_groove_params *p, const cub_groove_note *notes, int n,
                                 const cub_groove_key *keys, cub_groove_handles *out);
+
+/* The speed bound (ours): each stretch's arc length x its timing's and
+ * the beat stop's steepest gain / its time is the wrist's peak speed;
+ * where that exceeds peak_mm_s the stretch is drawn in about its first key
+ * (keys, handles, lengths), so the wrist never runs faster, for any music. */
+void cub_groove_stretch_limit(const cub_groove_params *p, const cub_groove_note *notes, int n,
+                              cub_groove_key *keys, cub_groove_handles *h);
 
 /* The point at u (0..1) of the cubic Bézier p0, p1, p2, p3. */
 cub_groove_key cub_groove_bezier(const cub_groove_key pt[4], cub_q16 u);
