@@ -409,96 +409,13 @@ static void split_off(cub_tracker *t, int16_t k)
     count_interior(t);
 }
 
-static int32_t per_s(int32_t v, int32_t us) { return (int32_t)((int64_t)v * us / 1000000); }
-
-/* People's motion on the grid (trk_motion; update_motion keeps it). */
-#define ID_MAX_SPEED 2500  /* mm/s: a child's run; faster is a wrong centre, not motion */
-#define MOVE_GATE 16       /* cells */
-#define MOVE_MIN (20 * 16) /* 1/16 cell per second: 0.3 m/s at 2.4 m */
-#define MOVE_MAX (400 * 16) /* 1/16 cell per second */
-#define MOVE_FORGET_US 500000 /* a person unseen this long: its motion is forgotten */
-
-/* How far a person moved since last frame by its motion: cells across
- * the grid (d[0], d[1]) and depth (d[2], mm). */
-static void moved_by(const cub_tracker *t, const trk_motion *m, int32_t d[3])
-{
-    d[0] = d[1] = d[2] = 0;
-    if (!m->known) return;
-    int32_t vx = trk_abs(m->vx16) < MOVE_MIN ? 0 : m->vx16, vy = trk_abs(m->vy16) < MOVE_MIN ? 0 : m->vy16;
-    d[0] = (int32_t)(((int64_t)vx * t->dt_us / 1000000 + (vx < 0 ? -8 : 8)) / 16);
-    d[1] = (int32_t)(((int64_t)vy * t->dt_us / 1000000 + (vy < 0 ? -8 : 8)) / 16);
-    d[2] = per_s(m->vz, t->dt_us);
-}
-
-/* Last frame's who at cell (gx, gy) and its blob and depth, 0 off the grid. */
-static uint8_t who_at(const cub_tracker *t, int32_t gx, int32_t gy, int16_t *label, int32_t *z)
-{
-    if (!on_grid(gx, gy)) return *label = -1, *z = 0, 0;
-    *label = t->label_prev[gy * TRK_GW + gx], *z = t->z_prev[gy * TRK_GW + gx];
-    return t->who_prev[gy * TRK_GW + gx];
-}
-
-/* A cell of last frame moved on by d lands on cell i's surface: moved
- * at all, its depth then, moved on, is within SEED_DZ_MM of cell i's (a
- * body is one surface: the adult 300 mm behind the child is not the
- * child's chest that its motion carried its cells onto). Not moved, as
- * before motion was known: anything (a hand that moved 200 mm toward the
- * camera is still the child's). */
-#define SEED_DZ_MM 150
-static bool lands_on(const cub_tracker *t, int32_t i, int32_t z_then, const int32_t d[3])
-{
-    if (!d[0] && !d[1]) return true;
-    return trk_abs(t->z[i] - z_then - d[2]) <= SEED_DZ_MM;
-}
-
-/* Who of the others stood at cell i last frame, moved on (0 nobody, else
- * TRK_WHO_OTHER or _NEAR), and that cell's depth then moved on (*z):
- * the other person nearest the player where its motion (dq) brings its
- * cells of last frame, anyone else where they stood. A crosser walking
- * on leaves the place it hid the player from: that place is not his. */
-static uint8_t other_before(const cub_tracker *t, int32_t i, const int32_t dq[3], int32_t *z)
-{
-    int32_t gx = i % TRK_GW, gy = i / TRK_GW;
-    int16_t l;
-    const trk_motion *o = &t->move_other;
-    uint8_t w = who_at(t, gx - dq[0], gy - dq[1], &l, z);
-    bool person = w == TRK_WHO_OTHER || w == TRK_WHO_NEAR;
-    if (o->known && l == o->label && person && lands_on(t, i, *z, dq)) return *z += dq[2], w;
-    w = who_at(t, gx, gy, &l, z);
-    person = w == TRK_WHO_OTHER || w == TRK_WHO_NEAR;
-    static const int32_t still[3] = {0, 0, 0};
-    return person && !(o->known && l == o->label) && lands_on(t, i, *z, still) ? w : 0;
-}
-
-/* Last frame's player stood at cell i, moved on by its motion (dp), on
- * cell i's surface. */
-static bool player_before(const cub_tracker *t, int32_t i, const int32_t dp[3])
-{
-    int16_t l;
-    int32_t z;
-    return who_at(t, i % TRK_GW - dp[0], i / TRK_GW - dp[1], &l, &z) == TRK_WHO_PLAYER && lands_on(t, i, z, dp);
-}
-
-/* Cell i's side in a blob of two people: the player's if last frame's
- * player cells moved on cover it, the other's if another person's
- * (other_before) do, none if both or neither. Two people at the same
- * depth are one surface: a crosser walking through the child's place of
- * last frame is where it moved to, not the child. */
-static uint8_t side_of(const cub_tracker *t, int32_t i, const int32_t dp[3], const int32_t dq[3])
-{
-    int32_t z;
-    bool mine = player_before(t, i, dp), other = other_before(t, i, dq, &z) == TRK_WHO_OTHER;
-    return mine && !other ? TRK_WHO_PLAYER : other && !mine ? TRK_WHO_OTHER : 0;
-}
-
-/* Both sides' cells of last frame (the player's, the other person's),
- * each moved on by its motion. */
+/* Both sides' cells of last frame (the player's, the other person's). */
 static void split_sides(cub_tracker *t, int16_t k)
 {
-    int32_t dp[3], dq[3];
-    moved_by(t, &t->move_player, dp);
-    moved_by(t, &t->move_other, dq);
-    for (int32_t i = 0; i < TRK_CELLS; i++) t->mask[i] = t->label[i] == k ? side_of(t, i, dp, dq) : 0;
+    for (int32_t i = 0; i < TRK_CELLS; i++) {
+        uint8_t w = t->label[i] == k ? t->who_prev[i] : 0;
+        t->mask[i] = w == TRK_WHO_PLAYER || w == TRK_WHO_OTHER ? w : 0;
+    }
     grow_sides(t, k);
 }
 
@@ -515,7 +432,6 @@ static void split_merged(cub_tracker *t)
         if (mine[k] < SPLIT_MIN_CELLS || other[k] < SPLIT_MIN_CELLS) continue;
         split_sides(t, k);
         split_off(t, k); /* side 2: TRK_WHO_OTHER */
-        t->parted = true;
     }
 }
 
@@ -561,92 +477,6 @@ static bool apart(const cub_tracker *t, const trk_comp *c)
     return d2 > (int64_t)SPLIT_APART_MM * SPLIT_APART_MM;
 }
 
-/* People's motion on the grid (for split_sides): a centre more than
- * MOVE_GATE cells from where its motion put it is another blob (the
- * velocity starts again); the velocity is smoothed over frames, capped
- * at MOVE_MAX (a child's run 1 m from the camera), and while the two are
- * one blob parted it fades (each side's centre then is where the parting
- * put it, not where the body went; an adult who walked in and stopped
- * just behind the child, parted from it every frame, stops too). Slower
- * than MOVE_MIN across the grid is a body changing pose, not moving. */
-/* Where a person is this frame: its cells' count, centre on the grid
- * (1/16 cell) and mean depth (mm). */
-typedef struct grid_centre {
-    int32_t n, gx16, gy16, z;
-} grid_centre;
-
-static int32_t smooth_v(int32_t v, int32_t d, int64_t dt, int32_t max)
-{
-    int32_t now = (int32_t)((int64_t)d * 1000000 / dt), s = (v + now) / 2;
-    return s > max ? max : s < -max ? -max : s;
-}
-
-static void move_on(const cub_tracker *t, trk_motion *m, const grid_centre *c, int16_t label)
-{
-    int64_t dt = t->prev_t_us - m->t_us;
-    int32_t d[3];
-    moved_by(t, m, d);
-    bool near = m->known && dt > 0 && dt <= 200000 && trk_abs(c->gx16 / 16 - m->gx16 / 16 - d[0]) <= MOVE_GATE &&
-                trk_abs(c->gy16 / 16 - m->gy16 / 16 - d[1]) <= MOVE_GATE;
-    if (!near) {
-        m->vx16 = m->vy16 = m->vz = 0;
-    } else if (t->parted) {
-        m->vx16 = m->vx16 * 3 / 4, m->vy16 = m->vy16 * 3 / 4, m->vz = m->vz * 3 / 4;
-    } else {
-        m->vx16 = smooth_v(m->vx16, c->gx16 - m->gx16, dt, MOVE_MAX);
-        m->vy16 = smooth_v(m->vy16, c->gy16 - m->gy16, dt, MOVE_MAX);
-        m->vz = smooth_v(m->vz, c->z - m->z, dt, ID_MAX_SPEED);
-    }
-    *m = (trk_motion){c->gx16, c->gy16, c->z, m->vx16, m->vy16, m->vz, t->prev_t_us, label, true};
-}
-
-/* Per blob, where it is (c[k]); the player's cells (mask) apart, as
- * c[ncomps]. */
-static void grid_centres(const cub_tracker *t, grid_centre *c)
-{
-    for (int32_t k = 0; k <= t->ncomps; k++) c[k] = (grid_centre){0, 0, 0, 0};
-    for (int32_t i = 0; i < TRK_CELLS; i++) {
-        int32_t k = t->mask[i] ? t->ncomps : t->label[i];
-        if (k < 0) continue;
-        c[k].n++, c[k].gx16 += (i % TRK_GW) * 16, c[k].gy16 += (i / TRK_GW) * 16, c[k].z += t->z[i];
-    }
-    for (int32_t k = 0; k <= t->ncomps; k++)
-        if (c[k].n) c[k].gx16 /= c[k].n, c[k].gy16 /= c[k].n, c[k].z /= c[k].n;
-}
-
-/* The person-like blob nearest (gx16, gy16) on the grid, not the
- * player's, within `within` (1/16 cells, along each axis summed); -1 none. */
-static int32_t nearest_other(const cub_tracker *t, const bool *person, const grid_centre *c, int32_t gx16,
-                             int32_t gy16, int32_t within)
-{
-    int32_t best = -1, best_d = within;
-    for (int32_t k = 0; k < t->ncomps; k++) {
-        if (!person[k] || c[k].n * 2 < t->comps[k].n) continue; /* most of it the player's */
-        int32_t d = trk_abs(c[k].gx16 - gx16) + trk_abs(c[k].gy16 - gy16);
-        if (d < best_d) best_d = d, best = k;
-    }
-    return best;
-}
-
-/* The player's motion, and the other person's nearest the player (last
- * frame's other if one is still near its motion's prediction). */
-static void update_motion(cub_tracker *t, const bool *person)
-{
-    grid_centre c[TRK_MAX_COMPS + 1];
-    const grid_centre *pl = &c[t->ncomps];
-    grid_centres(t, c);
-    if (pl->n) move_on(t, &t->move_player, pl, -1);
-    else if (t->prev_t_us - t->move_player.t_us > MOVE_FORGET_US) t->move_player.known = false;
-    trk_motion *o = &t->move_other;
-    int32_t d[3], best = -1;
-    moved_by(t, o, d);
-    if (o->known) best = nearest_other(t, person, c, o->gx16 + d[0] * 16, o->gy16 + d[1] * 16, 2 * MOVE_GATE * 16);
-    if (best < 0 && pl->n) best = nearest_other(t, person, c, pl->gx16, pl->gy16, INT32_MAX);
-    if (best >= 0) move_on(t, o, &c[best], (int16_t)best);
-    else if (o->known && t->prev_t_us - o->t_us > MOVE_FORGET_US) o->known = false;
-    else o->label = -1;
-}
-
 /* What each cell was this frame (and its depth), for the next frame's
  * split_merged and was_someone_else, and the background's learning. */
 static void remember_who(cub_tracker *t)
@@ -658,7 +488,6 @@ static void remember_who(cub_tracker *t)
         who[k] = !person[k] ? 0 : !t->tracked || apart(t, &t->comps[k]) ? TRK_WHO_OTHER : TRK_WHO_NEAR;
     }
     trk_bg_mark_people(t, person);
-    update_motion(t, person);
     for (int32_t i = 0; i < TRK_CELLS; i++) {
         int16_t l = t->label[i];
         t->who_prev[i] = t->mask[i] ? TRK_WHO_PLAYER : l >= 0 ? who[l] : 0;
@@ -676,12 +505,11 @@ static void remember_who(cub_tracker *t)
 #define WAS_OTHER_DZ 150
 static bool was_someone_else(const cub_tracker *t, int32_t k)
 {
-    int32_t mine = 0, other = 0, dq[3], z;
-    moved_by(t, &t->move_other, dq);
+    int32_t mine = 0, other = 0;
     for (int32_t i = 0; i < TRK_CELLS; i++) {
-        if (t->label[i] != k) continue;
+        if (t->label[i] != k || !t->who_prev[i]) continue;
         if (t->who_prev[i] == TRK_WHO_PLAYER) mine++;
-        else if (other_before(t, i, dq, &z) && trk_abs(t->z[i] - z) <= WAS_OTHER_DZ) other++;
+        else if (trk_abs(t->z[i] - t->z_prev[i]) <= WAS_OTHER_DZ) other++;
     }
     return other >= SPLIT_MIN_CELLS && mine < SPLIT_MIN_CELLS;
 }
@@ -764,6 +592,7 @@ static int32_t first_choice(cub_tracker *t)
 #define ID_GATE_GROW 600   /* and this much farther per second unseen (mm/s) */
 #define ID_PART_DZ_MM 400  /* a piece of a hidden player: within this depth of the prediction */
 #define ID_PART_CELLS 12   /* and no smaller */
+#define ID_MAX_SPEED 2500  /* mm/s: a child's run; faster is a wrong centre, not motion */
 #define ID_FAR 1000000     /* score offset: a blob that is not the tracked player */
 
 static int32_t unseen_us(const cub_tracker *t)
@@ -771,6 +600,8 @@ static int32_t unseen_us(const cub_tracker *t)
     int64_t d = t->prev_t_us - t->seen_us;
     return d < 0 ? 0 : d > ID_HOLD_US ? ID_HOLD_US + 1 : (int32_t)d;
 }
+
+static int32_t per_s(int32_t v, int32_t us) { return (int32_t)((int64_t)v * us / 1000000); }
 
 static trk_p3 predicted(const cub_tracker *t)
 {
@@ -981,7 +812,6 @@ cub_err cub_track_choose_afresh(cub_tracker *t)
 int32_t trk_pick_player(cub_tracker *t)
 {
     if (t->tracked && unseen_us(t) > ID_HOLD_US && t->lost_frames > 0) t->tracked = false;
-    t->parted = false;
     if (t->tracked) split_merged(t);
     bool same, hidden;
     int32_t best = choose_blob(t, &same, &hidden);

@@ -51,18 +51,6 @@ typedef struct trk_comp {
 } trk_comp;
 
 #define TRK_MAX_COMPS 256
-
-/* A person's motion on the grid (trk_grid.c): the centre of its cells
- * last frame and its velocity, in 1/16 cell and 1/16 cell per second,
- * its mean depth (mm) and the depth's velocity (mm/s), when (us) and
- * which blob it was last frame (-1 none). Two people who merge into one
- * blob are parted from their last frame's cells moved on by these. */
-typedef struct trk_motion {
-    int32_t gx16, gy16, z, vx16, vy16, vz;
-    int64_t t_us;
-    int16_t label;
-    bool known;
-} trk_motion;
 #define TRK_PAST 4 /* frames of joints kept for the confidence's motion (100 ms at 30 fps) */
 
 struct cub_tracker {
@@ -116,8 +104,6 @@ struct cub_tracker {
     int64_t seen_us;    /* when */
     int32_t seen_gx0, seen_gx1; /* and its blob's columns on the grid */
     int32_t top_mm; /* the player's highest point of late (mm along up): merged_with_taller */
-    trk_motion move_player, move_other; /* the player's and the other person's nearest it */
-    bool parted; /* this frame split a blob between the player and someone else */
     int32_t stature_mm;
     int32_t neck_drop_mm; /* head top to the neck base (smoothed), 0 unknown */
     int32_t head_cell, stature_seen_mm; /* this frame's, for tools */

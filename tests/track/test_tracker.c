@@ -486,29 +486,36 @@ static void test_adult_just_behind_is_not_the_players_part(void **st)
  * depth (crosser_dz behind it), through the child's place: one blob with
  * it while they overlap (the dev renders' child walking into a crosser's
  * path) */
-static int32_t crosser_dz;
+static int32_t crosser_dz, crosser_step = 100;
 static p3 same_depth_crosser(int k)
 {
     if (k < 10) return (p3){0, 0, 0};
     p3 b[CUB_KJ_COUNT];
-    child_pose(1500 - 100 * (k - 10), 2400 + crosser_dz, 0, 1400, b);
+    child_pose(1500 - crosser_step * (k - 10), 2400 + crosser_dz, 0, 1400, b);
     for (int jj = 0; jj < CUB_KJ_COUNT; jj++) b[jj].y += 800 * 400 / 1000 - 320;
     draw_child(b, 1400);
     return b[CUB_KJ_SPINE];
 }
 
-/* Two people merged at one depth are parted by where each one's motion
- * takes its cells of last frame (split_sides): the crosser's leading side
- * lies where the child stood last frame, and is the crosser's. */
+/* An adult crossing through the child's place at its depth (or 100 mm
+ * before it) at 0.5, 1 and 1.5 m/s never becomes the player. A guard for
+ * parting the merged blob by each one's motion (docs/tracker_eval.md
+ * round 8: tried, not kept, it gave 10 wrong-person frames here at
+ * 1.5 m/s and the child was lost). Not covered: the crosser 100 mm
+ * behind the child at 0.5 m/s, where main ends with the child PARTLY_OUT
+ * (and the motion parting with nobody), which wrong_person_frames
+ * refuses. */
 static void test_crosser_at_the_players_depth_stays_the_crosser(void **st)
 {
     (void)st;
-    static const int32_t dz[] = {0, 100, 200};
-    for (size_t i = 0; i < sizeof dz / sizeof dz[0]; i++) {
-        crosser_dz = dz[i];
-        int wrong = wrong_person_frames(same_depth_crosser);
-        printf("track identity: a crosser %d mm behind the child: %d wrong-person frames\n", dz[i], wrong);
-    }
+    static const int32_t dz[] = {-100, 0}, step[] = {50, 100, 150};
+    for (size_t i = 0; i < sizeof dz / sizeof dz[0]; i++)
+        for (size_t j = 0; j < sizeof step / sizeof step[0]; j++) {
+            crosser_dz = dz[i], crosser_step = step[j];
+            int wrong = wrong_person_frames(same_depth_crosser);
+            printf("track identity: a crosser %d mm behind the child at %d mm/s: %d wrong-person frames\n", dz[i],
+                   step[j] * 10, wrong);
+        }
 }
 
 static void test_player_keeps_its_identity(void **st)
