@@ -482,6 +482,42 @@ static void test_adult_just_behind_is_not_the_players_part(void **st)
     }
 }
 
+/* from frame 10 on: an adult walks across at 1 m/s at the child's own
+ * depth (crosser_dz behind it), through the child's place: one blob with
+ * it while they overlap (the dev renders' child walking into a crosser's
+ * path) */
+static int32_t crosser_dz, crosser_step = 100;
+static p3 same_depth_crosser(int k)
+{
+    if (k < 10) return (p3){0, 0, 0};
+    p3 b[CUB_KJ_COUNT];
+    child_pose(1500 - crosser_step * (k - 10), 2400 + crosser_dz, 0, 1400, b);
+    for (int jj = 0; jj < CUB_KJ_COUNT; jj++) b[jj].y += 800 * 400 / 1000 - 320;
+    draw_child(b, 1400);
+    return b[CUB_KJ_SPINE];
+}
+
+/* An adult crossing through the child's place at its depth (or 100 mm
+ * before it) at 0.5, 1 and 1.5 m/s never becomes the player. A guard for
+ * parting the merged blob by each one's motion (docs/tracker_eval.md
+ * round 8: tried, not kept, it gave 10 wrong-person frames here at
+ * 1.5 m/s and the child was lost). Not covered: the crosser 100 mm
+ * behind the child at 0.5 m/s, where main ends with the child PARTLY_OUT
+ * (and the motion parting with nobody), which wrong_person_frames
+ * refuses. */
+static void test_crosser_at_the_players_depth_stays_the_crosser(void **st)
+{
+    (void)st;
+    static const int32_t dz[] = {-100, 0}, step[] = {50, 100, 150};
+    for (size_t i = 0; i < sizeof dz / sizeof dz[0]; i++)
+        for (size_t j = 0; j < sizeof step / sizeof step[0]; j++) {
+            crosser_dz = dz[i], crosser_step = step[j];
+            int wrong = wrong_person_frames(same_depth_crosser);
+            printf("track identity: a crosser %d mm behind the child at %d mm/s: %d wrong-person frames\n", dz[i],
+                   step[j] * 10, wrong);
+        }
+}
+
 static void test_player_keeps_its_identity(void **st)
 {
     (void)st;
@@ -934,6 +970,7 @@ int main(void)
         cmocka_unit_test(test_player_keeps_its_identity),
         cmocka_unit_test(test_taller_one_squeezing_past_is_not_the_player),
         cmocka_unit_test(test_crossers_arm_is_not_the_players_hand),
+        cmocka_unit_test(test_crosser_at_the_players_depth_stays_the_crosser),
         cmocka_unit_test(test_a_piece_beyond_an_arms_reach_is_not_the_players_hand),
         cmocka_unit_test(test_adult_just_behind_is_not_the_players_part),
         cmocka_unit_test(test_start_chooses_the_player_afresh),
