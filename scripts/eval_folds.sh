@@ -5,7 +5,7 @@
 # travel, a second person, loose clothes).
 #
 #   scripts/eval_folds.sh BUILD_DIR [dev|heldout|all] [--quick] [--identity [--draw 2|3|4] [--no-prelude]]
-#                         [--fold NAME] [--scene NAME] [--csv FILE]
+#                         [--draw 5] [--turned-away] [--fold NAME] [--scene NAME] [--csv FILE]
 #   (also: scripts/eval_tracker.sh BUILD_DIR --folds ...)
 #
 # dev      the folds hand-set numbers may be chosen on (CMU subject groups,
@@ -34,6 +34,12 @@
 #          from the fold three on
 # --no-prelude  the identity renders as rounds 1-3 had them (the child
 #          there from the first frame)
+# --draw 5 (without --identity) the facing draw (session 35, drawn unseen):
+#          per fold five clips c_{k+1}, c_{k+3}, ..., c_{k+9}, each in the
+#          turning scene, seed 6: the body's facing, no second person
+# --turned-away  the turning scene's first yaw anywhere in [-180, 180) (as
+#          before session 35), not within +-45 degrees (a child who pressed
+#          START looking at the TV): a variant, reported separately
 #
 # Every render: cubtool synth-depth ... --seed 1 --frames 90 --fps 10 into
 # a temporary folder (EVAL_DUMPS=DIR keeps them for the next run), scored
@@ -46,7 +52,7 @@
 set -eu
 
 usage() {
-    echo "usage: scripts/eval_folds.sh BUILD_DIR [dev|heldout|all] [--quick] [--identity [--draw 2|3|4] [--no-prelude]] [--fold NAME] [--scene NAME] [--csv FILE]" >&2
+    echo "usage: scripts/eval_folds.sh BUILD_DIR [dev|heldout|all] [--quick] [--identity [--draw 2|3|4] [--no-prelude]] [--draw 5] [--turned-away] [--fold NAME] [--scene NAME] [--csv FILE]" >&2
     exit 2
 }
 HERE=$(cd "$(dirname "$0")" && pwd)
@@ -81,14 +87,16 @@ fi
 [ $# -ge 1 ] || usage
 BUILD=$1
 shift
-SET=all QUICK=0 ONLY= CSV= SCENE= IDENTITY=0 DRAW=1 PRELUDE=2
+SET=all QUICK=0 ONLY= CSV= SCENE= IDENTITY=0 DRAW=1 PRELUDE=2 START_YAW="--start-yaw-max 45"
+
 while [ $# -gt 0 ]; do
     case $1 in
     dev | heldout | all) SET=$1 ;;
     --quick) QUICK=1 ;;
     --identity) IDENTITY=1 ;;
     --no-prelude) PRELUDE=0 ;;
-    --draw) [ $# -ge 2 ] && { [ "$2" = 1 ] || [ "$2" = 2 ] || [ "$2" = 3 ] || [ "$2" = 4 ]; } || usage; DRAW=$2; shift ;;
+    --draw) [ $# -ge 2 ] && { [ "$2" = 1 ] || [ "$2" = 2 ] || [ "$2" = 3 ] || [ "$2" = 4 ] || [ "$2" = 5 ]; } || usage; DRAW=$2; shift ;;
+    --turned-away) START_YAW= ;;
     --fold) [ $# -ge 2 ] || usage; ONLY=$2; shift ;;
     --csv) [ $# -ge 2 ] || usage; CSV=$2; shift ;;
     --scene) [ $# -ge 2 ] || usage; SCENE=$2; shift ;;
@@ -96,6 +104,7 @@ while [ $# -gt 0 ]; do
     esac
     shift
 done
+[ "$IDENTITY" = 0 ] || [ "$DRAW" != 5 ] || usage # draw 5 is a facing draw, not identity renders
 TOOL=$BUILD/app/cubtool/cubtool
 [ -x "$TOOL" ] || { echo "eval_folds: no cubtool at $TOOL (build the cubtool target)" >&2; exit 1; }
 DATA=${CUB_DATA_DIR:-$HERE/../../shared/data}
@@ -140,7 +149,7 @@ nth() { # n word...
 scene_args() { # scene fold_index clip_index second_clip
     case $1 in
     facing) echo "--pin" ;;
-    turning) echo "--max-travel 700 --yaw-segments 1.5" ;;
+    turning) echo "--max-travel 700 --yaw-segments 1.5${START_YAW:+ $START_YAW}" ;;
     travel) echo "--max-travel 700" ;;
     second) echo "--max-travel 700 --room --second-person $4 --second-mode $(nth $(($2 + $3 / 5)) $MODES)" ;;
     loose) [ $(($2 % 2)) = 0 ] && echo "--max-travel 700 --loose-clothes --height 1000 --build slim" ||
@@ -188,6 +197,17 @@ identity_jobs() { # fold set k clips second_persons_clips
     done
 }
 
+# The facing draw (draw 5) of fold k: its clips c_{k+1}, c_{k+3}, ...,
+# c_{k+9} (every other clip of a 10-clip fold), each turning.
+facing_jobs() { # fold set k clips
+    n=$(printf '%s\n' "$4" | tr ';' '\n' | wc -l)
+    for o in 1 3 5 7 9; do
+        i=$((($3 + o) % n))
+        clip=$(printf '%s\n' "$4" | tr ';' '\n' | sed -n "$((i + 1))p")
+        printf '%s|%s|t%d|turning|--clip %s %s\n' "$1" "$2" "$o" "$clip" "$(scene_args turning)"
+    done
+}
+
 # The job lines: the second person's clip is the next fold's first clip
 # (another source, never the fold's own).
 jobs() {
@@ -196,6 +216,13 @@ jobs() {
     k=0
     while IFS='|' read -r fold set clips; do
         next=$(sed -n "$(((k + 1) % nf + 1))p" "$RESULTS/folds" | cut -d'|' -f3 | cut -d';' -f1 | cut -d' ' -f1)
+        if [ "$IDENTITY" = 0 ] && [ "$DRAW" = 5 ]; then
+            if { [ "$SET" = all ] || [ "$SET" = "$set" ]; } && { [ -z "$ONLY" ] || [ "$ONLY" = "$fold" ]; }; then
+                facing_jobs "$fold" "$set" $k "$clips"
+            fi
+            k=$((k + 1))
+            continue
+        fi
         if [ "$IDENTITY" = 1 ]; then
             if { [ "$SET" = all ] || [ "$SET" = "$set" ]; } && { [ -z "$ONLY" ] || [ "$ONLY" = "$fold" ]; }; then
                 step=1
@@ -239,6 +266,7 @@ trap cleanup EXIT INT TERM
 COMMON="--seed 1 --frames 90 --fps 10"
 [ "$IDENTITY" = 0 ] || COMMON="--seed $((DRAW + 1)) --frames 90 --fps 10"
 [ "$IDENTITY" = 0 ] || [ "$PRELUDE" = 0 ] || COMMON="$COMMON --prelude $PRELUDE"
+[ "$IDENTITY" = 1 ] || [ "$DRAW" != 5 ] || COMMON="--seed 6 --frames 90 --fps 10"
 [ "$QUICK" = 0 ] || COMMON="--seed 1 --frames 8 --fps 10"
 echo "eval_folds: $SET folds$([ "$QUICK" = 0 ] || echo ' (quick sample)')$([ "$IDENTITY" = 0 ] || echo ', identity renders'), $COMMON, data $DATA"
 jobs >"$RESULTS/jobs"

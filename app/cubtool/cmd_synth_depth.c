@@ -51,6 +51,9 @@ static void help(FILE *f)
                "  --spin DEG_PER_S     and the body keeps turning about its hips [0]\n"
                "  --yaw-segments S     every S seconds a new yaw in [-180, 180), drawn from\n"
                "                       --seed, turned to in 0.5 s (S >= 0.1) [off]\n"
+               "  --start-yaw-max DEG  with --yaw-segments: the first yaw in [-DEG, DEG)\n"
+               "                       instead (a child starts facing the TV: 45); the later\n"
+               "                       yaws stay the seed's [180: any]\n"
                "  --max-travel MM      the clip's own travel about its mean spot is kept, softly\n"
                "                       clamped (tanh) to +-MM on each floor axis [not clamped]\n"
                "  --pin                no travel: the hips stay over one spot\n"
@@ -183,6 +186,8 @@ static int parse_opt(opts *o, int argc, char **argv, int *i)
         o->d.spin_deg_s = (float)x;
     else if (!strcmp(a, "--yaw-segments") && (ok = num(a, v, 0.1, 1e4, &x)))
         o->d.yaw_segment_s = (float)x;
+    else if (!strcmp(a, "--start-yaw-max") && (ok = num(a, v, 0, 180, &x)))
+        o->d.start_yaw_max_deg = (float)x;
     else if (!strcmp(a, "--max-travel") && (ok = num(a, v, 1, 10000, &x)))
         o->d.max_travel_mm = (float)x;
     else if (!strcmp(a, "--second-height") && (ok = num(a, v, 600, 2200, &x)))

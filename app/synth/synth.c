@@ -179,7 +179,9 @@ static float turning_deg(const cub_synth *s, double t_s)
     return yaw + prev + wrap180(s->yaws[k] - prev) * w;
 }
 
-/* Segment yaws uniform in [-180, 180), from their own stream of the seed. */
+/* Segment yaws uniform in [-180, 180), from their own stream of the seed;
+ * the first one in [-start_yaw_max, start_yaw_max) when that is set, from
+ * the same draw, so every later yaw is the one the seed gave before. */
 static int draw_yaws(cub_synth *s)
 {
     if (s->d.yaw_segment_s <= 0) return 0;
@@ -190,6 +192,7 @@ static int draw_yaws(cub_synth *s)
     synth_rng rng = {s->d.seed * 0xD1B54A32D192ED03ull + 0x5EEDull};
     for (int k = 0; k < s->nyaw; k++)
         s->yaws[k] = synth_rng_unit(&rng) * 360.0f - 180.0f;
+    if (s->d.start_yaw_max_deg > 0) s->yaws[0] *= s->d.start_yaw_max_deg / 180.0f;
     return 0;
 }
 

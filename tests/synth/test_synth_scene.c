@@ -175,6 +175,32 @@ static void test_yaw_segments_follow_the_seed(void **state)
     assert_true(other > 20.0);
 }
 
+/* --start-yaw-max: the first segment's yaw within +-45 degrees of the
+ * clip's own (a child who pressed START facing the TV), for every seed;
+ * the second segment's yaw the one the seed gives without it. */
+static void test_start_yaw_max_faces_the_camera_first(void **state)
+{
+    (void)state;
+    NEED_DATA();
+    const int nseed = synth_quick() ? 3 : 8;
+    for (uint64_t seed = 1; seed <= (uint64_t)nseed; seed++) {
+        cub_synth_desc d = {.clean = 1, .seed = seed, .yaw_segment_s = 1};
+        cub_synth *base = open_clip((cub_synth_desc){.clean = 1}, "13_29", 3);
+        cub_synth *any = open_clip(d, "13_29", 3);
+        d.start_yaw_max_deg = 45;
+        cub_synth *start = open_clip(d, "13_29", 3);
+        double own = left_angle_deg(&render(base, 15)->truth);
+        double first = wrap180(own - left_angle_deg(&render(start, 15)->truth));
+        assert_true(fabs(first) <= 46.0);
+        double a = left_angle_deg(&render(any, 48)->truth); /* segment 2, turned */
+        double b = left_angle_deg(&render(start, 48)->truth);
+        assert_true(fabs(wrap180(a - b)) < 3.0);
+        cub_synth_close(base);
+        cub_synth_close(any);
+        cub_synth_close(start);
+    }
+}
+
 /* The range of the hip centre's z (camera space) over the render. */
 static double hip_travel_mm(cub_synth_desc d)
 {
@@ -358,6 +384,7 @@ int main(void)
         cmocka_unit_test(test_yaw_shows_in_the_silhouette),
         cmocka_unit_test(test_spin_turns_the_body_over_time),
         cmocka_unit_test(test_yaw_segments_follow_the_seed),
+        cmocka_unit_test(test_start_yaw_max_faces_the_camera_first),
         cmocka_unit_test(test_travel_kept_clamped_or_pinned),
         cmocka_unit_test(test_second_person_modes),
         cmocka_unit_test(test_loose_clothes_widen_the_body),

@@ -81,6 +81,10 @@ typedef struct cub_synth_desc {
     float spin_deg_s;                /* and keeps turning about the hips [0] */
     float yaw_segment_s;             /* > 0: every this many seconds a new yaw drawn in
                                       * [-180, 180) from the seed, turned to in 0.5 s */
+    float start_yaw_max_deg;         /* > 0: the first segment's yaw drawn in [-this,
+                                      * this) instead (a child who pressed START
+                                      * looking at the TV); the later yaws are the
+                                      * same draws as without it [0: off] */
     /* Travel: the clip's own root travel about its mean position is kept
      * (a walk walks); max_travel_mm > 0 clamps it softly (tanh) to +-that
      * on each floor axis, pin = 1 holds the hips over one spot. */
