@@ -9,6 +9,7 @@
 
 #include <cmocka.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 
 #include "cub/groove.h"
@@ -403,6 +404,48 @@ static void test_non_beat_key_passed_at_speed(void **state)
     assert_true(v[36] < v[18] / 3); /* it stops on the beat */
 }
 
+/* The wrist's fastest along its path (music time, 1 ms steps), mm/s. */
+static double wrist_peak_mm_s(const cub_groove_plan *plan, int64_t end_us)
+{
+    double most = 0;
+    cub_groove_key prev = cub_groove_wrist_at(plan, 0);
+    for (int64_t t = 1000; t <= end_us; t += 1000) {
+        cub_groove_key at = cub_groove_wrist_at(plan, t);
+        double v = hypot(d(at.x_mm - prev.x_mm), d(at.y_mm - prev.y_mm)) * 1000;
+        most = v > most ? v : most;
+        prev = at;
+    }
+    return most;
+}
+
+/* The speed bound: sixteenth notes at 120 a minute whose keys zig-zag
+ * 28 cm apart ask the wrist for several times CUB_GROOVE_PEAK_MM_S; after
+ * cub_groove_stretch_limit it never runs faster, and each stretch keeps
+ * its first key (drawn in about it). */
+static void test_stretch_limit_bounds_the_wrist(void **state)
+{
+    (void)state;
+    enum { N = 9 };
+    cub_groove_note n[N];
+    cub_groove_key k[N];
+    cub_groove_handles h[N];
+    for (int i = 0; i < N; i++) {
+        n[i] = note(i * 125000, 0.25, i % 4 == 0, 100);
+        k[i] = (cub_groove_key){Q(150 * i), Q(i % 2 ? 120 : -120)};
+    }
+    cub_groove_plan plan = {set_a(), n, N, k, h, NULL, NULL, 0, 0, N * 125000};
+    assert_int_equal(cub_groove_handles_make(&plan.params, n, N, k, h), CUB_OK);
+    double before = wrist_peak_mm_s(&plan, (N - 1) * 125000);
+    cub_groove_stretch_limit(&plan.params, n, N, k, h);
+    double after = wrist_peak_mm_s(&plan, (N - 1) * 125000);
+    double bound = d(CUB_GROOVE_PEAK_MM_S);
+    printf("wrist peak %.0f -> %.0f mm/s (bound %.0f)\n", before, after, bound);
+    assert_true(before > 2 * bound);
+    assert_true(after <= bound * 1.01);
+    assert_true(after > bound / 4); /* drawn in, not stopped */
+    assert_true(k[0].x_mm == 0 && k[0].y_mm == Q(-120));
+}
+
 /* The beat stop: every beat of the grid, the three inside a four-beat
  * note too, keeps its time; the clock stands still on it, runs faster
  * between, never backwards; with no stop it is the music's own time. */
@@ -495,6 +538,7 @@ int main(void)
         cmocka_unit_test(test_stretch_runs_beat_to_beat),
         cmocka_unit_test(test_path_u_inverts_arc_length),
         cmocka_unit_test(test_non_beat_key_passed_at_speed),
+        cmocka_unit_test(test_stretch_limit_bounds_the_wrist),
         cmocka_unit_test(test_beat_stop_on_every_beat),
         cmocka_unit_test(test_poses_are_bit_identical_across_cpus),
     };
