@@ -446,6 +446,53 @@ static void test_stretch_limit_bounds_the_wrist(void **state)
     assert_true(k[0].x_mm == 0 && k[0].y_mm == Q(-120));
 }
 
+/* The speed bound on the waist: a full-intensity beat of one beat (0.5 s)
+ * asked for 90 degrees turns only as far as 90 deg/s at the swing's
+ * steepest (2.24 x its mean) allows, about 20; the angle never changes
+ * faster than that. */
+static void test_turn_capped_by_its_time(void **state)
+{
+    (void)state;
+    cub_groove_note n[2] = {note(0, 1, true, 120), note(500000, 4, false, 90)};
+    cub_groove_turn t[2];
+    int count = 0;
+    assert_int_equal(cub_groove_turns(n, 2, 2500000, Q(90), t, &count), CUB_OK);
+    assert_int_equal(count, 1);
+    double to = d(t[0].to_deg), most_v = 0;
+    for (int64_t us = 1000; us <= 500000; us += 1000) {
+        cub_q16 a = cub_groove_turn_at(t, count, us - 1000), b = cub_groove_turn_at(t, count, us);
+        double v = fabs(d(b - a));
+        most_v = v * 1000 > most_v ? v * 1000 : most_v;
+    }
+    printf("turn asked 90 deg, made %.2f deg, fastest %.1f deg/s\n", to, most_v);
+    assert_true(to > 19.5 && to < 20.2);
+    assert_true(most_v <= 90 * 1.02);
+}
+
+/* The speed bound on the left hand: a staccato 32nd note (31 ms) lifts
+ * the hand less than its 60 mm, as high as the bound lets it in that time,
+ * and the hand never moves faster than CUB_GROOVE_PEAK_MM_S. */
+static void test_staccato_lift_capped_by_its_time(void **state)
+{
+    (void)state;
+    cub_groove_note n[3] = {note(0, 1, true, 100), note(500000, 0.0625, false, 100),
+                            note(531250, 0.0625, false, 0)};
+    n[2].pitch = CUB_GROOVE_REST;
+    cub_groove_plan plan = {set_a(), n, 3, NULL, NULL, NULL, NULL, 0, 0, 562500};
+    double top = 0, most_v = 0;
+    cub_groove_key prev = cub_groove_left_at(&plan, 490000);
+    for (int64_t us = 490500; us <= 562500; us += 500) {
+        cub_groove_key at = cub_groove_left_at(&plan, us);
+        double v = hypot(d(at.x_mm - prev.x_mm), d(at.y_mm - prev.y_mm)) * 2000;
+        most_v = v > most_v ? v : most_v;
+        top = d(at.y_mm) > top ? d(at.y_mm) : top;
+        prev = at;
+    }
+    printf("staccato lift %.1f mm (60 asked), fastest %.0f mm/s\n", top, most_v);
+    assert_true(top > 25 && top < 40);
+    assert_true(most_v <= d(CUB_GROOVE_PEAK_MM_S) * 1.03);
+}
+
 /* The beat stop: every beat of the grid, the three inside a four-beat
  * note too, keeps its time; the clock stands still on it, runs faster
  * between, never backwards; with no stop it is the music's own time. */
@@ -539,6 +586,8 @@ int main(void)
         cmocka_unit_test(test_path_u_inverts_arc_length),
         cmocka_unit_test(test_non_beat_key_passed_at_speed),
         cmocka_unit_test(test_stretch_limit_bounds_the_wrist),
+        cmocka_unit_test(test_turn_capped_by_its_time),
+        cmocka_unit_test(test_staccato_lift_capped_by_its_time),
         cmocka_unit_test(test_beat_stop_on_every_beat),
         cmocka_unit_test(test_poses_are_bit_identical_across_cpus),
     };
