@@ -121,6 +121,23 @@ static cub_q16 factor(const cub_gait_plan_params *p, int k)
     return p->tries > 0 ? p->factors[k] : default_factors[k];
 }
 
+/* The swing from the same foot's last foothold clears within the cap.
+ * Step i's foot swings from step i-2's foothold (the start's swinging foot
+ * for step 0, the start's foothold for step 1); the other foot (odd steps)
+ * strays to the other side, its side offsets swapped. */
+static bool swing_ok(const cub_gait_terrain *t, const cub_gait_plan_params *p, int i,
+                     cub_vec3 from, cub_vec3 to)
+{
+    if (!p->swing || cub_gait_terrain_is_flat(t)) return true;
+    cub_gait_swing_params sp = *p->swing;
+    if (i % 2) {
+        sp.side_mm[0] = p->swing->side_mm[1];
+        sp.side_mm[1] = p->swing->side_mm[0];
+    }
+    cub_gait_swing s;
+    return cub_gait_swing_path(t, &sp, from, to, &s) == CUB_OK;
+}
+
 /* Try k of step i after prev: the foothold, or false when it is not
  * feasible. The feet alternate; the lateral offset keeps them width apart. */
 static bool try_step(const cub_gait_terrain *t, const cub_gait_plan_params *p, heading h,
@@ -136,6 +153,13 @@ static bool try_step(const cub_gait_terrain *t, const cub_gait_plan_params *p, h
     base_range(t, p, h, at.x, at.z, &top);
     *out = (cub_gait_step){{at.x, top, at.z}, left, k};
     return true;
+}
+
+/* Where step i's foot stands before it swings. */
+static cub_vec3 swing_from(const cub_gait_start *start, const cub_gait_plan *plan, int i)
+{
+    if (i >= 2) return plan->steps[i - 2].foot_mm;
+    return i == 1 ? start->foot_mm : start->swing_from_mm;
 }
 
 static bool params_ok(const cub_gait_plan_params *p)
@@ -164,7 +188,8 @@ cub_err cub_gait_plan_steps(const cub_gait_terrain *t, const cub_gait_plan_param
             continue;
         }
         out->tested++;
-        if (try_step(t, p, h, i ? &out->steps[i - 1] : &origin, k[i], &out->steps[i]))
+        if (try_step(t, p, h, i ? &out->steps[i - 1] : &origin, k[i], &out->steps[i]) &&
+            swing_ok(t, p, i, swing_from(start, out, i), out->steps[i].foot_mm))
             i++;
         else
             k[i]++;

@@ -76,7 +76,7 @@ static cub_gait_plan_params walk_params(void)
     return (cub_gait_plan_params){.stride_mm = MM(600), .width_mm = MM(150), .foot_mm = MM(250)};
 }
 
-static const cub_gait_start start = {{0, 0, 0}, 1, 0, CUB_Q16_ONE};
+static const cub_gait_start start = {{0, 0, 0}, 1, 0, CUB_Q16_ONE, {MM(-150), 0, MM(-600)}};
 
 static void test_plan_on_flat_ground(void **state)
 {
@@ -270,6 +270,48 @@ static void test_swing_clears_a_stone_by_the_foothold(void **state)
     assert_true(min_over >= 19.5);
 }
 
+/* A log 15 cm high and 10 cm deep across the way 875 mm on: the nominal
+ * step 0 (60 cm) is a feasible foothold, its toe 25 mm short of the log,
+ * but from there the same foot's swing over the log (step 2) cannot
+ * clear within 40 raises (its toe meets the log at the swing's start).
+ * With the swing in the feasibility test that foothold is refused: the
+ * planner backs up and takes another step 0, and every swing of the plan
+ * clears the log by >= 2 cm (checked at 4000 points, ankle and toe). */
+static void test_foothold_too_near_an_obstacle_is_refused(void **state)
+{
+    (void)state;
+    cub_gait_terrain t;
+    cub_gait_terrain_flat(&t, 0);
+    assert_int_equal(cub_gait_terrain_add(&t, box(-1000, 0, 875, 1000, 150, 975)), CUB_OK);
+    /* 256 samples, ~5 mm apart: at the default 64 (21 mm apart on the
+     * 1.35 m swing of step 2) the toe dips to 11.9 mm between samples at
+     * the log's near edge. */
+    cub_gait_swing_params sp = {.foot_mm = MM(250), .max_raises = 40, .samples = 256};
+    cub_gait_plan_params p = walk_params();
+    p.steps = 3;
+    cub_gait_plan plan;
+    assert_int_equal(cub_gait_plan_steps(&t, &p, &start, &plan), CUB_OK);
+    assert_int_equal(plan.steps[0].foot_mm.z, MM(600)); /* footholds alone: the nominal step */
+    cub_gait_swing sw;
+    assert_int_equal(cub_gait_swing_path(&t, &sp, plan.steps[0].foot_mm, plan.steps[2].foot_mm, &sw),
+                     CUB_ERR_RANGE);
+    p.swing = &sp;
+    assert_int_equal(cub_gait_plan_steps(&t, &p, &start, &plan), CUB_OK);
+    assert_int_equal(plan.count, 3);
+    assert_true(plan.backtracks > 0);
+    assert_true(plan.steps[0].foot_mm.z != MM(600));
+    for (int i = 0; i < 3; i++) {
+        cub_vec3 from = i >= 2 ? plan.steps[i - 2].foot_mm : i ? start.foot_mm : start.swing_from_mm;
+        assert_int_equal(cub_gait_swing_path(&t, &sp, from, plan.steps[i].foot_mm, &sw), CUB_OK);
+        double over_log; /* 1e9 for a swing that does not pass over the log */
+        assert_true(swing_gaps(&sw, &t, 875, 975, &over_log) >= -0.01);
+        printf("gait: step %d to %.0f mm (try %d), %d raises, over the log %.1f mm\n", i,
+               plan.steps[i].foot_mm.z / 65536.0, plan.steps[i].try_index, sw.raises,
+               over_log < 1e8 ? over_log : -1.0);
+        assert_true(over_log >= 19.5);
+    }
+}
+
 #define DEG(d) ((cub_q16)(((int64_t)(d) * CUB_Q16_PI + 90) / 180))
 
 /* A right leg: hip 90 cm up, thigh 45 cm, shin 43 cm, the knee bending
@@ -424,6 +466,7 @@ int main(void)
         cmocka_unit_test(test_dead_end_stops_the_walk),
         cmocka_unit_test(test_bezier_ends_and_line),
         cmocka_unit_test(test_swing_clears_a_log),
+        cmocka_unit_test(test_foothold_too_near_an_obstacle_is_refused),
         cmocka_unit_test(test_leg_ik_keeps_the_knee_in_range),
         cmocka_unit_test(test_leg_ik_keeps_the_ankle_in_range),
         cmocka_unit_test(test_pelvis_lowers_so_both_feet_reach),

@@ -196,11 +196,13 @@ static int taken(const log *l)
     return n;
 }
 
-/* A log higher than the swing may rise (5 raises of 10 mm): the first
- * step length whose swing would cross it is dropped and the plan made
- * again (a backtrack), and the step taken stops short of the log, no sole
- * point entering it. (Past that the way is shut for every length: the
- * walker reports BLOCKED and stops: blocked_walker_stops.) */
+/* A log higher than the swing may rise (5 raises of 10 mm): the planner
+ * tests the swing to each foothold it plans 3 steps ahead, so the first
+ * plan's nominal steps, whose later swings would cross the log, are
+ * given up (a backtrack) and the step taken stops short of the log, no
+ * sole point entering it. No plan of 3 steps then avoids the log: the
+ * next step is BLOCKED (blocked_walker_stops); before the planner tested
+ * swings the walker took one step more. */
 /* The log's near face (mm): far enough that a half step (the shortest the
  * planner tries) lands with its toe tip 20 mm short of it. */
 #define WALL_Z 1500
@@ -228,7 +230,7 @@ static void swing_that_cannot_clear_is_replanned(void **state)
     cub_gait_terrain t;
     walker_before_wall(&l, &t);
     cub_vec3 target = {0, 0, CUB_Q16_INT(30000)};
-    for (int i = 0; i < 600 && taken(&l) < 2; i++) {
+    for (int i = 0; i < 600 && !walker.blocked; i++) {
         const cub_pose *pose;
         assert_int_equal(cub_gait_walker_step(&walker, target, &pose), CUB_OK);
         for (int f = 0; f < 2; f++) {
@@ -240,19 +242,18 @@ static void swing_that_cannot_clear_is_replanned(void **state)
                 assert_true(pts[k].y >= cub_gait_height(&t, pts[k].x, pts[k].z) - CUB_Q16_ONE / 2);
         }
     }
-    assert_int_equal(taken(&l), 2);
-    int backtracked = 0;
+    assert_int_equal(taken(&l), 1);
+    int backtracks = 0;
     for (int i = 0; i < l.n; i++) {
         const cub_gait_event *e = &l.e[i];
-        if (e->kind == CUB_GAIT_EV_BACKTRACKED) backtracked = e->step;
-        if (e->kind == CUB_GAIT_EV_TAKEN && e->step == backtracked && backtracked) {
-            printf("gait walker: step %d replanned, taken at z %.0f mm (the log from %d)\n",
-                   e->step, e->foot_mm.z / 65536.0, WALL_Z);
+        if (e->kind == CUB_GAIT_EV_BACKTRACKED && e->step == 0) backtracks = e->count;
+        if (e->kind == CUB_GAIT_EV_TAKEN) {
+            printf("gait walker: step 0 replanned (%d backtracks), taken at z %.0f mm (the log "
+                   "from %d)\n", backtracks, e->foot_mm.z / 65536.0, WALL_Z);
             assert_true(e->foot_mm.z < CUB_Q16_INT(WALL_Z));
         }
-        assert_int_not_equal(e->kind, CUB_GAIT_EV_BLOCKED);
     }
-    assert_true(backtracked >= 1);
+    assert_true(backtracks >= 1);
 }
 
 /* The lowest sole point of a foot above the terrain (its IK result). */

@@ -143,6 +143,13 @@ typedef struct cub_gait_plan_params {
      * 1, 0.75, 1.25, 0.5, 1.5 [ours]. */
     int tries;
     cub_q16 factors[CUB_GAIT_MAX_TRIES];
+    /* Not NULL (and the terrain not flat): a foothold is feasible only if
+     * the swing to it from the same foot's last foothold clears within
+     * swing->max_raises (cub_gait_swing_path), so a step planted too near
+     * an obstacle, from where no low swing can clear it, is refused and
+     * the look-ahead backtracks [ours: the seed tests footholds only].
+     * The other foot's swings take side_mm mirrored ([0] and [1] swapped). */
+    const struct cub_gait_swing_params *swing;
 } cub_gait_plan_params;
 
 /* Where the walk stands: the last foothold (the ankle's ground point), its
@@ -151,6 +158,7 @@ typedef struct cub_gait_start {
     cub_vec3 foot_mm;
     int left; /* 1: the last foot down is the left one */
     cub_q16 dir_x, dir_z;
+    cub_vec3 swing_from_mm; /* with params->swing: where the first step's foot stands now */
 } cub_gait_start;
 
 typedef struct cub_gait_step {
@@ -194,7 +202,7 @@ typedef struct cub_gait_swing {
     int clear;  /* 1: the path clears the terrain by clearance_mm */
 } cub_gait_swing;
 
-typedef struct cub_gait_swing_params {
+struct cub_gait_swing_params {
     cub_q16 clearance_mm; /* the sole stays this far above (0: 20 mm) */
     cub_q16 raise_mm;     /* each raise (0: 10 mm) [ours] */
     int max_raises;       /* give up after (0: 100) [ours] */
@@ -203,7 +211,8 @@ typedef struct cub_gait_swing_params {
     cub_q16 heel_mm;      /* the heel, this far behind the ankle along P0P4, is tested too */
     cub_q16 side_mm[2];   /* ... and ankle, toe and heel this far off the line: [0] toward
                              (d.z, 0, -d.x), d the direction P0 -> P4; [1] the other way */
-} cub_gait_swing_params;
+};
+typedef struct cub_gait_swing_params cub_gait_swing_params;
 
 /* B(t), t in [0, 1] Q16.16. */
 cub_vec3 cub_gait_bezier4(const cub_vec3 p[5], cub_q16 t);
