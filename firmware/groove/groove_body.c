@@ -54,10 +54,19 @@ static cub_q16 swing_curve(cub_q16 u)
 #define SWING_GAIN_PCT 224
 #define REST_GAIN_PCT 150
 
+/* The farthest a move may go in t_us at per_s (Q16 units a second) at its
+ * curve's steepest, which is gain_pct of its mean speed: the turns' and
+ * the left hand's bound alike. */
+static cub_q16 most_in(cub_q16 per_s, int64_t t_us, int gain_pct)
+{
+    if (t_us > 1000000000) return INT32_MAX; /* minutes: nothing to bound */
+    int64_t d = (int64_t)per_s * 100 / gain_pct * t_us / 1000000;
+    return (cub_q16)(d < INT32_MAX ? d : INT32_MAX);
+}
+
 static cub_q16 most_deg(int64_t dt_us, int gain_pct)
 {
-    int64_t d = (int64_t)CUB_Q16_INT(TURN_DEG_S) * 100 / gain_pct * dt_us / 1000000;
-    return (cub_q16)(d < INT32_MAX ? d : INT32_MAX);
+    return most_in(CUB_Q16_INT(TURN_DEG_S), dt_us, gain_pct);
 }
 
 static cub_q16 capped(cub_q16 v, cub_q16 from, cub_q16 most)
@@ -169,9 +178,8 @@ static bool staccato(const cub_groove_note *notes, int n, int i)
  * where the note is short. */
 static cub_q16 in_time(cub_q16 mm, int64_t t_us, int gain_pct)
 {
-    if (t_us > 1000000000) return mm; /* minutes: nothing to bound */
-    int64_t most = (int64_t)CUB_GROOVE_PEAK_MM_S * 100 / gain_pct * t_us / 1000000;
-    return most < mm ? (cub_q16)most : mm;
+    cub_q16 most = most_in(CUB_GROOVE_PEAK_MM_S, t_us, gain_pct);
+    return most < mm ? most : mm;
 }
 
 /* Staccato note i's lift: in time for its lift (swing curve, 2.24 x) and
