@@ -82,7 +82,7 @@ static void count_tick(cub_mem_stats *m)
 /* One line per song start, for a soak to compare song by song. */
 static void song_line(cub_mem_stats *m, int64_t t_us)
 {
-    char line[256];
+    char line[320];
     int n = snprintf(line, sizeof line,
                      "stats: song n=%u t=%lld.%03lld rss_kb=%ld fds=%d rss_anon_kb=%ld "
                      "rss_file_kb=%ld",
@@ -92,8 +92,10 @@ static void song_line(cub_mem_stats *m, int64_t t_us)
     if (m->heap_missing)
         n += snprintf(line + n, sizeof line - (size_t)n, " heap=unavailable");
     else
-        n += snprintf(line + n, sizeof line - (size_t)n, " heap_peak_kb=%lld heap_kb=%lld",
-                      (long long)(m->heap_peak_bytes / 1024), (long long)(m->heap_bytes / 1024));
+        n += snprintf(line + n, sizeof line - (size_t)n,
+                      " heap_peak_kb=%lld heap_kb=%lld heap_peak_b=%lld heap_b=%lld",
+                      (long long)(m->heap_peak_bytes / 1024), (long long)(m->heap_bytes / 1024),
+                      (long long)m->heap_peak_bytes, (long long)m->heap_bytes);
     if (m->read)
         n += snprintf(line + n, sizeof line - (size_t)n, " allocs=%llu",
                       (unsigned long long)m->last.allocs);
