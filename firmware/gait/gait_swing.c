@@ -19,15 +19,24 @@ static cub_q16 weigh(const cub_q16 *v, const cub_q16 *b)
     return (cub_q16)((s + (1 << 15)) >> 16);
 }
 
-cub_vec3 cub_gait_bezier4(const cub_vec3 p[5], cub_q16 t)
+/* The quartic's Bernstein weights at t; they sum to exactly one, so
+ * points on a line stay on it. */
+static void basis(cub_q16 t, cub_q16 b[5])
 {
     t = cub_fx_clamp(t, 0, CUB_Q16_ONE);
     cub_q16 s = CUB_Q16_ONE - t;
     cub_q16 s2 = cub_fx_mul(s, s), t2 = cub_fx_mul(t, t);
-    cub_q16 b[5] = {0, 4 * cub_fx_mul(t, cub_fx_mul(s2, s)), 6 * cub_fx_mul(t2, s2),
-                    4 * cub_fx_mul(cub_fx_mul(t2, t), s), cub_fx_mul(t2, t2)};
-    /* The weights sum to exactly one, so points on a line stay on it. */
+    b[1] = 4 * cub_fx_mul(t, cub_fx_mul(s2, s));
+    b[2] = 6 * cub_fx_mul(t2, s2);
+    b[3] = 4 * cub_fx_mul(cub_fx_mul(t2, t), s);
+    b[4] = cub_fx_mul(t2, t2);
     b[0] = CUB_Q16_ONE - b[1] - b[2] - b[3] - b[4];
+}
+
+cub_vec3 cub_gait_bezier4(const cub_vec3 p[5], cub_q16 t)
+{
+    cub_q16 b[5];
+    basis(t, b);
     cub_q16 xs[5], ys[5], zs[5];
     for (int k = 0; k < 5; k++) {
         xs[k] = p[k].x;
@@ -66,80 +75,135 @@ static cub_q16 clearance_at(cub_q16 clear, cub_q16 t)
     return cub_fx_mul(clear, cub_fx_clamp(edge * 4, 0, CUB_Q16_ONE));
 }
 
-/* Where a swing point needs only the ramp's clearance (and a sole point
- * none): over the ground, or over an obstacle whose top is no higher than
- * the foothold of this half of the swing (level): a foot leaving or landing
- * on a platform's top stands on it [ours]. Tested as an obstacle there,
- * the heel (a fifth of the foot below the path) asked 95 raises (0.95 m)
- * for a step 12 cm up, and the planner, capping the raises, refused it. */
-static bool on_ground(const cub_gait_terrain *t, cub_vec3 q, cub_q16 h, cub_q16 level)
+/* The raise is solved for, not stepped to: raising P1..P3 by h moves no
+ * point sideways and lifts B(t) by h * w(t), w = b1 + b2 + b3 (> 0 inside
+ * the swing). A point of the sole at t that must reach height y then
+ * needs h >= (y - B0(t).y) / w(t), B0 the unraised path; the raise is the
+ * largest such need, in whole raise_mm steps (as the stepped test gave).
+ * A 1.53 m swing stepped 10 mm at a time and re-tested at 64 samples cost
+ * up to 2.4 ms at a foot-off and missed a toe's corner between samples
+ * (CMU 08_01 10.7 mm over the log; docs/gait.md). */
+typedef struct swing_solve {
+    const cub_gait_terrain *t;
+    const swing_cfg *c;
+    const cub_vec3 *p;  /* the unraised control points: on the line P0P4 */
+    cub_q16 t_lo, t_hi; /* the part of the swing tested: the ends are footholds */
+    int64_t need;       /* the largest raise needed so far, Q16.16 mm */
+} swing_solve;
+
+/* Point at t (offset dy from the path) must reach y: fold its need in. */
+static void need_at(swing_solve *s, cub_q16 t, cub_q16 y, cub_q16 dy)
 {
-    return h <= cub_gait_ground_height(t, q.x, q.z) || h <= level;
+    cub_q16 b[5];
+    basis(t, b);
+    cub_q16 w = b[1] + b[2] + b[3];
+    if (w <= 0) return;
+    int64_t gap = (int64_t)y - dy - cub_gait_bezier4(s->p, t).y;
+    int64_t h = gap > 0 ? (gap * CUB_Q16_ONE + w - 1) / w : 0;
+    if (h > s->need) s->need = h;
 }
 
-/* Over an obstacle the full clearance holds, ramp or not: no foothold
- * touches an obstacle's side (the planner keeps the foot base on its top
- * or 20 mm clear), so only the ground needs the ramp [ours]. */
-static bool point_clears(const cub_gait_terrain *t, cub_vec3 q, cub_q16 need, cub_q16 clear,
-                         cub_q16 level)
+/* The ankle's point over the ground (not the obstacles), at the samples:
+ * the ground is smooth, the ramp asks little near the ends. */
+static void need_over_ground(swing_solve *s)
 {
-    cub_q16 h = cub_gait_height(t, q.x, q.z);
-    if (!on_ground(t, q, h, level) && need < clear) need = clear;
-    return cub_fx_sub(q.y, h) >= need;
-}
-
-/* A sole point ahead of or behind the path's point clears the obstacles
- * only: over the plain ground the walker keeps every foot point above the
- * ground itself, and a flat foot's toe held to the path's height on a
- * slope asked a 28-raise path at the swing's start (the toe's ground is
- * above the ankle's there) [ours]. */
-static bool sole_clears(const cub_gait_terrain *t, cub_vec3 q, cub_q16 clear, cub_q16 level)
-{
-    cub_q16 h = cub_gait_height(t, q.x, q.z);
-    return on_ground(t, q, h, level) || cub_fx_sub(q.y, h) >= clear;
-}
-
-/* The sole's points at one sample: the ankle's, the toe ahead and the
- * heel behind it along P0P4, each also side[0] off the line toward
- * (d.z, 0, -d.x) (d along P0P4) and side[1] the other way. */
-typedef struct sole_offsets {
-    cub_vec3 toe, heel, side[2];
-} sole_offsets;
-
-static bool sole_row_clears(const cub_gait_terrain *t, const swing_cfg *c, cub_vec3 q,
-                            const sole_offsets *o, cub_q16 level)
-{
-    for (int k = 0; k < 3; k++) {
-        cub_vec3 r = k < 2 ? cub_fx_vec3_add(q, o->side[k]) : q;
-        if (k < 2 && !sole_clears(t, r, c->clear, level)) return false;
-        if (c->foot > 0 && !sole_clears(t, cub_fx_vec3_add(r, o->toe), c->clear, level))
-            return false;
-        /* The heel lower than the flat sole the path models: the foot
-         * comes down toe up (~15 degrees at the strike), a fifth of the
-         * foot at the heel [ours]. */
-        cub_vec3 heel = cub_fx_vec3_sub(r, o->heel);
-        heel.y -= c->foot / 5;
-        if (c->heel > 0 && !sole_clears(t, heel, c->clear, level)) return false;
+    for (int i = 1; i < s->c->samples; i++) {
+        cub_q16 tt = (cub_q16)(((int64_t)i << 16) / s->c->samples);
+        cub_vec3 q = cub_gait_bezier4(s->p, tt);
+        cub_q16 g = cub_gait_ground_height(s->t, q.x, q.z);
+        need_at(s, tt, cub_fx_add(g, clearance_at(s->c->clear, tt)), 0);
     }
-    return true;
 }
 
-/* Every sample of the path (the ankle's point; the sole around it) clears. */
-static bool path_clears(const cub_gait_terrain *t, const swing_cfg *c, const cub_vec3 p[5],
-                        const sole_offsets *o)
+/* A point of the sole: its offset from the ankle's point along the path
+ * (y below it for the heel), and whether it is the ankle's point itself. */
+typedef struct sole_point {
+    cub_vec3 off;
+    bool ankle;
+} sole_point;
+
+/* The t where a point moving from a by d (per unit t) is inside [lo, hi]
+ * on one axis, narrowed into *t0, *t1 (Q16.16). */
+static void slab(cub_q16 a, cub_q16 d, cub_q16 lo, cub_q16 hi, int64_t *t0, int64_t *t1)
 {
-    for (int i = 1; i < c->samples; i++) {
-        cub_q16 tt = (cub_q16)(((int64_t)i << 16) / c->samples);
-        cub_vec3 q = cub_gait_bezier4(p, tt);
-        cub_q16 need = clearance_at(c->clear, tt);
-        cub_q16 level = tt < CUB_Q16_HALF ? p[0].y : p[4].y;
-        if (!point_clears(t, q, need, c->clear, level) || !sole_row_clears(t, c, q, o, level))
-            return false;
+    if (d == 0) {
+        if (a < lo || a > hi) *t1 = -1;
+        return;
     }
-    return true;
+    int64_t u = ((int64_t)(lo - a) << 16) / d, v = ((int64_t)(hi - a) << 16) / d;
+    if (u > v) {
+        int64_t x = u;
+        u = v;
+        v = x;
+    }
+    if (u > *t0) *t0 = u;
+    if (v < *t1) *t1 = v;
 }
 
-/* The toe's offset from the ankle: foot ahead along P0P4 on the ground. */
+/* The height a sole point over box b at t must reach, or false when none:
+ * an obstacle whose top is no higher than the foothold of this half of
+ * the swing (level) is ground there (a foot leaving or landing on a
+ * platform stands on it [ours]; tested as an obstacle, the heel asked
+ * 0.95 m for a 12 cm step up): the ankle's point keeps the ramp's
+ * clearance over it, the rest of the sole none. Over any other obstacle
+ * the full clearance holds, ramp or not (the planner keeps the foot base
+ * on its top or 20 mm clear of it). The sole's ends off the ankle's
+ * point clear the obstacles only: over the plain ground the walker keeps
+ * every foot point above the ground itself (a flat foot's toe held to
+ * the path's height on a slope asked a 28-raise path at the swing's
+ * start) [ours]. */
+static bool box_need(const swing_solve *s, const cub_gait_box *b, const sole_point *sp,
+                     cub_q16 t, bool first_half, cub_q16 *y)
+{
+    cub_q16 level = first_half ? s->p[0].y : s->p[4].y;
+    if (b->max_mm.y > level) {
+        *y = cub_fx_add(b->max_mm.y, s->c->clear);
+        return true;
+    }
+    *y = cub_fx_add(b->max_mm.y, clearance_at(s->c->clear, t));
+    return sp->ankle;
+}
+
+/* A sole point over box b between t0 and t1: the need, the height asked
+ * less the path's, over w, is linear over a concave w on each piece
+ * between the ramp's and the halves' breaks (a quarter, a half, three
+ * quarters), so on each piece its largest is at an end: those ends are
+ * tested, exactly, and no corner dips between samples. */
+static void need_over_box(swing_solve *s, const cub_gait_box *b, const sole_point *sp,
+                          int64_t t0, int64_t t1)
+{
+    static const int64_t cuts[] = {CUB_Q16_ONE / 4, CUB_Q16_HALF, 3 * CUB_Q16_ONE / 4,
+                                   CUB_Q16_ONE + 1};
+    int64_t a = t0;
+    for (int k = 0; k < 4 && a <= t1; k++) {
+        if (cuts[k] <= a) continue;
+        int64_t e = cuts[k] - 1 < t1 ? cuts[k] - 1 : t1;
+        bool first = a < CUB_Q16_HALF;
+        cub_q16 y;
+        for (int end = 0; end < 2; end++) {
+            cub_q16 tt = (cub_q16)(end ? e : a);
+            if (box_need(s, b, sp, tt, first, &y)) need_at(s, tt, y, sp->off.y);
+        }
+        a = cuts[k];
+    }
+}
+
+/* Every box under a sole point's track: the control points lie evenly on
+ * P0P4, so the point moves along it linearly in t. */
+static void need_over_boxes(swing_solve *s, const sole_point *sp)
+{
+    cub_q16 ax = cub_fx_add(s->p[0].x, sp->off.x), az = cub_fx_add(s->p[0].z, sp->off.z);
+    cub_q16 dx = cub_fx_sub(s->p[4].x, s->p[0].x), dz = cub_fx_sub(s->p[4].z, s->p[0].z);
+    for (int k = 0; k < s->t->obstacle_count; k++) {
+        const cub_gait_box *b = &s->t->obstacles[k];
+        int64_t t0 = s->t_lo, t1 = s->t_hi;
+        slab(ax, dx, b->min_mm.x, b->max_mm.x, &t0, &t1);
+        slab(az, dz, b->min_mm.z, b->max_mm.z, &t0, &t1);
+        if (t0 <= t1) need_over_box(s, b, sp, t0, t1);
+    }
+}
+
+/* The offset of a point foot_mm along P0P4 on the ground. */
 static cub_vec3 toe_offset(cub_vec3 from, cub_vec3 to, cub_q16 foot)
 {
     cub_vec3 d = {cub_fx_sub(to.x, from.x), 0, cub_fx_sub(to.z, from.z)};
@@ -147,6 +211,26 @@ static cub_vec3 toe_offset(cub_vec3 from, cub_vec3 to, cub_q16 foot)
     if (len == 0 || foot == 0) return (cub_vec3){0, 0, 0};
     return (cub_vec3){(cub_q16)((int64_t)d.x * foot / len), 0,
                       (cub_q16)((int64_t)d.z * foot / len)};
+}
+
+/* The sole's points: the ankle's, side[0] off the line toward (d.z, 0,
+ * -d.x) (d along P0P4) and side[1] the other way; on each of the three
+ * lines the toe ahead and the heel behind. The heel is lower than the
+ * flat sole the path models: the foot comes down toe up (~15 degrees at
+ * the strike), a fifth of the foot at the heel [ours]. */
+static int sole_points(const swing_cfg *c, cub_vec3 from, cub_vec3 to, sole_point pts[9])
+{
+    cub_vec3 l = toe_offset(from, to, c->side[0]), r = toe_offset(from, to, c->side[1]);
+    cub_vec3 toe = toe_offset(from, to, c->foot), heel = toe_offset(from, to, c->heel);
+    cub_vec3 row[3] = {{0, 0, 0}, {l.z, 0, -l.x}, {-r.z, 0, r.x}};
+    heel = (cub_vec3){-heel.x, -(c->foot / 5), -heel.z};
+    int n = 0;
+    for (int k = 0; k < 3; k++) {
+        pts[n++] = (sole_point){row[k], k == 0};
+        if (c->foot > 0) pts[n++] = (sole_point){cub_fx_vec3_add(row[k], toe), false};
+        if (c->heel > 0) pts[n++] = (sole_point){cub_fx_vec3_add(row[k], heel), false};
+    }
+    return n;
 }
 
 cub_err cub_gait_swing_path(const cub_gait_terrain *t, const cub_gait_swing_params *p,
@@ -159,16 +243,19 @@ cub_err cub_gait_swing_path(const cub_gait_terrain *t, const cub_gait_swing_para
                              cub_fx_vec3_lerp(from_mm, to_mm, 3 * CUB_Q16_ONE / 4), to_mm},
                             0,
                             0};
-    cub_vec3 l = toe_offset(from_mm, to_mm, c.side[0]), r = toe_offset(from_mm, to_mm, c.side[1]);
-    sole_offsets o = {toe_offset(from_mm, to_mm, c.foot),
-                      toe_offset(from_mm, to_mm, c.heel),
-                      {{l.z, 0, -l.x}, {-r.z, 0, r.x}}};
-    while (!path_clears(t, &c, out->p, &o)) {
-        if (out->raises >= c.max_raises) return CUB_ERR_RANGE;
-        for (int k = 1; k <= 3; k++)
-            out->p[k].y = cub_fx_add(out->p[k].y, c.raise);
-        out->raises++;
-    }
-    out->clear = 1;
-    return CUB_OK;
+    /* The first and last samples of the stepped test bound the part tested. */
+    cub_q16 edge = (cub_q16)(CUB_Q16_ONE / c.samples);
+    swing_solve s = {t, &c, out->p, edge, CUB_Q16_ONE - edge, 0};
+    need_over_ground(&s);
+    sole_point pts[9];
+    int n = sole_points(&c, from_mm, to_mm, pts);
+    for (int i = 0; i < n; i++)
+        need_over_boxes(&s, &pts[i]);
+    int64_t raises = (s.need + c.raise - 1) / c.raise;
+    bool ok = raises <= c.max_raises;
+    out->raises = ok ? (int)raises : c.max_raises;
+    for (int k = 1; k <= 3; k++)
+        out->p[k].y = cub_fx_add(out->p[k].y, (cub_q16)(out->raises * (int64_t)c.raise));
+    out->clear = ok;
+    return ok ? CUB_OK : CUB_ERR_RANGE;
 }

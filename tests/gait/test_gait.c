@@ -270,6 +270,32 @@ static void test_swing_clears_a_stone_by_the_foothold(void **state)
     assert_true(min_over >= 19.5);
 }
 
+/* A plank on edge across the way, 12 mm thick and 80 mm high, under a
+ * 1.5 m swing: the 64 samples of the old stepped test fell 23 mm apart
+ * (ankle at z 398 and 422 mm, toe 250 mm ahead at 391 and 414 mm) and
+ * missed it, so the path stayed 30 mm up and went through it. The raise
+ * solved against each obstacle's edges clears it by >= 2 cm, checked at
+ * 4000 points, ankle and toe; and it is the least raise that does: one
+ * raise fewer does not clear. */
+static void test_swing_clears_a_plank_between_samples(void **state)
+{
+    (void)state;
+    cub_gait_terrain t;
+    cub_gait_terrain_flat(&t, 0);
+    assert_int_equal(cub_gait_terrain_add(&t, box(-1000, 0, 400, 1000, 80, 412)), CUB_OK);
+    cub_gait_swing_params sp = {.foot_mm = MM(250)};
+    cub_vec3 from = {0, 0, 0}, to = {0, 0, MM(1500)};
+    cub_gait_swing sw;
+    assert_int_equal(cub_gait_swing_path(&t, &sp, from, to, &sw), CUB_OK);
+    double over_plank;
+    assert_true(swing_gaps(&sw, &t, 400, 412, &over_plank) >= -0.01);
+    printf("gait: a 12 mm plank cleared by %.1f mm after %d raises\n", over_plank, sw.raises);
+    assert_true(over_plank >= 19.99);
+    cub_gait_swing_params fewer = sp;
+    fewer.max_raises = sw.raises - 1;
+    assert_int_equal(cub_gait_swing_path(&t, &fewer, from, to, &sw), CUB_ERR_RANGE);
+}
+
 /* A log 15 cm high and 10 cm deep across the way 875 mm on: the nominal
  * step 0 (60 cm) is a feasible foothold, its toe 25 mm short of the log,
  * but from there the same foot's swing over the log (step 2) cannot
@@ -466,6 +492,7 @@ int main(void)
         cmocka_unit_test(test_dead_end_stops_the_walk),
         cmocka_unit_test(test_bezier_ends_and_line),
         cmocka_unit_test(test_swing_clears_a_log),
+        cmocka_unit_test(test_swing_clears_a_plank_between_samples),
         cmocka_unit_test(test_foothold_too_near_an_obstacle_is_refused),
         cmocka_unit_test(test_leg_ik_keeps_the_knee_in_range),
         cmocka_unit_test(test_leg_ik_keeps_the_ankle_in_range),
