@@ -23,7 +23,7 @@ static const char *const usage_text =
     "penetration of the sole box, stance slide per step, clearance over\n"
     "obstacles, foot rotation per frame, leg joint speed against the\n"
     "source's 99th percentile, mean joint error against the source on flat\n"
-    "ground, time per frame (printed, never checked). Reference clips (real\n"
+    "ground, time per frame (the thread's CPU time; printed, never checked). Reference clips (real\n"
     "walks on uneven ground) are measured on their own floor only.\n"
     "Defaults: --clips 02_01 (tuning), --held-out 16_11,07_01,08_01 (labelled\n"
     "\"seen\": each has been looked at, docs/gait.md),\n"

@@ -243,7 +243,8 @@ cub_err cub_gait_swing_path(const cub_gait_terrain *t, const cub_gait_swing_para
                              cub_fx_vec3_lerp(from_mm, to_mm, 3 * CUB_Q16_ONE / 4), to_mm},
                             0,
                             0};
-    /* The first and last samples of the stepped test bound the part tested. */
+    /* The first and last samples of the stepped test bound the part tested:
+     * the ends are footholds. */
     cub_q16 edge = (cub_q16)(CUB_Q16_ONE / c.samples);
     swing_solve s = {t, &c, out->p, edge, CUB_Q16_ONE - edge, 0};
     need_over_ground(&s);

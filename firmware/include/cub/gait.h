@@ -195,7 +195,8 @@ cub_err cub_gait_plan_steps(const cub_gait_terrain *t, const cub_gait_plan_param
 
 /* The seed's quartic Bézier (eq. 4-2): P0 the foot's current point, P4 the
  * next foothold, P1..P3 start at the quartile, middle and third quartile
- * of P0P4 and are raised together until the sole clears the terrain. */
+ * of P0P4 and are raised together until the sole clears the terrain: the
+ * least raise (in raise_mm steps) is solved for, not stepped to. */
 typedef struct cub_gait_swing {
     cub_vec3 p[5];
     int raises; /* times P1..P3 were raised */
@@ -206,7 +207,8 @@ struct cub_gait_swing_params {
     cub_q16 clearance_mm; /* the sole stays this far above (0: 20 mm) */
     cub_q16 raise_mm;     /* each raise (0: 10 mm) [ours] */
     int max_raises;       /* give up after (0: 100) [ours] */
-    int samples;          /* points tested along the path (0: 64) [ours] */
+    int samples;          /* points of the path tested over the ground (0: 64); the obstacles
+                             are tested exactly, between the first and last of them [ours] */
     cub_q16 foot_mm;      /* the toe, this far ahead of the ankle along P0P4, is tested too */
     cub_q16 heel_mm;      /* the heel, this far behind the ankle along P0P4, is tested too */
     cub_q16 side_mm[2];   /* ... and ankle, toe and heel this far off the line: [0] toward
