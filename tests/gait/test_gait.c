@@ -204,7 +204,8 @@ static void test_bezier_ends_and_line(void **state)
     assert_in_range(m.y, MM(40) - 3277, MM(40) + 3277);
 }
 
-/* The swing sampled densely (4000 points; the firmware samples 64), the
+/* The swing sampled densely (4000 points; the firmware tests the ground
+ * at 64 samples, the obstacles exactly), the
  * ankle and the toe 250 mm ahead of it: the lowest gap to the ground
  * anywhere (returned) and over z0..z1 mm (*over), in mm. */
 static double swing_gaps(const cub_gait_swing *sw, const cub_gait_terrain *t, int z0, int z1,
@@ -225,7 +226,7 @@ static double swing_gaps(const cub_gait_swing *sw, const cub_gait_terrain *t, in
 }
 
 /* A log 15 cm high and 10 cm deep midway through a 60 cm step: the path
- * rises over it; checked densely here (the firmware samples 64 points),
+ * rises over it; checked densely here,
  * it never enters the ground and is >= 2 cm above the log, toe included. */
 static void test_swing_clears_a_log(void **state)
 {
@@ -309,10 +310,9 @@ static void test_foothold_too_near_an_obstacle_is_refused(void **state)
     cub_gait_terrain t;
     cub_gait_terrain_flat(&t, 0);
     assert_int_equal(cub_gait_terrain_add(&t, box(-1000, 0, 875, 1000, 150, 975)), CUB_OK);
-    /* 256 samples, ~5 mm apart: at the default 64 (21 mm apart on the
-     * 1.35 m swing of step 2) the toe dips to 11.9 mm between samples at
-     * the log's near edge. */
-    cub_gait_swing_params sp = {.foot_mm = MM(250), .max_raises = 40, .samples = 256};
+    /* The obstacles are tested exactly (the 64 samples of the stepped
+     * test let the toe dip to 11.9 mm at the log's near edge). */
+    cub_gait_swing_params sp = {.foot_mm = MM(250), .max_raises = 40};
     cub_gait_plan_params p = walk_params();
     p.steps = 3;
     cub_gait_plan plan;
