@@ -132,7 +132,7 @@ static void slab(cub_q16 a, cub_q16 d, cub_q16 lo, cub_q16 hi, int64_t *t0, int6
         if (a < lo || a > hi) *t1 = -1;
         return;
     }
-    int64_t u = ((int64_t)(lo - a) << 16) / d, v = ((int64_t)(hi - a) << 16) / d;
+    int64_t u = ((int64_t)lo - a) * CUB_Q16_ONE / d, v = ((int64_t)hi - a) * CUB_Q16_ONE / d;
     if (u > v) {
         int64_t x = u;
         u = v;
