@@ -41,13 +41,6 @@ static bool stop_ok(cub_q16 before, cub_q16 after, int k)
            after < CUB_Q16_ONE && (int64_t)before + after <= CUB_Q16_ONE;
 }
 
-bool groove_stops(const cub_groove_plan *plan, int i)
-{
-    const cub_groove_params *p = &plan->params;
-    return i >= 0 && i < plan->n && plan->notes[i].beat_us > 0 &&
-           stop_ok(p->stop_before, p->stop_after, p->stop_power);
-}
-
 int64_t cub_groove_clock(const cub_groove_plan *plan, int64_t t_us)
 {
     const cub_groove_params *p = &plan->params;

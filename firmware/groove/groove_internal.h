@@ -14,8 +14,6 @@ bool groove_is_drum(const cub_groove_midi_note *n);
 int groove_note_at(const cub_groove_note *notes, int n, int64_t t_us);
 /* Where note i ends: the next note's start, the last one's end_us. */
 int64_t groove_note_end(const cub_groove_note *notes, int n, int64_t end_us, int i);
-/* Whether the beat stop (cub_groove_clock) acts during note i. */
-bool groove_stops(const cub_groove_plan *plan, int i);
 /* tau in [0, 1] of t_us over [t0, t1) (1 for an empty span). */
 cub_q16 groove_tau(int64_t t_us, int64_t t0, int64_t t1);
 /* cub_groove_turns with the count-in first: before the melody's first

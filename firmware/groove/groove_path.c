@@ -48,33 +48,13 @@ static cub_groove_handles smooth_handles(const cub_groove_params *p, const cub_g
                                 key_add(keys[i], with_length(dir, p->smooth_mm - in_len)), 0};
 }
 
-static cub_q16 x_gap(cub_groove_key a, cub_groove_key b)
-{
-    return a.x_mm > b.x_mm ? cub_fx_sub(a.x_mm, b.x_mm) : cub_fx_sub(b.x_mm, a.x_mm);
-}
-
-/* A beat key's lift, L1 x its length in beats, at most the x distance to
- * its nearer neighbouring key (ours, round 5): over two beat keys a few mm
- * apart the seed's 85 mm lift made a tall narrow arch whose apex turned
- * sharply, a one-frame dip of the body's speed mid-beat (an off-beat
- * motion beat, Essen altdeu10 #1). No taller than its narrower side is
- * wide, the apex turns smoothly. */
-static cub_q16 beat_lift(const cub_groove_params *p, const cub_groove_note *notes,
-                         const cub_groove_key *keys, int n, int i)
-{
-    cub_q16 beats = notes[i].length_beats < L1_MAX_BEATS ? notes[i].length_beats : L1_MAX_BEATS;
-    cub_q16 lift = cub_fx_mul(p->l1_mm, beats);
-    if (i > 0 && x_gap(keys[i], keys[i - 1]) < lift) lift = x_gap(keys[i], keys[i - 1]);
-    if (i + 1 < n && x_gap(keys[i], keys[i + 1]) < lift) lift = x_gap(keys[i], keys[i + 1]);
-    return lift;
-}
-
 /* Beat key: in from G1 (above) / G2 (back) by intensity, out its mirror. */
 static cub_groove_handles beat_handles(const cub_groove_params *p, const cub_groove_note *notes,
-                                       const cub_groove_key *keys, int n, int i)
+                                       const cub_groove_key *keys, int i)
 {
     cub_groove_key k = keys[i];
-    cub_groove_key g1 = {k.x_mm, cub_fx_add(k.y_mm, beat_lift(p, notes, keys, n, i))};
+    cub_q16 beats = notes[i].length_beats < L1_MAX_BEATS ? notes[i].length_beats : L1_MAX_BEATS;
+    cub_groove_key g1 = {k.x_mm, cub_fx_add(k.y_mm, cub_fx_mul(p->l1_mm, beats))};
     int back = i > 0 && keys[i - 1].x_mm > k.x_mm ? 1 : -1; /* toward the previous key */
     cub_groove_key g2 = {cub_fx_add(k.x_mm, back * p->l2_mm), k.y_mm};
     cub_q16 s = (cub_q16)((int64_t)notes[i].intensity * CUB_Q16_ONE / 120);
@@ -127,7 +107,7 @@ cub_err cub_groove_handles_make(const cub_groove_params *p, const cub_groove_not
 {
     if (!p || !notes || !keys || !out || n < 1) return CUB_ERR_ARG;
     for (int i = 0; i < n; i++) {
-        cub_groove_handles h = notes[i].is_beat ? beat_handles(p, notes, keys, n, i)
+        cub_groove_handles h = notes[i].is_beat ? beat_handles(p, notes, keys, i)
                                                 : smooth_handles(p, notes, keys, n, i);
         int64_t t_in = i > 0 ? notes[i].start_us - notes[i - 1].start_us : 0,
                 t_out = i + 1 < n ? notes[i + 1].start_us - notes[i].start_us : 0;
@@ -186,17 +166,6 @@ static const piece accent[3] = {
     {CUB_Q16_ONE, {Q(0.7805), Q(0.9268), CUB_Q16_ONE, CUB_Q16_ONE}},
 };
 
-/* The accent read through the beat stop (ours, session 35, kept in
- * session 36's round 5): the seed's accent without its fast start: speed
- * 0.7 at the start rising steadily to 1.51 by 0.7 (the level that keeps
- * the end at 1), then the same stop over the last 30 %. The clock's ramp
- * after the beat starts it from rest, so its speed rises from the beat to
- * the accent's stop with no second minimum after the beat. */
-static const piece accent_stopped[2] = {
-    {Q(0.7000), {0, Q(0.1633), Q(0.4212), Q(0.7735)}},
-    {CUB_Q16_ONE, {Q(0.7735), Q(0.9245), CUB_Q16_ONE, CUB_Q16_ONE}},
-};
-
 static const piece ease_in[1] = {{CUB_Q16_ONE, {0, 0, Q(2.0 / 3.0), CUB_Q16_ONE}}};
 
 static cub_q16 pieces_at(const piece *p, int count, cub_q16 tau)
@@ -214,6 +183,5 @@ cub_q16 cub_groove_timing_at(cub_groove_timing kind, cub_q16 tau)
     tau = cub_fx_clamp(tau, 0, CUB_Q16_ONE);
     if (kind == CUB_GROOVE_EASE_IN) return pieces_at(ease_in, 1, tau);
     if (kind == CUB_GROOVE_ACCENT) return pieces_at(accent, 3, tau);
-    if (kind == CUB_GROOVE_ACCENT_STOPPED) return pieces_at(accent_stopped, 2, tau);
     return tau;
 }

@@ -123,9 +123,7 @@ cub_groove_key cub_groove_wrist_at(const cub_groove_plan *plan, int64_t t_us)
     for (int k = a; k < b; k++)
         total += plan->handles[k].len_mm;
     cub_q16 tau = groove_tau(t_us, plan->notes[a].start_us, plan->notes[b].start_us);
-    cub_groove_timing kind = !plan->notes[a].is_beat  ? CUB_GROOVE_EASE_IN
-                             : groove_stops(plan, a) ? CUB_GROOVE_ACCENT_STOPPED
-                                                     : CUB_GROOVE_ACCENT;
+    cub_groove_timing kind = plan->notes[a].is_beat ? CUB_GROOVE_ACCENT : CUB_GROOVE_EASE_IN;
     int64_t s = total * cub_groove_timing_at(kind, tau) >> 16;
     int k = a;
     while (k + 1 < b && s > plan->handles[k].len_mm)
@@ -136,8 +134,7 @@ cub_groove_key cub_groove_wrist_at(const cub_groove_plan *plan, int64_t t_us)
 }
 
 /* The wrist's peak speed on a stretch over its mean (arc length / time),
- * Q16: the timing curve's steepest (the accent's start 2.4, also for the
- * stopped accent, whose steepest is 1.51: kept conservative; the ease-in's
+ * Q16: the timing curve's steepest (the accent's start 2.4, the ease-in's
  * 4/3) times the beat stop's level (1 / (1 - (before + after) k / (k + 1)),
  * the clock's fastest). An upper bound: the two peaks rarely meet. */
 static int64_t peak_gain(const cub_groove_params *p, bool beat)

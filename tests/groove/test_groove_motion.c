@@ -127,14 +127,6 @@ static void test_beat_handles_by_intensity_and_reflectance(void **state)
     double in_dx = d(h[1].in_mm.x_mm) - 100, out_dx = d(h[1].out_mm.x_mm) - 100;
     assert_true(fabs(in_dx - 58 / 2.0) < 0.01);
     assert_true(fabs(out_dx + 0.12 * in_dx) < 0.01);
-    /* close keys: the lift is at most the x distance to the nearer key
-     * (20 mm to key 2 here, 200 to key 0), the arch no taller than wide */
-    cub_groove_params pa = set_a();
-    cub_groove_note n3[3] = {n[0], note(500000, 1.5, true, 120), note(1250000, 1, false, 90)};
-    cub_groove_key k3[3] = {k[0], k[1], {Q(80), Q(10)}};
-    cub_groove_handles h3[3];
-    cub_groove_handles_make(&pa, n3, 3, k3, h3);
-    assert_true(fabs(d(h3[1].in_mm.y_mm) - (10 + 20)) < 0.01);
     /* the path into a beat key comes down from above at full intensity */
     n[1].intensity = 120;
     cub_groove_handles_make(&p, n, 2, k, h);
@@ -156,11 +148,10 @@ static void test_pace_pulls_keys_and_handles_in(void **state)
     assert_true(abs(k[2].x_mm - Q(310)) <= 2); /* 238 mm in 1 s: kept */
     cub_groove_handles h[3];
     cub_groove_handles_make(&p, n, 3, k, h);
-    /* the beat key's lift (L1 x 2 beats = 170 mm, at most the 72 mm x
-     * distance to key 0, the nearer) keeps its handle in within 1200 x 0.1
-     * / 3 = 40 mm; its handle out (a 1 s path) is not pulled */
+    /* the beat key's handle in (L1 x 2 beats = 170 mm above) keeps within
+     * 1200 x 0.1 / 3 = 40 mm; its handle out (a 1 s path) is not pulled */
     assert_true(abs(h[1].in_mm.y_mm - k[1].y_mm - Q(40)) <= 2);
-    assert_true(abs(h[1].out_mm.y_mm - k[1].y_mm - Q(72)) <= 2);
+    assert_true(abs(h[1].out_mm.y_mm - k[1].y_mm - Q(170)) <= 2);
     /* no times (equal starts): nothing moves */
     cub_groove_note same[2] = {note(0, 1, false, 90), note(0, 1, false, 90)};
     cub_groove_key far[2] = {{0, 0}, {Q(900), 0}};
@@ -186,7 +177,7 @@ static double slope(cub_groove_timing kind, double tau)
 static void test_timing_curves(void **state)
 {
     (void)state;
-    for (int kind = CUB_GROOVE_UNIFORM; kind <= CUB_GROOVE_ACCENT_STOPPED; kind++) {
+    for (int kind = CUB_GROOVE_UNIFORM; kind <= CUB_GROOVE_ACCENT; kind++) {
         assert_int_equal(cub_groove_timing_at(kind, 0), 0);
         assert_int_equal(cub_groove_timing_at(kind, ONE), ONE);
         cub_q16 last = 0; /* monotone */
@@ -209,14 +200,6 @@ static void test_timing_curves(void **state)
     /* the pieces join without a jump in speed */
     assert_true(fabs(slope(CUB_GROOVE_ACCENT, 0.048) - slope(CUB_GROOVE_ACCENT, 0.05)) < 0.1);
     assert_true(fabs(slope(CUB_GROOVE_ACCENT, 0.697) - slope(CUB_GROOVE_ACCENT, 0.701)) < 0.1);
-    /* the accent read through the beat stop: no fast start, speed rising
-     * from 0.7 to 1.51 with no dip, the same stop, no jump between pieces */
-    cub_groove_timing st = CUB_GROOVE_ACCENT_STOPPED;
-    assert_true(fabs(slope(st, 0) - 0.7) < 0.05 && fabs(slope(st, 0.697) - 1.51) < 0.05);
-    assert_true(slope(st, 0.997) < 0.05);
-    assert_true(fabs(slope(st, 0.697) - slope(st, 0.701)) < 0.1);
-    for (int i = 1; i < 69; i++)
-        assert_true(slope(st, i / 100.0) >= slope(st, (i - 1) / 100.0) - 0.01);
     /* which curve a note's path takes */
     cub_groove_note n[3] = {note(0, 1, true, 90), note(1, 1, false, 90), note(2, 1, false, 90)};
     assert_int_equal(cub_groove_timing_of(n, 0), CUB_GROOVE_ACCENT);
@@ -436,7 +419,7 @@ static double wrist_peak_mm_s(const cub_groove_plan *plan, int64_t end_us)
 }
 
 /* The speed bound: sixteenth notes at 120 a minute whose keys zig-zag
- * 47 cm apart ask the wrist for several times CUB_GROOVE_PEAK_MM_S; after
+ * 28 cm apart ask the wrist for several times CUB_GROOVE_PEAK_MM_S; after
  * cub_groove_stretch_limit it never runs faster, and each stretch keeps
  * its first key (drawn in about it). */
 static void test_stretch_limit_bounds_the_wrist(void **state)
@@ -448,7 +431,7 @@ static void test_stretch_limit_bounds_the_wrist(void **state)
     cub_groove_handles h[N];
     for (int i = 0; i < N; i++) {
         n[i] = note(i * 125000, 0.25, i % 4 == 0, 100);
-        k[i] = (cub_groove_key){Q(250 * i), Q(i % 2 ? 200 : -200)};
+        k[i] = (cub_groove_key){Q(150 * i), Q(i % 2 ? 120 : -120)};
     }
     cub_groove_plan plan = {set_a(), n, N, k, h, NULL, NULL, 0, 0, N * 125000};
     assert_int_equal(cub_groove_handles_make(&plan.params, n, N, k, h), CUB_OK);
@@ -460,7 +443,7 @@ static void test_stretch_limit_bounds_the_wrist(void **state)
     assert_true(before > 2 * bound);
     assert_true(after <= bound * 1.01);
     assert_true(after > bound / 4); /* drawn in, not stopped */
-    assert_true(k[0].x_mm == 0 && k[0].y_mm == Q(-200));
+    assert_true(k[0].x_mm == 0 && k[0].y_mm == Q(-120));
 }
 
 /* The speed bound on the waist: a full-intensity beat of one beat (0.5 s)
@@ -552,7 +535,7 @@ static void test_beat_stop_on_every_beat(void **state)
 /* The poses of a small song at 300 times, hashed (FNV-1a over every joint's
  * rotation): the pinned value must come out on x86-64 and aarch64 alike
  * (the whole path is integer). */
-#define POSE_HASH 0xd42bb1575601dbfeull
+#define POSE_HASH 0x21f5229d441d96b0ull
 
 static void test_poses_are_bit_identical_across_cpus(void **state)
 {

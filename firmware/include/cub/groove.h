@@ -227,16 +227,9 @@ cub_groove_key cub_groove_bezier(const cub_groove_key pt[4], cub_q16 u);
 typedef enum cub_groove_timing {
     CUB_GROOVE_UNIFORM, /* non-beat after non-beat: u = tau */
     CUB_GROOVE_EASE_IN, /* non-beat after a beat: starts at rest, speeds up */
-    CUB_GROOVE_ACCENT,  /* a beat note: fast start dropping quickly, gentle,
+    CUB_GROOVE_ACCENT   /* a beat note: fast start dropping quickly, gentle,
                            speeding up again, stopping at once at the end
                            (at rest on the next key) */
-    CUB_GROOVE_ACCENT_STOPPED /* ours (round 5): the accent where the beat
-                           stop (cub_groove_clock) starts the stretch: no
-                           fast start (the stop is the beat's mark; the
-                           fast start's drop, read through the stop's
-                           ramp, made a second speed minimum after the
-                           beat), gentle from 0.7, speeding up, the same
-                           stop over the last 30 % */
 } cub_groove_timing;
 
 /* The timing of the path during note i (from key i to key i+1). */
