@@ -392,13 +392,29 @@ static int64_t due_frames(const cub_walk_box *w, int64_t t_us)
     return (t_us - w->walk_t0_us) * 1000 * w->rate_q8 / ((int64_t)w->m.clip.frame_ns * 256);
 }
 
+/* Where the walker steers: the target, or for a walk in on the dance's
+ * footholds a point before them along the dance's facing, half the root's
+ * distance back, so the walk curves in and ends facing as the dance
+ * begins (the walker turns at most 10 degrees a step) [ours]. */
+static cub_vec3 aim(const cub_walk_box *w)
+{
+    const cub_gait_walk_params *p = &w->walker.p;
+    if (!p->has_end) return w->target;
+    cub_vec3 lr = cub_fx_vec3_sub(p->end_mm[0], p->end_mm[1]); /* right foot -> left */
+    cub_q16 len = cub_fx_vec3_length((cub_vec3){lr.x, 0, lr.z});
+    if (len <= 0) return w->target;
+    cub_q16 back = CUB_Q16_INT(dist_mm(root_xz(w), w->target)) / 2;
+    cub_q16 k = cub_fx_div(back, len);
+    return (cub_vec3){w->target.x + cub_fx_mul(lr.z, k), 0, w->target.z - cub_fx_mul(lr.x, k)};
+}
+
 static void walk_on(cub_walk_box *w, int64_t t_us)
 {
     int64_t due = due_frames(w, t_us);
     w->now_us = t_us;
     while (w->walking && w->frames < due) {
         const cub_pose *pose;
-        if (cub_gait_walker_step(&w->walker, w->target, &pose)) {
+        if (cub_gait_walker_step(&w->walker, aim(w), &pose)) {
             stop(w, t_us, "error");
             return;
         }
