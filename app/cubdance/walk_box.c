@@ -11,18 +11,29 @@
 #include "cub/coach.h"
 #include "cub/coachlib.h"
 
-/* The picture's fade at a hand-over [ours: a little over a step's half]. */
+/* The picture's fade at a hand-over [ours: a little over a step's half];
+ * a walk in that lands on the dance's feet fades for as long as its farthest
+ * joint needs at BLEND_MM_S (the bridge player's 25 mm a frame at 30 fps),
+ * BLEND_MIN_US at least. */
 #define BLEND_US 400000
+#define BLEND_MM_S 750
+#define BLEND_MIN_US 100000
 #define WANDER_REST_US 2000000 /* attracting: stand this long between wanders */
 #define ARRIVE_MM 60          /* the root this near the target: arrived */
 #define PASS_MM 30            /* ... or farther than its nearest by this, once within NEAR_MM */
 #define NEAR_MM 300
-/* The walk in comes from the trees (3 m) while the wake state lasts
- * (2.23 s after START) and into the song's first bars: it hurries, at
- * twice the clip's rate (~0.8 m/s), and stops where it is after WALK_IN_US
- * at the latest [ours; docs/gait.md has the measured times]. */
-#define WALK_IN_RATE 2
+/* The walk in should arrive while the wake lasts (the coach's wake_up
+ * clip): its rate is chosen from the distance and the time the clip has
+ * left, at least the clip's own, at most WALK_IN_MAX_Q8 (3x: the bear's
+ * legs are 0.31 of the capture's, and by the speed's square-root scaling
+ * with leg length its natural cadence is already ~1.8x the capture's;
+ * 3x is a hurried walk). It stops where it is after WALK_IN_US at the
+ * latest [ours; docs/gait.md has the measured times]. */
+#define WALK_IN_MAX_Q8 (3 * 256)
 #define WALK_IN_US 6000000
+/* Steps the walk in adds to the straight distance's: the closing step onto
+ * the dance's footholds and the settle [ours]. */
+#define WALK_IN_EXTRA_STEPS 2
 /* A hand-over waits at most this many of the coach's frames for a bridge
  * frame within the threshold, then takes the closest (the planner's reach). */
 #define REACH_FRAMES 15
@@ -34,7 +45,9 @@
  * walks off past the log's right end; it wanders on the flat clearing
  * within 0.65 m of its place. */
 static const int32_t home_xz[2] = {0, 0};
-static const int32_t start_xz[2] = {-1900, -2300}; /* among the trees, behind on the left */
+/* under the round tree on the left (its trunk 0.2 m away, its crown 0.57 m
+ * wide over it): 2.12 m out, what a 3x walk covers in the wake */
+static const int32_t start_xz[2] = {-1550, -1450};
 /* off to the trees on the right, in front of the log's right end */
 static const int32_t off_xz[2] = {2200, -1100};
 static const int32_t wander_xz[][2] = {{-500, -350}, {150, -600}, {550, -250}};
@@ -57,6 +70,11 @@ static int64_t dist2(cub_vec3 a, cub_vec3 b)
 {
     int64_t dx = mm(a.x - b.x), dz = mm(a.z - b.z);
     return dx * dx + dz * dz;
+}
+
+static int32_t dist_mm(cub_vec3 a, cub_vec3 b)
+{
+    return (int32_t)cub_fx_isqrt64((uint64_t)dist2(a, b));
 }
 
 static cub_vec3 root_xz(const cub_walk_box *w)
@@ -95,6 +113,7 @@ static void switch_now(cub_walk_box *w, int64_t t_us)
 {
     if (w->drawn) w->from = w->shown;
     w->switch_us = t_us;
+    w->blend_us = BLEND_US;
 }
 
 static int resting(int32_t st)
@@ -127,6 +146,8 @@ static int plan_key(cub_walk_box *w, const cub_bridge_player *p, int key, cub_br
     cub_bridge_query q = {.from_clip = p->clip, .pos_q16 = p->pos_q16, .from_loops = p->loop,
                           .to_clip = w->key_first + key, .start_frames = 1,
                           .reach_frames = REACH_FRAMES, .direct_only = 1};
+    /* a walk in on the dance's footholds: little to blend, enter at once */
+    if (key != CUB_WALK_KEY_START && w->walker.p.has_end) q.reach_frames = 1;
     for (*strict = 1; *strict >= 0; --*strict) {
         q.strict = *strict;
         if (!cub_bridge_plan_switch(t, &q, out, w->plan_work, w->plan_work_size) &&
@@ -167,13 +188,73 @@ static void plan_in(cub_walk_box *w, const cub_bridge_player *p, int64_t t_us)
     log_plan(w, t_us, "in", &pl, key, strict);
 }
 
-static void hand_over(cub_walk_box *w, int64_t t_us)
+static int64_t due_frames(const cub_walk_box *w, int64_t t_us);
+static void walker_pose_of(const cub_walk_box *w, const cub_pose *p, cub_pose *out);
+
+/* The coach's picture at its place now: its player's pose, the root moved
+ * there at the ground's height (as cub_walk_box_pose stands it). */
+static void coach_at_home(const cub_walk_box *w, const cub_bridge_player *p, cub_pose *out)
 {
-    cub_log_event(w->log, t_us, "walk", "enter", "clip=%s frame=%d", clip_name(w, w->hand_clip),
-                  w->hand_frame);
+    cub_vec3 h = at_xz(home_xz);
+    cub_bridge_player_raw_pose(p, out);
+    h.y = cub_gait_ground_height(&w->terrain, h.x, h.z);
+    out->root_mm = cub_fx_vec3_add(out->root_mm, h);
+}
+
+/* The farthest joint and the farther foot (ankle) between the walker's
+ * pose and the coach's at its place, whole mm. */
+static void pose_gap(cub_walk_box *w, const cub_bridge_player *p, int32_t *joint, int32_t *foot)
+{
+    cub_vec3 a[CUB_MOTION_MAX_JOINTS], b[CUB_MOTION_MAX_JOINTS];
+    cub_pose pc, pw;
+    coach_at_home(w, p, &pc);
+    walker_pose_of(w, &w->walker.pose, &pw);
+    *joint = *foot = 0;
+    if (cub_motion_forward(w->skel, &pw, a, NULL) || cub_motion_forward(w->skel, &pc, b, NULL))
+        return;
+    for (int j = 0; j < w->joint_count; j++) {
+        int32_t d = (int32_t)cub_fx_isqrt64((uint64_t)dist2(a[j], b[j]) +
+                                            (uint64_t)((int64_t)mm(a[j].y - b[j].y) * mm(a[j].y - b[j].y)));
+        if (d > *joint) *joint = d;
+        if ((j == w->foot_j[0] || j == w->foot_j[1]) && d > *foot) *foot = d;
+    }
+}
+
+/* The picture goes over into the dance: a walk in on the dance's
+ * footholds fades for as long as its farthest joint needs. */
+static void hand_over(cub_walk_box *w, const cub_bridge_player *p, int64_t t_us)
+{
+    int32_t joint, foot;
+    pose_gap(w, p, &joint, &foot);
+    switch_now(w, t_us);
+    if (w->walker.p.has_end) {
+        int64_t us = (int64_t)joint * 1000000 / BLEND_MM_S;
+        w->blend_us = us < BLEND_MIN_US ? BLEND_MIN_US : us > BLEND_US ? BLEND_US : us;
+    }
+    cub_log_event(w->log, t_us, "walk", "enter",
+                  "clip=%s frame=%d foot_mm=%d joint_mm=%d blend_ms=%d",
+                  clip_name(w, w->hand_clip), w->hand_frame, foot, joint,
+                  (int)(w->blend_us / 1000));
     w->hand = 0;
     w->place = at_xz(home_xz);
-    switch_now(w, t_us);
+}
+
+/* Waiting at the stop on the dance's footholds: the walker holds its stop
+ * frame and settles the lifting foot flat (it walks on no more). */
+static void hold_on(cub_walk_box *w, int64_t t_us)
+{
+    const cub_pose *pose;
+    int64_t due = due_frames(w, t_us);
+    while (w->walker.p.has_end && w->walker.stopped && w->frames < due) {
+        int settle = w->walker.settle;
+        if (cub_gait_walker_step(&w->walker, w->target, &pose)) return;
+        w->frames++;
+        if (w->walker.settle == settle) { /* settled */
+            w->frames = (int)due;
+            w->settled = 1;
+            return;
+        }
+    }
 }
 
 /* Waiting at the stop: the dance has begun (the coach left the waking
@@ -187,7 +268,8 @@ static void hand_on(cub_walk_box *w, const cub_bridge_player *p, int32_t st, int
         plan_in(w, p, t_us);
         w->hand = 2;
     }
-    if (p->pos_q16 >= w->hand_at_q16) hand_over(w, t_us);
+    int settling = w->walker.p.has_end && !w->settled;
+    if (p->pos_q16 >= w->hand_at_q16 && !settling) hand_over(w, p, t_us);
 }
 
 /* A song ended or was stopped: the walk off begins when the coach's clip
@@ -217,24 +299,79 @@ static void stop(cub_walk_box *w, int64_t t_us, const char *how)
     else switch_now(w, t_us);
 }
 
-static void go(cub_walk_box *w, cub_vec3 to, cub_walk_why why, int64_t t_us, int64_t deadline_us)
+/* How long the coach's player plays on in the clip it is in, or switching
+ * to (the wake_up clip: the dance begins at its end), microseconds. */
+static int64_t clip_left_us(const cub_bridge_player *p)
+{
+    const cub_bridge_table *t = p->desc.table;
+    int clip = p->clip;
+    int64_t pos = p->pos_q16, wait = 0;
+    cub_q16 speed = p->speed_q16;
+    if (cub_bridge_player_pending(p) && p->plan.step_count > 0) {
+        const cub_bridge_step *s = &p->plan.step[p->plan.step_count - 1];
+        wait = p->plan.step[0].at_q16 > pos ? p->plan.step[0].at_q16 - pos : 0;
+        clip = s->to_clip;
+        pos = CUB_Q16_INT((int64_t)s->to_frame);
+        speed = p->want_speed_q16;
+    }
+    const cub_clip *c = &t->clips[clip].clip;
+    int64_t left_q16 = wait + CUB_Q16_INT((int64_t)c->frame_count) - pos;
+    if (left_q16 <= 0 || speed <= 0) return 0;
+    return ((left_q16 << 16) / speed) * (int64_t)(c->frame_ns / 1000) >> 16;
+}
+
+/* The walk in's rate (Q8): the walker frames the distance and the closing
+ * steps need, over the time the wake has left; the clip's own rate at
+ * least, WALK_IN_MAX_Q8 at most. */
+static int in_rate_q8(const cub_walk_box *w, const cub_bridge_player *p, int32_t dist)
+{
+    const cub_gait_walker *k = &w->walker;
+    int64_t cycle = mm(cub_fx_vec3_length(k->cycle_u)), len = k->b - k->a;
+    int64_t left = clip_left_us(p);
+    if (cycle <= 0 || left <= 0) return WALK_IN_MAX_Q8;
+    int64_t frames = (dist * len + cycle - 1) / cycle + WALK_IN_EXTRA_STEPS * len / 2;
+    int64_t q8 = (frames * (int64_t)w->m.clip.frame_ns / 1000 * 256 + left - 1) / left;
+    return q8 < 256 ? 256 : q8 > WALK_IN_MAX_Q8 ? WALK_IN_MAX_Q8 : (int)q8;
+}
+
+/* The coach's feet at its place now (x, z): where a walk in ends, so the
+ * dance's first frame finds them there (every clip of the bear's library
+ * stands its feet at the same place). 0: found. */
+static int coach_feet(const cub_walk_box *w, const cub_bridge_player *p, cub_vec3 out[2])
+{
+    cub_pose pc;
+    cub_quat q;
+    if (!p || w->foot_j[0] < 0 || w->foot_j[1] < 0) return -1;
+    coach_at_home(w, p, &pc);
+    for (int i = 0; i < 2; i++)
+        if (cub_motion_joint_world(w->skel, &pc, w->foot_j[i], &out[i], &q)) return -1;
+    return 0;
+}
+
+/* Walk to `to`; p: the coach's player for a walk in (its rate and its end
+ * on the dance's feet), else NULL. */
+static void go(cub_walk_box *w, const cub_bridge_player *pl, cub_vec3 to, cub_walk_why why,
+               int64_t t_us, int64_t deadline_us)
 {
     cub_vec3 at = w->walking ? root_xz(w) : w->place;
     if (dist2(at, to) <= (int64_t)ARRIVE_MM * ARRIVE_MM) return; /* there already */
     cub_gait_walk_params p = {.start_mm = at, .dir_x = to.x - at.x, .dir_z = to.z - at.z,
                               .on_event = on_event, .ctx = w};
+    p.has_end = why == CUB_WALK_IN && w->key_first >= 0 && !coach_feet(w, pl, p.end_mm);
     w->now_us = t_us;
     if (cub_gait_walker_init(&w->walker, &w->walk.wc, &w->terrain, &p))
         return; /* checked at open */
-    cub_log_event(w->log, t_us, "walk", "start", "why=%s from_x=%d from_z=%d to_x=%d to_z=%d",
-                  why_name(why), mm(at.x), mm(at.z), mm(to.x), mm(to.z));
+    w->rate_q8 = why == CUB_WALK_IN ? in_rate_q8(w, pl, dist_mm(at, to)) : 256;
+    cub_log_event(w->log, t_us, "walk", "start",
+                  "why=%s from_x=%d from_z=%d to_x=%d to_z=%d rate=%q", why_name(why),
+                  mm(at.x), mm(at.z), mm(to.x), mm(to.z), (cub_q16)(w->rate_q8 * 256));
     w->walking = 1;
     w->why = why;
-    w->rate = why == CUB_WALK_IN ? WALK_IN_RATE : 1;
     w->target = to;
     w->walk_t0_us = t_us;
     w->deadline_us = deadline_us;
     w->frames = 0;
+    w->settled = 0;
     w->best_mm = INT32_MAX;
     switch_now(w, t_us);
 }
@@ -249,26 +386,49 @@ static int arrived(cub_walk_box *w)
     return d <= ARRIVE_MM || (w->best_mm < NEAR_MM && d > w->best_mm + PASS_MM);
 }
 
+/* Walker frames due by t_us since the walk began. */
+static int64_t due_frames(const cub_walk_box *w, int64_t t_us)
+{
+    return (t_us - w->walk_t0_us) * 1000 * w->rate_q8 / ((int64_t)w->m.clip.frame_ns * 256);
+}
+
+/* Where the walker steers: the target, or for a walk in on the dance's
+ * footholds a point before them along the dance's facing, half the root's
+ * distance back, so the walk curves in and ends facing as the dance
+ * begins (the walker turns at most 10 degrees a step) [ours]. */
+static cub_vec3 aim(const cub_walk_box *w)
+{
+    const cub_gait_walk_params *p = &w->walker.p;
+    if (!p->has_end) return w->target;
+    cub_vec3 lr = cub_fx_vec3_sub(p->end_mm[0], p->end_mm[1]); /* right foot -> left */
+    cub_q16 len = cub_fx_vec3_length((cub_vec3){lr.x, 0, lr.z});
+    if (len <= 0) return w->target;
+    cub_q16 back = CUB_Q16_INT(dist_mm(root_xz(w), w->target)) / 2;
+    cub_q16 k = cub_fx_div(back, len);
+    return (cub_vec3){w->target.x + cub_fx_mul(lr.z, k), 0, w->target.z - cub_fx_mul(lr.x, k)};
+}
+
 static void walk_on(cub_walk_box *w, int64_t t_us)
 {
-    int64_t due = (t_us - w->walk_t0_us) * 1000 * w->rate / (int64_t)w->m.clip.frame_ns;
+    int64_t due = due_frames(w, t_us);
     w->now_us = t_us;
     while (w->walking && w->frames < due) {
         const cub_pose *pose;
-        if (cub_gait_walker_step(&w->walker, w->target, &pose)) {
+        if (cub_gait_walker_step(&w->walker, aim(w), &pose)) {
             stop(w, t_us, "error");
             return;
         }
         w->frames++;
         if (w->walker.blocked) stop(w, t_us, "blocked");
-        else if (arrived(w) || w->walker.stopped) stop(w, t_us, "arrived");
+        else if (w->walker.stopped || (arrived(w) && !w->walker.p.has_end))
+            stop(w, t_us, "arrived");
     }
     if (w->walking && w->deadline_us && t_us >= w->deadline_us) stop(w, t_us, "time");
 }
 
 static void wander(cub_walk_box *w, int64_t t_us)
 {
-    go(w, at_xz(wander_xz[w->wander]), CUB_WALK_WANDER, t_us, 0);
+    go(w, NULL, at_xz(wander_xz[w->wander]), CUB_WALK_WANDER, t_us, 0);
     w->wander = (w->wander + 1) % WANDERS;
     if (!w->walking) w->switch_us = t_us; /* there already: rest again */
 }
@@ -288,13 +448,13 @@ static void follow(cub_walk_box *w, const cub_bridge_player *p, int32_t from, in
         switch_now(w, t_us);
     }
     if (to == CUB_COACH_WAKE)
-        go(w, at_xz(home_xz), CUB_WALK_IN, t_us, t_us + WALK_IN_US);
+        go(w, p, at_xz(home_xz), CUB_WALK_IN, t_us, t_us + WALK_IN_US);
     else if (to == CUB_COACH_ATTRACT)
         wander(w, t_us);
     else if (to == CUB_COACH_IDLE && !resting(from) && w->key_first >= 0)
         plan_off(w, p, t_us);
     else if (to == CUB_COACH_IDLE && !resting(from))
-        go(w, at_xz(off_xz), CUB_WALK_OFF, t_us, 0);
+        go(w, NULL, at_xz(off_xz), CUB_WALK_OFF, t_us, 0);
     else if (w->walking && w->why == CUB_WALK_WANDER)
         stop(w, t_us, "state");
 }
@@ -309,10 +469,13 @@ void cub_walk_box_tick(cub_walk_box *w, const cub_bridge_player *player, int32_t
     if (coach_state != from) follow(w, player, from, coach_state, t_us);
     if (w->leave_us && t_us >= w->leave_us) {
         w->leave_us = 0;
-        go(w, at_xz(off_xz), CUB_WALK_OFF, t_us, 0);
+        go(w, NULL, at_xz(off_xz), CUB_WALK_OFF, t_us, 0);
     }
     if (w->walking) walk_on(w, t_us);
-    else if (w->hand) hand_on(w, player, coach_state, t_us);
+    else if (w->hand) {
+        hold_on(w, t_us);
+        hand_on(w, player, coach_state, t_us);
+    }
     else if (coach_state == CUB_COACH_ATTRACT && t_us - w->switch_us >= WANDER_REST_US)
         wander(w, t_us);
 }
@@ -343,8 +506,8 @@ static void walker_pose_of(const cub_walk_box *w, const cub_pose *p, cub_pose *o
 static cub_q16 blend_weight(const cub_walk_box *w)
 {
     int64_t dt = w->now_us - w->switch_us;
-    if (dt >= BLEND_US) return CUB_Q16_ONE;
-    cub_q16 x = (cub_q16)(dt * CUB_Q16_ONE / BLEND_US);
+    if (dt >= w->blend_us) return CUB_Q16_ONE;
+    cub_q16 x = (cub_q16)(dt * CUB_Q16_ONE / w->blend_us);
     return cub_fx_mul(cub_fx_mul(x, x), 3 * CUB_Q16_ONE - 2 * x); /* smoothstep */
 }
 
@@ -473,6 +636,8 @@ cub_err cub_walk_box_open(cub_walk_box *w, const char *path, const cub_floor *fl
         return cub_diag_fail(diag, CUB_ERR_ARG, path, 0, "the floor makes no terrain");
     if (map_joints(w, coach)) return CUB_OK; /* another coach: it does not walk */
     w->joint_count = coach->joint_count;
+    w->foot_j[0] = cub_motion_skeleton_find(coach, "LeftFoot");
+    w->foot_j[1] = cub_motion_skeleton_find(coach, "RightFoot");
     e = analyse(w);
     if (!e) e = check_walk(w);
     if (!e) e = make_keys(w);

@@ -43,19 +43,22 @@ typedef struct cub_walk_box {
     int64_t hand_at_q16;           /* ... that frame on the clip's unwrapped time */
     const char **names;            /* the table's clip names (the dance's) */
     int64_t leave_us;              /* > 0: the walk off starts then (its bridge frame) */
-    int rate;                      /* walker frames per clip frame period */
+    int rate_q8;                   /* walker frames per clip frame period, Q8 */
+    int64_t blend_us;              /* the picture's fade since switch_us */
     cub_gait_terrain terrain;      /* the floor's (points into it), or flat */
     cub_gait_walker walker;
     cub_log *log;
     const cub_skeleton *skel;           /* the coach's */
     int16_t map[CUB_MOTION_MAX_JOINTS]; /* coach joint -> walk clip joint */
     int joint_count;                    /* the coach's */
+    int foot_j[2];                      /* the coach's LeftFoot, RightFoot (-1: none) */
     int walking;                   /* 1: the walker leads the picture */
     cub_walk_why why;
     cub_vec3 place;                /* standing: where (x, z) */
     cub_vec3 target;               /* walking: where to (x, z) */
     int64_t walk_t0_us, deadline_us; /* the walk's start; stop by then (0: none) */
     int frames;                    /* walker frames since walk_t0_us */
+    int settled;                   /* a walk in on the dance's feet: the stop foot flat */
     int32_t best_mm;               /* the nearest the root came to the target */
     int64_t switch_us;             /* the last switch (walk <-> stand): the blend's start */
     int64_t now_us;

@@ -295,6 +295,27 @@ static void fade_from_off(const cub_gait_walker *w, cub_gait_walk_foot *ft)
     ft->path_lift0 = lift > 0 ? lift : 0;
 }
 
+/* The walk's end (params.has_end): this foot's step lands on its end
+ * foothold once the planned one comes within half a step of it along the
+ * heading, or past it, or once the other foot stands on its own; the
+ * plan's first step is logged there [ours: the seed's planner has no end]. */
+static void end_step(cub_gait_walker *w, int foot, cub_vec3 *hold)
+{
+    cub_gait_walk_foot *ft = &w->feet[foot];
+    ft->at_end = 0;
+    ft->end_shift_mm = (cub_vec3){0};
+    if (!w->p.has_end) return;
+    cub_vec3 e = flat_xz(w->p.end_mm[foot]);
+    cub_vec3 r = flat_xz(cub_fx_vec3_sub(*hold, e));
+    cub_q16 along = cub_fx_add(cub_fx_mul(r.x, w->dir_x), cub_fx_mul(r.z, w->dir_z));
+    cub_q16 half = cub_fx_vec3_length(flat_xz(w->cycle_u)) / 4;
+    if (!w->feet[!foot].at_end && along < -half) return;
+    e.y = cub_gait_height(w->t, e.x, e.z);
+    ft->end_shift_mm = flat_xz(cub_fx_vec3_sub(e, *hold));
+    *hold = w->plan.steps[0].foot_mm = e;
+    ft->at_end = 1;
+}
+
 /* The planner refuses a foothold whose swing needs more raises than this
  * [ours]: 16_11's right foot, planted 20 mm before the log, then needed
  * 76 (an apex 0.8 m up) and its toe still touched the log's top. 70 with
@@ -321,6 +342,7 @@ static cub_err plan_swing(cub_gait_walker *w, int foot, cub_vec3 *hold)
     if (sp.max_raises <= 0) sp.max_raises = PLAN_MAX_RAISES;
     ft->path = (cub_gait_swing){0};
     cub_err e = plan(w, foot, &sp, hold);
+    if (!e) end_step(w, foot, hold);
     if (!e && ft->rough) e = cub_gait_swing_path(w->t, &sp, ft->hold_mm, *hold, &ft->path);
     if (e) {
         ft->path = (cub_gait_swing){0};
@@ -356,6 +378,7 @@ static bool begin_swing(cub_gait_walker *w, int foot, int f, int k, cub_vec3 tar
 {
     cub_gait_walk_foot *ft = &w->feet[foot];
     steer(w, unwrap(w, w->c->clip->root_mm[f], k), target);
+    if (w->p.has_end) w->arrived = ft->at_end && w->feet[!foot].at_end; /* on the end footholds */
     if (w->arrived) return false;
     int p = f, kk = k, len = 0;
     ft->key_u[0] = ft->key_u[1] = clip_point(w, foot, 0, f, k);
@@ -408,6 +431,8 @@ static void land(cub_gait_walker *w, int foot)
     ft->yaw_s = w->yaw_s;
     ft->skate_u[0] = ft->skate_u[1] = (cub_vec3){0};
     w->key_mm = ft->key_mm;
+    w->end_shift_mm = cub_fx_vec3_add(w->end_shift_mm, cub_fx_vec3_scale(ft->end_shift_mm, CUB_Q16_ONE / 2));
+    ft->end_shift_mm = (cub_vec3){0};
     emit(w, (cub_gait_event){CUB_GAIT_EV_TAKEN, !foot, ft->step, 0, 0, ft->hold_mm});
 }
 
@@ -646,6 +671,19 @@ static void close_cycle(cub_gait_walker *w, int f)
     w->pose.root_mm.y += cub_fx_mul(c->root_mm[w->a].y - c->root_mm[w->b].y, s);
 }
 
+/* The root follows the end steps' shifts (has_end): half of each, over
+ * its swing, so the body stays over feet the end moved [ours]. */
+static cub_vec3 end_shift(const cub_gait_walker *w)
+{
+    cub_vec3 s = w->end_shift_mm;
+    for (int foot = 0; foot < 2; foot++) {
+        const cub_gait_walk_foot *ft = &w->feet[foot];
+        if (ft->swinging)
+            s = cub_fx_vec3_add(s, cub_fx_vec3_scale(ft->end_shift_mm, swing_s(w, ft) / 2));
+    }
+    return s;
+}
+
 static void place_root(cub_gait_walker *w, int f, int k)
 {
     const cub_clip *c = w->c->clip;
@@ -655,7 +693,7 @@ static void place_root(cub_gait_walker *w, int f, int k)
     ru.y = w->pose.root_mm.y;
     cub_vec3 r = to_world(w, ru);
     r.y = ru.y + (ground_shift(w, 0) + ground_shift(w, 1)) / 2;
-    w->pose.root_mm = r;
+    w->pose.root_mm = cub_fx_vec3_add(r, end_shift(w));
     cub_q16 ang = cub_fx_atan2(w->yaw_s, w->yaw_c);
     cub_quat yaw = cub_fx_quat_from_axis_angle(UP, ang);
     w->pose.rot[0] = cub_fx_quat_normalize(cub_fx_quat_mul(yaw, w->pose.rot[0]));
@@ -780,6 +818,7 @@ static cub_q16 root_to(const cub_gait_walker *w, cub_vec3 target)
 static bool want_on(const cub_gait_walker *w, cub_vec3 target)
 {
     if (w->blocked && target.x == w->stop_target.x && target.z == w->stop_target.z) return false;
+    if (w->p.has_end && w->feet[0].at_end && w->feet[1].at_end) return false;
     return root_to(w, target) > cub_fx_vec3_length(flat_xz(w->cycle_u)) / 4;
 }
 

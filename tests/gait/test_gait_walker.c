@@ -340,6 +340,42 @@ static void comes_to_rest_at_target(void **state)
     assert_true(root_dist((cub_vec3){0}) <= stride);
 }
 
+/* End footholds side by side 3 m ahead (as the box's walk in gets the
+ * dance's feet), the walk arriving 40 degrees off them: the walker comes
+ * to rest with each foot on its own end foothold (its ground point within
+ * 1 mm of it), not half a step short, and the root over them (within a
+ * stride of their middle). */
+static void comes_to_rest_on_end_footholds(void **state)
+{
+    (void)state;
+    SYNTH_NEED_DATA(CLIP);
+    cub_gait_terrain t;
+    cub_gait_terrain_flat(&t, 0);
+    cub_gait_walk_params p = {.dir_x = CUB_Q16_INT(2), .dir_z = CUB_Q16_INT(3), .has_end = 1};
+    cub_vec3 mid = {CUB_Q16_INT(1900), 0, CUB_Q16_INT(2300)};
+    p.end_mm[0] = cub_fx_vec3_add(mid, (cub_vec3){CUB_Q16_INT(85), 0, 0});
+    p.end_mm[1] = cub_fx_vec3_sub(mid, (cub_vec3){CUB_Q16_INT(85), 0, 0});
+    assert_int_equal(cub_gait_walker_init(&walker, &analysed.wc, &t, &p), CUB_OK);
+    int still = walk_to(mid, 900, &t);
+    cub_q16 stride = cub_fx_vec3_length(walker.cycle_u) / 2;
+    cub_q16 off[2];
+    for (int f = 0; f < 2; f++) {
+        cub_vec3 d = cub_fx_vec3_sub(walker.feet[f].hold_mm, p.end_mm[f]);
+        d.y = 0;
+        off[f] = cub_fx_vec3_length(d);
+    }
+    printf("gait walker: end footholds: feet %.1f / %.1f mm off them, root %.0f mm from their "
+           "middle (stride %.0f), still %d frames, %d steps\n",
+           off[0] / 65536.0, off[1] / 65536.0, root_dist(mid) / 65536.0, stride / 65536.0, still,
+           walker.steps);
+    assert_true(walker.stopped && !walker.blocked && still > 100);
+    for (int f = 0; f < 2; f++) {
+        assert_true(walker.feet[f].at_end && !walker.feet[f].swinging);
+        assert_true(off[f] <= CUB_Q16_ONE);
+    }
+    assert_true(root_dist(mid) <= stride);
+}
+
 /* The log of swing_that_cannot_clear_is_replanned, walked on: once every
  * step length is shut the step is BLOCKED and the walker stops before the
  * log, on both feet, no sole point ever inside it; no foot is taken after. */
@@ -463,6 +499,7 @@ int main(void)
         cmocka_unit_test(events_in_order),
         cmocka_unit_test(swing_that_cannot_clear_is_replanned),
         cmocka_unit_test(comes_to_rest_at_target),
+        cmocka_unit_test(comes_to_rest_on_end_footholds),
         cmocka_unit_test(blocked_walker_stops),
         cmocka_unit_test(strike_pose_depends_on_height_difference),
     };

@@ -374,6 +374,14 @@ typedef struct cub_gait_walk_params {
                                      one's share of the error (cubtool gait-eval --without) */
     cub_gait_event_fn on_event;   /* may be NULL */
     void *ctx;
+    /* 1: the walk ends on these footholds (x, z; [0] the left foot), e.g.
+     * where the next clip has its feet: a foot's step whose foothold comes
+     * within a step of its end foothold (along the heading) lands on it
+     * instead, the other foot's next step on its own, and the walker stops
+     * at the foot-off after, both feet on them (not at half a step from the
+     * target) [ours] */
+    int has_end;
+    cub_vec3 end_mm[2];
 } cub_gait_walk_params;
 
 /* One foot of the walker (read only for the caller). */
@@ -400,6 +408,8 @@ typedef struct cub_gait_walk_foot {
     cub_q16 sway_mm[2];           /* swinging: the captured ankle's stray off its line, each way */
     cub_vec3 rest_mm[2];          /* ankle, toe targets of its last stance frame (flat down) */
     int has_rest;                 /* rest_mm is set */
+    int at_end;                   /* has_end: its foothold (or the one it swings to) is its end */
+    cub_vec3 end_shift_mm;        /* swinging: its end foothold less the planned one */
 } cub_gait_walk_foot;
 
 typedef struct cub_gait_walker {
@@ -414,6 +424,7 @@ typedef struct cub_gait_walker {
     cub_q16 dir_x, dir_z;         /* the walker's heading (unit) */
     cub_q16 drop_mm;              /* this frame's pelvis drop */
     cub_q16 key_mm;               /* the pelvis key of the last strike (<= 0, mm) */
+    cub_vec3 end_shift_mm;        /* the root's shift by the end steps landed (half each) */
     cub_gait_plan plan;           /* the last plan */
     cub_gait_walk_foot feet[2];
     int arrived;                  /* 1: the root is within half a step of the target */
