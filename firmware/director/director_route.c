@@ -182,6 +182,13 @@ static bool groove_clip(const cub_director *d, int clip)
     return groove_of(d, clip) != NULL;
 }
 
+/* Groove g's frame (Q16.16) when the music is at music_ms. */
+static int64_t groove_clock_q16(const cub_director *d, const cub_coach_groove *g, int32_t music_ms)
+{
+    const int64_t into_ns = (int64_t)(music_ms - g->tag_ms) * 1000000;
+    return into_ns * CUB_Q16_ONE / clip_of(d, g->clip)->frame_ns;
+}
+
 /* A groove's frame 0 is its span's start on the music clock: entered at
  * the frame the music has reached when the switch comes (the planner adds
  * the wait), so it plays on the beat, not as late as the wait. Without
@@ -193,9 +200,7 @@ static void set_clock(cub_director *d, const cub_coach_action *a, int32_t music_
         cub_bridge_player_set_clock(&d->player, 0, 0);
         return;
     }
-    const int64_t frame_ns = clip_of(d, a->clip)->frame_ns;
-    const int64_t into_ns = (int64_t)(music_ms - g->tag_ms) * 1000000;
-    cub_bridge_player_set_clock(&d->player, 1, into_ns * CUB_Q16_ONE / frame_ns);
+    cub_bridge_player_set_clock(&d->player, 1, groove_clock_q16(d, g, music_ms));
 }
 
 /* The log's word on a groove entered: how far the frame it shows now (the
@@ -361,13 +366,37 @@ static bool in_song(const cub_coach *c)
            c->state == CUB_COACH_PAUSED;
 }
 
+/* The bridge into the groove of the span the music is in, from where the
+ * player is now, as its request would take it (the reach, one direct
+ * switch, on the music's clock): the switch's wait. The coach asks for a
+ * span it joins late that much before the beat it joins on. */
+static void groove_entry_lead(cub_director *d, int32_t music_ms)
+{
+    if (music_ms == CUB_COACH_NO_MUSIC) return;
+    for (int32_t i = 0; i < d->desc.coach.groove_count; i++) {
+        cub_coach_groove *g = &d->grooves[i];
+        if (music_ms < g->tag_ms || music_ms - g->tag_ms >= g->span_ms) continue;
+        cub_bridge_query q = {.from_clip = -1, .to_clip = g->clip,
+                              .reach_frames = d->desc.react_frames, .direct_only = 1,
+                              .on_clock = 1, .clock_q16 = groove_clock_q16(d, g, music_ms)};
+        cub_bridge_plan plan;
+        const int64_t frame_ns = clip_of(d, g->clip)->frame_ns;
+        g->entry_lead_ms = cub_bridge_player_preview(&d->player, &q, &plan)
+                               ? 0
+                               : (int32_t)(plan.wait_frames * frame_ns / 1000000);
+        return;
+    }
+}
+
 /* The coach reads these while it waits for a move's tag: the route from
  * where the player is now. The player stands still within a call, so one
- * look per place it stands in is enough. */
-void director_entry_leads(cub_director *d)
+ * look per place it stands in is enough (a groove's, on the music's clock,
+ * is looked at on every call). */
+void director_entry_leads(cub_director *d, int32_t music_ms)
 {
     const cub_bridge_player *p = &d->player;
     if (!in_song(&d->coach)) return;
+    groove_entry_lead(d, music_ms);
     if (p->clip == d->lead_clip && p->pos_q16 == d->lead_pos_q16 && p->loop == d->lead_loop)
         return;
     d->lead_clip = p->clip;
