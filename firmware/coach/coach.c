@@ -201,18 +201,12 @@ static void begin_move(cub_coach *c, int32_t m, int32_t rep, int32_t reason)
     show_move_hint(c, reason);
 }
 
-/* While waiting for move m's tag: begin it once the music (at song time
- * now_ms) is that close to the tag that the route there (entry_lead_ms)
- * lands on it. */
-static bool begins_by(const cub_coach *c, int32_t m, int64_t now_ms)
-{
-    const cub_coach_move *mv = &c->desc.moves[m];
-    return now_ms + bounded_lead_ms(mv, mv->entry_lead_ms) >= mv->tag_ms;
-}
-
+/* While waiting for move m's tag: begin it once the music is that close
+ * to the tag that the route there (entry_lead_ms) lands on it. */
 static bool time_to_begin(const cub_coach *c, int32_t m, int32_t music_ms)
 {
-    return begins_by(c, m, song_now_ms(c, music_ms));
+    const cub_coach_move *mv = &c->desc.moves[m];
+    return song_now_ms(c, music_ms) + bounded_lead_ms(mv, mv->entry_lead_ms) >= mv->tag_ms;
 }
 
 /* ---- groove spans (issue 23) ---------------------------------------------- */
@@ -275,25 +269,6 @@ static void wait_clip(cub_coach *c, int32_t reason, int32_t music_ms)
 {
     c->groove = c->join_groove = -1;
     if (!join_groove(c, music_ms)) coach_out_clip(c, c->desc.roles.idle, CUB_Q16_ONE, true, reason);
-}
-
-/* A groove's clip ended while the coach waited. It plays on the music
- * clock (entered at the music's frame), so its end is its span's end on
- * the music, though the clock read on the tick's grid may still be a
- * fraction of a frame short of it: the move whose tag is that end (after
- * a gap, the intro) begins now, where before the coach asked for a frame
- * of the idle clip and the move a tick later, a frame behind its tag. */
-static void groove_ended(cub_coach *c, int32_t music_ms)
-{
-    int64_t now_ms = song_now_ms(c, music_ms);
-    if (c->groove >= 0) {
-        const cub_coach_groove *s = &c->desc.grooves[c->groove];
-        if (now_ms < (int64_t)s->tag_ms + s->span_ms) now_ms = (int64_t)s->tag_ms + s->span_ms;
-    }
-    if (c->phase == COACH_PH_WAIT && begins_by(c, c->move, now_ms))
-        begin_move(c, c->move, 0, CUB_COACH_WHY_MOVE);
-    else
-        coach_out_clip(c, c->desc.roles.idle, CUB_Q16_ONE, true, CUB_COACH_WHY_IDLE);
 }
 
 /* Move m starts now, or, when the song has an intro or a gap before it,
@@ -509,10 +484,8 @@ static void on_clip_done(cub_coach *c, const cub_event *ev, int32_t music_ms)
     switch (c->state) {
     case CUB_COACH_WAKE: start_dance(c); break;
     case CUB_COACH_DANCE:
-        if (c->phase == COACH_PH_WAIT || c->phase == COACH_PH_OUTRO) {
-            groove_ended(c, music_ms);
-            break;
-        }
+        if (c->phase == COACH_PH_WAIT || c->phase == COACH_PH_OUTRO) /* a groove ended */
+            coach_out_clip(c, c->desc.roles.idle, CUB_Q16_ONE, true, CUB_COACH_WHY_IDLE);
         if (c->phase != COACH_PH_MOVES) break;
         if (c->rep + 1 < cur_move(c)->reps)
             begin_move(c, c->move, c->rep + 1, CUB_COACH_WHY_REP);

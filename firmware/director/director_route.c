@@ -366,6 +366,28 @@ static bool in_song(const cub_coach *c)
            c->state == CUB_COACH_PAUSED;
 }
 
+/* Music ms until the player reaches its next frame, rounded up: a switch
+ * leaves the current clip at an upcoming frame, not at once, so a plan
+ * that waits k frames lands k frames after that one. (Left out, a move
+ * asked for after a groove on the music clock came a tick late: at the
+ * tick before the groove's last frame, the bar's line, the music read
+ * 1 ms short of the move's tag (34999 for 35000: the loop's tick is
+ * 33333 us), the lead was 0, so the coach waited, the groove ended and
+ * held its last frame, the idle clip was asked for, and the move a tick
+ * later, a frame behind its tag.) A clip that has ended holds its last
+ * frame: 0. */
+static int32_t upcoming_ms(const cub_director *d)
+{
+    const cub_bridge_player *p = &d->player;
+    const int64_t last_q16 = (int64_t)(clip_of(d, p->clip)->frame_count - 1) << 16;
+    int64_t next_q16 = (p->pos_q16 + 0xFFFF) & ~(int64_t)0xFFFF;
+    if (!p->loop && next_q16 > last_q16) next_q16 = last_q16;
+    const int64_t ahead_q16 = next_q16 > p->pos_q16 ? next_q16 - p->pos_q16 : 0;
+    const int64_t speed = p->speed_q16 > 0 ? p->speed_q16 : CUB_Q16_ONE;
+    const int64_t ns = ahead_q16 * (int64_t)clip_of(d, p->clip)->frame_ns / speed;
+    return (int32_t)((ns + 999999) / 1000000);
+}
+
 /* The bridge into the groove of the span the music is in, from where the
  * player is now, as its request would take it (the reach, one direct
  * switch, on the music's clock): the switch's wait. The coach asks for a
@@ -383,7 +405,7 @@ static void groove_entry_lead(cub_director *d, int32_t music_ms)
         const int64_t frame_ns = clip_of(d, g->clip)->frame_ns;
         g->entry_lead_ms = cub_bridge_player_preview(&d->player, &q, &plan)
                                ? 0
-                               : (int32_t)(plan.wait_frames * frame_ns / 1000000);
+                               : upcoming_ms(d) + (int32_t)(plan.wait_frames * frame_ns / 1000000);
         return;
     }
 }
@@ -407,8 +429,9 @@ void director_entry_leads(cub_director *d, int32_t music_ms)
      * its tag and its first frame lands on its beat. */
     const int reach = groove_clip(d, p->clip) ? d->desc.react_frames : 0;
     cub_bridge_query here = {.from_clip = -1, .reach_frames = reach, .direct_only = reach > 0};
+    const int32_t upcoming = upcoming_ms(d);
     for (int m = 0; m < d->desc.coach.move_count; m++)
-        if (after_gap(d, m)) d->moves[m].entry_lead_ms = lead_from(d, here, m, NULL);
+        if (after_gap(d, m)) d->moves[m].entry_lead_ms = upcoming + lead_from(d, here, m, NULL);
 }
 
 /* ---- the player's time ----------------------------------------------------- */
