@@ -253,9 +253,11 @@ static cub_err hand_grooves(cub_dance *d, char *err, size_t size)
         clips[k] = (cub_coachlib_extra){&g->clips[i], g->fuzzy[i], g->bridges[i],
                                         g->bridge_count[i]};
         d->groove_span[k] = i;
+        /* the meter's beats: a span joined late is joined on one of them */
         d->grooves[k] = (cub_coach_groove){
             .clip = first + k, .tag_ms = (int32_t)(g->spans[i].start_us / 1000),
-            .span_ms = (int32_t)((g->spans[i].end_us - g->spans[i].start_us) / 1000)};
+            .span_ms = (int32_t)((g->spans[i].end_us - g->spans[i].start_us) / 1000),
+            .beats = g->spans[i].bars * d->song.meter_num};
     }
     if (d->groove_count == 0) return CUB_OK;
     if (first + d->groove_count > (int)(sizeof d->clip_names / sizeof *d->clip_names)) {

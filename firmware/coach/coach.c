@@ -62,8 +62,11 @@ static cub_err check_desc(const cub_coach_desc *d)
         if (prev_end_ms > INT32_MAX) return CUB_ERR_ARG;
     }
     if (d->groove_count < 0 || (d->groove_count > 0 && !d->grooves)) return CUB_ERR_ARG;
-    for (int32_t i = 0; i < d->groove_count; i++)
-        if (!clip_ok(d, d->grooves[i].clip) || d->grooves[i].span_ms <= 0) return CUB_ERR_ARG;
+    for (int32_t i = 0; i < d->groove_count; i++) {
+        const cub_coach_groove *g = &d->grooves[i];
+        if (!clip_ok(d, g->clip) || g->span_ms <= 0 || g->beats < 0 || g->beats > g->span_ms)
+            return CUB_ERR_ARG;
+    }
     if (d->doze_after_ms <= d->attract_after_ms || d->demo_speed_q16 < 0) return CUB_ERR_ARG;
     return CUB_OK;
 }
@@ -115,7 +118,7 @@ static void leave_song(cub_coach *c)
     c->tag_pending = false;
     c->show_again = false;
     c->fix = 0;
-    c->groove = -1;
+    c->groove = c->join_groove = -1;
 }
 
 /* ---- entering states ----------------------------------------------------- */
@@ -191,7 +194,7 @@ static void begin_move(cub_coach *c, int32_t m, int32_t rep, int32_t reason)
     c->rep = rep;
     c->show_again = false;
     c->fix = 0;
-    c->groove = -1;
+    c->groove = c->join_groove = -1;
     c->phase = COACH_PH_MOVES;
     c->tag_pending = true;
     coach_out_clip(c, cur_move(c)->clip, move_speed(c, m, c->sync_q16), false, reason);
@@ -206,30 +209,66 @@ static bool time_to_begin(const cub_coach *c, int32_t m, int32_t music_ms)
     return song_now_ms(c, music_ms) + bounded_lead_ms(mv, mv->entry_lead_ms) >= mv->tag_ms;
 }
 
-/* The groove span the music is in now, begun at most
- * CUB_COACH_GROOVE_LATE_MS ago; -1 when none. */
-static int32_t groove_now(const cub_coach *c, int32_t music_ms)
+/* ---- groove spans (issue 23) ---------------------------------------------- */
+
+/* The groove span the music is in at song time now_ms; -1 when none. */
+static int32_t groove_at(const cub_coach *c, int64_t now_ms)
 {
-    const int64_t now_ms = song_now_ms(c, music_ms);
     for (int32_t g = 0; g < c->desc.groove_count; g++) {
         const cub_coach_groove *s = &c->desc.grooves[g];
-        int64_t into_ms = now_ms - s->tag_ms;
-        if (into_ms >= 0 && into_ms < CUB_COACH_GROOVE_LATE_MS && into_ms < s->span_ms) return g;
+        if (now_ms >= s->tag_ms && now_ms - s->tag_ms < s->span_ms) return g;
     }
     return -1;
 }
 
-/* While no move plays (waiting for a tag, the outro): the span's groove
- * when one begins now, else the idle clip. */
+/* The bridge into span s, kept within one of its beats. */
+static int64_t groove_lead_ms(const cub_coach_groove *s)
+{
+    const int64_t beat_ms = s->beats > 0 ? s->span_ms / s->beats : 0;
+    return s->entry_lead_ms < 0 ? 0 : s->entry_lead_ms > beat_ms ? beat_ms : s->entry_lead_ms;
+}
+
+/* When span s, found at song time now_ms, is joined: at once when it began
+ * at most CUB_COACH_GROOVE_LATE_MS ago; later on its first beat that the
+ * bridge into it still reaches, when a whole beat of the span is left
+ * after that beat; -1: never. The beats are the span's integer division
+ * (beat k at tag + span * k / beats), so any machine picks the same. */
+static int64_t join_at_ms(const cub_coach_groove *s, int64_t now_ms)
+{
+    if (now_ms - s->tag_ms < CUB_COACH_GROOVE_LATE_MS) return now_ms;
+    if (s->beats <= 0) return -1;
+    const int64_t reach_ms = now_ms + groove_lead_ms(s) - s->tag_ms; /* > 0: into the span */
+    const int64_t k = (reach_ms * s->beats + s->span_ms - 1) / s->span_ms; /* ceil */
+    if (k >= s->beats) return -1;
+    return s->tag_ms + (int64_t)s->span_ms * k / s->beats;
+}
+
+/* While no move plays (waiting for a tag, the outro): the groove of the
+ * span the music is in, once per span, when its join comes; false while
+ * there is none to ask for. The join is chosen when the coach first finds
+ * itself in the span, and kept: the bridge's lead moves with the player. */
+static bool join_groove(cub_coach *c, int32_t music_ms)
+{
+    const int64_t now_ms = song_now_ms(c, music_ms);
+    const int32_t g = groove_at(c, now_ms);
+    if (g < 0 || g == c->groove) return false;
+    const cub_coach_groove *s = &c->desc.grooves[g];
+    if (g != c->join_groove) {
+        c->join_groove = g;
+        c->join_ms = (int32_t)join_at_ms(s, now_ms);
+    }
+    if (c->join_ms < 0 || now_ms + groove_lead_ms(s) < c->join_ms) return false;
+    c->groove = g;
+    coach_out_clip(c, s->clip, CUB_Q16_ONE, false, CUB_COACH_WHY_GROOVE);
+    return true;
+}
+
+/* While no move plays: the span's groove when it is joined now, else the
+ * idle clip (and the groove later, from the tick, on its beat). */
 static void wait_clip(cub_coach *c, int32_t reason, int32_t music_ms)
 {
-    const int32_t g = groove_now(c, music_ms);
-    if (g < 0) {
-        coach_out_clip(c, c->desc.roles.idle, CUB_Q16_ONE, true, reason);
-        return;
-    }
-    c->groove = g;
-    coach_out_clip(c, c->desc.grooves[g].clip, CUB_Q16_ONE, false, CUB_COACH_WHY_GROOVE);
+    c->groove = c->join_groove = -1;
+    if (!join_groove(c, music_ms)) coach_out_clip(c, c->desc.roles.idle, CUB_Q16_ONE, true, reason);
 }
 
 /* Move m starts now, or, when the song has an intro or a gap before it,
@@ -602,7 +641,7 @@ cub_err cub_coach_init(cub_coach *c, const cub_coach_desc *desc, int64_t now_us)
     c->state = CUB_COACH_IDLE;
     c->move = -1;
     c->clip = -1;
-    c->groove = -1;
+    c->groove = c->join_groove = c->join_ms = -1;
     c->speed_q16 = c->sync_q16 = c->rate_q16 = CUB_Q16_ONE;
     c->player_in_view = true; /* no "come closer" until told nobody is there */
     c->hint = CUB_COACH_HINT_NONE;
@@ -651,10 +690,7 @@ cub_err cub_coach_tick(cub_coach *c, int64_t now_us, int32_t music_ms)
         time_to_begin(c, c->move, music_ms))
         begin_move(c, c->move, 0, CUB_COACH_WHY_MOVE);
     const bool waiting = c->phase == COACH_PH_WAIT || c->phase == COACH_PH_OUTRO;
-    if (c->state == CUB_COACH_DANCE && waiting) {
-        const int32_t g = groove_now(c, music_ms);
-        if (g >= 0 && g != c->groove) wait_clip(c, CUB_COACH_WHY_GROOVE, music_ms);
-    }
+    if (c->state == CUB_COACH_DANCE && waiting) join_groove(c, music_ms);
     if (away_too_long(c)) pause_song(c, CUB_COACH_WHY_AWAY);
     const int64_t quiet_ms = (c->now_us - c->quiet_since_us) / 1000;
     switch (c->state) {

@@ -80,13 +80,21 @@ size_t cub_director_mem_size(const cub_director_desc *desc)
 static cub_err start_coach(cub_director *d, const cub_director_desc *desc, int64_t now_us)
 {
     const int32_t n = desc->coach.move_count;
+    const int32_t ng = desc->coach.groove_count;
     if (n < 0 || n > CUB_DIRECTOR_MAX_MOVES || (n > 0 && !desc->coach.moves)) return CUB_ERR_ARG;
+    if (ng < 0 || ng > CUB_DIRECTOR_MAX_GROOVES || (ng > 0 && !desc->coach.grooves))
+        return CUB_ERR_ARG;
     for (int32_t i = 0; i < n; i++) {
         d->moves[i] = desc->coach.moves[i];
         d->moves[i].lead_ms = d->moves[i].rep_lead_ms = d->moves[i].entry_lead_ms = 0;
     }
+    for (int32_t i = 0; i < ng; i++) {
+        d->grooves[i] = desc->coach.grooves[i];
+        d->grooves[i].entry_lead_ms = 0;
+    }
     cub_coach_desc cd = desc->coach;
     cd.moves = d->moves;
+    cd.grooves = ng > 0 ? d->grooves : NULL;
     cub_err e = cub_coach_init(&d->coach, &cd, now_us);
     if (e) return e;
     /* The coach's first request (its idle clip) starts playback directly. */
@@ -132,7 +140,7 @@ cub_err cub_director_handle(cub_director *d, const cub_event *ev, int32_t music_
     if (!d || !ev) return CUB_ERR_ARG;
     d->out_count = 0;
     cub_event e = cub_director_scripted(d, ev);
-    director_entry_leads(d);
+    director_entry_leads(d, music_ms);
     cub_err err = cub_coach_handle(&d->coach, &e, music_ms);
     if (!err) carry_out(d, e.t_us, music_ms);
     return err;
@@ -142,7 +150,7 @@ cub_err cub_director_tick(cub_director *d, int64_t now_us, int32_t music_ms)
 {
     if (!d) return CUB_ERR_ARG;
     d->out_count = 0;
-    director_entry_leads(d);
+    director_entry_leads(d, music_ms);
     cub_err err = cub_coach_tick(&d->coach, now_us, music_ms);
     if (!err) carry_out(d, now_us, music_ms);
     return err;

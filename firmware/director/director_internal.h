@@ -15,8 +15,9 @@ void director_request(cub_director *d, const cub_coach_action *a, int64_t t_us, 
  * move before, of itself); one log line each. */
 void director_plan_leads(cub_director *d);
 /* The entry leads of the moves after an intro or a gap, from where the
- * player is now (kept while the player stands where it stood). */
-void director_entry_leads(cub_director *d);
+ * player is now (kept while the player stands where it stood), and of the
+ * groove of the span the music (music_ms) is in. */
+void director_entry_leads(cub_director *d, int32_t music_ms);
 
 /* director_keys.c: each move's key frame in its own clip and whether its
  * keys' mirror is a mistake (logged); at init, after the judge is known. */

@@ -182,6 +182,13 @@ static bool groove_clip(const cub_director *d, int clip)
     return groove_of(d, clip) != NULL;
 }
 
+/* Groove g's frame (Q16.16) when the music is at music_ms. */
+static int64_t groove_clock_q16(const cub_director *d, const cub_coach_groove *g, int32_t music_ms)
+{
+    const int64_t into_ns = (int64_t)(music_ms - g->tag_ms) * 1000000;
+    return into_ns * CUB_Q16_ONE / clip_of(d, g->clip)->frame_ns;
+}
+
 /* A groove's frame 0 is its span's start on the music clock: entered at
  * the frame the music has reached when the switch comes (the planner adds
  * the wait), so it plays on the beat, not as late as the wait. Without
@@ -193,9 +200,7 @@ static void set_clock(cub_director *d, const cub_coach_action *a, int32_t music_
         cub_bridge_player_set_clock(&d->player, 0, 0);
         return;
     }
-    const int64_t frame_ns = clip_of(d, a->clip)->frame_ns;
-    const int64_t into_ns = (int64_t)(music_ms - g->tag_ms) * 1000000;
-    cub_bridge_player_set_clock(&d->player, 1, into_ns * CUB_Q16_ONE / frame_ns);
+    cub_bridge_player_set_clock(&d->player, 1, groove_clock_q16(d, g, music_ms));
 }
 
 /* The log's word on a groove entered: how far the frame it shows now (the
@@ -361,13 +366,59 @@ static bool in_song(const cub_coach *c)
            c->state == CUB_COACH_PAUSED;
 }
 
+/* Music ms until the player reaches its next frame, rounded up: a switch
+ * leaves the current clip at an upcoming frame, not at once, so a plan
+ * that waits k frames lands k frames after that one. (Left out, a move
+ * asked for after a groove on the music clock came a tick late: at the
+ * tick before the groove's last frame, the bar's line, the music read
+ * 1 ms short of the move's tag (34999 for 35000: the loop's tick is
+ * 33333 us), the lead was 0, so the coach waited, the groove ended and
+ * held its last frame, the idle clip was asked for, and the move a tick
+ * later, a frame behind its tag.) A clip that has ended holds its last
+ * frame: 0. */
+static int32_t upcoming_ms(const cub_director *d)
+{
+    const cub_bridge_player *p = &d->player;
+    const int64_t last_q16 = (int64_t)(clip_of(d, p->clip)->frame_count - 1) << 16;
+    int64_t next_q16 = (p->pos_q16 + 0xFFFF) & ~(int64_t)0xFFFF;
+    if (!p->loop && next_q16 > last_q16) next_q16 = last_q16;
+    const int64_t ahead_q16 = next_q16 > p->pos_q16 ? next_q16 - p->pos_q16 : 0;
+    const int64_t speed = p->speed_q16 > 0 ? p->speed_q16 : CUB_Q16_ONE;
+    const int64_t ns = ahead_q16 * (int64_t)clip_of(d, p->clip)->frame_ns / speed;
+    return (int32_t)((ns + 999999) / 1000000);
+}
+
+/* The bridge into the groove of the span the music is in, from where the
+ * player is now, as its request would take it (the reach, one direct
+ * switch, on the music's clock): the switch's wait. The coach asks for a
+ * span it joins late that much before the beat it joins on. */
+static void groove_entry_lead(cub_director *d, int32_t music_ms)
+{
+    if (music_ms == CUB_COACH_NO_MUSIC) return;
+    for (int32_t i = 0; i < d->desc.coach.groove_count; i++) {
+        cub_coach_groove *g = &d->grooves[i];
+        if (music_ms < g->tag_ms || music_ms - g->tag_ms >= g->span_ms) continue;
+        cub_bridge_query q = {.from_clip = -1, .to_clip = g->clip,
+                              .reach_frames = d->desc.react_frames, .direct_only = 1,
+                              .on_clock = 1, .clock_q16 = groove_clock_q16(d, g, music_ms)};
+        cub_bridge_plan plan;
+        const int64_t frame_ns = clip_of(d, g->clip)->frame_ns;
+        g->entry_lead_ms = cub_bridge_player_preview(&d->player, &q, &plan)
+                               ? 0
+                               : upcoming_ms(d) + (int32_t)(plan.wait_frames * frame_ns / 1000000);
+        return;
+    }
+}
+
 /* The coach reads these while it waits for a move's tag: the route from
  * where the player is now. The player stands still within a call, so one
- * look per place it stands in is enough. */
-void director_entry_leads(cub_director *d)
+ * look per place it stands in is enough (a groove's, on the music's clock,
+ * is looked at on every call). */
+void director_entry_leads(cub_director *d, int32_t music_ms)
 {
     const cub_bridge_player *p = &d->player;
     if (!in_song(&d->coach)) return;
+    groove_entry_lead(d, music_ms);
     if (p->clip == d->lead_clip && p->pos_q16 == d->lead_pos_q16 && p->loop == d->lead_loop)
         return;
     d->lead_clip = p->clip;
@@ -378,8 +429,9 @@ void director_entry_leads(cub_director *d)
      * its tag and its first frame lands on its beat. */
     const int reach = groove_clip(d, p->clip) ? d->desc.react_frames : 0;
     cub_bridge_query here = {.from_clip = -1, .reach_frames = reach, .direct_only = reach > 0};
+    const int32_t upcoming = upcoming_ms(d);
     for (int m = 0; m < d->desc.coach.move_count; m++)
-        if (after_gap(d, m)) d->moves[m].entry_lead_ms = lead_from(d, here, m, NULL);
+        if (after_gap(d, m)) d->moves[m].entry_lead_ms = upcoming + lead_from(d, here, m, NULL);
 }
 
 /* ---- the player's time ----------------------------------------------------- */

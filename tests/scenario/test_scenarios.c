@@ -660,6 +660,45 @@ static void test_free_bars_groove_log_is_the_committed_one(void **s)
     expect_committed_log("groove_free", groove_log);
 }
 
+/* Out of each groove (the intro, a gap, free bars) straight into the next
+ * move, on its tag: the
+ * coach's request after a groove's is the move's (no frame of the idle
+ * clip between, as there was when the move's entry lead left out the wait
+ * to the player's next frame), and its first music tag is on the music
+ * within 2 ms (it was a frame, 33 ms, behind). */
+static void groove_then_move_on_its_tag(const char *name)
+{
+    logread log;
+    load(name, &log);
+    char why[16], clip[40];
+    int gaps = 0;
+    for (int i = logread_find(&log, 0, "coach", "request"); i >= 0;
+         i = logread_find(&log, i + 1, "coach", "request")) {
+        if (strcmp(field(&log, i, "reason", why, sizeof why), "groove") ||
+            !strncmp(field(&log, i, "clip", clip, sizeof clip), "groove_outro_", 13))
+            continue; /* the outro's groove ends on the song's end: the cheer */
+        int next = logread_find(&log, i + 1, "coach", "request");
+        assert_true(next > i);
+        assert_string_equal(field(&log, next, "reason", why, sizeof why), "move");
+        int tag = logread_find(&log, next, "music", "tag");
+        assert_true(tag > next);
+        double late_ms = number(&log, tag, "music_ms") - number(&log, tag, "tag_ms");
+        printf("scenario: %s: %s at %.3f s, then %s, its tag %.0f ms behind the music\n", name,
+               clip, log.lines[i].t_s, field(&log, next, "clip", why, sizeof why), late_ms);
+        assert_true(late_ms <= 2 && late_ms >= -2);
+        gaps++;
+    }
+    assert_true(gaps >= 1);
+    logread_free(&log);
+}
+
+static void test_a_gap_groove_hands_over_to_the_move_on_its_tag(void **s)
+{
+    groove_then_move_on_its_tag("groove_free");
+    NEED_DEMO();
+    groove_then_move_on_its_tag("demo");
+}
+
 /* A groove song (no <move>): the whole song one span, danced from the
  * music's start; no move is begun, nothing judged. */
 static void test_groove_song_is_danced(void **s)
@@ -704,6 +743,7 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_demo_song_log_is_the_committed_one),
         cmocka_unit_test(test_free_bars_groove_log_is_the_committed_one),
         cmocka_unit_test(test_groove_song_is_danced),
+        cmocka_unit_test(test_a_gap_groove_hands_over_to_the_move_on_its_tag),
     };
     return cmocka_run_group_tests_name("scenarios", tests, NULL, NULL);
 }

@@ -648,12 +648,12 @@ static const char *const groove_names[C_COUNT + 1] = {
     "worried", "cheer", "clap", "sway", "robot", "groove_gap_7"};
 static const cub_coach_groove gap_groove = {.clip = C_GROOVE, .tag_ms = 12000, .span_ms = 1000};
 
-/* Dance to the end of sway (move 1, the gap after it) with the groove
- * span in the gap; the music stands at gap_ms when sway ends. */
-static void dance_to_gap(cub_coach *c, int32_t gap_ms)
+/* Dance to the end of sway (move 1, the gap after it) with groove span g
+ * in the gap; the music stands at gap_ms when sway ends. */
+static void dance_to_groove(cub_coach *c, const cub_coach_groove *g, int32_t gap_ms)
 {
     cub_coach_desc d = make_desc();
-    d.grooves = &gap_groove;
+    d.grooves = g;
     d.groove_count = 1;
     d.clip_count = C_COUNT + 1;
     d.clip_names = groove_names;
@@ -663,6 +663,11 @@ static void dance_to_gap(cub_coach *c, int32_t gap_ms)
         send(c, 1000 + 2000 * rep, CUB_EV_CLIP_DONE, C_CLAP, 0, 2000 * rep);
     send(c, 11000, CUB_EV_CLIP_DONE, C_SWAY, 0, 10000);
     send(c, 1000 + gap_ms, CUB_EV_CLIP_DONE, C_SWAY, 0, gap_ms);
+}
+
+static void dance_to_gap(cub_coach *c, int32_t gap_ms)
+{
+    dance_to_groove(c, &gap_groove, gap_ms);
 }
 
 static void test_gap_dances_its_groove_then_the_next_move(void **s)
@@ -683,11 +688,57 @@ static void test_gap_dances_its_groove_then_the_next_move(void **s)
     expect_clip(&c, C_ROBOT, 0, false, CUB_COACH_WHY_MOVE);
 }
 
-static void test_groove_is_not_begun_late(void **s)
+/* The gap's span, 1 s of 4 beats (12000, 12250, 12500, 12750). */
+static const cub_coach_groove gap_beats = {
+    .clip = C_GROOVE, .tag_ms = 12000, .span_ms = 1000, .beats = 4};
+
+/* A span found more than CUB_COACH_GROOVE_LATE_MS late (a correction
+ * ended in it) is joined on its next beat, not left to the idle clip. */
+static void test_groove_joined_late_on_its_next_beat(void **s)
 {
     (void)s;
     cub_coach c;
-    dance_to_gap(&c, 12000 + CUB_COACH_GROOVE_LATE_MS); /* its clip would trail the music */
+    cub_coach_groove g = gap_beats;
+    dance_to_groove(&c, &g, 12000 + CUB_COACH_GROOVE_LATE_MS + 20); /* 12520 */
+    expect_clip(&c, C_IDLE, CUB_Q16_ONE, true, CUB_COACH_WHY_IDLE);
+    tick(&c, 13700, 12700);
+    assert_null(act(&c, CUB_COACH_ACT_CLIP, 0));
+    tick(&c, 13750, 12750); /* the next beat */
+    expect_clip(&c, C_GROOVE, CUB_Q16_ONE, false, CUB_COACH_WHY_GROOVE);
+    tick(&c, 13800, 12800); /* once */
+    assert_null(act(&c, CUB_COACH_ACT_CLIP, 0));
+    tick(&c, 14000, 13000);
+    expect_clip(&c, C_ROBOT, 0, false, CUB_COACH_WHY_MOVE);
+}
+
+/* The bridge's lead: asked for that much before the beat, and a beat the
+ * bridge cannot reach any more is passed for the next. */
+static void test_groove_joined_late_leaves_room_for_the_bridge(void **s)
+{
+    (void)s;
+    cub_coach c;
+    cub_coach_groove g = gap_beats;
+    g.entry_lead_ms = 100;
+    dance_to_groove(&c, &g, 12000 + CUB_COACH_GROOVE_LATE_MS + 20); /* 12520 */
+    tick(&c, 13640, 12640);
+    assert_null(act(&c, CUB_COACH_ACT_CLIP, 0));
+    tick(&c, 13650, 12650); /* 12750 - 100 */
+    expect_clip(&c, C_GROOVE, CUB_Q16_ONE, false, CUB_COACH_WHY_GROOVE);
+
+    g.entry_lead_ms = 240; /* 12750 is out of reach from 12520: no beat with room is left */
+    dance_to_groove(&c, &g, 12520);
+    for (int32_t t = 12530; t < 13000; t += 10) {
+        tick(&c, 1000 + t, t);
+        assert_null(act(&c, CUB_COACH_ACT_CLIP, 0));
+    }
+}
+
+/* Without beats a span found late idles (the song gave no meter). */
+static void test_groove_without_beats_is_not_begun_late(void **s)
+{
+    (void)s;
+    cub_coach c;
+    dance_to_gap(&c, 12000 + CUB_COACH_GROOVE_LATE_MS);
     expect_clip(&c, C_IDLE, CUB_Q16_ONE, true, CUB_COACH_WHY_IDLE);
     tick(&c, 13600, 12600);
     assert_null(act(&c, CUB_COACH_ACT_CLIP, 0));
@@ -729,6 +780,15 @@ static void test_bad_groove_is_refused(void **s)
     d.groove_count = 1; /* its clip is outside the library */
     assert_int_equal(cub_coach_init(&c, &d, 0), CUB_ERR_ARG);
     d.grooves = NULL;
+    assert_int_equal(cub_coach_init(&c, &d, 0), CUB_ERR_ARG);
+    cub_coach_groove g = gap_beats;
+    d.grooves = &g;
+    d.clip_count = C_COUNT + 1;
+    d.clip_names = groove_names;
+    assert_int_equal(cub_coach_init(&c, &d, 0), CUB_OK);
+    g.beats = -1;
+    assert_int_equal(cub_coach_init(&c, &d, 0), CUB_ERR_ARG);
+    g.beats = g.span_ms + 1; /* a beat shorter than a ms */
     assert_int_equal(cub_coach_init(&c, &d, 0), CUB_ERR_ARG);
 }
 
@@ -1227,7 +1287,9 @@ int main(void)
         cmocka_unit_test(test_sync_keeps_the_dance_on_a_skewed_music_clock),
         cmocka_unit_test(test_scripted_session_gives_the_same_log_every_time),
         cmocka_unit_test(test_gap_dances_its_groove_then_the_next_move),
-        cmocka_unit_test(test_groove_is_not_begun_late),
+        cmocka_unit_test(test_groove_joined_late_on_its_next_beat),
+        cmocka_unit_test(test_groove_joined_late_leaves_room_for_the_bridge),
+        cmocka_unit_test(test_groove_without_beats_is_not_begun_late),
         cmocka_unit_test(test_bad_groove_is_refused),
         cmocka_unit_test(test_groove_song_dances_its_span_then_cheers),
     };

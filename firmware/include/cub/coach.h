@@ -155,10 +155,21 @@ typedef struct cub_coach_groove {
     int32_t clip;    /* index in the clip library (the table's clips) */
     int32_t tag_ms;  /* music time of the clip's first frame */
     int32_t span_ms; /* music time the clip lasts */
+    int32_t beats;   /* optional: the meter's beats in the span (beat k starts at
+                        tag_ms + span_ms * k / beats); 0: a span joined late is
+                        not joined */
+    int32_t entry_lead_ms; /* optional: how long the bridge into the clip takes
+                              from where the player is now (the director keeps it
+                              up to date, as a move's entry_lead_ms), so that a
+                              span joined late is on screen at its beat; 0 = none */
 } cub_coach_groove;
 
-/* A groove span is begun only this late into it at most (after a
- * correction, a pause): later, its clip would trail the music. */
+/* A groove span is joined at once when the coach finds itself at most this
+ * late into it (its span began in the last tick, or a correction ended
+ * just after). Later (after a correction, a pause) it is joined at the
+ * first of its beats that the bridge into it (entry_lead_ms) can still
+ * reach, with at least one beat of the span left after it; the idle clip
+ * plays until then. Either way the clip enters at the music's frame. */
 #define CUB_COACH_GROOVE_LATE_MS 500
 
 /* The coach's own clips (indices in the clip library). No defaults: see
@@ -195,6 +206,8 @@ typedef struct cub_coach {
     int32_t move, rep;    /* the song position being danced or corrected */
     int32_t clip;         /* the clip last requested */
     int32_t groove;       /* the groove span last requested while waiting; -1 none */
+    int32_t join_groove;  /* a span the music is in, joined late: which (-1 none) ... */
+    int32_t join_ms;      /* ... and the beat it is joined on (-1: none left) */
     cub_q16 speed_q16;    /* ... at this speed */
     cub_q16 sync_q16;     /* music-sync factor applied to the move's speed */
     cub_q16 rate_q16;     /* music ms per loop ms, as measured */

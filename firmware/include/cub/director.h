@@ -72,6 +72,7 @@
 #include "cub/loop.h"
 
 #define CUB_DIRECTOR_MAX_MOVES 64
+#define CUB_DIRECTOR_MAX_GROOVES (3 * CUB_DIRECTOR_MAX_MOVES + 1) /* a song's spans, at most */
 #define CUB_DIRECTOR_MAX_OUT CUB_COACH_MAX_ACTIONS
 #define CUB_DIRECTOR_MAX_PLAYER_EVENTS 16 /* per advance; more are dropped */
 #define CUB_DIRECTOR_REACT_FRAMES 5 /* default react_frames: a correction begins within 167 ms */
@@ -119,6 +120,7 @@ typedef struct cub_director {
     cub_coach coach;
     cub_bridge_player player;
     cub_coach_move moves[CUB_DIRECTOR_MAX_MOVES]; /* the coach's, with their leads */
+    cub_coach_groove grooves[CUB_DIRECTOR_MAX_GROOVES]; /* the coach's, with their entry leads */
     bool route_in[CUB_DIRECTOR_MAX_MOVES]; /* the move, asked for at the end of the one
                                               before, may enter by the table's searched
                                               route: its lead_ms was planned through it */
@@ -140,7 +142,7 @@ size_t cub_director_mem_size(const cub_director_desc *desc);
 /* Start the coach idle at now_us, its idle clip playing, and plan every
  * move's leads (a `music lead` line each); desc's tunables get their
  * defaults in d->desc. CUB_ERR_ARG for NULL, no table, a negative tunable,
- * more than CUB_DIRECTOR_MAX_MOVES moves, or what cub_coach_init refuses;
+ * more than CUB_DIRECTOR_MAX_MOVES moves or CUB_DIRECTOR_MAX_GROOVES grooves, or what cub_coach_init refuses;
  * CUB_ERR_NOMEM for too little memory. */
 cub_err cub_director_init(cub_director *d, const cub_director_desc *desc, void *mem,
                           size_t mem_size, int64_t now_us);
