@@ -626,8 +626,9 @@ static bool was_someone_else(const cub_tracker *t, int32_t k)
     int32_t mine = 0, other = 0;
     for (int32_t i = 0; i < TRK_CELLS; i++) {
         if (t->label[i] != k) continue;
-        if (t->who_prev[i] == TRK_WHO_PLAYER) mine++;
-        else if ((t->who_prev[i] && trk_abs(t->z[i] - t->z_prev[i]) <= WAS_OTHER_DZ) ||
+        bool same_surface = trk_abs(t->z[i] - t->z_prev[i]) <= WAS_OTHER_DZ;
+        if (t->who_prev[i] == TRK_WHO_PLAYER) mine += same_surface;
+        else if ((t->who_prev[i] && same_surface) ||
                  side_of(t, i, sp, so) == TRK_WHO_OTHER)
             other++;
     }
