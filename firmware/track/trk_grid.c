@@ -879,7 +879,10 @@ static int32_t choose_blob(cub_tracker *t, bool *same, bool *hidden)
  * floor from the last sighting (people walk on it). A player with someone
  * in front shows pieces whose centre is not the body's: the centre goes
  * half-way to them from the prediction (a mere piece: across the image
- * only), the velocity and columns stay. */
+ * only), the velocity and columns stay. Parted from someone this frame
+ * or the last, the blob's centre is where the parting put it: the
+ * velocity stays too (split_merged moves the player's cells by it; one
+ * measured so drove a hidden child's prediction into the crosser). */
 static void track_update(cub_tracker *t, int32_t blob, bool same, bool hidden)
 {
     trk_p3 c = comp_centre(&t->comps[blob]), pred = predicted(t);
@@ -892,7 +895,7 @@ static void track_update(cub_tracker *t, int32_t blob, bool same, bool hidden)
          * the player, frame after frame */
         int32_t z = person_like(&t->comps[blob]) ? (c.z + pred.z) / 2 : pred.z;
         c = (trk_p3){(c.x + pred.x) / 2, (c.y + pred.y) / 2, z};
-    } else if (u > 0 && u <= 200000 && !t->parted) {
+    } else if (u > 0 && u <= 200000 && !t->parted && !t->parted_before) {
         t->vel = floor_velocity(t, t->vel, t->centre, c, u);
     }
     t->centre = c;
@@ -922,7 +925,7 @@ cub_err cub_track_choose_afresh(cub_tracker *t)
 int32_t trk_pick_player(cub_tracker *t)
 {
     if (t->tracked && unseen_us(t) > ID_HOLD_US && t->lost_frames > 0) t->tracked = false;
-    t->parted = false;
+    t->parted_before = t->parted, t->parted = false;
     if (t->tracked) split_merged(t);
     bool same, hidden;
     int32_t best = choose_blob(t, &same, &hidden);

@@ -111,7 +111,7 @@ struct cub_tracker {
     int32_t other_edge; /* its blob's side away from the player (x, mm) */
     int16_t other_label;
     int8_t other_side; /* which side that is: -1 left (xmin), 1 right (xmax) */
-    bool parted; /* this frame split a blob between the player and someone else */
+    bool parted, parted_before; /* this frame (last frame) split a blob between the player and someone else */
     int32_t stature_mm;
     int32_t neck_drop_mm; /* head top to the neck base (smoothed), 0 unknown */
     int32_t head_cell, stature_seen_mm; /* this frame's, for tools */
