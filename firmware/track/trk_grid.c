@@ -617,19 +617,21 @@ static void remember_who(cub_tracker *t)
  * player's. The track's gate does not make it the player: the child who
  * merges for a moment with the sofa behind it does not become the adult
  * standing 400 mm away, the crosser joined to the hidden child's pieces
- * stays the crosser. */
+ * stays the crosser. The other person followed counts where its motion
+ * brought its cells; the player's cells count only on the same surface
+ * (the adult seen where the child's arm was is not the child). */
 #define WAS_OTHER_DZ 150
 #define WAS_OTHER_SHARE 10 /* or ten times more of its cells the other's than the player's */
 static bool was_someone_else(const cub_tracker *t, int32_t k)
 {
-    trk_shift sp = shift_of(t, t->centre, t->vel), so = shift_of(t, t->other_c, t->other_vel);
+    trk_shift so = shift_of(t, t->other_c, t->other_vel);
+    bool moved = t->other_label >= 0 && (so.gx || so.gy);
     int32_t mine = 0, other = 0;
     for (int32_t i = 0; i < TRK_CELLS; i++) {
         if (t->label[i] != k) continue;
         bool same_surface = trk_abs(t->z[i] - t->z_prev[i]) <= WAS_OTHER_DZ;
         if (t->who_prev[i] == TRK_WHO_PLAYER) mine += same_surface;
-        else if ((t->who_prev[i] && same_surface) ||
-                 side_of(t, i, sp, so) == TRK_WHO_OTHER)
+        else if ((t->who_prev[i] && same_surface) || (moved && came_from(t, i, so, TRK_WHO_OTHER, t->other_label)))
             other++;
     }
     return other >= SPLIT_MIN_CELLS && (mine < SPLIT_MIN_CELLS || mine * WAS_OTHER_SHARE < other);
