@@ -111,6 +111,7 @@ cub_err cub_track_init(const cub_track_desc *desc, void *mem, size_t mem_size, c
     t->bg_resets = 0;
     trk_forest_setup(t, desc->forest, (uint8_t *)mem + TRK_STRUCT_BYTES);
     for (int32_t i = 0; i < TRK_CELLS; i++) t->label_prev[i] = -1;
+    t->other_label = -1;
     *out = t;
     return CUB_OK;
 }

@@ -409,30 +409,80 @@ static void split_off(cub_tracker *t, int16_t k)
     count_interior(t);
 }
 
-/* Both sides' cells of last frame (the player's, the other person's). */
-static void split_sides(cub_tracker *t, int16_t k)
+#define ID_MAX_SPEED 2500 /* mm/s: a child's run; faster is a wrong centre, not motion */
+static int32_t per_s(int32_t v, int32_t us) { return (int32_t)((int64_t)v * us / 1000000); }
+
+/* How a body at p moving at vel moves on the grid this frame: cells
+ * across (gx, gy) and depth (dz, mm). */
+typedef struct trk_shift {
+    int32_t gx, gy, dz;
+} trk_shift;
+static trk_shift shift_of(const cub_tracker *t, trk_p3 p, trk_p3 vel)
 {
-    for (int32_t i = 0; i < TRK_CELLS; i++) {
-        uint8_t w = t->label[i] == k ? t->who_prev[i] : 0;
-        t->mask[i] = w == TRK_WHO_PLAYER || w == TRK_WHO_OTHER ? w : 0;
-    }
-    grow_sides(t, k);
+    trk_p3 q = {p.x + per_s(vel.x, t->dt_us), p.y + per_s(vel.y, t->dt_us), p.z + per_s(vel.z, t->dt_us)};
+    if (p.z <= 0 || q.z <= 0) return (trk_shift){0, 0, 0};
+    int32_t gx0, gy0, gx1, gy1;
+    grid_of(p, &gx0, &gy0);
+    grid_of(q, &gx1, &gy1);
+    return (trk_shift){gx1 - gx0, gy1 - gy0, q.z - p.z};
 }
 
+/* Last frame's cell that moved by s onto cell i was `who` (of blob
+ * `label` unless -1), and lands on cell i's surface: its depth moved on
+ * is not SEED_DZ_MM before cell i's (the adult 300 mm behind the child is
+ * not the child's arm that moved away from before it), nor, moved at
+ * all, SEED_DZ_MM behind it (nor the child's chest the adult's motion
+ * carried its cells onto). A cell now nearer than last frame, unmoved,
+ * may be the same body (a hand come forward). */
+#define SEED_DZ_MM 150
+static bool came_from(const cub_tracker *t, int32_t i, trk_shift s, uint8_t who, int16_t label)
+{
+    int32_t gx = i % TRK_GW - s.gx, gy = i / TRK_GW - s.gy;
+    if (!on_grid(gx, gy)) return false;
+    int32_t j = gy * TRK_GW + gx;
+    if (t->who_prev[j] != who || (label >= 0 && t->label_prev[j] != label)) return false;
+    int32_t dz = t->z[i] - t->z_prev[j] - s.dz;
+    return dz <= SEED_DZ_MM && ((!s.gx && !s.gy) || dz >= -SEED_DZ_MM);
+}
+
+/* Cell i's side when a blob holds two people: the player's if last
+ * frame's player cells, moved on by the player's motion, cover it; the
+ * other's if the other person nearest the player (moved on by its motion)
+ * or anybody else (where they stood) covers it; neither if both or none.
+ * A crosser at the child's depth moves 10 cells a frame: where it stood
+ * last frame is the child's now, where it went is not. */
+static uint8_t side_of(const cub_tracker *t, int32_t i, trk_shift sp, trk_shift so)
+{
+    static const trk_shift still = {0, 0, 0};
+    bool mine = came_from(t, i, sp, TRK_WHO_PLAYER, -1);
+    bool other = t->other_label >= 0 && came_from(t, i, so, TRK_WHO_OTHER, t->other_label);
+    if (!other && came_from(t, i, still, TRK_WHO_OTHER, -1)) other = t->label_prev[i] != t->other_label;
+    return mine && !other ? TRK_WHO_PLAYER : other && !mine ? TRK_WHO_OTHER : 0;
+}
+
+/* A blob with SPLIT_MIN_CELLS of the player's predicted cells and
+ * SPLIT_MIN_PIECE of another person's is parted between them. The
+ * other's side may be a mere piece: the adult's hand and forearm behind
+ * the moving child, at its arm's depth, joined the child's blob. */
+#define SPLIT_MIN_PIECE 8
 static void split_merged(cub_tracker *t)
 {
+    trk_shift sp = shift_of(t, t->centre, t->vel), so = shift_of(t, t->other_c, t->other_vel);
     int32_t mine[TRK_MAX_COMPS] = {0}, other[TRK_MAX_COMPS] = {0};
     for (int32_t i = 0; i < TRK_CELLS; i++) {
-        if (t->label[i] < 0) continue;
-        if (t->who_prev[i] == TRK_WHO_PLAYER) mine[t->label[i]]++;
-        if (t->who_prev[i] == TRK_WHO_OTHER) other[t->label[i]]++;
+        int16_t l = t->label[i];
+        t->mask[i] = l < 0 ? 0 : side_of(t, i, sp, so);
+        if (t->mask[i] == TRK_WHO_PLAYER) mine[l]++;
+        if (t->mask[i] == TRK_WHO_OTHER) other[l]++;
     }
     int32_t n = t->ncomps;
     for (int16_t k = 0; k < n && t->ncomps < TRK_MAX_COMPS; k++) {
-        if (mine[k] < SPLIT_MIN_CELLS || other[k] < SPLIT_MIN_CELLS) continue;
-        split_sides(t, k);
+        if (mine[k] < SPLIT_MIN_CELLS || other[k] < SPLIT_MIN_PIECE) continue;
+        grow_sides(t, k);
         split_off(t, k); /* side 2: TRK_WHO_OTHER */
+        t->parted = true;
     }
+    memset(t->mask, 0, sizeof t->mask);
 }
 
 /* The two person-like blobs of last frame with most cells in blob k
@@ -477,6 +527,71 @@ static bool apart(const cub_tracker *t, const trk_comp *c)
     return d2 > (int64_t)SPLIT_APART_MM * SPLIT_APART_MM;
 }
 
+/* A velocity (mm/s) smoothed with the move from `from` to `to` in u us,
+ * along the floor only (people walk on it), capped at ID_MAX_SPEED. */
+static trk_p3 floor_velocity(const cub_tracker *t, trk_p3 vel, trk_p3 from, trk_p3 to, int32_t u)
+{
+    trk_p3 v = {(int32_t)((int64_t)(to.x - from.x) * 1000000 / u), (int32_t)((int64_t)(to.y - from.y) * 1000000 / u),
+                (int32_t)((int64_t)(to.z - from.z) * 1000000 / u)};
+    int32_t h = trk_along(v.x, v.y, v.z, t->up);
+    v = (trk_p3){v.x - (int32_t)(((int64_t)t->up.x * h) >> 16), v.y - (int32_t)(((int64_t)t->up.y * h) >> 16),
+                 v.z - (int32_t)(((int64_t)t->up.z * h) >> 16)};
+    int32_t s = trk_len(v.x, v.y, v.z);
+    if (s > ID_MAX_SPEED) v.x = v.x * ID_MAX_SPEED / s, v.y = v.y * ID_MAX_SPEED / s, v.z = v.z * ID_MAX_SPEED / s;
+    return (trk_p3){(vel.x + v.x) / 2, (vel.y + v.y) / 2, (vel.z + v.z) / 2};
+}
+
+/* The person-like blob nearest p, not mostly the player's cells; -1 none. */
+static int32_t nearest_other(const cub_tracker *t, const bool *person, trk_p3 p, int32_t *d_mm)
+{
+    int32_t mine[TRK_MAX_COMPS] = {0}, best = -1;
+    for (int32_t i = 0; i < TRK_CELLS; i++)
+        if (t->mask[i] && t->label[i] >= 0) mine[t->label[i]]++;
+    *d_mm = INT32_MAX;
+    for (int32_t k = 0; k < t->ncomps; k++) {
+        if (!person[k] || mine[k] * 2 > t->comps[k].n) continue;
+        int32_t d = dist3(comp_centre(&t->comps[k]), p);
+        if (d < *d_mm) *d_mm = d, best = k;
+    }
+    return best;
+}
+
+/* The other person nearest the player, followed for split_merged: last
+ * frame's other where its motion brings it (within OTHER_GATE_MM), else
+ * whoever stands nearest the player (motion unknown: none). Parted from
+ * the player, its centre is where the parting put it (at 1.5 m/s a
+ * crosser's speed measured so drove its predicted cells over the child):
+ * then only its side away from the player is its own, and that side's
+ * move is its motion (an adult who walked in and stopped behind the
+ * child stops there too). */
+#define OTHER_GATE_MM 600
+#define OTHER_JUMP_MM 60 /* the far edge's move this much beyond the motion's */
+static void other_motion(cub_tracker *t, const bool *person)
+{
+    trk_p3 pred = {t->other_c.x + per_s(t->other_vel.x, t->dt_us), t->other_c.y + per_s(t->other_vel.y, t->dt_us),
+                   t->other_c.z + per_s(t->other_vel.z, t->dt_us)};
+    int32_t d, k = t->other_label >= 0 ? nearest_other(t, person, pred, &d) : -1;
+    bool followed = k >= 0 && d <= OTHER_GATE_MM;
+    if (!followed) k = t->tracked ? nearest_other(t, person, t->centre, &d) : -1;
+    t->other_label = (int16_t)k;
+    if (k < 0) return;
+    const trk_comp *o = &t->comps[k];
+    trk_p3 c = comp_centre(o);
+    int8_t side = c.x > t->centre.x ? 1 : -1;
+    int32_t edge = side > 0 ? o->xmax : o->xmin;
+    /* an edge that jumps (another piece, an arm flung out) is not a move */
+    bool jump = t->parted && trk_abs(edge - t->other_edge) > trk_abs(per_s(t->other_vel.x, t->dt_us)) + OTHER_JUMP_MM;
+    if (!followed || (t->parted && (side != t->other_side || jump))) {
+        t->other_vel = followed ? t->other_vel : (trk_p3){0, 0, 0};
+        t->other_c = followed ? pred : c;
+    } else {
+        if (t->parted) c = (trk_p3){t->other_c.x + edge - t->other_edge, c.y, c.z};
+        t->other_vel = floor_velocity(t, t->other_vel, t->other_c, c, t->dt_us > 0 ? t->dt_us : 1);
+        t->other_c = c;
+    }
+    t->other_edge = edge, t->other_side = side;
+}
+
 /* What each cell was this frame (and its depth), for the next frame's
  * split_merged and was_someone_else, and the background's learning. */
 static void remember_who(cub_tracker *t)
@@ -488,6 +603,7 @@ static void remember_who(cub_tracker *t)
         who[k] = !person[k] ? 0 : !t->tracked || apart(t, &t->comps[k]) ? TRK_WHO_OTHER : TRK_WHO_NEAR;
     }
     trk_bg_mark_people(t, person);
+    other_motion(t, person);
     for (int32_t i = 0; i < TRK_CELLS; i++) {
         int16_t l = t->label[i];
         t->who_prev[i] = t->mask[i] ? TRK_WHO_PLAYER : l >= 0 ? who[l] : 0;
@@ -501,17 +617,24 @@ static void remember_who(cub_tracker *t)
  * player's. The track's gate does not make it the player: the child who
  * merges for a moment with the sofa behind it does not become the adult
  * standing 400 mm away, the crosser joined to the hidden child's pieces
- * stays the crosser. */
+ * stays the crosser. The other person followed counts where its motion
+ * brought its cells; the player's cells count only on the same surface
+ * (the adult seen where the child's arm was is not the child). */
 #define WAS_OTHER_DZ 150
+#define WAS_OTHER_SHARE 10 /* or ten times more of its cells the other's than the player's */
 static bool was_someone_else(const cub_tracker *t, int32_t k)
 {
+    trk_shift so = shift_of(t, t->other_c, t->other_vel);
+    bool moved = t->other_label >= 0 && (so.gx || so.gy);
     int32_t mine = 0, other = 0;
     for (int32_t i = 0; i < TRK_CELLS; i++) {
-        if (t->label[i] != k || !t->who_prev[i]) continue;
-        if (t->who_prev[i] == TRK_WHO_PLAYER) mine++;
-        else if (trk_abs(t->z[i] - t->z_prev[i]) <= WAS_OTHER_DZ) other++;
+        if (t->label[i] != k) continue;
+        bool same_surface = trk_abs(t->z[i] - t->z_prev[i]) <= WAS_OTHER_DZ;
+        if (t->who_prev[i] == TRK_WHO_PLAYER) mine += same_surface;
+        else if ((t->who_prev[i] && same_surface) || (moved && came_from(t, i, so, TRK_WHO_OTHER, t->other_label)))
+            other++;
     }
-    return other >= SPLIT_MIN_CELLS && mine < SPLIT_MIN_CELLS;
+    return other >= SPLIT_MIN_CELLS && (mine < SPLIT_MIN_CELLS || mine * WAS_OTHER_SHARE < other);
 }
 
 /* A person new to the box: the nearest, near the image's centre (lower is
@@ -592,7 +715,6 @@ static int32_t first_choice(cub_tracker *t)
 #define ID_GATE_GROW 600   /* and this much farther per second unseen (mm/s) */
 #define ID_PART_DZ_MM 400  /* a piece of a hidden player: within this depth of the prediction */
 #define ID_PART_CELLS 12   /* and no smaller */
-#define ID_MAX_SPEED 2500  /* mm/s: a child's run; faster is a wrong centre, not motion */
 #define ID_FAR 1000000     /* score offset: a blob that is not the tracked player */
 
 static int32_t unseen_us(const cub_tracker *t)
@@ -600,8 +722,6 @@ static int32_t unseen_us(const cub_tracker *t)
     int64_t d = t->prev_t_us - t->seen_us;
     return d < 0 ? 0 : d > ID_HOLD_US ? ID_HOLD_US + 1 : (int32_t)d;
 }
-
-static int32_t per_s(int32_t v, int32_t us) { return (int32_t)((int64_t)v * us / 1000000); }
 
 static trk_p3 predicted(const cub_tracker *t)
 {
@@ -761,7 +881,10 @@ static int32_t choose_blob(cub_tracker *t, bool *same, bool *hidden)
  * floor from the last sighting (people walk on it). A player with someone
  * in front shows pieces whose centre is not the body's: the centre goes
  * half-way to them from the prediction (a mere piece: across the image
- * only), the velocity and columns stay. */
+ * only), the velocity and columns stay. Parted from someone this frame
+ * or the last, the blob's centre is where the parting put it: the
+ * velocity stays too (split_merged moves the player's cells by it; one
+ * measured so drove a hidden child's prediction into the crosser). */
 static void track_update(cub_tracker *t, int32_t blob, bool same, bool hidden)
 {
     trk_p3 c = comp_centre(&t->comps[blob]), pred = predicted(t);
@@ -774,16 +897,8 @@ static void track_update(cub_tracker *t, int32_t blob, bool same, bool hidden)
          * the player, frame after frame */
         int32_t z = person_like(&t->comps[blob]) ? (c.z + pred.z) / 2 : pred.z;
         c = (trk_p3){(c.x + pred.x) / 2, (c.y + pred.y) / 2, z};
-    } else if (u > 0 && u <= 200000) {
-        trk_p3 v = {(int32_t)((int64_t)(c.x - t->centre.x) * 1000000 / u),
-                    (int32_t)((int64_t)(c.y - t->centre.y) * 1000000 / u),
-                    (int32_t)((int64_t)(c.z - t->centre.z) * 1000000 / u)};
-        int32_t h = trk_along(v.x, v.y, v.z, t->up);
-        v = (trk_p3){v.x - (int32_t)(((int64_t)t->up.x * h) >> 16), v.y - (int32_t)(((int64_t)t->up.y * h) >> 16),
-                     v.z - (int32_t)(((int64_t)t->up.z * h) >> 16)};
-        int32_t s = trk_len(v.x, v.y, v.z);
-        if (s > ID_MAX_SPEED) v.x = v.x * ID_MAX_SPEED / s, v.y = v.y * ID_MAX_SPEED / s, v.z = v.z * ID_MAX_SPEED / s;
-        t->vel = (trk_p3){(t->vel.x + v.x) / 2, (t->vel.y + v.y) / 2, (t->vel.z + v.z) / 2};
+    } else if (u > 0 && u <= 200000 && !t->parted && !t->parted_before) {
+        t->vel = floor_velocity(t, t->vel, t->centre, c, u);
     }
     t->centre = c;
     t->seen_us = t->prev_t_us;
@@ -812,6 +927,7 @@ cub_err cub_track_choose_afresh(cub_tracker *t)
 int32_t trk_pick_player(cub_tracker *t)
 {
     if (t->tracked && unseen_us(t) > ID_HOLD_US && t->lost_frames > 0) t->tracked = false;
+    t->parted_before = t->parted, t->parted = false;
     if (t->tracked) split_merged(t);
     bool same, hidden;
     int32_t best = choose_blob(t, &same, &hidden);

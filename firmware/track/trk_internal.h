@@ -104,6 +104,14 @@ struct cub_tracker {
     int64_t seen_us;    /* when */
     int32_t seen_gx0, seen_gx1; /* and its blob's columns on the grid */
     int32_t top_mm; /* the player's highest point of late (mm along up): merged_with_taller */
+    /* the other person nearest the player (trk_grid.c, other_motion): its
+     * centre (mm), velocity along the floor (mm/s), measured only while it
+     * is a blob of its own, and its blob last frame (-1 none) */
+    trk_p3 other_c, other_vel;
+    int32_t other_edge; /* its blob's side away from the player (x, mm) */
+    int16_t other_label;
+    int8_t other_side; /* which side that is: -1 left (xmin), 1 right (xmax) */
+    bool parted, parted_before; /* this frame (last frame) split a blob between the player and someone else */
     int32_t stature_mm;
     int32_t neck_drop_mm; /* head top to the neck base (smoothed), 0 unknown */
     int32_t head_cell, stature_seen_mm; /* this frame's, for tools */
