@@ -48,33 +48,13 @@ static cub_groove_handles smooth_handles(const cub_groove_params *p, const cub_g
                                 key_add(keys[i], with_length(dir, p->smooth_mm - in_len)), 0};
 }
 
-static cub_q16 x_gap(cub_groove_key a, cub_groove_key b)
-{
-    return a.x_mm > b.x_mm ? cub_fx_sub(a.x_mm, b.x_mm) : cub_fx_sub(b.x_mm, a.x_mm);
-}
-
-/* A beat key's lift, L1 x its length in beats, at most the x distance to
- * its nearer neighbouring key (ours, round 6, docs/groove.md): over two
- * beat keys a few mm apart the seed's 85 mm lift made a tall narrow arch
- * whose apex turned sharply, a dip of the body's speed mid-beat (a motion
- * beat off the music's). No taller than its narrower side is wide, the
- * apex turns smoothly. */
-static cub_q16 beat_lift(const cub_groove_params *p, const cub_groove_note *notes,
-                         const cub_groove_key *keys, int n, int i)
-{
-    cub_q16 beats = notes[i].length_beats < L1_MAX_BEATS ? notes[i].length_beats : L1_MAX_BEATS;
-    cub_q16 lift = cub_fx_mul(p->l1_mm, beats);
-    if (i > 0 && x_gap(keys[i], keys[i - 1]) < lift) lift = x_gap(keys[i], keys[i - 1]);
-    if (i + 1 < n && x_gap(keys[i], keys[i + 1]) < lift) lift = x_gap(keys[i], keys[i + 1]);
-    return lift;
-}
-
 /* Beat key: in from G1 (above) / G2 (back) by intensity, out its mirror. */
 static cub_groove_handles beat_handles(const cub_groove_params *p, const cub_groove_note *notes,
-                                       const cub_groove_key *keys, int n, int i)
+                                       const cub_groove_key *keys, int i)
 {
     cub_groove_key k = keys[i];
-    cub_groove_key g1 = {k.x_mm, cub_fx_add(k.y_mm, beat_lift(p, notes, keys, n, i))};
+    cub_q16 beats = notes[i].length_beats < L1_MAX_BEATS ? notes[i].length_beats : L1_MAX_BEATS;
+    cub_groove_key g1 = {k.x_mm, cub_fx_add(k.y_mm, cub_fx_mul(p->l1_mm, beats))};
     int back = i > 0 && keys[i - 1].x_mm > k.x_mm ? 1 : -1; /* toward the previous key */
     cub_groove_key g2 = {cub_fx_add(k.x_mm, back * p->l2_mm), k.y_mm};
     cub_q16 s = (cub_q16)((int64_t)notes[i].intensity * CUB_Q16_ONE / 120);
@@ -127,7 +107,7 @@ cub_err cub_groove_handles_make(const cub_groove_params *p, const cub_groove_not
 {
     if (!p || !notes || !keys || !out || n < 1) return CUB_ERR_ARG;
     for (int i = 0; i < n; i++) {
-        cub_groove_handles h = notes[i].is_beat ? beat_handles(p, notes, keys, n, i)
+        cub_groove_handles h = notes[i].is_beat ? beat_handles(p, notes, keys, i)
                                                 : smooth_handles(p, notes, keys, n, i);
         int64_t t_in = i > 0 ? notes[i].start_us - notes[i - 1].start_us : 0,
                 t_out = i + 1 < n ? notes[i + 1].start_us - notes[i].start_us : 0;
