@@ -368,14 +368,9 @@ static bool in_song(const cub_coach *c)
 
 /* Music ms until the player reaches its next frame, rounded up: a switch
  * leaves the current clip at an upcoming frame, not at once, so a plan
- * that waits k frames lands k frames after that one. (Left out, a move
- * asked for after a groove on the music clock came a tick late: at the
- * tick before the groove's last frame, the bar's line, the music read
- * 1 ms short of the move's tag (34999 for 35000: the loop's tick is
- * 33333 us), the lead was 0, so the coach waited, the groove ended and
- * held its last frame, the idle clip was asked for, and the move a tick
- * later, a frame behind its tag.) A clip that has ended holds its last
- * frame: 0. */
+ * that waits k frames lands k frames after that one (without it the move
+ * after a groove came a frame late: docs/groove.md, session 36). A clip
+ * that has ended holds its last frame: 0. */
 static int32_t upcoming_ms(const cub_director *d)
 {
     const cub_bridge_player *p = &d->player;
