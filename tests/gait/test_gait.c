@@ -225,6 +225,18 @@ static double swing_gaps(const cub_gait_swing *sw, const cub_gait_terrain *t, in
     return lowest;
 }
 
+/* The swing found the least raise that clears: allowed one raise fewer,
+ * the path from `from` to `to` does not clear. */
+static void assert_one_raise_fewer_fails(const cub_gait_terrain *t, const cub_gait_swing_params *sp,
+                                         cub_vec3 from, cub_vec3 to, int raises)
+{
+    cub_gait_swing_params fewer = *sp;
+    fewer.max_raises = raises - 1;
+    cub_gait_swing sw;
+    assert_int_equal(cub_gait_swing_path(t, &fewer, from, to, &sw), CUB_ERR_RANGE);
+    assert_false(sw.clear);
+}
+
 /* A log 15 cm high and 10 cm deep midway through a 60 cm step: the path
  * rises over it; checked densely here,
  * it never enters the ground and is >= 2 cm above the log, toe included. */
@@ -243,11 +255,7 @@ static void test_swing_clears_a_log(void **state)
     double min_over_log;
     assert_true(swing_gaps(&sw, &t, 250, 350, &min_over_log) >= -0.01);
     assert_true(min_over_log >= 19.5);
-    /* One raise fewer would not have cleared it. */
-    cub_gait_swing_params fewer = sp;
-    fewer.max_raises = sw.raises - 1;
-    assert_int_equal(cub_gait_swing_path(&t, &fewer, from, to, &sw), CUB_ERR_RANGE);
-    assert_false(sw.clear);
+    assert_one_raise_fewer_fails(&t, &sp, from, to, sw.raises);
 }
 
 /* A stone just behind the landing foothold (its far face 85 mm before
@@ -292,9 +300,7 @@ static void test_swing_clears_a_plank_between_samples(void **state)
     assert_true(swing_gaps(&sw, &t, 400, 412, &over_plank) >= -0.01);
     printf("gait: a 12 mm plank cleared by %.1f mm after %d raises\n", over_plank, sw.raises);
     assert_true(over_plank >= 19.99);
-    cub_gait_swing_params fewer = sp;
-    fewer.max_raises = sw.raises - 1;
-    assert_int_equal(cub_gait_swing_path(&t, &fewer, from, to, &sw), CUB_ERR_RANGE);
+    assert_one_raise_fewer_fails(&t, &sp, from, to, sw.raises);
 }
 
 /* A log 15 cm high and 10 cm deep across the way 875 mm on: the nominal
