@@ -81,10 +81,8 @@ static cub_q16 clearance_at(cub_q16 clear, cub_q16 t)
  * needs h >= (y - B0(t).y) / w(t), B0 the unraised path; the raise is the
  * largest such need, in whole raise_mm steps (as the stepped test gave;
  * their slack keeps the walker's foot, which is not this flat sole, 2 cm
- * over 08_01's log: 18.4 mm with 1 mm steps).
- * A 1.53 m swing stepped 10 mm at a time and re-tested at 64 samples cost
- * up to 2.4 ms at a foot-off and missed a toe's corner between samples
- * (CMU 08_01 10.7 mm over the log; docs/gait.md). */
+ * over 08_01's log: 18.4 mm with 1 mm steps; docs/gait.md has why the
+ * stepped test was replaced). */
 typedef struct swing_solve {
     const cub_gait_terrain *t;
     const swing_cfg *c;
@@ -100,7 +98,8 @@ static void need_at(swing_solve *s, cub_q16 t, cub_q16 y, cub_q16 dy)
     basis(t, b);
     cub_q16 w = b[1] + b[2] + b[3];
     if (w <= 0) return;
-    int64_t gap = (int64_t)y - dy - cub_gait_bezier4(s->p, t).y;
+    const cub_q16 ys[5] = {s->p[0].y, s->p[1].y, s->p[2].y, s->p[3].y, s->p[4].y};
+    int64_t gap = (int64_t)y - dy - weigh(ys, b); /* B0(t).y, from the weights already at hand */
     int64_t h = gap > 0 ? (gap * CUB_Q16_ONE + w - 1) / w : 0;
     if (h > s->need) s->need = h;
 }
