@@ -412,6 +412,12 @@ static void split_off(cub_tracker *t, int16_t k)
 #define ID_MAX_SPEED 2500 /* mm/s: a child's run; faster is a wrong centre, not motion */
 static int32_t per_s(int32_t v, int32_t us) { return (int32_t)((int64_t)v * us / 1000000); }
 
+/* Where a body at p moving at vel (mm/s) is us later. */
+static trk_p3 moved_on(trk_p3 p, trk_p3 vel, int32_t us)
+{
+    return (trk_p3){p.x + per_s(vel.x, us), p.y + per_s(vel.y, us), p.z + per_s(vel.z, us)};
+}
+
 /* How a body at p moving at vel moves on the grid this frame: cells
  * across (gx, gy) and depth (dz, mm). */
 typedef struct trk_shift {
@@ -419,7 +425,7 @@ typedef struct trk_shift {
 } trk_shift;
 static trk_shift shift_of(const cub_tracker *t, trk_p3 p, trk_p3 vel)
 {
-    trk_p3 q = {p.x + per_s(vel.x, t->dt_us), p.y + per_s(vel.y, t->dt_us), p.z + per_s(vel.z, t->dt_us)};
+    trk_p3 q = moved_on(p, vel, t->dt_us);
     if (p.z <= 0 || q.z <= 0) return (trk_shift){0, 0, 0};
     int32_t gx0, gy0, gx1, gy1;
     grid_of(p, &gx0, &gy0);
@@ -568,8 +574,7 @@ static int32_t nearest_other(const cub_tracker *t, const bool *person, trk_p3 p,
 #define OTHER_JUMP_MM 60 /* the far edge's move this much beyond the motion's */
 static void other_motion(cub_tracker *t, const bool *person)
 {
-    trk_p3 pred = {t->other_c.x + per_s(t->other_vel.x, t->dt_us), t->other_c.y + per_s(t->other_vel.y, t->dt_us),
-                   t->other_c.z + per_s(t->other_vel.z, t->dt_us)};
+    trk_p3 pred = moved_on(t->other_c, t->other_vel, t->dt_us);
     int32_t d, k = t->other_label >= 0 ? nearest_other(t, person, pred, &d) : -1;
     bool followed = k >= 0 && d <= OTHER_GATE_MM;
     if (!followed) k = t->tracked ? nearest_other(t, person, t->centre, &d) : -1;
@@ -725,9 +730,7 @@ static int32_t unseen_us(const cub_tracker *t)
 
 static trk_p3 predicted(const cub_tracker *t)
 {
-    int32_t u = unseen_us(t);
-    return (trk_p3){t->centre.x + per_s(t->vel.x, u), t->centre.y + per_s(t->vel.y, u),
-                    t->centre.z + per_s(t->vel.z, u)};
+    return moved_on(t->centre, t->vel, unseen_us(t));
 }
 
 /* Blob centre cc's distance from the prediction, -1 outside the gate or in front. */
@@ -825,8 +828,7 @@ static int32_t torso_blob(const cub_tracker *t)
     for (int k = 0; k < 3; k++)
         p.x += (t->prev.joint_mm[part[k]].x >> 16) / 3, p.y += (t->prev.joint_mm[part[k]].y >> 16) / 3,
             p.z += (t->prev.joint_mm[part[k]].z >> 16) / 3;
-    int32_t u = unseen_us(t);
-    p.x += per_s(t->vel.x, u), p.y += per_s(t->vel.y, u), p.z += per_s(t->vel.z, u);
+    p = moved_on(p, t->vel, unseen_us(t));
     if (p.z <= 0) return -1;
     int32_t gx0, gy0, count[TRK_MAX_COMPS] = {0}, best = -1;
     grid_of(p, &gx0, &gy0);
