@@ -35,29 +35,6 @@ static int64_t warp(int64_t x, int64_t after, int64_t before, int k)
     return (x - after * k / (k + 1)) * one / den;
 }
 
-/* The longest the clock runs level between two beats (ours, issue 23's
- * round 7): a held move does not cruise at a constant speed for seconds.
- * In a slow beat (an adagio's 1.5 s) the level stretched over most of it,
- * and on so flat a speed every rounding of the path and the pose made a
- * local minimum of the summed speed, several per beat between the beats
- * (docs/groove.md, round 7). Past this the two ramps take the rest of the
- * beat, in their own ratio: the speed rises and falls again. 350 ms is the
- * level of a 120 bpm beat with the set's ramps; faster beats are as they
- * were. */
-#define CRUISE_MAX_US INT64_C(500000)
-
-void groove_stop_ramps(const cub_groove_params *p, int64_t beat_us, groove_ramps *out)
-{
-    int64_t b = p->stop_before, a = p->stop_after, ramps = a + b;
-    *out = (groove_ramps){p->stop_before, p->stop_after, p->stop_power};
-    if (ramps <= 0 || beat_us <= 0) return;
-    if (((int64_t)CUB_Q16_ONE - ramps) * beat_us <= CRUISE_MAX_US * CUB_Q16_ONE) return;
-    /* a slow beat: the ramps take all of it, in their own ratio, straight */
-    out->before = (cub_q16)(b * CUB_Q16_ONE / ramps);
-    out->after = (cub_q16)(CUB_Q16_ONE - out->before);
-    out->power = 1;
-}
-
 static bool stop_ok(cub_q16 before, cub_q16 after, int k)
 {
     return k >= 1 && k <= 3 && before >= 0 && after >= 0 && before + after > 0 && before < CUB_Q16_ONE &&
@@ -72,9 +49,7 @@ int64_t cub_groove_clock(const cub_groove_plan *plan, int64_t t_us)
     const cub_groove_note *note = &plan->notes[i];
     int64_t len = note->beat_us, anchor = note->start_us + note->grid_us;
     if (len <= 0) return t_us;
-    groove_ramps r;
-    groove_stop_ramps(p, len, &r);
     int64_t prev = anchor + floor_div(t_us - anchor, len) * len;
     int64_t x = (t_us - prev) * CUB_Q16_ONE / len;
-    return prev + warp(x, r.after, r.before, r.power) * len / CUB_Q16_ONE;
+    return prev + warp(x, p->stop_after, p->stop_before, p->stop_power) * len / CUB_Q16_ONE;
 }

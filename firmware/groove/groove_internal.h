@@ -22,13 +22,4 @@ cub_err groove_song_turns(const cub_groove_song *song, const cub_groove_note *no
                           int64_t end_us, cub_q16 amount_deg, cub_groove_turn *out, int cap,
                           int *count);
 
-/* The beat stop's ramps for a beat of beat_us (fractions of it): the
- * set's, longer in a slow beat so the level between lasts at most the
- * clock's cruise (groove_clock.c). */
-typedef struct groove_ramps {
-    cub_q16 before, after;
-    int power;
-} groove_ramps;
-void groove_stop_ramps(const cub_groove_params *p, int64_t beat_us, groove_ramps *out);
-
 #endif

@@ -137,13 +137,11 @@ cub_groove_key cub_groove_wrist_at(const cub_groove_plan *plan, int64_t t_us)
  * Q16: the timing curve's steepest (the accent's start 2.4, the ease-in's
  * 4/3) times the beat stop's level (1 / (1 - (before + after) k / (k + 1)),
  * the clock's fastest). An upper bound: the two peaks rarely meet. */
-static int64_t peak_gain(const cub_groove_params *p, bool beat, int64_t beat_us)
+static int64_t peak_gain(const cub_groove_params *p, bool beat)
 {
     int64_t g = beat ? CUB_Q16_ONE * 12 / 5 : CUB_Q16_ONE * 4 / 3;
-    groove_ramps r;
-    groove_stop_ramps(p, beat_us, &r);
-    int k = r.power;
-    int64_t ramps = ((int64_t)r.before + r.after) * k / (k + 1);
+    int k = p->stop_power;
+    int64_t ramps = ((int64_t)p->stop_before + p->stop_after) * k / (k + 1);
     if (k < 1 || k > 3 || ramps <= 0 || ramps >= CUB_Q16_ONE) return g;
     return g * CUB_Q16_ONE / (CUB_Q16_ONE - ramps);
 }
@@ -183,14 +181,12 @@ void cub_groove_stretch_limit(const cub_groove_params *p, const cub_groove_note 
     int64_t most = p->peak_mm_s > 0 ? p->peak_mm_s : CUB_GROOVE_PEAK_MM_S;
     for (int a = 0, first, b; a + 1 < n; a = b) {
         cub_groove_stretch_of(notes, n, a, &first, &b);
-        int64_t t = notes[b].start_us - notes[a].start_us, total = 0, beat_us = 0;
-        for (int k = a; k < b; k++) {
+        int64_t t = notes[b].start_us - notes[a].start_us, total = 0;
+        for (int k = a; k < b; k++)
             total += h[k].len_mm;
-            if (notes[k].beat_us > beat_us) beat_us = notes[k].beat_us; /* the slowest beat's ramps: the highest peak */
-        }
         if (t <= 0 || t > INT64_MAX / most || total <= 0) continue;
         /* the peak, mm/s: total x gain / t; over the most, drawn in */
-        int64_t allowed = most * t / 1000000 * CUB_Q16_ONE / peak_gain(p, notes[a].is_beat, beat_us);
+        int64_t allowed = most * t / 1000000 * CUB_Q16_ONE / peak_gain(p, notes[a].is_beat);
         if (total > allowed) shrink(keys, h, n, a, b, (cub_q16)(allowed * CUB_Q16_ONE / total));
     }
 }

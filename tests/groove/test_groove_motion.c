@@ -532,35 +532,6 @@ static void test_beat_stop_on_every_beat(void **state)
     assert_true(cub_groove_clock(&plan, 740000) == 740000);
 }
 
-/* The clock's speed at t, over 20 ms. */
-static double clock_speed(const cub_groove_plan *plan, int64_t t)
-{
-    return (cub_groove_clock(plan, t + 10000) - cub_groove_clock(plan, t - 10000)) / 20000.0;
-}
-
-/* Round 7's cruise cap: in a 1.5 s beat the level would last 1.05 s; the
- * ramps take the whole beat instead (1/3 before, 2/3 after, straight):
- * the speed rises to 2 at 1 s and falls to 0 on the next beat, no level;
- * the beats keep their times. A 0.5 s beat keeps its level (1.29). */
-static void test_slow_beat_has_no_cruise(void **state)
-{
-    (void)state;
-    cub_groove_note n[2] = {note(0, 4, true, 100), note(6000000, 1, true, 100)};
-    n[0].beat_us = n[1].beat_us = 1500000;
-    cub_groove_plan plan = {set_a(), n, 2, NULL, NULL, NULL, NULL, 0, 0, 7500000};
-    for (int64_t b = 0; b <= 6000000; b += 1500000)
-        assert_true(cub_groove_clock(&plan, b) == b);
-    const double t_ms[5] = {250, 500, 1000, 1250, 1400}, want[5] = {0.5, 1, 2, 1, 0.4};
-    for (int i = 0; i < 5; i++) {
-        double v = clock_speed(&plan, (int64_t)(t_ms[i] * 1000));
-        printf("1.5 s beat: clock speed %.3f at %.0f ms (%.2f)\n", v, t_ms[i], want[i]);
-        assert_true(fabs(v - want[i]) < 0.03);
-    }
-    cub_groove_note fast[2] = {note(0, 4, true, 100), note(2000000, 1, true, 100)};
-    plan.notes = fast;
-    assert_true(fabs(clock_speed(&plan, 250000) - 1 / (1 - 0.3 * 3 / 4.0)) < 0.01);
-}
-
 /* The poses of a small song at 300 times, hashed (FNV-1a over every joint's
  * rotation): the pinned value must come out on x86-64 and aarch64 alike
  * (the whole path is integer). */
@@ -618,7 +589,6 @@ int main(void)
         cmocka_unit_test(test_turn_capped_by_its_time),
         cmocka_unit_test(test_staccato_lift_capped_by_its_time),
         cmocka_unit_test(test_beat_stop_on_every_beat),
-        cmocka_unit_test(test_slow_beat_has_no_cruise),
         cmocka_unit_test(test_poses_are_bit_identical_across_cpus),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
