@@ -28,16 +28,6 @@ cub_q16 groove_tau(int64_t t_us, int64_t t0, int64_t t1)
     return (cub_q16)((t_us - t0) * CUB_Q16_ONE / (t1 - t0));
 }
 
-int64_t groove_tau30(int64_t t_us, int64_t t0, int64_t t1)
-{
-    int64_t d = t_us - t0, span = t1 - t0;
-    if (span <= 0 || d >= span) return (int64_t)1 << 30;
-    if (d <= 0) return 0;
-    while (span >= (int64_t)1 << 32) /* d << 30 stays within 64 bits */
-        d >>= 1, span >>= 1;
-    return (d << 30) / span;
-}
-
 /* Fig. 11 (back to rest): ease in and out; fig. 12 (the swing): a fast
  * start settling into the end. Both cubic Bézier in value (ours: the
  * figures' shapes, not their numbers, survive in the text). The swing

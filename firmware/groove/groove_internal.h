@@ -16,8 +16,6 @@ int groove_note_at(const cub_groove_note *notes, int n, int64_t t_us);
 int64_t groove_note_end(const cub_groove_note *notes, int n, int64_t end_us, int i);
 /* tau in [0, 1] of t_us over [t0, t1) (1 for an empty span). */
 cub_q16 groove_tau(int64_t t_us, int64_t t0, int64_t t1);
-/* The same in Q2.30 (the wrist's stretch, round 8). */
-int64_t groove_tau30(int64_t t_us, int64_t t0, int64_t t1);
 /* cub_groove_turns with the count-in first: before the melody's first
  * note, the meter's beats sway (groove_body.c). At most cap turns. */
 cub_err groove_song_turns(const cub_groove_song *song, const cub_groove_note *notes, int n,

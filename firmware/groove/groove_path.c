@@ -123,23 +123,7 @@ cub_err cub_groove_handles_make(const cub_groove_params *p, const cub_groove_not
     return CUB_OK;
 }
 
-#define Q30_ONE ((int64_t)1 << 30)
-
-/* The four Bernstein weights at t (Q30 in, Q30 out): kept in Q30 so that
- * the wrist's place does not step by a Q16 rounding of a long path (round
- * 8, docs/groove.md: on a level stretch every such step is a motion beat). */
-static void bernstein30(int64_t t, int64_t w[4])
-{
-    int64_t s = Q30_ONE - t, ss = s * s >> 30, tt = t * t >> 30;
-    w[0] = ss * s >> 30, w[1] = 3 * (ss * t >> 30), w[2] = 3 * (s * tt >> 30), w[3] = tt * t >> 30;
-}
-
-/* One coordinate of a cubic Bézier at Q30 weights w (c in any Q, rounded). */
-static int64_t cubic30(const int64_t w[4], int64_t c0, int64_t c1, int64_t c2, int64_t c3)
-{
-    return (w[0] * c0 + w[1] * c1 + w[2] * c2 + w[3] * c3 + (Q30_ONE >> 1)) >> 30;
-}
-
+/* One coordinate of a cubic Bézier at u, in 64 bits (Q16 in, Q16 out). */
 static cub_q16 cubic(cub_q16 c0, cub_q16 c1, cub_q16 c2, cub_q16 c3, cub_q16 u)
 {
     int64_t t = u, s = CUB_Q16_ONE - u;
@@ -184,29 +168,20 @@ static const piece accent[3] = {
 
 static const piece ease_in[1] = {{CUB_Q16_ONE, {0, 0, Q(2.0 / 3.0), CUB_Q16_ONE}}};
 
-/* u at tau on the pieces, Q30 in and out (the control values are Q16). */
-static int64_t pieces_at30(const piece *p, int count, int64_t tau)
+static cub_q16 pieces_at(const piece *p, int count, cub_q16 tau)
 {
-    int64_t start = 0;
+    cub_q16 start = 0;
     int i = 0;
-    while (i + 1 < count && tau >= (int64_t)p[i].end << 14)
-        start = (int64_t)p[i++].end << 14;
-    int64_t w[4];
-    bernstein30((tau - start) * Q30_ONE / (((int64_t)p[i].end << 14) - start), w);
-    return cubic30(w, (int64_t)p[i].c[0] << 14, (int64_t)p[i].c[1] << 14, (int64_t)p[i].c[2] << 14,
-                   (int64_t)p[i].c[3] << 14);
-}
-
-int64_t cub_groove_timing_at30(cub_groove_timing kind, int64_t tau)
-{
-    tau = tau < 0 ? 0 : tau > Q30_ONE ? Q30_ONE : tau;
-    if (kind == CUB_GROOVE_EASE_IN) return pieces_at30(ease_in, 1, tau);
-    if (kind == CUB_GROOVE_ACCENT) return pieces_at30(accent, 3, tau);
-    return tau;
+    while (i + 1 < count && tau >= p[i].end)
+        start = p[i++].end;
+    cub_q16 local = cub_fx_div(tau - start, p[i].end - start);
+    return cubic(p[i].c[0], p[i].c[1], p[i].c[2], p[i].c[3], local);
 }
 
 cub_q16 cub_groove_timing_at(cub_groove_timing kind, cub_q16 tau)
 {
     tau = cub_fx_clamp(tau, 0, CUB_Q16_ONE);
-    return (cub_q16)((cub_groove_timing_at30(kind, (int64_t)tau << 14) + (1 << 13)) >> 14);
+    if (kind == CUB_GROOVE_EASE_IN) return pieces_at(ease_in, 1, tau);
+    if (kind == CUB_GROOVE_ACCENT) return pieces_at(accent, 3, tau);
+    return tau;
 }

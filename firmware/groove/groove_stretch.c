@@ -122,11 +122,9 @@ cub_groove_key cub_groove_wrist_at(const cub_groove_plan *plan, int64_t t_us)
     int64_t total = 0;
     for (int k = a; k < b; k++)
         total += plan->handles[k].len_mm;
-    /* Q30: a Q16 fraction of a multi-second stretch moved the wrist in
-     * 0.01-0.05 mm steps, motion beats on a level cruise (round 8) */
-    int64_t tau = groove_tau30(t_us, plan->notes[a].start_us, plan->notes[b].start_us);
+    cub_q16 tau = groove_tau(t_us, plan->notes[a].start_us, plan->notes[b].start_us);
     cub_groove_timing kind = plan->notes[a].is_beat ? CUB_GROOVE_ACCENT : CUB_GROOVE_EASE_IN;
-    int64_t s = (total * cub_groove_timing_at30(kind, tau) + (1 << 29)) >> 30;
+    int64_t s = total * cub_groove_timing_at(kind, tau) >> 16;
     int k = a;
     while (k + 1 < b && s > plan->handles[k].len_mm)
         s -= plan->handles[k++].len_mm;

@@ -238,9 +238,6 @@ cub_groove_timing cub_groove_timing_of(const cub_groove_note *notes, int i);
 /* The timing curve: the path parameter u (0..1) at time fraction tau
  * (0..1), monotone, u(0) = 0, u(1) = 1 (piecewise cubic Bézier in tau). */
 cub_q16 cub_groove_timing_at(cub_groove_timing kind, cub_q16 tau);
-/* The same in Q2.30 (tau and u / 2^30): the wrist's stretches are timed
- * with it, a long stretch's place not stepping by Q16 roundings. */
-int64_t cub_groove_timing_at30(cub_groove_timing kind, int64_t tau);
 
 /* The beat stretch (ours, docs/groove.md): the paths from a beat note's key
  * to the next beat note's key are one stretch; the accent runs over it by
