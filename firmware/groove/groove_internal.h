@@ -22,4 +22,16 @@ cub_err groove_song_turns(const cub_groove_song *song, const cub_groove_note *no
                           int64_t end_us, cub_q16 amount_deg, cub_groove_turn *out, int cap,
                           int *count);
 
+/* The meter beat holding t_us as the beat stop sees it: its start and
+ * length, and the stop's ramps there (fractions of the beat): the set's,
+ * or in a slow beat with at most one key inside, the whole beat, straight
+ * (groove_clock.c). False where the clock runs plain. */
+typedef struct groove_beat {
+    int64_t start_us, len_us;
+    cub_q16 before, after;
+    int power;
+} groove_beat;
+bool groove_beat_at(const cub_groove_params *p, const cub_groove_note *notes, int n, int64_t t_us,
+                    groove_beat *out);
+
 #endif

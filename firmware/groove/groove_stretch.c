@@ -136,13 +136,23 @@ cub_groove_key cub_groove_wrist_at(const cub_groove_plan *plan, int64_t t_us)
 /* The wrist's peak speed on a stretch over its mean (arc length / time),
  * Q16: the timing curve's steepest (the accent's start 2.4, the ease-in's
  * 4/3) times the beat stop's level (1 / (1 - (before + after) k / (k + 1)),
- * the clock's fastest). An upper bound: the two peaks rarely meet. */
-static int64_t peak_gain(const cub_groove_params *p, bool beat)
+ * the clock's fastest), the highest of the stretch's beats (a flat slow
+ * beat's hump peaks at twice its mean). An upper bound: the peaks rarely
+ * meet. */
+static int64_t ramps_of(const groove_beat *b)
 {
-    int64_t g = beat ? CUB_Q16_ONE * 12 / 5 : CUB_Q16_ONE * 4 / 3;
-    int k = p->stop_power;
-    int64_t ramps = ((int64_t)p->stop_before + p->stop_after) * k / (k + 1);
-    if (k < 1 || k > 3 || ramps <= 0 || ramps >= CUB_Q16_ONE) return g;
+    return ((int64_t)b->before + b->after) * b->power / (b->power + 1);
+}
+
+static int64_t peak_gain(const cub_groove_params *p, const cub_groove_note *notes, int n, int a, int b)
+{
+    int64_t g = notes[a].is_beat ? CUB_Q16_ONE * 12 / 5 : CUB_Q16_ONE * 4 / 3, ramps = 0;
+    groove_beat beat;
+    for (int64_t t = notes[a].start_us; t < notes[b].start_us; t = beat.start_us + beat.len_us) {
+        if (!groove_beat_at(p, notes, n, t, &beat)) break;
+        ramps = ramps_of(&beat) > ramps ? ramps_of(&beat) : ramps;
+    }
+    if (ramps <= 0 || ramps >= CUB_Q16_ONE) return g;
     return g * CUB_Q16_ONE / (CUB_Q16_ONE - ramps);
 }
 
@@ -186,7 +196,7 @@ void cub_groove_stretch_limit(const cub_groove_params *p, const cub_groove_note 
             total += h[k].len_mm;
         if (t <= 0 || t > INT64_MAX / most || total <= 0) continue;
         /* the peak, mm/s: total x gain / t; over the most, drawn in */
-        int64_t allowed = most * t / 1000000 * CUB_Q16_ONE / peak_gain(p, notes[a].is_beat);
+        int64_t allowed = most * t / 1000000 * CUB_Q16_ONE / peak_gain(p, notes, n, a, b);
         if (total > allowed) shrink(keys, h, n, a, b, (cub_q16)(allowed * CUB_Q16_ONE / total));
     }
 }

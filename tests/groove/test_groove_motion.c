@@ -532,6 +532,77 @@ static void test_beat_stop_on_every_beat(void **state)
     assert_true(cub_groove_clock(&plan, 740000) == 740000);
 }
 
+/* The clock's speed at t, over 20 ms. */
+static double clock_speed(const cub_groove_plan *plan, int64_t t)
+{
+    return (cub_groove_clock(plan, t + 10000) - cub_groove_clock(plan, t - 10000)) / 20000.0;
+}
+
+/* A note on a 1.5 s beat grid (the grid starts at 0). */
+static cub_groove_note slow_note(int64_t start_us, bool beat)
+{
+    cub_groove_note n = note(start_us, 1, beat, 100);
+    n.beat_us = 1500000, n.grid_us = -(int32_t)(start_us % 1500000);
+    return n;
+}
+
+/* Round 8's cruise cap: in a 1.5 s beat with at most one key inside, the
+ * level would last 1.05 s; the ramps take the whole beat instead (1/3
+ * before, 2/3 after, straight): the speed rises to 2 at 1 s and falls to 0
+ * on the next beat, no level; the beats keep their times. A 1.5 s beat
+ * with three keys inside (a reel's eighths) and a 0.5 s beat keep their
+ * level, 1 / (1 - 0.3 x 3 / 4) = 1.29. */
+static void test_slow_flat_beat_has_no_cruise(void **state)
+{
+    (void)state;
+    cub_groove_note n[3] = {slow_note(0, true), slow_note(750000, false), slow_note(6000000, true)};
+    cub_groove_plan plan = {set_a(), n, 3, NULL, NULL, NULL, NULL, 0, 0, 7500000};
+    for (int64_t b = 0; b <= 6000000; b += 1500000)
+        assert_true(cub_groove_clock(&plan, b) == b);
+    const double t_ms[5] = {250, 500, 1000, 1250, 1400}, want[5] = {0.5, 1, 2, 1, 0.4};
+    for (int i = 0; i < 5; i++) {
+        double v = clock_speed(&plan, (int64_t)(t_ms[i] * 1000));
+        printf("1.5 s flat beat: clock speed %.3f at %.0f ms (%.2f)\n", v, t_ms[i], want[i]);
+        assert_true(fabs(v - want[i]) < 0.03);
+    }
+    assert_true(fabs(clock_speed(&plan, 3750000) - 1.5) < 0.03); /* inside the long note */
+    cub_groove_note busy[5] = {slow_note(0, true), slow_note(375000, false), slow_note(750000, false),
+                               slow_note(1125000, false), slow_note(1500000, true)};
+    plan.notes = busy, plan.n = 5;
+    printf("1.5 s beat, 3 keys inside: clock speed %.3f at 750 ms\n", clock_speed(&plan, 750000));
+    assert_true(fabs(clock_speed(&plan, 750000) - 1 / (1 - 0.3 * 3 / 4.0)) < 0.01);
+    cub_groove_note fast[2] = {note(0, 4, true, 100), note(2000000, 1, true, 100)};
+    plan.notes = fast, plan.n = 2;
+    assert_true(fabs(clock_speed(&plan, 250000) - 1 / (1 - 0.3 * 3 / 4.0)) < 0.01);
+}
+
+/* The speed bound with the cap: keys 1.2 m apart on slow flat beats; after
+ * cub_groove_stretch_limit the wrist, on the clock (the hump peaks at
+ * twice the mean), never runs faster than CUB_GROOVE_PEAK_MM_S. */
+static void test_slow_flat_beat_bounded(void **state)
+{
+    (void)state;
+    cub_groove_note n[4] = {slow_note(0, true), slow_note(1500000, true), slow_note(3000000, true),
+                            slow_note(4500000, true)};
+    cub_groove_key k[4] = {{0, 0}, {Q(1200), Q(100)}, {0, Q(-100)}, {Q(1200), 0}};
+    cub_groove_handles h[4];
+    cub_groove_plan plan = {set_a(), n, 4, k, h, NULL, NULL, 0, 0, 6000000};
+    assert_int_equal(cub_groove_handles_make(&plan.params, n, 4, k, h), CUB_OK);
+    cub_groove_stretch_limit(&plan.params, n, 4, k, h);
+    double most = 0;
+    cub_groove_key prev = cub_groove_wrist_at(&plan, 0);
+    for (int64_t t = 1000; t <= 4500000; t += 1000) {
+        cub_groove_key at = cub_groove_wrist_at(&plan, cub_groove_clock(&plan, t));
+        double v = hypot(d(at.x_mm - prev.x_mm), d(at.y_mm - prev.y_mm)) * 1000;
+        most = v > most ? v : most;
+        prev = at;
+    }
+    double bound = d(CUB_GROOVE_PEAK_MM_S);
+    printf("slow flat beats: wrist peak on the clock %.0f mm/s (bound %.0f)\n", most, bound);
+    assert_true(most <= bound * 1.01);
+    assert_true(most > bound / 4);
+}
+
 /* The poses of a small song at 300 times, hashed (FNV-1a over every joint's
  * rotation): the pinned value must come out on x86-64 and aarch64 alike
  * (the whole path is integer). */
@@ -589,6 +660,8 @@ int main(void)
         cmocka_unit_test(test_turn_capped_by_its_time),
         cmocka_unit_test(test_staccato_lift_capped_by_its_time),
         cmocka_unit_test(test_beat_stop_on_every_beat),
+        cmocka_unit_test(test_slow_flat_beat_has_no_cruise),
+        cmocka_unit_test(test_slow_flat_beat_bounded),
         cmocka_unit_test(test_poses_are_bit_identical_across_cpus),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
