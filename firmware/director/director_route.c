@@ -383,6 +383,17 @@ static int32_t upcoming_ms(const cub_director *d)
     return (int32_t)((ns + 999999) / 1000000);
 }
 
+/* Whether the coach is past reading groove i's entry lead in this call:
+ * it reads it only until it asks for the span's groove (coach.c,
+ * join_groove), and a dancing coach that has asked for it forgets that
+ * only in a call that began in another state (a correction's or a pause's
+ * resume: wait_clip), whose lead is looked at then. So the preview, one a
+ * tick through the whole span, is skipped while the groove plays. */
+static bool lead_settled(const cub_director *d, int32_t i)
+{
+    return d->coach.state == CUB_COACH_DANCE && d->coach.groove == i;
+}
+
 /* The bridge into the groove of the span the music is in, from where the
  * player is now, as its request would take it (the reach, one direct
  * switch, on the music's clock): the switch's wait. The coach asks for a
@@ -393,6 +404,7 @@ static void groove_entry_lead(cub_director *d, int32_t music_ms)
     for (int32_t i = 0; i < d->desc.coach.groove_count; i++) {
         cub_coach_groove *g = &d->grooves[i];
         if (music_ms < g->tag_ms || music_ms - g->tag_ms >= g->span_ms) continue;
+        if (lead_settled(d, i)) return;
         cub_bridge_query q = {.from_clip = -1, .to_clip = g->clip,
                               .reach_frames = d->desc.react_frames, .direct_only = 1,
                               .on_clock = 1, .clock_q16 = groove_clock_q16(d, g, music_ms)};
