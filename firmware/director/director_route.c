@@ -229,14 +229,26 @@ static int reach_frames(const cub_director *d, const cub_coach_action *a)
     return groove_clip(d, a->clip) || groove_clip(d, d->player.clip) ? d->desc.react_frames : 0;
 }
 
+/* The music's time where the player stands, when the coach started the
+ * music in this call (the intro's request; music_ms was read before it).
+ * The app starts the music at the time of the event that started it, and
+ * the player already stands at now_us, later by up to a tick when that
+ * event was a clip's end within the last advance: the music has played
+ * that much (0 for it put the intro's first frame a frame behind the
+ * music, late_ms=33: docs/groove.md, session 37). */
+static int32_t started_ms(const cub_director *d)
+{
+    const int64_t ms = (d->now_us - d->music_start_us) / 1000;
+    return ms > 0 ? (int32_t)ms : 0;
+}
+
 void director_request(cub_director *d, const cub_coach_action *a, int64_t t_us, int32_t music_ms)
 {
     cub_bridge_player_set_start_frames(&d->player, start_frames(d, a));
     const int reach = reach_frames(d, a);
     cub_bridge_player_set_reach_frames(&d->player, reach);
     cub_bridge_player_set_direct_only(&d->player, reach > 0);
-    /* The coach starts the music with the intro's request: its clock is at 0. */
-    const int32_t clock_ms = music_ms == CUB_COACH_NO_MUSIC && d->music_on ? 0 : music_ms;
+    const int32_t clock_ms = music_ms == CUB_COACH_NO_MUSIC && d->music_on ? started_ms(d) : music_ms;
     set_clock(d, a, reach > 0 ? clock_ms : CUB_COACH_NO_MUSIC);
     d->played_clip = d->requested_clip = -1;
     cub_bridge_plan plan;
@@ -479,6 +491,8 @@ static void on_switch(cub_director *d, cub_loop *loop, int64_t t_us, int64_t now
                   s->via == CUB_BRIDGE_TWEEN ? "tween"
                   : s->via == CUB_BRIDGE_ROUTE ? "route"
                                                : "direct");
+    d->switch_count++;
+    d->last_switch = *s;
     log_groove_entry(d, t_us, music_ms, s);
     post_music_tag(d, loop, now_us, music_ms, s);
 }

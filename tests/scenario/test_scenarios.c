@@ -699,6 +699,36 @@ static void test_a_gap_groove_hands_over_to_the_move_on_its_tag(void **s)
     groove_then_move_on_its_tag("demo");
 }
 
+/* Every groove the coach joins shows the music's frame: the `groove enter`
+ * line's late_ms within a millisecond (rounding). The intro, asked for in
+ * the call that starts the music, was a frame behind (late_ms=33): its
+ * clock was taken as 0 where the music had already played to the player's
+ * time. Returns how many grooves were entered. */
+static int grooves_on_the_music(const char *name)
+{
+    logread log;
+    load(name, &log);
+    int n = 0;
+    char clip[40];
+    for (int i = logread_find(&log, 0, "groove", "enter"); i >= 0;
+         i = logread_find(&log, i + 1, "groove", "enter"), n++) {
+        const double late_ms = number(&log, i, "late_ms");
+        printf("scenario: %s: %s entered at frame %.0f, %.0f ms behind the music\n", name,
+               field(&log, i, "clip", clip, sizeof clip), number(&log, i, "frame"), late_ms);
+        assert_true(late_ms >= -1 && late_ms <= 1);
+    }
+    logread_free(&log);
+    return n;
+}
+
+static void test_every_groove_is_entered_on_the_music(void **s)
+{
+    assert_int_equal(grooves_on_the_music("groove_free"), 2); /* the intro, bar 14 */
+    assert_int_equal(grooves_on_the_music("groove_song"), 1); /* the intro: the whole song */
+    NEED_DEMO();
+    assert_int_equal(grooves_on_the_music("demo"), 4); /* the intro, gaps 14, 26, the outro */
+}
+
 /* A groove song (no <move>): the whole song one span, danced from the
  * music's start; no move is begun, nothing judged. */
 static void test_groove_song_is_danced(void **s)
@@ -744,6 +774,7 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_free_bars_groove_log_is_the_committed_one),
         cmocka_unit_test(test_groove_song_is_danced),
         cmocka_unit_test(test_a_gap_groove_hands_over_to_the_move_on_its_tag),
+        cmocka_unit_test(test_every_groove_is_entered_on_the_music),
     };
     return cmocka_run_group_tests_name("scenarios", tests, NULL, NULL);
 }
