@@ -134,6 +134,39 @@ static cub_floor *load_floor(const char *path)
     return NULL;
 }
 
+/* --bridge-speed needs a song (the coach's clips and their bridges). */
+static int open_speed(const cub_app_options *o, cub_session *s, cub_bridge_speed *speed)
+{
+    if (!s->dance) {
+        fprintf(stderr, "cubdance: --bridge-speed %s: needs --song\n", o->bridge_speed_path);
+        return -1;
+    }
+    if (cub_bridge_speed_init(speed, s->dance)) {
+        fprintf(stderr, "cubdance: --bridge-speed %s: out of memory\n", o->bridge_speed_path);
+        return -1;
+    }
+    s->speed = speed;
+    return 0;
+}
+
+static int write_speed(const cub_app_options *o, const cub_session *s)
+{
+    FILE *f = fopen(o->bridge_speed_path, "w");
+    if (!f) {
+        fprintf(stderr, "cubdance: --bridge-speed %s: %s\n", o->bridge_speed_path,
+                strerror(errno));
+        return -1;
+    }
+    cub_bridge_speed_print(s->speed, s->dance, f);
+    if (fclose(f)) {
+        fprintf(stderr, "cubdance: --bridge-speed %s: %s\n", o->bridge_speed_path,
+                strerror(errno));
+        return -1;
+    }
+    printf("cubdance: bridge speeds written to %s\n", o->bridge_speed_path);
+    return 0;
+}
+
 static int run(const cub_app_options *o, cub_board *board, cub_event_log_file *log,
                const cub_io_motion *clip)
 {
@@ -197,6 +230,8 @@ static int run(const cub_app_options *o, cub_board *board, cub_event_log_file *l
         }
     }
     if (o->stats) s.tick_hist = calloc(CUB_SESSION_TICK_BINS, sizeof *s.tick_hist);
+    static cub_bridge_speed speed;
+    if (o->bridge_speed_path && open_speed(o, &s, &speed)) goto done;
     static cub_mem_stats mem;
     if (o->stats) cub_mem_stats_open(s.mem = &mem);
     if (o->record_dir && !(s.rec = open_recorder(o, board, &loop.log))) goto done;
@@ -211,6 +246,7 @@ static int run(const cub_app_options *o, cub_board *board, cub_event_log_file *l
         printf("cubdance: %u frames written to %s\n", s.frames_written, o->frames_dir);
     cub_session_print_stats(&s, stdout);
     rc = err || s.frame_error ? -1 : 0;
+    if (s.speed && write_speed(o, &s)) rc = -1;
     if (s.display_lost) {
         fprintf(stderr, "cubdance: the display went away: %s\n", cub_board_display_lost(board));
         rc = -1;
@@ -228,6 +264,7 @@ done:
     free(s.depth_copy);
     free(s.rgba);
     free(s.tick_hist);
+    if (s.speed) cub_bridge_speed_free(s.speed);
     free(s.floor);
     return rc;
 }

@@ -98,6 +98,10 @@ static void usage(FILE *f, const char *prog)
 "                         the box's own memory apart from the GL driver's and the\n"
 "                         allocations per tick; and a line at each song start (rss,\n"
 "                         open descriptors, heap). See docs/memory.md\n"
+"  --bridge-speed FILE    measure what the coach shows: every joint's speed each\n"
+"                         tick against the clip library's p99, per bridge (into a\n"
+"                         groove, out of one, between taught clips) and outside\n"
+"                         them, written to FILE at the end (docs/groove.md)\n"
 "  --help                 this text\n"
 "  --version              the version\n"
 "\n"
@@ -194,6 +198,7 @@ static int apply_valued(cub_app_options *o, const char *opt, const char *val, FI
                             : !strcmp(opt, "--walk")         ? &o->walk_path
                             : !strcmp(opt, "--font")         ? &o->font_path
                             : !strcmp(opt, "--voice")        ? &o->voice_path
+                            : !strcmp(opt, "--bridge-speed") ? &o->bridge_speed_path
                                                              : NULL;
         if (slot) return *slot = val, 0;
         fprintf(err, "cubdance: unknown option '%s' (see --help)\n", opt);
@@ -208,7 +213,7 @@ static int takes_value(const char *opt)
                                          "--gpio-config", "--config", "--audio-driver", "--clip", "--log",
                                          "--song", "--timeline", "--library", "--tags",
                                          "--character", "--coach", "--forest", "--floor", "--walk", "--font", "--voice", "--attract-after", "--doze-after",
-                                         "--music-clock-scale", "--record"};
+                                         "--music-clock-scale", "--record", "--bridge-speed"};
     for (size_t i = 0; i < sizeof valued / sizeof *valued; i++)
         if (!strcmp(opt, valued[i])) return 1;
     return 0;

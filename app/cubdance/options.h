@@ -23,6 +23,7 @@ typedef struct cub_app_options {
     double seconds;             /* stop after this long; 0 = run until quit */
     int virtual_clock;          /* --clock virtual */
     int stats;                  /* --stats: tick CPU time, memory, allocations (mem_stats.h) */
+    const char *bridge_speed_path; /* --bridge-speed FILE (bridge_speed.h), or NULL */
     /* The dance (issue 4): with a song the coach leads it. */
     const char *song_path;      /* a choreography (a .song.xml in assets/songs), or NULL */
     const char *timeline_path;  /* scripted verdicts / presence / claps, or NULL */

@@ -248,6 +248,14 @@ static void show_ready(cub_session *s)
     }
 }
 
+/* --bridge-speed: this tick's pose as the coach shows it, every tick (the
+ * drawing may skip ticks); the pose decides nothing. */
+static void measure_speed(cub_session *s, int64_t t_us)
+{
+    if (!s->speed || !s->dance || coach_world(s, t_us)) return;
+    cub_bridge_speed_tick(s->speed, s->dance, t_us);
+}
+
 static void tick_work(cub_session *s, cub_loop *loop, int64_t t_us)
 {
     if (s->stop_at_us && t_us >= s->stop_at_us) {
@@ -257,6 +265,7 @@ static void tick_work(cub_session *s, cub_loop *loop, int64_t t_us)
     }
     if (s->watch) cub_watch_tick(s->watch, loop, t_us);
     if (s->dance) cub_dance_tick(s->dance, loop, t_us);
+    measure_speed(s, t_us);
     show_ready(s);
     /* (--draw-every: the renderer decides nothing, so skipping ticks leaves
      * the event log as it is; a window always draws every tick) */

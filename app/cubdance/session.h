@@ -12,6 +12,7 @@
 #include "cub/io.h"
 #include "cub/loop.h"
 #include "cub/render.h"
+#include "bridge_speed.h"
 #include "dance.h"
 #include "mem_stats.h"
 #include "options.h"
@@ -54,6 +55,7 @@ typedef struct cub_session {
     uint32_t tick_count, tick_over; /* ticks counted; ... beyond the last bin */
     int64_t tick_cpu0_us, tick_max_us;
     cub_mem_stats *mem;      /* --stats: memory and allocations per tick, or NULL */
+    cub_bridge_speed *speed; /* --bridge-speed: the joints' speed measured, or NULL */
     /* Opt-in recording (--record, config recording=1), or NULL */
     cub_record *rec;
     int recording_on;        /* the recorder was told to begin */

@@ -182,25 +182,7 @@ static double library_p99(const char *path)
         fprintf(stderr, "cubtool groove-eval: %s\n", cub_diag_str(&d, msg, sizeof msg));
         return -1;
     }
-    cub_tool_series all = {0};
-    static cub_pose pose;
-    static cub_vec3 now[CUB_MOTION_MAX_JOINTS], prev[CUB_MOTION_MAX_JOINTS];
-    for (int c = 0; c < lib.clip_count; c++) {
-        const cub_clip *clip = &lib.clips[c].clip;
-        for (int f = 0; f < clip->frame_count; f++) {
-            cub_motion_clip_get_frame(clip, f, &pose);
-            cub_motion_forward(&lib.skel, &pose, now, NULL);
-            for (int j = 0; f > 0 && j < lib.skel.joint_count; j++) {
-                double dx = (now[j].x - prev[j].x) / 65536.0, dy = (now[j].y - prev[j].y) / 65536.0,
-                       dz = (now[j].z - prev[j].z) / 65536.0;
-                cub_tool_series_add(&all, sqrt(dx * dx + dy * dy + dz * dz) * 1e9 / clip->frame_ns,
-                                    "groove-eval");
-            }
-            memcpy(prev, now, sizeof now);
-        }
-    }
-    double p99 = cub_tool_series_pct(&all, 0.99);
-    free(all.v);
+    double p99 = cub_library_joint_speed_pct(&lib, 0.99);
     cub_library_free(&lib);
     return p99;
 }

@@ -26,6 +26,7 @@ static void music_start(cub_director *d, int64_t t_us)
 {
     d->music_on = true;
     d->music_paused = false;
+    d->music_start_us = t_us;
     cub_log_event(d->desc.coach.log, t_us, "music", "start", "song=\"%s\" bpm=%d length_ms=%d",
                   d->desc.song_name ? d->desc.song_name : "", d->desc.bpm,
                   d->desc.song_length_ms);

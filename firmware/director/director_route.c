@@ -229,14 +229,26 @@ static int reach_frames(const cub_director *d, const cub_coach_action *a)
     return groove_clip(d, a->clip) || groove_clip(d, d->player.clip) ? d->desc.react_frames : 0;
 }
 
+/* The music's time where the player stands, when the coach started the
+ * music in this call (the intro's request; music_ms was read before it).
+ * The app starts the music at the time of the event that started it, and
+ * the player already stands at now_us, later by up to a tick when that
+ * event was a clip's end within the last advance: the music has played
+ * that much (0 for it put the intro's first frame a frame behind the
+ * music, late_ms=33: docs/groove.md, session 37). */
+static int32_t started_ms(const cub_director *d)
+{
+    const int64_t ms = (d->now_us - d->music_start_us) / 1000;
+    return ms > 0 ? (int32_t)ms : 0;
+}
+
 void director_request(cub_director *d, const cub_coach_action *a, int64_t t_us, int32_t music_ms)
 {
     cub_bridge_player_set_start_frames(&d->player, start_frames(d, a));
     const int reach = reach_frames(d, a);
     cub_bridge_player_set_reach_frames(&d->player, reach);
     cub_bridge_player_set_direct_only(&d->player, reach > 0);
-    /* The coach starts the music with the intro's request: its clock is at 0. */
-    const int32_t clock_ms = music_ms == CUB_COACH_NO_MUSIC && d->music_on ? 0 : music_ms;
+    const int32_t clock_ms = music_ms == CUB_COACH_NO_MUSIC && d->music_on ? started_ms(d) : music_ms;
     set_clock(d, a, reach > 0 ? clock_ms : CUB_COACH_NO_MUSIC);
     d->played_clip = d->requested_clip = -1;
     cub_bridge_plan plan;
@@ -383,6 +395,17 @@ static int32_t upcoming_ms(const cub_director *d)
     return (int32_t)((ns + 999999) / 1000000);
 }
 
+/* Whether the coach is past reading groove i's entry lead in this call:
+ * it reads it only until it asks for the span's groove (coach.c,
+ * join_groove), and a dancing coach that has asked for it forgets that
+ * only in a call that began in another state (a correction's or a pause's
+ * resume: wait_clip), whose lead is looked at then. So the preview, one a
+ * tick through the whole span, is skipped while the groove plays. */
+static bool lead_settled(const cub_director *d, int32_t i)
+{
+    return d->coach.state == CUB_COACH_DANCE && d->coach.groove == i;
+}
+
 /* The bridge into the groove of the span the music is in, from where the
  * player is now, as its request would take it (the reach, one direct
  * switch, on the music's clock): the switch's wait. The coach asks for a
@@ -393,6 +416,7 @@ static void groove_entry_lead(cub_director *d, int32_t music_ms)
     for (int32_t i = 0; i < d->desc.coach.groove_count; i++) {
         cub_coach_groove *g = &d->grooves[i];
         if (music_ms < g->tag_ms || music_ms - g->tag_ms >= g->span_ms) continue;
+        if (lead_settled(d, i)) return;
         cub_bridge_query q = {.from_clip = -1, .to_clip = g->clip,
                               .reach_frames = d->desc.react_frames, .direct_only = 1,
                               .on_clock = 1, .clock_q16 = groove_clock_q16(d, g, music_ms)};
@@ -467,6 +491,8 @@ static void on_switch(cub_director *d, cub_loop *loop, int64_t t_us, int64_t now
                   s->via == CUB_BRIDGE_TWEEN ? "tween"
                   : s->via == CUB_BRIDGE_ROUTE ? "route"
                                                : "direct");
+    d->switch_count++;
+    d->last_switch = *s;
     log_groove_entry(d, t_us, music_ms, s);
     post_music_tag(d, loop, now_us, music_ms, s);
 }

@@ -48,5 +48,10 @@ cub_err cub_pack_read(const char *path, cub_library *out, cub_diag *diag);
 cub_err cub_pack_parse(const void *data, size_t len, const char *name, cub_library *out,
                        cub_diag *diag);
 void cub_library_free(cub_library *lib);
+/* The q-quantile (0..1, nearest rank) of every joint's speed between
+ * consecutive frames of every clip, in mm/s at each clip's own rate: the
+ * bound a made motion is held to (groove-eval's p99, cubdance's
+ * --bridge-speed). -1 when out of memory; 0 for a library without motion. */
+double cub_library_joint_speed_pct(const cub_library *lib, double q);
 
 #endif

@@ -127,12 +127,15 @@ typedef struct cub_director {
     int64_t now_us;                 /* where the player's time stands */
     int played_clip, requested_clip; /* a correction played in place of another */
     bool music_on, music_paused;    /* as asked of the app */
+    int64_t music_start_us;         /* the time the music was asked to start at */
     int lead_clip, lead_loop;       /* the player's state the entry leads are for */
     int64_t lead_pos_q16;
     int32_t key_frame[CUB_DIRECTOR_MAX_MOVES]; /* the bear's key moment in each move's clip; -1 */
     bool mirror_wrong[CUB_DIRECTOR_MAX_MOVES]; /* the keys' mirror is a mistake (never shown) */
     uint64_t other_moves[CUB_DIRECTOR_MAX_MOVES]; /* bit o: move o's keys, never shown in this
                                                      move's clip, are a mistake here */
+    uint32_t switch_count;          /* the player's switches so far ... */
+    cub_bridge_step last_switch;    /* ... and the last (for a measure of what is shown) */
     cub_director_out out[CUB_DIRECTOR_MAX_OUT]; /* this call's output */
     int32_t out_count;
 } cub_director;
