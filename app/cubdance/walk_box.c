@@ -462,7 +462,7 @@ static void walk_on(cub_walk_box *w, int64_t t_us)
             return;
         }
         w->frames++;
-        note_turns(w, 1);
+        note_turns(w, w->frames > 1); /* the first: from the last walk's pose */
         if (w->walker.blocked) stop(w, t_us, "blocked");
         else if (w->walker.stopped || (arrived(w) && !w->walker.p.has_end))
             stop(w, t_us, "arrived");
