@@ -374,11 +374,12 @@ typedef struct cub_gait_walk_params {
                                      one's share of the error (cubtool gait-eval --without) */
     cub_gait_event_fn on_event;   /* may be NULL */
     void *ctx;
-    /* 1: the walk ends on these footholds (x, z; [0] the left foot), e.g.
-     * where the next clip has its feet: a foot's step whose foothold comes
-     * within a step of its end foothold (along the heading) lands on it
-     * instead, the other foot's next step on its own, and the walker stops
-     * at the foot-off after, both feet on them (not at half a step from the
+    /* 1: the walk ends on these footholds (x, z of the ankles; [0] the left
+     * foot), e.g. where the next clip has its feet: a foot's step whose
+     * foothold comes within half a step of its end foothold (along the
+     * heading) lands so that its ankle stands on it once flat, the other
+     * foot's next step on its own, and the walker stops at the foot-off
+     * after, both feet on them and flat (not at half a step from the
      * target) [ours] */
     int has_end;
     cub_vec3 end_mm[2];
