@@ -17,7 +17,7 @@
  * BLEND_MIN_US at least. */
 #define BLEND_US 400000
 #define BLEND_MM_S 750
-#define BLEND_MIN_US 100000
+#define BLEND_MIN_US 33334 /* one frame of the box's */
 #define WANDER_REST_US 2000000 /* attracting: stand this long between wanders */
 #define ARRIVE_MM 60          /* the root this near the target: arrived */
 #define PASS_MM 30            /* ... or farther than its nearest by this, once within NEAR_MM */
@@ -220,6 +220,45 @@ static void pose_gap(cub_walk_box *w, const cub_bridge_player *p, int32_t *joint
     }
 }
 
+static cub_q16 deg(cub_q16 rad)
+{
+    return (cub_q16)((int64_t)rad * 180 * CUB_Q16_ONE / CUB_Q16_PI);
+}
+
+/* The angle between two rotations. */
+static cub_q16 quat_turn(cub_quat a, cub_quat b)
+{
+    return cub_fx_quat_angle(cub_fx_quat_mul(cub_fx_quat_conj(a), b));
+}
+
+/* The walker stepped `frames` clip frames: while it arrives (an end foot
+ * planned), the fastest turn of any of the coach's joints (the root's
+ * too) per clip frame, against the walk clip's p99 (no pop). */
+static void note_turns(cub_walk_box *w, int frames)
+{
+    const cub_pose *p = &w->walker.pose;
+    int arriving = w->walker.feet[0].at_end || w->walker.feet[1].at_end;
+    for (int j = 0; j < w->joint_count; j++) {
+        cub_quat q = p->rot[w->map[j]];
+        cub_q16 a = frames > 0 ? quat_turn(w->prev_rot[j], q) / frames : 0;
+        if (arriving && a > w->arrive_rad) w->arrive_rad = a;
+        w->prev_rot[j] = q;
+    }
+}
+
+/* The coach's pose at its place now, on the walk clip's skeleton: where
+ * a walk in on the dance's feet arrives (the walker eases into it over
+ * its end steps and holds it while it waits). */
+static void track_coach(cub_walk_box *w, const cub_bridge_player *p)
+{
+    cub_pose pc;
+    if (!w->walker.p.has_end) return;
+    coach_at_home(w, p, &pc);
+    for (int j = 0; j < w->joint_count; j++)
+        w->end_pose.rot[w->map[j]] = pc.rot[j];
+    w->end_pose.root_mm = pc.root_mm;
+}
+
 /* The picture goes over into the dance: a walk in on the dance's
  * footholds fades for as long as its farthest joint needs. */
 static void hand_over(cub_walk_box *w, const cub_bridge_player *p, int64_t t_us)
@@ -232,9 +271,9 @@ static void hand_over(cub_walk_box *w, const cub_bridge_player *p, int64_t t_us)
         w->blend_us = us < BLEND_MIN_US ? BLEND_MIN_US : us > BLEND_US ? BLEND_US : us;
     }
     cub_log_event(w->log, t_us, "walk", "enter",
-                  "clip=%s frame=%d foot_mm=%d joint_mm=%d blend_ms=%d",
+                  "clip=%s frame=%d foot_mm=%d joint_mm=%d blend_ms=%d arrive_dpf=%q p99_dpf=%q",
                   clip_name(w, w->hand_clip), w->hand_frame, foot, joint,
-                  (int)(w->blend_us / 1000));
+                  (int)(w->blend_us / 1000), deg(w->arrive_rad), deg(w->p99_rad));
     w->hand = 0;
     w->place = at_xz(home_xz);
 }
@@ -249,11 +288,13 @@ static void hold_on(cub_walk_box *w, int64_t t_us)
         int settle = w->walker.settle;
         if (cub_gait_walker_step(&w->walker, w->target, &pose)) return;
         w->frames++;
-        if (w->walker.settle == settle) { /* settled */
+        if (w->walker.settle == settle) { /* settled: the pose follows the coach's */
+            note_turns(w, 0); /* the coach's own motion, not the arrival's */
             w->frames = (int)due;
             w->settled = 1;
             return;
         }
+        note_turns(w, 1);
     }
 }
 
@@ -358,6 +399,7 @@ static void go(cub_walk_box *w, const cub_bridge_player *pl, cub_vec3 to, cub_wa
     cub_gait_walk_params p = {.start_mm = at, .dir_x = to.x - at.x, .dir_z = to.z - at.z,
                               .on_event = on_event, .ctx = w};
     p.has_end = why == CUB_WALK_IN && w->key_first >= 0 && !coach_feet(w, pl, p.end_mm);
+    if (p.has_end) p.end_pose = &w->end_pose;
     w->now_us = t_us;
     if (cub_gait_walker_init(&w->walker, &w->walk.wc, &w->terrain, &p))
         return; /* checked at open */
@@ -373,6 +415,7 @@ static void go(cub_walk_box *w, const cub_bridge_player *pl, cub_vec3 to, cub_wa
     w->frames = 0;
     w->settled = 0;
     w->best_mm = INT32_MAX;
+    w->arrive_rad = 0;
     switch_now(w, t_us);
 }
 
@@ -419,6 +462,7 @@ static void walk_on(cub_walk_box *w, int64_t t_us)
             return;
         }
         w->frames++;
+        note_turns(w, w->frames > 1); /* the first: from the last walk's pose */
         if (w->walker.blocked) stop(w, t_us, "blocked");
         else if (w->walker.stopped || (arrived(w) && !w->walker.p.has_end))
             stop(w, t_us, "arrived");
@@ -471,6 +515,7 @@ void cub_walk_box_tick(cub_walk_box *w, const cub_bridge_player *player, int32_t
         w->leave_us = 0;
         go(w, NULL, at_xz(off_xz), CUB_WALK_OFF, t_us, 0);
     }
+    if (w->walking || w->hand) track_coach(w, player);
     if (w->walking) walk_on(w, t_us);
     else if (w->hand) {
         hold_on(w, t_us);
@@ -582,6 +627,30 @@ static int key_frames(const cub_walk_box *w, int out[CUB_WALK_KEYS])
     return r < 0 ? -1 : 0;
 }
 
+static int cmp_q16(const void *a, const void *b)
+{
+    cub_q16 x = *(const cub_q16 *)a, y = *(const cub_q16 *)b;
+    return (x > y) - (x < y);
+}
+
+/* The walk clip's 99th percentile of a joint's turn from one frame to
+ * the next (the coach's joints), what an arrival's turns are held to. */
+static cub_err turn_p99(cub_walk_box *w)
+{
+    const cub_clip *c = &w->m.clip;
+    int nj = w->m.skel.joint_count, n = (c->frame_count - 1) * w->joint_count;
+    if (n <= 0) return CUB_ERR_FORMAT;
+    cub_q16 *v = malloc(sizeof *v * (size_t)n);
+    if (!v) return CUB_ERR_NOMEM;
+    for (int f = 1, i = 0; f < c->frame_count; f++)
+        for (int j = 0; j < w->joint_count; j++, i++)
+            v[i] = quat_turn(c->rot[(f - 1) * nj + w->map[j]], c->rot[f * nj + w->map[j]]);
+    qsort(v, (size_t)n, sizeof *v, cmp_q16);
+    w->p99_rad = v[(n - 1) * 99 / 100];
+    free(v);
+    return CUB_OK;
+}
+
 /* Each key pose as a one-frame clip on the coach's skeleton. */
 static cub_err make_keys(cub_walk_box *w)
 {
@@ -641,6 +710,8 @@ cub_err cub_walk_box_open(cub_walk_box *w, const char *path, const cub_floor *fl
     e = analyse(w);
     if (!e) e = check_walk(w);
     if (!e) e = make_keys(w);
+    if (!e) e = turn_p99(w);
+    if (!e) e = cub_motion_clip_get_frame(&w->m.clip, 0, &w->end_pose); /* joints unmapped */
     if (e) {
         w->joint_count = 0;
         return cub_diag_fail(diag, CUB_ERR_FORMAT, path, 0, "not a walk the walker can play (%s)",

@@ -66,6 +66,11 @@ typedef struct cub_walk_box {
     int wander;                    /* the next wander point */
     int drawn;                     /* shown holds a picture */
     cub_pose from, shown;          /* the picture at the switch; the last one drawn */
+    cub_pose end_pose;             /* a walk in on the dance's feet: the coach's pose at its
+                                      place, on the walk clip's skeleton (the walker arrives in it) */
+    cub_quat prev_rot[CUB_MOTION_MAX_JOINTS]; /* the walker's last pose (the coach's joints) */
+    cub_q16 arrive_rad;            /* the fastest joint turn while arriving, rad per clip frame */
+    cub_q16 p99_rad;               /* the walk clip's 99th percentile of the same */
 } cub_walk_box;
 
 /* Load the walk clip at path (a BVH on coach's skeleton: same joint

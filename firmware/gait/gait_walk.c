@@ -211,6 +211,20 @@ static cub_q16 sole_dip(const cub_gait_walker *w, int foot, cub_vec3 ankle, cub_
 
 /* ---- planning at foot-off --------------------------------------------------- */
 
+/* The signed angle from the heading to the unit direction u. */
+static cub_q16 angle_to(const cub_gait_walker *w, cub_vec3 u)
+{
+    cub_vec3 h = {w->dir_x, 0, w->dir_z};
+    return cub_fx_atan2(cub_fx_vec3_cross(h, u).y, cub_fx_vec3_dot(h, u));
+}
+
+/* The yaw (yaw_rotate's c, s) taking the unit direction d to h. */
+static void yaw_between(cub_vec3 d, cub_vec3 h, cub_q16 *c, cub_q16 *s)
+{
+    *c = cub_fx_add(cub_fx_mul(d.x, h.x), cub_fx_mul(d.z, h.z));
+    *s = cub_fx_sub(cub_fx_mul(d.z, h.x), cub_fx_mul(d.x, h.z));
+}
+
 /* Turn the heading toward the target by at most max_turn; the mapping is
  * rebased at the root so the body does not jump. */
 static void steer(cub_gait_walker *w, cub_vec3 root_u, cub_vec3 target)
@@ -224,8 +238,7 @@ static void steer(cub_gait_walker *w, cub_vec3 root_u, cub_vec3 target)
     w->arrived = dist <= half_step;
     if (w->arrived || dist == 0) return;
     cub_vec3 h = {w->dir_x, 0, w->dir_z};
-    cub_vec3 u = unit_xz(want);
-    cub_q16 ang = cub_fx_atan2(cub_fx_vec3_cross(h, u).y, cub_fx_vec3_dot(h, u));
+    cub_q16 ang = angle_to(w, unit_xz(want));
     cub_q16 lim = w->p.max_turn_rad > 0 ? w->p.max_turn_rad : DEG(10);
     ang = cub_fx_clamp(ang, -lim, lim);
     if (ang == 0) return;
@@ -295,6 +308,31 @@ static void fade_from_off(const cub_gait_walker *w, cub_gait_walk_foot *ft)
     ft->path_lift0 = lift > 0 ? lift : 0;
 }
 
+/* The first end step (has_end): the end's facing, square to the line
+ * from the right end foothold to the left (the feet of a clip standing
+ * side by side). The end feet land turned to it (their swings turn them,
+ * foot_yaw), the body and the knees' pole ease to it over the end swings
+ * (turned); the walk's own heading and path are left as steered [ours:
+ * steering alone turns 10 degrees a step and left the box's bear 47
+ * degrees off the dance; turning the heading itself moved the root's path
+ * aside and the pelvis dropped 96 mm to reach both feet]. */
+static void face_end(cub_gait_walker *w)
+{
+    cub_vec3 lr = cub_fx_vec3_sub(w->p.end_mm[0], w->p.end_mm[1]);
+    if (lr.x == 0 && lr.z == 0) return;
+    w->end_face = unit_xz((cub_vec3){-lr.z, 0, lr.x});
+    yaw_between(clip_dir(w), w->end_face, &w->end_yaw_c, &w->end_yaw_s);
+}
+
+/* The yaw a foot lands with: the walk's, or an end step's the end's
+ * facing (face_end). */
+static void foot_yaw(const cub_gait_walker *w, const cub_gait_walk_foot *ft, cub_q16 *c, cub_q16 *s)
+{
+    bool face = ft->at_end && (w->end_face.x || w->end_face.z);
+    *c = face ? w->end_yaw_c : w->yaw_c;
+    *s = face ? w->end_yaw_s : w->yaw_s;
+}
+
 /* The walk's end (params.has_end): this foot's step lands on its end
  * foothold once the planned one comes within half a step of it along the
  * heading, or past it, or once the other foot stands on its own; the
@@ -310,10 +348,16 @@ static void end_step(cub_gait_walker *w, int foot, cub_vec3 *hold)
     cub_q16 along = cub_fx_add(cub_fx_mul(r.x, w->dir_x), cub_fx_mul(r.z, w->dir_z));
     cub_q16 half = cub_fx_vec3_length(flat_xz(w->cycle_u)) / 4;
     if (!w->feet[!foot].at_end && along < -half) return;
+    ft->at_end = 1;
+    if (!w->feet[!foot].at_end) face_end(w);
+    /* the foothold is where the ankle strikes; it stands on the end once
+     * flat (the captured ankle rolls on 20-35 mm by then) */
+    cub_q16 yc, ys;
+    foot_yaw(w, ft, &yc, &ys);
+    e = cub_fx_vec3_sub(e, yaw_rotate(yc, ys, flat_xz(cub_fx_vec3_sub(ft->stand_u, ft->next_u))));
     e.y = cub_gait_height(w->t, e.x, e.z);
     ft->end_shift_mm = flat_xz(cub_fx_vec3_sub(e, *hold));
     *hold = w->plan.steps[0].foot_mm = e;
-    ft->at_end = 1;
 }
 
 /* The planner refuses a foothold whose swing needs more raises than this
@@ -372,6 +416,15 @@ static void swing_sway(cub_gait_walker *w, int foot, int f, int k, int len)
     }
 }
 
+/* The captured ankle where the foot struck at frame p (loop k) is next
+ * flat on the ground: stance's first frame after it. */
+static cub_vec3 stand_at(const cub_gait_walker *w, int foot, int p, int k)
+{
+    for (int i = 0; i < w->b - w->a && phase_at(w, foot, p) != CUB_GAIT_STANCE; i++)
+        p = next_frame(w, p, &k);
+    return clip_point(w, foot, 0, p, k);
+}
+
 /* Foot-off at frame f, loop k: find where the clip lands it, plan, shape
  * the swing. False: no swing (arrived, or BLOCKED): the walker stops. */
 static bool begin_swing(cub_gait_walker *w, int foot, int f, int k, cub_vec3 target)
@@ -399,6 +452,7 @@ static bool begin_swing(cub_gait_walker *w, int foot, int f, int k, cub_vec3 tar
     ft->key_at[2] = len;
     ft->next_u = clip_point(w, foot, 0, p, kk);
     ft->next_floor = clip_floor(w, foot, p);
+    ft->stand_u = stand_at(w, foot, p, kk);
     swing_sway(w, foot, f, k, len);
     ft->swing_at = w->ticks;
     ft->swing_len = len > 0 ? len : 1;
@@ -427,8 +481,8 @@ static void land(cub_gait_walker *w, int foot)
     ft->hold_mm = ft->next_mm;
     ft->plant_u = ft->next_u;
     ft->floor_u = ft->next_floor;
-    ft->yaw_c = w->yaw_c;
-    ft->yaw_s = w->yaw_s;
+    foot_yaw(w, ft, &ft->yaw_c, &ft->yaw_s);
+    ft->has_rest = 0; /* its rest is on this foothold, once it stands */
     ft->skate_u[0] = ft->skate_u[1] = (cub_vec3){0};
     w->key_mm = ft->key_mm;
     w->end_shift_mm = cub_fx_vec3_add(w->end_shift_mm, cub_fx_vec3_scale(ft->end_shift_mm, CUB_Q16_ONE / 2));
@@ -462,7 +516,9 @@ static cub_vec3 swinging(const cub_gait_walker *w, const cub_gait_walk_foot *ft,
                          cub_vec3 u, cub_q16 s)
 {
     cub_vec3 from = planted(w, ft, pt, u);
-    cub_vec3 d = yaw_rotate(w->yaw_c, w->yaw_s, flat_xz(cub_fx_vec3_sub(u, ft->next_u)));
+    cub_q16 yc, ys;
+    foot_yaw(w, ft, &yc, &ys);
+    cub_vec3 d = yaw_rotate(yc, ys, flat_xz(cub_fx_vec3_sub(u, ft->next_u)));
     cub_vec3 to = cub_fx_vec3_add(flat_xz(ft->next_mm), d);
     return cub_fx_vec3_lerp(from, to, s);
 }
@@ -535,7 +591,9 @@ static cub_vec3 key_point(const cub_gait_walker *w, const cub_gait_walk_foot *ft
  * walk's heading, times a third of the span (frames). */
 static cub_vec3 key_tangent(const cub_gait_walker *w, const cub_gait_walk_foot *ft, int k, int span)
 {
-    cub_vec3 v = yaw_rotate(w->yaw_c, w->yaw_s, ft->key_v[k]);
+    cub_q16 yc, ys;
+    foot_yaw(w, ft, &yc, &ys);
+    cub_vec3 v = yaw_rotate(yc, ys, ft->key_v[k]);
     return cub_fx_vec3_scale(v, CUB_Q16_INT(span) / 3);
 }
 
@@ -570,6 +628,16 @@ static cub_vec3 flat_swing(const cub_gait_walker *w, const cub_gait_walk_foot *f
     return bezier3(p, s);
 }
 
+/* Both feet on their end footholds (has_end): the one standing since its
+ * end step stays flat, as it stood, not rolled up onto its toe for a
+ * foot-off the walk will not make (its heel rose 105 mm before the stop
+ * and settled back, the knee turning over) [ours]. */
+static bool stays_flat(const cub_gait_walker *w, const cub_gait_walk_foot *ft)
+{
+    return w->p.has_end && w->feet[0].at_end && w->feet[1].at_end && !ft->swinging &&
+           ft->has_rest && ft->last_phase != CUB_GAIT_STANCE;
+}
+
 static void foot_targets(cub_gait_walker *w, int foot, int f, int k)
 {
     cub_gait_walk_foot *ft = &w->feet[foot];
@@ -598,10 +666,17 @@ static void foot_targets(cub_gait_walker *w, int foot, int f, int k)
     t.y += dip;
     ft->ankle_mm = a;
     ft->toe_mm = t;
-    if (!ft->swinging && ft->last_phase == CUB_GAIT_STANCE) {
+    /* an end foot rests as it first stood flat (its heel rises 10 mm over
+     * the stance; the end's feet are flat) */
+    bool first = !(ft->at_end && ft->has_rest);
+    if (!ft->swinging && ft->last_phase == CUB_GAIT_STANCE && first) {
         ft->rest_mm[0] = a;
         ft->rest_mm[1] = t;
         ft->has_rest = 1;
+    }
+    if (stays_flat(w, ft)) {
+        ft->ankle_mm = ft->rest_mm[0];
+        ft->toe_mm = ft->rest_mm[1];
     }
 }
 
@@ -684,6 +759,51 @@ static cub_vec3 end_shift(const cub_gait_walker *w)
     return s;
 }
 
+/* How far into the arrival (has_end), Q16.16 in [0, 1]: half for each
+ * end foot, eased over its swing (smoothstep: no speed at either end of
+ * it, none while both feet are down between the swings), all once both
+ * stand on their end footholds. */
+static cub_q16 end_weight(const cub_gait_walker *w)
+{
+    cub_q16 k = 0;
+    for (int foot = 0; foot < 2 && w->p.has_end; foot++) {
+        const cub_gait_walk_foot *ft = &w->feet[foot];
+        if (!ft->at_end) continue;
+        cub_q16 s = ft->swinging ? swing_s(w, ft) : CUB_Q16_ONE;
+        k += cub_fx_mul(cub_fx_mul(s, s), CUB_Q16_INT(3) - 2 * s) / 2;
+    }
+    return k;
+}
+
+/* How far the body has turned from the heading toward the end's facing:
+ * the whole angle between them times the end weight. */
+static cub_q16 turned(const cub_gait_walker *w)
+{
+    if (!w->end_face.x && !w->end_face.z) return 0;
+    return cub_fx_mul(angle_to(w, w->end_face), end_weight(w));
+}
+
+static bool arriving_in_pose(const cub_gait_walker *w)
+{
+    return w->p.end_pose && w->p.end_pose->joint_count == w->pose.joint_count;
+}
+
+/* The arrival: every joint's rotation eased toward the end pose by the
+ * end weight, the root's place over the second end swing only (the legs
+ * are solved after, onto the feet). Over the first the other foot still
+ * stands a step back: the root drawn to the end stretched that leg past
+ * its reach and the knee turned over (177 degrees in a frame). */
+static void arrive(cub_gait_walker *w)
+{
+    const cub_pose *e = w->p.end_pose;
+    cub_q16 k = end_weight(w);
+    if (!arriving_in_pose(w) || k <= 0) return;
+    for (int j = 0; j < e->joint_count; j++)
+        w->pose.rot[j] = cub_fx_quat_nlerp(w->pose.rot[j], e->rot[j], k);
+    if (k > CUB_Q16_ONE / 2)
+        w->pose.root_mm = cub_fx_vec3_lerp(w->pose.root_mm, e->root_mm, 2 * k - CUB_Q16_ONE);
+}
+
 static void place_root(cub_gait_walker *w, int f, int k)
 {
     const cub_clip *c = w->c->clip;
@@ -694,14 +814,20 @@ static void place_root(cub_gait_walker *w, int f, int k)
     cub_vec3 r = to_world(w, ru);
     r.y = ru.y + (ground_shift(w, 0) + ground_shift(w, 1)) / 2;
     w->pose.root_mm = cub_fx_vec3_add(r, end_shift(w));
+    /* the body's turn: an end pose's root brings its own (arrive) */
     cub_q16 ang = cub_fx_atan2(w->yaw_s, w->yaw_c);
+    if (!arriving_in_pose(w)) ang = cub_fx_add(ang, turned(w));
     cub_quat yaw = cub_fx_quat_from_axis_angle(UP, ang);
     w->pose.rot[0] = cub_fx_quat_normalize(cub_fx_quat_mul(yaw, w->pose.rot[0]));
+    arrive(w);
 }
 
+/* The knees' pole: the heading, turned as the body is (turned). */
 static cub_vec3 ahead(const cub_gait_walker *w)
 {
-    return (cub_vec3){w->dir_x, 0, w->dir_z};
+    cub_vec3 h = {w->dir_x, 0, w->dir_z};
+    cub_q16 a = turned(w);
+    return a ? unit_xz(yaw_rotate(cub_fx_cos(a), cub_fx_sin(a), h)) : h;
 }
 
 static cub_err solve_leg(cub_gait_walker *w, int foot)
@@ -792,9 +918,7 @@ cub_err cub_gait_walker_init(cub_gait_walker *w, const cub_gait_walk_clip *c,
     cub_vec3 h = (p->dir_x || p->dir_z) ? unit_xz((cub_vec3){p->dir_x, 0, p->dir_z}) : d0;
     w->dir_x = h.x;
     w->dir_z = h.z;
-    /* yaw taking d0 to h, in yaw_rotate's sense */
-    w->yaw_c = cub_fx_add(cub_fx_mul(d0.x, h.x), cub_fx_mul(d0.z, h.z));
-    w->yaw_s = cub_fx_sub(cub_fx_mul(d0.z, h.x), cub_fx_mul(d0.x, h.z));
+    yaw_between(d0, h, &w->yaw_c, &w->yaw_s);
     w->origin_mm = flat_xz(p->start_mm);
     w->ref_u = root[w->a];
     w->frame = w->a;

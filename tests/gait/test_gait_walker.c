@@ -20,6 +20,8 @@
 #include "cub/io.h"
 
 #define CLIP "02_01"
+#define DEG_Q16(d) ((cub_q16)((int64_t)(d) * CUB_Q16_PI / 180))
+#define TO_DEG(r) ((r) * 180.0 / CUB_Q16_PI)
 #define FRAMES 1200 /* 10 s: several cycles, so the loop's wrap is crossed */
 #define MAX_EVENTS 512
 
@@ -340,40 +342,147 @@ static void comes_to_rest_at_target(void **state)
     assert_true(root_dist((cub_vec3){0}) <= stride);
 }
 
-/* End footholds side by side 3 m ahead (as the box's walk in gets the
- * dance's feet), the walk arriving 40 degrees off them: the walker comes
- * to rest with each foot on its own end foothold (its ground point within
- * 1 mm of it), not half a step short, and the root over them (within a
- * stride of their middle). */
+/* The end footholds of the tests below: side by side 3 m ahead (as the
+ * box's walk in gets the dance's feet, facing +z), the walk starting 40
+ * degrees off them. */
+static cub_gait_walk_params end_params(cub_vec3 *mid)
+{
+    cub_gait_walk_params p = {.dir_x = CUB_Q16_INT(2), .dir_z = CUB_Q16_INT(3), .has_end = 1};
+    *mid = (cub_vec3){CUB_Q16_INT(1900), 0, CUB_Q16_INT(2300)};
+    p.end_mm[0] = cub_fx_vec3_add(*mid, (cub_vec3){CUB_Q16_INT(85), 0, 0});
+    p.end_mm[1] = cub_fx_vec3_sub(*mid, (cub_vec3){CUB_Q16_INT(85), 0, 0});
+    return p;
+}
+
+/* A foot's standing ankle (its IK result) from its end foothold, x z. */
+static cub_q16 ankle_off_end(const cub_gait_walk_params *p, int f)
+{
+    cub_vec3 d = cub_fx_vec3_sub(walker.feet[f].leg.ankle_mm, p->end_mm[f]);
+    d.y = 0;
+    return cub_fx_vec3_length(d);
+}
+
+/* How far a foot (ankle to toe, x z) points off +z (rad). */
+static cub_q16 foot_off_facing(int f)
+{
+    const cub_gait_walk_foot *ft = &walker.feet[f];
+    cub_vec3 d = cub_fx_vec3_sub(ft->leg.toe_mm, ft->leg.ankle_mm);
+    return cub_fx_abs(cub_fx_atan2(d.x, d.z));
+}
+
+/* The walker comes to rest with each foot's standing ankle on its own end
+ * foothold (within 5 mm: the foothold is where the ankle strikes, the
+ * captured ankle rolls on 20-35 mm before it is flat), not half a step
+ * short, each foot turned to the end's facing (within 10 degrees; it came
+ * in 40 degrees off), and the root over them (within a stride of their
+ * middle). */
 static void comes_to_rest_on_end_footholds(void **state)
 {
     (void)state;
     SYNTH_NEED_DATA(CLIP);
     cub_gait_terrain t;
     cub_gait_terrain_flat(&t, 0);
-    cub_gait_walk_params p = {.dir_x = CUB_Q16_INT(2), .dir_z = CUB_Q16_INT(3), .has_end = 1};
-    cub_vec3 mid = {CUB_Q16_INT(1900), 0, CUB_Q16_INT(2300)};
-    p.end_mm[0] = cub_fx_vec3_add(mid, (cub_vec3){CUB_Q16_INT(85), 0, 0});
-    p.end_mm[1] = cub_fx_vec3_sub(mid, (cub_vec3){CUB_Q16_INT(85), 0, 0});
+    cub_vec3 mid;
+    cub_gait_walk_params p = end_params(&mid);
     assert_int_equal(cub_gait_walker_init(&walker, &analysed.wc, &t, &p), CUB_OK);
     int still = walk_to(mid, 900, &t);
     cub_q16 stride = cub_fx_vec3_length(walker.cycle_u) / 2;
-    cub_q16 off[2];
-    for (int f = 0; f < 2; f++) {
-        cub_vec3 d = cub_fx_vec3_sub(walker.feet[f].hold_mm, p.end_mm[f]);
-        d.y = 0;
-        off[f] = cub_fx_vec3_length(d);
-    }
-    printf("gait walker: end footholds: feet %.1f / %.1f mm off them, root %.0f mm from their "
-           "middle (stride %.0f), still %d frames, %d steps\n",
-           off[0] / 65536.0, off[1] / 65536.0, root_dist(mid) / 65536.0, stride / 65536.0, still,
-           walker.steps);
+    printf("gait walker: end footholds: ankles %.1f / %.1f mm off them, feet %.1f / %.1f deg "
+           "off their facing, root %.0f mm from their middle (stride %.0f), still %d frames, "
+           "%d steps\n",
+           ankle_off_end(&p, 0) / 65536.0, ankle_off_end(&p, 1) / 65536.0,
+           TO_DEG(foot_off_facing(0)), TO_DEG(foot_off_facing(1)), root_dist(mid) / 65536.0, stride / 65536.0, still, walker.steps);
     assert_true(walker.stopped && !walker.blocked && still > 100);
     for (int f = 0; f < 2; f++) {
         assert_true(walker.feet[f].at_end && !walker.feet[f].swinging);
-        assert_true(off[f] <= CUB_Q16_ONE);
+        assert_true(ankle_off_end(&p, f) <= CUB_Q16_INT(5));
+        assert_true(foot_off_facing(f) <= DEG_Q16(10));
     }
     assert_true(root_dist(mid) <= stride);
+}
+
+/* The fastest turn of any joint from one frame to the next (rad). */
+static cub_q16 fastest_turn(const cub_pose *a, const cub_pose *b)
+{
+    cub_q16 most = 0;
+    for (int j = 0; j < a->joint_count; j++) {
+        cub_q16 d = cub_fx_quat_angle(cub_fx_quat_mul(cub_fx_quat_conj(a->rot[j]), b->rot[j]));
+        if (d > most) most = d;
+    }
+    return most;
+}
+
+/* The same walk with an end pose (the clip's first frame, its root over
+ * the end footholds' middle, the body turned to their facing: the box
+ * gives the dance's first frame): at rest the walker is in it (every
+ * joint but the solved legs' hip, knee and ankle within 1 degree, the
+ * root within 10 mm), each foot standing still on its end foothold from
+ * its first frame of stance there to the end (no slide: its ankle moves
+ * at most 0.5 mm along the ground; it does not roll up for the foot-off
+ * it will not make), and no
+ * joint turns faster over the arrival (the end steps) than it does in the
+ * walk before them. */
+static void arrives_in_the_end_pose(void **state)
+{
+    (void)state;
+    SYNTH_NEED_DATA(CLIP);
+    cub_gait_terrain t;
+    cub_gait_terrain_flat(&t, 0);
+    cub_vec3 mid;
+    cub_gait_walk_params p = end_params(&mid);
+    static cub_pose end, last;
+    assert_int_equal(cub_gait_walker_init(&walker, &analysed.wc, &t, &p), CUB_OK);
+    cub_vec3 d0 = walker.cycle_u; /* the clip's heading, turned to +z */
+    cub_quat yaw = cub_fx_quat_from_axis_angle((cub_vec3){0, CUB_Q16_ONE, 0},
+                                               cub_fx_atan2(-d0.x, d0.z));
+    assert_int_equal(cub_motion_clip_get_frame(&walk.clip, 0, &end), CUB_OK);
+    end.root_mm = (cub_vec3){mid.x, end.root_mm.y, mid.z};
+    end.rot[0] = cub_fx_quat_normalize(cub_fx_quat_mul(yaw, end.rot[0]));
+    p.end_pose = &end;
+    assert_int_equal(cub_gait_walker_init(&walker, &analysed.wc, &t, &p), CUB_OK);
+    cub_q16 walk_peak = 0, arrive_peak = 0, slide = 0;
+    cub_vec3 stood[2];
+    int flat[2] = {0, 0};
+    for (int i = 0; i < 900; i++) {
+        const cub_pose *pose;
+        assert_int_equal(cub_gait_walker_step(&walker, mid, &pose), CUB_OK);
+        cub_q16 turn = i > 0 ? fastest_turn(&last, pose) : 0;
+        bool arriving = walker.feet[0].at_end || walker.feet[1].at_end;
+        if (arriving && turn > arrive_peak) arrive_peak = turn;
+        if (!arriving && i > 30 && turn > walk_peak) walk_peak = turn;
+        last = *pose;
+        for (int f = 0; f < 2; f++) {
+            const cub_gait_walk_foot *ft = &walker.feet[f];
+            if (!ft->at_end || ft->swinging || (!flat[f] && ft->last_phase != CUB_GAIT_STANCE))
+                continue;
+            if (!flat[f]++) stood[f] = ft->leg.ankle_mm;
+            cub_vec3 moved = cub_fx_vec3_sub(ft->leg.ankle_mm, stood[f]);
+            cub_q16 d = cub_fx_vec3_length((cub_vec3){moved.x, 0, moved.z});
+            if (d > slide) slide = d;
+        }
+    }
+    const cub_skeleton *sk = &walk.skel;
+    cub_q16 off = 0;
+    for (int j = 0; j < sk->joint_count; j++) {
+        bool leg = false;
+        for (int f = 0; f < 2; f++) {
+            int a = analysed.wc.ankle[f];
+            leg |= j == a || j == sk->joints[a].parent || j == sk->joints[sk->joints[a].parent].parent;
+        }
+        cub_q16 d = cub_fx_quat_angle(cub_fx_quat_mul(cub_fx_quat_conj(end.rot[j]), last.rot[j]));
+        if (!leg && d > off) off = d;
+    }
+    cub_q16 root = cub_fx_vec3_length(cub_fx_vec3_sub(last.root_mm, end.root_mm));
+    printf("gait walker: end pose: joints %.2f deg off it, root %.1f mm, feet flat on their end "
+           "%d / %d frames (slid %.2f mm), fastest joint turn arriving %.1f deg/frame, walking "
+           "%.1f\n", TO_DEG(off), root / 65536.0, flat[0], flat[1], slide / 65536.0,
+           TO_DEG(arrive_peak), TO_DEG(walk_peak));
+    assert_true(walker.stopped && !walker.blocked);
+    assert_true(off <= DEG_Q16(1));
+    assert_true(root <= CUB_Q16_INT(10));
+    assert_true(flat[0] > 100 && flat[1] > 100);
+    assert_true(slide <= CUB_Q16_ONE / 2);
+    assert_true(arrive_peak <= walk_peak);
 }
 
 /* The log of swing_that_cannot_clear_is_replanned, walked on: once every
@@ -500,6 +609,7 @@ int main(void)
         cmocka_unit_test(swing_that_cannot_clear_is_replanned),
         cmocka_unit_test(comes_to_rest_at_target),
         cmocka_unit_test(comes_to_rest_on_end_footholds),
+        cmocka_unit_test(arrives_in_the_end_pose),
         cmocka_unit_test(blocked_walker_stops),
         cmocka_unit_test(strike_pose_depends_on_height_difference),
     };

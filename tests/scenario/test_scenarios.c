@@ -604,12 +604,22 @@ static void test_the_bear_walks_in_and_off_through_bridge_frames(void **s)
     assert_true(log.lines[bridge].t_s >= log.lines[dance].t_s);
     assert_true(log.lines[stop].t_s < log.lines[dance].t_s);
     assert_true(number(&log, enter, "foot_mm") <= 50);
+    /* it arrives in the dance's first pose, turned and with its arms (303
+     * mm off before), and no joint turns faster arriving than the walk's
+     * own knees do (31.4 degrees a frame before the arrival was built) */
+    assert_true(number(&log, enter, "joint_mm") <= 50);
+    assert_true(number(&log, enter, "blend_ms") <= 100);
+    assert_true(number(&log, enter, "arrive_dpf") <= 31.4);
     field(&log, first, "clip", want, sizeof want);
     assert_string_equal(field(&log, enter, "clip", clip, sizeof clip), want);
     printf("scenario: demo: walk in from %.0f mm, stops %.3f s before the dance, into %s at "
-           "frame %.0f (feet %.0f mm off), %.3f s after START's wake\n", sqrt(fx * fx + fz * fz),
-           log.lines[dance].t_s - log.lines[stop].t_s, clip, number(&log, enter, "frame"),
-           number(&log, enter, "foot_mm"), log.lines[enter].t_s - log.lines[in].t_s);
+           "frame %.0f (feet %.0f mm off, every joint within %.0f mm, faded %.0f ms; fastest "
+           "joint turn arriving %.1f deg/frame, the walk clip's p99 %.1f), %.3f s after START's "
+           "wake\n", sqrt(fx * fx + fz * fz), log.lines[dance].t_s - log.lines[stop].t_s, clip,
+           number(&log, enter, "frame"), number(&log, enter, "foot_mm"),
+           number(&log, enter, "joint_mm"), number(&log, enter, "blend_ms"),
+           number(&log, enter, "arrive_dpf"), number(&log, enter, "p99_dpf"),
+           log.lines[enter].t_s - log.lines[in].t_s);
     int cheered = next_state(&log, enter, "idle");
     int off = logread_find(&log, cheered, "walk", "bridge");
     int go = logread_find(&log, cheered, "walk", "start");
@@ -619,6 +629,39 @@ static void test_the_bear_walks_in_and_off_through_bridge_frames(void **s)
     int raised = raised_steps(&log, go, log.count);
     printf("scenario: demo: walk off, %d feet above the clearing\n", raised);
     assert_true(raised > 0);
+    logread_free(&log);
+}
+
+/* START, STOP, and START again once the walk off has reached the trees:
+ * the second walk in comes from as far out as one ever does (2.36 m; the
+ * first from 2.12 m), at the 3x cap. It stops after the dance has begun
+ * (the figure is printed), and still enters it in its first pose (every
+ * joint within 50 mm). */
+static void test_a_walk_in_after_a_walk_off_enters_the_dance_in_its_pose(void **s)
+{
+    logread log;
+    load("return", &log);
+    char why[16];
+    int off = logread_find(&log, 0, "walk", "stop");
+    while (off >= 0 && strcmp(field(&log, off, "why", why, sizeof why), "off"))
+        off = logread_find(&log, off + 1, "walk", "stop");
+    int in = logread_find(&log, off, "walk", "start");
+    assert_true(off > 0 && in > off);
+    assert_string_equal(field(&log, in, "why", why, sizeof why), "in");
+    double fx = number(&log, in, "from_x"), fz = number(&log, in, "from_z");
+    int stop = logread_find(&log, in, "walk", "stop");
+    int dance = next_state(&log, in, "dance");
+    int enter = logread_find(&log, stop, "walk", "enter");
+    assert_true(stop > in && dance > in && enter > stop);
+    printf("scenario: return: walk in from %.0f mm at rate %.3f, stops %.3f s after the dance "
+           "began, enters %.3f s after it (every joint within %.0f mm, feet %.0f mm, faded %.0f "
+           "ms; fastest joint turn arriving %.1f deg/frame)\n", sqrt(fx * fx + fz * fz),
+           number(&log, in, "rate"), log.lines[stop].t_s - log.lines[dance].t_s,
+           log.lines[enter].t_s - log.lines[dance].t_s, number(&log, enter, "joint_mm"),
+           number(&log, enter, "foot_mm"), number(&log, enter, "blend_ms"),
+           number(&log, enter, "arrive_dpf"));
+    assert_true(sqrt(fx * fx + fz * fz) >= 2300);
+    assert_true(number(&log, enter, "joint_mm") <= 50);
     logread_free(&log);
 }
 
@@ -811,6 +854,7 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_child_who_walks_away_pauses_then_attracts),
         cmocka_unit_test(test_every_hint_shown_is_said_at_its_tick),
         cmocka_unit_test(test_the_bear_walks_in_and_off_through_bridge_frames),
+        cmocka_unit_test(test_a_walk_in_after_a_walk_off_enters_the_dance_in_its_pose),
         cmocka_unit_test(test_demo_song_log_is_the_committed_one),
         cmocka_unit_test(test_free_bars_groove_log_is_the_committed_one),
         cmocka_unit_test(test_groove_song_is_danced),

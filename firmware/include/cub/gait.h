@@ -374,14 +374,25 @@ typedef struct cub_gait_walk_params {
                                      one's share of the error (cubtool gait-eval --without) */
     cub_gait_event_fn on_event;   /* may be NULL */
     void *ctx;
-    /* 1: the walk ends on these footholds (x, z; [0] the left foot), e.g.
-     * where the next clip has its feet: a foot's step whose foothold comes
-     * within a step of its end foothold (along the heading) lands on it
-     * instead, the other foot's next step on its own, and the walker stops
-     * at the foot-off after, both feet on them (not at half a step from the
+    /* 1: the walk ends on these footholds (x, z of the ankles; [0] the left
+     * foot), e.g. where the next clip has its feet: a foot's step whose
+     * foothold comes within half a step of its end foothold (along the
+     * heading) lands so that its ankle stands on it once flat, the other
+     * foot's next step on its own, and the walker stops at the foot-off
+     * after, both feet on them and flat (not at half a step from the
      * target) [ours] */
     int has_end;
     cub_vec3 end_mm[2];
+    /* has_end: the pose to arrive in, or NULL: on the clip's skeleton, local
+     * rotations and the root's world place (e.g. the next clip's first
+     * frame where it will play). With has_end the end feet land turned to
+     * the end's facing (square to the line from the right end foothold to
+     * the left) and the body turns to it over the two end swings; with
+     * end_pose too every joint's rotation eases from the walk's to it over
+     * both swings, the root's place over the second (the legs then solved
+     * onto the feet), all of it once the second end foot is down. Read
+     * every frame: the caller may move it [ours] */
+    const cub_pose *end_pose;
 } cub_gait_walk_params;
 
 /* One foot of the walker (read only for the caller). */
@@ -409,6 +420,7 @@ typedef struct cub_gait_walk_foot {
     cub_vec3 rest_mm[2];          /* ankle, toe targets of its last stance frame (flat down) */
     int has_rest;                 /* rest_mm is set */
     int at_end;                   /* has_end: its foothold (or the one it swings to) is its end */
+    cub_vec3 stand_u;             /* swinging: the clip's ankle once flat after the strike */
     cub_vec3 end_shift_mm;        /* swinging: its end foothold less the planned one */
 } cub_gait_walk_foot;
 
@@ -425,6 +437,8 @@ typedef struct cub_gait_walker {
     cub_q16 drop_mm;              /* this frame's pelvis drop */
     cub_q16 key_mm;               /* the pelvis key of the last strike (<= 0, mm) */
     cub_vec3 end_shift_mm;        /* the root's shift by the end steps landed (half each) */
+    cub_vec3 end_face;            /* has_end: the end's facing (unit), from the first end step on */
+    cub_q16 end_yaw_c, end_yaw_s; /* ... the clip's heading turned to it */
     cub_gait_plan plan;           /* the last plan */
     cub_gait_walk_foot feet[2];
     int arrived;                  /* 1: the root is within half a step of the target */
