@@ -263,11 +263,15 @@ cub_err cub_gait_swing_path(const cub_gait_terrain *t, const cub_gait_swing_para
      * the ends are footholds. */
     cub_q16 edge = (cub_q16)(CUB_Q16_ONE / c.samples);
     swing_solve s = {t, &c, out->p, edge, CUB_Q16_ONE - edge, 0};
-    need_over_ground(&s);
     sole_point pts[9];
     int n = sole_points(&c, from_mm, to_mm, pts);
     for (int i = 0; i < n; i++)
         need_over_boxes(&s, &pts[i]);
+    /* The need is the largest of all: the obstacles' (a few exact tests)
+     * first; a swing they already put over the cap fails whatever the
+     * ground asks (the path out is the cap's), so the ground's samples,
+     * most of the solve's work, are skipped for it. */
+    if (s.need <= (int64_t)c.max_raises * c.raise) need_over_ground(&s);
     int64_t raises = (s.need + c.raise - 1) / c.raise;
     bool ok = raises <= c.max_raises;
     out->raises = ok ? (int)raises : c.max_raises;
