@@ -909,25 +909,27 @@ static void stop(cub_gait_walker *w, int foot, cub_vec3 target)
 
 /* ---- planning ahead ------------------------------------------------------------ */
 
-/* The next foot-off from frame f, loop k, both feet down: its foot, frame
- * and loop; false when none comes within a cycle. */
+/* The next foot-off from frame f, loop k, of a foot not swinging: its
+ * foot, frame and loop; false when none comes within a cycle. */
 static bool next_off(const cub_gait_walker *w, int *foot, int *f, int *k)
 {
     for (int n = 0; n < w->b - w->a; n++, *f = next_frame(w, *f, k))
         for (*foot = 0; *foot < 2; ++*foot)
-            if (phase_at(w, *foot, *f) == CUB_GAIT_OFF) return true;
+            if (!w->feet[*foot].swinging && phase_at(w, *foot, *f) == CUB_GAIT_OFF) return true;
     return false;
 }
 
-/* While both feet are down, the next foot-off's plan a foothold test per
- * frame: its set-up (the turn, the clip's swing) on a copy of the walker
+/* The next foot-off's plan a foothold test per frame, from the frame
+ * after the last foot-off on: its set-up (the other foot landed on its
+ * planned foothold, the turn, the clip's swing) on a copy of the walker
  * as the foot-off will find it (nothing it reads changes before then but
- * the target, and ahead_fits checks), the tests on the frames after
- * (CMU 16_11 on the forest floor: up to 8 tests of a swing, each a
- * frame's work, at one foot-off) [ours]. */
+ * the target; ahead_fits checks), the tests on the frames after. The
+ * feet are both down for 1-3 frames only in 08_01, so the plan is made
+ * over the other foot's swing (16_11 on the forest floor: up to 8 tests
+ * of a swing at one foot-off, each about a frame's work) [ours]. */
 static void plan_ahead(cub_gait_walker *w, cub_vec3 target)
 {
-    if ((w->p.without & CUB_GAIT_NO_AHEAD) || w->feet[0].swinging || w->feet[1].swinging) return;
+    if ((w->p.without & CUB_GAIT_NO_AHEAD) || (w->feet[0].swinging && w->feet[1].swinging)) return;
     if (w->ahead_on) {
         cub_gait_planner_run(&w->ahead, w->t, 1);
         return;
@@ -935,6 +937,8 @@ static void plan_ahead(cub_gait_walker *w, cub_vec3 target)
     int foot, f = w->frame, k = w->loops;
     if (!next_off(w, &foot, &f, &k)) return;
     cub_gait_walker then = *w;
+    then.p.on_event = NULL; /* its landing is not news */
+    if (then.feet[!foot].swinging) land(&then, !foot);
     if (!swing_setup(&then, foot, f, k, target)) return;
     cub_gait_swing_params sp = swing_params(&then, foot);
     if (plan_begin(&then, foot, &sp, &w->ahead)) return;
@@ -954,7 +958,7 @@ cub_err cub_gait_walker_step(cub_gait_walker *w, cub_vec3 target_mm, const cub_p
         if (!on || w->settle > 0) return hold_still(w, out);
         w->stopped = w->blocked = w->settle = 0;
     }
-    int f = w->frame, k = w->loops;
+    int f = w->frame, k = w->loops, steps = w->steps;
     for (int foot = 0; foot < 2; foot++) {
         uint8_t ph = phase_at(w, foot, f);
         cub_gait_walk_foot *ft = &w->feet[foot];
@@ -971,7 +975,7 @@ cub_err cub_gait_walker_step(cub_gait_walker *w, cub_vec3 target_mm, const cub_p
     cub_err e = pose_frame(w, f, k);
     w->frame = next_frame(w, f, &w->loops);
     w->ticks++;
-    plan_ahead(w, target_mm);
+    if (w->steps == steps) plan_ahead(w, target_mm); /* a foot-off frame has its plan's work */
     *out = &w->pose;
     return e;
 }

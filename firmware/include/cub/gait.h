@@ -336,8 +336,11 @@ cub_q16 cub_gait_key_pelvis(cub_q16 dh_mm);
  * cub_gait_walker_step per clip frame (1/fps s), the pose out of it. The
  * clip, its arrays and the terrain must outlive the walker (it keeps
  * pointers); obstacles added to the terrain meanwhile count from the next
- * plan (the next foot-off). Events come from inside step. The walker is a
- * plain struct (4.5 kB on x86-64, most of it the pose); no allocation. */
+ * plan (the next foot-off: a plan made ahead under fewer obstacles is
+ * dropped); nothing else of the terrain may change. Events come from
+ * inside step. The walker is a
+ * plain struct (5.3 kB on x86-64, most of it the pose); no allocation; a step
+ * copies it once per foot-off on the stack (planning ahead). */
 
 /* Footstep events, for the box's event log. */
 typedef enum cub_gait_event_kind {
