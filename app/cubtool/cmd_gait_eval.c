@@ -16,14 +16,15 @@
 static const char *const usage_text =
     "usage: cubtool gait-eval [--clips A,B,..] [--held-out A,B,..] [--reference A,B,..]\n"
     "                         [--terrains flat,slope,rolling,forest] [--frames N] [--data DIR]\n"
-    "                         [--check] [--clip-swing] [--straight]\n"
+    "                         [--check] [--clip-swing] [--straight] [--repeat N]\n"
     "                         [--without pin,close,drop,floor,keys]\n"
     "The walker (firmware/gait) and the game-engine baseline on each clip and\n"
     "terrain (forest = rolling + a log + two stones), N frames each (720):\n"
     "penetration of the sole box, stance slide per step, clearance over\n"
     "obstacles, foot rotation per frame, leg joint speed against the\n"
     "source's 99th percentile, mean joint error against the source on flat\n"
-    "ground, time per frame (the thread's CPU time; printed, never checked). Reference clips (real\n"
+    "ground, time per frame (the thread's CPU time; printed, never checked; --repeat N: each\n"
+    "frame's least over N runs of the same walk, the machine's other load taken out). Reference clips (real\n"
     "walks on uneven ground) are measured on their own floor only.\n"
     "Defaults: --clips 02_01 (tuning), --held-out 16_11,07_01,08_01 (labelled\n"
     "\"seen\": each has been looked at, docs/gait.md),\n"
@@ -90,6 +91,7 @@ static int check(const char *clip, const char *terrain, const gait_figures *g)
 static int clip_swing; /* --clip-swing: the captured swing on flat ground */
 static int without;    /* --without: CUB_GAIT_NO_* bits */
 static int straight;   /* --straight: the seed's straight key-frame segments on flat ground */
+static int repeat = 1; /* --repeat: runs timed per row, each frame's least time kept */
 
 /* "pin,close,drop,floor,keys" to CUB_GAIT_NO_* bits; -1 for an unknown name. */
 static int parse_without(char *s)
@@ -124,7 +126,7 @@ static int run_clip(const char *clip, const char *set, const char **terrains, in
             return 2;
         }
         for (int m = GAIT_WALKER; m <= GAIT_BASELINE; m++) {
-            gait_run r = {.method = (gait_method)m, .frames = frames,
+            gait_run r = {.method = (gait_method)m, .frames = frames, .repeat = repeat,
                           .params = {.dir_z = CUB_Q16_ONE, .clip_swing = clip_swing,
                                      .straight_swing = straight, .without = without}};
             if (gait_measure(&src, &ground, &r, &g, WHO)) {
@@ -143,13 +145,14 @@ static int run_clip(const char *clip, const char *set, const char **terrains, in
 int cub_cmd_gait_eval(int argc, char **argv)
 {
     const char *clips = NULL, *held = NULL, *ref = NULL, *ters = NULL, *nframes = NULL,
-               *data = NULL, *wo = NULL;
+               *data = NULL, *wo = NULL, *nrep = NULL;
     int do_check = 0;
     const cub_tool_opt opts[] = {{"--clips", &clips, NULL},     {"--held-out", &held, NULL},
                                  {"--reference", &ref, NULL},   {"--terrains", &ters, NULL},
                                  {"--frames", &nframes, NULL},  {"--data", &data, NULL},
                                  {"--check", NULL, &do_check},  {"--clip-swing", NULL, &clip_swing},
-                                 {"--without", &wo, NULL},      {"--straight", NULL, &straight}};
+                                 {"--without", &wo, NULL},      {"--straight", NULL, &straight},
+                                 {"--repeat", &nrep, NULL}};
     switch (cub_tool_parse_opts(argc, argv, opts, sizeof opts / sizeof *opts, NULL, 0)) {
     case CUB_TOOL_HELP: fputs(usage_text, stdout); return 0;
     case CUB_TOOL_BAD: fputs(usage_text, stderr); return 2;
@@ -165,6 +168,11 @@ int cub_cmd_gait_eval(int argc, char **argv)
     int frames = nframes ? atoi(nframes) : 720;
     if (frames < 10 || frames > 100000) {
         fprintf(stderr, "cubtool " WHO ": --frames %s: expected 10..100000\n", nframes);
+        return 2;
+    }
+    repeat = nrep ? atoi(nrep) : 1;
+    if (repeat < 1 || repeat > 100) {
+        fprintf(stderr, "cubtool " WHO ": --repeat %s: expected 1..100\n", nrep);
         return 2;
     }
     if (!data) data = getenv("CUB_DATA_DIR") ? getenv("CUB_DATA_DIR") : CUB_DATA_DIR_DEFAULT;

@@ -71,6 +71,7 @@ typedef struct gait_run {
     cub_gait_walk_params params; /* on_event may be set */
     gait_frame_fn on_frame;
     void *ctx;
+    int repeat; /* > 1: each frame's time the least over this many runs of the walk */
 } gait_run;
 
 /* The source's leg joint speed, 99th percentile, deg/s. */

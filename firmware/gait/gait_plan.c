@@ -3,6 +3,8 @@
  * succeeded; a step with no feasible foothold sends the planner back to
  * its predecessor's next try, then further back; feasible footholds are
  * not ranked, the first one found is taken. Q16.16 mm. */
+#include <limits.h>
+
 #include "cub/gait.h"
 
 #define DEFAULT_RISE_MM CUB_Q16_INT(200) /* ours: a knee-high stone is too much */
@@ -124,9 +126,11 @@ static cub_q16 factor(const cub_gait_plan_params *p, int k)
 /* The swing from the same foot's last foothold clears within the cap.
  * Step i's foot swings from step i-2's foothold (the start's swinging foot
  * for step 0, the start's foothold for step 1); the other foot (odd steps)
- * strays to the other side, its side offsets swapped. */
+ * strays to the other side, its side offsets swapped. Step 0's swing is
+ * kept: the walker swings it (a last backtrack to step 0 re-tests and
+ * keeps the new one). */
 static bool swing_ok(const cub_gait_terrain *t, const cub_gait_plan_params *p, int i,
-                     cub_vec3 from, cub_vec3 to)
+                     cub_vec3 from, cub_vec3 to, cub_gait_plan *out)
 {
     if (!p->swing || cub_gait_terrain_is_flat(t)) return true;
     cub_gait_swing_params sp = *p->swing;
@@ -135,7 +139,12 @@ static bool swing_ok(const cub_gait_terrain *t, const cub_gait_plan_params *p, i
         sp.side_mm[1] = p->swing->side_mm[0];
     }
     cub_gait_swing s;
-    return cub_gait_swing_path(t, &sp, from, to, &s) == CUB_OK;
+    if (cub_gait_swing_path(t, &sp, from, to, &s) != CUB_OK) return false;
+    if (i == 0) {
+        out->first_swing = s;
+        out->swung = 1;
+    }
+    return true;
 }
 
 /* Try k of step i after prev: the foothold, or false when it is not
@@ -168,32 +177,75 @@ static bool params_ok(const cub_gait_plan_params *p)
            p->tries <= CUB_GAIT_MAX_TRIES;
 }
 
+/* The planner's loop, resumable: at most budget footholds tested per
+ * call, the state in pl, so the walker spreads a plan over the frames
+ * before its foot-off [ours]. The same tests in the same order as one
+ * call: the plan does not depend on the budget. */
+cub_err cub_gait_planner_begin(cub_gait_planner *pl, const cub_gait_plan_params *p,
+                               const cub_gait_start *start)
+{
+    if (!pl || !p || !start || !params_ok(p)) return CUB_ERR_ARG;
+    *pl = (cub_gait_planner){.p = *p, .start = *start, .has_swing = p->swing != NULL};
+    if (p->swing) pl->swing = *p->swing;
+    pl->p.swing = NULL; /* pointed at pl->swing per run: the struct may be copied */
+    return CUB_OK;
+}
+
+/* Test one foothold (try k[i] of step i), or back up when step i has
+ * none left: false once the plan is done (pl->err set). */
+static bool plan_one(cub_gait_planner *pl, const cub_gait_terrain *t, const cub_gait_plan_params *p,
+                     heading h, int n, int tries)
+{
+    cub_gait_plan *out = &pl->plan;
+    int i = pl->i, *k = pl->k;
+    if (i >= n) {
+        out->count = n;
+        pl->done = 1;
+        return false;
+    }
+    if (k[i] >= tries) { /* step i has no foothold left: back up */
+        if (i == 0) {
+            pl->err = CUB_ERR_EMPTY;
+            pl->done = 1;
+            return false;
+        }
+        k[i] = 0;
+        k[--pl->i]++;
+        out->backtracks++;
+        return true;
+    }
+    cub_gait_step origin = {pl->start.foot_mm, pl->start.left, 0};
+    out->tested++;
+    if (try_step(t, p, h, i ? &out->steps[i - 1] : &origin, k[i], &out->steps[i]) &&
+        swing_ok(t, p, i, swing_from(&pl->start, out, i), out->steps[i].foot_mm, out))
+        pl->i++;
+    else
+        k[i]++;
+    return true;
+}
+
+bool cub_gait_planner_run(cub_gait_planner *pl, const cub_gait_terrain *t, int budget)
+{
+    if (pl->done) return true;
+    cub_gait_plan_params p = pl->p; /* pl->p keeps swing NULL: begin's inputs, comparable */
+    p.swing = pl->has_swing ? &pl->swing : NULL;
+    heading h = unit_heading(pl->start.dir_x, pl->start.dir_z);
+    int n = step_count(t, &p);
+    int tries = p.tries > 0 ? p.tries : (int)(sizeof default_factors / sizeof *default_factors);
+    for (;;) {
+        /* backing up tests nothing: only a test spends the budget */
+        if (pl->i < n && pl->k[pl->i] < tries && budget-- <= 0) return false;
+        if (!plan_one(pl, t, &p, h, n, tries)) return true;
+    }
+}
+
 cub_err cub_gait_plan_steps(const cub_gait_terrain *t, const cub_gait_plan_params *p,
                             const cub_gait_start *start, cub_gait_plan *out)
 {
     if (!t || !p || !start || !out || !params_ok(p)) return CUB_ERR_ARG;
-    *out = (cub_gait_plan){0};
-    heading h = unit_heading(start->dir_x, start->dir_z);
-    int n = step_count(t, p);
-    int tries = p->tries > 0 ? p->tries : (int)(sizeof default_factors / sizeof *default_factors);
-    cub_gait_step origin = {start->foot_mm, start->left, 0};
-    int k[CUB_GAIT_MAX_STEPS] = {0};
-    int i = 0;
-    while (i < n) {
-        if (k[i] >= tries) { /* step i has no foothold left: back up */
-            if (i == 0) return CUB_ERR_EMPTY;
-            k[i] = 0;
-            k[--i]++;
-            out->backtracks++;
-            continue;
-        }
-        out->tested++;
-        if (try_step(t, p, h, i ? &out->steps[i - 1] : &origin, k[i], &out->steps[i]) &&
-            swing_ok(t, p, i, swing_from(start, out, i), out->steps[i].foot_mm))
-            i++;
-        else
-            k[i]++;
-    }
-    out->count = n;
-    return CUB_OK;
+    cub_gait_planner pl;
+    cub_gait_planner_begin(&pl, p, start);
+    cub_gait_planner_run(&pl, t, INT_MAX);
+    *out = pl.plan;
+    return pl.err;
 }

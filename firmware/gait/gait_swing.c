@@ -91,28 +91,43 @@ typedef struct swing_solve {
     int64_t need;       /* the largest raise needed so far, Q16.16 mm */
 } swing_solve;
 
-/* Point at t (offset dy from the path) must reach y: fold its need in. */
-static void need_at(swing_solve *s, cub_q16 t, cub_q16 y, cub_q16 dy)
+/* A point at the weights b (offset dy from the path, whose unraised
+ * height there is y0) must reach y: fold its need in. */
+static void need_with(swing_solve *s, const cub_q16 b[5], cub_q16 y0, cub_q16 y, cub_q16 dy)
 {
-    cub_q16 b[5];
-    basis(t, b);
     cub_q16 w = b[1] + b[2] + b[3];
     if (w <= 0) return;
-    const cub_q16 ys[5] = {s->p[0].y, s->p[1].y, s->p[2].y, s->p[3].y, s->p[4].y};
-    int64_t gap = (int64_t)y - dy - weigh(ys, b); /* B0(t).y, from the weights already at hand */
+    int64_t gap = (int64_t)y - dy - y0;
     int64_t h = gap > 0 ? (gap * CUB_Q16_ONE + w - 1) / w : 0;
     if (h > s->need) s->need = h;
 }
 
+/* The same at t, the path's height read from the weights at hand. */
+static void need_at(swing_solve *s, cub_q16 t, cub_q16 y, cub_q16 dy)
+{
+    cub_q16 b[5];
+    basis(t, b);
+    const cub_q16 ys[5] = {s->p[0].y, s->p[1].y, s->p[2].y, s->p[3].y, s->p[4].y};
+    need_with(s, b, weigh(ys, b), y, dy);
+}
+
 /* The ankle's point over the ground (not the obstacles), at the samples:
- * the ground is smooth, the ramp asks little near the ends. */
+ * the ground is smooth, the ramp asks little near the ends. One set of
+ * weights per sample gives both the point and its need (the planner
+ * tests up to 3 swings per foot-off: the weights were half its time). */
 static void need_over_ground(swing_solve *s)
 {
+    cub_q16 xs[5], ys[5], zs[5];
+    for (int k = 0; k < 5; k++) {
+        xs[k] = s->p[k].x;
+        ys[k] = s->p[k].y;
+        zs[k] = s->p[k].z;
+    }
     for (int i = 1; i < s->c->samples; i++) {
-        cub_q16 tt = (cub_q16)(((int64_t)i << 16) / s->c->samples);
-        cub_vec3 q = cub_gait_bezier4(s->p, tt);
-        cub_q16 g = cub_gait_ground_height(s->t, q.x, q.z);
-        need_at(s, tt, cub_fx_add(g, clearance_at(s->c->clear, tt)), 0);
+        cub_q16 tt = (cub_q16)(((int64_t)i << 16) / s->c->samples), b[5];
+        basis(tt, b);
+        cub_q16 g = cub_gait_ground_height(s->t, weigh(xs, b), weigh(zs, b));
+        need_with(s, b, weigh(ys, b), cub_fx_add(g, clearance_at(s->c->clear, tt)), 0);
     }
 }
 
@@ -248,11 +263,15 @@ cub_err cub_gait_swing_path(const cub_gait_terrain *t, const cub_gait_swing_para
      * the ends are footholds. */
     cub_q16 edge = (cub_q16)(CUB_Q16_ONE / c.samples);
     swing_solve s = {t, &c, out->p, edge, CUB_Q16_ONE - edge, 0};
-    need_over_ground(&s);
     sole_point pts[9];
     int n = sole_points(&c, from_mm, to_mm, pts);
     for (int i = 0; i < n; i++)
         need_over_boxes(&s, &pts[i]);
+    /* The need is the largest of all: the obstacles' (a few exact tests)
+     * first; a swing they already put over the cap fails whatever the
+     * ground asks (the path out is the cap's), so the ground's samples,
+     * most of the solve's work, are skipped for it. */
+    if (s.need <= (int64_t)c.max_raises * c.raise) need_over_ground(&s);
     int64_t raises = (s.need + c.raise - 1) / c.raise;
     bool ok = raises <= c.max_raises;
     out->raises = ok ? (int)raises : c.max_raises;

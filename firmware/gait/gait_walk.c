@@ -11,6 +11,9 @@
  * Clip coordinates are "unwrapped": frame f of loop k sits at the clip's
  * position plus k cycles of root travel, so a foot planted before the
  * cycle wraps keeps its place. Q16.16 mm, Q2.30 rotations, no allocation. */
+#include <limits.h>
+#include <string.h>
+
 #include "cub/gait.h"
 
 #define DEG(d) ((cub_q16)(((int64_t)(d) * CUB_Q16_PI + 90) / 180))
@@ -259,12 +262,12 @@ static cub_vec3 clip_dir(const cub_gait_walker *w)
     return unit_xz(w->cycle_u);
 }
 
-/* The planner from the other foot's foothold; the step's length and width
- * are the clip's own for this step (so flat ground gives back the capture);
- * its foot base reaches the sole box's toe tip (a third past the toe);
- * the swing to each foothold is tested with sp. */
-static cub_err plan(cub_gait_walker *w, int foot, const cub_gait_swing_params *sp,
-                    cub_vec3 *hold)
+/* The planner's inputs from the other foot's foothold; the step's length
+ * and width are the clip's own for this step (so flat ground gives back
+ * the capture); its foot base reaches the sole box's toe tip (a third
+ * past the toe); the swing to each foothold is tested with sp. */
+static cub_err plan_begin(const cub_gait_walker *w, int foot, const cub_gait_swing_params *sp,
+                          cub_gait_planner *pl)
 {
     const cub_gait_walk_foot *o = &w->feet[!foot];
     cub_vec3 d0 = clip_dir(w);
@@ -278,8 +281,38 @@ static cub_err plan(cub_gait_walker *w, int foot, const cub_gait_swing_params *s
                                .swing = sp};
     /* The planner's "left" is a side label: left of the heading gets +width. */
     cub_gait_start st = {o->hold_mm, lateral < 0, w->dir_x, w->dir_z, w->feet[foot].hold_mm};
-    cub_err e = cub_gait_plan_steps(w->t, &pp, &st, &w->plan);
+    return cub_gait_planner_begin(pl, &pp, &st);
+}
+
+/* The plan made ahead is this foot-off's: the same foot, frame and
+ * obstacles, and the same inputs (the planner is a function of them and
+ * the terrain). */
+static bool ahead_fits(const cub_gait_walker *w, int foot, const cub_gait_planner *now)
+{
+    const cub_gait_planner *a = &w->ahead;
+    return w->ahead_on && w->ahead_foot == foot && w->ahead_frame == w->frame &&
+           w->ahead_loops == w->loops && w->ahead_obstacles == w->t->obstacle_count &&
+           a->has_swing == now->has_swing && !memcmp(&a->p, &now->p, sizeof a->p) &&
+           !memcmp(&a->swing, &now->swing, sizeof a->swing) &&
+           !memcmp(&a->start, &now->start, sizeof a->start);
+}
+
+/* The plan for this foot-off: the one made ahead when it fits (finished
+ * here if it is not yet), else made whole now. */
+static cub_err plan(cub_gait_walker *w, int foot, const cub_gait_swing_params *sp,
+                    cub_vec3 *hold)
+{
+    cub_gait_planner now;
+    cub_err e = plan_begin(w, foot, sp, &now);
     if (e) return e;
+    if (ahead_fits(w, foot, &now))
+        w->ahead_taken++;
+    else
+        w->ahead = now;
+    w->ahead_on = 0;
+    cub_gait_planner_run(&w->ahead, w->t, INT_MAX);
+    w->plan = w->ahead.plan;
+    if (w->ahead.err) return w->ahead.err;
     *hold = w->plan.steps[0].foot_mm;
     return CUB_OK;
 }
@@ -371,23 +404,42 @@ static void end_step(cub_gait_walker *w, int foot, cub_vec3 *hold)
 #define PLAN_MAX_RAISES 75
 #endif
 
+/* The swing to hold: the planner's own test of it (from this foot's
+ * foothold, with sp) unless the end step moved the foothold. */
+static cub_err swing_to(cub_gait_walker *w, int foot, const cub_gait_swing_params *sp,
+                        cub_vec3 hold)
+{
+    cub_gait_walk_foot *ft = &w->feet[foot];
+    if (w->plan.swung && !ft->at_end) {
+        ft->path = w->plan.first_swing;
+        return CUB_OK;
+    }
+    return cub_gait_swing_path(w->t, sp, ft->hold_mm, hold, &ft->path);
+}
+
 /* Plan the step and the swing to it. The planner tests the swing to each
  * foothold it plans (step 0's from this foot's foothold) within
  * PLAN_MAX_RAISES, so the way to the foothold taken is clear; BLOCKED
  * (CUB_ERR_EMPTY) when no plan is found. */
-static cub_err plan_swing(cub_gait_walker *w, int foot, cub_vec3 *hold)
+static cub_gait_swing_params swing_params(const cub_gait_walker *w, int foot)
 {
-    cub_gait_walk_foot *ft = &w->feet[foot];
     cub_gait_swing_params sp = w->p.swing;
     sp.foot_mm = foot_len(w, foot) + foot_len(w, foot) / 3; /* to the sole box's toe tip */
     sp.heel_mm = foot_len(w, foot) / 4;                      /* ... and its heel */
     for (int i = 0; i < 2; i++) /* its corners, and the sway */
-        sp.side_mm[i] = foot_len(w, foot) / 5 + ft->sway_mm[i];
+        sp.side_mm[i] = foot_len(w, foot) / 5 + w->feet[foot].sway_mm[i];
     if (sp.max_raises <= 0) sp.max_raises = PLAN_MAX_RAISES;
+    return sp;
+}
+
+static cub_err plan_swing(cub_gait_walker *w, int foot, cub_vec3 *hold)
+{
+    cub_gait_walk_foot *ft = &w->feet[foot];
+    cub_gait_swing_params sp = swing_params(w, foot);
     ft->path = (cub_gait_swing){0};
     cub_err e = plan(w, foot, &sp, hold);
     if (!e) end_step(w, foot, hold);
-    if (!e && ft->rough) e = cub_gait_swing_path(w->t, &sp, ft->hold_mm, *hold, &ft->path);
+    if (!e && ft->rough) e = swing_to(w, foot, &sp, *hold);
     if (e) {
         ft->path = (cub_gait_swing){0};
         return CUB_ERR_EMPTY;
@@ -425,9 +477,9 @@ static cub_vec3 stand_at(const cub_gait_walker *w, int foot, int p, int k)
     return clip_point(w, foot, 0, p, k);
 }
 
-/* Foot-off at frame f, loop k: find where the clip lands it, plan, shape
- * the swing. False: no swing (arrived, or BLOCKED): the walker stops. */
-static bool begin_swing(cub_gait_walker *w, int foot, int f, int k, cub_vec3 target)
+/* Foot-off at frame f, loop k, before the plan: turn, find where the clip
+ * lands the foot and how its swing goes. False: arrived. */
+static bool swing_setup(cub_gait_walker *w, int foot, int f, int k, cub_vec3 target)
 {
     cub_gait_walk_foot *ft = &w->feet[foot];
     steer(w, unwrap(w, w->c->clip->root_mm[f], k), target);
@@ -457,6 +509,15 @@ static bool begin_swing(cub_gait_walker *w, int foot, int f, int k, cub_vec3 tar
     ft->swing_at = w->ticks;
     ft->swing_len = len > 0 ? len : 1;
     ft->rough = !cub_gait_terrain_is_flat(w->t);
+    return true;
+}
+
+/* Foot-off at frame f, loop k: set up, plan, shape the swing. False: no
+ * swing (arrived, or BLOCKED): the walker stops. */
+static bool begin_swing(cub_gait_walker *w, int foot, int f, int k, cub_vec3 target)
+{
+    cub_gait_walk_foot *ft = &w->feet[foot];
+    if (!swing_setup(w, foot, f, k, target)) return false;
     cub_vec3 hold;
     if (plan_swing(w, foot, &hold)) {
         /* [ours] a step with no foothold or no clear way is not taken */
@@ -970,6 +1031,48 @@ static void stop(cub_gait_walker *w, int foot, cub_vec3 target)
     w->settle = 0;
 }
 
+/* ---- planning ahead ------------------------------------------------------------ */
+
+/* The next foot-off from frame f, loop k, of a foot not swinging: its
+ * foot, frame and loop; false when none comes within a cycle. */
+static bool next_off(const cub_gait_walker *w, int *foot, int *f, int *k)
+{
+    for (int n = 0; n < w->b - w->a; n++, *f = next_frame(w, *f, k))
+        for (*foot = 0; *foot < 2; ++*foot)
+            if (!w->feet[*foot].swinging && phase_at(w, *foot, *f) == CUB_GAIT_OFF) return true;
+    return false;
+}
+
+/* The next foot-off's plan a foothold test per frame, from the frame
+ * after the last foot-off on: its set-up (the other foot landed on its
+ * planned foothold, the turn, the clip's swing) on a copy of the walker
+ * as the foot-off will find it (nothing it reads changes before then but
+ * the target; ahead_fits checks), the tests on the frames after. The
+ * feet are both down for 1-3 frames only in 08_01, so the plan is made
+ * over the other foot's swing (16_11 on the forest floor: up to 8 tests
+ * of a swing at one foot-off, each about a frame's work) [ours]. */
+static void plan_ahead(cub_gait_walker *w, cub_vec3 target)
+{
+    if ((w->p.without & CUB_GAIT_NO_AHEAD) || (w->feet[0].swinging && w->feet[1].swinging)) return;
+    if (w->ahead_on) {
+        cub_gait_planner_run(&w->ahead, w->t, 1);
+        return;
+    }
+    int foot, f = w->frame, k = w->loops;
+    if (!next_off(w, &foot, &f, &k)) return;
+    cub_gait_walker then = *w;
+    then.p.on_event = NULL; /* its landing is not news */
+    if (then.feet[!foot].swinging) land(&then, !foot);
+    if (!swing_setup(&then, foot, f, k, target)) return;
+    cub_gait_swing_params sp = swing_params(&then, foot);
+    if (plan_begin(&then, foot, &sp, &w->ahead)) return;
+    w->ahead_on = 1;
+    w->ahead_foot = foot;
+    w->ahead_frame = f;
+    w->ahead_loops = k;
+    w->ahead_obstacles = w->t->obstacle_count;
+}
+
 cub_err cub_gait_walker_step(cub_gait_walker *w, cub_vec3 target_mm, const cub_pose **out)
 {
     if (!w || !out) return CUB_ERR_ARG;
@@ -979,7 +1082,7 @@ cub_err cub_gait_walker_step(cub_gait_walker *w, cub_vec3 target_mm, const cub_p
         if (!on || w->settle > 0) return hold_still(w, out);
         w->stopped = w->blocked = w->settle = 0;
     }
-    int f = w->frame, k = w->loops;
+    int f = w->frame, k = w->loops, steps = w->steps;
     for (int foot = 0; foot < 2; foot++) {
         uint8_t ph = phase_at(w, foot, f);
         cub_gait_walk_foot *ft = &w->feet[foot];
@@ -996,6 +1099,7 @@ cub_err cub_gait_walker_step(cub_gait_walker *w, cub_vec3 target_mm, const cub_p
     cub_err e = pose_frame(w, f, k);
     w->frame = next_frame(w, f, &w->loops);
     w->ticks++;
+    if (w->steps == steps) plan_ahead(w, target_mm); /* a foot-off frame has its plan's work */
     *out = &w->pose;
     return e;
 }

@@ -9,6 +9,7 @@
 #include <stdint.h>
 
 #include <cmocka.h>
+#include <string.h>
 #include <stdio.h>
 #include <math.h>
 #include <stdlib.h>
@@ -344,6 +345,52 @@ static void test_foothold_too_near_an_obstacle_is_refused(void **state)
     }
 }
 
+/* The planner run a foothold test at a time (as the walker spreads it
+ * over frames) makes the plan of one call, byte for byte, the swing to
+ * step 0 too; a copy of it taken midway (the walker's struct is copied)
+ * finishes the same. Each run tests one foothold: as many runs as tests.
+ * The log of the test above forces backtracks; a dead end (no swing
+ * over it clears) ends the same. */
+static void planner_run_a_test_at_a_time(void **state)
+{
+    (void)state;
+    cub_gait_terrain t;
+    cub_gait_terrain_flat(&t, 0);
+    assert_int_equal(cub_gait_terrain_add(&t, box(-1000, 0, 875, 1000, 150, 975)), CUB_OK);
+    cub_gait_swing_params sp = {.foot_mm = MM(250), .max_raises = 40};
+    cub_gait_plan_params p = walk_params();
+    p.steps = 3;
+    p.swing = &sp;
+    for (int dead = 0; dead < 2; dead++) {
+        if (dead) sp.max_raises = 2; /* no swing over the log clears: a dead end */
+        cub_gait_plan whole;
+        cub_err e = cub_gait_plan_steps(&t, &p, &start, &whole);
+        assert_int_equal(e, dead ? CUB_ERR_EMPTY : CUB_OK);
+        assert_true(dead || whole.backtracks > 0);
+        cub_gait_planner pl, copy;
+        assert_int_equal(cub_gait_planner_begin(&pl, &p, &start), CUB_OK);
+        int runs = 1;
+        while (!cub_gait_planner_run(&pl, &t, 1)) {
+            if (runs == 3) {
+                copy = pl;
+                memset(&pl, 0xa5, sizeof pl);
+                pl = copy;
+            }
+            runs++;
+        }
+        assert_int_equal(pl.err, e);
+        assert_int_equal(runs, whole.tested);
+        assert_memory_equal(&pl.plan, &whole, sizeof whole);
+        assert_int_equal(pl.plan.swung, !dead);
+        printf("gait: planner a test per run: %d runs, %d backtracks, %s\n", runs,
+               whole.backtracks, dead ? "dead end" : "planned");
+    }
+    assert_int_equal(cub_gait_planner_begin(NULL, &p, &start), CUB_ERR_ARG);
+    p.stride_mm = 0;
+    cub_gait_planner pl;
+    assert_int_equal(cub_gait_planner_begin(&pl, &p, &start), CUB_ERR_ARG);
+}
+
 #define DEG(d) ((cub_q16)(((int64_t)(d) * CUB_Q16_PI + 90) / 180))
 
 /* A right leg: hip 90 cm up, thigh 45 cm, shin 43 cm, the knee bending
@@ -492,6 +539,7 @@ int main(void)
         cmocka_unit_test(test_obstacles_raise_the_ground),
         cmocka_unit_test(test_plan_on_flat_ground),
         cmocka_unit_test(test_blocked_foothold_forces_a_backtrack),
+        cmocka_unit_test(planner_run_a_test_at_a_time),
         cmocka_unit_test(test_first_feasible_step_is_taken),
         cmocka_unit_test(test_foothold_beside_a_stone_is_refused),
         cmocka_unit_test(test_swing_clears_a_stone_by_the_foothold),

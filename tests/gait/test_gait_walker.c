@@ -600,6 +600,60 @@ static void strike_pose_depends_on_height_difference(void **state)
     assert_true(deg(up.land_knee) <= deg(down.land_knee) - 20.0);
 }
 
+/* Planning ahead (a foothold test per frame while both feet are down)
+ * changes nothing: over a rolling floor with a log, a target that jumps
+ * aside and back every frame over frames 300-419 (a plan made ahead for
+ * the other target no longer fits) and a stone added while a plan is
+ * being made ahead (nor one made for the old obstacles), the walker
+ * gives the same pose every frame and the same events as one that plans
+ * whole at each foot-off; the other foot-offs take the plan made ahead,
+ * not the first (nothing comes before it). */
+static void planning_ahead_changes_nothing(void **state)
+{
+    (void)state;
+    SYNTH_NEED_DATA(CLIP);
+    static cub_gait_walker w[2];
+    static log l[2];
+    cub_gait_terrain t;
+    rolling(&t);
+    cub_gait_box log_box = {{CUB_Q16_INT(-1000), 0, CUB_Q16_INT(1800)},
+                            {CUB_Q16_INT(1000), CUB_Q16_INT(120), CUB_Q16_INT(1900)}};
+    assert_int_equal(cub_gait_terrain_add(&t, log_box), CUB_OK);
+    for (int i = 0; i < 2; i++) {
+        l[i].n = 0;
+        cub_gait_walk_params p = {.dir_z = CUB_Q16_ONE, .on_event = record, .ctx = &l[i],
+                                  .without = i ? CUB_GAIT_NO_AHEAD : 0};
+        assert_int_equal(cub_gait_walker_init(&w[i], &analysed.wc, &t, &p), CUB_OK);
+    }
+    int misfit = 0, stone_at = -1;
+    for (int f = 0; f < FRAMES; f++) {
+        int aside = f >= 300 && f < 420 && f % 2;
+        cub_vec3 target = {aside ? CUB_Q16_INT(-6000) : 0, 0, CUB_Q16_INT(8000)};
+        if (stone_at < 0 && f >= 600 && w[0].ahead_on) {
+            cub_gait_box stone = {{CUB_Q16_INT(-300), 0, CUB_Q16_INT(5200)},
+                                  {CUB_Q16_INT(300), CUB_Q16_INT(60), CUB_Q16_INT(5400)}};
+            assert_int_equal(cub_gait_terrain_add(&t, stone), CUB_OK);
+            stone_at = f;
+        }
+        int taken_before = w[0].ahead_taken, steps_before = w[0].steps;
+        const cub_pose *pose[2];
+        for (int i = 0; i < 2; i++)
+            assert_int_equal(cub_gait_walker_step(&w[i], target, &pose[i]), CUB_OK);
+        assert_true(same_pose(pose[0], pose[1]));
+        misfit += w[0].steps > steps_before && w[0].ahead_taken == taken_before;
+    }
+    assert_int_equal(l[0].n, l[1].n);
+    assert_memory_equal(l[0].e, l[1].e, sizeof(cub_gait_event) * (size_t)l[0].n);
+    printf("gait walker: %d steps, %d events, %d plans made ahead taken, %d made at the foot-off "
+           "(a stone added at frame %d; blocked %d)\n", w[0].steps, l[0].n, w[0].ahead_taken, misfit,
+           stone_at, w[0].blocked);
+    assert_int_equal(w[1].ahead_taken, 0);
+    assert_true(stone_at > 0);
+    assert_true(w[0].steps >= 10);
+    assert_int_equal(w[0].ahead_taken + misfit, w[0].steps);
+    assert_true(misfit >= 3); /* the first, at least one of the target's, the stone's */
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -612,6 +666,7 @@ int main(void)
         cmocka_unit_test(arrives_in_the_end_pose),
         cmocka_unit_test(blocked_walker_stops),
         cmocka_unit_test(strike_pose_depends_on_height_difference),
+        cmocka_unit_test(planning_ahead_changes_nothing),
     };
     return cmocka_run_group_tests(tests, load, unload);
 }

@@ -129,6 +129,29 @@ bool cub_gait_terrain_is_flat(const cub_gait_terrain *t);
 #define CUB_GAIT_MAX_STEPS 5
 #define CUB_GAIT_MAX_TRIES 8
 
+/* The seed's quartic Bézier (eq. 4-2): P0 the foot's current point, P4 the
+ * next foothold, P1..P3 start at the quartile, middle and third quartile
+ * of P0P4 and are raised together until the sole clears the terrain: the
+ * least raise (in raise_mm steps) is solved for, not stepped to. */
+typedef struct cub_gait_swing {
+    cub_vec3 p[5];
+    int raises; /* times P1..P3 were raised */
+    int clear;  /* 1: the path clears the terrain by clearance_mm */
+} cub_gait_swing;
+
+struct cub_gait_swing_params {
+    cub_q16 clearance_mm; /* the sole stays this far above (0: 20 mm) */
+    cub_q16 raise_mm;     /* each raise (0: 10 mm) [ours] */
+    int max_raises;       /* give up after (0: 100) [ours] */
+    int samples;          /* points of the path tested over the ground (0: 64); the obstacles
+                             are tested exactly, between the first and last of them [ours] */
+    cub_q16 foot_mm;      /* the toe, this far ahead of the ankle along P0P4, is tested too */
+    cub_q16 heel_mm;      /* the heel, this far behind the ankle along P0P4, is tested too */
+    cub_q16 side_mm[2];   /* ... and ankle, toe and heel this far off the line: [0] toward
+                             (d.z, 0, -d.x), d the direction P0 -> P4; [1] the other way */
+};
+typedef struct cub_gait_swing_params cub_gait_swing_params;
+
 typedef struct cub_gait_plan_params {
     int steps;           /* n; 0: by terrain, 4 on flat ground, 3 on rough */
     cub_q16 stride_mm;   /* one step's nominal length (from the walk) */
@@ -172,6 +195,10 @@ typedef struct cub_gait_plan {
     cub_gait_step steps[CUB_GAIT_MAX_STEPS];
     int tested;     /* footholds tested */
     int backtracks; /* times a step was given up and its predecessor retried */
+    /* With params->swing (the terrain not flat): the swing tested to
+     * steps[0] (swung 1), so the walker need not solve it again. */
+    cub_gait_swing first_swing;
+    int swung;
 } cub_gait_plan;
 
 /* true if a foot may stand at foot_mm (ankle ground point) heading along
@@ -191,30 +218,31 @@ bool cub_gait_foothold_ok(const cub_gait_terrain *t, const cub_gait_plan_params 
 cub_err cub_gait_plan_steps(const cub_gait_terrain *t, const cub_gait_plan_params *p,
                             const cub_gait_start *start, cub_gait_plan *out);
 
+/* The planner resumable [ours]: begin, then run until it returns true
+ * (done; err CUB_OK with the plan, or CUB_ERR_EMPTY as above), testing
+ * at most budget footholds per run; the tests and the plan are those of
+ * cub_gait_plan_steps whatever the budgets. The walker spreads a plan
+ * over the frames before its foot-off this way. A plain struct (it may
+ * be copied); the terrain must not change between runs. */
+typedef struct cub_gait_planner {
+    cub_gait_plan_params p;
+    cub_gait_swing_params swing; /* *p.swing, kept */
+    int has_swing;
+    cub_gait_start start;
+    int k[CUB_GAIT_MAX_STEPS]; /* the try each step is at */
+    int i;                     /* the step being planned */
+    int done;
+    cub_err err;
+    cub_gait_plan plan;
+} cub_gait_planner;
+
+/* CUB_ERR_ARG for NULLs or bad parameters (as cub_gait_plan_steps). */
+cub_err cub_gait_planner_begin(cub_gait_planner *pl, const cub_gait_plan_params *p,
+                               const cub_gait_start *start);
+bool cub_gait_planner_run(cub_gait_planner *pl, const cub_gait_terrain *t, int budget);
+
 /* ---- swing path ------------------------------------------------------------ */
 
-/* The seed's quartic Bézier (eq. 4-2): P0 the foot's current point, P4 the
- * next foothold, P1..P3 start at the quartile, middle and third quartile
- * of P0P4 and are raised together until the sole clears the terrain: the
- * least raise (in raise_mm steps) is solved for, not stepped to. */
-typedef struct cub_gait_swing {
-    cub_vec3 p[5];
-    int raises; /* times P1..P3 were raised */
-    int clear;  /* 1: the path clears the terrain by clearance_mm */
-} cub_gait_swing;
-
-struct cub_gait_swing_params {
-    cub_q16 clearance_mm; /* the sole stays this far above (0: 20 mm) */
-    cub_q16 raise_mm;     /* each raise (0: 10 mm) [ours] */
-    int max_raises;       /* give up after (0: 100) [ours] */
-    int samples;          /* points of the path tested over the ground (0: 64); the obstacles
-                             are tested exactly, between the first and last of them [ours] */
-    cub_q16 foot_mm;      /* the toe, this far ahead of the ankle along P0P4, is tested too */
-    cub_q16 heel_mm;      /* the heel, this far behind the ankle along P0P4, is tested too */
-    cub_q16 side_mm[2];   /* ... and ankle, toe and heel this far off the line: [0] toward
-                             (d.z, 0, -d.x), d the direction P0 -> P4; [1] the other way */
-};
-typedef struct cub_gait_swing_params cub_gait_swing_params;
 
 /* B(t), t in [0, 1] Q16.16. */
 cub_vec3 cub_gait_bezier4(const cub_vec3 p[5], cub_q16 t);
@@ -308,8 +336,11 @@ cub_q16 cub_gait_key_pelvis(cub_q16 dh_mm);
  * cub_gait_walker_step per clip frame (1/fps s), the pose out of it. The
  * clip, its arrays and the terrain must outlive the walker (it keeps
  * pointers); obstacles added to the terrain meanwhile count from the next
- * plan (the next foot-off). Events come from inside step. The walker is a
- * plain struct (4.5 kB on x86-64, most of it the pose); no allocation. */
+ * plan (the next foot-off: a plan made ahead under fewer obstacles is
+ * dropped); nothing else of the terrain may change. Events come from
+ * inside step. The walker is a
+ * plain struct (5.3 kB on x86-64, most of it the pose); no allocation; a step
+ * copies it once per foot-off on the stack (planning ahead). */
 
 /* Footstep events, for the box's event log. */
 typedef enum cub_gait_event_kind {
@@ -356,7 +387,9 @@ enum {
     CUB_GAIT_NO_CLOSE = 2, /* the cycle's mismatch is not spread (it pops at the wrap) */
     CUB_GAIT_NO_DROP = 4,  /* the pelvis does not lower */
     CUB_GAIT_NO_FLOOR = 8, /* one floor for the clip (its lowest foot point), not one per step */
-    CUB_GAIT_NO_KEYS = 16  /* the key configurations do not depend on the height difference */
+    CUB_GAIT_NO_KEYS = 16, /* the key configurations do not depend on the height difference */
+    CUB_GAIT_NO_AHEAD = 32 /* each plan made whole at its foot-off, not spread over the
+                              frames before it (the same walk, one slow frame per step) */
 };
 
 typedef struct cub_gait_walk_params {
@@ -440,6 +473,14 @@ typedef struct cub_gait_walker {
     cub_vec3 end_face;            /* has_end: the end's facing (unit), from the first end step on */
     cub_q16 end_yaw_c, end_yaw_s; /* ... the clip's heading turned to it */
     cub_gait_plan plan;           /* the last plan */
+    /* The next foot-off's plan, made ahead a foothold test per frame while
+     * both feet are down; taken at the foot-off only if its inputs are
+     * the foot-off's own, byte for byte (else planned there whole). */
+    cub_gait_planner ahead;
+    int ahead_on;                 /* ahead holds the plan of foot ahead_foot's foot-off ... */
+    int ahead_foot, ahead_frame, ahead_loops; /* ... at this frame and loop */
+    int ahead_obstacles;          /* the terrain's obstacle count when it began */
+    int ahead_taken;              /* foot-offs that took their plan made ahead */
     cub_gait_walk_foot feet[2];
     int arrived;                  /* 1: the root is within half a step of the target */
     int stopped;                  /* 1: at rest on both feet (arrived, or BLOCKED) */
