@@ -685,18 +685,20 @@ static void split_newcomer(cub_tracker *t, int16_t k)
 /* A limb does not go on onto a surface a depth step behind it where that
  * surface joins someone else. The player's blob, cut wherever
  * 4-neighbours differ by more than LIMB_STEP_MM (joins_mm's step is
- * 160-190 mm at 2.4-3 m), falls in pieces, the largest its body; a piece
+ * 160-190 mm at 2.4-3 m), falls in pieces, the largest its body. A piece
  * of at most 1/LIMB_PIECE_SHARE of the body's cells (a forearm, a hand:
- * not a body cut in two by its own forearm, merge_cut_off's) that touches
- * another person-like blob with a smaller step than any it has to the
- * body is that person's. The adult's forearm raised behind the moving
- * child's shoulder, 120-140 mm behind it and continuous with the adult,
- * stayed the child's frame after frame (its cells were the player's last
- * frame, so split_merged seeded them so) and took the child's right hand.
- * Along the child's own arm, even one reaching back, neighbouring cells
- * differ by a few tens of mm. Not the other way (the others' pieces to
- * the player): the adult's hands at the child's depth then came to the
- * child as often as the child's arm did (docs/tracker_eval.md). */
+ * not a body cut in two by its own forearm, merge_cut_off's), behind the
+ * body where it comes nearest it in depth (before it: a hand before the
+ * chest), that touches another person-like blob with a smaller step than
+ * any it has to the body is that person's. The adult's forearm raised
+ * behind the moving child's shoulder, 120-140 mm behind it and continuous
+ * with the adult, stayed the child's frame after frame (its cells were
+ * the player's last frame, so split_merged seeded them so) and took the
+ * child's right hand. Along the child's own arm, even one reaching back,
+ * neighbouring cells differ by a few tens of mm. Not the other way (the
+ * others' pieces to the player): the adult's hands at the child's depth
+ * then came to the child as often as the child's arm came back
+ * (docs/tracker_eval.md). */
 #define LIMB_STEP_MM 100
 #define LIMB_PIECE_SHARE 4
 
@@ -729,11 +731,12 @@ static int32_t cut_pieces(cub_tracker *t, int32_t pid, int32_t *body, int32_t *b
 }
 
 /* The person-like blob other than pid that the piece t->stack[from..to)
- * touches with a smaller depth step than any it has to the body piece;
- * -1 none. */
+ * touches with a smaller depth step than any it has to the body piece,
+ * the piece behind the body at the smallest of those; -1 none. */
 static int32_t piece_owner(const cub_tracker *t, int32_t pid, int32_t body, int32_t from, int32_t to)
 {
     int32_t to_body = INT32_MAX, to_other = INT32_MAX, owner = -1;
+    bool behind = false;
     for (int32_t q = from; q < to; q++) {
         int32_t i = t->stack[q], nb[4];
         neighbours4(i, nb);
@@ -741,11 +744,11 @@ static int32_t piece_owner(const cub_tracker *t, int32_t pid, int32_t body, int3
             int32_t n = nb[k], l = n < 0 ? -1 : t->label[n];
             if (l < 0) continue;
             int32_t d = trk_abs(t->z[n] - t->z[i]);
-            if (l == pid && t->dist0[n] == body && d < to_body) to_body = d;
+            if (l == pid && t->dist0[n] == body && d < to_body) to_body = d, behind = t->z[i] > t->z[n];
             if (l != pid && d < to_other && person_like(&t->comps[l])) to_other = d, owner = l;
         }
     }
-    return to_other < to_body ? owner : -1;
+    return behind && to_other < to_body ? owner : -1;
 }
 
 void trk_give_back_pieces(cub_tracker *t, int32_t pid)
