@@ -689,8 +689,9 @@ static void split_newcomer(cub_tracker *t, int16_t k)
  * of at most 1/LIMB_PIECE_SHARE of the body's cells (a forearm, a hand:
  * not a body cut in two by its own forearm, merge_cut_off's), behind the
  * body where it comes nearest it in depth (before it: a hand before the
- * chest), that touches another person-like blob with a smaller step than
- * any it has to the body is that person's. The adult's forearm raised
+ * chest) or touching only other pieces, that joins another person-like
+ * blob (a step of at most LIMB_STEP_MM) with a smaller step than any it
+ * has to the body is that person's. The adult's forearm raised
  * behind the moving child's shoulder, 120-140 mm behind it and continuous
  * with the adult, stayed the child's frame after frame (its cells were
  * the player's last frame, so split_merged seeded them so) and took the
@@ -731,8 +732,9 @@ static int32_t cut_pieces(cub_tracker *t, int32_t pid, int32_t *body, int32_t *b
 }
 
 /* The person-like blob other than pid that the piece t->stack[from..to)
- * touches with a smaller depth step than any it has to the body piece,
- * the piece behind the body at the smallest of those; -1 none. */
+ * joins (a step of at most LIMB_STEP_MM) with a smaller step than any it
+ * has to the body piece, the piece behind the body at the smallest of
+ * those (or touching only other pieces); -1 none. */
 static int32_t piece_owner(const cub_tracker *t, int32_t pid, int32_t body, int32_t from, int32_t to)
 {
     int32_t to_body = INT32_MAX, to_other = INT32_MAX, owner = -1;
@@ -748,7 +750,7 @@ static int32_t piece_owner(const cub_tracker *t, int32_t pid, int32_t body, int3
             if (l != pid && d < to_other && person_like(&t->comps[l])) to_other = d, owner = l;
         }
     }
-    return behind && to_other < to_body ? owner : -1;
+    return (behind || to_body == INT32_MAX) && to_other <= LIMB_STEP_MM && to_other < to_body ? owner : -1;
 }
 
 void trk_give_back_pieces(cub_tracker *t, int32_t pid)
