@@ -703,9 +703,10 @@ static void split_newcomer(cub_tracker *t, int16_t k)
 #define LIMB_STEP_MM 100
 #define LIMB_PIECE_SHARE 4
 
-/* Blob pid's pieces: each cell's piece id in t->dist0 (-1 elsewhere),
- * each piece's cells one run of t->stack[0..returned); *body: the
- * largest piece's id, *body_n its cells. */
+/* Blob pid's pieces: each cell's piece id in t->dist0 (-1 elsewhere; a
+ * scratch here, the geodesics fill it later), each piece's cells one run
+ * of t->stack[0..returned); *body: the largest piece's id, *body_n its
+ * cells. */
 static int32_t cut_pieces(cub_tracker *t, int32_t pid, int32_t *body, int32_t *body_n)
 {
     int32_t tail = 0, id = 0;
