@@ -682,6 +682,98 @@ static void split_newcomer(cub_tracker *t, int16_t k)
     split_off(t, k);
 }
 
+/* A limb does not go on onto a surface a depth step behind it where that
+ * surface joins someone else. The player's blob, cut wherever
+ * 4-neighbours differ by more than LIMB_STEP_MM (joins_mm's step is
+ * 160-190 mm at 2.4-3 m), falls in pieces, the largest its body. A piece
+ * of at most 1/LIMB_PIECE_SHARE of the body's cells (a forearm, a hand:
+ * not a body cut in two by its own forearm, merge_cut_off's), behind the
+ * body where it comes nearest it in depth (before it: a hand before the
+ * chest) or touching only other pieces, that joins another person-like
+ * blob (a step of at most LIMB_STEP_MM) with a smaller step than any it
+ * has to the body is that person's. The adult's forearm raised
+ * behind the moving child's shoulder, 120-140 mm behind it and continuous
+ * with the adult, stayed the child's frame after frame (its cells were
+ * the player's last frame, so split_merged seeded them so) and took the
+ * child's right hand. Along the child's own arm, even one reaching back,
+ * neighbouring cells differ by a few tens of mm. Not the other way (the
+ * others' pieces to the player): the adult's hands at the child's depth
+ * then came to the child as often as the child's arm came back
+ * (docs/tracker_eval.md). */
+#define LIMB_STEP_MM 100
+#define LIMB_PIECE_SHARE 4
+
+/* Blob pid's pieces: each cell's piece id in t->dist0 (-1 elsewhere; a
+ * scratch here, the geodesics fill it later), each piece's cells one run
+ * of t->stack[0..returned); *body: the largest piece's id, *body_n its
+ * cells. */
+static int32_t cut_pieces(cub_tracker *t, int32_t pid, int32_t *body, int32_t *body_n)
+{
+    int32_t tail = 0, id = 0;
+    *body = -1, *body_n = 0;
+    for (int32_t i = 0; i < TRK_CELLS; i++) t->dist0[i] = -1;
+    for (int32_t s = 0; s < TRK_CELLS; s++) {
+        if (t->label[s] != pid || t->dist0[s] >= 0) continue;
+        int32_t head = tail;
+        t->stack[tail++] = s, t->dist0[s] = id;
+        for (int32_t q = head; q < tail; q++) {
+            int32_t i = t->stack[q], nb[4];
+            neighbours4(i, nb);
+            for (int k = 0; k < 4; k++) {
+                int32_t n = nb[k];
+                if (n < 0 || t->label[n] != pid || t->dist0[n] >= 0 || trk_abs(t->z[n] - t->z[i]) > LIMB_STEP_MM)
+                    continue;
+                t->dist0[n] = id, t->stack[tail++] = n;
+            }
+        }
+        if (tail - head > *body_n) *body_n = tail - head, *body = id;
+        id++;
+    }
+    return tail;
+}
+
+/* The person-like blob other than pid that the piece t->stack[from..to)
+ * joins (a step of at most LIMB_STEP_MM) with a smaller step than any it
+ * has to the body piece, the piece behind the body at the smallest of
+ * those (or touching only other pieces); -1 none. */
+static int32_t piece_owner(const cub_tracker *t, int32_t pid, int32_t body, int32_t from, int32_t to)
+{
+    int32_t to_body = INT32_MAX, to_other = INT32_MAX, owner = -1;
+    bool behind = false;
+    for (int32_t q = from; q < to; q++) {
+        int32_t i = t->stack[q], nb[4];
+        neighbours4(i, nb);
+        for (int k = 0; k < 4; k++) {
+            int32_t n = nb[k], l = n < 0 ? -1 : t->label[n];
+            if (l < 0) continue;
+            int32_t d = trk_abs(t->z[n] - t->z[i]);
+            if (l == pid && t->dist0[n] == body && d < to_body) to_body = d, behind = t->z[i] > t->z[n];
+            if (l != pid && d < to_other && person_like(&t->comps[l])) to_other = d, owner = l;
+        }
+    }
+    return (behind || to_body == INT32_MAX) && to_other <= LIMB_STEP_MM && to_other < to_body ? owner : -1;
+}
+
+void trk_give_back_pieces(cub_tracker *t, int32_t pid)
+{
+    int32_t body, body_n, end = cut_pieces(t, pid, &body, &body_n);
+    bool gained[TRK_MAX_COMPS] = {0}, any = false;
+    for (int32_t from = 0, to; from < end; from = to) {
+        int32_t id = t->dist0[t->stack[from]];
+        for (to = from + 1; to < end && t->dist0[t->stack[to]] == id;) to++;
+        if (id == body || (to - from) * LIMB_PIECE_SHARE > body_n) continue;
+        int32_t owner = piece_owner(t, pid, body, from, to);
+        if (owner < 0) continue;
+        for (int32_t q = from; q < to; q++) t->label[t->stack[q]] = (int16_t)owner;
+        gained[owner] = any = true;
+    }
+    if (!any) return;
+    refill_comp(t, (int16_t)pid);
+    for (int32_t k = 0; k < t->ncomps; k++)
+        if (gained[k]) refill_comp(t, (int16_t)k);
+    count_interior(t);
+}
+
 /* The newcomer a box that just started would take, -1 none; a blob of
  * two people who touch (the child beside the adult it stood apart from
  * last frame) is split between them first, and at START a blob of
@@ -942,6 +1034,7 @@ int32_t trk_pick_player(cub_tracker *t)
         t->room_known = 2;
     }
     if (t->start_afresh) best = start_choice(t, best, &same);
+    if (best >= 0) trk_give_back_pieces(t, best);
     memset(t->mask, 0, sizeof t->mask);
     if (best < 0) {
         remember_who(t); /* the others, still */

@@ -176,6 +176,10 @@ void trk_floor_remove(cub_tracker *t);
 void trk_components(cub_tracker *t);
 /* Index of the player's component (and merges limbs in front into mask), -1 none. */
 int32_t trk_pick_player(cub_tracker *t);
+/* The player's blob pid's pieces a depth step behind it that join
+ * another person-like blob with a smaller step become that person's
+ * (trk_grid.c says why). */
+void trk_give_back_pieces(cub_tracker *t, int32_t pid);
 
 /* trk_geo.c */
 int32_t trk_root_cell(cub_tracker *t);

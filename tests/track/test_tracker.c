@@ -421,14 +421,16 @@ static void expect_same_player(other_fn draw_other, int32_t x0, int32_t dx, cons
 
 /* Frames of 60 whose player's spine is nearer the other person's than the
  * child's (what eval-track counts wrong); the child is the player at the
- * end, its spine within 350 mm. */
+ * end, its spine within 350 mm. A child lost near the end is held unseen
+ * for ID_HOLD_US (2 s) before it is taken again: up to 20 frames more
+ * then, counted too. */
 static int wrong_person_frames(other_fn draw_other)
 {
     cub_tracker *t = new_tracker();
     cub_track_skeleton s;
     double e[2];
     int wrong = 0;
-    for (int k = 0; k < 60; k++) {
+    for (int k = 0; k < 60 || (k < 80 && s.status == CUB_TRACK_NO_PLAYER); k++) {
         identity_frame(t, k, 0, 2400, draw_other, &s, e);
         wrong += s.status != CUB_TRACK_NO_PLAYER && e[1] <= e[0];
     }
