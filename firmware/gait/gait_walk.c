@@ -226,12 +226,22 @@ static cub_q16 sole_dip(const cub_gait_walker *w, int foot, cub_vec3 ankle, cub_
 
 /* ---- planning at foot-off --------------------------------------------------- */
 
+static cub_vec3 stride_shift(const cub_gait_walker *w);
+
+/* Where the root is from where the clip's mapping puts it: held back by
+ * the pinned feet (follow_pins) and shifted by the plan's stride changes
+ * (stride_change); the target is measured from there. */
+static cub_vec3 held_back(const cub_gait_walker *w)
+{
+    return cub_fx_vec3_add(w->follow_mm, stride_shift(w));
+}
+
 /* Turn the heading toward the target by at most max_turn; the mapping is
  * rebased at the root so the body does not jump. */
 static void steer(cub_gait_walker *w, cub_vec3 root_u, cub_vec3 target)
 {
     cub_vec3 root = to_world(w, root_u);
-    cub_vec3 want = flat_xz(cub_fx_vec3_sub(target, root));
+    cub_vec3 want = flat_xz(cub_fx_vec3_sub(target, cub_fx_vec3_add(root, held_back(w))));
     cub_q16 dist = cub_fx_vec3_length(want);
     /* Half a step: the last step lands at most that far from the target
      * (a whole step left the box's bear a step short of its place). */
@@ -777,7 +787,7 @@ static void place_root(cub_gait_walker *w, int f, int k)
     ru.y = w->pose.root_mm.y;
     cub_vec3 r = to_world(w, ru);
     r.y = ru.y + (ground_shift(w, 0) + ground_shift(w, 1)) / 2;
-    cub_vec3 shift = cub_fx_vec3_add(cub_fx_vec3_add(end_shift(w), stride_shift(w)), w->follow_mm);
+    cub_vec3 shift = cub_fx_vec3_add(end_shift(w), held_back(w));
     w->pose.root_mm = cub_fx_vec3_add(r, shift);
     cub_q16 ang = cub_fx_atan2(w->yaw_s, w->yaw_c);
     cub_quat yaw = cub_fx_quat_from_axis_angle(UP, ang);
@@ -937,6 +947,7 @@ cub_err cub_gait_walker_init(cub_gait_walker *w, const cub_gait_walk_clip *c,
 static cub_q16 root_to(const cub_gait_walker *w, cub_vec3 target)
 {
     cub_vec3 root = to_world(w, unwrap(w, w->c->clip->root_mm[w->frame], w->loops));
+    root = cub_fx_vec3_add(root, held_back(w));
     return cub_fx_vec3_length(flat_xz(cub_fx_vec3_sub(target, root)));
 }
 
