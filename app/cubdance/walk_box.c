@@ -24,16 +24,21 @@
 #define NEAR_MM 300
 /* The walk in should arrive while the wake lasts (the coach's wake_up
  * clip): its rate is chosen from the distance and the time the clip has
- * left, at least the clip's own, at most WALK_IN_MAX_Q8 (3x: the bear's
+ * left, at least the clip's own, at most WALK_IN_MAX_Q8 (3.25x: the bear's
  * legs are 0.31 of the capture's, and by the speed's square-root scaling
  * with leg length its natural cadence is already ~1.8x the capture's;
- * 3x is a hurried walk). It stops where it is after WALK_IN_US at the
- * latest [ours; docs/gait.md has the measured times]. */
-#define WALK_IN_MAX_Q8 (3 * 256)
+ * 3x is a hurried walk; 3.25x since the root follows the pinned feet, its
+ * stride ~5 % shorter by the capture's stance slide: the demo's walk in
+ * took 12 steps and arrived 33 ms after the dance began at 3x). It stops
+ * where it is after WALK_IN_US at the latest [ours; docs/gait.md has the
+ * measured times]. */
+#define WALK_IN_MAX_Q8 (13 * 64)
 #define WALK_IN_US 6000000
 /* Steps the walk in adds to the straight distance's: the closing step onto
- * the dance's footholds and the settle [ours]. */
-#define WALK_IN_EXTRA_STEPS 2
+ * the dance's footholds and the settle, and one more since the root
+ * follows the pinned feet (the shorter stride left the demo's step 9 short
+ * of its end foothold: 12 steps, not 11) [ours]. */
+#define WALK_IN_EXTRA_STEPS 3
 /* A hand-over waits at most this many of the coach's frames for a bridge
  * frame within the threshold, then takes the closest (the planner's reach). */
 #define REACH_FRAMES 15
@@ -326,7 +331,7 @@ static int64_t clip_left_us(const cub_bridge_player *p)
 static int in_rate_q8(const cub_walk_box *w, const cub_bridge_player *p, int32_t dist)
 {
     const cub_gait_walker *k = &w->walker;
-    int64_t cycle = mm(cub_fx_vec3_length(k->cycle_u)), len = k->b - k->a;
+    int64_t cycle = mm(cub_fx_vec3_length(k->travel_u)), len = k->b - k->a; /* its travel */
     int64_t left = clip_left_us(p);
     if (cycle <= 0 || left <= 0) return WALK_IN_MAX_Q8;
     int64_t frames = (dist * len + cycle - 1) / cycle + WALK_IN_EXTRA_STEPS * len / 2;
