@@ -380,6 +380,50 @@ static void swing_that_cannot_clear_is_replanned(void **state)
     assert_true(backtracks >= 1);
 }
 
+/* Over a log (the wall above, the swing's default raises) the planner
+ * changes a step's length before it; the root follows the change
+ * (stride_change), so the body stays over the feet: the pelvis lowers
+ * little. Before, the root stayed on the clip's line: a half step by the
+ * log left the body half a stride ahead of both feet (with the follow of
+ * the pinned feet: 02_01's pelvis lowered 280 mm in gait-eval's forest;
+ * here 276.7 mm without the root's shift, 7.6 with it). And a swinging
+ * foot over the log keeps the swing's 20 mm (25.2 here: sole_need's guard
+ * does not act on this walk; it does on 08_01's, gait-eval). */
+static void body_follows_a_changed_stride_over_a_log(void **state)
+{
+    (void)state;
+    SYNTH_NEED_DATA(CLIP);
+    static log l;
+    cub_gait_terrain t;
+    walker_before_wall(&l, &t);
+    walker.p.swing.max_raises = 0; /* the walker's own cap */
+    cub_vec3 target = {0, 0, CUB_Q16_INT(30000)};
+    cub_q16 drop = 0, shift = 0, clear = CUB_Q16_MAX;
+    for (int i = 0; i < 480; i++) {
+        const cub_pose *pose;
+        assert_int_equal(cub_gait_walker_step(&walker, target, &pose), CUB_OK);
+        if (walker.drop_mm > drop) drop = walker.drop_mm;
+        cub_q16 sh = cub_fx_abs(walker.stride_shift_mm.z);
+        if (sh > shift) shift = sh;
+        for (int f = 0; f < 2; f++) {
+            const cub_gait_walk_foot *ft = &walker.feet[f];
+            cub_vec3 pts[6];
+            cub_gait_sole_points(ft->leg.ankle_mm, ft->leg.toe_mm, analysed.wc.foot[f].length_mm,
+                                 analysed.wc.foot[f].ankle_lift_mm, pts);
+            for (int k = 0; k < 6 && ft->swinging; k++)
+                if (cub_gait_height(&t, pts[k].x, pts[k].z) > 0 && pts[k].y - CUB_Q16_INT(150) < clear)
+                    clear = pts[k].y - CUB_Q16_INT(150);
+        }
+    }
+    printf("gait walker: over the log: %d steps, stride changes shifted the root %.0f mm, the "
+           "pelvis lowered at most %.1f mm, the swinging sole %.1f mm over the log\n",
+           walker.steps, shift / 65536.0, drop / 65536.0, clear / 65536.0);
+    assert_true(walker.steps >= 6 && !walker.blocked);
+    assert_true(shift >= CUB_Q16_INT(50));
+    assert_true(drop <= CUB_Q16_INT(80));
+    assert_true(clear >= CUB_Q16_INT(195) / 10);
+}
+
 /* The lowest sole point of a foot above the terrain (its IK result). */
 static cub_q16 sole_gap(const cub_gait_terrain *t, int f)
 {
@@ -622,6 +666,7 @@ int main(void)
         cmocka_unit_test(stance_foot_stays),
         cmocka_unit_test(flat_walk_stays_near_the_capture),
         cmocka_unit_test(leg_ik_keeps_the_bend_plane),
+        cmocka_unit_test(body_follows_a_changed_stride_over_a_log),
         cmocka_unit_test(events_in_order),
         cmocka_unit_test(swing_that_cannot_clear_is_replanned),
         cmocka_unit_test(comes_to_rest_at_target),
