@@ -3,10 +3,11 @@
  * foot-off the planner places the next footholds from the other foot's;
  * the swinging ankle goes from its foothold to the new one (the clip's own
  * path on flat ground, the raised quartic Bézier elsewhere); a planted foot
- * stays on its foothold and follows the clip's roll over it; each foot
- * point keeps its captured height over the ground under it; the pelvis
- * rides the mean ground of the feet and drops so both feet reach; the leg
- * IK (with limits) then sets the hip, knee and ankle rotations.
+ * stays on its foothold and follows the clip's roll over it, and the root
+ * follows it (the capture's stance slide taken out of the body too); each
+ * foot point keeps its captured height over the ground under it; the
+ * pelvis rides the mean ground of the feet and drops so both feet reach;
+ * the leg IK (with limits) then sets the hip, knee and ankle rotations.
  *
  * Clip coordinates are "unwrapped": frame f of loop k sits at the clip's
  * position plus k cycles of root travel, so a foot planted before the
