@@ -24,16 +24,21 @@
 #define NEAR_MM 300
 /* The walk in should arrive while the wake lasts (the coach's wake_up
  * clip): its rate is chosen from the distance and the time the clip has
- * left, at least the clip's own, at most WALK_IN_MAX_Q8 (3x: the bear's
+ * left, at least the clip's own, at most WALK_IN_MAX_Q8 (3.25x: the bear's
  * legs are 0.31 of the capture's, and by the speed's square-root scaling
  * with leg length its natural cadence is already ~1.8x the capture's;
- * 3x is a hurried walk). It stops where it is after WALK_IN_US at the
- * latest [ours; docs/gait.md has the measured times]. */
-#define WALK_IN_MAX_Q8 (3 * 256)
+ * 3x is a hurried walk; 3.25x since the root follows the pinned feet, its
+ * stride ~5 % shorter by the capture's stance slide: the demo's walk in
+ * took 12 steps and arrived 33 ms after the dance began at 3x). It stops
+ * where it is after WALK_IN_US at the latest [ours; docs/gait.md has the
+ * measured times]. */
+#define WALK_IN_MAX_Q8 (13 * 64)
 #define WALK_IN_US 6000000
 /* Steps the walk in adds to the straight distance's: the closing step onto
- * the dance's footholds and the settle [ours]. */
-#define WALK_IN_EXTRA_STEPS 2
+ * the dance's footholds and the settle, and one more since the root
+ * follows the pinned feet (the shorter stride left the demo's step 9 short
+ * of its end foothold: 12 steps, not 11) [ours]. */
+#define WALK_IN_EXTRA_STEPS 3
 /* A hand-over waits at most this many of the coach's frames for a bridge
  * frame within the threshold, then takes the closest (the planner's reach). */
 #define REACH_FRAMES 15
@@ -231,9 +236,10 @@ static cub_q16 quat_turn(cub_quat a, cub_quat b)
     return cub_fx_quat_angle(cub_fx_quat_mul(cub_fx_quat_conj(a), b));
 }
 
-/* The walker stepped `frames` clip frames: while it arrives (an end foot
- * planned), the fastest turn of any of the coach's joints (the root's
- * too) per clip frame, against the walk clip's p99 (no pop). */
+/* The walker stepped `frames` clip frames: the fastest turn of any of
+ * the coach's joints (the root's too) per clip frame, while it arrives
+ * (an end foot planned) and before: arriving should turn no joint faster
+ * than walking does (no pop; the walk's own knees pass the clip's p99). */
 static void note_turns(cub_walk_box *w, int frames)
 {
     const cub_pose *p = &w->walker.pose;
@@ -241,7 +247,8 @@ static void note_turns(cub_walk_box *w, int frames)
     for (int j = 0; j < w->joint_count; j++) {
         cub_quat q = p->rot[w->map[j]];
         cub_q16 a = frames > 0 ? quat_turn(w->prev_rot[j], q) / frames : 0;
-        if (arriving && a > w->arrive_rad) w->arrive_rad = a;
+        cub_q16 *most = arriving ? &w->arrive_rad : &w->walk_rad;
+        if (a > *most) *most = a;
         w->prev_rot[j] = q;
     }
 }
@@ -271,9 +278,11 @@ static void hand_over(cub_walk_box *w, const cub_bridge_player *p, int64_t t_us)
         w->blend_us = us < BLEND_MIN_US ? BLEND_MIN_US : us > BLEND_US ? BLEND_US : us;
     }
     cub_log_event(w->log, t_us, "walk", "enter",
-                  "clip=%s frame=%d foot_mm=%d joint_mm=%d blend_ms=%d arrive_dpf=%q p99_dpf=%q",
+                  "clip=%s frame=%d foot_mm=%d joint_mm=%d blend_ms=%d arrive_dpf=%q walk_dpf=%q "
+                  "p99_dpf=%q",
                   clip_name(w, w->hand_clip), w->hand_frame, foot, joint,
-                  (int)(w->blend_us / 1000), deg(w->arrive_rad), deg(w->p99_rad));
+                  (int)(w->blend_us / 1000), deg(w->arrive_rad), deg(w->walk_rad),
+                  deg(w->p99_rad));
     w->hand = 0;
     w->place = at_xz(home_xz);
 }
@@ -367,7 +376,7 @@ static int64_t clip_left_us(const cub_bridge_player *p)
 static int in_rate_q8(const cub_walk_box *w, const cub_bridge_player *p, int32_t dist)
 {
     const cub_gait_walker *k = &w->walker;
-    int64_t cycle = mm(cub_fx_vec3_length(k->cycle_u)), len = k->b - k->a;
+    int64_t cycle = mm(cub_fx_vec3_length(k->travel_u)), len = k->b - k->a; /* its travel */
     int64_t left = clip_left_us(p);
     if (cycle <= 0 || left <= 0) return WALK_IN_MAX_Q8;
     int64_t frames = (dist * len + cycle - 1) / cycle + WALK_IN_EXTRA_STEPS * len / 2;
@@ -415,7 +424,7 @@ static void go(cub_walk_box *w, const cub_bridge_player *pl, cub_vec3 to, cub_wa
     w->frames = 0;
     w->settled = 0;
     w->best_mm = INT32_MAX;
-    w->arrive_rad = 0;
+    w->arrive_rad = w->walk_rad = 0;
     switch_now(w, t_us);
 }
 

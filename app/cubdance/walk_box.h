@@ -70,6 +70,7 @@ typedef struct cub_walk_box {
                                       place, on the walk clip's skeleton (the walker arrives in it) */
     cub_quat prev_rot[CUB_MOTION_MAX_JOINTS]; /* the walker's last pose (the coach's joints) */
     cub_q16 arrive_rad;            /* the fastest joint turn while arriving, rad per clip frame */
+    cub_q16 walk_rad;              /* ... and while walking before it */
     cub_q16 p99_rad;               /* the walk clip's 99th percentile of the same */
 } cub_walk_box;
 

@@ -16,8 +16,8 @@
 static const char *const usage_text =
     "usage: cubtool gait-eval [--clips A,B,..] [--held-out A,B,..] [--reference A,B,..]\n"
     "                         [--terrains flat,slope,rolling,forest] [--frames N] [--data DIR]\n"
-    "                         [--check] [--clip-swing] [--straight] [--repeat N]\n"
-    "                         [--without pin,close,drop,floor,keys]\n"
+    "                         [--check] [--key-swing] [--straight] [--repeat N]\n"
+    "                         [--without pin,close,drop,floor,keys,ahead,follow]\n"
     "The walker (firmware/gait) and the game-engine baseline on each clip and\n"
     "terrain (forest = rolling + a log + two stones), N frames each (720):\n"
     "penetration of the sole box, stance slide per step, clearance over\n"
@@ -29,13 +29,13 @@ static const char *const usage_text =
     "Defaults: --clips 02_01 (tuning), --held-out 16_11,07_01,08_01 (labelled\n"
     "\"seen\": each has been looked at, docs/gait.md),\n"
     "--reference 03_01,03_02. --check: exit 1 when a walker figure of the\n"
-    "tuning clips is out of its sanity bound (docs/gait.md). --clip-swing: on\n"
-    "flat ground the walker keeps the captured swing, not the Bezier through\n"
-    "the swing's key frames; --straight: the seed's straight segments instead.\n"
+    "tuning clips is out of its sanity bound (docs/gait.md). --key-swing: on\n"
+    "flat ground the walker's swing is a Bezier through the swing's key frames,\n"
+    "not the captured swing; --straight: the seed's straight segments between them.\n"
     "--without: the walker with those parts left out (the stance pin, the\n"
     "cycle's closing, the pelvis drop, the per-step floor, the key configurations\n"
-    "by height difference), to price each one's\n"
-    "share of the joint error.\n";
+    "by height difference, the plan made ahead, the root's follow of the pinned\n"
+    "feet), to price each one's share of the joint error or time.\n";
 
 static int split(char *s, const char **out)
 {
@@ -88,21 +88,23 @@ static int check(const char *clip, const char *terrain, const gait_figures *g)
     return bad;
 }
 
-static int clip_swing; /* --clip-swing: the captured swing on flat ground */
+static int key_swing;  /* --key-swing: the Bezier through the key frames on flat ground */
 static int without;    /* --without: CUB_GAIT_NO_* bits */
 static int straight;   /* --straight: the seed's straight key-frame segments on flat ground */
 static int repeat = 1; /* --repeat: runs timed per row, each frame's least time kept */
 
-/* "pin,close,drop,floor,keys" to CUB_GAIT_NO_* bits; -1 for an unknown name. */
+/* "pin,close,drop,floor,keys,ahead,follow" to CUB_GAIT_NO_* bits (in the
+ * enum's order); -1 for an unknown name. */
 static int parse_without(char *s)
 {
-    static const char *const names[] = {"pin", "close", "drop", "floor", "keys"};
+    static const char *const names[] = {"pin", "close", "drop", "floor", "keys", "ahead", "follow"};
+    const int n = (int)(sizeof names / sizeof *names);
     int bits = 0;
     for (char *t = strtok(s, ","); t; t = strtok(NULL, ",")) {
         int i = 0;
-        while (i < 5 && strcmp(t, names[i]))
+        while (i < n && strcmp(t, names[i]))
             i++;
-        if (i == 5) return -1;
+        if (i == n) return -1;
         bits |= 1 << i;
     }
     return bits;
@@ -127,7 +129,7 @@ static int run_clip(const char *clip, const char *set, const char **terrains, in
         }
         for (int m = GAIT_WALKER; m <= GAIT_BASELINE; m++) {
             gait_run r = {.method = (gait_method)m, .frames = frames, .repeat = repeat,
-                          .params = {.dir_z = CUB_Q16_ONE, .clip_swing = clip_swing,
+                          .params = {.dir_z = CUB_Q16_ONE, .key_swing = key_swing,
                                      .straight_swing = straight, .without = without}};
             if (gait_measure(&src, &ground, &r, &g, WHO)) {
                 bad = 1;
@@ -150,7 +152,7 @@ int cub_cmd_gait_eval(int argc, char **argv)
     const cub_tool_opt opts[] = {{"--clips", &clips, NULL},     {"--held-out", &held, NULL},
                                  {"--reference", &ref, NULL},   {"--terrains", &ters, NULL},
                                  {"--frames", &nframes, NULL},  {"--data", &data, NULL},
-                                 {"--check", NULL, &do_check},  {"--clip-swing", NULL, &clip_swing},
+                                 {"--check", NULL, &do_check},  {"--key-swing", NULL, &key_swing},
                                  {"--without", &wo, NULL},      {"--straight", NULL, &straight},
                                  {"--repeat", &nrep, NULL}};
     switch (cub_tool_parse_opts(argc, argv, opts, sizeof opts / sizeof *opts, NULL, 0)) {
@@ -162,7 +164,7 @@ int cub_cmd_gait_eval(int argc, char **argv)
     snprintf(wb, sizeof wb, "%s", wo ? wo : "");
     without = parse_without(wb);
     if (without < 0) {
-        fprintf(stderr, "cubtool " WHO ": --without %s: expected pin, close, drop, floor, keys\n", wo);
+        fprintf(stderr, "cubtool " WHO ": --without %s: expected pin, close, drop, floor, keys, ahead, follow\n", wo);
         return 2;
     }
     int frames = nframes ? atoi(nframes) : 720;

@@ -140,17 +140,28 @@ static bool leg_chain_ok(const cub_skeleton *sk, int ankle)
     return knee > 0 && sk->joints[knee].parent >= 0;
 }
 
+/* Where the knee's pole lies from the knee: along the knee's own bend
+ * (its offset from the hip-ankle line), so the solved leg keeps the
+ * pose's bend plane (02_01 flat: the knees 3-5 mm aside with the pole a
+ * hand ahead of the knee, the old rule), plus a fifth of a hand ahead so
+ * a straight leg still has a plane [ours]. */
+static cub_vec3 pole_dir(cub_vec3 hip, cub_vec3 knee, cub_vec3 ankle, cub_vec3 ahead)
+{
+    cub_vec3 axis = with_length(cub_fx_vec3_sub(ankle, hip), CUB_Q16_ONE);
+    cub_vec3 r = cub_fx_vec3_sub(knee, hip);
+    cub_vec3 bend = cub_fx_vec3_sub(r, cub_fx_vec3_scale(axis, cub_fx_vec3_dot(r, axis)));
+    return cub_fx_vec3_add(cub_fx_vec3_scale(bend, CUB_Q16_INT(8)),
+                           cub_fx_vec3_scale(ahead, CUB_Q16_INT(20)));
+}
+
 cub_err cub_gait_pose_leg(const cub_skeleton *sk, const cub_pose *pose, int ankle, cub_vec3 ahead,
                           cub_gait_leg *leg)
 {
     if (!pose || !leg || !leg_chain_ok(sk, ankle)) return CUB_ERR_ARG;
     int knee = sk->joints[ankle].parent, hip = sk->joints[knee].parent;
-    /* ours: the knee bends toward where it is now, a hand ahead, so a
-     * straight leg still has a plane */
-    cub_vec3 pole = cub_fx_vec3_add(joint_at(sk, pose, knee, NULL),
-                                    cub_fx_vec3_scale(ahead, CUB_Q16_INT(100)));
-    *leg = (cub_gait_leg){joint_at(sk, pose, hip, NULL), bone(sk, pose, knee),
-                          bone(sk, pose, ankle), pole};
+    cub_vec3 h = joint_at(sk, pose, hip, NULL), k = joint_at(sk, pose, knee, NULL);
+    cub_vec3 pole = cub_fx_vec3_add(k, pole_dir(h, k, joint_at(sk, pose, ankle, NULL), ahead));
+    *leg = (cub_gait_leg){h, bone(sk, pose, knee), bone(sk, pose, ankle), pole};
     return CUB_OK;
 }
 

@@ -3,10 +3,11 @@
  * foot-off the planner places the next footholds from the other foot's;
  * the swinging ankle goes from its foothold to the new one (the clip's own
  * path on flat ground, the raised quartic Bézier elsewhere); a planted foot
- * stays on its foothold and follows the clip's roll over it; each foot
- * point keeps its captured height over the ground under it; the pelvis
- * rides the mean ground of the feet and drops so both feet reach; the leg
- * IK (with limits) then sets the hip, knee and ankle rotations.
+ * stays on its foothold and follows the clip's roll over it, and the root
+ * follows it (the capture's stance slide taken out of the body too); each
+ * foot point keeps its captured height over the ground under it; the
+ * pelvis rides the mean ground of the feet and drops so both feet reach;
+ * the leg IK (with limits) then sets the hip, knee and ankle rotations.
  *
  * Clip coordinates are "unwrapped": frame f of loop k sits at the clip's
  * position plus k cycles of root travel, so a foot planted before the
@@ -199,14 +200,29 @@ void cub_gait_sole_points(cub_vec3 ankle_mm, cub_vec3 toe_mm, cub_q16 foot_mm, c
     out[5] = cub_fx_vec3_sub(out[1], cub_fx_vec3_scale(side, w));
 }
 
-/* How far the sole dips below the terrain (>= 0). */
+/* The height a sole point at (x, z) must keep: the terrain's; a
+ * swinging foot's also the swing's clearance over an obstacle higher
+ * than both its footholds (the path was raised for it, but on a model
+ * of the foot: a flat sole; the posed foot's toe corner passed 08_01's
+ * log 16.9 mm up) [ours]. */
+static cub_q16 sole_need(const cub_gait_walker *w, const cub_gait_walk_foot *ft, cub_vec3 pt)
+{
+    cub_q16 h = cub_gait_height(w->t, pt.x, pt.z);
+    if (!ft->swinging || !ft->rough) return h;
+    cub_q16 level = ft->hold_mm.y > ft->next_mm.y ? ft->hold_mm.y : ft->next_mm.y;
+    if (h <= level || h <= cub_gait_ground_height(w->t, pt.x, pt.z)) return h;
+    cub_q16 clear = w->p.swing.clearance_mm > 0 ? w->p.swing.clearance_mm : CUB_Q16_INT(20);
+    return cub_fx_add(h, clear);
+}
+
+/* How far the sole dips below what it must keep (>= 0). */
 static cub_q16 sole_dip(const cub_gait_walker *w, int foot, cub_vec3 ankle, cub_vec3 toe)
 {
     cub_vec3 pts[6];
     cub_gait_sole_points(ankle, toe, foot_len(w, foot), w->c->foot[foot].ankle_lift_mm, pts);
     cub_q16 dip = 0;
     for (int i = 0; i < 6; i++) {
-        cub_q16 d = cub_fx_sub(cub_gait_height(w->t, pts[i].x, pts[i].z), pts[i].y);
+        cub_q16 d = cub_fx_sub(sole_need(w, &w->feet[foot], pts[i]), pts[i].y);
         if (d > dip) dip = d;
     }
     return dip;
@@ -228,12 +244,22 @@ static void yaw_between(cub_vec3 d, cub_vec3 h, cub_q16 *c, cub_q16 *s)
     *s = cub_fx_sub(cub_fx_mul(d.z, h.x), cub_fx_mul(d.x, h.z));
 }
 
+static cub_vec3 stride_shift(const cub_gait_walker *w);
+
+/* Where the root is from where the clip's mapping puts it: held back by
+ * the pinned feet (follow_pins) and shifted by the plan's stride changes
+ * (stride_change); the target is measured from there. */
+static cub_vec3 held_back(const cub_gait_walker *w)
+{
+    return cub_fx_vec3_add(w->follow_mm, stride_shift(w));
+}
+
 /* Turn the heading toward the target by at most max_turn; the mapping is
  * rebased at the root so the body does not jump. */
 static void steer(cub_gait_walker *w, cub_vec3 root_u, cub_vec3 target)
 {
     cub_vec3 root = to_world(w, root_u);
-    cub_vec3 want = flat_xz(cub_fx_vec3_sub(target, root));
+    cub_vec3 want = flat_xz(cub_fx_vec3_sub(target, cub_fx_vec3_add(root, held_back(w))));
     cub_q16 dist = cub_fx_vec3_length(want);
     /* Half a step: the last step lands at most that far from the target
      * (a whole step left the box's bear a step short of its place). */
@@ -257,9 +283,27 @@ static void steer(cub_gait_walker *w, cub_vec3 root_u, cub_vec3 target)
     w->yaw_s = ys;
 }
 
+static cub_vec3 ahead(const cub_gait_walker *w);
+
 static cub_vec3 clip_dir(const cub_gait_walker *w)
 {
-    return unit_xz(w->cycle_u);
+    return unit_xz(w->travel_u);
+}
+
+/* The root follows the plan's stride changes (a half or 1.25 stride by
+ * an obstacle): the later footholds are planned from this one, so the
+ * feet stay shifted by the change; the root moves by half of it over this
+ * swing and the other half over the other foot's next one, as the mean
+ * of the feet does. It stayed on the clip's line before: by the log a
+ * half step left the body half a stride ahead of both feet (02_01's
+ * pelvis lowered 280 mm) [ours]. */
+static void stride_change(cub_gait_walker *w, int foot, cub_q16 along, cub_vec3 from, cub_vec3 hold)
+{
+    cub_vec3 d = ahead(w);
+    cub_q16 got = cub_fx_vec3_dot(flat_xz(cub_fx_vec3_sub(hold, from)), d);
+    cub_vec3 half = cub_fx_vec3_scale(d, cub_fx_sub(got, along) / 2);
+    w->feet[foot].stride_shift_mm = cub_fx_vec3_add(w->stride_due_mm, half);
+    w->stride_due_mm = half;
 }
 
 /* The planner's inputs from the other foot's foothold; the step's length
@@ -267,13 +311,15 @@ static cub_vec3 clip_dir(const cub_gait_walker *w)
  * the capture); its foot base reaches the sole box's toe tip (a third
  * past the toe); the swing to each foothold is tested with sp. */
 static cub_err plan_begin(const cub_gait_walker *w, int foot, const cub_gait_swing_params *sp,
-                          cub_gait_planner *pl)
+                          cub_gait_planner *pl, cub_q16 *along_out)
 {
     const cub_gait_walk_foot *o = &w->feet[!foot];
     cub_vec3 d0 = clip_dir(w);
     cub_vec3 rel = flat_xz(cub_fx_vec3_sub(w->feet[foot].next_u, o->plant_u));
-    cub_q16 along = cub_fx_vec3_dot(rel, d0);
-    cub_q16 lateral = cub_fx_sub(cub_fx_mul(rel.x, d0.z), cub_fx_mul(rel.z, d0.x));
+    cub_vec3 back = cub_fx_vec3_sub(w->feet[foot].follow_at_mm, o->follow_at_mm);
+    cub_q16 along = cub_fx_add(cub_fx_vec3_dot(rel, d0), cub_fx_vec3_dot(back, ahead(w)));
+    cub_q16 lateral = cub_fx_add(cub_fx_sub(cub_fx_mul(rel.x, d0.z), cub_fx_mul(rel.z, d0.x)),
+                                 cub_fx_sub(cub_fx_mul(back.x, w->dir_z), cub_fx_mul(back.z, w->dir_x)));
     cub_gait_plan_params pp = {.steps = w->p.steps,
                                .stride_mm = along > CUB_Q16_ONE ? along : CUB_Q16_ONE,
                                .width_mm = cub_fx_abs(lateral),
@@ -281,6 +327,7 @@ static cub_err plan_begin(const cub_gait_walker *w, int foot, const cub_gait_swi
                                .swing = sp};
     /* The planner's "left" is a side label: left of the heading gets +width. */
     cub_gait_start st = {o->hold_mm, lateral < 0, w->dir_x, w->dir_z, w->feet[foot].hold_mm};
+    *along_out = along;
     return cub_gait_planner_begin(pl, &pp, &st);
 }
 
@@ -303,7 +350,8 @@ static cub_err plan(cub_gait_walker *w, int foot, const cub_gait_swing_params *s
                     cub_vec3 *hold)
 {
     cub_gait_planner now;
-    cub_err e = plan_begin(w, foot, sp, &now);
+    cub_q16 along;
+    cub_err e = plan_begin(w, foot, sp, &now, &along);
     if (e) return e;
     if (ahead_fits(w, foot, &now))
         w->ahead_taken++;
@@ -314,6 +362,7 @@ static cub_err plan(cub_gait_walker *w, int foot, const cub_gait_swing_params *s
     w->plan = w->ahead.plan;
     if (w->ahead.err) return w->ahead.err;
     *hold = w->plan.steps[0].foot_mm;
+    stride_change(w, foot, along, w->feet[!foot].hold_mm, *hold);
     return CUB_OK;
 }
 
@@ -477,6 +526,39 @@ static cub_vec3 stand_at(const cub_gait_walker *w, int foot, int p, int k)
     return clip_point(w, foot, 0, p, k);
 }
 
+/* Does the root follow the pinned feet (see follow_pins)? */
+static bool follows(const cub_gait_walker *w)
+{
+    return !(w->p.without & (CUB_GAIT_NO_PIN | CUB_GAIT_NO_FOLLOW));
+}
+
+/* The clip's ankle move of a pinned foot from frame f0 (loop k0) to f1
+ * (k1), turned as the foot was planted (world, horizontal). */
+static cub_vec3 pinned_move(const cub_gait_walker *w, int foot, int f0, int k0, int f1, int k1)
+{
+    const cub_gait_walk_foot *ft = &w->feet[foot];
+    cub_vec3 d = cub_fx_vec3_sub(clip_point(w, foot, 0, f1, k1), clip_point(w, foot, 0, f0, k0));
+    return yaw_rotate(ft->yaw_c, ft->yaw_s, flat_xz(d));
+}
+
+/* How far the root will follow the other foot's pin (follow_pins) over
+ * the len frames of a swing from frame f (the swinging foot is the only
+ * one not pinned meanwhile): the step is shortened by it, so the foot
+ * strikes where the capture puts it from the body. */
+static cub_vec3 follow_until(const cub_gait_walker *w, int other, int f, int k, int len)
+{
+    cub_vec3 back = {0};
+    if (!follows(w)) return back;
+    int g = f, kg = k, pf = f > w->a ? f - 1 : w->b - 1, pk = f > w->a ? k : k - 1;
+    for (int i = 0; i <= len; i++) {
+        if (phase_at(w, other, g) == CUB_GAIT_STANCE && phase_at(w, other, pf) == CUB_GAIT_STANCE)
+            back = cub_fx_vec3_sub(back, pinned_move(w, other, pf, pk, g, kg));
+        pf = g, pk = kg;
+        g = next_frame(w, g, &kg);
+    }
+    return back;
+}
+
 /* Foot-off at frame f, loop k, before the plan: turn, find where the clip
  * lands the foot and how its swing goes. False: arrived. */
 static bool swing_setup(cub_gait_walker *w, int foot, int f, int k, cub_vec3 target)
@@ -505,6 +587,7 @@ static bool swing_setup(cub_gait_walker *w, int foot, int f, int k, cub_vec3 tar
     ft->next_u = clip_point(w, foot, 0, p, kk);
     ft->next_floor = clip_floor(w, foot, p);
     ft->stand_u = stand_at(w, foot, p, kk);
+    ft->follow_at_mm = cub_fx_vec3_add(w->follow_mm, follow_until(w, !foot, f, k, len));
     swing_sway(w, foot, f, k, len);
     ft->swing_at = w->ticks;
     ft->swing_len = len > 0 ? len : 1;
@@ -547,6 +630,8 @@ static void land(cub_gait_walker *w, int foot)
     ft->skate_u[0] = ft->skate_u[1] = (cub_vec3){0};
     w->key_mm = ft->key_mm;
     w->end_shift_mm = cub_fx_vec3_add(w->end_shift_mm, cub_fx_vec3_scale(ft->end_shift_mm, CUB_Q16_ONE / 2));
+    w->stride_shift_mm = cub_fx_vec3_add(w->stride_shift_mm, ft->stride_shift_mm);
+    ft->stride_shift_mm = (cub_vec3){0};
     ft->end_shift_mm = (cub_vec3){0};
     emit(w, (cub_gait_event){CUB_GAIT_EV_TAKEN, !foot, ft->step, 0, 0, ft->hold_mm});
 }
@@ -709,7 +794,7 @@ static void foot_targets(cub_gait_walker *w, int foot, int f, int k)
     cub_q16 py = ft->swinging && ft->rough ? path_height(ft, a) : 0;
     a.y = point_y(w, ft, a, au.y, s, py);
     t.y = point_y(w, ft, t, tu.y, s, py);
-    if (ft->swinging && !ft->rough && w->p.clip_swing == 0) {
+    if (ft->swinging && !ft->rough && (w->p.key_swing || w->p.straight_swing)) {
         cub_vec3 seg = flat_swing(w, ft);
         t = cub_fx_vec3_add(t, cub_fx_vec3_sub(seg, a)); /* the foot moves with its ankle */
         a = seg;
@@ -865,6 +950,18 @@ static void arrive(cub_gait_walker *w)
         w->pose.root_mm = cub_fx_vec3_lerp(w->pose.root_mm, e->root_mm, 2 * k - CUB_Q16_ONE);
 }
 
+/* The root's shift by the plan's stride changes (stride_change): the
+ * landed ones, and the swinging foot's share so far. */
+static cub_vec3 stride_shift(const cub_gait_walker *w)
+{
+    cub_vec3 s = w->stride_shift_mm;
+    for (int foot = 0; foot < 2; foot++) {
+        const cub_gait_walk_foot *ft = &w->feet[foot];
+        if (ft->swinging) s = cub_fx_vec3_add(s, cub_fx_vec3_scale(ft->stride_shift_mm, swing_s(w, ft)));
+    }
+    return s;
+}
+
 static void place_root(cub_gait_walker *w, int f, int k)
 {
     const cub_clip *c = w->c->clip;
@@ -874,7 +971,8 @@ static void place_root(cub_gait_walker *w, int f, int k)
     ru.y = w->pose.root_mm.y;
     cub_vec3 r = to_world(w, ru);
     r.y = ru.y + (ground_shift(w, 0) + ground_shift(w, 1)) / 2;
-    w->pose.root_mm = cub_fx_vec3_add(r, end_shift(w));
+    cub_vec3 shift = cub_fx_vec3_add(end_shift(w), held_back(w));
+    w->pose.root_mm = cub_fx_vec3_add(r, shift);
     /* the body's turn: an end pose's root brings its own (arrive) */
     cub_q16 ang = cub_fx_atan2(w->yaw_s, w->yaw_c);
     if (!arriving_in_pose(w)) ang = cub_fx_add(ang, turned(w));
@@ -962,6 +1060,47 @@ static void pin(cub_gait_walker *w, int foot, uint8_t ph, int f, int k)
     }
 }
 
+/* The root follows the pinned feet: the pin takes the capture's stance
+ * slide (22-48 mm a stance on 02_01) out of the foot only, and the body
+ * then moved against its foot by it (8 mm of the 20 mm leg error on flat
+ * with the captured swing). So the root moves back by the slide a pinned
+ * foot loses (the mean of both when both are pinned), and the body moves
+ * over the foot as the capture's does over its own [ours]. */
+static void follow_pins(cub_gait_walker *w, int f, int k)
+{
+    cub_vec3 sum = {0};
+    int n = 0;
+    for (int foot = 0; foot < 2; foot++) {
+        cub_gait_walk_foot *ft = &w->feet[foot];
+        cub_vec3 was = ft->slid_mm;
+        ft->slid_mm = (cub_vec3){0};
+        if (ft->swinging || ft->last_phase != CUB_GAIT_STANCE) continue;
+        ft->slid_mm = yaw_rotate(ft->yaw_c, ft->yaw_s,
+                                 flat_xz(cub_fx_vec3_sub(clip_point(w, foot, 0, f, k), ft->pin_u[0])));
+        sum = cub_fx_vec3_add(sum, cub_fx_vec3_sub(ft->slid_mm, was));
+        n++;
+    }
+    if (n && follows(w)) w->follow_mm = cub_fx_vec3_sub(w->follow_mm, cub_fx_vec3_scale(sum, CUB_Q16_ONE / n));
+}
+
+/* The root's travel over a cycle less what it follows of the pinned
+ * feet's slide (follow_pins): the walk's direction. With the root's
+ * travel alone the bear walked off its heading by the slide's sideways
+ * part (08_01: 16 mm a step) [ours]. */
+static cub_vec3 travel(const cub_gait_walker *w)
+{
+    cub_vec3 t = w->cycle_u;
+    if (!follows(w)) return t;
+    for (int f = w->a + 1; f < w->b; f++)
+        for (int foot = 0; foot < 2; foot++) {
+            if (phase_at(w, foot, f) != CUB_GAIT_STANCE || phase_at(w, foot, f - 1) != CUB_GAIT_STANCE) continue;
+            bool both = phase_at(w, !foot, f) == CUB_GAIT_STANCE && phase_at(w, !foot, f - 1) == CUB_GAIT_STANCE;
+            cub_vec3 d = flat_xz(cub_fx_vec3_sub(track(w, foot, 0)[f], track(w, foot, 0)[f - 1]));
+            t = cub_fx_vec3_sub(t, both ? cub_fx_vec3_scale(d, CUB_Q16_ONE / 2) : d);
+        }
+    return t;
+}
+
 /* ---- the public calls ------------------------------------------------------------ */
 
 cub_err cub_gait_walker_init(cub_gait_walker *w, const cub_gait_walk_clip *c,
@@ -975,6 +1114,7 @@ cub_err cub_gait_walker_init(cub_gait_walker *w, const cub_gait_walk_clip *c,
     if (!find_cycle(w)) return CUB_ERR_FORMAT;
     const cub_vec3 *root = c->clip->root_mm;
     w->cycle_u = flat_xz(cub_fx_vec3_sub(root[w->b], root[w->a]));
+    w->travel_u = travel(w);
     cub_vec3 d0 = clip_dir(w);
     cub_vec3 h = (p->dir_x || p->dir_z) ? unit_xz((cub_vec3){p->dir_x, 0, p->dir_z}) : d0;
     w->dir_x = h.x;
@@ -995,6 +1135,7 @@ cub_err cub_gait_walker_init(cub_gait_walker *w, const cub_gait_walk_clip *c,
 static cub_q16 root_to(const cub_gait_walker *w, cub_vec3 target)
 {
     cub_vec3 root = to_world(w, unwrap(w, w->c->clip->root_mm[w->frame], w->loops));
+    root = cub_fx_vec3_add(root, held_back(w));
     return cub_fx_vec3_length(flat_xz(cub_fx_vec3_sub(target, root)));
 }
 
@@ -1065,7 +1206,8 @@ static void plan_ahead(cub_gait_walker *w, cub_vec3 target)
     if (then.feet[!foot].swinging) land(&then, !foot);
     if (!swing_setup(&then, foot, f, k, target)) return;
     cub_gait_swing_params sp = swing_params(&then, foot);
-    if (plan_begin(&then, foot, &sp, &w->ahead)) return;
+    cub_q16 along;
+    if (plan_begin(&then, foot, &sp, &w->ahead, &along)) return;
     w->ahead_on = 1;
     w->ahead_foot = foot;
     w->ahead_frame = f;
@@ -1094,6 +1236,7 @@ cub_err cub_gait_walker_step(cub_gait_walker *w, cub_vec3 target_mm, const cub_p
         pin(w, foot, ph, f, k);
         ft->last_phase = ph;
     }
+    follow_pins(w, f, k);
     foot_targets(w, 0, f, k);
     foot_targets(w, 1, f, k);
     cub_err e = pose_frame(w, f, k);

@@ -388,8 +388,10 @@ enum {
     CUB_GAIT_NO_DROP = 4,  /* the pelvis does not lower */
     CUB_GAIT_NO_FLOOR = 8, /* one floor for the clip (its lowest foot point), not one per step */
     CUB_GAIT_NO_KEYS = 16, /* the key configurations do not depend on the height difference */
-    CUB_GAIT_NO_AHEAD = 32 /* each plan made whole at its foot-off, not spread over the
-                              frames before it (the same walk, one slow frame per step) */
+    CUB_GAIT_NO_AHEAD = 32, /* each plan made whole at its foot-off, not spread over the
+                               frames before it (the same walk, one slow frame per step) */
+    CUB_GAIT_NO_FOLLOW = 64 /* the root does not follow the pinned feet (the body moves
+                               against them by the capture's slide) */
 };
 
 typedef struct cub_gait_walk_params {
@@ -399,10 +401,10 @@ typedef struct cub_gait_walk_params {
     cub_gait_leg_limits limits;   /* 0: cub_gait_leg_solve's defaults */
     cub_gait_swing_params swing;  /* 0: cub_gait_swing_path's defaults */
     int steps;                    /* footholds planned ahead (0: 4 flat, 3 rough) */
-    int clip_swing;               /* 1: on flat ground the clip's own swing path, not the
-                                     seed's key-frame segments (a comparison) */
+    int key_swing;                /* 1: on flat ground the swing made from its key frames
+                                     (a Bezier through them), not the captured one (a comparison) */
     int straight_swing;           /* 1: on flat ground the seed's straight segments between
-                                     the key frames, not the Bezier through them (a comparison) */
+                                     the key frames (a comparison) */
     int without;                  /* CUB_GAIT_NO_* bits: parts left out, to price each
                                      one's share of the error (cubtool gait-eval --without) */
     cub_gait_event_fn on_event;   /* may be NULL */
@@ -440,6 +442,10 @@ typedef struct cub_gait_walk_foot {
     cub_q16 floor_u, next_floor;  /* the clip's floor there */
     cub_q16 yaw_c, yaw_s;         /* the heading when it planted */
     cub_vec3 pin_u[2], skate_u[2];/* ankle, toe: where stance began; the clip's slide so far */
+    cub_vec3 slid_mm;             /* pinned: the clip's ankle slide since stance began (world) */
+    cub_vec3 follow_at_mm;        /* the walker's follow_mm when it struck (predicted) */
+    cub_vec3 stride_shift_mm;     /* swinging: the root's shift over this swing by the plan's
+                                     stride changes (stride_shift) */
     int swing_at, swing_len, step;
     cub_vec3 key_u[3];            /* flat ground: the ankle at foot-off, apex, strike */
     cub_vec3 key_v[3];            /* ... its captured velocity there, mm per frame (clip axes) */
@@ -464,6 +470,7 @@ typedef struct cub_gait_walker {
     int a, b;                     /* the cycle played: frames [a, b) */
     int frame, loops, ticks, steps;
     cub_vec3 cycle_u;             /* the root's travel over one cycle */
+    cub_vec3 travel_u;            /* ... less the pinned feet's slide: the walk's direction */
     cub_vec3 origin_mm, ref_u;    /* world = origin + yaw (u - ref), horizontal */
     cub_q16 yaw_c, yaw_s;         /* the clip's heading turned to the walker's */
     cub_q16 dir_x, dir_z;         /* the walker's heading (unit) */
@@ -472,6 +479,9 @@ typedef struct cub_gait_walker {
     cub_vec3 end_shift_mm;        /* the root's shift by the end steps landed (half each) */
     cub_vec3 end_face;            /* has_end: the end's facing (unit), from the first end step on */
     cub_q16 end_yaw_c, end_yaw_s; /* ... the clip's heading turned to it */
+    cub_vec3 follow_mm;           /* the root held back by the pinned feet's removed slide */
+    cub_vec3 stride_shift_mm;     /* the root's shift by the strides the plan changed, landed */
+    cub_vec3 stride_due_mm;       /* ... and the half still due at the other foot's next step */
     cub_gait_plan plan;           /* the last plan */
     /* The next foot-off's plan, made ahead a foothold test per frame while
      * both feet are down; taken at the foot-off only if its inputs are
