@@ -196,12 +196,16 @@ static void plan_in(cub_walk_box *w, const cub_bridge_player *p, int64_t t_us)
 static int64_t due_frames(const cub_walk_box *w, int64_t t_us);
 static void walker_pose_of(const cub_walk_box *w, const cub_pose *p, cub_pose *out);
 
-/* The coach's picture at its place now: its player's pose, the root moved
- * there at the ground's height (as cub_walk_box_pose stands it). */
+/* The coach's picture at its place now: its player's pose as the box
+ * shows it, the switch's blend on (the clip's raw frame jumps at a switch,
+ * and a walk arriving in it showed the jump; docs/gait.md), the root moved
+ * there at the ground's height (as cub_walk_box_pose stands it). The
+ * player's pose only writes its scratch and ends a finished blend, as the
+ * dance's own pose does at the same position. */
 static void coach_at_home(const cub_walk_box *w, const cub_bridge_player *p, cub_pose *out)
 {
     cub_vec3 h = at_xz(home_xz);
-    cub_bridge_player_raw_pose(p, out);
+    cub_bridge_player_pose((cub_bridge_player *)p, out);
     h.y = cub_gait_ground_height(&w->terrain, h.x, h.z);
     out->root_mm = cub_fx_vec3_add(out->root_mm, h);
 }
