@@ -304,6 +304,14 @@ static void test_swing_clears_a_plank_between_samples(void **state)
     assert_one_raise_fewer_fails(&t, &sp, from, to, sw.raises);
 }
 
+/* Flat ground with the log of the two tests below: 15 cm high, 10 cm
+ * deep, across the way 875 mm on. */
+static void flat_with_log(cub_gait_terrain *t)
+{
+    cub_gait_terrain_flat(t, 0);
+    assert_int_equal(cub_gait_terrain_add(t, box(-1000, 0, 875, 1000, 150, 975)), CUB_OK);
+}
+
 /* A log 15 cm high and 10 cm deep across the way 875 mm on: the nominal
  * step 0 (60 cm) is a feasible foothold, its toe 25 mm short of the log,
  * but from there the same foot's swing over the log (step 2) cannot
@@ -315,8 +323,7 @@ static void test_foothold_too_near_an_obstacle_is_refused(void **state)
 {
     (void)state;
     cub_gait_terrain t;
-    cub_gait_terrain_flat(&t, 0);
-    assert_int_equal(cub_gait_terrain_add(&t, box(-1000, 0, 875, 1000, 150, 975)), CUB_OK);
+    flat_with_log(&t);
     /* The obstacles are tested exactly (the 64 samples of the stepped
      * test let the toe dip to 11.9 mm at the log's near edge). */
     cub_gait_swing_params sp = {.foot_mm = MM(250), .max_raises = 40};
@@ -355,8 +362,7 @@ static void planner_run_a_test_at_a_time(void **state)
 {
     (void)state;
     cub_gait_terrain t;
-    cub_gait_terrain_flat(&t, 0);
-    assert_int_equal(cub_gait_terrain_add(&t, box(-1000, 0, 875, 1000, 150, 975)), CUB_OK);
+    flat_with_log(&t);
     cub_gait_swing_params sp = {.foot_mm = MM(250), .max_raises = 40};
     cub_gait_plan_params p = walk_params();
     p.steps = 3;

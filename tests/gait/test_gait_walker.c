@@ -470,6 +470,14 @@ static int walk_to(cub_vec3 target, int n, const cub_gait_terrain *t)
     return still;
 }
 
+/* A fresh walker with p on flat ground, n frames toward target (walk_to). */
+static int walk_on_flat(cub_gait_terrain *t, const cub_gait_walk_params *p, cub_vec3 target, int n)
+{
+    cub_gait_terrain_flat(t, 0);
+    assert_int_equal(cub_gait_walker_init(&walker, &analysed.wc, t, p), CUB_OK);
+    return walk_to(target, n, t);
+}
+
 /* A target 3 m ahead on flat ground: the walker comes to rest there on
  * both feet (each foot's lowest sole point within 10 mm of the ground:
  * the settled foot stands as in its captured stance, 8 mm up in 02_01;
@@ -479,11 +487,9 @@ static void comes_to_rest_at_target(void **state)
     (void)state;
     SYNTH_NEED_DATA(CLIP);
     cub_gait_terrain t;
-    cub_gait_terrain_flat(&t, 0);
     cub_gait_walk_params p = {.dir_z = CUB_Q16_ONE};
-    assert_int_equal(cub_gait_walker_init(&walker, &analysed.wc, &t, &p), CUB_OK);
     cub_vec3 target = {0, 0, CUB_Q16_INT(3000)};
-    int still = walk_to(target, 900, &t);
+    int still = walk_on_flat(&t, &p, target, 900);
     cub_q16 stride = cub_fx_vec3_length(walker.cycle_u) / 2;
     printf("gait walker: at rest %.0f mm from the target (stride %.0f), still %d frames, soles "
            "%.1f / %.1f mm up, %d steps\n",
@@ -549,11 +555,9 @@ static void comes_to_rest_on_end_footholds(void **state)
     (void)state;
     SYNTH_NEED_DATA(CLIP);
     cub_gait_terrain t;
-    cub_gait_terrain_flat(&t, 0);
     cub_vec3 mid;
     cub_gait_walk_params p = end_params(&mid);
-    assert_int_equal(cub_gait_walker_init(&walker, &analysed.wc, &t, &p), CUB_OK);
-    int still = walk_to(mid, 900, &t);
+    int still = walk_on_flat(&t, &p, mid, 900);
     cub_q16 stride = cub_fx_vec3_length(walker.cycle_u) / 2;
     printf("gait walker: end footholds: ankles %.1f / %.1f mm off them, feet %.1f / %.1f deg "
            "off their facing, root %.0f mm from their middle (stride %.0f), still %d frames, "
