@@ -4,8 +4,8 @@
 # every fold reported, in the scenes a child's room has (facing, turning,
 # travel, a second person, loose clothes).
 #
-#   scripts/eval_folds.sh BUILD_DIR [dev|heldout|all] [--quick] [--identity [--draw 2|3|4] [--no-prelude]]
-#                         [--draw 5] [--turned-away] [--fold NAME] [--scene NAME] [--csv FILE]
+#   scripts/eval_folds.sh BUILD_DIR [dev|heldout|all] [--quick] [--identity [--draw 2|3|4|7] [--no-prelude]]
+#                         [--draw 5|7] [--turned-away] [--fold NAME] [--scene NAME] [--csv FILE]
 #   (also: scripts/eval_tracker.sh BUILD_DIR --folds ...)
 #
 # dev      the folds hand-set numbers may be chosen on (CMU subject groups,
@@ -32,6 +32,11 @@
 # --draw 4  the fourth draw (session 34, drawn unseen): seed 5, each clip
 #          again with a mode it never met in draws 1-3, the second persons
 #          from the fold three on
+# --draw 7  the seventh draw (session 37, drawn unseen, scored once on main):
+#          with --identity seed 8, each clip again with a mode it never met
+#          in draws 1-4, the second persons from the fold four on; without
+#          it the third facing draw: clips c_{k+0}, c_{k+1}, c_{k+4},
+#          c_{k+5}, c_{k+8} turning, seed 8 (clips of draws 5-6, new renders)
 # --no-prelude  the identity renders as rounds 1-3 had them (the child
 #          there from the first frame)
 # --draw 5 (without --identity) the facing draw (session 35, drawn unseen):
@@ -52,7 +57,7 @@
 set -eu
 
 usage() {
-    echo "usage: scripts/eval_folds.sh BUILD_DIR [dev|heldout|all] [--quick] [--identity [--draw 2|3|4] [--no-prelude]] [--draw 5] [--turned-away] [--fold NAME] [--scene NAME] [--csv FILE]" >&2
+    echo "usage: scripts/eval_folds.sh BUILD_DIR [dev|heldout|all] [--quick] [--identity [--draw 2|3|4|7] [--no-prelude]] [--draw 5|7] [--turned-away] [--fold NAME] [--scene NAME] [--csv FILE]" >&2
     exit 2
 }
 HERE=$(cd "$(dirname "$0")" && pwd)
@@ -95,7 +100,7 @@ while [ $# -gt 0 ]; do
     --quick) QUICK=1 ;;
     --identity) IDENTITY=1 ;;
     --no-prelude) PRELUDE=0 ;;
-    --draw) [ $# -ge 2 ] && { [ "$2" = 1 ] || [ "$2" = 2 ] || [ "$2" = 3 ] || [ "$2" = 4 ] || [ "$2" = 5 ]; } || usage; DRAW=$2; shift ;;
+    --draw) [ $# -ge 2 ] && { [ "$2" = 1 ] || [ "$2" = 2 ] || [ "$2" = 3 ] || [ "$2" = 4 ] || [ "$2" = 5 ] || [ "$2" = 7 ]; } || usage; DRAW=$2; shift ;;
     --turned-away) START_YAW= ;;
     --fold) [ $# -ge 2 ] || usage; ONLY=$2; shift ;;
     --csv) [ $# -ge 2 ] || usage; CSV=$2; shift ;;
@@ -173,6 +178,10 @@ scene_args() { # scene fold_index clip_index second_clip
 # sibling, c_{k+3} crossed slowly (again no clip meets a mode it met in
 # draws 1-3), the second person f_m (f_4) of the fold three on, turning
 # when k + m is even.
+# Draw 7: c_{k+5} behind, c_{k+6} walk-in, c_{k+4} cross, c_{k+9}
+# sibling, c_{k+1} crossed slowly (no clip meets a mode it met in draws
+# 1-4), the second person g_m (g_4) of the fold four on, turning when
+# k + m is odd.
 identity_jobs() { # fold set k clips second_persons_clips
     n=$(printf '%s\n' "$4" | tr ';' '\n' | wc -l)
     nn=$(printf '%s\n' "$5" | tr ';' '\n' | wc -l)
@@ -186,6 +195,8 @@ identity_jobs() { # fold set k clips second_persons_clips
             i=$((($3 + $(nth $m 6 2 9 4 7)) % n)) sm=$m
         elif [ "$DRAW" = 4 ]; then
             i=$((($3 + $(nth $m 8 7 0 5 3)) % n)) sm=$m
+        elif [ "$DRAW" = 7 ]; then
+            i=$((($3 + $(nth $m 5 6 4 9 1)) % n)) sm=$m
         fi
         clip=$(printf '%s\n' "$4" | tr ';' '\n' | sed -n "$((i + 1))p")
         other=$(printf '%s\n' "$5" | tr ';' '\n' | sed -n "$((sm % nn + 1))p" | cut -d' ' -f1)
@@ -198,10 +209,14 @@ identity_jobs() { # fold set k clips second_persons_clips
 }
 
 # The facing draw (draw 5) of fold k: its clips c_{k+1}, c_{k+3}, ...,
-# c_{k+9} (every other clip of a 10-clip fold), each turning.
+# c_{k+9} (every other clip of a 10-clip fold), each turning; draw 7
+# c_{k+0}, c_{k+1}, c_{k+4}, c_{k+5}, c_{k+8} (clips draws 5-6 turned with
+# other seeds).
 facing_jobs() { # fold set k clips
     n=$(printf '%s\n' "$4" | tr ';' '\n' | wc -l)
-    for o in 1 3 5 7 9; do
+    offs="1 3 5 7 9"
+    [ "$DRAW" != 7 ] || offs="0 1 4 5 8"
+    for o in $offs; do
         i=$((($3 + o) % n))
         clip=$(printf '%s\n' "$4" | tr ';' '\n' | sed -n "$((i + 1))p")
         printf '%s|%s|t%d|turning|--clip %s %s\n' "$1" "$2" "$o" "$clip" "$(scene_args turning)"
@@ -216,7 +231,7 @@ jobs() {
     k=0
     while IFS='|' read -r fold set clips; do
         next=$(sed -n "$(((k + 1) % nf + 1))p" "$RESULTS/folds" | cut -d'|' -f3 | cut -d';' -f1 | cut -d' ' -f1)
-        if [ "$IDENTITY" = 0 ] && [ "$DRAW" = 5 ]; then
+        if [ "$IDENTITY" = 0 ] && { [ "$DRAW" = 5 ] || [ "$DRAW" = 7 ]; }; then
             if { [ "$SET" = all ] || [ "$SET" = "$set" ]; } && { [ -z "$ONLY" ] || [ "$ONLY" = "$fold" ]; }; then
                 facing_jobs "$fold" "$set" $k "$clips"
             fi
@@ -228,6 +243,7 @@ jobs() {
                 step=1
                 [ "$DRAW" != 3 ] || step=2
                 [ "$DRAW" != 4 ] || step=3
+                [ "$DRAW" != 7 ] || step=4
                 identity_jobs "$fold" "$set" $k "$clips" "$(sed -n "$(((k + step) % nf + 1))p" "$RESULTS/folds" | cut -d'|' -f3)"
             fi
             k=$((k + 1))
@@ -267,6 +283,7 @@ COMMON="--seed 1 --frames 90 --fps 10"
 [ "$IDENTITY" = 0 ] || COMMON="--seed $((DRAW + 1)) --frames 90 --fps 10"
 [ "$IDENTITY" = 0 ] || [ "$PRELUDE" = 0 ] || COMMON="$COMMON --prelude $PRELUDE"
 [ "$IDENTITY" = 1 ] || [ "$DRAW" != 5 ] || COMMON="--seed 6 --frames 90 --fps 10"
+[ "$IDENTITY" = 1 ] || [ "$DRAW" != 7 ] || COMMON="--seed 8 --frames 90 --fps 10"
 [ "$QUICK" = 0 ] || COMMON="--seed 1 --frames 8 --fps 10"
 echo "eval_folds: $SET folds$([ "$QUICK" = 0 ] || echo ' (quick sample)')$([ "$IDENTITY" = 0 ] || echo ', identity renders'), $COMMON, data $DATA"
 jobs >"$RESULTS/jobs"
