@@ -687,9 +687,10 @@ static bool have_log(const char *name)
  * clip's p99 at each strike). A walk in that arrives at once (stop's
  * second: its first step is an end step) has no walking frames, walk_dpf
  * 0: it is held to the fastest walking of the log's walk ins before it,
- * the same walk clip through the same walker. Before: the root's ease to
- * the end pose over the second end swing met the root held back by the
- * pinned feet (demo 37.5 against 39.9, wake's second 42.6 against 34.2). */
+ * the same walk clip through the same walker. Before, the first end
+ * strike's knee turned out of its hinge (the thighs and shins eased to
+ * the end pose before the solve; docs/gait.md): return's second 39.1
+ * against 36.9, wake's second 42.6 against 34.2. */
 static void test_every_walk_in_arrives_no_faster_than_it_walks(void **s)
 {
     static const char *const names[] = {"demo", "return", "wake", "stop"};
