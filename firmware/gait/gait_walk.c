@@ -657,6 +657,22 @@ static cub_vec3 planted(const cub_gait_walker *w, const cub_gait_walk_foot *ft, 
     return cub_fx_vec3_add(flat_xz(ft->hold_mm), d);
 }
 
+/* An end foot's landing yaw (yc, ys) eased in from its planted one by
+ * the swing's progress s: its captured offset from the strike is turned
+ * by as much as the foot has turned. Turned by the whole of the end's
+ * facing from the foot-off, the offset (half a stride early on) swung the
+ * foot aside and back in over the swing's last frames (22 mm in the
+ * strike's frame, return's second walk in) [ours]. */
+static void ease_landing_yaw(const cub_gait_walk_foot *ft, cub_q16 s, cub_q16 *yc, cub_q16 *ys)
+{
+    if (!ft->at_end || s >= CUB_Q16_ONE || (*yc == ft->yaw_c && *ys == ft->yaw_s)) return;
+    cub_q16 dc = cub_fx_add(cub_fx_mul(*yc, ft->yaw_c), cub_fx_mul(*ys, ft->yaw_s));
+    cub_q16 ds = cub_fx_sub(cub_fx_mul(*ys, ft->yaw_c), cub_fx_mul(*yc, ft->yaw_s));
+    cub_q16 a = cub_fx_add(cub_fx_atan2(ft->yaw_s, ft->yaw_c), cub_fx_mul(cub_fx_atan2(ds, dc), s));
+    *yc = cub_fx_cos(a);
+    *ys = cub_fx_sin(a);
+}
+
 /* A swinging point: its planted places at both ends, blended by s. */
 static cub_vec3 swinging(const cub_gait_walker *w, const cub_gait_walk_foot *ft, int pt,
                          cub_vec3 u, cub_q16 s)
@@ -664,6 +680,7 @@ static cub_vec3 swinging(const cub_gait_walker *w, const cub_gait_walk_foot *ft,
     cub_vec3 from = planted(w, ft, pt, u);
     cub_q16 yc, ys;
     foot_yaw(w, ft, &yc, &ys);
+    ease_landing_yaw(ft, s, &yc, &ys);
     cub_vec3 d = yaw_rotate(yc, ys, flat_xz(cub_fx_vec3_sub(u, ft->next_u)));
     cub_vec3 to = cub_fx_vec3_add(flat_xz(ft->next_mm), d);
     return cub_fx_vec3_lerp(from, to, s);
@@ -934,18 +951,34 @@ static bool arriving_in_pose(const cub_gait_walker *w)
     return w->p.end_pose && w->p.end_pose->joint_count == w->pose.joint_count;
 }
 
-/* The arrival: every joint's rotation eased toward the end pose by the
- * end weight, the root's place over the second end swing only (the legs
- * are solved after, onto the feet). Over the first the other foot still
- * stands a step back: the root drawn to the end stretched that leg past
- * its reach and the knee turned over (177 degrees in a frame). */
+/* A thigh or a shin (the joints the leg solve turns)? */
+static bool solved_leg_joint(const cub_gait_walker *w, int j)
+{
+    const cub_skeleton *sk = w->c->clip->skel;
+    for (int i = 0; i < 2; i++) {
+        int knee = sk->joints[w->c->ankle[i]].parent;
+        if (j == knee || j == sk->joints[knee].parent) return true;
+    }
+    return false;
+}
+
+/* The arrival: every joint's rotation but the thighs' and shins' eased
+ * toward the end pose by the end weight, the root's place over the second
+ * end swing only (the legs are solved after, onto the feet). Over the
+ * first the other foot still stands a step back: the root drawn to the
+ * end stretched that leg past its reach and the knee turned over (177
+ * degrees in a frame). The solve sets the thigh and the shin but for
+ * their twist, and the knee's bend plane follows the pose's: eased toward
+ * the end pose's, they turned the striking knee out of its hinge (wake's
+ * second walk in: 42.6 degrees in the first end strike's frame, 12.6 of
+ * them the bend) [ours]. */
 static void arrive(cub_gait_walker *w)
 {
     const cub_pose *e = w->p.end_pose;
     cub_q16 k = end_weight(w);
     if (!arriving_in_pose(w) || k <= 0) return;
     for (int j = 0; j < e->joint_count; j++)
-        w->pose.rot[j] = cub_fx_quat_nlerp(w->pose.rot[j], e->rot[j], k);
+        if (!solved_leg_joint(w, j)) w->pose.rot[j] = cub_fx_quat_nlerp(w->pose.rot[j], e->rot[j], k);
     if (k > CUB_Q16_ONE / 2)
         w->pose.root_mm = cub_fx_vec3_lerp(w->pose.root_mm, e->root_mm, 2 * k - CUB_Q16_ONE);
 }
