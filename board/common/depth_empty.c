@@ -41,8 +41,10 @@ cub_err cub_depth_empty_poll(cub_depth_empty *s, cub_depth_frame *out)
         return CUB_ERR_EMPTY;
     }
     /* Only the newest due frame is handed out, as with a live Kinect when
-     * the caller polls late. */
-    int64_t k = now_us * CUB_DEPTH_EMPTY_PERIOD_DEN / CUB_DEPTH_EMPTY_PERIOD_NUM_US;
+     * the caller polls late: the largest k with due_us(k) <= now. (Flooring
+     * now * DEN / NUM instead gave frame k-1 again at the microsecond frame
+     * k falls due on, since due_us rounds down.) */
+    int64_t k = ((now_us + 1) * CUB_DEPTH_EMPTY_PERIOD_DEN - 1) / CUB_DEPTH_EMPTY_PERIOD_NUM_US;
     s->next_k = k + 1;
     out->raw = s->raw;
     out->seq = s->seq++;

@@ -38,6 +38,32 @@ static int on_grid(int64_t t_us)
     return k * CUB_DEPTH_EMPTY_PERIOD_NUM_US / CUB_DEPTH_EMPTY_PERIOD_DEN == t_us;
 }
 
+/* On a virtual clock, polled at the very microsecond each frame falls
+ * due (due times round down: 33333, 66666, 100000 us ...) and one before:
+ * each due frame is handed out once, in order, never an earlier one again. */
+static void test_empty_scene_frame_on_its_due_microsecond(void **state)
+{
+    (void)state;
+    cub_board_clock clock;
+    cub_board_clock_start(&clock, 1);
+    cub_depth *d;
+    char err[128];
+    assert_int_equal(cub_depth_open(CUB_DEPTH_EMPTY, &clock, &d, err, sizeof err), CUB_OK);
+    cub_depth_frame f;
+    for (int64_t k = 0; k < 40; k++) {
+        int64_t due = k * CUB_DEPTH_EMPTY_PERIOD_NUM_US / CUB_DEPTH_EMPTY_PERIOD_DEN;
+        if (k > 0) {
+            cub_board_clock_sleep_until_us(&clock, due - 1);
+            assert_int_equal(cub_depth_poll(d, &f), CUB_ERR_EMPTY);
+        }
+        cub_board_clock_sleep_until_us(&clock, due);
+        assert_int_equal(cub_depth_poll(d, &f), CUB_OK);
+        assert_int_equal(f.seq, (uint32_t)k);
+        assert_int_equal(f.t_us, due);
+    }
+    cub_depth_close(d);
+}
+
 static void test_empty_scene_frames_at_30hz_all_no_reading(void **state)
 {
     cub_board_clock clock;
@@ -99,6 +125,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_off_has_no_source),
+        cmocka_unit_test(test_empty_scene_frame_on_its_due_microsecond),
         cmocka_unit_test(test_empty_scene_frames_at_30hz_all_no_reading),
         cmocka_unit_test(test_empty_scene_late_poll_gives_newest),
     };
