@@ -304,12 +304,16 @@ static void test_swing_clears_a_plank_between_samples(void **state)
     assert_one_raise_fewer_fails(&t, &sp, from, to, sw.raises);
 }
 
-/* Flat ground with the log of the two tests below: 15 cm high, 10 cm
- * deep, across the way 875 mm on. */
-static void flat_with_log(cub_gait_terrain *t)
+/* The two tests below: flat ground with a log 15 cm high and 10 cm deep
+ * across the way 875 mm on, a 25 cm foot's swing of at most 40 raises, a
+ * plan of 3 steps (without the swing test: p->swing is left to them). */
+static void log_setup(cub_gait_terrain *t, cub_gait_swing_params *sp, cub_gait_plan_params *p)
 {
     cub_gait_terrain_flat(t, 0);
     assert_int_equal(cub_gait_terrain_add(t, box(-1000, 0, 875, 1000, 150, 975)), CUB_OK);
+    *sp = (cub_gait_swing_params){.foot_mm = MM(250), .max_raises = 40};
+    *p = walk_params();
+    p->steps = 3;
 }
 
 /* A log 15 cm high and 10 cm deep across the way 875 mm on: the nominal
@@ -323,12 +327,11 @@ static void test_foothold_too_near_an_obstacle_is_refused(void **state)
 {
     (void)state;
     cub_gait_terrain t;
-    flat_with_log(&t);
+    cub_gait_swing_params sp;
+    cub_gait_plan_params p;
     /* The obstacles are tested exactly (the 64 samples of the stepped
      * test let the toe dip to 11.9 mm at the log's near edge). */
-    cub_gait_swing_params sp = {.foot_mm = MM(250), .max_raises = 40};
-    cub_gait_plan_params p = walk_params();
-    p.steps = 3;
+    log_setup(&t, &sp, &p);
     cub_gait_plan plan;
     assert_int_equal(cub_gait_plan_steps(&t, &p, &start, &plan), CUB_OK);
     assert_int_equal(plan.steps[0].foot_mm.z, MM(600)); /* footholds alone: the nominal step */
@@ -362,10 +365,9 @@ static void planner_run_a_test_at_a_time(void **state)
 {
     (void)state;
     cub_gait_terrain t;
-    flat_with_log(&t);
-    cub_gait_swing_params sp = {.foot_mm = MM(250), .max_raises = 40};
-    cub_gait_plan_params p = walk_params();
-    p.steps = 3;
+    cub_gait_swing_params sp;
+    cub_gait_plan_params p;
+    log_setup(&t, &sp, &p);
     p.swing = &sp;
     for (int dead = 0; dead < 2; dead++) {
         if (dead) sp.max_raises = 2; /* no swing over the log clears: a dead end */
